@@ -1,0 +1,10 @@
+#pragma once
+// One registration function per subcommand; main.cpp calls them all.
+
+#include <CLI/CLI.hpp>
+
+namespace countershade::cli {
+
+void add_render_command(CLI::App& app);
+
+}  // namespace countershade::cli

@@ -1,0 +1,35 @@
+#pragma once
+// Display encoding: how linear, exposed radiance becomes the code values stored in a stimulus,
+// and back. The inverse is what CIELAB conversions of stimuli use.
+
+#include <string>
+#include <vector>
+
+namespace countershade {
+
+class DisplayEncoding {
+ public:
+  enum class Kind { srgb, gamma, lut };
+
+  static DisplayEncoding srgb();
+  static DisplayEncoding gamma(double exponent);
+  // A measured table: code values in [0,1] and the relative luminance each produces, both
+  // strictly increasing, first row (0, 0) and last row (1, 1) after normalisation.
+  static DisplayEncoding lut(std::vector<double> codes, std::vector<double> luminances);
+
+  Kind kind() const { return kind_; }
+  double gamma_exponent() const { return gamma_; }
+  std::string describe() const;
+
+  // Linear relative luminance in [0,1] (clamped) -> code value in [0,1].
+  double encode(double linear) const;
+  // Code value in [0,1] -> linear relative luminance.
+  double decode(double code) const;
+
+ private:
+  Kind kind_ = Kind::srgb;
+  double gamma_ = 2.2;
+  std::vector<double> codes_, luminances_;
+};
+
+}  // namespace countershade

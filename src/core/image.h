@@ -1,0 +1,48 @@
+#pragma once
+// A plain float image and its file I/O through OpenImageIO.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace countershade {
+
+// Row-major, interleaved channels, top row first.
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;
+
+  Image() = default;
+  Image(int w, int h, int c, float fill = 0.0f)
+      : width(w), height(h), channels(c), pixels(size_t(w) * size_t(h) * size_t(c), fill) {}
+
+  size_t index(int x, int y, int c = 0) const {
+    return (size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c);
+  }
+  float& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
+  float at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
+  bool empty() const { return pixels.empty(); }
+};
+
+struct ImageWriteOptions {
+  int png_bits = 8;  // 8 or 16; PNG and TIFF values are code values in [0,1]
+};
+
+// Reads any format OpenImageIO knows (PNG, EXR, TIFF, PFM, HDR, ...) as float. Integer formats
+// come back scaled to [0,1]. Throws InputError naming the file when it cannot be read.
+Image read_image(const std::filesystem::path& path);
+
+// Writes by extension: .png/.tif/.tiff quantised (round to nearest) to 8 or 16 bits, .exr/.pfm/.hdr
+// as float. The file appears atomically: a temporary file in the same folder, then a rename.
+void write_image(const std::filesystem::path& path, const Image& image,
+                 const ImageWriteOptions& options = {});
+
+// Quantises a [0,1] value to an n-bit integer code by rounding to nearest.
+inline uint32_t quantize(float value, int bits) {
+  float max_code = float((1u << bits) - 1u);
+  float v = value != value ? 0.0f : (value < 0.0f ? 0.0f : (value > 1.0f ? 1.0f : value));
+  return uint32_t(v * max_code + 0.5f);
+}
+
+}  // namespace countershade

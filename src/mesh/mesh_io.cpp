@@ -1,0 +1,169 @@
+#include "mesh/mesh_io.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace countershade {
+namespace {
+
+using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// OpenMesh's OBJ reader does not bounds-check face indices, so check them before it runs.
+void check_obj_indices(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  long long vertices = 0, texcoords = 0;
+  size_t line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.size() < 2) continue;
+    if (line[0] == 'v' && line[1] == ' ') {
+      ++vertices;
+    } else if (line[0] == 'v' && line[1] == 't') {
+      ++texcoords;
+    } else if (line[0] == 'f' && line[1] == ' ') {
+      std::istringstream fields(line.substr(2));
+      std::string corner;
+      int count = 0;
+      while (fields >> corner) {
+        ++count;
+        long long index[2] = {0, 0};
+        size_t start = 0;
+        for (int k = 0; k < 2 && start <= corner.size(); ++k) {
+          size_t end = corner.find('/', start);
+          std::string part = corner.substr(start, end == std::string::npos ? end : end - start);
+          if (!part.empty()) {
+            try {
+              index[k] = std::stoll(part);
+            } catch (...) {
+              throw_input_error(path.string() + ": line " + std::to_string(line_number),
+                                "face index '" + part + "' is not a number");
+            }
+          }
+          if (end == std::string::npos) break;
+          start = end + 1;
+        }
+        long long limits[2] = {vertices, texcoords};
+        const char* names[2] = {"vertex", "texture coordinate"};
+        for (int k = 0; k < 2; ++k) {
+          long long i = index[k];
+          if (k == 1 && i == 0) continue;  // no texture coordinate given
+          long long resolved = i < 0 ? limits[k] + i + 1 : i;
+          if (i == 0 || resolved < 1 || resolved > limits[k])
+            throw_input_error(path.string() + ": line " + std::to_string(line_number),
+                              std::string("face ") + names[k] + " index " + std::to_string(i) +
+                                  " is out of range (1.." + std::to_string(limits[k]) + ")");
+        }
+      }
+      if (count < 3)
+        throw_input_error(path.string() + ": line " + std::to_string(line_number),
+                          "face has fewer than 3 vertices");
+    }
+  }
+}
+
+}  // namespace
+
+void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
+  if (mesh.triangles.empty()) throw_input_error(where, "mesh has no faces");
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const auto& p = mesh.positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw_input_error(where, "vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+  }
+  const size_t nv = mesh.positions.size();
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    if (tri.x >= nv || tri.y >= nv || tri.z >= nv)
+      throw_input_error(where, "triangle " + std::to_string(t) + " has a vertex index out of range");
+    if (tri.x == tri.y || tri.y == tri.z || tri.x == tri.z || triangle_double_area(mesh, t) == 0.0)
+      throw_input_error(where, "triangle " + std::to_string(t) + " is degenerate (zero area)");
+  }
+}
+
+TriangleMesh load_mesh(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw_input_error(path.string(), "no such mesh file");
+  if (fs::file_size(path, ec) == 0) throw_input_error(path.string(), "mesh file is empty");
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
+    throw_input_error(path.string(), "unsupported mesh format '" + ext + "' (use OBJ, PLY, OFF or STL)");
+  if (ext == ".obj") check_obj_indices(path);
+
+  OMesh om;
+  om.request_vertex_colors();
+  om.request_vertex_texcoords2D();
+  om.request_halfedge_texcoords2D();
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor |
+                                  OpenMesh::IO::Options::VertexTexCoord |
+                                  OpenMesh::IO::Options::FaceTexCoord;
+
+  // OpenMesh reports dropped faces (complex edges, non-manifold vertices) only on its error
+  // stream; capture it so they become an error rather than a silently incomplete mesh.
+  static std::mutex omerr_mutex;
+  std::ostringstream reader_log;
+  bool ok;
+  {
+    std::lock_guard<std::mutex> lock(omerr_mutex);
+    omerr().connect(reader_log);
+    omlog().disable();
+    ok = OpenMesh::IO::read_mesh(om, path.string(), options);
+    omerr().disconnect(reader_log);
+  }
+  if (!ok) throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
+  std::string log = reader_log.str();
+  if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
+      log.find("failed") != std::string::npos) {
+    throw_input_error(path.string(),
+                      "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
+  }
+
+  TriangleMesh mesh;
+  mesh.positions.reserve(om.n_vertices());
+  for (auto vh : om.vertices()) {
+    auto p = om.point(vh);
+    mesh.positions.emplace_back(p[0], p[1], p[2]);
+  }
+  bool has_colors = options.check(OpenMesh::IO::Options::VertexColor);
+  if (has_colors) {
+    for (auto vh : om.vertices()) {
+      auto c = om.color(vh);
+      mesh.vertex_colors.emplace_back(c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f);
+    }
+  }
+  bool face_uvs = options.check(OpenMesh::IO::Options::FaceTexCoord);
+  bool vertex_uvs = options.check(OpenMesh::IO::Options::VertexTexCoord);
+  mesh.triangles.reserve(om.n_faces());
+  for (auto fh : om.faces()) {
+    glm::uvec3 tri;
+    int c = 0;
+    for (auto heh : om.fh_range(fh)) {
+      auto vh = om.to_vertex_handle(heh);
+      tri[c] = unsigned(vh.idx());
+      if (face_uvs) {
+        auto uv = om.texcoord2D(heh);
+        mesh.corner_uvs.emplace_back(uv[0], uv[1]);
+      } else if (vertex_uvs) {
+        auto uv = om.texcoord2D(vh);
+        mesh.corner_uvs.emplace_back(uv[0], uv[1]);
+      }
+      if (++c == 3) break;
+    }
+    mesh.triangles.push_back(tri);
+  }
+  validate_mesh(mesh, path.string());
+  return mesh;
+}
+
+}  // namespace countershade

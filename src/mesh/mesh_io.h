@@ -1,0 +1,19 @@
+#pragma once
+// Loading meshes (OBJ, PLY, OFF, STL) through OpenMesh, with validation. Polygons are triangulated.
+
+#include <filesystem>
+
+#include "mesh/triangle_mesh.h"
+
+namespace countershade {
+
+// Loads positions, faces, vertex colours and texture coordinates (per corner) when the file has
+// them. Normals are left empty: the caller computes them with its crease angle.
+// Throws InputError naming the file for: unreadable files, no faces, NaN/inf coordinates,
+// face indices out of range, faces the reader had to drop (non-manifold), degenerate triangles.
+TriangleMesh load_mesh(const std::filesystem::path& path);
+
+// Checks a mesh in memory with the same rules; `where` prefixes the messages.
+void validate_mesh(const TriangleMesh& mesh, const std::string& where);
+
+}  // namespace countershade

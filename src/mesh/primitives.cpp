@@ -1,0 +1,218 @@
+#include "mesh/primitives.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+
+namespace countershade {
+namespace {
+
+// Welds vertices by an integer key so shared lattice points become one vertex.
+template <class Key>
+class Welder {
+ public:
+  explicit Welder(TriangleMesh& mesh) : mesh_(mesh) {}
+  unsigned vertex(const Key& key, const glm::vec3& position) {
+    auto [it, inserted] = ids_.try_emplace(key, unsigned(mesh_.positions.size()));
+    if (inserted) mesh_.positions.push_back(position);
+    return it->second;
+  }
+
+ private:
+  TriangleMesh& mesh_;
+  std::map<Key, unsigned> ids_;
+};
+
+// Adds the two triangles of quad (a, b, c, d) in counter-clockwise order, split along the
+// shorter diagonal to keep triangles well shaped.
+void add_quad(TriangleMesh& mesh, unsigned a, unsigned b, unsigned c, unsigned d) {
+  float ac = glm::length(mesh.positions[a] - mesh.positions[c]);
+  float bd = glm::length(mesh.positions[b] - mesh.positions[d]);
+  if (ac <= bd) {
+    mesh.triangles.push_back({a, b, c});
+    mesh.triangles.push_back({a, c, d});
+  } else {
+    mesh.triangles.push_back({a, b, d});
+    mesh.triangles.push_back({b, c, d});
+  }
+}
+
+// Grid coordinates along one box axis from -h to h: `edge` rows in each cut-back band of width
+// r at the ends, and interior rows of about the target spacing.
+std::vector<double> axis_coordinates(double h, double r, int edge, double spacing) {
+  std::vector<double> xs;
+  double inner = h - r;
+  int interior = std::max(1, int(std::lround(2.0 * inner / spacing)));
+  if (r > 0)
+    for (int i = 0; i < edge; ++i) xs.push_back(-h + r * i / edge);
+  for (int i = 0; i <= interior; ++i) xs.push_back(-inner + 2.0 * inner * i / interior);
+  if (r > 0)
+    for (int i = 1; i <= edge; ++i) xs.push_back(inner + r * i / edge);
+  return xs;
+}
+
+}  // namespace
+
+TriangleMesh make_plane(double size, int subdivisions) {
+  TriangleMesh mesh;
+  int n = std::max(1, subdivisions);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      mesh.positions.emplace_back(size * (double(i) / n - 0.5), 0.0, size * (double(j) / n - 0.5));
+  auto id = [n](int i, int j) { return unsigned(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      // Counter-clockwise seen from +y: (i,j) -> (i,j+1) -> (i+1,j+1) -> (i+1,j).
+      size_t first = mesh.triangles.size();
+      add_quad(mesh, id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
+      for (size_t t = first; t < mesh.triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+          const auto& p = mesh.positions[mesh.triangles[t][c]];
+          mesh.corner_uvs.emplace_back(p.x / size + 0.5, 0.5 - p.z / size);
+        }
+    }
+  return mesh;
+}
+
+TriangleMesh make_box(const glm::dvec3& size, EdgeProfile profile, double radius, int edge_segments,
+                      int subdivisions) {
+  glm::dvec3 h = size * 0.5;
+  double r = profile == EdgeProfile::sharp ? 0.0 : std::min(radius, 0.999 * std::min({h.x, h.y, h.z}));
+  int edge = std::max(1, edge_segments);
+  double spacing = 2.0 * (std::max({h.x, h.y, h.z}) - r) / std::max(1, subdivisions);
+  std::vector<double> axes[3];
+  for (int a = 0; a < 3; ++a) axes[a] = axis_coordinates(h[a], r, edge, spacing);
+  glm::dvec3 inner = h - glm::dvec3(r);
+
+  // Surface point for a lattice point on the box: project the cut-back bands onto the profile.
+  auto place = [&](const glm::dvec3& p) {
+    glm::dvec3 q = glm::clamp(p, -inner, inner);
+    glm::dvec3 d = p - q;
+    if (r <= 0 || (d.x == 0 && d.y == 0 && d.z == 0)) return glm::vec3(p);
+    if (profile == EdgeProfile::bevel) return glm::vec3(q + r * glm::normalize(d));
+    double l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    return glm::vec3(q + d * (r / l1));
+  };
+
+  TriangleMesh mesh;
+  Welder<std::tuple<int, int, int>> welder(mesh);
+  // Each face: fixed axis `a` at side s (0 or last index), walking axes u and v.
+  for (int a = 0; a < 3; ++a) {
+    int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (int side = 0; side < 2; ++side) {
+      int fixed = side == 0 ? 0 : int(axes[a].size()) - 1;
+      int nu = int(axes[u].size()), nv = int(axes[v].size());
+      auto vertex = [&](int i, int j) {
+        int idx[3];
+        idx[a] = fixed;
+        idx[u] = i;
+        idx[v] = j;
+        glm::dvec3 p(axes[0][idx[0]], axes[1][idx[1]], axes[2][idx[2]]);
+        return welder.vertex({idx[0], idx[1], idx[2]}, place(p));
+      };
+      for (int j = 0; j + 1 < nv; ++j)
+        for (int i = 0; i + 1 < nu; ++i) {
+          unsigned a0 = vertex(i, j), a1 = vertex(i + 1, j), a2 = vertex(i + 1, j + 1), a3 = vertex(i, j + 1);
+          size_t first = mesh.triangles.size();
+          // (u, v, a) is right-handed, so u->v is counter-clockwise seen from +a.
+          if (side == 1)
+            add_quad(mesh, a0, a1, a2, a3);
+          else
+            add_quad(mesh, a0, a3, a2, a1);
+          for (size_t t = first; t < mesh.triangles.size(); ++t)
+            for (int c = 0; c < 3; ++c) {
+              const auto& p = mesh.positions[mesh.triangles[t][c]];
+              mesh.corner_uvs.emplace_back((p[u] + h[u]) / (2 * h[u]), (p[v] + h[v]) / (2 * h[v]));
+            }
+        }
+    }
+  }
+  return mesh;
+}
+
+TriangleMesh make_sphere(double radius, int subdivisions) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<glm::dvec3> verts = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                   {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                   {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<glm::uvec3> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                   {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                   {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                   {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (auto& v : verts) v = glm::normalize(v);
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<unsigned, unsigned>, unsigned> midpoint;
+    auto mid = [&](unsigned a, unsigned b) {
+      auto key = std::minmax(a, b);
+      auto [it, inserted] = midpoint.try_emplace(key, unsigned(verts.size()));
+      if (inserted) verts.push_back(glm::normalize(verts[a] + verts[b]));
+      return it->second;
+    };
+    std::vector<glm::uvec3> next;
+    for (const auto& f : faces) {
+      unsigned ab = mid(f.x, f.y), bc = mid(f.y, f.z), ca = mid(f.z, f.x);
+      next.insert(next.end(), {{f.x, ab, ca}, {f.y, bc, ab}, {f.z, ca, bc}, {ab, bc, ca}});
+    }
+    faces.swap(next);
+  }
+  TriangleMesh mesh;
+  for (const auto& v : verts) mesh.positions.emplace_back(v * radius);
+  mesh.triangles = faces;
+  return mesh;
+}
+
+TriangleMesh make_cylinder(double radius, double height, int segments) {
+  TriangleMesh mesh;
+  int n = std::max(3, segments);
+  double width = 2.0 * std::numbers::pi * radius / n;
+  int rows = std::max(1, int(std::lround(height / width)));
+  int rings = std::max(1, int(std::lround(radius / width)));
+  auto angle = [n](int i) { return 2.0 * std::numbers::pi * (i % n) / n; };
+  // Side grid: rows+1 rings of n vertices.
+  for (int j = 0; j <= rows; ++j)
+    for (int i = 0; i < n; ++i)
+      mesh.positions.emplace_back(radius * std::cos(angle(i)), -height / 2 + height * j / rows,
+                                  -radius * std::sin(angle(i)));
+  auto side = [n](int i, int j) { return unsigned(j * n + (i % n)); };
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < n; ++i) add_quad(mesh, side(i, j), side(i + 1, j), side(i + 1, j + 1), side(i, j + 1));
+  // Caps: concentric rings sharing the outer ring with the side, then a centre vertex.
+  for (int cap = 0; cap < 2; ++cap) {
+    double y = cap == 0 ? -height / 2 : height / 2;
+    std::vector<unsigned> outer(n);
+    for (int i = 0; i < n; ++i) outer[i] = side(i, cap == 0 ? 0 : rows);
+    for (int k = rings - 1; k >= 0; --k) {
+      std::vector<unsigned> ring(n);
+      if (k > 0) {
+        for (int i = 0; i < n; ++i) {
+          ring[i] = unsigned(mesh.positions.size());
+          double rr = radius * k / rings;
+          mesh.positions.emplace_back(rr * std::cos(angle(i)), y, -rr * std::sin(angle(i)));
+        }
+        for (int i = 0; i < n; ++i) {
+          if (cap == 1)
+            add_quad(mesh, outer[i], outer[(i + 1) % n], ring[(i + 1) % n], ring[i]);
+          else
+            add_quad(mesh, outer[(i + 1) % n], outer[i], ring[i], ring[(i + 1) % n]);
+        }
+        outer = ring;
+      } else {
+        unsigned centre = unsigned(mesh.positions.size());
+        mesh.positions.emplace_back(0.0, y, 0.0);
+        for (int i = 0; i < n; ++i) {
+          if (cap == 1)
+            mesh.triangles.push_back({outer[i], outer[(i + 1) % n], centre});
+          else
+            mesh.triangles.push_back({outer[(i + 1) % n], outer[i], centre});
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+}  // namespace countershade

@@ -1,0 +1,32 @@
+#include "render/camera.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace countershade {
+
+CameraRays::CameraRays(const Camera& camera) : camera_(camera) {
+  forward_ = glm::normalize(camera.target - camera.eye);
+  right_ = glm::normalize(glm::cross(forward_, camera.up));
+  up_ = glm::cross(right_, forward_);
+  half_height_ = camera.orthographic ? camera.ortho_height / 2
+                                     : std::tan(glm::radians(camera.vertical_fov_deg) / 2);
+  half_width_ = half_height_ * double(camera.width) / double(camera.height);
+}
+
+Ray CameraRays::ray(double x, double y) const {
+  double sx = (2.0 * x / camera_.width - 1.0) * half_width_;
+  double sy = (1.0 - 2.0 * y / camera_.height) * half_height_;
+  if (camera_.orthographic) return {camera_.eye + sx * right_ + sy * up_, forward_};
+  return {camera_.eye, glm::normalize(forward_ + sx * right_ + sy * up_)};
+}
+
+double CameraRays::eye_depth(const glm::dvec3& p) const { return glm::dot(p - camera_.eye, forward_); }
+
+glm::dvec3 CameraRays::towards_viewer(const glm::dvec3& p) const {
+  return camera_.orthographic ? -forward_ : glm::normalize(camera_.eye - p);
+}
+
+}  // namespace countershade

@@ -1,0 +1,39 @@
+#pragma once
+// Look-at camera, perspective (vertical field of view) or orthographic (view height).
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace countershade {
+
+struct Camera {
+  glm::dvec3 eye{0, 0, 5}, target{0, 0, 0}, up{0, 1, 0};
+  bool orthographic = false;
+  double vertical_fov_deg = 40.0;  // perspective
+  double ortho_height = 2.0;       // orthographic: world-space height of the view
+  int width = 640, height = 480;
+};
+
+struct Ray {
+  glm::dvec3 origin, direction;  // direction is unit length
+};
+
+// Precomputed basis for generating primary rays.
+class CameraRays {
+ public:
+  explicit CameraRays(const Camera& camera);
+  // Ray through film position (x, y) in pixels, (0,0) = top-left corner of the top-left pixel.
+  Ray ray(double x, double y) const;
+  // Linear eye depth of a world point: distance along the viewing direction.
+  double eye_depth(const glm::dvec3& p) const;
+  // Unit direction from a surface point towards the viewer.
+  glm::dvec3 towards_viewer(const glm::dvec3& p) const;
+  const glm::dvec3& forward() const { return forward_; }
+
+ private:
+  Camera camera_;
+  glm::dvec3 forward_, right_, up_;
+  double half_height_, half_width_;
+};
+
+}  // namespace countershade

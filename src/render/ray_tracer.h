@@ -1,0 +1,53 @@
+#pragma once
+// Embree 3 BVH over every object's triangles. Geometry id = object index, primitive id =
+// triangle index, so hits map straight back to the scene.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/scene.h"
+
+namespace countershade {
+
+struct Hit {
+  unsigned object = 0, triangle = 0;
+  double b1 = 0, b2 = 0;  // barycentrics of corners 1 and 2 (corner 0 has 1 - b1 - b2)
+  double t = 0;
+};
+
+// Per-thread ray counts, summed by the caller (keeps atomics out of the hot loop).
+struct RayCounts {
+  uint64_t primary = 0, shadow = 0;
+  RayCounts& operator+=(const RayCounts& o) {
+    primary += o.primary;
+    shadow += o.shadow;
+    return *this;
+  }
+};
+
+class RayTracer {
+ public:
+  explicit RayTracer(const Scene& scene);
+  ~RayTracer();
+  RayTracer(const RayTracer&) = delete;
+  RayTracer& operator=(const RayTracer&) = delete;
+
+  std::optional<Hit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,
+                               double tnear = 0.0, double tfar = 1e30) const;
+  bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
+                double tfar) const;
+
+  // A distance scale for ray offsets: a small fraction of the scene diagonal.
+  double epsilon() const { return epsilon_; }
+
+ private:
+  struct Handles;
+  std::unique_ptr<Handles> handles_;
+  double epsilon_ = 1e-4;
+};
+
+}  // namespace countershade

@@ -1,0 +1,199 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/random.h"
+#include "render/shading.h"
+
+namespace countershade {
+namespace {
+
+constexpr int kTile = 16;
+
+// Latin-hypercube positions for `spp` samples in the unit pixel: stratified in x and y alike.
+// A single sample sits at the pixel centre, on the G-buffer's own ray.
+void pixel_samples(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dvec2>& out) {
+  out.resize(size_t(spp));
+  if (spp == 1) {
+    out[0] = {0.5, 0.5};
+    return;
+  }
+  SampleStream random(seed, kDomainCamera, pixel, 0);
+  std::vector<int> permutation(static_cast<size_t>(spp));
+  for (int i = 0; i < spp; ++i) permutation[size_t(i)] = i;
+  for (int i = spp - 1; i > 0; --i)
+    std::swap(permutation[size_t(i)], permutation[size_t(std::min(i, int(random.next() * (i + 1))))]);
+  for (int i = 0; i < spp; ++i)
+    out[size_t(i)] = {(i + random.next()) / spp, (permutation[size_t(i)] + random.next()) / spp};
+}
+
+}  // namespace
+
+void parallel_ranges(size_t n, int threads, const std::function<void(size_t, size_t)>& body) {
+  int concurrency = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(concurrency);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1),
+                      [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
+  });
+}
+
+RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options) {
+  const Camera& camera = scene.camera;
+  const int width = camera.width, height = camera.height, spp = scene.settings.spp;
+  const uint64_t seed = scene.settings.seed;
+  CameraRays rays(camera);
+  Shader shader(scene, tracer);
+
+  RenderResult result;
+  result.radiance = Image(width, height, 3);
+  GBuffer& g = result.gbuffer;
+  g.width = width;
+  g.height = height;
+  size_t n = size_t(width) * height;
+  g.depth.assign(n, std::numeric_limits<float>::infinity());
+  g.normal.assign(n, glm::vec3(0.0f));
+  g.object.assign(n, -1);
+  g.triangle.assign(n, -1);
+  g.barycentrics.assign(n, glm::vec2(0.0f));
+
+  const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
+  const size_t tile_count = size_t(tiles_x) * tiles_y;
+  std::mutex counts_mutex;
+  std::atomic<size_t> tiles_done{0};
+
+  parallel_ranges(tile_count, options.threads, [&](size_t begin, size_t end) {
+    RayCounts counts;
+    std::vector<glm::dvec2> offsets;
+    for (size_t tile = begin; tile < end; ++tile) {
+      int x0 = int(tile % tiles_x) * kTile, y0 = int(tile / tiles_x) * kTile;
+      for (int y = y0; y < std::min(y0 + kTile, height); ++y)
+        for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
+          uint64_t pixel = uint64_t(y) * width + x;
+          // G-buffer from the pixel-centre ray.
+          Ray centre = rays.ray(x + 0.5, y + 0.5);
+          ++counts.primary;
+          if (auto hit = tracer.intersect(centre.origin, centre.direction)) {
+            SurfacePoint sp = surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2);
+            glm::dvec3 nrm = sp.shading_normal;
+            if (glm::dot(sp.geometric_normal, -centre.direction) < 0) nrm = -nrm;
+            g.depth[pixel] = float(rays.eye_depth(sp.position));
+            g.normal[pixel] = glm::vec3(nrm);
+            g.object[pixel] = int32_t(hit->object);
+            g.triangle[pixel] = int32_t(hit->triangle);
+            g.barycentrics[pixel] = glm::vec2(float(hit->b1), float(hit->b2));
+          }
+          // Supersampled radiance.
+          pixel_samples(seed, pixel, spp, offsets);
+          glm::dvec3 sum(0.0);
+          for (int s = 0; s < spp; ++s) {
+            Ray ray = rays.ray(x + offsets[size_t(s)].x, y + offsets[size_t(s)].y);
+            ++counts.primary;
+            auto hit = tracer.intersect(ray.origin, ray.direction);
+            if (!hit) {
+              sum += shader.background(ray.direction);
+              continue;
+            }
+            SurfacePoint sp = surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2);
+            SampleStream random(seed, kDomainPixel, pixel, uint64_t(s));
+            sum += shader.radiance(sp, -ray.direction, true, random, counts);
+          }
+          for (int c = 0; c < 3; ++c) result.radiance.at(x, y, c) = float(sum[c] / spp);
+        }
+      if (options.progress) options.progress(double(++tiles_done) / double(tile_count));
+    }
+    std::lock_guard<std::mutex> lock(counts_mutex);
+    result.rays += counts;
+  });
+
+  if (options.vertex_radiance)
+    result.vertex_radiance = render_vertex_radiance(scene, tracer, options.threads, &result.rays);
+  return result;
+}
+
+std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
+                                                           int threads, RayCounts* total) {
+  CameraRays rays(scene.camera);
+  Shader shader(scene, tracer);
+  const int spp = scene.settings.spp;
+  const uint64_t seed = scene.settings.seed;
+  std::vector<std::vector<glm::vec3>> out(scene.objects.size());
+  std::mutex counts_mutex;
+  uint64_t vertex_offset = 0;
+
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const TriangleMesh& mesh = scene.objects[o].mesh;
+    const size_t nv = mesh.vertex_count();
+    // Incident corners per vertex (CSR), to find each vertex's distinct shading variants.
+    std::vector<uint32_t> offsets(nv + 1, 0), corners(3 * mesh.triangle_count());
+    for (const auto& tri : mesh.triangles)
+      for (int c = 0; c < 3; ++c) ++offsets[tri[c] + 1];
+    for (size_t v = 0; v < nv; ++v) offsets[v + 1] += offsets[v];
+    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (size_t t = 0; t < mesh.triangle_count(); ++t)
+      for (int c = 0; c < 3; ++c) corners[fill[mesh.triangles[t][c]]++] = uint32_t(3 * t + c);
+
+    out[o].resize(nv);
+    parallel_ranges(nv, threads, [&](size_t begin, size_t end) {
+      RayCounts counts;
+      std::vector<std::pair<uint32_t, int>> variants;  // representative corner, count
+      for (size_t v = begin; v < end; ++v) {
+        variants.clear();
+        for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) {
+          uint32_t corner = corners[i];
+          bool merged = false;
+          for (auto& [rep, count] : variants) {
+            bool same_normal = mesh.corner_normals[rep] == mesh.corner_normals[corner];
+            bool same_uv = !mesh.has_uvs() || mesh.corner_uvs[rep] == mesh.corner_uvs[corner];
+            if (same_normal && same_uv) {
+              ++count;
+              merged = true;
+              break;
+            }
+          }
+          if (!merged) variants.emplace_back(corner, 1);
+        }
+        glm::dvec3 sum(0.0);
+        int weight = 0;
+        for (const auto& [corner, count] : variants) {
+          unsigned triangle = corner / 3, c = corner % 3;
+          SurfacePoint sp = surface_point(scene, unsigned(o), triangle, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0);
+          sp.position = mesh.positions[v];  // exactly the vertex, not a barycentric round-off
+          glm::dvec3 wo = rays.towards_viewer(sp.position);
+          glm::dvec3 value(0.0);
+          for (int s = 0; s < spp; ++s) {
+            SampleStream random(seed, kDomainVertex, vertex_offset + v, uint64_t(s));
+            value += shader.radiance(sp, wo, false, random, counts);
+          }
+          sum += double(count) * value / double(spp);
+          weight += count;
+        }
+        out[o][v] = glm::vec3(weight > 0 ? sum / double(weight) : glm::dvec3(0.0));
+      }
+      std::lock_guard<std::mutex> lock(counts_mutex);
+      if (total) *total += counts;
+    });
+    vertex_offset += nv;
+  }
+  return out;
+}
+
+Image encode_for_display(const Image& radiance, const Display& display) {
+  Image out(radiance.width, radiance.height, radiance.channels);
+  const double scale = std::exp2(display.exposure_stops);
+  for (size_t i = 0; i < radiance.pixels.size(); ++i)
+    out.pixels[i] = float(display.encoding.encode(double(radiance.pixels[i]) * scale));
+  return out;
+}
+
+}  // namespace countershade

@@ -1,0 +1,56 @@
+#pragma once
+// One render of a view: the linear radiance image, a G-buffer from the pixel-centre rays and,
+// on request, the outgoing radiance towards the camera at every mesh vertex.
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/image.h"
+#include "render/ray_tracer.h"
+#include "render/scene.h"
+
+namespace countershade {
+
+struct RenderOptions {
+  int threads = 0;               // 0 = all cores
+  bool vertex_radiance = false;  // also shade every mesh vertex
+  std::function<void(double)> progress;  // called with the finished fraction, from any thread
+};
+
+// Per-pixel data from the ray through each pixel centre. Background pixels have object = -1,
+// depth = +inf and a zero normal.
+struct GBuffer {
+  int width = 0, height = 0;
+  std::vector<float> depth;                // linear eye depth
+  std::vector<glm::vec3> normal;           // world-space shading normal, facing the camera
+  std::vector<int32_t> object, triangle;   // ids, -1 for background
+  std::vector<glm::vec2> barycentrics;     // (b1, b2) of the hit triangle
+  size_t index(int x, int y) const { return size_t(y) * width + x; }
+};
+
+struct RenderResult {
+  Image radiance;  // linear RGB
+  GBuffer gbuffer;
+  std::vector<std::vector<glm::vec3>> vertex_radiance;  // [object][vertex], when requested
+  RayCounts rays;
+};
+
+RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options = {});
+
+// Outgoing radiance towards the camera at every vertex of every object. A vertex whose incident
+// corners differ (a crease or a UV seam) gets the mean over those corners, weighted by how many
+// corners share each variant.
+std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
+                                                           int threads, RayCounts* counts = nullptr);
+
+// Exposure and display encoding: linear radiance -> code values in [0,1].
+Image encode_for_display(const Image& radiance, const Display& display);
+
+// Runs `body(begin, end)` over [0, n) on `threads` threads (0 = all) with TBB.
+void parallel_ranges(size_t n, int threads, const std::function<void(size_t, size_t)>& body);
+
+}  // namespace countershade

@@ -1,0 +1,394 @@
+#include "render/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/json_reader.h"
+#include "mesh/mesh_io.h"
+#include "mesh/primitives.h"
+
+namespace countershade {
+namespace fs = std::filesystem;
+
+glm::dvec3 Texture::sample(const glm::dvec2& uv) const {
+  double fx = (uv.x - std::floor(uv.x)) * width - 0.5;
+  double fy = (1.0 - (uv.y - std::floor(uv.y))) * height - 0.5;  // v = 0 is the bottom row
+  int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+  double tx = fx - x0, ty = fy - y0;
+  auto at = [&](int x, int y) {
+    x = ((x % width) + width) % width;
+    y = ((y % height) + height) % height;
+    return glm::dvec3(texels[size_t(y) * width + x]);
+  };
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+BoundingBox Scene::bounds() const {
+  BoundingBox box;
+  for (const auto& o : objects) box.extend(bounding_box(o.mesh));
+  return box;
+}
+
+namespace {
+
+class SceneLoader {
+ public:
+  explicit SceneLoader(const fs::path& path) : path_(path), base_(path.parent_path()) {}
+
+  Scene load() {
+    nlohmann::json json = parse_json_file(path_);
+    JsonObject root(json, path_.string(), "");
+    long long version = root.integer("version");
+    if (version != kSceneFormatVersion)
+      root.fail("version", "unsupported scene format version " + std::to_string(version) +
+                               " (this build reads version " + std::to_string(kSceneFormatVersion) + ")");
+    Scene scene;
+    scene.file = path_;
+    scene.camera = camera(root.object("camera"));
+    if (root.has("render")) scene.settings = settings(root.object("render"));
+    if (root.has("display")) scene.display = display(root.object("display"));
+    for (const auto& o : root.objects("objects")) scene.objects.push_back(object(o));
+    if (scene.objects.empty()) root.fail("objects", "a scene needs at least one object");
+    if (root.has("lights"))
+      for (const auto& l : root.objects("lights")) light(l, scene);
+    if (root.has("description")) root.string("description");
+    root.finish();
+    return scene;
+  }
+
+ private:
+  fs::path resolve(const JsonObject& o, const std::string& key) const {
+    fs::path p = o.string(key);
+    if (p.empty()) o.fail(key, "empty path");
+    return p.is_absolute() ? p : base_ / p;
+  }
+
+  static double positive(const JsonObject& o, const std::string& key, double fallback) {
+    double v = o.number_or(key, fallback);
+    if (!(v > 0)) o.fail(key, "must be positive");
+    return v;
+  }
+
+  static glm::dvec3 non_negative_color(const JsonObject& o, const std::string& key,
+                                       const glm::dvec3& fallback) {
+    glm::dvec3 c = o.vec3_or(key, fallback);
+    if (c.x < 0 || c.y < 0 || c.z < 0) o.fail(key, "must not be negative");
+    return c;
+  }
+
+  static glm::dvec3 unit_vector(const JsonObject& o, const std::string& key) {
+    glm::dvec3 d = o.vec3(key);
+    if (glm::length(d) < 1e-12) o.fail(key, "must not be the zero vector");
+    return glm::normalize(d);
+  }
+
+  Camera camera(const JsonObject& o) {
+    Camera c;
+    c.eye = o.vec3("eye");
+    c.target = o.vec3("target");
+    c.up = o.vec3_or("up", {0, 1, 0});
+    if (glm::length(c.target - c.eye) < 1e-12) o.fail("target", "must differ from eye");
+    if (glm::length(glm::cross(c.target - c.eye, c.up)) < 1e-9)
+      o.fail("up", "must not be parallel to the viewing direction");
+    std::string projection = o.choice("projection", "perspective", {"perspective", "orthographic"});
+    c.orthographic = projection == "orthographic";
+    if (c.orthographic) {
+      c.ortho_height = positive(o, "height_world", 2.0);
+    } else {
+      c.vertical_fov_deg = o.number_in("fov", 40.0, 1e-3, 179.0);
+    }
+    c.width = int(o.integer_in("width", 640, 1, 16384));
+    c.height = int(o.integer_in("height", 480, 1, 16384));
+    o.finish();
+    return c;
+  }
+
+  RenderSettings settings(const JsonObject& o) {
+    RenderSettings s;
+    s.spp = int(o.integer_in("spp", s.spp, 1, 65536));
+    s.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
+    o.finish();
+    return s;
+  }
+
+  Display display(const JsonObject& o) {
+    Display d;
+    d.exposure_stops = o.number_in("exposure", 0.0, -30.0, 30.0);
+    std::string encoding = o.choice("encoding", "srgb", {"srgb", "gamma", "lut"});
+    if (encoding == "gamma") {
+      d.encoding = DisplayEncoding::gamma(o.number_in("gamma", 2.2, 0.1, 10.0));
+    } else if (encoding == "lut") {
+      d.encoding = read_lut(o, resolve(o, "lut"));
+    }
+    if (o.has("background")) d.background = non_negative_color(o, "background", glm::dvec3(0));
+    o.finish();
+    return d;
+  }
+
+  static DisplayEncoding read_lut(const JsonObject& o, const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) o.fail("lut", "cannot read lookup table '" + file.string() + "'");
+    std::vector<double> codes, luminances;
+    std::string line;
+    size_t number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (line.empty() || line[0] == '#') continue;
+      std::replace(line.begin(), line.end(), ',', ' ');
+      std::istringstream fields(line);
+      double code, lum;
+      if (!(fields >> code >> lum)) {
+        if (codes.empty() && number == 1) continue;  // header row
+        throw_input_error(file.string() + ": line " + std::to_string(number),
+                          "expected two numbers: code, luminance");
+      }
+      codes.push_back(code);
+      luminances.push_back(lum);
+    }
+    try {
+      return DisplayEncoding::lut(codes, luminances);
+    } catch (const InputError& e) {
+      throw_input_error(file.string(), e.what());
+    }
+  }
+
+  glm::dmat4 transform(const JsonObject& o) {
+    if (o.has("matrix")) {
+      std::vector<double> m = o.numbers("matrix");
+      if (m.size() != 16) o.fail("matrix", "expected 16 numbers (row-major 4x4)");
+      glm::dmat4 t;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) t[c][r] = m[size_t(r * 4 + c)];
+      o.finish();
+      return t;
+    }
+    glm::dvec3 scale(1.0);
+    if (o.has("scale")) {
+      scale = o.vec3("scale");
+      if (scale.x == 0 || scale.y == 0 || scale.z == 0) o.fail("scale", "must not be zero");
+    }
+    glm::dvec3 rotate = o.vec3_or("rotate", glm::dvec3(0));
+    glm::dvec3 translate = o.vec3_or("translate", glm::dvec3(0));
+    o.finish();
+    // Scale, then rotate about x, y, z (degrees), then translate.
+    glm::dmat4 t = glm::translate(glm::dmat4(1.0), translate);
+    t = glm::rotate(t, glm::radians(rotate.z), glm::dvec3(0, 0, 1));
+    t = glm::rotate(t, glm::radians(rotate.y), glm::dvec3(0, 1, 0));
+    t = glm::rotate(t, glm::radians(rotate.x), glm::dvec3(1, 0, 0));
+    return glm::scale(t, scale);
+  }
+
+  TriangleMesh shape(const JsonObject& o) {
+    std::string type = o.choice("type", "", {"plane", "box", "sphere", "cylinder"});
+    TriangleMesh mesh;
+    if (type == "plane") {
+      mesh = make_plane(positive(o, "size", 1.0), int(o.integer_in("subdivisions", 32, 1, 4096)));
+    } else if (type == "box") {
+      glm::dvec3 size = o.vec3_or("size", glm::dvec3(1.0));
+      if (size.x <= 0 || size.y <= 0 || size.z <= 0) o.fail("size", "must be positive");
+      if (o.has("bevel") && o.has("chamfer")) o.fail("chamfer", "give either bevel or chamfer, not both");
+      EdgeProfile profile = o.has("bevel") ? EdgeProfile::bevel
+                            : o.has("chamfer") ? EdgeProfile::chamfer
+                                               : EdgeProfile::sharp;
+      double radius = 0;
+      if (profile != EdgeProfile::sharp) {
+        std::string key = profile == EdgeProfile::bevel ? "bevel" : "chamfer";
+        radius = o.number(key);
+        if (!(radius > 0) || radius >= 0.5 * std::min({size.x, size.y, size.z}))
+          o.fail(key, "must be positive and less than half the smallest side");
+      }
+      mesh = make_box(size, profile, radius, int(o.integer_in("edge_segments", 4, 1, 256)),
+                      int(o.integer_in("subdivisions", 32, 1, 4096)));
+    } else if (type == "sphere") {
+      mesh = make_sphere(positive(o, "radius", 1.0), int(o.integer_in("subdivisions", 4, 0, 8)));
+    } else {
+      mesh = make_cylinder(positive(o, "radius", 0.5), positive(o, "height", 1.0),
+                           int(o.integer_in("segments", 64, 3, 65536)));
+    }
+    o.finish();
+    return mesh;
+  }
+
+  std::shared_ptr<const Texture> texture(const JsonObject& o, const std::string& key,
+                                         bool srgb_encoded) {
+    fs::path file = resolve(o, key);
+    std::string cache_key = file.string() + (srgb_encoded ? "#srgb" : "#linear");
+    for (const auto& [k, t] : textures_)
+      if (k == cache_key) return t;
+    Image image = read_image(file);
+    auto tex = std::make_shared<Texture>();
+    tex->width = image.width;
+    tex->height = image.height;
+    tex->texels.resize(size_t(image.width) * image.height);
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        glm::vec3 c;
+        for (int k = 0; k < 3; ++k) {
+          float v = image.at(x, y, std::min(k, image.channels - 1));
+          c[k] = srgb_encoded ? float(srgb_decode(v)) : v;
+        }
+        tex->texels[size_t(y) * image.width + x] = c;
+      }
+    textures_.emplace_back(cache_key, tex);
+    return tex;
+  }
+
+  Material material(const JsonObject& o) {
+    Material m;
+    m.albedo = non_negative_color(o, "albedo", m.albedo);
+    if (m.albedo.x > 1 || m.albedo.y > 1 || m.albedo.z > 1) o.fail("albedo", "must be at most 1");
+    std::string encoding = o.choice("texture_encoding", "srgb", {"srgb", "linear"});
+    if (o.has("texture")) m.texture = texture(o, "texture", encoding == "srgb");
+    if (o.has("specular")) {
+      JsonObject s = o.object("specular");
+      std::string model = s.choice("model", "", {"blinn-phong", "cook-torrance"});
+      if (model == "blinn-phong") {
+        m.specular = SpecularModel::blinn_phong;
+        m.specular_color = non_negative_color(s, "color", glm::dvec3(0.04));
+        m.shininess = s.number_in("shininess", 64.0, 1.0, 100000.0);
+      } else {
+        m.specular = SpecularModel::cook_torrance;
+        m.specular_color = non_negative_color(s, "f0", glm::dvec3(0.04));
+        m.roughness = s.number_in("roughness", 0.3, 0.02, 1.0);
+      }
+      s.finish();
+    }
+    o.finish();
+    return m;
+  }
+
+  std::vector<float> importance(const JsonObject& o, const std::string& key, const TriangleMesh& mesh) {
+    const nlohmann::json& value = o.raw(key);
+    if (value.is_number()) return std::vector<float>(mesh.vertex_count(), float(o.number(key)));
+    JsonObject w = o.object(key);
+    std::string channel = w.choice("vertex_color", "", {"r", "g", "b", "luminance"});
+    std::vector<double> range = w.has("range") ? w.numbers("range") : std::vector<double>{0.0, 1.0};
+    if (range.size() != 2) w.fail("range", "expected [low, high]");
+    w.finish();
+    if (!mesh.has_vertex_colors()) o.fail(key, "the mesh has no vertex colours to read weights from");
+    std::vector<float> weights(mesh.vertex_count());
+    for (size_t v = 0; v < weights.size(); ++v) {
+      const glm::vec3& c = mesh.vertex_colors[v];
+      double t = channel == "r"   ? c.r
+                 : channel == "g" ? c.g
+                 : channel == "b" ? c.b
+                                  : 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+      weights[v] = float(range[0] + t * (range[1] - range[0]));
+    }
+    return weights;
+  }
+
+  Object object(const JsonObject& o) {
+    Object obj;
+    obj.name = o.string_or("name", "object" + std::to_string(object_count_++));
+    bool has_mesh = o.has("mesh"), has_shape = o.has("shape");
+    if (has_mesh == has_shape) o.fail("", "an object needs exactly one of 'mesh' or 'shape'");
+    double crease = 180.0;
+    if (has_mesh) {
+      fs::path file = resolve(o, "mesh");
+      try {
+        obj.mesh = load_mesh(file);
+      } catch (const InputError& e) {
+        throw InputError(o.file() + ": " + o.key_path("mesh") + ": " + e.what());
+      }
+      if (o.boolean_or("fit", false)) fit_to_unit(obj.mesh);
+    } else {
+      obj.mesh = shape(o.object("shape"));
+      crease = 30.0;  // primitives have true creases (box edges, cylinder rims)
+    }
+    crease = o.number_in("crease_angle", crease, 0.0, 180.0);
+    if (obj.mesh.has_uvs() == false && o.has("material") && o.raw("material").contains("texture"))
+      o.fail("material.texture", "the mesh has no texture coordinates");
+    obj.material = o.has("material") ? material(o.object("material")) : Material{};
+    obj.importance = o.has("importance") ? importance(o, "importance", obj.mesh)
+                                         : std::vector<float>(obj.mesh.vertex_count(), 1.0f);
+    compute_corner_normals(obj.mesh, crease);
+    if (o.has("transform")) transform_mesh(obj.mesh, transform(o.object("transform")));
+    o.finish();
+    return obj;
+  }
+
+  // Centres the mesh on the origin in x and z, stands it on y = 0 and scales its largest extent to 1.
+  static void fit_to_unit(TriangleMesh& mesh) {
+    BoundingBox box = bounding_box(mesh);
+    glm::vec3 extent = box.hi - box.lo;
+    float s = 1.0f / std::max({extent.x, extent.y, extent.z});
+    glm::vec3 centre = 0.5f * (box.lo + box.hi);
+    for (auto& p : mesh.positions) p = (p - glm::vec3(centre.x, box.lo.y, centre.z)) * s;
+  }
+
+  void light(const JsonObject& o, Scene& scene) {
+    std::string type = o.choice("type", "", {"directional", "point", "environment", "ambient"});
+    if (type == "directional") {
+      DirectionalLight l;
+      l.direction = unit_vector(o, "direction");
+      l.irradiance = non_negative_color(o, "irradiance", l.irradiance);
+      l.angular_radius_deg = o.number_in("angular_radius", 0.0, 0.0, 45.0);
+      l.samples = int(o.integer_in("samples", l.angular_radius_deg > 0 ? 4 : 1, 1, 4096));
+      scene.directional_lights.push_back(l);
+    } else if (type == "point") {
+      PointLight l;
+      l.position = o.vec3("position");
+      l.intensity = non_negative_color(o, "intensity", l.intensity);
+      l.radius = o.number_in("radius", 0.0, 0.0, 1e9);
+      l.samples = int(o.integer_in("samples", l.radius > 0 ? 4 : 1, 1, 4096));
+      scene.point_lights.push_back(l);
+    } else if (type == "environment") {
+      if (scene.environment) o.fail("type", "a scene can have only one environment light");
+      EnvironmentLight l;
+      int sources = int(o.has("file")) + int(o.has("sky")) + int(o.has("constant"));
+      if (sources != 1) o.fail("", "an environment needs exactly one of 'file', 'sky' or 'constant'");
+      if (o.has("file")) {
+        fs::path file = resolve(o, "file");
+        Image image = read_image(file);
+        std::string ext = file.extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (ext == ".png" || ext == ".jpg" || ext == ".jpeg")  // display-encoded formats
+          for (float& v : image.pixels) v = float(srgb_decode(v));
+        l.map = std::make_shared<EnvironmentMap>(image);
+      } else if (o.has("sky")) {
+        JsonObject s = o.object("sky");
+        SkyParameters sky;
+        sky.zenith = non_negative_color(s, "zenith", sky.zenith);
+        sky.horizon = non_negative_color(s, "horizon", sky.horizon);
+        sky.ground = non_negative_color(s, "ground", sky.ground);
+        s.finish();
+        l.map = std::make_shared<EnvironmentMap>(EnvironmentMap::sky(sky));
+      } else {
+        l.map = std::make_shared<EnvironmentMap>(
+            EnvironmentMap::constant(non_negative_color(o, "constant", glm::dvec3(1.0))));
+      }
+      l.scale = o.number_in("scale", 1.0, 0.0, 1e9);
+      l.importance_sampling = o.choice("sampling", "importance", {"importance", "cosine"}) == "importance";
+      l.samples = int(o.integer_in("samples", 4, 1, 4096));
+      l.visible_to_camera = o.boolean_or("visible", true);
+      scene.environment = l;
+    } else {
+      scene.ambient.radiance = non_negative_color(o, "radiance", glm::dvec3(0.1));
+      scene.ambient.distance = o.number_in("occlusion_distance", 0.0, 0.0, 1e9);
+      scene.ambient.samples = int(o.integer_in("samples", 4, 1, 4096));
+    }
+    o.finish();
+  }
+
+  fs::path path_, base_;
+  int object_count_ = 0;
+  std::vector<std::pair<std::string, std::shared_ptr<const Texture>>> textures_;
+};
+
+}  // namespace
+
+Scene load_scene(const fs::path& path) { return SceneLoader(path).load(); }
+
+}  // namespace countershade

@@ -1,0 +1,104 @@
+#pragma once
+// Scene description: camera, objects with materials, lights, display. Loaded from a versioned
+// JSON file (docs/scene-format.md); every error names the file and the key path.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/display.h"
+#include "mesh/triangle_mesh.h"
+#include "render/camera.h"
+#include "render/environment.h"
+
+namespace countershade {
+
+inline constexpr int kSceneFormatVersion = 1;
+
+// An image texture holding linear RGB, sampled bilinearly with wrap-around.
+struct Texture {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> texels;  // linear RGB, top row first
+  glm::dvec3 sample(const glm::dvec2& uv) const;
+};
+
+enum class SpecularModel { none, blinn_phong, cook_torrance };
+
+struct Material {
+  glm::dvec3 albedo{0.8};                   // diffuse reflectance (used when there is no texture)
+  std::shared_ptr<const Texture> texture;   // diffuse reflectance from the mesh UVs
+  SpecularModel specular = SpecularModel::none;
+  glm::dvec3 specular_color{0.04};          // Blinn–Phong ks, or Cook–Torrance F0
+  double shininess = 64.0;                  // Blinn–Phong exponent
+  double roughness = 0.3;                   // Cook–Torrance GGX roughness (alpha = roughness²)
+};
+
+struct Object {
+  std::string name;
+  TriangleMesh mesh;  // world space, corner normals filled
+  Material material;
+  std::vector<float> importance;  // per-vertex weight for 3D unsharp masking (default 1)
+};
+
+struct DirectionalLight {
+  glm::dvec3 direction{0, 1, 0};  // unit, pointing from the scene towards the light
+  glm::dvec3 irradiance{1.0};     // on a surface facing the light
+  double angular_radius_deg = 0;  // 0 = hard shadows
+  int samples = 1;                // shadow rays per shading sample for soft shadows
+};
+
+struct PointLight {
+  glm::dvec3 position{0, 5, 0};
+  glm::dvec3 intensity{10.0};  // radiant intensity; irradiance falls off as 1/r²
+  double radius = 0;           // 0 = hard shadows; >0 = spherical light, soft shadows
+  int samples = 1;
+};
+
+struct EnvironmentLight {
+  std::shared_ptr<const EnvironmentMap> map;
+  double scale = 1.0;
+  bool importance_sampling = true;  // false: cosine-weighted hemisphere sampling
+  int samples = 4;                  // rays per shading sample
+  bool visible_to_camera = true;    // camera rays that miss see the environment
+};
+
+// Ambient light of constant radiance, attenuated by ambient occlusion within `distance`.
+struct AmbientLight {
+  glm::dvec3 radiance{0.0};
+  double distance = 0;  // 0 disables occlusion (plain ambient term)
+  int samples = 4;
+};
+
+struct Display {
+  double exposure_stops = 0;
+  DisplayEncoding encoding = DisplayEncoding::srgb();
+  std::optional<glm::dvec3> background;  // linear radiance where camera rays miss; overrides env
+};
+
+struct RenderSettings {
+  int spp = 16;
+  uint64_t seed = 1;
+};
+
+struct Scene {
+  std::filesystem::path file;
+  Camera camera;
+  std::vector<Object> objects;
+  std::vector<DirectionalLight> directional_lights;
+  std::vector<PointLight> point_lights;
+  std::optional<EnvironmentLight> environment;
+  AmbientLight ambient;
+  Display display;
+  RenderSettings settings;
+
+  BoundingBox bounds() const;
+};
+
+Scene load_scene(const std::filesystem::path& path);
+
+}  // namespace countershade

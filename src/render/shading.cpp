@@ -1,0 +1,194 @@
+#include "render/shading.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace countershade {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+void orthonormal_basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
+  // Duff et al. 2017, branchless ONB.
+  double sign = std::copysign(1.0, n.z);
+  double a = -1.0 / (sign + n.z);
+  double c = n.x * n.y * a;
+  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+  b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+}  // namespace
+
+glm::dvec3 sample_cone(const glm::dvec3& axis, double cos_max, double u1, double u2) {
+  double cos_theta = 1.0 - u1 * (1.0 - cos_max);
+  double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  double phi = 2.0 * kPi * u2;
+  glm::dvec3 t, b;
+  orthonormal_basis(axis, t, b);
+  return glm::normalize(sin_theta * std::cos(phi) * t + sin_theta * std::sin(phi) * b + cos_theta * axis);
+}
+
+glm::dvec3 sample_cosine_hemisphere(const glm::dvec3& n, double u1, double u2) {
+  double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+  glm::dvec3 t, b;
+  orthonormal_basis(n, t, b);
+  return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
+}
+
+SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1, double b2) {
+  const TriangleMesh& mesh = scene.objects[object].mesh;
+  const glm::uvec3& tri = mesh.triangles[triangle];
+  double b0 = 1.0 - b1 - b2;
+  glm::dvec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
+  SurfacePoint sp;
+  sp.object = object;
+  sp.triangle = triangle;
+  sp.position = b0 * p0 + b1 * p1 + b2 * p2;
+  sp.geometric_normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  size_t c = 3 * size_t(triangle);
+  glm::dvec3 n = b0 * glm::dvec3(mesh.corner_normals[c]) + b1 * glm::dvec3(mesh.corner_normals[c + 1]) +
+                 b2 * glm::dvec3(mesh.corner_normals[c + 2]);
+  double len = glm::length(n);
+  sp.shading_normal = len > 1e-12 ? n / len : sp.geometric_normal;
+  if (mesh.has_uvs())
+    sp.uv = b0 * glm::dvec2(mesh.corner_uvs[c]) + b1 * glm::dvec2(mesh.corner_uvs[c + 1]) +
+            b2 * glm::dvec2(mesh.corner_uvs[c + 2]);
+  return sp;
+}
+
+glm::dvec3 Shader::albedo(const SurfacePoint& point) const {
+  const Material& m = scene_.objects[point.object].material;
+  return m.texture ? m.texture->sample(point.uv) : m.albedo;
+}
+
+glm::dvec3 Shader::background(const glm::dvec3& direction) const {
+  if (scene_.display.background) return *scene_.display.background;
+  if (scene_.environment && scene_.environment->visible_to_camera)
+    return scene_.environment->scale * scene_.environment->map->radiance(direction);
+  return glm::dvec3(0.0);
+}
+
+glm::dvec3 Shader::brdf(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
+                        const glm::dvec3& wi, const glm::dvec3& wo) const {
+  glm::dvec3 f = albedo / kPi;
+  if (m.specular == SpecularModel::none) return f;
+  double n_wi = glm::dot(n, wi), n_wo = std::max(glm::dot(n, wo), 1e-4);
+  if (n_wi <= 0) return f;
+  glm::dvec3 h = glm::normalize(wi + wo);
+  double n_h = std::max(glm::dot(n, h), 0.0);
+  if (m.specular == SpecularModel::blinn_phong) {
+    // Energy-normalised Blinn–Phong lobe.
+    return f + m.specular_color * ((m.shininess + 8.0) / (8.0 * kPi)) * std::pow(n_h, m.shininess);
+  }
+  // Cook–Torrance: GGX distribution, separable Smith masking, Schlick Fresnel.
+  double a2 = std::pow(m.roughness, 4.0);
+  double d_denominator = n_h * n_h * (a2 - 1.0) + 1.0;
+  double D = a2 / (kPi * d_denominator * d_denominator);
+  auto g1 = [a2](double c) { return 2.0 * c / (c + std::sqrt(a2 + (1.0 - a2) * c * c)); };
+  double G = g1(n_wi) * g1(n_wo);
+  double w_h = std::max(glm::dot(wo, h), 0.0);
+  glm::dvec3 F = m.specular_color + (glm::dvec3(1.0) - m.specular_color) * std::pow(1.0 - w_h, 5.0);
+  return f + F * (D * G / (4.0 * n_wi * n_wo));
+}
+
+bool Shader::visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::dvec3& wi,
+                     double distance, RayCounts& counts) const {
+  ++counts.shadow;
+  double eps = tracer_.epsilon();
+  // Leave the surface on the side the ray travels to, so the surface does not shadow itself.
+  glm::dvec3 o = origin + ng * (glm::dot(ng, wi) >= 0 ? eps : -eps);
+  return !tracer_.occluded(o, wi, eps, distance - 2 * eps);
+}
+
+glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                            SampleStream& random, RayCounts& counts) const {
+  const Material& m = scene_.objects[point.object].material;
+  glm::dvec3 ng = point.geometric_normal, n = point.shading_normal;
+  if (two_sided && glm::dot(ng, wo) < 0) {
+    ng = -ng;
+    n = -n;
+  }
+  const glm::dvec3 a = albedo(point);
+  const glm::dvec3& p = point.position;
+  glm::dvec3 L(0.0);
+
+  for (const auto& light : scene_.directional_lights) {
+    double cos_max = std::cos(glm::radians(light.angular_radius_deg));
+    int samples = light.angular_radius_deg > 0 ? light.samples : 1;
+    glm::dvec3 sum(0.0);
+    for (int s = 0; s < samples; ++s) {
+      double u1 = random.next(), u2 = random.next();
+      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u1, u2)
+                                                   : light.direction;
+      double cos_i = glm::dot(n, wi);
+      if (cos_i <= 0 || !visible(p, ng, wi, 1e30, counts)) continue;
+      sum += brdf(m, a, n, wi, wo) * light.irradiance * cos_i;
+    }
+    L += sum / double(samples);
+  }
+
+  for (const auto& light : scene_.point_lights) {
+    int samples = light.radius > 0 ? light.samples : 1;
+    glm::dvec3 sum(0.0);
+    for (int s = 0; s < samples; ++s) {
+      double u1 = random.next(), u2 = random.next();
+      glm::dvec3 target = light.position;
+      if (light.radius > 0) {  // uniform point on the spherical light
+        double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u2;
+        target += light.radius * glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
+      }
+      glm::dvec3 to_light = target - p;
+      double d2 = glm::dot(to_light, to_light);
+      if (d2 <= 0) continue;
+      double d = std::sqrt(d2);
+      glm::dvec3 wi = to_light / d;
+      double cos_i = glm::dot(n, wi);
+      if (cos_i <= 0 || !visible(p, ng, wi, d, counts)) continue;
+      sum += brdf(m, a, n, wi, wo) * light.intensity * (cos_i / d2);
+    }
+    L += sum / double(samples);
+  }
+
+  if (scene_.environment) {
+    const EnvironmentLight& env = *scene_.environment;
+    glm::dvec3 sum(0.0);
+    for (int s = 0; s < env.samples; ++s) {
+      double u1 = random.next(), u2 = random.next();
+      glm::dvec3 wi;
+      double pdf;
+      if (env.importance_sampling) {
+        auto sample = env.map->sample(u1, u2);
+        wi = sample.direction;
+        pdf = sample.pdf;
+      } else {
+        wi = sample_cosine_hemisphere(n, u1, u2);
+        pdf = std::max(glm::dot(n, wi), 0.0) / kPi;
+      }
+      double cos_i = glm::dot(n, wi);
+      if (cos_i <= 0 || pdf <= 0 || !visible(p, ng, wi, 1e30, counts)) continue;
+      sum += brdf(m, a, n, wi, wo) * env.map->radiance(wi) * (cos_i / pdf);
+    }
+    L += env.scale * sum / double(env.samples);
+  }
+
+  const AmbientLight& ambient = scene_.ambient;
+  if (ambient.radiance != glm::dvec3(0.0)) {
+    double open = 1.0;
+    if (ambient.distance > 0) {
+      int unoccluded = 0;
+      for (int s = 0; s < ambient.samples; ++s) {
+        glm::dvec3 wi = sample_cosine_hemisphere(n, random.next(), random.next());
+        if (visible(p, ng, wi, ambient.distance, counts)) ++unoccluded;
+      }
+      open = double(unoccluded) / ambient.samples;
+    }
+    L += a * ambient.radiance * open;
+  }
+  return L;
+}
+
+}  // namespace countershade

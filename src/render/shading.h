@@ -1,0 +1,55 @@
+#pragma once
+// The one shading function. Pixels and mesh vertices both go through Shader::radiance, so the
+// per-vertex signal of 3D unsharp masking is lit exactly like the image.
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/random.h"
+#include "render/ray_tracer.h"
+#include "render/scene.h"
+
+namespace countershade {
+
+struct SurfacePoint {
+  glm::dvec3 position;
+  glm::dvec3 geometric_normal;  // unit, on the counter-clockwise (front) side
+  glm::dvec3 shading_normal;    // unit, interpolated corner normal
+  glm::dvec2 uv{0.0};
+  unsigned object = 0, triangle = 0;
+};
+
+// The point at barycentrics (b1, b2) of a triangle, with interpolated normal and UV.
+SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1,
+                           double b2);
+
+class Shader {
+ public:
+  Shader(const Scene& scene, const RayTracer& tracer) : scene_(scene), tracer_(tracer) {}
+
+  // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
+  // from behind its front face is shaded as the back face (open meshes, planes from below).
+  glm::dvec3 radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                      SampleStream& random, RayCounts& counts) const;
+
+  // What a camera ray that hits nothing sees.
+  glm::dvec3 background(const glm::dvec3& direction) const;
+
+  glm::dvec3 albedo(const SurfacePoint& point) const;
+
+ private:
+  glm::dvec3 brdf(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
+                  const glm::dvec3& wi, const glm::dvec3& wo) const;
+  bool visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::dvec3& wi, double distance,
+               RayCounts& counts) const;
+
+  const Scene& scene_;
+  const RayTracer& tracer_;
+};
+
+// Unit vector in the cone of half-angle `max_angle` around `axis`, uniform over the cap.
+glm::dvec3 sample_cone(const glm::dvec3& axis, double cos_max, double u1, double u2);
+// Cosine-weighted direction in the hemisphere around `n`.
+glm::dvec3 sample_cosine_hemisphere(const glm::dvec3& n, double u1, double u2);
+
+}  // namespace countershade
