@@ -38,8 +38,9 @@ void Progress::update(double fraction) {
                  int(fraction * 100), eta.c_str());
     std::fflush(stderr);
   } else {
+    // Plain logs (CI, pipes): one line per 10%, and nothing at all for runs under two seconds.
     int decile = int(fraction * 10);
-    if (decile <= last_logged_decile_ || decile >= 10) return;
+    if (decile <= last_logged_decile_ || decile >= 10 || elapsed < 2.0) return;
     last_logged_decile_ = decile;
     std::fprintf(stderr, "%s: %d%% (%s)\n", label_.c_str(), decile * 10, format_seconds(elapsed).c_str());
   }

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <mutex>
 #include <sstream>
 
@@ -17,23 +19,38 @@ namespace {
 
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
-// OpenMesh's OBJ reader does not bounds-check face indices, so check them before it runs.
-void check_obj_indices(const std::filesystem::path& path) {
+// OpenMesh's OBJ reader skips vertices it cannot parse and faces with bad indices, printing only
+// a warning; check the file first so such meshes are errors with a line number. Returns the
+// number of triangles the file describes after fan triangulation.
+size_t check_obj(const std::filesystem::path& path) {
   std::ifstream in(path);
   std::string line;
   long long vertices = 0, texcoords = 0;
-  size_t line_number = 0;
+  size_t line_number = 0, triangles = 0;
   while (std::getline(in, line)) {
     ++line_number;
     if (line.size() < 2) continue;
     if (line[0] == 'v' && line[1] == ' ') {
       ++vertices;
+      const char* cursor = line.c_str() + 2;
+      for (int k = 0; k < 3; ++k) {
+        char* end = nullptr;
+        double value = std::strtod(cursor, &end);
+        if (end == cursor)
+          throw_input_error(path.string() + ": line " + std::to_string(line_number),
+                            "vertex " + std::to_string(vertices - 1) + " has fewer than 3 coordinates");
+        if (!std::isfinite(value))
+          throw_input_error(path.string() + ": line " + std::to_string(line_number),
+                            "vertex " + std::to_string(vertices - 1) + " has a NaN or infinite coordinate");
+        cursor = end;
+      }
     } else if (line[0] == 'v' && line[1] == 't') {
       ++texcoords;
     } else if (line[0] == 'f' && line[1] == ' ') {
       std::istringstream fields(line.substr(2));
       std::string corner;
       int count = 0;
+      std::vector<long long> face;
       while (fields >> corner) {
         ++count;
         long long index[2] = {0, 0};
@@ -62,13 +79,20 @@ void check_obj_indices(const std::filesystem::path& path) {
             throw_input_error(path.string() + ": line " + std::to_string(line_number),
                               std::string("face ") + names[k] + " index " + std::to_string(i) +
                                   " is out of range (1.." + std::to_string(limits[k]) + ")");
+          if (k == 0) face.push_back(resolved);
         }
       }
+      std::sort(face.begin(), face.end());
+      if (std::adjacent_find(face.begin(), face.end()) != face.end())
+        throw_input_error(path.string() + ": line " + std::to_string(line_number),
+                          "face is degenerate (a vertex appears twice)");
+      triangles += size_t(std::max(0, count - 2));
       if (count < 3)
         throw_input_error(path.string() + ": line " + std::to_string(line_number),
                           "face has fewer than 3 vertices");
     }
   }
+  return triangles;
 }
 
 }  // namespace
@@ -99,7 +123,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
     throw_input_error(path.string(), "unsupported mesh format '" + ext + "' (use OBJ, PLY, OFF or STL)");
-  if (ext == ".obj") check_obj_indices(path);
+  size_t expected_triangles = ext == ".obj" ? check_obj(path) : 0;
 
   OMesh om;
   om.request_vertex_colors();
@@ -116,15 +140,18 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
   bool ok;
   {
     std::lock_guard<std::mutex> lock(omerr_mutex);
+    omerr().disconnect(std::cerr);
     omerr().connect(reader_log);
     omlog().disable();
     ok = OpenMesh::IO::read_mesh(om, path.string(), options);
     omerr().disconnect(reader_log);
+    omerr().connect(std::cerr);
   }
   if (!ok) throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
   std::string log = reader_log.str();
   if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
-      log.find("failed") != std::string::npos) {
+      log.find("failed") != std::string::npos ||
+      (expected_triangles > 0 && om.n_faces() < expected_triangles)) {
     throw_input_error(path.string(),
                       "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
   }

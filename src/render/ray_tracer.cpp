@@ -37,6 +37,9 @@ RayTracer::RayTracer(const Scene& scene) : handles_(std::make_unique<Handles>())
   rtcSetDeviceErrorFunction(handles_->device, embree_error, &handles_->error);
   handles_->scene = rtcNewScene(handles_->device);
   rtcSetSceneBuildQuality(handles_->scene, RTC_BUILD_QUALITY_HIGH);
+  // Watertight intersection: rays through shared edges or vertices (e.g. a vertex projected onto
+  // a pixel centre) must hit one of the triangles, never slip through.
+  rtcSetSceneFlags(handles_->scene, RTC_SCENE_FLAG_ROBUST);
 
   for (size_t id = 0; id < scene.objects.size(); ++id) {
     const TriangleMesh& mesh = scene.objects[id].mesh;

@@ -226,7 +226,12 @@ class SceneLoader {
     std::string cache_key = file.string() + (srgb_encoded ? "#srgb" : "#linear");
     for (const auto& [k, t] : textures_)
       if (k == cache_key) return t;
-    Image image = read_image(file);
+    Image image;
+    try {
+      image = read_image(file);
+    } catch (const InputError& e) {
+      o.fail(key, e.what());
+    }
     auto tex = std::make_shared<Texture>();
     tex->width = image.width;
     tex->height = image.height;
@@ -300,7 +305,7 @@ class SceneLoader {
       try {
         obj.mesh = load_mesh(file);
       } catch (const InputError& e) {
-        throw InputError(o.file() + ": " + o.key_path("mesh") + ": " + e.what());
+        o.fail("mesh", e.what());
       }
       if (o.boolean_or("fit", false)) fit_to_unit(obj.mesh);
     } else {
@@ -351,7 +356,12 @@ class SceneLoader {
       if (sources != 1) o.fail("", "an environment needs exactly one of 'file', 'sky' or 'constant'");
       if (o.has("file")) {
         fs::path file = resolve(o, "file");
-        Image image = read_image(file);
+        Image image;
+        try {
+          image = read_image(file);
+        } catch (const InputError& e) {
+          o.fail("file", e.what());
+        }
         std::string ext = file.extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
         if (ext == ".png" || ext == ".jpg" || ext == ".jpeg")  // display-encoded formats

@@ -1,0 +1,80 @@
+// End-to-end tests of `countershade render` through the real binary.
+
+#include <gtest/gtest.h>
+
+#include "core/image.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+using testing::count_lines;
+using testing::run_cli;
+
+const char* kScene = R"({
+  "version": 1,
+  "camera": {"eye": [0, 1, 4], "target": [0, 0, 0], "width": 40, "height": 30},
+  "render": {"spp": 2},
+  "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 3}}],
+  "lights": [{"type": "directional", "direction": [1, 1, 1], "irradiance": 2}]
+})";
+
+TEST(RenderCli, HelpIsAvailableEverywhere) {
+  auto top = run_cli("--help");
+  EXPECT_EQ(top.exit_code, 0);
+  EXPECT_NE(top.output.find("render"), std::string::npos);
+  auto sub = run_cli("render --help");
+  EXPECT_EQ(sub.exit_code, 0);
+  EXPECT_NE(sub.output.find("--spp"), std::string::npos);
+  EXPECT_EQ(run_cli("--version").exit_code, 0);
+}
+
+TEST(RenderCli, RendersPngExrAndAuxiliaryBuffers) {
+  testing::TempDir dir;
+  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto r = run_cli("render " + scene.string() + " -o " + (dir / "out.png").string() + " --width 20 --height 16 --aux " +
+                   (dir / "aux").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Image png = read_image(dir / "out.png");
+  EXPECT_EQ(png.width, 20);
+  EXPECT_EQ(png.height, 16);
+  for (const char* f : {"depth.exr", "normal.exr", "object_id.exr"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "aux" / f)) << f;
+  EXPECT_EQ(read_image(dir / "aux/depth.exr").channels, 1);
+
+  r = run_cli("render " + scene.string() + " -o " + (dir / "out.exr").string() + " --bits 16");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_image(dir / "out.exr").width, 40);
+  r = run_cli("render " + scene.string() + " -o " + (dir / "out16.png").string() + " --bits 16");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
+  testing::TempDir dir;
+  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto bad = testing::write_file(dir / "bad.json", "{\"version\": 1, \"camera\": ");
+  std::string out = (dir / "o.png").string();
+  struct Case {
+    std::string args, expected;
+  } cases[] = {
+      {"render " + bad.string() + " -o " + out, "bad.json: malformed JSON"},
+      {"render " + (dir / "missing.json").string() + " -o " + out, "missing.json: no such file"},
+      {"render " + scene.string() + " -o " + (dir / "nofolder/o.png").string(), "output folder does not exist"},
+      {"render " + scene.string() + " -o " + (dir / "o.jpg").string(), "output must be"},
+      {"render " + scene.string() + " -o " + out + " --spp 0", "--spp"},
+      {"render " + scene.string() + " -o " + out + " --bits 12", "--bits"},
+      {"render " + scene.string() + " -o " + out + " --method magic", "--method"},
+      {"render " + scene.string(), "--output is required"},
+      {"frobnicate", "frobnicate"},
+  };
+  for (const auto& c : cases) {
+    auto r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(count_lines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace countershade

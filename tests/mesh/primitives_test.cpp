@@ -1,0 +1,85 @@
+#include "mesh/primitives.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+namespace countershade {
+namespace {
+
+// Signed volume by the divergence theorem: positive when faces wind counter-clockwise outwards.
+double signed_volume(const TriangleMesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles)
+    v += glm::dot(glm::dvec3(m.positions[t.x]), glm::cross(glm::dvec3(m.positions[t.y]), glm::dvec3(m.positions[t.z]))) / 6.0;
+  return v;
+}
+
+// Closed and consistently oriented: every directed edge appears once and its reverse once.
+bool closed_and_oriented(const TriangleMesh& m) {
+  std::map<std::pair<unsigned, unsigned>, int> edges;
+  for (const auto& t : m.triangles)
+    for (int c = 0; c < 3; ++c) ++edges[{t[c], t[(c + 1) % 3]}];
+  for (const auto& [e, count] : edges)
+    if (count != 1 || edges.count({e.second, e.first}) == 0 || edges.at({e.second, e.first}) != 1) return false;
+  return true;
+}
+
+TEST(Primitives, BoxesAreClosedWeldedAndHaveTheRightVolume) {
+  // A bevelled (chamfered) box is the Minkowski sum of the inner box with a ball (octahedron) of
+  // radius r: inner volume + faces·r + edges·(quarter disc | quarter diamond) + corners.
+  const double a = 2.0, b = 1.0, c = 0.5, r = 0.1;
+  const double ia = a - 2 * r, ib = b - 2 * r, ic = c - 2 * r;
+  const double faces = ia * ib * ic + 2 * r * (ia * ib + ib * ic + ia * ic);
+  const double edge_sum = 4 * (ia + ib + ic);
+  const double expected[] = {a * b * c,
+                             faces + edge_sum * std::numbers::pi * r * r / 4 + 4.0 / 3.0 * std::numbers::pi * r * r * r,
+                             faces + edge_sum * r * r / 2 + 4.0 / 3.0 * r * r * r};
+  int i = 0;
+  for (EdgeProfile profile : {EdgeProfile::sharp, EdgeProfile::bevel, EdgeProfile::chamfer}) {
+    TriangleMesh box = make_box({a, b, c}, profile, r, 4, 16);
+    EXPECT_TRUE(closed_and_oriented(box)) << int(profile);
+    // The bevel's quarter circles are tessellated with 4 segments, so allow 0.5%.
+    EXPECT_NEAR(signed_volume(box), expected[i], 0.005 * expected[i]) << int(profile);
+    ++i;
+  }
+}
+
+TEST(Primitives, SphereAndCylinderVolumes) {
+  TriangleMesh sphere = make_sphere(1.5, 5);
+  EXPECT_TRUE(closed_and_oriented(sphere));
+  EXPECT_EQ(sphere.triangle_count(), 20u * 1024u);
+  EXPECT_NEAR(signed_volume(sphere), 4.0 / 3.0 * std::numbers::pi * std::pow(1.5, 3), 0.01 * 14.1);
+  for (const auto& p : sphere.positions) EXPECT_NEAR(glm::length(p), 1.5f, 1e-5f);
+
+  TriangleMesh cylinder = make_cylinder(0.5, 2.0, 96);
+  EXPECT_TRUE(closed_and_oriented(cylinder));
+  EXPECT_NEAR(signed_volume(cylinder), std::numbers::pi * 0.25 * 2.0, 0.01 * 1.571);
+}
+
+TEST(Primitives, PlaneFacesUpWithUnitUvs) {
+  TriangleMesh plane = make_plane(4.0, 8);
+  EXPECT_EQ(plane.triangle_count(), 128u);
+  compute_corner_normals(plane, 180.0);
+  for (const auto& n : plane.corner_normals) EXPECT_NEAR(n.y, 1.0f, 1e-6f);
+  for (const auto& uv : plane.corner_uvs) {
+    EXPECT_GE(uv.x, 0.0f);
+    EXPECT_LE(uv.y, 1.0f);
+  }
+}
+
+TEST(Primitives, CreaseAngleSplitsBoxNormalsButKeepsVerticesShared) {
+  TriangleMesh box = make_box({1, 1, 1}, EdgeProfile::sharp, 0, 1, 4);
+  compute_corner_normals(box, 30.0);
+  // Every corner normal is one of the six axis directions.
+  for (const auto& n : box.corner_normals)
+    EXPECT_NEAR(std::abs(n.x) + std::abs(n.y) + std::abs(n.z), 1.0f, 1e-6f);
+  EXPECT_EQ(box.vertex_count(), 6u * 25u - 12u * 5u + 8u);  // welded lattice points on the surface
+}
+
+}  // namespace
+}  // namespace countershade

@@ -1,0 +1,107 @@
+#include "render/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+const char* kMinimal = R"({
+  "version": 1,
+  "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 32, "height": 24},
+  "objects": [{"name": "ball", "shape": {"type": "sphere", "radius": 1, "subdivisions": 2}}],
+  "lights": [{"type": "directional", "direction": [0, 1, 1], "irradiance": 1}]
+})";
+
+std::string load_error(const std::filesystem::path& path) {
+  try {
+    load_scene(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Replaces the first occurrence of `from` in the minimal scene.
+std::string variant(const std::string& from, const std::string& to) {
+  std::string text = kMinimal;
+  auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+TEST(Scene, LoadsMinimalSceneWithDefaults) {
+  testing::TempDir dir;
+  Scene scene = load_scene(testing::write_file(dir / "s.json", kMinimal));
+  EXPECT_EQ(scene.camera.width, 32);
+  EXPECT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].name, "ball");
+  EXPECT_EQ(scene.objects[0].mesh.corner_normals.size(), 3 * scene.objects[0].mesh.triangle_count());
+  EXPECT_EQ(scene.objects[0].importance.size(), scene.objects[0].mesh.vertex_count());
+  EXPECT_EQ(scene.settings.spp, 16);
+  EXPECT_EQ(scene.display.encoding.kind(), DisplayEncoding::Kind::srgb);
+  ASSERT_EQ(scene.directional_lights.size(), 1u);
+  EXPECT_NEAR(scene.directional_lights[0].direction.y, std::sqrt(0.5), 1e-12);
+}
+
+TEST(Scene, RelativePathsResolveAgainstTheSceneFile) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "meshes");
+  testing::write_file(dir / "meshes/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  auto scene_file = testing::write_file(
+      dir / "s.json", variant(R"("shape": {"type": "sphere", "radius": 1, "subdivisions": 2})",
+                              R"("mesh": "meshes/tri.obj", "transform": {"translate": [0, 0, 1]})"));
+  Scene scene = load_scene(scene_file);
+  EXPECT_EQ(scene.objects[0].mesh.triangle_count(), 1u);
+  EXPECT_FLOAT_EQ(scene.objects[0].mesh.positions[1].z, 1.0f);
+}
+
+TEST(Scene, BadInputNamesFileAndKeyPath) {
+  testing::TempDir dir;
+  testing::write_file(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  testing::write_file(dir / "noface.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  struct Case {
+    std::string text, expected;
+  } cases[] = {
+      {"{\"version\": 1,", "malformed JSON"},
+      {variant("\"width\": 32", "\"width\": \"wide\""), "camera.width: expected an integer, got a string"},
+      {variant("\"name\": \"ball\"", "\"name\": \"ball\", \"material\": {\"albdo\": 0.5}"),
+       "objects[0].material.albdo: unknown key"},
+      {variant("\"version\": 1", "\"version\": 7"), "version: unsupported scene format version 7"},
+      {variant("\"eye\": [0, 0, 5]", "\"eye\": [0, 0]"), "camera.eye: expected an array of 3 numbers"},
+      {variant("\"radius\": 1", "\"radius\": -1"), "objects[0].shape.radius: must be positive"},
+      {variant("\"type\": \"sphere\"", "\"type\": \"torus\""), "objects[0].shape.type: unknown value 'torus'"},
+      {variant("\"type\": \"directional\"", "\"type\": \"spot\""), "lights[0].type: unknown value 'spot'"},
+      {variant("\"irradiance\": 1", "\"irradiance\": -1"), "lights[0].irradiance: must not be negative"},
+      {variant("\"shape\": {\"type\": \"sphere\", \"radius\": 1, \"subdivisions\": 2}", "\"mesh\": \"missing.obj\""),
+       "objects[0].mesh: " + (dir / "missing.obj").string() + ": no such mesh file"},
+      {variant("\"shape\": {\"type\": \"sphere\", \"radius\": 1, \"subdivisions\": 2}", "\"mesh\": \"nan.obj\""),
+       "objects[0].mesh: " + (dir / "nan.obj").string() + ": line 2: vertex 1 has a NaN"},
+      {variant("\"shape\": {\"type\": \"sphere\", \"radius\": 1, \"subdivisions\": 2}", "\"mesh\": \"noface.obj\""),
+       "objects[0].mesh: " + (dir / "noface.obj").string() + ": mesh has no faces"},
+      {variant("\"shape\": {\"type\": \"sphere\", \"radius\": 1, \"subdivisions\": 2}",
+               "\"shape\": {\"type\": \"plane\"}, \"material\": {\"texture\": \"nope.png\"}"),
+       "objects[0].material.texture: " + (dir / "nope.png").string() + ": no such image file"},
+      {variant("\"name\": \"ball\"", "\"name\": \"ball\", \"material\": {\"texture\": \"nope.png\"}"),
+       "objects[0].material.texture: the mesh has no texture coordinates"},
+      {variant("\"type\": \"directional\", \"direction\": [0, 1, 1], \"irradiance\": 1",
+               "\"type\": \"environment\", \"file\": \"sky.exr\""),
+       "lights[0].file: " + (dir / "sky.exr").string() + ": no such image file"},
+      {variant("\"objects\": [", "\"objects\": [], \"unused\": ["), "objects: a scene needs at least one object"},
+      {variant("\"target\": [0, 0, 0]", "\"target\": [0, 0, 5]"), "camera.target: must differ from eye"},
+  };
+  int i = 0;
+  for (const auto& c : cases) {
+    auto path = testing::write_file(dir / ("case" + std::to_string(i++) + ".json"), c.text);
+    std::string message = load_error(path);
+    EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  EXPECT_NE(load_error(dir / "absent.json").find("no such file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace countershade
