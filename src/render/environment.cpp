@@ -11,14 +11,6 @@ constexpr double kPi = std::numbers::pi;
 
 double luminance(const glm::dvec3& c) { return 0.212671 * c.x + 0.715160 * c.y + 0.072169 * c.z; }
 
-// Index i with cdf[i] <= u < cdf[i+1] in a cdf of n+1 entries starting at 0 and ending at 1.
-size_t find_interval(const std::vector<double>& cdf, size_t begin, size_t n, double u) {
-  auto first = cdf.begin() + long(begin), last = first + long(n) + 1;
-  auto it = std::upper_bound(first, last, u);
-  size_t i = size_t(it - first);
-  return std::clamp<size_t>(i == 0 ? 0 : i - 1, 0, n - 1);
-}
-
 }  // namespace
 
 glm::dvec3 equirect_direction(double u, double v) {
@@ -68,25 +60,42 @@ EnvironmentMap EnvironmentMap::sky(const SkyParameters& sky, int width, int heig
 }
 
 void EnvironmentMap::build_distribution() {
-  conditional_cdf_.assign(size_t(height_) * (width_ + 1), 0.0);
-  row_weight_.assign(height_, 0.0);
-  marginal_cdf_.assign(height_ + 1, 0.0);
+  const size_t n = size_t(width_) * height_;
+  probability_.assign(n, 0.0);
+  double total = 0;
   for (int y = 0; y < height_; ++y) {
     double sin_theta = std::sin(kPi * (y + 0.5) / height_);
-    double* cdf = &conditional_cdf_[size_t(y) * (width_ + 1)];
-    for (int x = 0; x < width_; ++x) cdf[x + 1] = cdf[x] + luminance(texel(x, y)) * sin_theta + 1e-12;
-    row_weight_[y] = cdf[width_];
-    for (int x = 1; x <= width_; ++x) cdf[x] /= row_weight_[y];
-    marginal_cdf_[y + 1] = marginal_cdf_[y] + row_weight_[y];
+    for (int x = 0; x < width_; ++x) {
+      double w = luminance(texel(x, y)) * sin_theta + 1e-12;  // never exactly zero
+      probability_[size_t(y) * width_ + x] = w;
+      total += w;
+    }
   }
-  total_weight_ = marginal_cdf_[height_];
-  for (int y = 1; y <= height_; ++y) marginal_cdf_[y] /= total_weight_;
+  for (double& p : probability_) p /= total;
+  // Vose's alias method: every slot holds its own texel with probability threshold, else its alias.
+  alias_threshold_.assign(n, 1.0);
+  alias_.resize(n);
+  std::vector<double> scaled(n);
+  std::vector<uint32_t> small, large;
+  for (size_t i = 0; i < n; ++i) {
+    alias_[i] = uint32_t(i);
+    scaled[i] = probability_[i] * double(n);
+    (scaled[i] < 1.0 ? small : large).push_back(uint32_t(i));
+  }
+  while (!small.empty() && !large.empty()) {
+    uint32_t s = small.back(), l = large.back();
+    small.pop_back();
+    alias_threshold_[s] = scaled[s];
+    alias_[s] = l;
+    scaled[l] -= 1.0 - scaled[s];
+    if (scaled[l] < 1.0) {
+      large.pop_back();
+      small.push_back(l);
+    }
+  }
 }
 
-glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& d) const {
-  double u = std::atan2(d.x, -d.z) / (2.0 * kPi);
-  if (u < 0) u += 1.0;
-  double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
+glm::dvec3 EnvironmentMap::radiance_at(double u, double v) const {
   // Bilinear, wrapping in u and clamping in v.
   double fx = u * width_ - 0.5, fy = v * height_ - 0.5;
   int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
@@ -100,17 +109,28 @@ glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& d) const {
          ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
-EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2) const {
-  size_t y = find_interval(marginal_cdf_, 0, size_t(height_), u1);
-  size_t row = y * (width_ + 1);
-  size_t x = find_interval(conditional_cdf_, row, size_t(width_), u2);
-  // Uniform position inside the chosen texel, reusing the leftover of u1 and u2.
-  double dy = (u1 - marginal_cdf_[y]) / std::max(marginal_cdf_[y + 1] - marginal_cdf_[y], 1e-300);
-  double dx = (u2 - conditional_cdf_[row + x]) /
-              std::max(conditional_cdf_[row + x + 1] - conditional_cdf_[row + x], 1e-300);
-  double u = (x + std::clamp(dx, 0.0, 1.0)) / width_, v = (y + std::clamp(dy, 0.0, 1.0)) / height_;
-  glm::dvec3 d = equirect_direction(u, v);
-  return {d, pdf(d)};
+glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& d) const {
+  double u = std::atan2(d.x, -d.z) / (2.0 * kPi);
+  if (u < 0) u += 1.0;
+  return radiance_at(u, std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi);
+}
+
+// A uniform (u,v) point inside a texel has solid-angle density p / (sinθ · 2π/W · π/H).
+double EnvironmentMap::pdf_of_texel(size_t index, double sin_theta) const {
+  return probability_[index] * width_ * height_ / (2.0 * kPi * kPi * std::max(sin_theta, 1e-8));
+}
+
+EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2, double u3) const {
+  const size_t n = probability_.size();
+  double scaled = u1 * double(n);
+  size_t slot = std::min(size_t(scaled), n - 1);
+  size_t index = (scaled - double(slot)) < alias_threshold_[slot] ? slot : alias_[slot];
+  int x = int(index % size_t(width_)), y = int(index / size_t(width_));
+  double u = (x + u2) / width_, v = (y + u3) / height_;
+  double theta = kPi * v, phi = 2.0 * kPi * u;
+  double sin_theta = std::sin(theta);
+  glm::dvec3 d(sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi));
+  return {d, pdf_of_texel(index, sin_theta), radiance_at(u, v)};
 }
 
 double EnvironmentMap::pdf(const glm::dvec3& d) const {
@@ -118,12 +138,7 @@ double EnvironmentMap::pdf(const glm::dvec3& d) const {
   if (u < 0) u += 1.0;
   double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
   int x = std::min(int(u * width_), width_ - 1), y = std::min(int(v * height_), height_ - 1);
-  double sin_theta = std::sqrt(std::max(0.0, 1.0 - d.y * d.y));
-  size_t row = size_t(y) * (width_ + 1);
-  double p_texel = (row_weight_[y] / total_weight_) *
-                   (conditional_cdf_[row + x + 1] - conditional_cdf_[row + x]);
-  // Uniform (u,v) inside a texel has solid-angle density p / (sinθ · 2π/W · π/H).
-  return p_texel * width_ * height_ / (2.0 * kPi * kPi * std::max(sin_theta, 1e-8));
+  return pdf_of_texel(size_t(y) * width_ + x, std::sqrt(std::max(0.0, 1.0 - d.y * d.y)));
 }
 
 }  // namespace countershade

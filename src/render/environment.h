@@ -29,10 +29,12 @@ class EnvironmentMap {
 
   struct Sample {
     glm::dvec3 direction;
-    double pdf;  // per unit solid angle
+    double pdf;            // per unit solid angle
+    glm::dvec3 radiance;   // the map's (bilinear) radiance in that direction
   };
-  // Picks a direction with probability proportional to luminance (importance sampling).
-  Sample sample(double u1, double u2) const;
+  // Picks a texel with probability proportional to luminance · sinθ (O(1), alias method) using
+  // u1, and a uniform point inside it using u2 and u3.
+  Sample sample(double u1, double u2, double u3) const;
   double pdf(const glm::dvec3& direction) const;
 
   int width() const { return width_; }
@@ -42,13 +44,14 @@ class EnvironmentMap {
   EnvironmentMap() = default;
   void build_distribution();
   const glm::dvec3& texel(int x, int y) const { return texels_[size_t(y) * width_ + x]; }
+  glm::dvec3 radiance_at(double u, double v) const;
+  double pdf_of_texel(size_t index, double sin_theta) const;
 
   int width_ = 0, height_ = 0;
   std::vector<glm::dvec3> texels_;
-  std::vector<double> marginal_cdf_;     // height_+1 entries over rows
-  std::vector<double> conditional_cdf_;  // height_ rows of width_+1 entries
-  std::vector<double> row_weight_;       // unnormalised weight of each row
-  double total_weight_ = 0;
+  std::vector<double> probability_;  // per texel, sums to 1
+  std::vector<double> alias_threshold_;
+  std::vector<uint32_t> alias_;
 };
 
 glm::dvec3 equirect_direction(double u, double v);

@@ -31,8 +31,9 @@ struct RayTracer::Handles {
 };
 
 RayTracer::RayTracer(const Scene& scene) : handles_(std::make_unique<Handles>()) {
-  // Embree's own threads would fight TBB's for the 2 cores; builds are quick single-threaded.
-  handles_->device = rtcNewDevice("threads=1,set_affinity=0");
+  // No "threads=N" here: Debian's Embree schedules through TBB, and a thread limit would become a
+  // process-wide TBB limit that also throttles the renderer's own parallel loops.
+  handles_->device = rtcNewDevice(nullptr);
   if (!handles_->device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(handles_->device, embree_error, &handles_->error);
   handles_->scene = rtcNewScene(handles_->device);

@@ -158,19 +158,21 @@ glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, boo
     glm::dvec3 sum(0.0);
     for (int s = 0; s < env.samples; ++s) {
       double u1 = random.next(), u2 = random.next();
-      glm::dvec3 wi;
+      glm::dvec3 wi, Le(0.0);
       double pdf;
       if (env.importance_sampling) {
-        auto sample = env.map->sample(u1, u2);
+        auto sample = env.map->sample(u1, u2, random.next());
         wi = sample.direction;
         pdf = sample.pdf;
+        Le = sample.radiance;
       } else {
         wi = sample_cosine_hemisphere(n, u1, u2);
         pdf = std::max(glm::dot(n, wi), 0.0) / kPi;
       }
       double cos_i = glm::dot(n, wi);
       if (cos_i <= 0 || pdf <= 0 || !visible(p, ng, wi, 1e30, counts)) continue;
-      sum += brdf(m, a, n, wi, wo) * env.map->radiance(wi) * (cos_i / pdf);
+      if (!env.importance_sampling) Le = env.map->radiance(wi);
+      sum += brdf(m, a, n, wi, wo) * Le * (cos_i / pdf);
     }
     L += env.scale * sum / double(env.samples);
   }

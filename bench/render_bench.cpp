@@ -1,0 +1,105 @@
+// Ray throughput of the Embree renderer on the bunny scene at 1024×768.
+//   build/bin/countershade_bench --benchmark_filter=Rays
+
+#include <benchmark/benchmark.h>
+
+#include <glm/geometric.hpp>
+
+#include "core/random.h"
+#include "render/ray_tracer.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "render/shading.h"
+
+namespace countershade {
+namespace {
+
+const Scene& bunny_scene() {
+  static Scene scene = [] {
+    Scene s = load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/bunny-sky.json");
+    s.camera.width = 1024;
+    s.camera.height = 768;
+    return s;
+  }();
+  return scene;
+}
+
+const RayTracer& bunny_tracer() {
+  static RayTracer tracer(bunny_scene());
+  return tracer;
+}
+
+// Primary rays: one through every pixel centre, single-threaded.
+void BM_PrimaryRays(benchmark::State& state) {
+  const Scene& scene = bunny_scene();
+  const RayTracer& tracer = bunny_tracer();
+  CameraRays rays(scene.camera);
+  int64_t count = 0, hits = 0;
+  for (auto _ : state) {
+    for (int y = 0; y < scene.camera.height; ++y)
+      for (int x = 0; x < scene.camera.width; ++x) {
+        Ray r = rays.ray(x + 0.5, y + 0.5);
+        hits += tracer.intersect(r.origin, r.direction).has_value();
+      }
+    count += int64_t(scene.camera.width) * scene.camera.height;
+  }
+  benchmark::DoNotOptimize(hits);
+  state.counters["rays/s"] = benchmark::Counter(double(count), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PrimaryRays)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Shadow rays: from every visible surface point towards cosine-distributed sky directions,
+// single-threaded (the environment light's visibility rays).
+void BM_ShadowRays(benchmark::State& state) {
+  const Scene& scene = bunny_scene();
+  const RayTracer& tracer = bunny_tracer();
+  CameraRays rays(scene.camera);
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> points;  // position, normal
+  for (int y = 0; y < scene.camera.height; ++y)
+    for (int x = 0; x < scene.camera.width; ++x) {
+      Ray r = rays.ray(x + 0.5, y + 0.5);
+      if (auto hit = tracer.intersect(r.origin, r.direction)) {
+        SurfacePoint sp = surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2);
+        points.emplace_back(sp.position, sp.geometric_normal);
+      }
+    }
+  int64_t count = 0, blocked = 0;
+  uint64_t i = 0;
+  for (auto _ : state) {
+    for (const auto& [p, n] : points) {
+      SampleStream random(1, kDomainPixel, i++, 0);
+      glm::dvec3 d = sample_cosine_hemisphere(n, random.next(), random.next());
+      blocked += tracer.occluded(p + n * tracer.epsilon(), d, tracer.epsilon(), 1e30);
+    }
+    count += int64_t(points.size());
+  }
+  benchmark::DoNotOptimize(blocked);
+  state.counters["rays/s"] = benchmark::Counter(double(count), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ShadowRays)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The whole render (16 spp, 12 environment samples each) on all cores, with its ray mix.
+void BM_RenderBunny(benchmark::State& state) {
+  Scene scene = bunny_scene();
+  scene.settings.spp = int(state.range(0));
+  const RayTracer& tracer = bunny_tracer();
+  RayCounts total;
+  for (auto _ : state) total += render(scene, tracer).rays;
+  state.counters["primary/s"] = benchmark::Counter(double(total.primary), benchmark::Counter::kIsRate);
+  state.counters["shadow/s"] = benchmark::Counter(double(total.shadow), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RenderBunny)->Arg(4)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+void BM_BuildBvh(benchmark::State& state) {
+  const Scene& scene = bunny_scene();
+  for (auto _ : state) {
+    RayTracer tracer(scene);
+    benchmark::DoNotOptimize(tracer.epsilon());
+  }
+}
+BENCHMARK(BM_BuildBvh)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace countershade
+
+BENCHMARK_MAIN();
