@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/progress.h"
+#include "enhance/method.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -19,6 +20,12 @@ namespace countershade::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string format_number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
 
 struct RenderArgs {
   std::string scene;
@@ -29,6 +36,11 @@ struct RenderArgs {
   std::optional<double> exposure;
   int bits = 8;
   std::string aux;
+  double lambda = 1.0;
+  MethodOptions method_options;
+  bool no_adapt = false;
+  int ring_samples = 3;
+  std::optional<double> refine;
 };
 
 // Writes the G-buffer as EXR files a researcher can open: depth, normal, object id.
@@ -49,7 +61,7 @@ void write_aux(const fs::path& dir, const GBuffer& g) {
   write_image(dir / "object_id.exr", object);
 }
 
-void run(const RenderArgs& args) {
+void run(RenderArgs args) {
   fs::path output(args.output);
   std::string ext = output.extension().string();
   for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
@@ -58,7 +70,14 @@ void run(const RenderArgs& args) {
   fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
   if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");
 
+  const EnhancementMethod* method = find_method(args.method);
+  if (!method) throw InputError("--method: unknown method '" + args.method + "'");
+  if (!std::isfinite(args.lambda)) throw InputError("--lambda: must be a finite number");
+  args.method_options.adapt = !args.no_adapt;
+  if (args.method != "none") method->validate(args.method_options);
+
   Scene scene = load_scene(args.scene);
+  if (args.refine) refine_scene(scene, *args.refine);
   if (args.width) scene.camera.width = *args.width;
   if (args.height) scene.camera.height = *args.height;
   if (args.spp) scene.settings.spp = *args.spp;
@@ -71,21 +90,32 @@ void run(const RenderArgs& args) {
   RenderOptions options;
   options.threads = args.threads.value_or(0);
   options.progress = [&](double f) { progress.update(f); };
+  options.vertex_radiance = method->needs_vertex_radiance();
+  options.ring_samples = args.ring_samples;
   RenderResult result = render(scene, tracer, options);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  if (ext == ".exr")
-    write_image(output, result.radiance);
-  else
-    write_image(output, encode_for_display(result.radiance, scene.display), {args.bits});
+  RayCounts rays = result.rays;
   if (!args.aux.empty()) write_aux(args.aux, result.gbuffer);
 
+  std::string details;
+  if (ext == ".exr") {
+    if (args.method != "none") throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
+    write_image(output, result.radiance);
+  } else {
+    View view = make_view(scene, std::move(result));
+    auto prepared = method->prepare(view, args.method_options);
+    Composed stimulus = prepared->compose(args.lambda);
+    write_image(output, stimulus.display, {args.bits});
+    if (args.method != "none")
+      details = ", " + args.method + " λ=" + format_number(args.lambda) + ", " +
+                std::to_string(stimulus.clipped_pixels) + " clipped pixels, " + prepared->parameters().dump();
+  }
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
   char summary[256];
-  std::snprintf(summary, sizeof summary, "wrote %s (%dx%d, %d spp, %s, %.2f M rays/s)",
-                args.output.c_str(), scene.camera.width, scene.camera.height, scene.settings.spp,
-                format_seconds(seconds).c_str(),
-                double(result.rays.primary + result.rays.shadow) / seconds * 1e-6);
-  progress.finish(summary);
+  std::snprintf(summary, sizeof summary, "wrote %s (%dx%d, %d spp, %s, %.2f M rays/s)", args.output.c_str(),
+                scene.camera.width, scene.camera.height, scene.settings.spp, format_seconds(seconds).c_str(),
+                double(rays.primary + rays.shadow) / seconds * 1e-6);
+  progress.finish(summary + details);
 }
 
 }  // namespace
@@ -97,8 +127,21 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png/.tif display-encoded, .exr linear radiance")->required();
   cmd->add_option("--method", args->method, "Enhancement method")
-      ->check(CLI::IsMember({"none"}))
+      ->check(CLI::IsMember(method_names()))
       ->capture_default_str();
+  cmd->add_option("--lambda", args->lambda, "Enhancement strength λ (0 = unenhanced)")->capture_default_str();
+  cmd->add_option("--sigma", args->method_options.sigma, "usm3d: smoothing width σ in world units");
+  cmd->add_option("--sigma-fraction", args->method_options.sigma_fraction,
+                  "usm3d: σ as a fraction of the scene's bounding-box diagonal");
+  cmd->add_option("--iterations", args->method_options.iterations,
+                  "usm3d: explicit number of smoothing iterations instead of σ");
+  cmd->add_flag("--no-adapt", args->no_adapt, "usm3d: constant gain λ·w (no √(1+Var) adaptation)");
+  cmd->add_option("--ring-samples", args->ring_samples,
+                  "usm3d: anti-aliasing samples per incident triangle for the vertex signal (0 = off)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  cmd->add_option("--refine", args->refine, "usm3d: split mesh edges longer than this world length first")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--width", args->width, "Override the camera's width in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", args->height, "Override the camera's height in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel (stratified)")->check(CLI::Range(1, 65536));
@@ -109,6 +152,11 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->add_option("--aux", args->aux, "Also write depth.exr, normal.exr and object_id.exr to this folder");
   cmd->callback([args] { run(*args); });
+  cmd->footer(
+      "Examples:\n"
+      "  countershade render experiments/scenes/clutter.json -o clutter.png\n"
+      "  countershade render experiments/scenes/cornsweet-cube.json -o cube.png --method usm3d --lambda 1.5 "
+      "--sigma-fraction 0.05");
 }
 
 }  // namespace countershade::cli

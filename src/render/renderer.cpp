@@ -117,12 +117,21 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   });
 
   if (options.vertex_radiance)
-    result.vertex_radiance = render_vertex_radiance(scene, tracer, options.threads, &result.rays);
+    result.vertex_radiance =
+        render_vertex_radiance(scene, tracer, options.threads, options.ring_samples, &result.rays);
   return result;
 }
 
+glm::dvec3 ring_sample_barycentrics(int j, int k) {
+  // Distance from the vertex towards the opposite edge in (0, 0.5), spread evenly; the split
+  // between the two other corners follows the golden-ratio sequence.
+  double r = 0.5 * (j + 0.5) / k;
+  double s = std::fmod(0.5 + 0.6180339887498949 * j, 1.0);
+  return {1.0 - r, r * s, r * (1.0 - s)};
+}
+
 std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
-                                                           int threads, RayCounts* total) {
+                                                           int threads, int ring_samples, RayCounts* total) {
   CameraRays rays(scene.camera);
   Shader shader(scene, tracer);
   const int spp = scene.settings.spp;
@@ -178,7 +187,32 @@ std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, c
           sum += double(count) * value / double(spp);
           weight += count;
         }
-        out[o][v] = glm::vec3(weight > 0 ? sum / double(weight) : glm::dvec3(0.0));
+        glm::dvec3 value = weight > 0 ? sum / double(weight) : glm::dvec3(0.0);
+        if (ring_samples > 0) {
+          // Anti-aliasing: the vertex value and k samples on every incident triangle, equally weighted.
+          glm::dvec3 ring(0.0);
+          int count = 0;
+          for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) {
+            unsigned triangle = corners[i] / 3, c = corners[i] % 3;
+            for (int j = 0; j < ring_samples; ++j) {
+              glm::dvec3 b = ring_sample_barycentrics(j, ring_samples);
+              double bary[3];
+              bary[c] = b.x;
+              bary[(c + 1) % 3] = b.y;
+              bary[(c + 2) % 3] = b.z;
+              SurfacePoint sp = surface_point(scene, unsigned(o), triangle, bary[1], bary[2]);
+              glm::dvec3 wo = rays.towards_viewer(sp.position);
+              for (int s = 0; s < spp; ++s) {
+                SampleStream random(seed, kDomainVertex, vertex_offset + v,
+                                    uint64_t(spp) * (1 + uint64_t(count)) + uint64_t(s));
+                ring += shader.radiance(sp, wo, false, random, counts) / double(spp);
+              }
+              ++count;
+            }
+          }
+          value = (value + ring) / double(1 + count);
+        }
+        out[o][v] = glm::vec3(value);
       }
       std::lock_guard<std::mutex> lock(counts_mutex);
       if (total) *total += counts;

@@ -18,6 +18,7 @@ namespace countershade {
 struct RenderOptions {
   int threads = 0;               // 0 = all cores
   bool vertex_radiance = false;  // also shade every mesh vertex
+  int ring_samples = 0;          // per-vertex anti-aliasing: samples per incident triangle
   std::function<void(double)> progress;  // called with the finished fraction, from any thread
 };
 
@@ -43,9 +44,16 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
 
 // Outgoing radiance towards the camera at every vertex of every object. A vertex whose incident
 // corners differ (a crease or a UV seam) gets the mean over those corners, weighted by how many
-// corners share each variant.
+// corners share each variant. With `ring_samples` = k > 0, the value is averaged with k fixed
+// barycentric samples on each incident triangle (anti-aliasing over the 1-ring; the same
+// offsets every frame, so the signal stays temporally coherent).
 std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
-                                                           int threads, RayCounts* counts = nullptr);
+                                                           int threads, int ring_samples = 0,
+                                                           RayCounts* counts = nullptr);
+
+// The fixed barycentric offsets of the 1-ring samples: (b_vertex, b_next, b_previous) for
+// sample j of k, inside the half of the triangle nearest the vertex.
+glm::dvec3 ring_sample_barycentrics(int j, int k);
 
 // Exposure and display encoding: linear radiance -> code values in [0,1].
 Image encode_for_display(const Image& radiance, const Display& display);

@@ -15,6 +15,7 @@
 #include "core/json_reader.h"
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
+#include "mesh/refine.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
@@ -400,5 +401,11 @@ class SceneLoader {
 }  // namespace
 
 Scene load_scene(const fs::path& path) { return SceneLoader(path).load(); }
+
+size_t refine_scene(Scene& scene, double max_edge_length) {
+  size_t splits = 0;
+  for (auto& object : scene.objects) splits += refine_long_edges(object.mesh, max_edge_length, &object.importance);
+  return splits;
+}
 
 }  // namespace countershade

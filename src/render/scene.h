@@ -101,4 +101,8 @@ struct Scene {
 
 Scene load_scene(const std::filesystem::path& path);
 
+// Splits every edge longer than `max_edge_length` (tessellation refinement before surface
+// smoothing). Returns the number of splits.
+size_t refine_scene(Scene& scene, double max_edge_length);
+
 }  // namespace countershade

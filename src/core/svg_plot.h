@@ -1,0 +1,29 @@
+#pragma once
+// Minimal SVG line and marker plots for figures in reports and docs (no dependencies).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace countershade {
+
+struct PlotSeries {
+  std::string label;
+  std::vector<double> x, y;
+  std::string color = "#1f77b4";
+  bool dashed = false;
+};
+
+struct LinePlot {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
+  int width = 640, height = 400;
+
+  std::string to_svg() const;
+  void write(const std::filesystem::path& path) const;  // atomic
+};
+
+// A palette of distinguishable colours (colour-blind friendly order).
+const std::string& plot_color(size_t index);
+
+}  // namespace countershade

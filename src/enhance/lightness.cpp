@@ -1,0 +1,53 @@
+#include "enhance/lightness.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace countershade {
+
+Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding) {
+  return linear_rgb_to_lab({encoding.decode(rgb[0]), encoding.decode(rgb[1]), encoding.decode(rgb[2])});
+}
+
+std::vector<Lab> display_to_lab(const Image& display, const DisplayEncoding& encoding) {
+  std::vector<Lab> lab(size_t(display.width) * display.height);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, lab.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      lab[i] = display_pixel_to_lab(&display.pixels[3 * i], encoding);
+  });
+  return lab;
+}
+
+Composed compose_lightness(const Image& display, const std::vector<Lab>& lab,
+                           const std::vector<double>& delta_L, const DisplayEncoding& encoding,
+                           int threads) {
+  Composed out;
+  out.display = display;
+  std::atomic<size_t> clipped{0};
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, lab.size(), 2048), [&](const tbb::blocked_range<size_t>& r) {
+      size_t local = 0;
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (delta_L[i] == 0.0) continue;
+        double target = lab[i].L + delta_L[i];
+        bool clip = target < 0.0 || target > 100.0;
+        glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(lab[i], target));
+        for (int c = 0; c < 3; ++c) {
+          clip |= rgb[c] < -1e-9 || rgb[c] > 1.0 + 1e-9;
+          out.display.pixels[3 * i + c] = float(encoding.encode(std::clamp(rgb[c], 0.0, 1.0)));
+        }
+        local += clip;
+      }
+      clipped += local;
+    });
+  });
+  out.clipped_pixels = clipped;
+  return out;
+}
+
+}  // namespace countershade

@@ -1,0 +1,40 @@
+#pragma once
+// A coloured mesh kept exactly as read (vertex order, positions, polygon faces), so a tool can
+// change its vertex colours and write it back without touching anything else.
+
+#include <filesystem>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace countershade {
+
+class ColoredMeshFile {
+ public:
+  // Reads a PLY/OFF/OBJ mesh with per-vertex colours through OpenMesh. Throws InputError naming
+  // the file when it cannot be read, is invalid (see load_mesh) or has no vertex colours.
+  static ColoredMeshFile read(const std::filesystem::path& path);
+  ~ColoredMeshFile();
+  ColoredMeshFile(ColoredMeshFile&&) noexcept;
+
+  size_t vertex_count() const;
+  std::vector<glm::vec3> positions() const;
+  // Undirected polygon edges (the 1-ring of the mesh as stored, not of a triangulation).
+  std::vector<std::pair<uint32_t, uint32_t>> edges() const;
+  // Colours as stored, in [0,1] (8-bit per channel in the file).
+  std::vector<glm::dvec3> colors() const;
+  void set_colors(const std::vector<glm::dvec3>& colors);
+
+  // Writes a PLY (binary) with the same vertices and faces and the current colours. The file
+  // appears atomically (temporary file, then rename).
+  void write(const std::filesystem::path& path) const;
+
+ private:
+  struct Impl;
+  explicit ColoredMeshFile(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace countershade

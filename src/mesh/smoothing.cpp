@@ -1,0 +1,78 @@
+#include "mesh/smoothing.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace countershade {
+
+int iterations_for_sigma(double sigma, double mean_edge_length) {
+  if (!(mean_edge_length > 0)) return 1;
+  double n = std::round(2.0 * sigma * sigma / (mean_edge_length * mean_edge_length));
+  return int(std::clamp(n, 1.0, 1e9));
+}
+
+void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                      const std::vector<int>& iterations, std::vector<double>& values, int threads) {
+  const size_t n = adjacency.vertex_count();
+  int most = 0;
+  for (int it : iterations) most = std::max(most, it);
+  std::vector<double> next(values);
+  const uint32_t* offsets = adjacency.offsets.data();
+  const uint32_t* neighbours = adjacency.neighbours.data();
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  for (int step = 0; step < most; ++step) {
+    const double* src = values.data();
+    double* dst = next.data();
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t v = r.begin(); v != r.end(); ++v) {
+          uint32_t begin = offsets[v], end = offsets[v + 1];
+          if (begin == end || step >= iterations[label[v]]) {
+            dst[v] = src[v];
+            continue;
+          }
+          double sum = 0.0;
+          for (uint32_t k = begin; k < end; ++k) sum += src[neighbours[k]];
+          dst[v] = sum / double(end - begin);
+        }
+      });
+    });
+    values.swap(next);
+  }
+}
+
+std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values) {
+  const size_t n = adjacency.vertex_count();
+  std::vector<double> variance(n, 0.0);
+  for (size_t v = 0; v < n; ++v) {
+    auto ring = adjacency.of(v);
+    double count = double(ring.size() + 1), mean = values[v];
+    for (uint32_t w : ring) mean += values[w];
+    mean /= count;
+    double sq = (values[v] - mean) * (values[v] - mean);
+    for (uint32_t w : ring) sq += (values[w] - mean) * (values[w] - mean);
+    variance[v] = sq / count;
+  }
+  return variance;
+}
+
+std::vector<double> component_mean_edge_length(const std::vector<glm::vec3>& positions,
+                                               const VertexAdjacency& adjacency, const Components& components) {
+  std::vector<double> sum(components.count, 0.0), count(components.count, 0.0);
+  for (size_t v = 0; v < adjacency.vertex_count(); ++v)
+    for (uint32_t w : adjacency.of(v)) {
+      if (w <= v) continue;  // each undirected edge once
+      uint32_t c = components.label[v];
+      sum[c] += glm::length(glm::dvec3(positions[v]) - glm::dvec3(positions[w]));
+      count[c] += 1.0;
+    }
+  for (uint32_t c = 0; c < components.count; ++c) sum[c] = count[c] > 0 ? sum[c] / count[c] : 0.0;
+  return sum;
+}
+
+}  // namespace countershade

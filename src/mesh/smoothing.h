@@ -1,0 +1,32 @@
+#pragma once
+// Uniform Laplacian smoothing over the 1-ring, iterated (Ritschel et al. 2008, §5), and the
+// quantities 3D unsharp masking derives from a per-vertex signal.
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/adjacency.h"
+#include "mesh/triangle_mesh.h"
+
+namespace countershade {
+
+// n = max(1, round(2σ²/h̄²)): on a regular triangulation each averaging step spreads a signal by
+// h̄²/2 per axis, so n steps give a spread of σ.
+int iterations_for_sigma(double sigma, double mean_edge_length);
+
+// Smooths `values` (#V) in place: v_i <- mean of v_j over the 1-ring (v_i itself excluded),
+// Jacobi style. Vertex v takes part in the first iterations[label[v]] steps and keeps its value
+// after that, so components with different iteration counts are smoothed independently (no edge
+// joins two components, so nothing leaks between them). Vertices without neighbours keep their
+// value. `threads` = 0 uses all cores.
+void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                      const std::vector<int>& iterations, std::vector<double>& values, int threads = 0);
+
+// Population variance of `values` over {i} ∪ N(i), per vertex.
+std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values);
+
+// Mean edge length of each component (each undirected edge counted once).
+std::vector<double> component_mean_edge_length(const std::vector<glm::vec3>& positions,
+                                               const VertexAdjacency& adjacency, const Components& components);
+
+}  // namespace countershade
