@@ -102,4 +102,4 @@ BENCHMARK(BM_BuildBvh)->Unit(benchmark::kMillisecond)->UseRealTime();
 }  // namespace
 }  // namespace countershade
 
-BENCHMARK_MAIN();
+

@@ -30,6 +30,6 @@ class SampleStream {
 };
 
 // Domains keep pixel and vertex streams apart.
-enum : uint64_t { kDomainPixel = 1, kDomainVertex = 2, kDomainCamera = 3 };
+enum : uint64_t { kDomainPixel = 1, kDomainVertex = 2, kDomainCamera = 3, kDomainTriangle = 4 };
 
 }  // namespace countershade

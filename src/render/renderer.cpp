@@ -122,23 +122,23 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   return result;
 }
 
-glm::dvec3 ring_sample_barycentrics(int j, int k) {
-  // Distance from the vertex towards the opposite edge in (0, 0.5), spread evenly; the split
-  // between the two other corners follows the golden-ratio sequence.
-  double r = 0.5 * (j + 0.5) / k;
-  double s = std::fmod(0.5 + 0.6180339887498949 * j, 1.0);
-  return {1.0 - r, r * s, r * (1.0 - s)};
+glm::dvec3 triangle_sample_barycentrics(int j, int k) {
+  // Stratified in the first coordinate, golden-ratio sequence in the second, warped uniformly
+  // onto the triangle.
+  double r1 = (j + 0.5) / k, r2 = std::fmod(0.5 + 0.6180339887498949 * j, 1.0);
+  double s = std::sqrt(r1);
+  return {1.0 - s, s * (1.0 - r2), s * r2};
 }
 
 std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
                                                            int threads, int ring_samples, RayCounts* total) {
   CameraRays rays(scene.camera);
   Shader shader(scene, tracer);
-  const int spp = scene.settings.spp;
+  const int spp = scene.settings.vertex_samples();
   const uint64_t seed = scene.settings.seed;
   std::vector<std::vector<glm::vec3>> out(scene.objects.size());
   std::mutex counts_mutex;
-  uint64_t vertex_offset = 0;
+  uint64_t vertex_offset = 0, triangle_offset = 0;
 
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const TriangleMesh& mesh = scene.objects[o].mesh;
@@ -151,6 +151,25 @@ std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, c
     std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
     for (size_t t = 0; t < mesh.triangle_count(); ++t)
       for (int c = 0; c < 3; ++c) corners[fill[mesh.triangles[t][c]]++] = uint32_t(3 * t + c);
+
+    // Ring supersampling: the sum of k shaded points on every triangle, shared by its 3 vertices.
+    std::vector<glm::dvec3> triangle_sum;
+    if (ring_samples > 0) {
+      triangle_sum.assign(mesh.triangle_count(), glm::dvec3(0.0));
+      parallel_ranges(mesh.triangle_count(), threads, [&](size_t begin, size_t end) {
+        RayCounts counts;
+        for (size_t t = begin; t < end; ++t)
+          for (int j = 0; j < ring_samples; ++j) {
+            glm::dvec3 b = triangle_sample_barycentrics(j, ring_samples);
+            SurfacePoint sp = surface_point(scene, unsigned(o), unsigned(t), b.y, b.z);
+            SampleStream random(seed, kDomainTriangle, triangle_offset + t, uint64_t(j));
+            triangle_sum[t] += shader.radiance(sp, rays.towards_viewer(sp.position), false, random, counts);
+          }
+        std::lock_guard<std::mutex> lock(counts_mutex);
+        if (total) *total += counts;
+      });
+    }
+    const int own_samples = ring_samples > 0 ? 1 : spp;
 
     out[o].resize(nv);
     parallel_ranges(nv, threads, [&](size_t begin, size_t end) {
@@ -180,37 +199,20 @@ std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, c
           sp.position = mesh.positions[v];  // exactly the vertex, not a barycentric round-off
           glm::dvec3 wo = rays.towards_viewer(sp.position);
           glm::dvec3 value(0.0);
-          for (int s = 0; s < spp; ++s) {
+          for (int s = 0; s < own_samples; ++s) {
             SampleStream random(seed, kDomainVertex, vertex_offset + v, uint64_t(s));
             value += shader.radiance(sp, wo, false, random, counts);
           }
-          sum += double(count) * value / double(spp);
+          sum += double(count) * value / double(own_samples);
           weight += count;
         }
         glm::dvec3 value = weight > 0 ? sum / double(weight) : glm::dvec3(0.0);
         if (ring_samples > 0) {
-          // Anti-aliasing: the vertex value and k samples on every incident triangle, equally weighted.
+          // The vertex value and every point of every incident triangle, equally weighted.
           glm::dvec3 ring(0.0);
-          int count = 0;
-          for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) {
-            unsigned triangle = corners[i] / 3, c = corners[i] % 3;
-            for (int j = 0; j < ring_samples; ++j) {
-              glm::dvec3 b = ring_sample_barycentrics(j, ring_samples);
-              double bary[3];
-              bary[c] = b.x;
-              bary[(c + 1) % 3] = b.y;
-              bary[(c + 2) % 3] = b.z;
-              SurfacePoint sp = surface_point(scene, unsigned(o), triangle, bary[1], bary[2]);
-              glm::dvec3 wo = rays.towards_viewer(sp.position);
-              for (int s = 0; s < spp; ++s) {
-                SampleStream random(seed, kDomainVertex, vertex_offset + v,
-                                    uint64_t(spp) * (1 + uint64_t(count)) + uint64_t(s));
-                ring += shader.radiance(sp, wo, false, random, counts) / double(spp);
-              }
-              ++count;
-            }
-          }
-          value = (value + ring) / double(1 + count);
+          for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) ring += triangle_sum[corners[i] / 3];
+          double points = double(ring_samples) * double(offsets[v + 1] - offsets[v]);
+          value = (value + ring) / (1.0 + points);
         }
         out[o][v] = glm::vec3(value);
       }
@@ -218,6 +220,7 @@ std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, c
       if (total) *total += counts;
     });
     vertex_offset += nv;
+    triangle_offset += mesh.triangle_count();
   }
   return out;
 }

@@ -44,16 +44,18 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
 
 // Outgoing radiance towards the camera at every vertex of every object. A vertex whose incident
 // corners differ (a crease or a UV seam) gets the mean over those corners, weighted by how many
-// corners share each variant. With `ring_samples` = k > 0, the value is averaged with k fixed
-// barycentric samples on each incident triangle (anti-aliasing over the 1-ring; the same
-// offsets every frame, so the signal stays temporally coherent).
+// corners share each variant, shaded with the scene's vertex_samples(). With `ring_samples` =
+// k > 0, every triangle is shaded at k fixed barycentric points (one sample each) and a vertex
+// averages its own value with the points of all its incident triangles: anti-aliasing over the
+// 1-ring. The vertex itself then takes one sample (the ring points do the averaging). The
+// offsets are the same every frame, so the signal stays temporally coherent.
 std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
                                                            int threads, int ring_samples = 0,
                                                            RayCounts* counts = nullptr);
 
-// The fixed barycentric offsets of the 1-ring samples: (b_vertex, b_next, b_previous) for
-// sample j of k, inside the half of the triangle nearest the vertex.
-glm::dvec3 ring_sample_barycentrics(int j, int k);
+// The fixed barycentric coordinates (b0, b1, b2) of sample j of k on every triangle: stratified
+// over the triangle's area.
+glm::dvec3 triangle_sample_barycentrics(int j, int k);
 
 // Exposure and display encoding: linear radiance -> code values in [0,1].
 Image encode_for_display(const Image& radiance, const Display& display);

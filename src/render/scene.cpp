@@ -117,6 +117,7 @@ class SceneLoader {
   RenderSettings settings(const JsonObject& o) {
     RenderSettings s;
     s.spp = int(o.integer_in("spp", s.spp, 1, 65536));
+    s.vertex_spp = int(o.integer_in("vertex_spp", 0, 0, 65536));
     s.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
     o.finish();
     return s;

@@ -2,6 +2,7 @@
 // Scene description: camera, objects with materials, lights, display. Loaded from a versioned
 // JSON file (docs/scene-format.md); every error names the file and the key path.
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -82,7 +83,12 @@ struct Display {
 
 struct RenderSettings {
   int spp = 16;
+  // Samples per vertex for the per-vertex signal (0: spp/4, at least 1). Smoothing low-pass
+  // filters that signal, so it needs fewer samples than the pixels do.
+  int vertex_spp = 0;
   uint64_t seed = 1;
+
+  int vertex_samples() const { return vertex_spp > 0 ? vertex_spp : std::max(1, spp / 4); }
 };
 
 struct Scene {

@@ -345,15 +345,19 @@ TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   for (double g : flat.gain_factor) EXPECT_EQ(g, 1.0);
 }
 
-TEST(Usm3d, RingSamplesStayNearTheirVertex) {
-  for (int k : {1, 3, 8})
+TEST(Usm3d, RingSamplesLieInsideTheTriangleAndSpreadOverIt) {
+  for (int k : {1, 3, 8}) {
+    glm::dvec3 mean(0.0);
     for (int j = 0; j < k; ++j) {
-      glm::dvec3 b = ring_sample_barycentrics(j, k);
+      glm::dvec3 b = triangle_sample_barycentrics(j, k);
       EXPECT_NEAR(b.x + b.y + b.z, 1.0, 1e-12);
-      EXPECT_GE(b.x, 0.5);  // in the half of the triangle nearest the vertex
-      EXPECT_GE(b.y, 0.0);
-      EXPECT_GE(b.z, 0.0);
+      EXPECT_GE(std::min({b.x, b.y, b.z}), 0.0);
+      mean += b / double(k);
     }
+    if (k >= 3) {
+      EXPECT_NEAR(mean.x, 1.0 / 3.0, 0.15);
+    }
+  }
 }
 
 TEST(Usm3d, ValidatesItsOptions) {

@@ -1,0 +1,127 @@
+// 3D unsharp masking costs on igea (134k vertices).
+//   build/bin/countershade_bench --benchmark_filter='Smooth|Usm3d'
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstring>
+#include <numeric>
+
+#include "core/random.h"
+#include "enhance/method.h"
+#include "enhance/usm3d.h"
+#include "mesh/adjacency.h"
+#include "mesh/mesh_io.h"
+#include "mesh/smoothing.h"
+#include "render/ray_tracer.h"
+
+namespace countershade {
+namespace {
+
+const std::string kSource = COUNTERSHADE_SOURCE_DIR;
+
+const TriangleMesh& igea_mesh() {
+  static TriangleMesh mesh = load_mesh(kSource + "/../shared/data/meshes/igea.obj");
+  return mesh;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// n = 100 smoothing iterations at 1 and 2 threads; neighbour reads per second per core, and a
+// STREAM-like copy of the same number of doubles measured in the same run for comparison.
+void BM_SmoothIgea(benchmark::State& state) {
+  const int threads = int(state.range(0));
+  const TriangleMesh& mesh = igea_mesh();
+  VertexAdjacency adj = adjacency_from_triangles(mesh.vertex_count(), mesh.triangles);
+  Components comps = connected_components(adj);
+  std::vector<int> iterations(comps.count, 100);
+  std::vector<double> values(mesh.vertex_count());
+  SampleStream random(1, 0, 0, 0);
+  for (double& v : values) v = 100.0 * random.next();
+
+  double smooth_seconds = 0, copy_seconds = 0;
+  const size_t reads = adj.neighbours.size() * 100;
+  std::vector<double> src(adj.neighbours.size(), 1.0), dst(adj.neighbours.size());
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    laplacian_smooth(adj, comps.label, iterations, values, threads);
+    smooth_seconds += seconds_since(t0);
+    auto t1 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 100; ++i) {
+      std::memcpy(dst.data(), src.data(), src.size() * sizeof(double));
+      benchmark::ClobberMemory();
+    }
+    copy_seconds += seconds_since(t1);
+  }
+  double iterations_run = double(state.iterations());
+  double smooth_rate = double(reads) * iterations_run / smooth_seconds;
+  double copy_rate = double(reads) * iterations_run / copy_seconds;  // doubles copied per second (1 thread)
+  state.counters["n100_ms"] = 1e3 * smooth_seconds / iterations_run;
+  state.counters["reads/s/core"] = smooth_rate / threads;
+  state.counters["copy/s"] = copy_rate;
+  state.counters["reads/copy"] = smooth_rate / threads / copy_rate;
+}
+BENCHMARK(BM_SmoothIgea)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+struct IgeaView {
+  Scene scene;
+  std::unique_ptr<RayTracer> tracer;
+};
+
+IgeaView& igea_view() {
+  static IgeaView view = [] {
+    IgeaView v;
+    v.scene = load_scene(kSource + "/experiments/scenes/igea-sky.json");
+    v.tracer = std::make_unique<RayTracer>(v.scene);
+    return v;
+  }();
+  return view;
+}
+
+// Plain render against render + vertex signal + smoothing + one composition, 1024×768, 16 spp,
+// one σ with n ≈ 50; both measured in the same run. Arg: 1-ring samples per triangle (0 = off).
+void BM_Usm3dOverhead(benchmark::State& state) {
+  IgeaView& v = igea_view();
+  const int ring = int(state.range(0));
+  MethodOptions options;
+  double h = mean_edge_length(v.scene.objects[0].mesh);
+  options.sigma = std::sqrt(50.0 / 2.0) * h;  // n = round(2σ²/h̄²) ≈ 50
+  double plain = 0, enhanced = 0, extra_lambda = 0;
+  int n = 0;
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    RenderResult base = render(v.scene, *v.tracer);
+    Composed none = find_method("none")->prepare(make_view(v.scene, std::move(base)), {})->compose(0);
+    plain += seconds_since(t0);
+    benchmark::DoNotOptimize(none.display.pixels.data());
+
+    auto t1 = std::chrono::steady_clock::now();
+    RenderOptions ro;
+    ro.vertex_radiance = true;
+    ro.ring_samples = ring;
+    View view = make_view(v.scene, render(v.scene, *v.tracer, ro));
+    auto prepared = find_method("usm3d")->prepare(view, options);
+    Composed out = prepared->compose(1.0);
+    enhanced += seconds_since(t1);
+    n = prepared->parameters()["iterations"]["igea"].get<int>();
+
+    auto t2 = std::chrono::steady_clock::now();
+    Composed more = prepared->compose(2.0);
+    extra_lambda += seconds_since(t2);
+    benchmark::DoNotOptimize(more.display.pixels.data());
+  }
+  double runs = double(state.iterations());
+  state.counters["plain_s"] = plain / runs;
+  state.counters["usm3d_s"] = enhanced / runs;
+  state.counters["overhead"] = enhanced / plain - 1.0;
+  state.counters["extra_lambda_ms"] = 1e3 * extra_lambda / runs;
+  state.counters["extra_lambda/render"] = extra_lambda / plain;
+  state.counters["n"] = n;
+}
+BENCHMARK(BM_Usm3dOverhead)->Arg(0)->Arg(3)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
+}  // namespace countershade
+BENCHMARK_MAIN();
