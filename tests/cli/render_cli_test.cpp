@@ -49,6 +49,21 @@ TEST(RenderCli, RendersPngExrAndAuxiliaryBuffers) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
 }
 
+TEST(RenderCli, Usm3dAtLambdaZeroMatchesTheUnenhancedPngByteForByte) {
+  testing::TempDir dir;
+  auto scene = testing::write_file(dir / "s.json", kScene);
+  std::string base = "render " + scene.string() + " -o ";
+  ASSERT_EQ(run_cli(base + (dir / "none.png").string()).exit_code, 0);
+  auto r = run_cli(base + (dir / "zero.png").string() + " --method usm3d --lambda 0 --sigma 0.2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(testing::read_file(dir / "zero.png"), testing::read_file(dir / "none.png"));
+  r = run_cli(base + (dir / "strong.png").string() + " --method usm3d --lambda 2 --sigma-fraction 0.1 --refine 0.05");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("clipped pixels"), std::string::npos) << r.output;
+  EXPECT_NE(testing::read_file(dir / "strong.png"), testing::read_file(dir / "none.png"));
+}
+
 TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
   testing::TempDir dir;
   auto scene = testing::write_file(dir / "s.json", kScene);
@@ -64,6 +79,10 @@ TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
       {"render " + scene.string() + " -o " + out + " --spp 0", "--spp"},
       {"render " + scene.string() + " -o " + out + " --bits 12", "--bits"},
       {"render " + scene.string() + " -o " + out + " --method magic", "--method"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1", "exactly one of --sigma"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1 --sigma -2", "--sigma"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda nan --sigma 0.1", "--lambda"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1 --sigma-fraction 3", "--sigma-fraction"},
       {"render " + scene.string(), "--output is required"},
       {"frobnicate", "frobnicate"},
   };
