@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/progress.h"
+#include "cli/method_options.h"
 #include "enhance/method.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
@@ -30,15 +31,12 @@ std::string format_number(double v) {
 struct RenderArgs {
   std::string scene;
   std::string output;
-  std::string method = "none";
+  MethodArgs method;
   std::optional<int> width, height, spp, threads;
   std::optional<long long> seed;
   std::optional<double> exposure;
   int bits = 8;
   std::string aux;
-  double lambda = 1.0;
-  MethodOptions method_options;
-  bool no_adapt = false;
   int ring_samples = 3;
   std::optional<double> refine;
 };
@@ -70,11 +68,10 @@ void run(RenderArgs args) {
   fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
   if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");
 
-  const EnhancementMethod* method = find_method(args.method);
-  if (!method) throw InputError("--method: unknown method '" + args.method + "'");
-  if (!std::isfinite(args.lambda)) throw InputError("--lambda: must be a finite number");
-  args.method_options.adapt = !args.no_adapt;
-  if (args.method != "none") method->validate(args.method_options);
+  const EnhancementMethod& method = resolve_method(args.method);
+  const bool enhanced = args.method.method != "none";
+  if (ext == ".exr" && enhanced)
+    throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
 
   Scene scene = load_scene(args.scene);
   if (args.refine) refine_scene(scene, *args.refine);
@@ -90,7 +87,7 @@ void run(RenderArgs args) {
   RenderOptions options;
   options.threads = args.threads.value_or(0);
   options.progress = [&](double f) { progress.update(f); };
-  options.vertex_radiance = method->needs_vertex_radiance();
+  options.vertex_radiance = method.needs_vertex_radiance();
   options.ring_samples = args.ring_samples;
   RenderResult result = render(scene, tracer, options);
   RayCounts rays = result.rays;
@@ -98,15 +95,15 @@ void run(RenderArgs args) {
 
   std::string details;
   if (ext == ".exr") {
-    if (args.method != "none") throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
     write_image(output, result.radiance);
   } else {
-    View view = make_view(scene, std::move(result));
-    auto prepared = method->prepare(view, args.method_options);
-    Composed stimulus = prepared->compose(args.lambda);
+    View view = make_view(scene, std::move(result), args.bits);
+    auto prepared = method.prepare(view, args.method.options);
+    Composed stimulus = prepared->compose(args.method.lambda);
     write_image(output, stimulus.display, {args.bits});
-    if (args.method != "none")
-      details = ", " + args.method + " λ=" + format_number(args.lambda) + ", " +
+    if (!args.aux.empty()) write_auxiliary(args.aux, *prepared);
+    if (enhanced)
+      details = ", " + args.method.method + " λ=" + format_number(args.method.lambda) + ", " +
                 std::to_string(stimulus.clipped_pixels) + " clipped pixels, " + prepared->parameters().dump();
   }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -126,16 +123,16 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene description (JSON, see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png/.tif display-encoded, .exr linear radiance")->required();
-  cmd->add_option("--method", args->method, "Enhancement method")
+  cmd->add_option("--method", args->method.method, "Enhancement method")
       ->check(CLI::IsMember(method_names()))
       ->capture_default_str();
-  cmd->add_option("--lambda", args->lambda, "Enhancement strength λ (0 = unenhanced)")->capture_default_str();
-  cmd->add_option("--sigma", args->method_options.sigma, "usm3d: smoothing width σ in world units");
-  cmd->add_option("--sigma-fraction", args->method_options.sigma_fraction,
+  cmd->add_option("--sigma", args->method.options.sigma, "usm3d: smoothing width σ in world units");
+  cmd->add_option("--sigma-fraction", args->method.options.sigma_fraction,
                   "usm3d: σ as a fraction of the scene's bounding-box diagonal");
-  cmd->add_option("--iterations", args->method_options.iterations,
+  cmd->add_option("--iterations", args->method.options.iterations,
                   "usm3d: explicit number of smoothing iterations instead of σ");
-  cmd->add_flag("--no-adapt", args->no_adapt, "usm3d: constant gain λ·w (no √(1+Var) adaptation)");
+  cmd->add_flag("--no-adapt", args->method.no_adapt, "usm3d: constant gain λ·w (no √(1+Var) adaptation)");
+  add_image_method_options(cmd, args->method);
   cmd->add_option("--ring-samples", args->ring_samples,
                   "usm3d: anti-aliasing samples per incident triangle for the vertex signal (0 = off)")
       ->check(CLI::Range(0, 64))
@@ -150,13 +147,17 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", args->exposure, "Override the exposure in stops")->check(CLI::Range(-30.0, 30.0));
   cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth")->check(CLI::IsMember({8, 16}))->capture_default_str();
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  cmd->add_option("--aux", args->aux, "Also write depth.exr, normal.exr and object_id.exr to this folder");
+  cmd->add_option("--aux", args->aux,
+                  "Also write depth.exr, normal.exr, object_id.exr and the method's intermediate images "
+                  "(e.g. depth-usm's D, G*D and ΔD) to this folder");
   cmd->callback([args] { run(*args); });
   cmd->footer(
       "Examples:\n"
       "  countershade render experiments/scenes/clutter.json -o clutter.png\n"
       "  countershade render experiments/scenes/cornsweet-cube.json -o cube.png --method usm3d --lambda 1.5 "
-      "--sigma-fraction 0.05");
+      "--sigma-fraction 0.05\n"
+      "  countershade render experiments/scenes/clutter.json -o dark.png --method depth-usm --operator darken "
+      "--lambda 0.8 --kernel 5%");
 }
 
 }  // namespace countershade::cli

@@ -19,7 +19,7 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
-Image read_image(const std::filesystem::path& path) {
+Image read_image(const std::filesystem::path& path, int* bits) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
@@ -33,6 +33,7 @@ Image read_image(const std::filesystem::path& path) {
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw_input_error(path.string(), "image is empty");
+  if (bits) *bits = spec.format.is_floating_point() ? 0 : int(spec.format.size() * 8);
   Image image(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
     std::string message = in->geterror();

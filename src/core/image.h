@@ -31,7 +31,8 @@ struct ImageWriteOptions {
 
 // Reads any format OpenImageIO knows (PNG, EXR, TIFF, PFM, HDR, ...) as float. Integer formats
 // come back scaled to [0,1]. Throws InputError naming the file when it cannot be read.
-Image read_image(const std::filesystem::path& path);
+// `bits`, when given, receives the file's integer bit depth (8, 16, ...) or 0 for float formats.
+Image read_image(const std::filesystem::path& path, int* bits = nullptr);
 
 // Writes by extension: .png/.tif/.tiff quantised (round to nearest) to 8 or 16 bits, .exr/.pfm/.hdr
 // as float. The file appears atomically: a temporary file in the same folder, then a rename.

@@ -21,16 +21,30 @@
 
 namespace countershade {
 
-// Everything rendered once per view.
+// Everything produced once per view: by the renderer, or read from an image (+ depth) file.
 struct View {
-  const Scene* scene = nullptr;
-  RenderResult render;    // radiance, G-buffer and (for methods that need it) vertex radiance
-  Image display;          // display-encoded code values in [0,1], the unenhanced stimulus
-  std::vector<Lab> lab;   // CIELAB of `display`, per pixel
+  const Scene* scene = nullptr;  // null for external images
+  DisplayEncoding encoding = DisplayEncoding::srgb();
+  RenderResult render;        // G-buffer and vertex radiance (renders only)
+  std::vector<float> depth;   // linear eye depth per pixel; 0, inf or NaN = background/invalid
+  Image display;              // the unenhanced stimulus: code values in [0,1], quantised to `bits`
+  std::vector<Lab> lab;       // CIELAB of `display`, per pixel
+  int bits = 8;
+
+  int width() const { return display.width; }
+  int height() const { return display.height; }
 };
 
-// Builds the View: encodes the render for display and converts it to CIELAB.
-View make_view(const Scene& scene, RenderResult render);
+// Builds the View of a render: exposure and display encoding, quantised to the output bit depth
+// (8 or 16) so every method starts from exactly the pixels of the reference image, then CIELAB.
+View make_view(const Scene& scene, RenderResult render, int bits = 8);
+
+// The View of an external image (display-encoded code values, 3 channels) with an optional
+// depth map of the same size.
+View make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding, int bits);
+
+// Rounds code values to the nearest n-bit level (kept as floats).
+void quantize_in_place(Image& image, int bits);
 
 // Options of all methods in one plain struct; each method reads the fields it uses and
 // `validate` rejects the ones it cannot use.
@@ -40,7 +54,23 @@ struct MethodOptions {
   std::optional<double> sigma_fraction;  // of the scene's bounding-box diagonal
   std::optional<int> iterations;         // explicit smoothing iterations instead of σ
   bool adapt = true;                     // adaptive gain √(1 + Var)
+
+  // usm2d and depth-usm: image-space width, exactly one of
+  std::optional<double> kernel_percent;  // kernel size K as % of the image diagonal, σ_px = K/4
+  std::optional<double> sigma_px;        // σ in pixels
+  std::optional<double> sigma_percent;   // σ as % of the image diagonal
+
+  // depth-usm
+  std::string op = "darken";             // add | contrast | darken | color
+  std::string contrast = "stretch";      // C for `contrast`: stretch | equalize | local
+  std::string space = "rgb";             // rgb (as in Luft et al.) | lab (lightness only)
+  std::string depth_mapping = "linear";  // linear eye depth | zbuffer (non-linear, near/far)
+  std::optional<double> z_near, z_far;   // zbuffer planes (default: the valid depth range)
+  glm::dvec3 cold{-0.1, -0.05, 0.15}, warm{0.15, 0.1, -0.1};
 };
+
+// σ in pixels for an image of the given size from the image-space options (0 if none is given).
+double image_sigma_px(const MethodOptions& options, int width, int height);
 
 class PreparedEnhancement {
  public:
@@ -49,6 +79,8 @@ class PreparedEnhancement {
   virtual Composed compose(double lambda) const = 0;
   // Parameters worth recording (e.g. smoothing iterations per object), as JSON.
   virtual nlohmann::json parameters() const { return nlohmann::json::object(); }
+  // Intermediate images a researcher may want to inspect (name without extension, image).
+  virtual std::vector<std::pair<std::string, Image>> auxiliary() const { return {}; }
 };
 
 class EnhancementMethod {
@@ -56,8 +88,10 @@ class EnhancementMethod {
   virtual ~EnhancementMethod() = default;
   virtual std::string name() const = 0;
   virtual std::string summary() const = 0;
-  // Whether make_view must include per-vertex radiance.
+  // Whether make_view must include per-vertex radiance (and so a rendered scene).
   virtual bool needs_vertex_radiance() const { return false; }
+  // Whether the view must carry a depth map.
+  virtual bool needs_depth() const { return false; }
   // Throws InputError for options this method cannot use (missing σ, σ ≤ 0, ...).
   virtual void validate(const MethodOptions& options) const = 0;
   // The once-per-(view, σ) work.

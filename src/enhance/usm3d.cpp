@@ -4,15 +4,18 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "mesh/smoothing.h"
 
 namespace countershade {
 
-double display_lightness(const glm::dvec3& radiance, const Display& display) {
+double display_lightness(const glm::dvec3& radiance, const Display& display, int bits) {
   const double scale = std::exp2(display.exposure_stops);
-  glm::dvec3 shown;
-  for (int c = 0; c < 3; ++c) shown[c] = display.encoding.decode(display.encoding.encode(radiance[c] * scale));
-  return linear_rgb_to_lab(shown).L;
+  const float levels = float((1u << bits) - 1u);
+  float code[3];
+  for (int c = 0; c < 3; ++c)
+    code[c] = float(quantize(float(display.encoding.encode(radiance[c] * scale)), bits)) / levels;
+  return display_pixel_to_lab(code, display.encoding).L;  // the same path as the pixels
 }
 
 double resolve_sigma(const MethodOptions& options, const Scene& scene) {
@@ -52,10 +55,11 @@ SurfaceContrast surface_contrast(const VertexAdjacency& adjacency, const std::ve
 }
 
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const MethodOptions& options, double sigma_world) {
+                                 const Display& display, const MethodOptions& options, double sigma_world,
+                                 int bits) {
   const TriangleMesh& mesh = object.mesh;
   std::vector<double> lightness(mesh.vertex_count());
-  for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display);
+  for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display, bits);
   return surface_contrast(adjacency_from_triangles(mesh.vertex_count(), mesh.triangles), mesh.positions,
                           std::move(lightness), object.importance, options, sigma_world);
 }
@@ -98,7 +102,7 @@ class Usm3dPrepared final : public PreparedEnhancement {
   Composed compose(double lambda) const override {
     std::vector<double> delta(pixels_.contrast.size());
     for (size_t i = 0; i < delta.size(); ++i) delta[i] = lambda * pixels_.gain_factor[i] * pixels_.contrast[i];
-    return compose_lightness(view_.display, view_.lab, delta, view_.scene->display.encoding);
+    return compose_lightness(view_.display, view_.lab, delta, view_.encoding);
   }
   nlohmann::json parameters() const override { return parameters_; }
 
@@ -112,6 +116,7 @@ class Usm3dPrepared final : public PreparedEnhancement {
 
 std::unique_ptr<PreparedEnhancement> Usm3dMethod::prepare(const View& view, const MethodOptions& options) const {
   validate(options);
+  if (!view.scene) throw InputError("usm3d: needs a rendered scene (it works on mesh surfaces)");
   const Scene& scene = *view.scene;
   if (view.render.vertex_radiance.size() != scene.objects.size())
     throw std::logic_error("usm3d: the view was rendered without vertex radiance");
@@ -119,7 +124,8 @@ std::unique_ptr<PreparedEnhancement> Usm3dMethod::prepare(const View& view, cons
   std::vector<SurfaceContrast> objects;
   nlohmann::json iterations = nlohmann::json::object();
   for (size_t o = 0; o < scene.objects.size(); ++o) {
-    objects.push_back(surface_contrast(scene.objects[o], view.render.vertex_radiance[o], scene.display, options, sigma));
+    objects.push_back(
+        surface_contrast(scene.objects[o], view.render.vertex_radiance[o], scene.display, options, sigma, view.bits));
     // The iteration count of the object's largest component (components of one object usually
     // share a tessellation, so their counts agree).
     std::vector<size_t> size(objects.back().components.count, 0);

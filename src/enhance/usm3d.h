@@ -21,9 +21,9 @@ struct SurfaceContrast {
   Components components;
 };
 
-// Lightness of a linear radiance under the display's exposure and encoding (what the stimulus
-// shows), in CIELAB L*.
-double display_lightness(const glm::dvec3& radiance, const Display& display);
+// Lightness of a linear radiance under the display's exposure, encoding and `bits` quantisation
+// (exactly what the stimulus shows), in CIELAB L*.
+double display_lightness(const glm::dvec3& radiance, const Display& display, int bits);
 
 // σ in world units from the options (absolute, or a fraction of the scene diagonal); 0 when the
 // options give explicit iterations instead.
@@ -35,9 +35,11 @@ SurfaceContrast surface_contrast(const VertexAdjacency& adjacency, const std::ve
                                  std::vector<double> lightness, const std::vector<float>& importance,
                                  const MethodOptions& options, double sigma_world);
 
-// The same for a rendered object: lightness of its display-referred vertex radiance.
+// The same for a rendered object: lightness of its display-referred vertex radiance, quantised
+// like the view's pixels (`bits`) so a uniform surface has C = 0 exactly.
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const MethodOptions& options, double sigma_world);
+                                 const Display& display, const MethodOptions& options, double sigma_world,
+                                 int bits = 8);
 
 class Usm3dMethod final : public EnhancementMethod {
  public:

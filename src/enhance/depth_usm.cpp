@@ -1,0 +1,190 @@
+#include "enhance/depth_usm.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/gaussian.h"
+#include "enhance/usm2d.h"
+
+namespace countershade {
+namespace {
+
+bool valid_depth(float d) { return std::isfinite(d) && d > 0.0f; }
+
+// Histogram-based global contrast: a 1st–99th percentile stretch or an equalisation, computed
+// jointly over all values (all channels), so colour balance is kept.
+class GlobalContrast {
+ public:
+  GlobalContrast(const std::vector<float>& values, double range, bool equalize) : range_(range), equalize_(equalize) {
+    std::vector<double> histogram(kBins, 0.0);
+    for (float v : values) histogram[bin(v)] += 1.0;
+    cdf_.resize(kBins);
+    double total = 0;
+    for (size_t b = 0; b < kBins; ++b) cdf_[b] = total += histogram[b];
+    for (double& c : cdf_) c /= std::max(total, 1.0);
+    auto percentile = [&](double p) {
+      size_t b = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), p) - cdf_.begin());
+      return (double(std::min(b, kBins - 1)) + 0.5) / double(kBins) * range_;
+    };
+    lo_ = percentile(0.01);
+    hi_ = percentile(0.99);
+  }
+  double operator()(double v) const {
+    if (equalize_) return cdf_[bin(float(v))] * range_;
+    if (hi_ <= lo_) return v;
+    return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) * range_;
+  }
+
+ private:
+  static constexpr size_t kBins = 4096;
+  size_t bin(float v) const { return std::min(kBins - 1, size_t(std::max(0.0, double(v) / range_) * kBins)); }
+  double range_;
+  bool equalize_;
+  std::vector<double> cdf_;
+  double lo_ = 0, hi_ = 1;
+};
+
+class DepthUsmPrepared final : public PreparedEnhancement {
+ public:
+  DepthUsmPrepared(const View& view, const MethodOptions& options, SpatialImportance importance)
+      : view_(view), options_(options), si_(std::move(importance)) {
+    const size_t n = view.lab.size();
+    if (options.op != "contrast") return;
+    // The contrast-enhanced version C(I), once per view and kernel.
+    const bool lab = options.space == "lab";
+    std::vector<float> values(lab ? n : 3 * n);
+    for (size_t i = 0; i < n; ++i) {
+      if (lab) values[i] = float(view.lab[i].L);
+      else for (int c = 0; c < 3; ++c) values[3 * i + c] = view.display.pixels[3 * i + c];
+    }
+    const double range = lab ? 100.0 : 1.0;
+    enhanced_.resize(values.size());
+    if (options.contrast == "local") {
+      // Local contrast enhancement (an unsharp mask with the same kernel): flat, untextured
+      // regions stay as they are, which hides artefacts of noisy depth.
+      int channels = lab ? 1 : 3;
+      std::vector<float> plane(n), blurred(n);
+      for (int c = 0; c < channels; ++c) {
+        for (size_t i = 0; i < n; ++i) plane[i] = values[size_t(channels) * i + c];
+        gaussian_blur(plane.data(), blurred.data(), view.width(), view.height(), si_.sigma_px);
+        for (size_t i = 0; i < n; ++i)
+          enhanced_[size_t(channels) * i + c] = float(std::clamp(2.0 * plane[i] - blurred[i], 0.0, range));
+      }
+    } else {
+      GlobalContrast contrast(values, range, options.contrast == "equalize");
+      for (size_t i = 0; i < values.size(); ++i) enhanced_[i] = float(contrast(values[i]));
+    }
+  }
+
+  Composed compose(double lambda) const override {
+    const size_t n = view_.lab.size();
+    const float* dd = si_.importance.pixels.data();
+    if (options_.space == "lab") {
+      std::vector<double> delta(n);
+      const glm::dvec3 y(0.2126, 0.7152, 0.0722);
+      for (size_t i = 0; i < n; ++i) {
+        double d = dd[i], neg = std::min(d, 0.0), pos = std::max(d, 0.0);
+        if (options_.op == "add") delta[i] = 100.0 * lambda * d;
+        else if (options_.op == "darken") delta[i] = 100.0 * lambda * neg;
+        else if (options_.op == "color")
+          delta[i] = 100.0 * lambda * (-neg * glm::dot(y, options_.cold) + pos * glm::dot(y, options_.warm));
+        else {
+          double alpha = std::clamp(lambda * std::abs(d), 0.0, 1.0);
+          delta[i] = alpha * (double(enhanced_[i]) - view_.lab[i].L);
+        }
+      }
+      return compose_lightness(view_.display, view_.lab, delta, view_.encoding);
+    }
+    Composed out{view_.display, 0};
+    for (size_t i = 0; i < n; ++i) {
+      double d = dd[i], neg = std::min(d, 0.0), pos = std::max(d, 0.0);
+      bool clipped = false;
+      for (int c = 0; c < 3; ++c) {
+        double I = view_.display.pixels[3 * i + c], v;
+        if (options_.op == "add") v = I + lambda * d;
+        else if (options_.op == "darken") v = I + lambda * neg;
+        else if (options_.op == "color") v = I + lambda * (-neg * options_.cold[c] + pos * options_.warm[c]);
+        else {
+          double alpha = std::clamp(lambda * std::abs(d), 0.0, 1.0);
+          v = double(enhanced_[3 * i + c]) * alpha + I * (1.0 - alpha);
+        }
+        clipped |= v < 0.0 || v > 1.0;
+        out.display.pixels[3 * i + c] = float(std::clamp(v, 0.0, 1.0));
+      }
+      out.clipped_pixels += clipped;
+    }
+    return out;
+  }
+
+  nlohmann::json parameters() const override {
+    return {{"operator", options_.op}, {"sigma_px", si_.sigma_px}, {"space", options_.space},
+            {"depth_mapping", options_.depth_mapping}, {"contrast", options_.contrast}};
+  }
+  std::vector<std::pair<std::string, Image>> auxiliary() const override {
+    return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};
+  }
+
+ private:
+  const View& view_;
+  MethodOptions options_;
+  SpatialImportance si_;
+  std::vector<float> enhanced_;  // C(I): RGB or L*, for the contrast operator
+};
+
+}  // namespace
+
+SpatialImportance spatial_importance(const View& view, const MethodOptions& options) {
+  const int w = view.width(), h = view.height();
+  const size_t n = size_t(w) * h;
+  if (view.depth.size() != n) throw InputError("depth-usm: the view has no depth map of the image's size");
+  float lo = INFINITY, hi = -INFINITY;
+  for (float d : view.depth)
+    if (valid_depth(d)) lo = std::min(lo, d), hi = std::max(hi, d);
+  SpatialImportance si;
+  si.depth = Image(w, h, 1, 1.0f);
+  const bool zbuffer = options.depth_mapping == "zbuffer";
+  double near = options.z_near.value_or(lo), far = options.z_far.value_or(hi);
+  auto mapped = [&](double d) {  // a monotone depth value before normalisation
+    if (!zbuffer) return d;
+    return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far);  // the [0,1] z-buffer of a perspective camera
+  };
+  if (lo <= hi) {
+    double mlo = mapped(lo), mhi = mapped(hi);
+    for (size_t i = 0; i < n; ++i) {
+      float d = view.depth[i];
+      if (!valid_depth(d)) continue;  // background stays at 1 (far)
+      si.depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
+    }
+  }
+  si.sigma_px = image_sigma_px(options, w, h);
+  si.blurred = Image(w, h, 1);
+  gaussian_blur(si.depth.pixels.data(), si.blurred.pixels.data(), w, h, si.sigma_px);
+  si.importance = Image(w, h, 1);
+  for (size_t i = 0; i < n; ++i) si.importance.pixels[i] = si.blurred.pixels[i] - si.depth.pixels[i];
+  return si;
+}
+
+void DepthUsmMethod::validate(const MethodOptions& o) const {
+  validate_image_width("depth-usm", o);
+  auto one_of = [](const std::string& v, std::initializer_list<const char*> choices) {
+    for (const char* c : choices)
+      if (v == c) return true;
+    return false;
+  };
+  if (!one_of(o.op, {"add", "contrast", "darken", "color"}))
+    throw InputError("--operator: unknown operator '" + o.op + "' (expected add, contrast, darken or color)");
+  if (!one_of(o.contrast, {"stretch", "equalize", "local"}))
+    throw InputError("--contrast: unknown mode '" + o.contrast + "' (expected stretch, equalize or local)");
+  if (!one_of(o.space, {"rgb", "lab"})) throw InputError("--space: expected rgb or lab");
+  if (!one_of(o.depth_mapping, {"linear", "zbuffer"})) throw InputError("--depth-mapping: expected linear or zbuffer");
+  if ((o.z_near && !(*o.z_near > 0)) || (o.z_far && o.z_near && !(*o.z_far > *o.z_near)))
+    throw InputError("--z-near/--z-far: need 0 < near < far");
+}
+
+std::unique_ptr<PreparedEnhancement> DepthUsmMethod::prepare(const View& view, const MethodOptions& options) const {
+  validate(options);
+  return std::make_unique<DepthUsmPrepared>(view, options, spatial_importance(view, options));
+}
+
+}  // namespace countershade
