@@ -3,7 +3,10 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
+#include <cstring>
+#include <fstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -17,6 +20,49 @@ std::string lower_extension(const std::filesystem::path& path) {
   return ext;
 }
 
+// PFM (portable float map, the Middlebury disparity format): "PF" (RGB) or "Pf" (grey), width,
+// height, then a scale whose sign gives the byte order (negative: little-endian), then float rows
+// from the bottom of the image to the top.
+Image read_pfm(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  int width = 0, height = 0;
+  double scale = 0;
+  if (!(in >> magic >> width >> height >> scale) || (magic != "PF" && magic != "Pf"))
+    throw_input_error(path.string(), "not a PFM file (expected a 'PF' or 'Pf' header)");
+  if (width <= 0 || height <= 0 || width > 1 << 16 || height > 1 << 16 || scale == 0)
+    throw_input_error(path.string(), "invalid PFM header");
+  in.get();  // the single whitespace character after the scale
+  const int channels = magic == "PF" ? 3 : 1;
+  Image image(width, height, channels);
+  const bool little = scale < 0;
+  const bool host_little = std::endian::native == std::endian::little;
+  std::vector<char> row(size_t(width) * channels * 4);
+  for (int y = height - 1; y >= 0; --y) {
+    if (!in.read(row.data(), std::streamsize(row.size())))
+      throw_input_error(path.string(), "PFM file is truncated");
+    for (size_t k = 0; k < size_t(width) * channels; ++k) {
+      char* b = &row[4 * k];
+      if (little != host_little) std::reverse(b, b + 4);
+      std::memcpy(&image.pixels[size_t(y) * width * channels + k], b, 4);
+    }
+  }
+  return image;
+}
+
+void write_pfm(const std::filesystem::path& path, const Image& image) {
+  if (image.channels != 1 && image.channels != 3)
+    throw std::runtime_error(path.string() + ": PFM holds 1 or 3 channels");
+  std::ofstream out(path, std::ios::binary);
+  bool little = std::endian::native == std::endian::little;
+  out << (image.channels == 3 ? "PF" : "Pf") << "\n" << image.width << " " << image.height << "\n"
+      << (little ? "-1.0" : "1.0") << "\n";
+  for (int y = image.height - 1; y >= 0; --y)
+    out.write(reinterpret_cast<const char*>(&image.pixels[size_t(y) * image.width * image.channels]),
+              std::streamsize(sizeof(float) * size_t(image.width) * image.channels));
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
 }  // namespace
 
 Image read_image(const std::filesystem::path& path, int* bits) {
@@ -24,6 +70,10 @@ Image read_image(const std::filesystem::path& path, int* bits) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw_input_error(path.string(), "no such image file");
+  if (lower_extension(path) == ".pfm") {
+    if (bits) *bits = 0;
+    return read_pfm(path);
+  }
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string message = OIIO::geterror();
@@ -47,6 +97,7 @@ void write_image(const std::filesystem::path& path, const Image& image,
                  const ImageWriteOptions& options) {
   if (image.empty()) throw std::runtime_error(path.string() + ": refusing to write an empty image");
   std::string ext = lower_extension(path);
+  if (ext == ".pfm") return write_atomically(path, [&](const std::filesystem::path& temp) { write_pfm(temp, image); });
   bool quantised = ext == ".png" || ext == ".tif" || ext == ".tiff";
   if (quantised && options.png_bits != 8 && options.png_bits != 16)
     throw InputError(path.string() + ": bit depth must be 8 or 16");

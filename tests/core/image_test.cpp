@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+
 #include "core/error.h"
 #include "test_util.h"
 
@@ -51,6 +54,30 @@ TEST(Image, UnreadableFilesAreInputErrors) {
   EXPECT_THROW(read_image(dir / "empty.png"), InputError);
   testing::write_file(dir / "junk.png", "this is not a png");
   EXPECT_THROW(read_image(dir / "junk.png"), InputError);
+}
+
+}  // namespace
+}  // namespace countershade
+
+namespace countershade {
+namespace {
+
+TEST(Image, PfmRoundTripsBottomUpRowsAndInfinity) {
+  testing::TempDir dir;
+  Image disparity(3, 2, 1);
+  disparity.pixels = {1.0f, 2.0f, 3.0f, 4.0f, INFINITY, 6.5f};  // top row first in memory
+  write_image(dir / "d.pfm", disparity);
+  std::string bytes = testing::read_file(dir / "d.pfm");
+  EXPECT_EQ(bytes.rfind("Pf\n3 2\n-1.0\n", 0), 0u);
+  float first_stored;  // the file's first row is the image's bottom row
+  std::memcpy(&first_stored, bytes.data() + std::string("Pf\n3 2\n-1.0\n").size(), 4);
+  EXPECT_EQ(first_stored, 4.0f);
+  Image back = read_image(dir / "d.pfm");
+  EXPECT_EQ(back.pixels, disparity.pixels);
+  testing::write_file(dir / "bad.pfm", "P6\n1 1\n255\nxyz");
+  EXPECT_THROW(read_image(dir / "bad.pfm"), InputError);
+  testing::write_file(dir / "short.pfm", "Pf\n4 4\n-1.0\nabc");
+  EXPECT_THROW(read_image(dir / "short.pfm"), InputError);
 }
 
 }  // namespace

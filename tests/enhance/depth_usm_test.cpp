@@ -1,0 +1,194 @@
+#include "enhance/depth_usm.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "render/ray_tracer.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+struct Rendered {
+  Scene scene;
+  std::unique_ptr<View> view;
+};
+
+Rendered render_view(const testing::TempDir& dir, const std::string& json) {
+  Rendered r;
+  r.scene = load_scene(testing::write_file(dir / "scene.json", json));
+  RayTracer tracer(r.scene);
+  r.view = std::make_unique<View>(make_view(r.scene, render(r.scene, tracer)));
+  return r;
+}
+
+MethodOptions op(const std::string& name, double kernel = 5.0) {
+  MethodOptions o;
+  o.op = name;
+  o.kernel_percent = kernel;
+  return o;
+}
+
+// Luft et al.'s Fig. 4: three rectangles one behind the other, flat-shaded, no shadows: a white
+// back wall, a white rectangle in front of it and a dark one in front of that.
+const char* kThreeRectangles = R"({
+  "version": 1,
+  "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "projection": "orthographic", "height_world": 6,
+             "width": 160, "height": 120},
+  "render": {"spp": 1},
+  "objects": [
+    {"name": "back", "shape": {"type": "plane", "size": 20, "subdivisions": 2}, "transform": {"rotate": [90, 0, 0]},
+     "material": {"albedo": 1.0}},
+    {"name": "middle", "shape": {"type": "box", "size": [3, 2.4, 0.1]}, "transform": {"translate": [-1.0, 0.3, 1.5]},
+     "material": {"albedo": 1.0}},
+    {"name": "front", "shape": {"type": "box", "size": [2.0, 1.6, 0.1]}, "transform": {"translate": [0.8, -0.4, 3.0]},
+     "material": {"albedo": 0.25}}
+  ],
+  "lights": [{"type": "ambient", "radiance": 1.0}]
+})";
+
+double lightness(const Composed& c, const View& v, size_t i) {
+  return display_pixel_to_lab(&c.display.pixels[3 * i], v.encoding).L;
+}
+
+TEST(DepthUsm, LambdaZeroIsTheIdentityForEveryOperator) {
+  testing::TempDir dir;
+  Rendered r = render_view(dir, kThreeRectangles);
+  for (const char* name : {"add", "contrast", "darken", "color"})
+    for (const char* space : {"rgb", "lab"}) {
+      MethodOptions o = op(name);
+      o.space = space;
+      Composed out = find_method("depth-usm")->prepare(*r.view, o)->compose(0.0);
+      EXPECT_EQ(out.display.pixels, r.view->display.pixels) << name << " " << space;
+    }
+}
+
+TEST(DepthUsm, DarkenNeverBrightensAndLeavesForegroundAlone) {
+  testing::TempDir dir;
+  Rendered r = render_view(dir, kThreeRectangles);
+  auto prepared = find_method("depth-usm")->prepare(*r.view, op("darken"));
+  SpatialImportance si = spatial_importance(*r.view, op("darken"));
+  Composed out = prepared->compose(0.8);
+  int darkened = 0;
+  for (size_t i = 0; i < r.view->lab.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      float before = r.view->display.pixels[3 * i + c], after = out.display.pixels[3 * i + c];
+      EXPECT_LE(after, before);
+      if (si.importance.pixels[i] >= 0) {
+        EXPECT_EQ(after, before);
+      }
+      darkened += after < before;
+    }
+  EXPECT_GT(darkened, 500);
+}
+
+TEST(DepthUsm, AddAndDarkenAgreeOnTheBackgroundSide) {
+  testing::TempDir dir;
+  Rendered r = render_view(dir, kThreeRectangles);
+  SpatialImportance si = spatial_importance(*r.view, op("add"));
+  for (double lambda : {-0.6, 0.6}) {
+    Composed add = find_method("depth-usm")->prepare(*r.view, op("add"))->compose(lambda);
+    Composed darken = find_method("depth-usm")->prepare(*r.view, op("darken"))->compose(lambda);
+    int compared = 0;
+    for (size_t i = 0; i < r.view->lab.size(); ++i) {
+      if (si.importance.pixels[i] > 0) continue;  // background side: ΔD ≤ 0
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(add.display.pixels[3 * i + c], darken.display.pixels[3 * i + c]);
+      compared += si.importance.pixels[i] < 0;
+    }
+    EXPECT_GT(compared, 500);
+  }
+}
+
+TEST(DepthUsm, ColorAddsColdBehindAndWarmInFront) {
+  testing::TempDir dir;
+  std::string grey = kThreeRectangles;  // mid-grey surfaces so nothing clips
+  for (size_t p; (p = grey.find("\"albedo\": 1.0")) != std::string::npos;) grey.replace(p, 13, "\"albedo\": 0.3");
+  Rendered r = render_view(dir, grey);
+  MethodOptions o = op("color");
+  SpatialImportance si = spatial_importance(*r.view, o);
+  Composed out = find_method("depth-usm")->prepare(*r.view, o)->compose(1.5);
+  EXPECT_EQ(out.clipped_pixels, 0u);
+  int behind = 0, in_front = 0;
+  for (size_t i = 0; i < r.view->lab.size(); ++i) {
+    double d = si.importance.pixels[i];
+    if (std::abs(d) < 1e-3) continue;
+    glm::dvec3 shift;
+    for (int c = 0; c < 3; ++c) shift[c] = out.display.pixels[3 * i + c] - r.view->display.pixels[3 * i + c];
+    const glm::dvec3& colour = d < 0 ? o.cold : o.warm;
+    // The shift is a positive multiple of the one colour: parallel, same direction.
+    double scale = glm::dot(shift, colour) / glm::dot(colour, colour);
+    EXPECT_GT(scale, 0.0);
+    EXPECT_LT(glm::length(shift - scale * colour), 1e-5) << i;
+    (d < 0 ? behind : in_front)++;
+  }
+  EXPECT_GT(behind, 100);
+  EXPECT_GT(in_front, 100);
+}
+
+// Darken separates every rectangle: the far side of each depth edge steps down in lightness.
+TEST(DepthUsm, FigureFourDarkenSeparatesEveryRectangleContrastCannotSeparateWhiteOnWhite) {
+  testing::TempDir dir;
+  Rendered r = render_view(dir, kThreeRectangles);
+  const GBuffer& g = r.view->render.gbuffer;
+  Composed darken = find_method("depth-usm")->prepare(*r.view, op("darken"))->compose(1.0);
+  Composed contrast = find_method("depth-usm")->prepare(*r.view, op("contrast"))->compose(1.0);
+  // Walk along a row through back | middle | front and look just beside each edge.
+  int y = g.height / 2 - 4;
+  auto id = [&](int x) { return g.object[g.index(x, y)]; };
+  std::vector<std::pair<int, int>> edges;  // x of the far-side pixel next to an edge, and the far object
+  for (int x = 1; x < g.width; ++x)
+    if (id(x) != id(x - 1)) {
+      int far_x = id(x) < id(x - 1) ? x : x - 1;  // lower object id = farther (back 0, middle 1, front 2)
+      edges.emplace_back(far_x, std::min(id(x), id(x - 1)));
+    }
+  ASSERT_GE(edges.size(), 2u);
+  for (auto [x, object] : edges) {
+    // Compare with the same surface 25 px away from the edge (away from the kernel's reach).
+    int step = x < g.width / 2 ? -1 : 1;
+    if (id(x + step) != object) step = -step;
+    int far_x = x + 25 * step;
+    ASSERT_EQ(id(far_x), object);
+    size_t near_i = g.index(x, y), far_i = g.index(far_x, y);
+    EXPECT_LT(lightness(darken, *r.view, near_i), lightness(darken, *r.view, far_i) - 2.0)
+        << "darken: no lightness step on the far side of the edge at x = " << x;
+  }
+  // White-on-white (middle in front of back): contrast changes nothing there.
+  int changed_white = 0, changed_dark_edge = 0;
+  for (size_t i = 0; i < r.view->lab.size(); ++i) {
+    bool white = r.view->lab[i].L > 99.9;
+    bool changed = std::abs(lightness(contrast, *r.view, i) - r.view->lab[i].L) > 1e-3;
+    changed_white += white && changed;
+    changed_dark_edge += !white && changed;
+  }
+  EXPECT_EQ(changed_white, 0);
+  EXPECT_GT(changed_dark_edge, 50) << "the dark rectangle's edge has colour contrast to amplify";
+}
+
+TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
+  View view = make_image_view(Image(4, 1, 3, 0.5f), {0.0f, 2.0f, 4.0f, INFINITY}, DisplayEncoding::srgb(), 8);
+  MethodOptions o = op("darken");
+  o.kernel_percent.reset();
+  o.sigma_px = 1.0;
+  SpatialImportance si = spatial_importance(view, o);
+  EXPECT_EQ(si.depth.pixels, (std::vector<float>{1.0f, 0.0f, 1.0f, 1.0f}));
+  o.depth_mapping = "zbuffer";
+  o.z_near = 1.0;
+  o.z_far = 8.0;
+  si = spatial_importance(view, o);
+  EXPECT_FLOAT_EQ(si.depth.pixels[1], 0.0f);
+  EXPECT_FLOAT_EQ(si.depth.pixels[2], 1.0f);
+}
+
+TEST(DepthUsm, ValidatesItsOptions) {
+  const EnhancementMethod* m = find_method("depth-usm");
+  EXPECT_THROW(m->validate(MethodOptions{}), InputError);  // no kernel
+  EXPECT_THROW(m->validate(op("darken", 0.0)), InputError);
+  EXPECT_THROW(m->validate(op("darken", 51.0)), InputError);
+  EXPECT_THROW(m->validate(op("blur")), InputError);
+  EXPECT_NO_THROW(m->validate(op("darken", 50.0)));
+}
+
+}  // namespace
+}  // namespace countershade
