@@ -53,46 +53,48 @@ struct Deriche {
   }
 };
 
-// Filters columns [x0, x1) of a row-major image along y (all columns of a row are independent,
-// so the inner loops over x vectorise). `causal` is scratch of height×(x1-x0).
+// Filters columns [x0, x1) of a row-major image along y. All columns of a row are independent, so
+// the inner loops run over x without branches and vectorise; rows outside the image are the edge
+// rows (clamp-to-edge) with the recursion at its steady state there.
+// Compiled twice: for AVX2/FMA machines and for the x86-64 baseline, chosen at load time.
+__attribute__((target_clones("arch=x86-64-v3", "default")))
 void deriche_columns(const float* in, float* out, int width, int height, int x0, int x1, const Deriche& f,
-                     std::vector<double>& causal) {
-  const int w = x1 - x0;
-  causal.resize(size_t(height) * w);
-  auto at = [&](const float* img, int y, int x) { return img[size_t(y) * width + x]; };
-  // Causal pass; rows before the first are the first row (clamp-to-edge) at steady state.
+                     std::vector<double>& scratch) {
+  const size_t w = size_t(x1 - x0);
+  // Causal outputs for rows -4..height-1 (4 leading rows of steady state).
+  scratch.resize((size_t(height) + 4) * w);
+  double* causal = scratch.data() + 4 * w;
+  const float* first = in + x0;
+  const float* last = in + size_t(height - 1) * width + x0;
+  for (int k = 1; k <= 4; ++k)
+    for (size_t i = 0; i < w; ++i) causal[-long(k) * long(w) + long(i)] = f.causal_gain * first[i];
+  auto row = [&](int y) { return in + size_t(std::clamp(y, 0, height - 1)) * width + x0; };
+  const double n0 = f.n[0], n1 = f.n[1], n2 = f.n[2], n3 = f.n[3];
+  const double m0 = f.m[0], m1 = f.m[1], m2 = f.m[2], m3 = f.m[3];
+  const double d0 = f.d[0], d1 = f.d[1], d2 = f.d[2], d3 = f.d[3];
   for (int y = 0; y < height; ++y) {
-    double* yc = &causal[size_t(y) * w];
-    for (int i = 0; i < w; ++i) {
-      int x = x0 + i;
-      double x_first = at(in, 0, x);
-      double xin[4], yprev[4];
-      for (int k = 0; k < 4; ++k) {
-        int yy = y - k;
-        xin[k] = yy >= 0 ? at(in, yy, x) : x_first;
-        int py = y - 1 - k;
-        yprev[k] = py >= 0 ? causal[size_t(py) * w + i] : f.causal_gain * x_first;
-      }
-      yc[i] = f.n[0] * xin[0] + f.n[1] * xin[1] + f.n[2] * xin[2] + f.n[3] * xin[3] -
-              (f.d[0] * yprev[0] + f.d[1] * yprev[1] + f.d[2] * yprev[2] + f.d[3] * yprev[3]);
-    }
+    const float *x_0 = row(y), *x_1 = row(y - 1), *x_2 = row(y - 2), *x_3 = row(y - 3);
+    double* c = causal + size_t(y) * w;
+    const double *c1 = c - w, *c2 = c - 2 * w, *c3 = c - 3 * w, *c4 = c - 4 * w;
+    for (size_t i = 0; i < w; ++i)
+      c[i] = n0 * x_0[i] + n1 * x_1[i] + n2 * x_2[i] + n3 * x_3[i] - (d0 * c1[i] + d1 * c2[i] + d2 * c3[i] + d3 * c4[i]);
   }
-  // Anticausal pass from the last row, added to the causal result. Keeps the last 4 outputs.
-  std::vector<double> ring(size_t(4) * w);
+  // Anticausal pass from the last row; the last 4 outputs live in a ring, seeded at steady state.
+  std::vector<double> ring(4 * w);
+  for (int k = 0; k < 4; ++k)
+    for (size_t i = 0; i < w; ++i) ring[size_t(k) * w + i] = f.anticausal_gain * last[i];
   for (int y = height - 1; y >= 0; --y) {
-    for (int i = 0; i < w; ++i) {
-      int x = x0 + i;
-      double x_last = at(in, height - 1, x);
-      double xin[4], ynext[4];
-      for (int k = 0; k < 4; ++k) {
-        int yy = y + 1 + k;
-        xin[k] = yy < height ? at(in, yy, x) : x_last;
-        ynext[k] = yy < height ? ring[size_t(yy % 4) * w + i] : f.anticausal_gain * x_last;
-      }
-      double ya = f.m[0] * xin[0] + f.m[1] * xin[1] + f.m[2] * xin[2] + f.m[3] * xin[3] -
-                 (f.d[0] * ynext[0] + f.d[1] * ynext[1] + f.d[2] * ynext[2] + f.d[3] * ynext[3]);
-      ring[size_t(y % 4) * w + i] = ya;
-      out[size_t(y) * width + x] = float(causal[size_t(y) * w + i] + ya);
+    const float *x_1 = row(y + 1), *x_2 = row(y + 2), *x_3 = row(y + 3), *x_4 = row(y + 4);
+    // Ring slot of row r is r mod 4 (rows past the end hold the steady state already).
+    double* a0 = &ring[size_t(y & 3) * w];  // becomes row y; holds row y+4 until written
+    const double *a1 = &ring[size_t((y + 1) & 3) * w], *a2 = &ring[size_t((y + 2) & 3) * w],
+                 *a3 = &ring[size_t((y + 3) & 3) * w];
+    const double* c = causal + size_t(y) * w;
+    float* o = out + size_t(y) * width + x0;
+    for (size_t i = 0; i < w; ++i) {
+      double a = m0 * x_1[i] + m1 * x_2[i] + m2 * x_3[i] + m3 * x_4[i] - (d0 * a1[i] + d1 * a2[i] + d2 * a3[i] + d3 * a0[i]);
+      a0[i] = a;
+      o[i] = float(c[i] + a);
     }
   }
 }
@@ -120,6 +122,26 @@ void recursive_vertical(const float* in, float* out, int width, int height, cons
                           deriche_columns(in, out, width, height, b * kColumns,
                                           std::min(width, (b + 1) * kColumns), f, scratch);
                       });
+  });
+}
+
+// Filters every row along x, in place: blocks of 16 rows are transposed into a small buffer that
+// stays in cache, filtered as columns, and transposed back.
+void recursive_horizontal(float* image, int width, int height, const Deriche& f, tbb::task_arena& arena) {
+  constexpr int kRows = 32;
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, (height + kRows - 1) / kRows), [&](const tbb::blocked_range<int>& r) {
+      std::vector<float> block(size_t(width) * kRows), filtered(block.size());
+      std::vector<double> scratch;
+      for (int b = r.begin(); b != r.end(); ++b) {
+        int y0 = b * kRows, rows = std::min(kRows, height - y0);
+        for (int k = 0; k < rows; ++k)
+          for (int x = 0; x < width; ++x) block[size_t(x) * rows + k] = image[size_t(y0 + k) * width + x];
+        deriche_columns(block.data(), filtered.data(), rows, width, 0, rows, f, scratch);
+        for (int k = 0; k < rows; ++k)
+          for (int x = 0; x < width; ++x) image[size_t(y0 + k) * width + x] = filtered[size_t(x) * rows + k];
+      }
+    });
   });
 }
 
@@ -175,11 +197,13 @@ void gaussian_blur(const float* in, float* out, int width, int height, double si
   if (sigma < kRecursiveMinSigma) return gaussian_blur_exact(in, out, width, height, sigma, threads);
   tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
   Deriche filter(sigma);
-  std::vector<float> a(size_t(width) * height), b(a.size());
-  recursive_vertical(in, a.data(), width, height, filter, arena);      // along y
-  transpose(a.data(), b.data(), width, height, arena);
-  recursive_vertical(b.data(), a.data(), height, width, filter, arena);  // along x (transposed)
-  transpose(a.data(), out, height, width, arena);
+  if (in == out) {  // the vertical pass reads rows it has already written otherwise
+    std::vector<float> copy(in, in + size_t(width) * height);
+    recursive_vertical(copy.data(), out, width, height, filter, arena);
+  } else {
+    recursive_vertical(in, out, width, height, filter, arena);
+  }
+  recursive_horizontal(out, width, height, filter, arena);
 }
 
 }  // namespace countershade

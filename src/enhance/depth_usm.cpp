@@ -1,7 +1,12 @@
 #include "enhance/depth_usm.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "core/gaussian.h"
@@ -45,12 +50,28 @@ class GlobalContrast {
   double lo_ = 0, hi_ = 1;
 };
 
+enum class Operator { add, contrast, darken, color };
+
+Operator parse_operator(const std::string& name) {
+  if (name == "add") return Operator::add;
+  if (name == "contrast") return Operator::contrast;
+  if (name == "color") return Operator::color;
+  return Operator::darken;
+}
+
+// Runs body(begin, end) over [0, n) in parallel chunks.
+template <class Body>
+void parallel_chunks(size_t n, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 8192),
+                    [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
+}
+
 class DepthUsmPrepared final : public PreparedEnhancement {
  public:
   DepthUsmPrepared(const View& view, const MethodOptions& options, SpatialImportance importance)
-      : view_(view), options_(options), si_(std::move(importance)) {
+      : view_(view), options_(options), op_(parse_operator(options.op)), si_(std::move(importance)) {
     const size_t n = view.lab.size();
-    if (options.op != "contrast") return;
+    if (op_ != Operator::contrast) return;
     // The contrast-enhanced version C(I), once per view and kernel.
     const bool lab = options.space == "lab";
     std::vector<float> values(lab ? n : 3 * n);
@@ -83,38 +104,64 @@ class DepthUsmPrepared final : public PreparedEnhancement {
     if (options_.space == "lab") {
       std::vector<double> delta(n);
       const glm::dvec3 y(0.2126, 0.7152, 0.0722);
-      for (size_t i = 0; i < n; ++i) {
-        double d = dd[i], neg = std::min(d, 0.0), pos = std::max(d, 0.0);
-        if (options_.op == "add") delta[i] = 100.0 * lambda * d;
-        else if (options_.op == "darken") delta[i] = 100.0 * lambda * neg;
-        else if (options_.op == "color")
-          delta[i] = 100.0 * lambda * (-neg * glm::dot(y, options_.cold) + pos * glm::dot(y, options_.warm));
-        else {
-          double alpha = std::clamp(lambda * std::abs(d), 0.0, 1.0);
-          delta[i] = alpha * (double(enhanced_[i]) - view_.lab[i].L);
+      const double cold = glm::dot(y, options_.cold), warm = glm::dot(y, options_.warm);
+      parallel_chunks(n, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          double d = dd[i], neg = std::min(d, 0.0), pos = std::max(d, 0.0);
+          switch (op_) {
+            case Operator::add: delta[i] = 100.0 * lambda * d; break;
+            case Operator::darken: delta[i] = 100.0 * lambda * neg; break;
+            case Operator::color: delta[i] = 100.0 * lambda * (-neg * cold + pos * warm); break;
+            case Operator::contrast:
+              delta[i] = std::clamp(lambda * std::abs(d), 0.0, 1.0) * (double(enhanced_[i]) - view_.lab[i].L);
+          }
         }
-      }
+      });
       return compose_lightness(view_.display, view_.lab, delta, view_.encoding);
     }
-    Composed out{view_.display, 0};
-    for (size_t i = 0; i < n; ++i) {
-      double d = dd[i], neg = std::min(d, 0.0), pos = std::max(d, 0.0);
-      bool clipped = false;
-      for (int c = 0; c < 3; ++c) {
-        double I = view_.display.pixels[3 * i + c], v;
-        if (options_.op == "add") v = I + lambda * d;
-        else if (options_.op == "darken") v = I + lambda * neg;
-        else if (options_.op == "color") v = I + lambda * (-neg * options_.cold[c] + pos * options_.warm[c]);
-        else {
+    Composed out;
+    out.display = Image(view_.width(), view_.height(), 3);
+    std::atomic<size_t> clipped{0};
+    switch (op_) {  // one branch-free loop per operator, so each vectorises
+      case Operator::add: clipped = apply_rgb(out.display, [&](size_t, int, double I, double d) { return I + lambda * d; }); break;
+      case Operator::darken:
+        clipped = apply_rgb(out.display, [&](size_t, int, double I, double d) { return I + lambda * std::min(d, 0.0); });
+        break;
+      case Operator::color:
+        clipped = apply_rgb(out.display, [&](size_t, int c, double I, double d) {
+          return I + lambda * (-std::min(d, 0.0) * options_.cold[c] + std::max(d, 0.0) * options_.warm[c]);
+        });
+        break;
+      case Operator::contrast:
+        clipped = apply_rgb(out.display, [&](size_t i, int c, double I, double d) {
           double alpha = std::clamp(lambda * std::abs(d), 0.0, 1.0);
-          v = double(enhanced_[3 * i + c]) * alpha + I * (1.0 - alpha);
-        }
-        clipped |= v < 0.0 || v > 1.0;
-        out.display.pixels[3 * i + c] = float(std::clamp(v, 0.0, 1.0));
-      }
-      out.clipped_pixels += clipped;
+          return double(enhanced_[3 * i + c]) * alpha + I * (1.0 - alpha);
+        });
     }
+    out.clipped_pixels = clipped;
     return out;
+  }
+
+  // Writes op(pixel, channel, I, ΔD) clipped to [0,1] into `result`; returns the clipped pixel count.
+  template <class Op>
+  size_t apply_rgb(Image& result, const Op& op) const {
+    std::atomic<size_t> clipped{0};
+    const float* in = view_.display.pixels.data();
+    const float* dd = si_.importance.pixels.data();
+    float* out = result.pixels.data();
+    parallel_chunks(view_.lab.size(), [&](size_t begin, size_t end) {
+      size_t local = 0;
+      for (size_t i = begin; i < end; ++i) {
+        double d = dd[i];
+        double v0 = op(i, 0, in[3 * i], d), v1 = op(i, 1, in[3 * i + 1], d), v2 = op(i, 2, in[3 * i + 2], d);
+        local += (v0 < 0.0) | (v0 > 1.0) | (v1 < 0.0) | (v1 > 1.0) | (v2 < 0.0) | (v2 > 1.0);
+        out[3 * i] = float(std::clamp(v0, 0.0, 1.0));
+        out[3 * i + 1] = float(std::clamp(v1, 0.0, 1.0));
+        out[3 * i + 2] = float(std::clamp(v2, 0.0, 1.0));
+      }
+      clipped += local;
+    });
+    return clipped;
   }
 
   nlohmann::json parameters() const override {
@@ -128,6 +175,7 @@ class DepthUsmPrepared final : public PreparedEnhancement {
  private:
   const View& view_;
   MethodOptions options_;
+  Operator op_;
   SpatialImportance si_;
   std::vector<float> enhanced_;  // C(I): RGB or L*, for the contrast operator
 };
@@ -139,8 +187,19 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
   const size_t n = size_t(w) * h;
   if (view.depth.size() != n) throw InputError("depth-usm: the view has no depth map of the image's size");
   float lo = INFINITY, hi = -INFINITY;
-  for (float d : view.depth)
-    if (valid_depth(d)) lo = std::min(lo, d), hi = std::max(hi, d);
+  std::mutex range_mutex;
+  parallel_chunks(n, [&](size_t begin, size_t end) {
+    float l = INFINITY, h = -INFINITY;
+    for (size_t i = begin; i < end; ++i) {
+      float d = view.depth[i];
+      bool valid = valid_depth(d);
+      l = std::min(l, valid ? d : INFINITY);
+      h = std::max(h, valid ? d : -INFINITY);
+    }
+    std::lock_guard<std::mutex> lock(range_mutex);
+    lo = std::min(lo, l);
+    hi = std::max(hi, h);
+  });
   SpatialImportance si;
   si.depth = Image(w, h, 1, 1.0f);
   const bool zbuffer = options.depth_mapping == "zbuffer";
@@ -151,17 +210,21 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
   };
   if (lo <= hi) {
     double mlo = mapped(lo), mhi = mapped(hi);
-    for (size_t i = 0; i < n; ++i) {
-      float d = view.depth[i];
-      if (!valid_depth(d)) continue;  // background stays at 1 (far)
-      si.depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
-    }
+    parallel_chunks(n, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        float d = view.depth[i];
+        if (!valid_depth(d)) continue;  // background stays at 1 (far)
+        si.depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
+      }
+    });
   }
   si.sigma_px = image_sigma_px(options, w, h);
   si.blurred = Image(w, h, 1);
   gaussian_blur(si.depth.pixels.data(), si.blurred.pixels.data(), w, h, si.sigma_px);
   si.importance = Image(w, h, 1);
-  for (size_t i = 0; i < n; ++i) si.importance.pixels[i] = si.blurred.pixels[i] - si.depth.pixels[i];
+  parallel_chunks(n, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) si.importance.pixels[i] = si.blurred.pixels[i] - si.depth.pixels[i];
+  });
   return si;
 }
 

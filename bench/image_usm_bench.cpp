@@ -1,0 +1,160 @@
+// Image-space methods at 1920×1080: depth-buffer unsharp masking (K = 1% and 5% of the diagonal in
+// one run) and 2D unsharp masking against OpenImageIO's unsharp_mask on the same image.
+//   build/bin/countershade_bench --benchmark_filter='DepthUsm|Usm2d'
+
+#include <benchmark/benchmark.h>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/random.h"
+#include "enhance/depth_usm.h"
+#include "enhance/method.h"
+
+namespace countershade {
+namespace {
+
+constexpr int kWidth = 1920, kHeight = 1080;
+
+// A synthetic stimulus: textured noise and overlapping discs at different depths on a far wall.
+const View& test_view() {
+  static View view = [] {
+    Image display(kWidth, kHeight, 3);
+    std::vector<float> depth(size_t(kWidth) * kHeight, 10.0f);
+    SampleStream random(7, 0, 0, 0);
+    for (size_t i = 0; i < depth.size(); ++i)
+      for (int c = 0; c < 3; ++c) display.pixels[3 * i + c] = 0.35f + 0.1f * float(random.next());
+    for (int disc = 0; disc < 40; ++disc) {
+      double cx = random.next() * kWidth, cy = random.next() * kHeight, r = 40 + 160 * random.next();
+      float z = float(2.0 + 7.0 * random.next()), grey = float(0.2 + 0.6 * random.next());
+      for (int y = std::max(0, int(cy - r)); y < std::min(kHeight, int(cy + r)); ++y)
+        for (int x = std::max(0, int(cx - r)); x < std::min(kWidth, int(cx + r)); ++x) {
+          size_t i = size_t(y) * kWidth + x;
+          if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > r * r || depth[i] < z) continue;
+          depth[i] = z;
+          for (int c = 0; c < 3; ++c) display.pixels[3 * i + c] = grey + 0.05f * float(random.next());
+        }
+    }
+    return make_image_view(display, depth, DisplayEncoding::srgb(), 8);
+  }();
+  return view;
+}
+
+// Spatial importance (normalise, blur, ΔD) plus the darken composition.
+void BM_DepthUsm(benchmark::State& state) {
+  const View& view = test_view();
+  MethodOptions options;
+  options.op = "darken";
+  options.kernel_percent = double(state.range(0));
+  const EnhancementMethod* method = find_method("depth-usm");
+  for (auto _ : state) {
+    Composed out = method->prepare(view, options)->compose(1.0);
+    benchmark::DoNotOptimize(out.display.pixels.data());
+  }
+  state.counters["sigma_px"] = image_sigma_px(options, kWidth, kHeight);
+}
+BENCHMARK(BM_DepthUsm)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The spatial importance function alone (normalise D, blur, ΔD = G*D − D).
+void BM_SpatialImportance(benchmark::State& state) {
+  const View& view = test_view();
+  MethodOptions options;
+  options.kernel_percent = double(state.range(0));
+  for (auto _ : state) {
+    SpatialImportance si = spatial_importance(view, options);
+    benchmark::DoNotOptimize(si.importance.pixels.data());
+  }
+}
+BENCHMARK(BM_SpatialImportance)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// K = 5% against K = 1%, timed alternately in one run.
+void BM_DepthUsmKernelRatio(benchmark::State& state) {
+  const View& view = test_view();
+  MethodOptions small, large;
+  small.kernel_percent = 1.0;
+  large.kernel_percent = 5.0;
+  const EnhancementMethod* method = find_method("depth-usm");
+  std::vector<double> t1, t5;
+  for (auto _ : state) {
+    for (auto [options, times] : {std::pair{&small, &t1}, std::pair{&large, &t5}}) {
+      auto start = std::chrono::steady_clock::now();
+      Composed out = method->prepare(view, *options)->compose(1.0);
+      benchmark::DoNotOptimize(out.display.pixels.data());
+      times->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["median_K1_ms"] = 1e3 * median(t1);
+  state.counters["median_K5_ms"] = 1e3 * median(t5);
+  state.counters["K5/K1"] = median(t5) / median(t1);
+}
+BENCHMARK(BM_DepthUsmKernelRatio)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(15);
+
+// OpenImageIO's Gaussian `width` is its kernel's support; find the width whose kernel has the σ
+// we want, by measuring the kernel OpenImageIO builds.
+float oiio_width_for_sigma(double sigma) {
+  auto kernel_sigma = [](float width) {
+    OIIO::ImageBuf k = OIIO::ImageBufAlgo::make_kernel("gaussian", width, 1.0f);
+    const OIIO::ImageSpec& s = k.spec();
+    double sum = 0, var = 0, centre = (s.width - 1) / 2.0 + s.x;
+    for (int x = s.x; x < s.x + s.width; ++x) {
+      float v;
+      k.getpixel(x, s.y, &v, 1);
+      sum += v;
+      var += v * (x - centre) * (x - centre);
+    }
+    return std::sqrt(var / sum);
+  };
+  float lo = 1.0f, hi = float(20 * sigma);
+  for (int i = 0; i < 40; ++i) {
+    float mid = 0.5f * (lo + hi);
+    (kernel_sigma(mid) < sigma ? lo : hi) = mid;
+  }
+  return 0.5f * (lo + hi);
+}
+
+// 2D unsharp masking at σ = 1% of the diagonal: countershade (lightness, from the display image:
+// CIELAB conversion, blur, composition) against OpenImageIO's unsharp_mask (RGB) in the same run.
+void BM_Usm2dVersusOiio(benchmark::State& state) {
+  const View& view = test_view();
+  MethodOptions options;
+  options.sigma_percent = 1.0;
+  const double sigma = image_sigma_px(options, kWidth, kHeight);
+  const float width = oiio_width_for_sigma(sigma);
+  OIIO::ImageBuf src(OIIO::ImageSpec(kWidth, kHeight, 3, OIIO::TypeDesc::FLOAT), (void*)view.display.pixels.data());
+  OIIO::ImageBuf dst;
+  std::vector<double> ours, theirs;
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    std::vector<Lab> lab = display_to_lab(view.display, view.encoding);  // included: it is part of the method
+    benchmark::DoNotOptimize(lab.data());
+    Composed out = find_method("usm2d")->prepare(view, options)->compose(1.0);
+    benchmark::DoNotOptimize(out.display.pixels.data());
+    auto t1 = std::chrono::steady_clock::now();
+    OIIO::ImageBufAlgo::unsharp_mask(dst, src, "gaussian", width, 1.0f, 0.0f);
+    auto t2 = std::chrono::steady_clock::now();
+    ours.push_back(std::chrono::duration<double>(t1 - t0).count());
+    theirs.push_back(std::chrono::duration<double>(t2 - t1).count());
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["sigma_px"] = sigma;
+  state.counters["oiio_width"] = width;
+  state.counters["countershade_ms"] = 1e3 * median(ours);
+  state.counters["oiio_ms"] = 1e3 * median(theirs);
+  state.counters["oiio/countershade"] = median(theirs) / median(ours);
+}
+// OpenImageIO convolves with the full 2D kernel here (about a minute per run), so one iteration.
+BENCHMARK(BM_Usm2dVersusOiio)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
+}  // namespace countershade
