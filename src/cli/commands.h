@@ -8,5 +8,6 @@ namespace countershade::cli {
 void add_render_command(CLI::App& app);
 void add_mesh_usm_command(CLI::App& app);
 void add_image_usm_command(CLI::App& app);
+void add_analyze_command(CLI::App& app);
 
 }  // namespace countershade::cli

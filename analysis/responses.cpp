@@ -1,0 +1,162 @@
+#include "analysis/responses.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace countershade::analysis {
+
+CsvTable parse_csv(const std::string& input, const std::string& file) {
+  std::string_view text = input;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
+  CsvTable table;
+  std::vector<std::string> row;
+  std::string field;
+  size_t line = 1, row_line = 1;
+  bool quoted = false, field_started = false, after_quote = false;
+  auto end_field = [&] {
+    row.push_back(std::move(field));
+    field.clear();
+    field_started = after_quote = false;
+  };
+  auto end_row = [&] {
+    end_field();
+    if (!(row.size() == 1 && row[0].empty())) {  // skip blank lines
+      table.rows.push_back(std::move(row));
+      table.lines.push_back(row_line);
+    }
+    row.clear();
+  };
+  for (size_t i = 0; i < text.size(); ++i) {
+    char c = text[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < text.size() && text[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          quoted = false;
+          after_quote = true;
+        }
+      } else {
+        if (c == '\n') ++line;
+        field += c;
+      }
+      continue;
+    }
+    if (c == '"') {
+      if (field_started || after_quote)
+        throw_input_error(file + ": line " + std::to_string(line) + ", column " + std::to_string(row.size() + 1),
+                          "a quote inside an unquoted field (quote the whole field and double the quote)");
+      quoted = field_started = true;
+    } else if (c == ',') {
+      end_field();
+    } else if (c == '\r' || c == '\n') {
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      end_row();
+      row_line = ++line;
+    } else {
+      if (after_quote)
+        throw_input_error(file + ": line " + std::to_string(line) + ", column " + std::to_string(row.size() + 1),
+                          "text after a closing quote");
+      field += c;
+      field_started = true;
+    }
+  }
+  if (quoted) throw_input_error(file + ": line " + std::to_string(row_line), "a quoted field is never closed");
+  if (field_started || after_quote || !row.empty()) end_row();
+  return table;
+}
+
+std::string csv_field(const std::string& value) {
+  if (value.find_first_of(",\"\r\n") == std::string::npos) return value;
+  std::string out = "\"";
+  for (char c : value) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::vector<Response> read_responses(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw_input_error(file, "no such file");
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  CsvTable table = parse_csv(buffer.str(), file);
+  if (table.rows.empty()) throw_input_error(file, "file is empty (expected a header row and responses)");
+
+  const auto& header = table.rows[0];
+  std::map<std::string, size_t> column;
+  for (size_t c = 0; c < header.size(); ++c) {
+    std::string name = header[c];
+    while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.pop_back();
+    while (!name.empty() && (name.front() == ' ' || name.front() == '\t')) name.erase(name.begin());
+    if (column.count(name))
+      throw_input_error(file + ": line 1, column " + std::to_string(c + 1), "duplicate column '" + name + "'");
+    column[name] = c;
+  }
+  for (const char* required : {"subject", "scene", "sigma", "question", "lambda"})
+    if (!column.count(required)) throw_input_error(file + ": line 1", std::string("missing column '") + required + "'");
+  if (table.rows.size() == 1) throw_input_error(file, "no responses after the header row");
+
+  auto where = [&](size_t r, const std::string& name) {
+    return file + ": line " + std::to_string(table.lines[r]) + ", column " + std::to_string(column.at(name) + 1) +
+           " (" + name + ")";
+  };
+  auto number = [&](size_t r, const std::string& name) {
+    const std::string& text = table.rows[r][column.at(name)];
+    size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (text.empty() || used != text.size() || !std::isfinite(v))
+      throw_input_error(where(r, name), "'" + text + "' is not a number");
+    return v;
+  };
+
+  std::vector<Response> out;
+  for (size_t r = 1; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    if (row.size() != header.size())
+      throw_input_error(file + ": line " + std::to_string(table.lines[r]),
+                        "expected " + std::to_string(header.size()) + " fields, found " + std::to_string(row.size()));
+    Response resp;
+    resp.source = file + ":" + std::to_string(table.lines[r]);
+    resp.subject = row[column["subject"]];
+    resp.scene = row[column["scene"]];
+    if (resp.subject.empty()) throw_input_error(where(r, "subject"), "empty subject id");
+    if (resp.scene.empty()) throw_input_error(where(r, "scene"), "empty scene name");
+    resp.sigma = number(r, "sigma");
+    resp.lambda = number(r, "lambda");
+    if (resp.lambda < 0) throw_input_error(where(r, "lambda"), "λ must not be negative");
+    const std::string& q = row[column["question"]];
+    if (q == "low") resp.question = Question::low;
+    else if (q == "high") resp.question = Question::high;
+    else if (q == "best") resp.question = Question::best;
+    else throw_input_error(where(r, "question"), "unknown question '" + q + "' (expected low, high or best)");
+    if (column.count("method")) resp.method = row[column["method"]];
+    if (column.count("lambda_step")) {
+      resp.lambda_step = number(r, "lambda_step");
+      if (!(resp.lambda_step > 0)) throw_input_error(where(r, "lambda_step"), "must be positive");
+    }
+    out.push_back(std::move(resp));
+  }
+  return out;
+}
+
+std::vector<Response> read_responses(const std::vector<std::filesystem::path>& paths) {
+  std::vector<Response> all;
+  for (const auto& p : paths) {
+    auto part = read_responses(p);
+    all.insert(all.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
+  }
+  return all;
+}
+
+}  // namespace countershade::analysis
