@@ -10,7 +10,7 @@
 namespace countershade::analysis {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 json anova_json(const std::string& model, const std::vector<AnovaRow>& rows) {
   json out = json::array();

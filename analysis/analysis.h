@@ -52,7 +52,7 @@ struct BlockResults {
     std::vector<double> answers;
   };
   std::vector<FitEntry> fits;
-  nlohmann::json json;  // results.json content for this block
+  nlohmann::ordered_json json;  // results.json content for this block (keys in schema order)
 };
 
 // Analyses every method block of `responses` (one block when there is no method column).

@@ -148,7 +148,7 @@ Fit solve(const std::map<double, double>& counts, double step, FitModel model, c
   fit.scale = std::exp(q[1]);
   for (const auto& [lambda, count] : counts) fit.n += size_t(count);
   Eigen::Matrix2d h = hessian(model, counts, step, q);
-  fit.converged = summary.IsSolutionUsable() && h.determinant() > 0 && gradient(model, counts, step, q).norm() < 1e-5;
+  fit.converged = summary.IsSolutionUsable() && h.determinant() > 0 && gradient(model, counts, step, q).norm() < 1e-4 * std::max(1.0, double(fit.n));
   fit.location_se = h.determinant() > 0 ? std::sqrt(h.inverse()(0, 0)) : std::nan("");
   switch (model) {
     case FitModel::lognormal:

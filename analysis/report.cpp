@@ -1,11 +1,16 @@
 #include "analysis/report.h"
 
+#include <cmath>
 #include <fstream>
+#include <sstream>
 
+#include "analysis/figures.h"
 #include "core/atomic_file.h"
 
 namespace countershade::analysis {
 namespace {
+
+using json = nlohmann::ordered_json;
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
   write_atomically(path, [&](const std::filesystem::path& temp) {
@@ -15,18 +20,159 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   });
 }
 
+std::string cell(const json& v) {
+  if (v.is_string()) return csv_field(v.get<std::string>());
+  std::ostringstream s;
+  s.precision(15);
+  if (v.is_number_float()) s << v.get<double>();
+  else s << v.dump();
+  return s.str();
+}
+
+// A JSON array of flat objects as CSV, columns in the first row's order.
+std::string table_csv(const json& rows) {
+  if (!rows.is_array() || rows.empty()) return "";
+  std::ostringstream out;
+  std::vector<std::string> keys;
+  for (auto it = rows[0].begin(); it != rows[0].end(); ++it) keys.push_back(it.key());
+  for (size_t k = 0; k < keys.size(); ++k) out << (k ? "," : "") << keys[k];
+  out << "\n";
+  for (const auto& row : rows) {
+    for (size_t k = 0; k < keys.size(); ++k) out << (k ? "," : "") << (row.contains(keys[k]) ? cell(row[keys[k]]) : "");
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  return out;
+}
+
+// APA style: no leading zero for values bounded by 1, "p < .001" below that.
+std::string apa_unit(double v, int decimals) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << v;
+  std::string text = s.str();
+  if (text.rfind("0.", 0) == 0) text.erase(0, 1);
+  if (text.rfind("-0.", 0) == 0) text.erase(1, 1);
+  return text;
+}
+std::string apa_p(double p) { return p < 0.001 ? "p < .001" : "p = " + apa_unit(p, 3); }
+std::string fixed(double v, int decimals) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << v;
+  return s.str();
+}
+std::string df_text(double df) { return std::abs(df - std::round(df)) < 1e-9 ? fixed(df, 0) : fixed(df, 2); }
+
+std::string anova_statement(const json& r) {
+  std::string text = "F(" + df_text(r["df1"]) + ", " + df_text(r["df2"]) + ") = " + fixed(r["F"], 2) + ", " +
+                     apa_p(r["p"]) + ", η²G = " + apa_unit(r["ges"], 2);
+  if (r.contains("gg_epsilon") && r["mauchly_p"].get<double>() < 0.05)
+    text += " (sphericity violated, Mauchly W = " + apa_unit(r["mauchly_W"], 2) + ", " + apa_p(r["mauchly_p"]) +
+            "; Greenhouse–Geisser ε = " + apa_unit(r["gg_epsilon"], 2) + ", " + apa_p(r["p_gg"]) + ")";
+  return text;
+}
+
+std::string html_table(const json& rows, const std::vector<std::string>& keys) {
+  std::ostringstream out;
+  out << "<table><tr>";
+  for (const auto& k : keys) out << "<th>" << html_escape(k) << "</th>";
+  out << "</tr>\n";
+  for (const auto& row : rows) {
+    out << "<tr>";
+    for (const auto& k : keys) {
+      std::string v = !row.contains(k) ? "" : row[k].is_number_float() ? fixed(row[k], 4) : row[k].is_string() ? row[k].get<std::string>() : row[k].dump();
+      out << "<td>" << html_escape(v) << "</td>";
+    }
+    out << "</tr>\n";
+  }
+  out << "</table>\n";
+  return out.str();
+}
+
+std::string report_html(const BlockResults& b, const std::string& fig12, const std::string& fig13,
+                        const std::string& fits, const std::string& dendrogram) {
+  const json& r = b.json;
+  std::ostringstream h;
+  h << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>countershade analysis"
+    << (b.method.empty() ? "" : " — " + html_escape(b.method)) << "</title><style>"
+    << "body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}table{border-collapse:collapse;"
+       "margin:0.5em 0 1.5em}td,th{border:1px solid #ccc;padding:2px 8px;font-size:13px;text-align:right}"
+       "th{background:#f3f3f3}li{margin:0.3em 0}.warn{color:#a40}</style></head><body>\n"
+    << "<h1>Adjustment study analysis" << (b.method.empty() ? "" : ": " + html_escape(b.method)) << "</h1>\n"
+    << "<p>" << r["n_subjects"] << " subjects analysed; JND normalisation: " << r["jnd_normalization"].get<std::string>()
+    << "; λ grid step " << r["lambda_step"] << ".</p>\n";
+  if (!b.warnings.empty()) {
+    h << "<ul>";
+    for (const auto& w : b.warnings) h << "<li class=\"warn\">" << html_escape(w) << "</li>";
+    h << "</ul>\n";
+  }
+  h << "<h2>Chosen λ per scene</h2>\n" << fig12 << "\n" << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
+  h << "<h2>Repeated-measures ANOVA: question × scene × σ (JND)</h2>\n<ul>";
+  for (const auto& row : r["anova"]) h << "<li><b>" << html_escape(row["effect"]) << "</b>: " << html_escape(anova_statement(row)) << "</li>";
+  h << "</ul>\n" << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
+  h << "<h2>Does σ change λ_Best? scene × σ on λ_Best (JND)</h2>\n" << fig13 << "\n<ul>";
+  for (const auto& row : r["anova_best_sigma"]) h << "<li><b>" << html_escape(row["effect"]) << "</b>: " << html_escape(anova_statement(row)) << "</li>";
+  h << "</ul>\n";
+  h << "<h2>Pairwise comparisons (paired t-tests, Holm-corrected)</h2>\n<ul>";
+  for (const auto& row : r["pairwise"])
+    h << "<li>λ_" << html_escape(row["a"]) << " − λ_" << html_escape(row["b"]) << " = " << fixed(row["mean_diff"], 2)
+      << " JND, t(" << df_text(row["df"]) << ") = " << fixed(row["t"], 2) << ", " << html_escape(apa_p(row["p_holm"])) << "</li>";
+  h << "</ul>\n<h2>λ_Best against 1 JND per scene (one-sample t-tests, Holm-corrected)</h2>\n<ul>";
+  for (const auto& row : r["best_vs_threshold"])
+    h << "<li>" << html_escape(row["scene"]) << ": λ_Best = " << fixed(row["mean"], 2) << " JND, t(" << df_text(row["df"])
+      << ") = " << fixed(row["t"], 2) << ", " << html_escape(apa_p(row["p_holm"])) << "</li>";
+  h << "</ul>\n<h2>Preference clusters (Ward)</h2>\n" << dendrogram << "\n<ul>";
+  const json& c = r["clusters"];
+  for (size_t k = 0; k < c["sizes"].size(); ++k)
+    h << "<li>cluster " << k + 1 << ": " << c["sizes"][k] << " subjects ("
+      << fixed(100.0 * c["sizes"][k].get<double>() / r["n_subjects"].get<double>(), 0) << " %), mean λ_Best = "
+      << fixed(c["mean_best"][k], 2) << " JND</li>";
+  h << "</ul>\n<h2>Threshold fits</h2>\n" << fits << "\n"
+    << html_table(r["fits"], {"scene", "sigma", "question", "model", "threshold", "log_threshold", "log_threshold_se", "log_sd", "n", "ci_low", "ci_high"});
+  if (!r["excluded_subjects"].empty())
+    h << "<h2>Excluded subjects</h2>\n" << html_table(r["excluded_subjects"], {"subject", "reason"});
+  h << "<p><small>Generated by countershade analyze.</small></p></body></html>\n";
+  return h.str();
+}
+
 }  // namespace
 
 void write_outputs(const std::vector<BlockResults>& results, const std::filesystem::path& dir, bool figures) {
-  (void)figures;
-  nlohmann::json json;
+  json all;
   if (results.size() == 1) {
-    json = results[0].json;
+    all = results[0].json;
   } else {
-    json["methods"] = nlohmann::json::array();
-    for (const auto& b : results) json["methods"].push_back(b.json);
+    all["methods"] = json::array();
+    for (const auto& b : results) all["methods"].push_back(b.json);
   }
-  write_text(dir / "results.json", json.dump(2) + "\n");
+  write_text(dir / "results.json", all.dump(2) + "\n");
+  for (const auto& b : results) {
+    std::filesystem::path out = results.size() == 1 ? dir : dir / b.method;
+    std::filesystem::create_directories(out);
+    for (const char* table : {"descriptives", "descriptives_by_sigma", "anova", "anova_best_sigma", "pairwise",
+                              "best_vs_threshold", "fits", "excluded_subjects"})
+      write_text(out / (std::string(table) + ".csv"), table_csv(b.json[table]));
+    json clusters = json::array();
+    for (size_t i = 0; i < b.subjects.size(); ++i)
+      clusters.push_back({{"subject", b.subjects[i]}, {"cluster", b.cluster_labels[i]}});
+    write_text(out / "clusters.csv", table_csv(clusters));
+    if (!figures) continue;
+    std::string fig12 = figure_questions_by_scene(b), fig13 = figure_lambda_by_sigma(b), fits = figure_fits(b),
+                dendrogram = figure_dendrogram(b);
+    write_text(out / "fig12_questions_by_scene.svg", fig12);
+    write_text(out / "fig13_lambda_by_sigma.svg", fig13);
+    write_text(out / "fits.svg", fits);
+    write_text(out / "dendrogram.svg", dendrogram);
+    write_text(out / "report.html", report_html(b, fig12, fig13, fits, dendrogram));
+  }
 }
 
 }  // namespace countershade::analysis

@@ -9,5 +9,6 @@ void add_render_command(CLI::App& app);
 void add_mesh_usm_command(CLI::App& app);
 void add_image_usm_command(CLI::App& app);
 void add_analyze_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
 
 }  // namespace countershade::cli

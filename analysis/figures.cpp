@@ -1,0 +1,203 @@
+#include "analysis/figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "core/svg_plot.h"
+
+namespace countershade::analysis {
+namespace {
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  return out;
+}
+
+std::string number(double v, int precision = 3) {
+  std::ostringstream s;
+  s.precision(precision);
+  s << v;
+  return s.str();
+}
+
+double nice_max(double v) {
+  double step = std::pow(10.0, std::floor(std::log10(std::max(v, 1e-9))));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * step >= v) return m * step;
+  return 10 * step;
+}
+
+const char* kQuestionColours[] = {"#56B4E9", "#D55E00", "#009E73"};  // low, high, best
+
+}  // namespace
+
+std::string figure_questions_by_scene(const BlockResults& r) {
+  const int width = 720, height = 380, left = 60, right = 120, top = 40, bottom = 50;
+  const double pw = width - left - right, ph = height - top - bottom;
+  const size_t ns = r.scenes.size(), n = r.subjects.size();
+  // Per scene and question: mean and SEM over subjects of their σ-mean JND.
+  std::vector<std::array<Summary, 3>> stats(ns);
+  double top_value = 0;
+  for (size_t s = 0; s < ns; ++s)
+    for (int q = 0; q < 3; ++q) {
+      std::vector<double> v;
+      for (size_t i = 0; i < n; ++i) {
+        double m = 0;
+        for (size_t g = 0; g < r.sigmas.size(); ++g) m += r.jnd[i][s][g][q] / double(r.sigmas.size());
+        v.push_back(m);
+      }
+      stats[s][q] = summarize(v);
+      top_value = std::max(top_value, stats[s][q].mean + stats[s][q].sem);
+    }
+  double ymax = nice_max(top_value * 1.05);
+  auto py = [&](double v) { return top + ph * (1.0 - v / ymax); };
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"12\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">Chosen λ in JND per scene (mean ± SEM, n = "
+      << n << ")</text>\n";
+  for (int t = 0; t <= 5; ++t) {
+    double v = ymax * t / 5;
+    svg << "<line x1=\"" << left << "\" x2=\"" << left + pw << "\" y1=\"" << py(v) << "\" y2=\"" << py(v)
+        << "\" stroke=\"#e5e5e5\"/><text x=\"" << left - 6 << "\" y=\"" << py(v) + 4 << "\" text-anchor=\"end\">"
+        << number(v) << "</text>\n";
+  }
+  // The 1 JND reference line.
+  svg << "<line x1=\"" << left << "\" x2=\"" << left + pw << "\" y1=\"" << py(1) << "\" y2=\"" << py(1)
+      << "\" stroke=\"#888\" stroke-dasharray=\"4,3\"/>\n";
+  const double group = pw / double(ns), bar = group * 0.22;
+  const int order[3] = {int(Question::low), int(Question::best), int(Question::high)};
+  for (size_t s = 0; s < ns; ++s) {
+    double x0 = left + group * double(s) + group * 0.17;
+    for (int k = 0; k < 3; ++k) {
+      int q = order[k];
+      const Summary& st = stats[s][size_t(q)];
+      double x = x0 + bar * k;
+      svg << "<rect x=\"" << x << "\" y=\"" << py(st.mean) << "\" width=\"" << bar - 2 << "\" height=\""
+          << py(0) - py(st.mean) << "\" fill=\"" << kQuestionColours[q] << "\"/>\n";
+      double cx = x + (bar - 2) / 2;
+      svg << "<path d=\"M" << cx << "," << py(st.mean - st.sem) << "V" << py(st.mean + st.sem) << "M" << cx - 4 << ","
+          << py(st.mean + st.sem) << "h8M" << cx - 4 << "," << py(st.mean - st.sem) << "h8\" stroke=\"black\"/>\n";
+    }
+    svg << "<text x=\"" << left + group * (double(s) + 0.5) << "\" y=\"" << top + ph + 18
+        << "\" text-anchor=\"middle\">" << escape(r.scenes[s]) << "</text>\n";
+  }
+  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
+      << "\" fill=\"none\" stroke=\"#444\"/>\n<text transform=\"translate(16," << top + ph / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">λ (JND)</text>\n";
+  const char* names[3] = {"λ_Low", "λ_Best", "λ_High"};
+  for (int k = 0; k < 3; ++k)
+    svg << "<rect x=\"" << left + pw + 14 << "\" y=\"" << top + 10 + 20 * k << "\" width=\"14\" height=\"12\" fill=\""
+        << kQuestionColours[order[k]] << "\"/><text x=\"" << left + pw + 34 << "\" y=\"" << top + 21 + 20 * k << "\">"
+        << names[k] << "</text>\n";
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+std::string figure_lambda_by_sigma(const BlockResults& r) {
+  LinePlot plot;
+  plot.title = "Chosen λ in JND against σ (solid: λ_Best, dashed: λ_High)";
+  plot.x_label = "σ";
+  plot.y_label = "λ (JND)";
+  plot.width = 720;
+  for (size_t s = 0; s < r.scenes.size(); ++s)
+    for (Question q : {Question::best, Question::high}) {
+      PlotSeries series;
+      series.label = r.scenes[s] + (q == Question::best ? " best" : " high");
+      series.color = plot_color(s);
+      series.dashed = q == Question::high;
+      for (size_t g = 0; g < r.sigmas.size(); ++g) {
+        double m = 0;
+        for (size_t i = 0; i < r.subjects.size(); ++i) m += r.jnd[i][s][g][int(q)] / double(r.subjects.size());
+        series.x.push_back(r.sigmas[g]);
+        series.y.push_back(m);
+      }
+      plot.series.push_back(series);
+    }
+  return plot.to_svg();
+}
+
+std::string figure_fits(const BlockResults& r) {
+  const int cols = 3, rows = int((r.fits.size() + 2) / 3), pw = 200, ph = 110, gap = 40;
+  const int width = cols * (pw + gap) + gap, height = rows * (ph + gap) + 50;
+  // One λ range per question (column): λ_Low answers are much smaller than λ_High ones.
+  double column_max[3] = {0, 0, 0};
+  for (const auto& f : r.fits)
+    for (double a : f.answers) column_max[int(f.question)] = std::max(column_max[int(f.question)], a);
+  for (double& m : column_max) m = nice_max(m * 1.05);
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"10\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << width / 2 << "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">Fitted "
+      << (r.fits.empty() ? "" : fit_model_name(r.fits[0].fit.model))
+      << " threshold distributions (lines) over the empirical cumulative distributions (steps)</text>\n";
+  for (size_t k = 0; k < r.fits.size(); ++k) {
+    const auto& f = r.fits[k];
+    const double lmax = column_max[int(f.question)];
+    double x0 = gap + double(k % cols) * (pw + gap), y0 = 40 + double(k / cols) * (ph + gap);
+    auto px = [&](double l) { return x0 + pw * l / lmax; };
+    auto py = [&](double p) { return y0 + ph * (1.0 - p); };
+    svg << "<rect x=\"" << x0 << "\" y=\"" << y0 << "\" width=\"" << pw << "\" height=\"" << ph
+        << "\" fill=\"none\" stroke=\"#888\"/>\n<text x=\"" << x0 << "\" y=\"" << y0 - 4 << "\">" << escape(f.scene)
+        << ", σ=" << number(f.sigma) << ", " << kQuestionNames[int(f.question)] << " (n=" << f.fit.n << ")</text>\n";
+    std::vector<double> a = f.answers;
+    std::sort(a.begin(), a.end());
+    svg << "<path fill=\"none\" stroke=\"#444\" d=\"M" << px(0) << "," << py(0);
+    for (size_t i = 0; i < a.size(); ++i)
+      svg << "H" << px(a[i]) << "V" << py(double(i + 1) / double(a.size()));
+    svg << "H" << px(lmax) << "\"/>\n<polyline fill=\"none\" stroke=\"" << kQuestionColours[int(f.question)]
+        << "\" stroke-width=\"1.8\" points=\"";
+    for (int t = 0; t <= 100; ++t) {
+      double l = lmax * t / 100.0;
+      svg << px(l) << "," << py(fit_cdf(f.fit, l)) << " ";
+    }
+    svg << "\"/>\n<line x1=\"" << px(f.fit.threshold) << "\" x2=\"" << px(f.fit.threshold) << "\" y1=\"" << py(0)
+        << "\" y2=\"" << py(0.5) << "\" stroke=\"" << kQuestionColours[int(f.question)]
+        << "\" stroke-dasharray=\"3,2\"/>\n<text x=\"" << x0 + pw << "\" y=\"" << y0 + ph + 12
+        << "\" text-anchor=\"end\">λ → " << number(lmax) << "</text>\n";
+  }
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+std::string figure_dendrogram(const BlockResults& r) {
+  const Dendrogram& d = r.dendrogram;
+  const size_t n = r.subjects.size();
+  const int width = std::max(420, int(n) * 28 + 120), height = 360, left = 60, top = 40, bottom = 60;
+  const double pw = width - left - 40, ph = height - top - bottom;
+  double hmax = d.heights.empty() ? 1.0 : nice_max(d.heights.back());
+  std::vector<double> leaf_x(n);
+  for (size_t k = 0; k < d.order.size(); ++k) leaf_x[size_t(d.order[k])] = left + pw * (double(k) + 0.5) / double(n);
+  auto py = [&](double h) { return top + ph * (1.0 - h / hmax); };
+  std::vector<double> node_x(d.merges.size());
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"11\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">Ward (ward.D2) clustering of "
+         "subjects by their per-scene λ_Best (JND)</text>\n";
+  auto position = [&](int node) -> std::pair<double, double> {
+    return node < 0 ? std::pair{leaf_x[size_t(-node - 1)], 0.0} : std::pair{node_x[size_t(node)], d.heights[size_t(node)]};
+  };
+  for (size_t m = 0; m < d.merges.size(); ++m) {
+    auto [xa, ha] = position(d.merges[m].first);
+    auto [xb, hb] = position(d.merges[m].second);
+    node_x[m] = 0.5 * (xa + xb);
+    double h = d.heights[m];
+    svg << "<path fill=\"none\" stroke=\"#333\" d=\"M" << xa << "," << py(ha) << "V" << py(h) << "H" << xb << "V"
+        << py(hb) << "\"/>\n";
+  }
+  for (size_t i = 0; i < n; ++i)
+    svg << "<text transform=\"translate(" << leaf_x[i] + 4 << "," << top + ph + 8 << ") rotate(90)\" fill=\""
+        << plot_color(size_t(r.cluster_labels[i] - 1)) << "\">" << escape(r.subjects[i]) << " ("
+        << r.cluster_labels[i] << ")</text>\n";
+  for (int t = 0; t <= 4; ++t)
+    svg << "<text x=\"" << left - 6 << "\" y=\"" << py(hmax * t / 4) + 4 << "\" text-anchor=\"end\">"
+        << number(hmax * t / 4) << "</text>\n";
+  svg << "<text transform=\"translate(16," << top + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">height</text>\n</svg>\n";
+  return svg.str();
+}
+
+}  // namespace countershade::analysis
