@@ -7,6 +7,7 @@
 
 #include <boost/math/special_functions/erf.hpp>
 #include <ceres/ceres.h>
+#include <tbb/parallel_for.h>
 #include <Eigen/Dense>
 
 #include "core/error.h"
@@ -214,11 +215,11 @@ double fit_cdf(const Fit& fit, double lambda) {
 }
 
 void bootstrap_threshold(Fit& fit, double step, int resamples, uint64_t seed) {
-  std::vector<double> thresholds;
-  thresholds.reserve(size_t(resamples));
   const double start[2] = {fit.location, std::log(fit.scale)};
-  std::vector<double> sample(fit.n);
-  for (int b = 0; b < resamples; ++b) {
+  // Each resample has its own random stream, so the result does not depend on scheduling.
+  std::vector<double> results(size_t(resamples), std::nan(""));
+  tbb::parallel_for(0, resamples, [&](int b) {
+    std::vector<double> sample(fit.n);
     SampleStream random(seed, 5, uint64_t(b), 0);
     for (double& x : sample) {
       // Inverse-CDF draw, then the grid answer whose interval contains it.
@@ -233,8 +234,11 @@ void bootstrap_threshold(Fit& fit, double step, int resamples, uint64_t seed) {
       x = std::max(1.0, std::ceil(lambda / step - 1e-9)) * step;
     }
     Fit refit = solve(count_answers(sample, step), step, fit.model, start);
-    if (refit.converged) thresholds.push_back(refit.threshold);
-  }
+    if (refit.converged) results[size_t(b)] = refit.threshold;
+  });
+  std::vector<double> thresholds;
+  for (double t : results)
+    if (!std::isnan(t)) thresholds.push_back(t);
   fit.bootstrap = int(thresholds.size());
   if (thresholds.size() < 2) return;
   std::sort(thresholds.begin(), thresholds.end());
