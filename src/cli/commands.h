@@ -10,5 +10,6 @@ void add_mesh_usm_command(CLI::App& app);
 void add_image_usm_command(CLI::App& app);
 void add_analyze_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
+void add_stimuli_command(CLI::App& app);
 
 }  // namespace countershade::cli

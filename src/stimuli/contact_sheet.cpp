@@ -1,0 +1,58 @@
+#include "stimuli/contact_sheet.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+
+#include "core/error.h"
+
+namespace countershade {
+namespace {
+
+// Box-filtered downscale by an integer factor, so thumbnails average instead of alias.
+Image thumbnail(const Image& in, int width) {
+  int factor = std::max(1, (in.width + width - 1) / width);
+  Image out(in.width / factor, in.height / factor, 3);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        float sum = 0;
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) sum += in.at(x * factor + dx, y * factor + dy, std::min(c, in.channels - 1));
+        out.at(x, y, c) = sum / float(factor * factor);
+      }
+  return out;
+}
+
+}  // namespace
+
+void write_contact_sheet(const std::filesystem::path& output, const std::string& title,
+                         const std::vector<std::string>& row_labels, const std::vector<std::string>& column_labels,
+                         const std::vector<std::vector<std::filesystem::path>>& cells, int thumbnail_width) {
+  if (cells.empty() || cells[0].empty()) return;
+  Image first = thumbnail(read_image(cells[0][0]), thumbnail_width);
+  const int tw = first.width, th = first.height, gap = 8, left = 110, top = 56;
+  const int cols = int(column_labels.size()), rows = int(row_labels.size());
+  const int width = left + cols * (tw + gap), height = top + rows * (th + gap);
+  OIIO::ImageBuf sheet(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
+  const float grey[3] = {0.5f, 0.5f, 0.5f}, ink[3] = {1.0f, 1.0f, 1.0f};
+  OIIO::ImageBufAlgo::fill(sheet, grey);
+  OIIO::ImageBufAlgo::render_text(sheet, 10, 24, title, 18, "DejaVuSans", ink);
+  for (int c = 0; c < cols; ++c)
+    OIIO::ImageBufAlgo::render_text(sheet, left + c * (tw + gap), top - 10, column_labels[size_t(c)], 14, "DejaVuSans", ink);
+  for (int r = 0; r < rows; ++r) {
+    OIIO::ImageBufAlgo::render_text(sheet, 8, top + r * (th + gap) + th / 2, row_labels[size_t(r)], 14, "DejaVuSans", ink);
+    for (int c = 0; c < cols; ++c) {
+      Image t = r == 0 && c == 0 ? first : thumbnail(read_image(cells[size_t(r)][size_t(c)]), thumbnail_width);
+      int x0 = left + c * (tw + gap), y0 = top + r * (th + gap);
+      for (int y = 0; y < std::min(th, t.height); ++y)
+        for (int x = 0; x < std::min(tw, t.width); ++x) sheet.setpixel(x0 + x, y0 + y, &t.pixels[t.index(x, y)], 3);
+    }
+  }
+  Image out(width, height, 3);
+  sheet.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, out.pixels.data());
+  write_image(output, out);
+}
+
+}  // namespace countershade

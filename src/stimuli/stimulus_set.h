@@ -1,0 +1,38 @@
+#pragma once
+// Generates a stimulus set from an experiment: every scene rendered once, every (method, σ)
+// prepared once, every λ composed from that. Files appear atomically; a journal of finished
+// images lets an interrupted run resume (--resume) without redoing them; --shard I/N splits the
+// work deterministically and --merge joins the shard manifests into the one a single run writes.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "stimuli/experiment.h"
+#include "stimuli/manifest.h"
+
+namespace countershade {
+
+struct GenerateOptions {
+  int jobs = 0;              // threads (0 = all cores)
+  int shard = 1, shards = 1;  // this run's part, I of N
+  bool resume = false;
+  bool contact_sheets = true;
+};
+
+struct GenerateReport {
+  size_t images_written = 0, images_skipped = 0;
+  double render_seconds = 0, prepare_seconds = 0, compose_seconds = 0, encode_seconds = 0, total_seconds = 0;
+  std::filesystem::path manifest;
+};
+
+GenerateReport generate_stimulus_set(const Experiment& experiment, const std::filesystem::path& dir,
+                                     const GenerateOptions& options);
+
+// Joins manifest.shard-*-of-N.json in `dir` into manifest.json (and writes the contact sheets).
+std::filesystem::path merge_shard_manifests(const Experiment& experiment, const std::filesystem::path& dir);
+
+// Parses "I/N"; throws InputError.
+std::pair<int, int> parse_shard(const std::string& text);
+
+}  // namespace countershade
