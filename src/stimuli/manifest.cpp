@@ -18,8 +18,9 @@ std::filesystem::path resolve_in_set(const std::filesystem::path& set_dir, const
 }
 
 OrderedJson read_manifest(const std::filesystem::path& path) {
-  nlohmann::json plain = parse_json_file(path);
-  OrderedJson manifest = OrderedJson::parse(plain.dump());
+  parse_json_file(path);  // the file exists and is valid JSON (errors name the file)
+  std::ifstream in(path, std::ios::binary);
+  OrderedJson manifest = OrderedJson::parse(in);  // keeps the keys in the order they were written
   auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(path.string() + ": " + field, what); };
   if (!manifest.is_object()) fail("", "expected an object");
   if (!manifest.contains("format_version") || manifest["format_version"] != kManifestFormatVersion)
