@@ -61,14 +61,7 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_deg) {
     }
   }
 
-  // Incident corners per vertex (CSR).
-  std::vector<uint32_t> offsets(nv + 1, 0), corners(3 * nf);
-  for (const auto& tri : mesh.triangles)
-    for (int c = 0; c < 3; ++c) ++offsets[tri[c] + 1];
-  for (size_t v = 0; v < nv; ++v) offsets[v + 1] += offsets[v];
-  std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-  for (size_t t = 0; t < nf; ++t)
-    for (int c = 0; c < 3; ++c) corners[fill[mesh.triangles[t][c]]++] = uint32_t(3 * t + c);
+  const auto [offsets, corners] = vertex_corners(mesh);
 
   const double cos_crease = crease_angle_deg >= 180.0 ? -2.0 : std::cos(glm::radians(crease_angle_deg));
   mesh.corner_normals.assign(3 * nf, glm::vec3(0.0f));
@@ -86,6 +79,20 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_deg) {
       mesh.corner_normals[corner] = glm::vec3(len > 0 ? sum / len : own);
     }
   }
+}
+
+VertexCorners vertex_corners(const TriangleMesh& mesh) {
+  const size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  VertexCorners out;
+  out.offsets.assign(nv + 1, 0);
+  out.corners.resize(3 * nf);
+  for (const auto& tri : mesh.triangles)
+    for (int c = 0; c < 3; ++c) ++out.offsets[tri[c] + 1];
+  for (size_t v = 0; v < nv; ++v) out.offsets[v + 1] += out.offsets[v];
+  std::vector<uint32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
+  for (size_t t = 0; t < nf; ++t)
+    for (int c = 0; c < 3; ++c) out.corners[fill[mesh.triangles[t][c]]++] = uint32_t(3 * t + c);
+  return out;
 }
 
 void transform_mesh(TriangleMesh& mesh, const glm::dmat4& transform) {

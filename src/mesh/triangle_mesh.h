@@ -40,6 +40,13 @@ BoundingBox bounding_box(const TriangleMesh& mesh);
 // angle-weighted mean of the face normals around its vertex within the crease angle.
 void compute_corner_normals(TriangleMesh& mesh, double crease_angle_deg);
 
+// The corners (3t + c) incident to each vertex, as CSR: corners of vertex v are
+// corners[offsets[v] .. offsets[v+1]).
+struct VertexCorners {
+  std::vector<uint32_t> offsets, corners;
+};
+VertexCorners vertex_corners(const TriangleMesh& mesh);
+
 // Applies an affine transform to positions and normals (normals by the inverse transpose).
 void transform_mesh(TriangleMesh& mesh, const glm::dmat4& transform);
 

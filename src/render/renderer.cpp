@@ -143,14 +143,8 @@ std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, c
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const TriangleMesh& mesh = scene.objects[o].mesh;
     const size_t nv = mesh.vertex_count();
-    // Incident corners per vertex (CSR), to find each vertex's distinct shading variants.
-    std::vector<uint32_t> offsets(nv + 1, 0), corners(3 * mesh.triangle_count());
-    for (const auto& tri : mesh.triangles)
-      for (int c = 0; c < 3; ++c) ++offsets[tri[c] + 1];
-    for (size_t v = 0; v < nv; ++v) offsets[v + 1] += offsets[v];
-    std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-    for (size_t t = 0; t < mesh.triangle_count(); ++t)
-      for (int c = 0; c < 3; ++c) corners[fill[mesh.triangles[t][c]]++] = uint32_t(3 * t + c);
+    // Incident corners per vertex, to find each vertex's distinct shading variants.
+    const auto [offsets, corners] = vertex_corners(mesh);
 
     // Ring supersampling: the sum of k shaded points on every triangle, shared by its 3 vertices.
     std::vector<glm::dvec3> triangle_sum;
