@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -19,8 +20,22 @@ nlohmann::json parse_json_file(const std::filesystem::path& path) {
   buffer << in.rdbuf();
   std::string text = buffer.str();
   if (text.empty()) throw_input_error(path.string(), "file is empty");
+  // JSON allows repeated keys and nlohmann keeps the last one silently; in a configuration file a
+  // repeated key is almost always a mistake, so it is an error.
+  std::vector<std::set<std::string>> keys;
+  std::string duplicate;
+  auto check = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    else if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    else if (event == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+             duplicate.empty())
+      duplicate = parsed.get<std::string>();
+    return true;
+  };
   try {
-    return json::parse(text);
+    json value = json::parse(text, check);
+    if (!duplicate.empty()) throw_input_error(path.string(), "the key '" + duplicate + "' appears twice in one object");
+    return value;
   } catch (const json::parse_error& e) {
     // nlohmann's message starts with "[json.exception.parse_error.101] "; keep the readable part.
     std::string message = e.what();

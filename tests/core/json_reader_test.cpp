@@ -44,6 +44,8 @@ TEST(JsonReader, MalformedFilesNameTheFile) {
   std::string message = error_of([&] { parse_json_file(bad); });
   EXPECT_EQ(message.rfind(bad.string() + ": malformed JSON", 0), 0u) << message;
   EXPECT_NE(error_of([&] { parse_json_file(dir / "none.json"); }).find("no such file"), std::string::npos);
+  auto twice = testing::write_file(dir / "twice.json", "{\"a\": {\"x\": 1, \"x\": 2}, \"b\": {\"x\": 3}}");
+  EXPECT_NE(error_of([&] { parse_json_file(twice); }).find("the key 'x' appears twice"), std::string::npos);
   auto empty = testing::write_file(dir / "empty.json", "");
   EXPECT_NE(error_of([&] { parse_json_file(empty); }).find("file is empty"), std::string::npos);
 }

@@ -94,6 +94,23 @@ TEST(Renderer, FurnaceReproducesAlbedo) {
   }
 }
 
+// An environment map read from an EXR file lights the scene like the built-in constant one.
+TEST(Renderer, EnvironmentMapFromAnExrFile) {
+  testing::TempDir dir;
+  write_image(dir / "white.exr", Image(32, 16, 3, 1.0f));
+  Scene scene = scene_from(dir, R"({
+    "version": 1,
+    "camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov": 30, "width": 16, "height": 16},
+    "render": {"spp": 4},
+    "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 4}, "material": {"albedo": 0.5}}],
+    "lights": [{"type": "environment", "file": "white.exr", "samples": 16, "sampling": "cosine"}]
+  })");
+  RayTracer tracer(scene);
+  RenderResult result = render(scene, tracer);
+  EXPECT_NEAR(result.radiance.at(8, 8, 0), 0.5f, 0.01f);  // furnace: the albedo
+  EXPECT_FLOAT_EQ(result.radiance.at(0, 0, 1), 1.0f);     // the camera sees the map
+}
+
 TEST(Renderer, PointInShadowReceivesNoDirectLight) {
   testing::TempDir dir;
   // A slab 1 unit above the ground; light from 45° in +x, so the shadow falls 1 unit towards -x.
