@@ -159,6 +159,18 @@ OrderedJson write_stimulus(const fs::path& set_dir, const std::string& relative,
   return out;
 }
 
+// A run killed while writing leaves its temporary file (".<name>.tmp-<pid>-<n>.<ext>", see
+// write_atomically) behind; the finished images never have that form.
+void remove_interrupted_writes(const fs::path& dir) {
+  std::vector<fs::path> leftovers;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos)
+      leftovers.push_back(entry.path());
+  }
+  for (const auto& p : leftovers) fs::remove(p);
+}
+
 void check_writable(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -220,7 +232,10 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
                                         (fs::exists(manifest_path) ? manifest_name(options) : journal_name(options)) +
                                         "); use --resume to finish it or choose a new folder");
   std::map<std::string, OrderedJson> done;
-  if (options.resume) done = verified_journal(dir, journal_path);
+  if (options.resume) {
+    remove_interrupted_writes(dir);
+    done = verified_journal(dir, journal_path);
+  }
 
   // Every scene is loaded (and so checked) before anything renders.
   std::vector<Scene> scenes;

@@ -178,6 +178,8 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   ::waitpid(child, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be interrupted";
   EXPECT_FALSE(fs::exists(dir / "cut/manifest.json"));
+  // A write cut short by the kill may have left its temporary file; make sure one is there.
+  testing::write_file(dir / "cut/cube/.lambda-9.tmp-1-0.png", "partial");
   auto again = testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "cut").string());
   EXPECT_EQ(again.exit_code, 2) << "an unfinished set must not be overwritten without --resume: " << again.output;
   GenerateOptions resume = jobs(2);
@@ -186,7 +188,9 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   EXPECT_GT(report.images_skipped, 0u);
   EXPECT_GT(report.images_written, 0u);
   EXPECT_EQ(reproducible_part(manifest_of(dir / "whole")), reproducible_part(manifest_of(dir / "cut")));
-  EXPECT_TRUE(verify_stimulus_set(dir / "cut/manifest.json").empty());
+  auto problems = verify_stimulus_set(dir / "cut/manifest.json");
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  EXPECT_FALSE(fs::exists(dir / "cut/cube/.lambda-9.tmp-1-0.png"));
 }
 
 TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
