@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "enhance/cornsweet.h"
 #include "enhance/depth_usm.h"
 #include "enhance/none.h"
 #include "enhance/usm2d.h"
@@ -54,7 +55,8 @@ const std::vector<const EnhancementMethod*>& registry() {
   static const Usm3dMethod usm3d;
   static const Usm2dMethod usm2d;
   static const DepthUsmMethod depth_usm;
-  static const std::vector<const EnhancementMethod*> methods = {&none, &usm3d, &usm2d, &depth_usm};
+  static const CornsweetMethod cornsweet;
+  static const std::vector<const EnhancementMethod*> methods = {&none, &usm3d, &usm2d, &depth_usm, &cornsweet};
   return methods;
 }
 

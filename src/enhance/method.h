@@ -67,6 +67,11 @@ struct MethodOptions {
   std::string depth_mapping = "linear";  // linear eye depth | zbuffer (non-linear, near/far)
   std::optional<double> z_near, z_far;   // zbuffer planes (default: the valid depth range)
   glm::dvec3 cold{-0.1, -0.05, 0.15}, warm{0.15, 0.1, -0.1};
+
+  // cornsweet: the width comes from sigma_px (image mode) or sigma (surface mode)
+  std::string cornsweet_mode = "image";
+  double cornsweet_amplitude = 4.0;  // ΔL* per unit of λ
+  glm::dvec3 edge_point{0.0}, edge_direction{1, 0, 0}, bright_normal{0, 0, 1};
 };
 
 // σ in pixels for an image of the given size from the image-space options (0 if none is given).

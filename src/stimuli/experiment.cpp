@@ -1,5 +1,6 @@
 #include "stimuli/experiment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -29,6 +30,10 @@ double LambdaGrid::value(int index) const {
   return std::round(v * 1e9) / 1e9;  // exact decimal grid values (0.15, not 0.15000000000000002)
 }
 
+bool ExperimentMethod::applies_to(const std::string& scene) const {
+  return scenes.empty() || std::find(scenes.begin(), scenes.end(), scene) != scenes.end();
+}
+
 MethodOptions ExperimentMethod::for_sigma(double sigma) const {
   MethodOptions o = options;
   if (sigma_key == "sigma") o.sigma = sigma;
@@ -44,13 +49,14 @@ namespace {
 
 const std::vector<std::string> kUsm3dKeys = {"sigma", "sigma_fraction", "iterations"};
 const std::vector<std::string> kImageKeys = {"kernel_percent", "sigma_px", "sigma_percent"};
+const std::vector<std::string> kCornsweetKeys = {"sigma_px", "sigma"};
 
 ExperimentMethod parse_method(const JsonObject& o) {
   ExperimentMethod m;
   m.method = o.choice("method", "", method_names());
   const EnhancementMethod* method = find_method(m.method);
   m.label = m.method;
-  const auto& keys = m.method == "usm3d" ? kUsm3dKeys : kImageKeys;
+  const auto& keys = m.method == "usm3d" ? kUsm3dKeys : m.method == "cornsweet" ? kCornsweetKeys : kImageKeys;
   int found = 0;
   for (const auto& k : keys)
     if (o.has(k)) {
@@ -84,6 +90,20 @@ ExperimentMethod parse_method(const JsonObject& o) {
   if (m.method == "depth-usm" || m.method == "usm2d") {
     m.options.space = o.choice("space", "rgb", {"rgb", "lab"});
     if (m.options.space == "lab") m.label += "-lab";
+  }
+  if (m.method == "cornsweet") {
+    m.options.cornsweet_mode = o.choice("mode", "image", {"image", "surface"});
+    m.options.cornsweet_amplitude = o.number_or("amplitude", 4.0);
+    if (o.has("edge_point")) m.options.edge_point = o.vec3("edge_point");
+    if (o.has("edge_direction")) m.options.edge_direction = o.vec3("edge_direction");
+    if (o.has("bright_normal")) m.options.bright_normal = o.vec3("bright_normal");
+    m.label = "cornsweet-" + m.options.cornsweet_mode;
+  }
+  if (o.has("scenes")) {
+    for (const auto& s : o.raw("scenes")) {
+      if (!s.is_string()) o.fail("scenes", "expected a list of scene names");
+      m.scenes.push_back(s.get<std::string>());
+    }
   }
   if (o.has("label")) m.label = o.string("label");
   // Every σ must be acceptable to the method.
@@ -165,6 +185,9 @@ Experiment load_experiment(const std::filesystem::path& path) {
       m.fail("method", "two methods share the folder '" + e.methods.back().label + "' (give one a \"label\")");
   }
   if (e.methods.empty()) root.fail("methods", "an experiment needs at least one method");
+  for (const auto& m : e.methods)
+    for (const auto& s : m.scenes)
+      if (!names.count(s)) throw_input_error(path.string() + ": methods", "method '" + m.label + "' names an unknown scene '" + s + "'");
   root.finish();
   return e;
 }

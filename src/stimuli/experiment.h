@@ -30,6 +30,8 @@ struct ExperimentMethod {
   std::vector<double> sigmas;   // one condition each, recorded as "sigma" in the manifest
   MethodOptions options;        // the rest of the options
   int ring_samples = 3;         // usm3d: 1-ring supersampling
+  std::vector<std::string> scenes;  // the scenes it applies to (empty: all)
+  bool applies_to(const std::string& scene) const;
   MethodOptions for_sigma(double sigma) const;
 };
 

@@ -49,7 +49,8 @@ std::vector<Unit> all_units(const Experiment& e) {
   for (size_t s = 0; s < e.scenes.size(); ++s) {
     units.push_back({s, -1, 0});
     for (size_t m = 0; m < e.methods.size(); ++m)
-      for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g) units.push_back({s, int(m), g});
+      if (e.methods[m].applies_to(e.scenes[s].name))
+        for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g) units.push_back({s, int(m), g});
   }
   return units;
 }
@@ -193,6 +194,7 @@ void write_contact_sheets(const Experiment& e, const fs::path& dir, const Ordere
   fs::create_directories(dir / "contact-sheets");
   for (size_t s = 0; s < e.scenes.size(); ++s)
     for (size_t m = 0; m < e.methods.size(); ++m) {
+      if (!e.methods[m].applies_to(e.scenes[s].name)) continue;
       std::vector<std::string> rows, cols;
       std::vector<std::vector<fs::path>> cells;
       for (int p : picks) cols.push_back("lambda = " + format_value(e.lambda.value(p)));  // ASCII: OIIO text
