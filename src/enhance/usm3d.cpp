@@ -60,7 +60,7 @@ SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::ve
   const TriangleMesh& mesh = object.mesh;
   std::vector<double> lightness(mesh.vertex_count());
   for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display, bits);
-  return surface_contrast(adjacency_from_triangles(mesh.vertex_count(), mesh.triangles), mesh.positions,
+  return surface_contrast(object.adjacency, mesh.positions,
                           std::move(lightness), object.importance, options, sigma_world);
 }
 
