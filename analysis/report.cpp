@@ -12,13 +12,7 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  });
-}
+void write_text(const std::filesystem::path& path, const std::string& text) { write_text_atomically(path, text); }
 
 std::string cell(const json& v) {
   if (v.is_string()) return csv_field(v.get<std::string>());

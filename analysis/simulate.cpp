@@ -64,11 +64,7 @@ void write_responses_csv(const std::vector<Response>& responses, const std::stri
   for (const auto& r : responses)
     csv << csv_field(r.subject) << "," << csv_field(r.scene) << "," << r.sigma << "," << kQuestionNames[int(r.question)]
         << "," << r.lambda << "," << lambda_step << "," << csv_field(r.method) << "\n";
-  write_atomically(path, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << csv.str();
-    if (!out) throw std::runtime_error(path + ": cannot write");
-  });
+  write_text_atomically(path, csv.str());
 }
 
 }  // namespace countershade::analysis

@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/method_options.h"
+#include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -24,12 +25,6 @@ struct ImageUsmArgs {
   MethodArgs method;
   std::optional<int> bits;
 };
-
-std::string lower_extension(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 bool is_linear_format(const std::string& ext) { return ext == ".exr" || ext == ".hdr" || ext == ".pfm"; }
 

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "enhance/usm3d.h"
@@ -37,8 +38,7 @@ void run(const MeshUsmArgs& args) {
     throw InputError("--sigma: must be a positive, finite world-space length");
   if (args.iterations && *args.iterations < 1) throw InputError("--iterations: must be at least 1");
   fs::path output(args.output);
-  std::string ext = output.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::string ext = lower_extension(output);
   if (ext != ".ply") throw_input_error(args.output, "output must be a .ply file (it carries vertex colours)");
   fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
   if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");

@@ -12,6 +12,7 @@
 #include "core/image.h"
 #include "core/progress.h"
 #include "cli/method_options.h"
+#include "core/atomic_file.h"
 #include "enhance/method.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
@@ -61,8 +62,7 @@ void write_aux(const fs::path& dir, const GBuffer& g) {
 
 void run(RenderArgs args) {
   fs::path output(args.output);
-  std::string ext = output.extension().string();
-  for (auto& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  std::string ext = lower_extension(output);
   if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
     throw_input_error(args.output, "output must be .png, .tif (display-encoded) or .exr (linear)");
   fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();

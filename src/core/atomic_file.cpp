@@ -2,7 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <fstream>
+#include <stdexcept>
 #include <string>
 
 namespace countershade {
@@ -22,6 +26,20 @@ void write_atomically(const std::filesystem::path& path,
     fs::remove(temp, ignored);
     throw;
   }
+}
+
+void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
+  write_atomically(path, [&](const std::filesystem::path& temp) {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
+  });
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
 }
 
 }  // namespace countershade

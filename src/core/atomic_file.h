@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 
 namespace countershade {
 
@@ -11,5 +12,11 @@ namespace countershade {
 // temporary file is removed and the exception propagates; `path` is untouched.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path&)>& write);
+
+// Writes `text` to `path` atomically; throws std::runtime_error when it cannot.
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
+
+// The extension of `path` in lower case, with its dot (".png"); file formats are chosen by it.
+std::string lower_extension(const std::filesystem::path& path);
 
 }  // namespace countershade

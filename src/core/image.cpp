@@ -14,12 +14,6 @@
 namespace countershade {
 namespace {
 
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 // PFM (portable float map, the Middlebury disparity format): "PF" (RGB) or "Pf" (grey), width,
 // height, then a scale whose sign gives the byte order (negative: little-endian), then float rows
 // from the bottom of the image to the top.

@@ -98,13 +98,6 @@ std::string LinePlot::to_svg() const {
   return svg.str();
 }
 
-void LinePlot::write(const std::filesystem::path& path) const {
-  std::string text = to_svg();
-  write_atomically(path, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  });
-}
+void LinePlot::write(const std::filesystem::path& path) const { write_text_atomically(path, to_svg()); }
 
 }  // namespace countershade

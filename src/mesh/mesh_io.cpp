@@ -12,6 +12,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace countershade {
@@ -119,8 +120,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw_input_error(path.string(), "no such mesh file");
   if (fs::file_size(path, ec) == 0) throw_input_error(path.string(), "mesh file is empty");
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
     throw_input_error(path.string(), "unsupported mesh format '" + ext + "' (use OBJ, PLY, OFF or STL)");
   size_t expected_triangles = ext == ".obj" ? check_obj(path) : 0;

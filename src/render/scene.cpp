@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -365,8 +366,7 @@ class SceneLoader {
         } catch (const InputError& e) {
           o.fail("file", e.what());
         }
-        std::string ext = file.extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+        std::string ext = lower_extension(file);
         if (ext == ".png" || ext == ".jpg" || ext == ".jpeg")  // display-encoded formats
           for (float& v : image.pixels) v = float(srgb_decode(v));
         l.map = std::make_shared<EnvironmentMap>(image);

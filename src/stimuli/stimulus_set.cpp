@@ -93,14 +93,7 @@ void sort_entries(OrderedJson& stimuli) {
   stimuli = OrderedJson(list);
 }
 
-void write_json(const fs::path& path, const OrderedJson& json) {
-  std::string text = json.dump(2) + "\n";
-  write_atomically(path, [&](const fs::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  });
-}
+void write_json(const fs::path& path, const OrderedJson& json) { write_text_atomically(path, json.dump(2) + "\n"); }
 
 // Appends one line and forces it to disk, so a killed run loses at most the image in flight.
 class Journal {
