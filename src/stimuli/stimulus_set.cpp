@@ -116,8 +116,10 @@ class Journal {
   std::mutex mutex_;
 };
 
-// Entries of a previous run whose files are still there with the same checksum.
-std::map<std::string, OrderedJson> verified_journal(const fs::path& set_dir, const fs::path& journal) {
+// Entries of a previous run whose files are still there with the same checksum. The journal's
+// first line names the experiment it belongs to; another experiment's journal is refused.
+std::map<std::string, OrderedJson> verified_journal(const fs::path& set_dir, const fs::path& journal,
+                                                    const std::string& experiment_sha256) {
   std::map<std::string, OrderedJson> done;
   std::ifstream in(journal);
   std::string line;
@@ -128,6 +130,9 @@ std::map<std::string, OrderedJson> verified_journal(const fs::path& set_dir, con
     } catch (const std::exception&) {
       continue;  // a line cut by the interruption
     }
+    if (entry.contains("experiment_sha256") && entry["experiment_sha256"] != experiment_sha256)
+      throw_input_error(set_dir.string(), "the unfinished set there was made from a different experiment file; "
+                                          "resume it with that file or choose a new folder");
     if (!entry.contains("file") || !entry.contains("sha256")) continue;
     fs::path file = set_dir / entry["file"].get<std::string>();
     std::error_code ec;
@@ -229,7 +234,7 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
   std::map<std::string, OrderedJson> done;
   if (options.resume) {
     remove_interrupted_writes(dir);
-    done = verified_journal(dir, journal_path);
+    done = verified_journal(dir, journal_path, e.sha256);
   }
 
   // Every scene is loaded (and so checked) before anything renders.
@@ -248,7 +253,9 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
 
   GenerateReport report;
   OrderedJson stimuli = OrderedJson::array();
+  const bool new_journal = !fs::exists(journal_path, ec);
   Journal journal(journal_path);
+  if (new_journal) journal.append({{"experiment_sha256", e.sha256}});
   Progress progress("stimuli " + e.name);
   std::atomic<size_t> finished{0}, written{0}, skipped{0};
   std::mutex stimuli_mutex;
@@ -315,7 +322,7 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
         OrderedJson entry = write_stimulus(dir, rel, view.display, e.bits,
                                            {{"scene", e.scenes[s].name}, {"method", "none"}, {"lambda", 0.0},
                                             {"lambda_index", 0}, {"clipped_pixels", 0}, {"display_encoding", encoding}});
-        encode_seconds = encode_seconds + since(te);
+        encode_seconds.fetch_add(since(te));
         record(entry, true);
         continue;
       }
@@ -334,7 +341,7 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
           }
           auto tc = Clock::now();
           Composed c = prepared->compose(e.lambda.value(l));
-          compose_seconds = compose_seconds + since(tc);
+          compose_seconds.fetch_add(since(tc));
           auto te = Clock::now();
           OrderedJson info = {{"scene", e.scenes[s].name},   {"method", m.method},
                               {"label", m.label},            {"sigma", m.sigmas[u.sigma]},
@@ -344,7 +351,7 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
           if (m.method == "depth-usm") info["operator"] = m.options.op;
           if (parameters.contains("iterations")) info["iterations"] = parameters["iterations"];
           OrderedJson entry = write_stimulus(dir, rel, c.display, e.bits, info);
-          encode_seconds = encode_seconds + since(te);
+          encode_seconds.fetch_add(since(te));
           record(entry, true);
         });
       });

@@ -184,6 +184,9 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   EXPECT_EQ(again.exit_code, 2) << "an unfinished set must not be overwritten without --resume: " << again.output;
   GenerateOptions resume = jobs(2);
   resume.resume = true;
+  // Resuming with another experiment file is refused rather than mixing two designs.
+  Experiment other = load_experiment(write_experiment(dir, 320, 240, 0.1));
+  EXPECT_THROW(generate_stimulus_set(other, dir / "cut", resume), InputError);
   GenerateReport report = generate_stimulus_set(e, dir / "cut", resume);
   EXPECT_GT(report.images_skipped, 0u);
   EXPECT_GT(report.images_written, 0u);
