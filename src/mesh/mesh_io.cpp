@@ -134,21 +134,27 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
                                   OpenMesh::IO::Options::FaceTexCoord;
 
   // OpenMesh reports dropped faces (complex edges, non-manifold vertices) only on its error
-  // stream; capture it so they become an error rather than a silently incomplete mesh.
+  // stream; capture it so they become an error rather than a silently incomplete mesh. The
+  // capture is connected once: OpenMesh allocates on every connect() and never frees on
+  // disconnect(). Intentionally never destroyed, since OpenMesh keeps a pointer to it.
   static std::mutex omerr_mutex;
-  std::ostringstream reader_log;
+  static std::ostringstream* reader_log = [] {
+    auto* log = new std::ostringstream;
+    omerr().disconnect(std::cerr);
+    omerr().connect(*log);
+    omlog().disable();
+    return log;
+  }();
   bool ok;
+  std::string log;
   {
     std::lock_guard<std::mutex> lock(omerr_mutex);
-    omerr().disconnect(std::cerr);
-    omerr().connect(reader_log);
-    omlog().disable();
+    reader_log->str("");
+    reader_log->clear();
     ok = OpenMesh::IO::read_mesh(om, path.string(), options);
-    omerr().disconnect(reader_log);
-    omerr().connect(std::cerr);
+    log = reader_log->str();
   }
   if (!ok) throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
-  std::string log = reader_log.str();
   if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
       log.find("failed") != std::string::npos ||
       (expected_triangles > 0 && om.n_faces() < expected_triangles)) {
