@@ -102,14 +102,15 @@ TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
   Experiment e = load_experiment(write_experiment(dir));
   generate_stimulus_set(e, dir / "set", jobs(2));
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
-  for (const auto& s : manifest_of(dir / "set")["stimuli"]) {
+  const OrderedJson manifest = manifest_of(dir / "set");  // keep it alive while iterating
+  for (const auto& s : manifest["stimuli"]) {
     std::string file = s["file"].get<std::string>();
     EXPECT_EQ(file.find(".."), std::string::npos);
     EXPECT_FALSE(fs::path(file).is_absolute());
     EXPECT_EQ(s["size"].get<uintmax_t>(), fs::file_size(dir / "set" / file));
   }
   // A changed file and an unlisted file are both reported.
-  auto some = manifest_of(dir / "set")["stimuli"][3]["file"].get<std::string>();
+  auto some = manifest["stimuli"][3]["file"].get<std::string>();
   std::ofstream(dir / "set" / some, std::ios::app) << "x";
   fs::copy_file(dir / "set/cube/reference.png", dir / "set/cube/stray.png");
   auto problems = verify_stimulus_set(dir / "set/manifest.json");
