@@ -8,9 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <sstream>
 #include <string>
+
+#include "core/error.h"
 
 namespace countershade::testing {
 
@@ -68,6 +71,16 @@ inline CommandResult run_cli(const std::string& arguments) {
   int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// The message of the InputError that `f` throws, or "(no error)".
+inline std::string input_error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const countershade::InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
 }
 
 inline int count_lines(const std::string& text) {

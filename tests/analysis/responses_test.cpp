@@ -8,15 +8,6 @@
 namespace countershade::analysis {
 namespace {
 
-std::string error_of(const std::filesystem::path& path) {
-  try {
-    read_responses(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 const char* kHeader = "subject,scene,sigma,question,lambda,lambda_step\n";
 
 TEST(Responses, ReadsRfc4180WithBomCrlfQuotesAndUnknownColumns) {
@@ -56,7 +47,7 @@ TEST(Responses, BadInputNamesFileLineAndColumn) {
   int i = 0;
   for (const auto& c : cases) {
     auto path = testing::write_file(dir / ("bad" + std::to_string(i++) + ".csv"), c.text);
-    std::string message = error_of(path);
+    std::string message = testing::input_error_of([&] { read_responses(path); });
     EXPECT_EQ(message.rfind(path.string(), 0), 0u) << message;
     EXPECT_NE(message.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << message;
     EXPECT_EQ(message.find('\n'), std::string::npos);

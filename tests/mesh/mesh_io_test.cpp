@@ -8,15 +8,6 @@
 namespace countershade {
 namespace {
 
-std::string load_error(const std::filesystem::path& path) {
-  try {
-    load_mesh(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(MeshIo, LoadsSharedMeshes) {
   TriangleMesh bunny = load_mesh(testing::mesh_path("stanford-bunny.obj"));
   EXPECT_EQ(bunny.vertex_count(), 35947u);
@@ -69,12 +60,12 @@ TEST(MeshIo, BadMeshesAreInputErrorsNamingTheFile) {
   };
   for (const auto& c : cases) {
     auto path = testing::write_file(dir / c.name, c.text);
-    std::string message = load_error(path);
+    std::string message = testing::input_error_of([&] { load_mesh(path); });
     EXPECT_NE(message.find(path.string()), std::string::npos) << c.name << ": " << message;
     EXPECT_NE(message.find(c.expected), std::string::npos) << c.name << ": " << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << c.name;
   }
-  EXPECT_NE(load_error(dir / "missing.obj").find("no such mesh file"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { load_mesh(dir / "missing.obj"); }).find("no such mesh file"), std::string::npos);
 }
 
 }  // namespace

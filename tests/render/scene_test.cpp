@@ -15,15 +15,6 @@ const char* kMinimal = R"({
   "lights": [{"type": "directional", "direction": [0, 1, 1], "irradiance": 1}]
 })";
 
-std::string load_error(const std::filesystem::path& path) {
-  try {
-    load_scene(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 // Replaces the first occurrence of `from` in the minimal scene.
 std::string variant(const std::string& from, const std::string& to) {
   std::string text = kMinimal;
@@ -95,12 +86,12 @@ TEST(Scene, BadInputNamesFileAndKeyPath) {
   int i = 0;
   for (const auto& c : cases) {
     auto path = testing::write_file(dir / ("case" + std::to_string(i++) + ".json"), c.text);
-    std::string message = load_error(path);
+    std::string message = testing::input_error_of([&] { load_scene(path); });
     EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
     EXPECT_NE(message.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << message;
     EXPECT_EQ(message.find('\n'), std::string::npos);
   }
-  EXPECT_NE(load_error(dir / "absent.json").find("no such file"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { load_scene(dir / "absent.json"); }).find("no such file"), std::string::npos);
 }
 
 }  // namespace
