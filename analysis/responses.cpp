@@ -1,6 +1,7 @@
 #include "analysis/responses.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -78,6 +79,39 @@ std::string csv_field(const std::string& value) {
   return out + "\"";
 }
 
+namespace {
+
+// The adjustment app writes a new row, with a higher `revision`, when an observer goes back and
+// answers a question again; only the latest answer to each question of a trial counts.
+std::vector<Response> latest_revisions(std::vector<Response> rows, const CsvTable& table,
+                                       const std::map<std::string, size_t>& column) {
+  if (!column.count("revision") || !column.count("trial")) return rows;
+  auto field = [&](size_t r, const char* name) -> std::string {
+    auto it = column.find(name);
+    return it == column.end() ? std::string() : table.rows[r + 1][it->second];
+  };
+  std::map<std::string, std::pair<long, size_t>> latest;  // question key → (revision, row)
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const std::string key = rows[r].subject + '\x1f' + field(r, "session") + '\x1f' + field(r, "trial") + '\x1f' +
+                            kQuestionNames[int(rows[r].question)];
+    const std::string text = field(r, "revision");
+    char* end = nullptr;
+    const long revision = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || revision < 0)
+      throw_input_error(rows[r].source + " (revision)", "'" + text + "' is not a revision number");
+    auto [it, inserted] = latest.emplace(key, std::make_pair(revision, r));
+    if (!inserted && revision >= it->second.first) it->second = {revision, r};
+  }
+  std::vector<bool> keep(rows.size(), false);
+  for (const auto& [key, value] : latest) keep[value.second] = true;
+  std::vector<Response> out;
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (keep[r]) out.push_back(std::move(rows[r]));
+  return out;
+}
+
+}  // namespace
+
 std::vector<Response> read_responses(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::error_code ec;
@@ -147,7 +181,7 @@ std::vector<Response> read_responses(const std::filesystem::path& path) {
     }
     out.push_back(std::move(resp));
   }
-  return out;
+  return latest_revisions(std::move(out), table, column);
 }
 
 std::vector<Response> read_responses(const std::vector<std::filesystem::path>& paths) {

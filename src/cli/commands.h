@@ -11,5 +11,6 @@ void add_image_usm_command(CLI::App& app);
 void add_analyze_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_stimuli_command(CLI::App& app);
+void add_adjust_command(CLI::App& app);
 
 }  // namespace countershade::cli

@@ -137,6 +137,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
     root.fail("version", "unsupported experiment format version " + std::to_string(version));
   e.name = root.string_or("name", path.stem().string());
   if (root.has("description")) root.string("description");
+  if (root.has("adjust")) root.object("adjust");  // the adjustment procedure; checked by `adjust`
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
   if (root.has("lambda")) {
     JsonObject l = root.object("lambda");

@@ -1,0 +1,323 @@
+#include "adjust/presenter.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <GL/gl.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "core/error.h"
+#include "core/image.h"
+
+namespace countershade::adjust {
+
+namespace {
+
+const char* const kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+std::string glfw_error;
+void record_glfw_error(int, const char* description) { glfw_error = description ? description : "unknown error"; }
+
+struct Margins {
+  int side, top, bottom;
+};
+Margins margins_for(const DisplayOptions& o) {
+  const double line = o.font_px * 1.35;
+  return {int(std::ceil(o.font_px)), int(std::ceil(line * 4.5)), int(std::ceil(line * 2.5))};
+}
+
+std::optional<Key> key_of(int glfw_key) {
+  switch (glfw_key) {
+    case GLFW_KEY_UP: return Key::up;
+    case GLFW_KEY_DOWN: return Key::down;
+    case GLFW_KEY_LEFT: return Key::left;
+    case GLFW_KEY_RIGHT: return Key::right;
+    case GLFW_KEY_ENTER:
+    case GLFW_KEY_KP_ENTER: return Key::enter;
+    case GLFW_KEY_BACKSPACE: return Key::backspace;
+    case GLFW_KEY_ESCAPE: return Key::escape;
+    case GLFW_KEY_Q: return Key::quit;
+    default: return std::nullopt;
+  }
+}
+
+// Draws `text` wrapped to `wrap` pixels, the block centred on `centre_x`, from `top`; returns the
+// height used.
+float centred_text(ImDrawList* list, const char* text, float centre_x, float top, float wrap, ImU32 colour) {
+  ImFont* font = ImGui::GetFont();
+  const float size = ImGui::GetFontSize();
+  ImVec2 extent = font->CalcTextSizeA(size, FLT_MAX, wrap, text);
+  list->AddText(font, size, ImVec2(std::floor(centre_x - extent.x / 2), std::floor(top)), colour, text, nullptr, wrap);
+  return extent.y;
+}
+
+}  // namespace
+
+void Presenter::required_size(const DisplayOptions& o, int* width, int* height) {
+  Margins m = margins_for(o);
+  *width = 2 * o.stimulus_width + o.gap_px + 2 * m.side;
+  *height = o.stimulus_height + m.top + m.bottom;
+}
+
+Presenter::Presenter(const DisplayOptions& options) : options_(options) {
+  glfwSetErrorCallback(record_glfw_error);
+  if (!glfwInit())
+    throw std::runtime_error("cannot open a window: " + glfw_error +
+                             " (the app needs a display; for tests run it under xvfb-run)");
+  int count = 0;
+  GLFWmonitor** monitors = glfwGetMonitors(&count);
+  if (count == 0 || !monitors) {
+    glfwTerminate();
+    throw std::runtime_error("cannot open a window: no monitor found");
+  }
+  if (options.monitor < 0 || options.monitor >= count) {
+    glfwTerminate();
+    throw_input_error("--monitor", std::to_string(options.monitor) + " is not a monitor (found " + std::to_string(count) +
+                                       ", numbered from 0)");
+  }
+  GLFWmonitor* monitor = monitors[options.monitor];
+  const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+  screen_w_ = mode->width;
+  screen_h_ = mode->height;
+  if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
+
+  int need_w = 0, need_h = 0;
+  required_size(options, &need_w, &need_h);
+  if (need_w > screen_w_ || need_h > screen_h_) {
+    glfwTerminate();
+    throw_input_error("display", "two " + std::to_string(options.stimulus_width) + "x" +
+                                     std::to_string(options.stimulus_height) + " stimuli with the question text need " +
+                                     std::to_string(need_w) + "x" + std::to_string(need_h) +
+                                     " pixels at 1:1 scale, but monitor " + std::to_string(options.monitor) + " is " +
+                                     std::to_string(screen_w_) + "x" + std::to_string(screen_h_) +
+                                     " (use a larger screen or a set with smaller images)");
+  }
+
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);  // display values go to the screen unchanged
+  glfwWindowHint(GLFW_SAMPLES, 0);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_FALSE);
+  int win_w = need_w, win_h = need_h;
+  if (options.fullscreen) {
+    glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+    win_w = screen_w_;
+    win_h = screen_h_;
+  } else {
+    win_w = std::max(need_w, std::min(1280, screen_w_));
+    win_h = std::max(need_h, std::min(800, screen_h_));
+  }
+  window_ = glfwCreateWindow(win_w, win_h, options.title.c_str(), options.fullscreen ? monitor : nullptr, nullptr);
+  if (!window_) {
+    glfwTerminate();
+    throw std::runtime_error("cannot open an OpenGL 3.3 core window: " + glfw_error);
+  }
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, key_callback);
+  glfwSetWindowFocusCallback(window_, focus_callback);
+  glfwSetWindowCloseCallback(window_, close_callback);
+  if (options.fullscreen) glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(1);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // nothing written to the working folder
+  io.LogFilename = nullptr;
+  ImFontConfig font_config;
+  font_config.OversampleH = 2;
+  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options.font_px), &font_config)) {
+    ImFontConfig fallback;
+    fallback.SizePixels = float(options.font_px);
+    io.Fonts->AddFontDefault(&fallback);
+  }
+  ImGui_ImplGlfw_InitForOpenGL(window_, false);  // the app handles keys itself
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  text_rgb_ = options.surround >= 128 ? 0.08f : 0.92f;
+}
+
+Presenter::~Presenter() {
+  if (!window_) return;
+  glfwMakeContextCurrent(window_);
+  if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+nlohmann::ordered_json Presenter::display_info() const {
+  int ww = 0, wh = 0, fw = 0, fh = 0;
+  glfwGetWindowSize(window_, &ww, &wh);
+  glfwGetFramebufferSize(window_, &fw, &fh);
+  auto gl_string = [](GLenum name) {
+    const GLubyte* s = glGetString(name);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+  };
+  return {{"gl_renderer", gl_string(GL_RENDERER)},
+          {"gl_vendor", gl_string(GL_VENDOR)},
+          {"gl_version", gl_string(GL_VERSION)},
+          {"glfw_version", glfwGetVersionString()},
+          {"monitor", options_.monitor},
+          {"screen", {screen_w_, screen_h_}},
+          {"refresh_hz", refresh_hz_},
+          {"fullscreen", options_.fullscreen},
+          {"window", {ww, wh}},
+          {"framebuffer", {fw, fh}},
+          {"surround", options_.surround}};
+}
+
+unsigned Presenter::upload_texture(const std::vector<uint8_t>& rgba, int width, int height) {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("cannot upload a stimulus texture (out of GPU memory?)");
+  textures_.push_back(id);
+  return id;
+}
+
+void Presenter::key_callback(GLFWwindow* w, int key, int, int action, int) {
+  auto* self = static_cast<Presenter*>(glfwGetWindowUserPointer(w));
+  // GLFW_REPEAT comes at the system's rate; the procedure makes its own, controlled repeats.
+  if (action == GLFW_REPEAT) return;
+  auto k = key_of(key);
+  if (!k) return;
+  self->events_.push_back({action == GLFW_PRESS ? WindowEvent::Kind::press : WindowEvent::Kind::release, *k, glfwGetTime()});
+}
+
+void Presenter::focus_callback(GLFWwindow* w, int focused) {
+  auto* self = static_cast<Presenter*>(glfwGetWindowUserPointer(w));
+  self->events_.push_back({focused ? WindowEvent::Kind::focus_gained : WindowEvent::Kind::focus_lost, Key::enter, glfwGetTime()});
+}
+
+void Presenter::close_callback(GLFWwindow* w) {
+  auto* self = static_cast<Presenter*>(glfwGetWindowUserPointer(w));
+  glfwSetWindowShouldClose(w, GLFW_FALSE);  // the session decides; its answers are already saved
+  self->events_.push_back({WindowEvent::Kind::close, Key::enter, glfwGetTime()});
+}
+
+std::vector<WindowEvent> Presenter::poll_events() {
+  glfwPollEvents();
+  std::vector<WindowEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+double Presenter::now() const { return glfwGetTime(); }
+
+StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::path& screenshot) {
+  int fw = 0, fh = 0, ww = 0, wh = 0;
+  glfwGetFramebufferSize(window_, &fw, &fh);
+  glfwGetWindowSize(window_, &ww, &wh);
+  // ImGui works in window coordinates; stimuli are placed in framebuffer pixels.
+  const float scale = ww > 0 ? float(fw) / float(ww) : 1.0f;
+  glViewport(0, 0, fw, fh);
+  const float grey = float(options_.surround) / 255.0f;
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glClearColor(grey, grey, grey, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  ImDrawList* back = ImGui::GetBackgroundDrawList();
+  ImDrawList* front = ImGui::GetForegroundDrawList();
+  const ImU32 text = ImGui::ColorConvertFloat4ToU32(ImVec4(text_rgb_, text_rgb_, text_rgb_, 1));
+  const Margins m = margins_for(options_);
+  const float wrap = float(ww) * 0.8f;
+  const float line = ImGui::GetFontSize() * 1.35f;
+
+  StimulusLayout layout;
+  if (c.left_texture && c.right_texture) {
+    layout.width = c.image_width;
+    layout.height = c.image_height;
+    const int pair = 2 * c.image_width + options_.gap_px;
+    layout.fits = pair + 2 * m.side <= fw && c.image_height + m.top + m.bottom <= fh;
+    layout.left_x = (fw - pair) / 2;
+    layout.right_x = layout.left_x + c.image_width + options_.gap_px;
+    layout.y = m.top + std::max(0, (fh - m.top - m.bottom - c.image_height) / 2);
+    if (layout.fits) {
+      auto quad = [&](unsigned tex, int x) {
+        back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(tex)), ImVec2(float(x) / scale, float(layout.y) / scale),
+                       ImVec2(float(x + c.image_width) / scale, float(layout.y + c.image_height) / scale));
+      };
+      quad(c.left_texture, layout.left_x);
+      quad(c.right_texture, layout.right_x);
+    } else {
+      centred_text(front, "The window is too small to show the images at 1:1 scale. Please enlarge it.",
+                   float(ww) / 2, float(wh) / 2, wrap, text);
+    }
+    const float top = float(layout.y) / scale;
+    if (!c.header.empty()) centred_text(front, c.header.c_str(), float(ww) / 2, top - 3.2f * line, wrap, text);
+    if (!c.question.empty()) centred_text(front, c.question.c_str(), float(ww) / 2, top - 1.9f * line, wrap, text);
+    if (!c.hint.empty())
+      centred_text(front, c.hint.c_str(), float(ww) / 2, float(layout.y + c.image_height) / scale + 0.8f * line, wrap, text);
+  }
+  if (!c.message.empty()) {
+    float h = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, std::min(wrap, 900.0f), c.message.c_str()).y;
+    float top = float(wh) / 2 - h / 2 - line;
+    float used = centred_text(front, c.message.c_str(), float(ww) / 2, top, std::min(wrap, 900.0f), text);
+    if (c.progress >= 0) {
+      const float bw = std::min(600.0f, float(ww) * 0.6f), bh = line * 0.6f;
+      ImVec2 p0(float(ww) / 2 - bw / 2, top + used + line), p1(p0.x + bw, p0.y + bh);
+      front->AddRect(p0, p1, text, 0, 0, 1.5f);
+      front->AddRectFilled(p0, ImVec2(p0.x + bw * float(std::clamp(c.progress, 0.0, 1.0)), p1.y), text);
+    }
+  }
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+  if (!screenshot.empty()) {
+    glFinish();
+    std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    Image shot(fw, fh, 3);
+    for (int y = 0; y < fh; ++y)  // OpenGL rows run bottom-up
+      for (int x = 0; x < fw * 3; ++x)
+        shot.pixels[size_t(y) * size_t(fw) * 3 + size_t(x)] = float(rgb[size_t(fh - 1 - y) * size_t(fw) * 3 + size_t(x)]) / 255.0f;
+    write_image(screenshot, shot);
+  }
+  glfwSwapBuffers(window_);
+  return layout;
+}
+
+void Presenter::pace() {
+  const double period = 1.0 / refresh_hz_;
+  const double t = glfwGetTime();
+  if (last_swap_ >= 0 && frames_ < 20) early_intervals_.push_back(t - last_swap_);
+  ++frames_;
+  if (frames_ == 20 && !early_intervals_.empty()) {
+    // Without a working swap interval (e.g. a virtual X server) frames would run unthrottled.
+    std::nth_element(early_intervals_.begin(), early_intervals_.begin() + early_intervals_.size() / 2, early_intervals_.end());
+    timer_pacing_ = early_intervals_[early_intervals_.size() / 2] < 0.5 * period;
+    next_deadline_ = t + period;
+  }
+  if (timer_pacing_) {
+    if (t < next_deadline_) std::this_thread::sleep_for(std::chrono::duration<double>(next_deadline_ - t));
+    next_deadline_ = std::max(next_deadline_ + period, glfwGetTime());
+  }
+  last_swap_ = glfwGetTime();
+}
+
+}  // namespace countershade::adjust

@@ -1,0 +1,103 @@
+#pragma once
+// The adjustment app's window: GLFW, OpenGL 3.3 core and Dear ImGui. It shows two stimuli at
+// exactly 1:1 pixel scale (nearest-neighbour textures at integer positions, RGBA8 textures into
+// a non-sRGB framebuffer, so no filtering, resampling or gamma change) on a uniform grey surround,
+// with the question text above and the progress below. It knows nothing about the procedure.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "adjust/procedure.h"
+
+struct GLFWwindow;
+
+namespace countershade::adjust {
+
+struct DisplayOptions {
+  bool fullscreen = false;
+  int monitor = 0;
+  int stimulus_width = 0, stimulus_height = 0;  // the largest stimulus of the study
+  int gap_px = 48;
+  int surround = 128;
+  double font_px = 22;
+  std::string title = "countershade adjust";
+};
+
+// A key or window event from GLFW, with its time on glfwGetTime()'s clock.
+struct WindowEvent {
+  enum class Kind { press, release, focus_lost, focus_gained, close };
+  Kind kind = Kind::press;
+  Key key = Key::enter;
+  double time_s = 0;
+};
+
+// What one frame shows.
+struct FrameContent {
+  unsigned left_texture = 0, right_texture = 0;  // 0: no images
+  int image_width = 0, image_height = 0;
+  std::string header;    // top line, e.g. "Trial 3 of 24"
+  std::string question;  // the question text above the images
+  std::string hint;      // the key reminder below the images
+  std::string message;   // a centred text block over the surround (instructions, pause, end)
+  double progress = -1;  // a progress bar (0..1) under the message; < 0 for none
+};
+
+// Where the stimuli of the last frame were drawn, in framebuffer pixels from the top-left.
+struct StimulusLayout {
+  int left_x = 0, right_x = 0, y = 0, width = 0, height = 0;
+  bool fits = true;
+};
+
+class Presenter {
+ public:
+  // The minimum framebuffer size that shows two stimuli of this size at 1:1 with the texts.
+  static void required_size(const DisplayOptions& options, int* width, int* height);
+
+  // Opens the window. Throws InputError when the screen cannot show both stimuli at 1:1 (saying
+  // why), std::runtime_error when there is no display or no OpenGL 3.3.
+  explicit Presenter(const DisplayOptions& options);
+  ~Presenter();
+  Presenter(const Presenter&) = delete;
+  Presenter& operator=(const Presenter&) = delete;
+
+  // GL renderer and version, screen size and refresh rate, window and framebuffer sizes.
+  nlohmann::ordered_json display_info() const;
+  double refresh_hz() const { return refresh_hz_; }
+
+  // Uploads an 8-bit RGBA image as a nearest-neighbour texture; returns its id.
+  unsigned upload_texture(const std::vector<uint8_t>& rgba, int width, int height);
+
+  // Events since the last call. GLFW_REPEAT is dropped on purpose: the procedure times repeats.
+  std::vector<WindowEvent> poll_events();
+  double now() const;
+
+  // Draws a frame; when `screenshot` is set, writes that frame (as displayed) to the PNG first.
+  StimulusLayout draw(const FrameContent& content, const std::filesystem::path& screenshot = {});
+  // Blocks until the next frame is due: vsync where the driver provides it, else a timer.
+  void pace();
+  bool timer_paced() const { return timer_pacing_; }
+
+ private:
+  GLFWwindow* window_ = nullptr;
+  DisplayOptions options_;
+  double refresh_hz_ = 60;
+  int screen_w_ = 0, screen_h_ = 0;
+  std::vector<unsigned> textures_;
+  std::vector<WindowEvent> events_;
+  double last_swap_ = -1, next_deadline_ = 0;
+  int frames_ = 0;
+  std::vector<double> early_intervals_;
+  bool timer_pacing_ = false;
+  float text_rgb_ = 0;
+
+  static void key_callback(GLFWwindow* w, int key, int scancode, int action, int mods);
+  static void focus_callback(GLFWwindow* w, int focused);
+  static void close_callback(GLFWwindow* w);
+};
+
+}  // namespace countershade::adjust

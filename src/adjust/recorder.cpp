@@ -1,0 +1,348 @@
+#include "adjust/recorder.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "analysis/responses.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/version.h"
+#include "stimuli/experiment.h"
+
+namespace countershade::adjust {
+
+namespace fs = std::filesystem;
+using OrderedJson = nlohmann::ordered_json;
+
+namespace {
+
+constexpr int kSidecarFormatVersion = 1;
+
+std::string two_digits(int session) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%02d", session);
+  return buffer;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void sync_directory(const fs::path& dir) {
+  int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+
+std::string csv_line(const std::vector<std::string>& fields) {
+  std::string line;
+  for (size_t i = 0; i < fields.size(); ++i) {
+    if (i) line += ',';
+    line += analysis::csv_field(fields[i]);
+  }
+  return line + "\n";
+}
+
+}  // namespace
+
+SessionFiles session_files(const fs::path& dir, const std::string& subject, int session) {
+  const std::string stem = subject + "_s" + two_digits(session);
+  return {dir / (stem + ".csv"), dir / (stem + ".json"), dir / (stem + ".keys.csv")};
+}
+
+const std::vector<std::string>& response_columns() {
+  static const std::vector<std::string> columns = {
+      "subject",     "scene",        "sigma",      "question",    "lambda",       "method",
+      "lambda_step", "lambda_index", "start_index", "repetition", "session",      "trial",
+      "side",        "n_keypresses", "rt_ms",      "revision",    "timestamp_utc", "stimulus_set",
+      "app_version"};
+  return columns;
+}
+
+std::string utc_timestamp() {
+  auto now = std::chrono::system_clock::now();
+  std::time_t t = std::chrono::system_clock::to_time_t(now);
+  auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1,
+                tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, int(ms));
+  return buffer;
+}
+
+// ---------------------------------------------------------------------------------------------
+// AppendOnlyFile
+
+AppendOnlyFile AppendOnlyFile::create(const fs::path& path, const std::string& header) {
+  AppendOnlyFile f;
+  f.path_ = path;
+  f.fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
+  if (f.fd_ < 0) {
+    if (errno == EEXIST)
+      throw_input_error(path.string(), "already exists; a session is never overwritten (use --resume to continue it, "
+                                       "or another --session number)");
+    throw_input_error(path.string(), std::string("cannot create: ") + std::strerror(errno));
+  }
+  f.append(header);
+  f.sync();
+  sync_directory(path.parent_path());
+  return f;
+}
+
+AppendOnlyFile AppendOnlyFile::open_existing(const fs::path& path) {
+  AppendOnlyFile f;
+  f.path_ = path;
+  f.fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (f.fd_ < 0) throw_input_error(path.string(), std::string("cannot open for appending: ") + std::strerror(errno));
+  return f;
+}
+
+AppendOnlyFile::AppendOnlyFile(AppendOnlyFile&& other) noexcept : fd_(other.fd_), path_(std::move(other.path_)) {
+  other.fd_ = -1;
+}
+
+AppendOnlyFile& AppendOnlyFile::operator=(AppendOnlyFile&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = other.fd_;
+    path_ = std::move(other.path_);
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+AppendOnlyFile::~AppendOnlyFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void AppendOnlyFile::append(const std::string& text) {
+  ssize_t written = ::write(fd_, text.data(), text.size());
+  if (written != ssize_t(text.size()))
+    throw std::runtime_error(path_.string() + ": write failed: " + std::strerror(errno));
+}
+
+void AppendOnlyFile::sync() {
+  if (::fsync(fd_) != 0) throw std::runtime_error(path_.string() + ": fsync failed: " + std::strerror(errno));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading a session back
+
+RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, const std::vector<Trial>& plan) {
+  RecordedAnswers out;
+  std::string text = read_bytes(csv);
+  // A line without its newline can only come from a write cut short by a power loss (a killed
+  // process still completes its write). Keep those bytes aside and drop them from the file.
+  size_t end = text.rfind('\n');
+  size_t keep = end == std::string::npos ? 0 : end + 1;
+  if (keep < text.size()) {
+    out.dropped_tail = text.substr(keep);
+    text.resize(keep);
+  }
+  const std::string file = csv.string();
+  analysis::CsvTable table = analysis::parse_csv(text, file);
+  if (table.rows.empty() || table.rows[0] != response_columns())
+    throw_input_error(file + ": line 1", "not a session file written by this app (unexpected header)");
+  auto column = [](const char* name) {
+    const auto& cols = response_columns();
+    return size_t(std::find(cols.begin(), cols.end(), name) - cols.begin());
+  };
+  std::map<int, int> plan_index_of_number;
+  for (size_t i = 0; i < plan.size(); ++i)
+    if (!plan[i].practice) plan_index_of_number[plan[i].number] = int(i);
+  for (size_t r = 1; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    const std::string where = file + ": line " + std::to_string(table.lines[r]);
+    if (row.size() != response_columns().size())
+      throw_input_error(where, "expected " + std::to_string(response_columns().size()) + " fields, found " +
+                                   std::to_string(row.size()));
+    auto integer = [&](const char* name) {
+      const std::string& v = row[column(name)];
+      try {
+        size_t used = 0;
+        int x = std::stoi(v, &used);
+        if (used == v.size()) return x;
+      } catch (const std::exception&) {
+      }
+      throw_input_error(where + " (" + name + ")", "'" + v + "' is not an integer");
+    };
+    const int number = integer("trial");
+    auto it = plan_index_of_number.find(number);
+    if (it == plan_index_of_number.end()) throw_input_error(where + " (trial)", "trial " + std::to_string(number) + " is not in the plan");
+    const Trial& trial = plan[size_t(it->second)];
+    const Condition& c = study.conditions[size_t(trial.condition)];
+    int question = -1;
+    for (int q = 0; q < kQuestionCount; ++q)
+      if (row[column("question")] == kQuestionNames[q]) question = q;
+    if (question < 0) throw_input_error(where + " (question)", "unknown question '" + row[column("question")] + "'");
+    const int lambda_index = integer("lambda_index");
+    if (row[column("scene")] != c.scene || row[column("method")] != c.method ||
+        row[column("sigma")] != format_value(c.sigma) || lambda_index < 0 || lambda_index >= c.grid_size ||
+        row[column("lambda")] != format_value(study.lambda(lambda_index)))
+      throw_input_error(where, "the row does not match trial " + std::to_string(number) +
+                                   " of this session's plan (was the stimulus set or the configuration changed?)");
+    PastAnswer& past = out.answered[{it->second, question}];
+    const int revision = integer("revision");
+    if (revision >= past.revision) past = PastAnswer{lambda_index, revision};
+    ++out.rows;
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// SessionRecorder
+
+OrderedJson plan_to_json(const Study& study, const std::vector<Trial>& plan) {
+  OrderedJson out = OrderedJson::array();
+  for (const auto& t : plan) {
+    const Condition& c = study.conditions[size_t(t.condition)];
+    out.push_back({{"trial", t.number},
+                   {"practice", t.practice},
+                   {"scene", c.scene},
+                   {"method", c.method},
+                   {"sigma", c.sigma},
+                   {"repetition", t.repetition},
+                   {"side", side_name(t.side)},
+                   {"start_index", {t.start_index[0], t.start_index[1], t.start_index[2]}}});
+  }
+  return out;
+}
+
+SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& plan, const Identity& who,
+                                 const fs::path& dir, bool resume)
+    : study_(study), plan_(plan), who_(who), files_(session_files(dir, who.subject, who.session)) {
+  std::error_code ec;
+  if (!resume) {
+    fs::create_directories(dir, ec);
+    if (!fs::is_directory(dir, ec)) throw_input_error(dir.string(), "cannot create the sessions folder");
+    for (const auto& p : {files_.sidecar, files_.keys})
+      if (fs::exists(p, ec))
+        throw_input_error(p.string(), "already exists; a session is never overwritten (use --resume to continue it, "
+                                      "or another --session number)");
+    std::string header;
+    for (size_t i = 0; i < response_columns().size(); ++i) header += (i ? "," : "") + response_columns()[i];
+    csv_ = AppendOnlyFile::create(files_.csv, header + "\n");
+    keys_ = AppendOnlyFile::create(files_.keys, "run,time_s,event,key,trial,question,lambda_index\n");
+    sidecar_ = {{"format_version", kSidecarFormatVersion},
+                {"subject", who.subject},
+                {"session", who.session},
+                {"app_version", kVersion},
+                {"manifest", fs::absolute(study.manifest_path).lexically_normal().string()},
+                {"stimulus_set", study.manifest_sha256},
+                {"set_name", study.set_name},
+                {"seed", who.seed},
+                {"config_source", study.config_source},
+                {"config", study.config.to_json()},
+                {"lambda_grid", {{"min", study.lambda_min}, {"step", study.lambda_step}}},
+                {"plan", plan_to_json(study, plan)},
+                {"runs", OrderedJson::array()}};
+  } else {
+    for (const auto& p : {files_.csv, files_.sidecar, files_.keys})
+      if (!fs::is_regular_file(p, ec))
+        throw_input_error(p.string(), "no such file: there is no session to resume (start it without --resume)");
+    try {
+      sidecar_ = OrderedJson::parse(read_bytes(files_.sidecar));
+    } catch (const std::exception&) {
+      throw_input_error(files_.sidecar.string(), "not valid JSON");
+    }
+    if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion || !sidecar_.contains("runs"))
+      throw_input_error(files_.sidecar.string(), "not a session sidecar written by this app");
+    if (sidecar_.value("stimulus_set", std::string()) != study.manifest_sha256)
+      throw_input_error(files_.sidecar.string() + ": stimulus_set",
+                        "the session was recorded with another stimulus set (manifest sha256 differs)");
+    if (sidecar_["plan"] != plan_to_json(study, plan) || sidecar_["seed"] != who.seed)
+      throw_input_error(files_.sidecar.string() + ": plan",
+                        "the trial plan differs from the one recorded (was the configuration or --seed changed?)");
+    recorded_ = read_recorded_answers(files_.csv, study, plan);
+    // Runs that never recorded their end were interrupted (killed, crashed, power lost).
+    for (auto& r : sidecar_["runs"])
+      if (r.value("end", std::string()) == "running") r["end"] = "interrupted";
+    if (!recorded_.dropped_tail.empty()) {
+      const fs::path aside = files_.csv.string() + ".partial-" + utc_timestamp();
+      write_text_atomically(aside, recorded_.dropped_tail);
+      fs::resize_file(files_.csv, fs::file_size(files_.csv) - recorded_.dropped_tail.size());
+      sidecar_["repairs"].push_back({{"at_utc", utc_timestamp()},
+                                     {"what", "a partial last line of the responses was moved aside"},
+                                     {"file", aside.filename().string()}});
+    }
+    csv_ = AppendOnlyFile::open_existing(files_.csv);
+    keys_ = AppendOnlyFile::open_existing(files_.keys);
+  }
+  sidecar_["runs"].push_back({{"started_utc", utc_timestamp()},
+                              {"end", "running"},
+                              {"resumed", resume},
+                              {"answers_before", recorded_.rows},
+                              {"answers", 0},
+                              {"pauses", OrderedJson::array()},
+                              {"focus_losses", OrderedJson::array()}});
+  save();
+}
+
+void SessionRecorder::record_answer(const Answer& a, double time_s) {
+  const Trial& t = plan_[size_t(a.trial_index)];
+  log_line(time_s, a.revision ? "answer-revised" : "answer", "enter", t.practice ? "practice" : std::to_string(t.number),
+           kQuestionNames[int(a.question)], std::to_string(a.lambda_index));
+  if (t.practice) {
+    keys_.sync();
+    return;
+  }
+  const Condition& c = study_.conditions[size_t(t.condition)];
+  char rt[32];
+  std::snprintf(rt, sizeof rt, "%.1f", a.rt_s * 1000);
+  std::vector<std::string> fields = {who_.subject,
+                                     c.scene,
+                                     format_value(c.sigma),
+                                     kQuestionNames[int(a.question)],
+                                     format_value(study_.lambda(a.lambda_index)),
+                                     c.method,
+                                     format_value(study_.lambda_step),
+                                     std::to_string(a.lambda_index),
+                                     std::to_string(a.start_index),
+                                     std::to_string(t.repetition),
+                                     std::to_string(who_.session),
+                                     std::to_string(t.number),
+                                     side_name(t.side),
+                                     std::to_string(a.n_keypresses),
+                                     rt,
+                                     std::to_string(a.revision),
+                                     utc_timestamp(),
+                                     study_.manifest_sha256,
+                                     kVersion};
+  csv_.append(csv_line(fields));
+  csv_.sync();
+  keys_.sync();
+  run()["answers"] = run()["answers"].get<int>() + 1;
+}
+
+void SessionRecorder::log_event(double time_s, const std::string& event, const std::string& key,
+                                const Procedure& p) {
+  const bool in_trial = p.phase() == Procedure::Phase::question || p.phase() == Procedure::Phase::paused;
+  const Trial& trial = p.trial();
+  log_line(time_s, event, key, !in_trial ? "" : trial.practice ? "practice" : std::to_string(trial.number),
+           in_trial ? kQuestionNames[int(p.question())] : "", in_trial ? std::to_string(p.lambda_index()) : "");
+}
+
+void SessionRecorder::log_line(double time_s, const std::string& event, const std::string& key,
+                               const std::string& trial, const std::string& question, const std::string& lambda_index) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.4f", time_s);
+  keys_.append(csv_line({std::to_string(sidecar_["runs"].size()), t, event, key, trial, question, lambda_index}));
+}
+
+void SessionRecorder::save() { write_text_atomically(files_.sidecar, sidecar_.dump(2) + "\n"); }
+
+}  // namespace countershade::adjust

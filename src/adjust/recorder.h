@@ -1,0 +1,112 @@
+#pragma once
+// Everything a session writes, so that no answer is ever lost:
+//   SUBJECT_sNN.csv       the responses (docs/data-formats), one row per confirmed answer, each
+//                         appended with one write() and fsync'd before the next stimulus appears;
+//   SUBJECT_sNN.json      the sidecar: configuration, seed, plan, display, and one entry per run
+//                         (start, end, pauses, focus losses, frame timing), replaced atomically;
+//   SUBJECT_sNN.keys.csv  the trajectory: every key event and λ step with its time.
+// A new session never overwrites an existing file; --resume appends to the existing ones.
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "adjust/procedure.h"
+#include "adjust/study.h"
+
+namespace countershade::adjust {
+
+struct SessionFiles {
+  std::filesystem::path csv, sidecar, keys;
+};
+SessionFiles session_files(const std::filesystem::path& dir, const std::string& subject, int session);
+
+// The responses CSV header the app writes: the required columns, then every optional one.
+const std::vector<std::string>& response_columns();
+
+// A file that only grows, written with write(2) so a killed process leaves whole lines behind.
+class AppendOnlyFile {
+ public:
+  AppendOnlyFile() = default;
+  // Creates the file, failing if it exists (InputError), and writes `header` durably.
+  static AppendOnlyFile create(const std::filesystem::path& path, const std::string& header);
+  // Opens an existing file for appending.
+  static AppendOnlyFile open_existing(const std::filesystem::path& path);
+  AppendOnlyFile(AppendOnlyFile&& other) noexcept;
+  AppendOnlyFile& operator=(AppendOnlyFile&& other) noexcept;
+  AppendOnlyFile(const AppendOnlyFile&) = delete;
+  AppendOnlyFile& operator=(const AppendOnlyFile&) = delete;
+  ~AppendOnlyFile();
+
+  void append(const std::string& text);  // one write() call; throws on a short write
+  void sync();                           // fsync
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  int fd_ = -1;
+  std::filesystem::path path_;
+};
+
+// What an existing session's CSV holds, mapped onto the plan.
+struct RecordedAnswers {
+  std::map<std::pair<int, int>, PastAnswer> answered;  // (plan index, question) → latest answer
+  int rows = 0;
+  std::string dropped_tail;  // a partial last line (from a power cut), moved aside, not parsed
+};
+
+// Reads a session's responses and checks every row against the plan: the trial number, scene,
+// method, σ and λ must be those the plan gives, or the session is refused (InputError), since
+// resuming it would mix two different studies.
+RecordedAnswers read_recorded_answers(const std::filesystem::path& csv, const Study& study,
+                                      const std::vector<Trial>& plan);
+
+class SessionRecorder {
+ public:
+  struct Identity {
+    std::string subject;
+    int session = 1;
+    uint64_t seed = 1;  // the session seed the plan was made with
+  };
+
+  // New session: creates the three files (none may exist). Resume: they must exist, the sidecar's
+  // plan must equal `plan`, and the recorded answers are read back.
+  SessionRecorder(const Study& study, const std::vector<Trial>& plan, const Identity& who,
+                  const std::filesystem::path& dir, bool resume);
+
+  const RecordedAnswers& recorded() const { return recorded_; }
+  const SessionFiles& files() const { return files_; }
+
+  // Appends the answer's row and fsyncs it (and the trajectory, where the answer is logged too)
+  // before returning. Practice answers go to the trajectory only.
+  void record_answer(const Answer& answer, double time_s);
+  // One trajectory line: the run time, an event name, a key name and the procedure's state.
+  void log_event(double time_s, const std::string& event, const std::string& key, const Procedure& procedure);
+  void log_line(double time_s, const std::string& event, const std::string& key, const std::string& trial,
+                const std::string& question, const std::string& lambda_index);
+
+  // The current run's entry in the sidecar, for the session to fill in; save() writes the sidecar.
+  nlohmann::ordered_json& run() { return sidecar_["runs"].back(); }
+  nlohmann::ordered_json& sidecar() { return sidecar_; }
+  void save();
+
+ private:
+  const Study& study_;
+  const std::vector<Trial>& plan_;
+  Identity who_;
+  SessionFiles files_;
+  AppendOnlyFile csv_, keys_;
+  RecordedAnswers recorded_;
+  nlohmann::ordered_json sidecar_;
+};
+
+// The plan as stored in the sidecar (one compact object per trial), for the resume check.
+nlohmann::ordered_json plan_to_json(const Study& study, const std::vector<Trial>& plan);
+
+// UTC now as "2026-11-22T03:45:43.123Z".
+std::string utc_timestamp();
+
+}  // namespace countershade::adjust

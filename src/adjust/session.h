@@ -1,0 +1,31 @@
+#pragma once
+// One run of an adjustment session: checks every input, plans the trials, opens the recorder,
+// then the window; preloads the stimuli and runs the procedure until it is finished, quit,
+// closed, or (for tests) the key script ends.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace countershade::adjust {
+
+struct SessionOptions {
+  std::filesystem::path manifest;
+  std::optional<std::filesystem::path> config;  // --procedure
+  std::string subject;
+  int session = 1;
+  std::filesystem::path sessions_dir = "sessions";
+  bool resume = false;
+  bool fullscreen = false;
+  int monitor = 0;
+  std::optional<std::filesystem::path> script;
+  std::optional<std::filesystem::path> screenshot;
+  std::optional<std::string> observer;  // "simulated:SEED"
+  bool quiet = false;                   // no progress lines on stderr
+};
+
+// Returns the exit status: 0 when the run ended normally (finished, quit and saved, closed or
+// the script ended). Bad input throws InputError before any window opens.
+int run_session(const SessionOptions& options);
+
+}  // namespace countershade::adjust

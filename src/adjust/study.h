@@ -1,0 +1,102 @@
+#pragma once
+// A study as the adjustment app runs it: the conditions and images taken from a stimulus set's
+// manifest, and the procedure configuration (docs/adjustment-study.md). Everything is checked
+// here, before any window opens; errors are one line naming the file and the field.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "adjust/procedure.h"
+
+namespace countershade::adjust {
+
+struct Instructions {
+  std::string welcome =
+      "Two images of the same scene are shown side by side. One of them is enhanced; use the arrow "
+      "keys to make the enhancement stronger (Up or Right) or weaker (Down or Left), and press Enter "
+      "to give your answer. There are three questions for each pair. Press Esc at any time to pause.\n\n"
+      "Press Enter to begin.";
+  std::string resume = "Welcome back. The session continues where it stopped.\n\nPress Enter to continue.";
+  std::string practice = "Practice";
+  std::string practice_done = "The practice trials are over. The study itself begins now.\n\nPress Enter to continue.";
+  std::string questions[kQuestionCount] = {
+      "When is a difference between the two images first visible?",
+      "When is the difference too strong or objectionable?",
+      "Which setting gives the best contrast?",
+  };
+  std::string keys_hint = "Up/Right: stronger    Down/Left: weaker    Enter: confirm    Backspace: previous question    Esc: pause";
+  std::string paused = "Paused.\n\nPress Enter to resume, or Q to quit and save.";
+  std::string finished = "Thank you. All answers are saved.\n\nPress Enter to close.";
+};
+
+struct StudyConfig {
+  PlanSettings plan;                  // plan.seed is the configured base seed
+  std::optional<uint64_t> seed;       // unset: the manifest's seed
+  // Conditions to run ({scene, method, sigma}); empty: every condition in the set.
+  struct Selection {
+    std::string scene, method;
+    double sigma = 0;
+  };
+  std::vector<Selection> conditions;
+  Instructions text;
+  RepeatTiming timing;
+  int surround = 128;    // grey level of the background, 0–255 (display values, no gamma change)
+  int gap_px = 48;       // between the two images
+  double font_px = 22;
+
+  nlohmann::ordered_json to_json() const;
+};
+
+// Reads the procedure configuration: a JSON object (a file of its own, or the "adjust" object of
+// an experiment file). `file` and `path` name it in messages.
+StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file, const std::string& path);
+
+struct StimulusImage {
+  std::filesystem::path file;    // absolute or relative to the working directory
+  std::string relative;          // as listed in the manifest
+  std::string sha256;
+  int width = 0, height = 0;
+};
+
+struct Study {
+  std::filesystem::path manifest_path;
+  std::string manifest_sha256;   // identifies the stimulus set in the responses
+  std::string set_name;
+  uint64_t manifest_seed = 1;
+  double lambda_min = 0, lambda_step = 0.05;
+  std::vector<Condition> conditions;
+  // Per condition: slot 0 is the reference (unenhanced) image, slot 1 + i the image of λ index i.
+  std::vector<std::vector<int>> condition_images;
+  std::vector<StimulusImage> images;                // every image the study shows, once each
+  StudyConfig config;
+  nlohmann::ordered_json config_source;            // where the configuration came from
+
+  // λ of a grid index, derived from the index and rounded to the decimal grid as the set does.
+  double lambda(int index) const;
+  int width(int condition) const { return images[size_t(condition_images[size_t(condition)][0])].width; }
+  int height(int condition) const { return images[size_t(condition_images[size_t(condition)][0])].height; }
+  int max_width() const;
+  int max_height() const;
+};
+
+// Loads the manifest and the configuration (`config_file`, else the experiment's "adjust" object,
+// else the defaults), and builds the conditions. Throws InputError.
+Study load_study(const std::filesystem::path& manifest, const std::optional<std::filesystem::path>& config_file);
+
+// Checks that every image the study shows exists and matches its size and sha256 in the manifest.
+// Throws InputError naming the first bad file.
+void verify_study_images(const Study& study);
+
+// Subject ids become file names: letters, digits, '-' and '_', at most 64 characters.
+void check_subject_id(const std::string& subject);
+
+// The seed of one subject's session: the study seed mixed with the subject id and session number,
+// so every subject gets their own reproducible order.
+uint64_t session_seed(uint64_t study_seed, const std::string& subject, int session);
+
+}  // namespace countershade::adjust

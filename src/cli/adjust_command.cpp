@@ -1,0 +1,49 @@
+// `countershade adjust`: runs a method-of-adjustment session over a stimulus set (docs/adjustment-study.md).
+
+#include <memory>
+
+#include "adjust/session.h"
+#include "cli/commands.h"
+
+namespace countershade::cli {
+
+void add_adjust_command(CLI::App& app) {
+  auto o = std::make_shared<adjust::SessionOptions>();
+  auto manifest = std::make_shared<std::string>();
+  auto sessions = std::make_shared<std::string>("sessions");
+  auto config = std::make_shared<std::string>();
+  auto script = std::make_shared<std::string>();
+  auto screenshot = std::make_shared<std::string>();
+  auto observer = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("adjust", "Run an adjustment session (λ_Low, λ_High, λ_Best) over a stimulus set.");
+  cmd->add_option("manifest", *manifest, "The stimulus set's manifest.json")->required();
+  cmd->add_option("--subject", o->subject, "Participant id (letters, digits, '-', '_')")->required();
+  cmd->add_option("--session", o->session, "Session number (file SUBJECT_sNN.csv)")->capture_default_str();
+  cmd->add_option("--sessions", *sessions, "Folder for the session files")->capture_default_str();
+  cmd->add_option("--procedure", *config,
+                  "Procedure configuration JSON (default: the experiment's \"adjust\" object, else built-in defaults)");
+  cmd->add_flag("--resume", o->resume, "Continue an interrupted or quit session at its first unanswered question");
+  cmd->add_flag("--fullscreen", o->fullscreen, "Fullscreen on the chosen monitor");
+  cmd->add_option("--monitor", o->monitor, "Monitor number, from 0")->capture_default_str();
+  cmd->add_option("--script", *script, "Timed key events instead of a person (tests, demos)");
+  cmd->add_option("--screenshot", *screenshot, "PNG written at each 'screenshot' line of the script");
+  cmd->add_option("--observer", *observer, "A model observer answers: simulated:SEED");
+  cmd->callback([=] {
+    adjust::SessionOptions run = *o;
+    run.manifest = *manifest;
+    run.sessions_dir = *sessions;
+    if (!config->empty()) run.config = *config;
+    if (!script->empty()) run.script = *script;
+    if (!screenshot->empty()) run.screenshot = *screenshot;
+    if (!observer->empty()) run.observer = *observer;
+    adjust::run_session(run);
+  });
+  cmd->footer(
+      "Keys: Up/Right stronger, Down/Left weaker, Enter confirm, Backspace previous question, Esc pause (then Q quits).\n"
+      "Example:\n"
+      "  countershade stimuli experiments/cornsweet/experiment.json -o stimuli/cornsweet\n"
+      "  countershade adjust stimuli/cornsweet/manifest.json --subject P01\n"
+      "  countershade analyze sessions/*_s01.csv -o reports/cornsweet");
+}
+
+}  // namespace countershade::cli

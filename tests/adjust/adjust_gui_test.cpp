@@ -1,0 +1,245 @@
+// The adjustment app end to end: the real binary in a real window on a private Xvfb server,
+// driven by key scripts, the simulated observer, xdotool, and SIGKILL.
+
+#include <map>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "adjust/input_script.h"
+#include "adjust/recorder.h"
+#include "adjust/study.h"
+#include "analysis/responses.h"
+#include "core/image.h"
+#include "tiny_set.h"
+#include "x_display.h"
+
+namespace countershade::adjust {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::vector<std::string> adjust_args(const fs::path& manifest, const fs::path& sessions, const std::string& subject,
+                                     std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {COUNTERSHADE_BINARY, "adjust", manifest.string(), "--subject", subject, "--sessions",
+                                   sessions.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+// Runs the app to its end (at most a minute) and returns its exit status.
+int run_app(const testing::XvfbServer& x, const std::vector<std::string>& args, const fs::path& log) {
+  testing::Child app(args, x.display(), log.string());
+  return app.wait(60);
+}
+
+TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
+  testing::TempDir dir;
+  auto manifest = testing::make_tiny_set(dir, R"({"repetitions": 2, "start": "zero"})");
+  // Every trial: low at index 1, high at 3, best at 2. In trial 1 the observer goes back from
+  // high and changes low to 2 (a second row with revision 1).
+  std::string script = "300 enter\n";
+  for (int trial = 1; trial <= 8; ++trial) {
+    script += "15 right\n15 enter\n";
+    if (trial == 1) script += "15 backspace\n15 right\n15 enter\n";
+    script += "15 right\n15 right\n15 right\n15 enter\n15 right\n15 right\n15 enter\n";
+  }
+  testing::write_file(dir / "keys.txt", script);
+  testing::XvfbServer x;
+  ASSERT_EQ(run_app(x, adjust_args(manifest, dir / "sessions", "P01", {"--script", (dir / "keys.txt").string()}),
+                    dir / "log.txt"),
+            0)
+      << testing::read_file(dir / "log.txt");
+  EXPECT_NE(testing::read_file(dir / "log.txt").find("completed; 24 of 24 answers"), std::string::npos)
+      << testing::read_file(dir / "log.txt");
+
+  const fs::path csv = dir / "sessions/P01_s01.csv";
+  EXPECT_EQ(testing::count_lines(testing::read_file(csv)), 1 + 24 + 1);
+  auto table = analysis::parse_csv(testing::read_file(csv), csv.string());
+  auto rows = analysis::read_responses(csv);
+  ASSERT_EQ(rows.size(), 24u);
+  Study study = load_study(manifest, std::nullopt);
+  std::map<std::string, int> per_condition;
+  std::map<int, std::set<std::string>> questions_of_trial;
+  for (size_t r = 1; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    const int trial = std::stoi(row[11]), revision = std::stoi(row[15]);
+    const std::string question = row[3];
+    int expected = question == "low" ? 1 : question == "high" ? 3 : 2;
+    if (trial == 1 && question == "low" && revision == 1) expected = 2;
+    EXPECT_EQ(std::stoi(row[7]), expected) << "trial " << trial << " " << question;
+    EXPECT_EQ(row[4], format_value(study.lambda(expected)));
+    EXPECT_EQ(row[8], "0");  // start index
+    if (revision == 0) ++per_condition[row[1] + "/" + row[2] + "/rep" + row[9]];
+    questions_of_trial[trial].insert(question);
+  }
+  EXPECT_EQ(per_condition.size(), 8u);  // 4 conditions × 2 repetitions
+  for (const auto& [key, n] : per_condition) EXPECT_EQ(n, 3) << key;
+  for (int t = 1; t <= 8; ++t) EXPECT_EQ(questions_of_trial[t].size(), 3u);
+
+  auto sidecar = json::parse(testing::read_file(dir / "sessions/P01_s01.json"));
+  const auto& run = sidecar["runs"][0];
+  EXPECT_EQ(run["end"], "completed");
+  EXPECT_EQ(run["answers"], 25);
+  EXPECT_EQ(run["preload"]["images"], 26);  // 2 references + 4 conditions × 6 grid images
+  EXPECT_NE(run["display"]["gl_renderer"].get<std::string>(), "");
+  EXPECT_GT(run["frames"]["all"]["count"].get<int>(), 10);
+  const std::string keys = testing::read_file(dir / "sessions/P01_s01.keys.csv");
+  EXPECT_NE(keys.find("answer-revised"), std::string::npos);
+}
+
+TEST(AdjustGui, TheScreenshotShowsBothStimuliPixelExactOnAUniformSurround) {
+  testing::TempDir dir;
+  auto manifest = testing::make_tiny_set(dir);
+  testing::write_file(dir / "keys.txt", "300 enter\n40 right\n40 right\n100 screenshot\n40 close\n");
+  testing::XvfbServer x;
+  ASSERT_EQ(run_app(x,
+                    adjust_args(manifest, dir / "sessions", "P02",
+                                {"--script", (dir / "keys.txt").string(), "--screenshot", (dir / "shot.png").string()}),
+                    dir / "log.txt"),
+            0)
+      << testing::read_file(dir / "log.txt");
+  auto info = json::parse(testing::read_file(dir / "shot.png.json"));
+  Image shot = read_image(dir / "shot.png");
+  ASSERT_EQ(shot.channels, 3);
+  EXPECT_GE(info["lambda_index"].get<int>(), 2);
+  std::set<std::string> shown;
+  for (const char* side : {"left", "right"}) {
+    const auto& r = info[side];
+    Image stimulus = read_image(dir / "set" / r["file"].get<std::string>());
+    ASSERT_EQ(stimulus.width, r["width"].get<int>());
+    ASSERT_EQ(stimulus.height, r["height"].get<int>());
+    const int x0 = r["x"], y0 = r["y"];
+    long differing = 0;
+    for (int y = 0; y < stimulus.height; ++y)
+      for (int x = 0; x < stimulus.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          differing += std::lround(stimulus.at(x, y, c) * 255) != std::lround(shot.at(x0 + x, y0 + y, c) * 255);
+    EXPECT_EQ(differing, 0) << side << ": " << r["file"];
+    shown.insert(r["file"].get<std::string>());
+  }
+  // One side is the reference, the other the enhanced image at the adjusted λ.
+  const std::string scene = (*shown.begin()).substr(0, (*shown.begin()).find('/'));
+  EXPECT_TRUE(shown.count(scene + "/reference.png"));
+  EXPECT_EQ(shown.size(), 2u);
+  // The surround is the configured uniform grey, also between and around the stimuli.
+  const int gap_x = info["left"]["x"].get<int>() + info["left"]["width"].get<int>() + 10;
+  for (auto [x, y] : {std::pair{0, 0}, {shot.width - 1, shot.height - 1}, {gap_x, info["left"]["y"].get<int>() + 5}})
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(std::lround(shot.at(x, y, c) * 255), 128) << x << "," << y;
+}
+
+TEST(AdjustGui, KilledSessionsResumeWithEveryAnswerExactlyOnce) {
+  testing::TempDir dir;
+  auto manifest = testing::make_tiny_set(dir, R"({"repetitions": 8})");
+  const fs::path sessions = dir / "sessions";
+  const fs::path sidecar = sessions / "P03_s01.json";
+  testing::XvfbServer x;
+  std::mt19937 random(2024);
+  std::uniform_real_distribution<double> kill_after(0.0, 0.7);
+  auto runs_recorded = [&] {
+    return fs::exists(sidecar) ? json::parse(testing::read_file(sidecar))["runs"].size() : size_t(0);
+  };
+  int kills = 0, launches = 0;
+  bool complete = false;
+  while (!complete && launches < 60) {
+    std::vector<std::string> extra = {"--observer", "simulated:7"};
+    if (fs::exists(sidecar)) extra.push_back("--resume");
+    const size_t runs_before = runs_recorded();
+    testing::Child app(adjust_args(manifest, sessions, "P03", extra), x.display(), (dir / "log.txt").string());
+    ++launches;
+    if (kills < 12) {
+      // Kill at a random point after the run has registered itself (so the sidecar can know of it):
+      // during preloading, between answers, or in the middle of writing one.
+      for (int i = 0; i < 1000 && runs_recorded() == runs_before && app.running(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      int status = app.wait(kill_after(random));
+      if (status == -1) {
+        app.kill_hard();
+        ++kills;
+        continue;
+      }
+      ASSERT_EQ(status, 0) << testing::read_file(dir / "log.txt");
+    } else {
+      ASSERT_EQ(app.wait(60), 0) << testing::read_file(dir / "log.txt");
+    }
+    complete = testing::read_file(dir / "log.txt").find("completed; 96 of 96") != std::string::npos;
+  }
+  ASSERT_TRUE(complete) << testing::read_file(dir / "log.txt");
+  EXPECT_GE(kills, 10);
+
+  // Every answer exactly once, each the observer's answer, and the file parses cleanly.
+  Study study = load_study(manifest, std::nullopt);
+  SimulatedObserver observer(7, study);
+  const fs::path csv = sessions / "P03_s01.csv";
+  auto table = analysis::parse_csv(testing::read_file(csv), csv.string());
+  ASSERT_EQ(table.rows.size(), 1u + 96u);
+  EXPECT_EQ(analysis::read_responses(csv).size(), 96u);
+  std::set<std::pair<int, std::string>> seen;
+  auto sidecar_json = json::parse(testing::read_file(sidecar));
+  for (size_t r = 1; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    const int trial = std::stoi(row[11]);
+    EXPECT_TRUE(seen.insert({trial, row[3]}).second) << "trial " << trial << " " << row[3] << " twice";
+    const auto& planned = sidecar_json["plan"][size_t(trial - 1)];
+    int condition = -1;
+    for (size_t c = 0; c < study.conditions.size(); ++c)
+      if (study.conditions[c].scene == planned["scene"] && study.conditions[c].sigma == planned["sigma"].get<double>())
+        condition = int(c);
+    ASSERT_GE(condition, 0);
+    Question q = row[3] == "low" ? Question::low : row[3] == "high" ? Question::high : Question::best;
+    EXPECT_EQ(std::stoi(row[7]), observer.answer_index(condition, planned["repetition"], q)) << "trial " << trial;
+  }
+  EXPECT_EQ(seen.size(), 96u);
+  // The sidecar records every interruption.
+  int interrupted = 0;
+  for (const auto& run : sidecar_json["runs"]) interrupted += run["end"] == "interrupted";
+  EXPECT_EQ(interrupted, kills);
+  EXPECT_EQ(sidecar_json["runs"].back()["end"], "completed");
+}
+
+TEST(AdjustGui, RealKeyEventsFromTheXServerDriveTheSession) {
+  testing::TempDir dir;
+  auto manifest = testing::make_tiny_set(dir, R"({"start": "zero"})");
+  testing::XvfbServer x;
+  testing::Child app(adjust_args(manifest, dir / "sessions", "P04"), x.display(), (dir / "log.txt").string());
+  const std::string xdotool = "DISPLAY=" + x.display() + " xdotool ";
+  bool window = false;
+  for (int i = 0; i < 100 && !window; ++i) {
+    window = std::system((xdotool + "search --name 'countershade adjust' >/dev/null 2>&1").c_str()) == 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_TRUE(window) << testing::read_file(dir / "log.txt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  for (const char* key : {"Return", "Right", "Right", "Up", "Down", "Return", "Escape", "q"}) {
+    ASSERT_EQ(std::system((xdotool + "key " + key).c_str()), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(120));
+  }
+  ASSERT_EQ(app.wait(20), 0) << testing::read_file(dir / "log.txt");
+  auto rows = analysis::read_responses(dir / "sessions/P04_s01.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(rows[0].lambda, 0.8);  // index 0 + 2 + 1 − 1
+  auto sidecar = json::parse(testing::read_file(dir / "sessions/P04_s01.json"));
+  EXPECT_EQ(sidecar["runs"][0]["end"], "quit");
+  ASSERT_EQ(sidecar["runs"][0]["pauses"].size(), 1u);
+  EXPECT_EQ(sidecar["runs"][0]["pauses"][0]["quit"], true);
+}
+
+TEST(AdjustGui, AScreenTooSmallForOneToOneIsRefusedWithTheReason) {
+  testing::TempDir dir;
+  auto manifest = testing::make_tiny_set(dir);
+  testing::write_file(dir / "wide.json", R"({"gap_px": 1400})");
+  testing::XvfbServer x;
+  ASSERT_EQ(run_app(x, adjust_args(manifest, dir / "sessions", "P05", {"--procedure", (dir / "wide.json").string()}),
+                    dir / "log.txt"),
+            2);
+  const std::string log = testing::read_file(dir / "log.txt");
+  EXPECT_NE(log.find("at 1:1 scale, but monitor 0 is 1280x1024"), std::string::npos) << log;
+  EXPECT_EQ(testing::count_lines(log), 1);
+  EXPECT_FALSE(fs::exists(dir / "sessions/P05_s01.csv"));  // nothing left behind
+}
+
+}  // namespace
+}  // namespace countershade::adjust

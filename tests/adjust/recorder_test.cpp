@@ -1,0 +1,173 @@
+// The session files: never overwritten, rows the analysis reads, resume checks and repairs.
+
+#include "adjust/recorder.h"
+
+#include <gtest/gtest.h>
+
+#include "analysis/responses.h"
+#include "tiny_set.h"
+
+namespace countershade::adjust {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Fixture {
+  testing::TempDir dir;
+  Study study;
+  std::vector<Trial> plan;
+  SessionRecorder::Identity who{"P07", 2, 99};
+
+  Fixture() : study(load_study(testing::make_tiny_set(dir), std::nullopt)) {
+    PlanSettings s = study.config.plan;
+    s.seed = who.seed;
+    plan = plan_trials(study.conditions, s);
+  }
+  fs::path sessions() const { return dir / "sessions"; }
+};
+
+// Answers the first `count` questions of the plan with λ index (question + 1).
+void answer(SessionRecorder& recorder, Procedure& p, int count) {
+  p.press(Key::enter, 0);
+  for (int i = 0; i < count; ++i) {
+    while (p.lambda_index() < int(p.question()) + 1) p.press(Key::right, 1), p.release(Key::right, 1);
+    while (p.lambda_index() > int(p.question()) + 1) p.press(Key::left, 1), p.release(Key::left, 1);
+    auto a = p.press(Key::enter, 2 + i);
+    ASSERT_TRUE(a);
+    recorder.record_answer(*a, 2 + i);
+  }
+}
+
+TEST(AdjustRecorder, RowsCarryEveryColumnAndTheAnalysisReadsThem) {
+  Fixture f;
+  {
+    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+    Procedure p(f.study.conditions, f.plan);
+    answer(recorder, p, 5);
+    recorder.save();
+  }
+  const auto files = session_files(f.sessions(), "P07", 2);
+  EXPECT_EQ(files.csv.filename(), "P07_s02.csv");
+  auto rows = analysis::read_responses(files.csv);
+  ASSERT_EQ(rows.size(), 5u);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Condition& c = f.study.conditions[size_t(f.plan[i / 3].condition)];
+    EXPECT_EQ(rows[i].subject, "P07");
+    EXPECT_EQ(rows[i].scene, c.scene);
+    EXPECT_EQ(rows[i].method, "usm3d");
+    EXPECT_DOUBLE_EQ(rows[i].sigma, c.sigma);
+    EXPECT_EQ(int(rows[i].question), int(i % 3));
+    EXPECT_DOUBLE_EQ(rows[i].lambda, 0.4 * double(i % 3 + 1));
+    EXPECT_DOUBLE_EQ(rows[i].lambda_step, 0.4);
+  }
+  auto table = analysis::parse_csv(testing::read_file(files.csv), "csv");
+  EXPECT_EQ(table.rows[0], response_columns());
+  EXPECT_EQ(table.rows[1][11], "1");                         // trial
+  EXPECT_EQ(table.rows[1][17], f.study.manifest_sha256);    // stimulus_set
+  EXPECT_EQ(testing::count_lines(testing::read_file(files.keys)) > 5, true);
+  auto sidecar = nlohmann::json::parse(testing::read_file(files.sidecar));
+  EXPECT_EQ(sidecar["seed"], 99);
+  EXPECT_EQ(sidecar["plan"].size(), f.plan.size());
+  EXPECT_EQ(sidecar["runs"][0]["answers"], 5);
+}
+
+TEST(AdjustRecorder, AnExistingSessionIsNeverOverwritten) {
+  Fixture f;
+  { SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false); }
+  const auto files = session_files(f.sessions(), "P07", 2);
+  const std::string before = testing::read_file(files.csv);
+  std::string message = testing::input_error_of([&] { SessionRecorder again(f.study, f.plan, f.who, f.sessions(), false); });
+  EXPECT_NE(message.find("already exists"), std::string::npos) << message;
+  EXPECT_EQ(testing::read_file(files.csv), before);
+  message = testing::input_error_of([&] {
+    SessionRecorder other(f.study, f.plan, {"P08", 1, 99}, f.sessions(), true);
+  });
+  EXPECT_NE(message.find("no session to resume"), std::string::npos) << message;
+}
+
+TEST(AdjustRecorder, ResumeReadsTheAnswersBackAndMarksTheKilledRun) {
+  Fixture f;
+  {
+    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+    Procedure p(f.study.conditions, f.plan);
+    answer(recorder, p, 4);
+  }  // no end recorded: as if the process was killed
+  SessionRecorder resumed(f.study, f.plan, f.who, f.sessions(), true);
+  const auto& got = resumed.recorded();
+  EXPECT_EQ(got.rows, 4);
+  ASSERT_EQ(got.answered.size(), 4u);
+  EXPECT_EQ(got.answered.at({1, 0}).lambda_index, 1);
+  EXPECT_EQ(resumed.sidecar()["runs"][0]["end"], "interrupted");
+  EXPECT_EQ(resumed.run()["end"], "running");
+  EXPECT_EQ(resumed.run()["answers_before"], 4);
+  Procedure p(f.study.conditions, f.plan);
+  p.resume(got.answered);
+  p.press(Key::enter, 0);
+  EXPECT_EQ(p.trial_index(), 1);
+  EXPECT_EQ(p.question(), Question::high);
+}
+
+TEST(AdjustRecorder, APartialLastLineIsMovedAsideNotLost) {
+  Fixture f;
+  {
+    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+    Procedure p(f.study.conditions, f.plan);
+    answer(recorder, p, 2);
+  }
+  const auto files = session_files(f.sessions(), "P07", 2);
+  const std::string whole = testing::read_file(files.csv);
+  testing::write_file(files.csv, whole + "P07,front,0.0");  // a write cut short by a power loss
+  SessionRecorder resumed(f.study, f.plan, f.who, f.sessions(), true);
+  EXPECT_EQ(resumed.recorded().rows, 2);
+  EXPECT_EQ(resumed.recorded().dropped_tail, "P07,front,0.0");
+  EXPECT_EQ(testing::read_file(files.csv), whole);
+  ASSERT_EQ(resumed.sidecar()["repairs"].size(), 1u);
+  fs::path aside = f.sessions() / resumed.sidecar()["repairs"][0]["file"].get<std::string>();
+  EXPECT_EQ(testing::read_file(aside), "P07,front,0.0");
+}
+
+TEST(AdjustRecorder, ResumeRefusesRowsOrPlansFromAnotherStudy) {
+  Fixture f;
+  {
+    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+    Procedure p(f.study.conditions, f.plan);
+    answer(recorder, p, 1);
+  }
+  const auto files = session_files(f.sessions(), "P07", 2);
+  // Another seed gives another plan.
+  std::string message =
+      testing::input_error_of([&] { SessionRecorder r(f.study, f.plan, {"P07", 2, 100}, f.sessions(), true); });
+  EXPECT_NE(message.find("plan"), std::string::npos) << message;
+  // A row edited to another scene no longer matches its trial.
+  std::string text = testing::read_file(files.csv);
+  const std::string scene = f.study.conditions[size_t(f.plan[0].condition)].scene;
+  const std::string other = scene == "front" ? "small" : "front";
+  auto at = text.find("\nP07," + scene + ",");
+  ASSERT_NE(at, std::string::npos);
+  testing::write_file(files.csv, text.replace(at + 5, scene.size(), other));
+  message = testing::input_error_of([&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), true); });
+  EXPECT_NE(message.find("does not match trial 1"), std::string::npos) << message;
+}
+
+TEST(AdjustRecorder, TheAnalysisCountsOnlyTheLatestRevisionOfAnAnswer) {
+  Fixture f;
+  {
+    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+    Procedure p(f.study.conditions, f.plan, {});
+    p.press(Key::enter, 0);
+    while (p.lambda_index() > 0) p.press(Key::left, 0), p.release(Key::left, 0);
+    p.press(Key::right, 0), p.release(Key::right, 0);
+    recorder.record_answer(*p.press(Key::enter, 1), 1);  // low = index 1
+    p.press(Key::backspace, 2);
+    p.press(Key::right, 2), p.release(Key::right, 2);
+    recorder.record_answer(*p.press(Key::enter, 3), 3);  // low again = index 2, revision 1
+  }
+  const auto files = session_files(f.sessions(), "P07", 2);
+  EXPECT_EQ(testing::count_lines(testing::read_file(files.csv)), 3);  // header + both rows kept
+  auto rows = analysis::read_responses(files.csv);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(rows[0].lambda, 0.8);
+}
+
+}  // namespace
+}  // namespace countershade::adjust

@@ -1,0 +1,164 @@
+// Loading a study from a stimulus set, its configuration, key scripts and the simulated observer.
+
+#include "adjust/study.h"
+
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "adjust/input_script.h"
+#include "tiny_set.h"
+
+namespace countershade::adjust {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(AdjustStudy, ConditionsAreEverySceneMethodSigmaWithTheReferenceAtIndexZero) {
+  testing::TempDir dir;
+  Study study = load_study(testing::make_tiny_set(dir), std::nullopt);
+  ASSERT_EQ(study.conditions.size(), 4u);  // 2 scenes × 2 σ
+  std::set<std::string> names;
+  for (size_t c = 0; c < study.conditions.size(); ++c) {
+    const Condition& k = study.conditions[c];
+    names.insert(k.scene + "/" + k.method + "/" + format_value(k.sigma));
+    EXPECT_EQ(k.grid_size, 6);  // λ = 0, 0.4, ..., 2
+    const auto& images = study.condition_images[c];
+    ASSERT_EQ(images.size(), 7u);
+    EXPECT_EQ(study.images[size_t(images[0])].relative, k.scene + "/reference.png");
+    // λ = 0 is the identity: the set's λ = 0 image is the reference, byte for byte.
+    EXPECT_EQ(study.images[size_t(images[1])].relative, k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-0.png");
+    EXPECT_EQ(study.images[size_t(images[1])].sha256, study.images[size_t(images[0])].sha256);
+    EXPECT_EQ(study.images[size_t(images[6])].relative,
+              k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-2.png");
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"front/usm3d/0.03", "front/usm3d/0.08", "small/usm3d/0.03", "small/usm3d/0.08"}));
+  EXPECT_DOUBLE_EQ(study.lambda(3), 1.2);
+  EXPECT_EQ(study.max_width(), 96);
+  EXPECT_EQ(study.max_height(), 72);
+  EXPECT_EQ(study.config_source, "defaults");
+  EXPECT_NO_THROW(verify_study_images(study));
+}
+
+TEST(AdjustStudy, ConfigurationFromTheExperimentSelectsConditionsAndSettings) {
+  testing::TempDir dir;
+  Study study = load_study(testing::make_tiny_set(dir, R"({"repetitions": 3, "side": "left", "start": "zero",
+      "conditions": [{"scene": "small", "method": "usm3d", "sigma": 0.08}],
+      "instructions": {"low": "Wann sehen Sie einen Unterschied?"}, "repeat": {"delay_ms": 300, "interval_ms": 50}})"),
+                           std::nullopt);
+  ASSERT_EQ(study.conditions.size(), 1u);
+  EXPECT_EQ(study.conditions[0].scene, "small");
+  EXPECT_EQ(study.config.plan.repetitions, 3);
+  EXPECT_EQ(study.config.plan.side, Side::left);
+  EXPECT_EQ(study.config.plan.start, StartMode::zero);
+  EXPECT_EQ(study.config.text.questions[0], "Wann sehen Sie einen Unterschied?");
+  EXPECT_DOUBLE_EQ(study.config.timing.repeat_interval_s, 0.05);
+  EXPECT_EQ(study.config_source, "experiment.adjust");
+}
+
+TEST(AdjustStudy, BadConfigurationsAndSetsAreOneLineErrors) {
+  testing::TempDir dir;
+  fs::path manifest = testing::make_tiny_set(dir);
+  struct Case {
+    std::string config, expected;
+  } cases[] = {
+      {R"({"repetitions": 0})", "repetitions"},
+      {R"({"side": "top"})", "side"},
+      {R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.5}]})", "no condition scene 'front'"},
+      {R"({"instructions": {"lo": "typo"}})", "instructions.lo"},
+      {R"({"surround": 300})", "surround"},
+  };
+  for (const auto& c : cases) {
+    fs::path file = testing::write_file(dir / "procedure.json", c.config);
+    std::string message = testing::input_error_of([&] { load_study(manifest, file); });
+    EXPECT_NE(message.find(c.expected), std::string::npos) << c.config << " -> " << message;
+    EXPECT_NE(message.find("procedure.json"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  // A set with a hole in a λ grid cannot be adjusted.
+  std::string text = testing::read_file(manifest);
+  auto at = text.find("\"lambda_index\": 3");
+  ASSERT_NE(at, std::string::npos);
+  testing::write_file(dir / "set/holey.json", text.replace(at, 17, "\"lambda_index\": 9"));
+  EXPECT_NE(testing::input_error_of([&] { load_study(dir / "set/holey.json", std::nullopt); }).find("outside the λ grid"),
+            std::string::npos);
+}
+
+TEST(AdjustStudy, ChangedOrMissingImagesAreFoundBeforeTheSessionStarts) {
+  testing::TempDir dir;
+  fs::path manifest = testing::make_tiny_set(dir);
+  Study study = load_study(manifest, std::nullopt);
+  fs::path changed = dir / "set/front/usm3d/sigma-0.03/lambda-1.2.png";
+  std::string bytes = testing::read_file(changed);
+  bytes[bytes.size() / 2] ^= 1;
+  testing::write_file(changed, bytes);
+  std::string message = testing::input_error_of([&] { verify_study_images(study); });
+  EXPECT_NE(message.find("lambda-1.2.png: sha256 does not match"), std::string::npos) << message;
+  fs::remove(changed);
+  message = testing::input_error_of([&] { verify_study_images(study); });
+  EXPECT_NE(message.find("lambda-1.2.png: missing image"), std::string::npos) << message;
+}
+
+TEST(AdjustStudy, SubjectIdsMustBePlainFileNames) {
+  for (const char* good : {"P01", "anna_k", "s-7"}) EXPECT_NO_THROW(check_subject_id(good));
+  for (const char* bad : {"", "../x", "a/b", "a b", "P01.csv", "x\\y"})
+    EXPECT_NE(testing::input_error_of([&] { check_subject_id(bad); }).find("--subject"), std::string::npos) << bad;
+  EXPECT_NE(session_seed(1, "P01", 1), session_seed(1, "P02", 1));
+  EXPECT_NE(session_seed(1, "P01", 1), session_seed(1, "P01", 2));
+  EXPECT_EQ(session_seed(1, "P01", 1), session_seed(1, "P01", 1));
+}
+
+TEST(AdjustScript, TimesAccumulateAndHoldsBecomePressAndRelease) {
+  auto events = parse_key_script_text("# start\n500 enter\n100 right  # one step\n0 hold up 1200\n250 screenshot\n10 close\n",
+                                      "keys.txt");
+  ASSERT_EQ(events.size(), 8u);
+  EXPECT_DOUBLE_EQ(events[0].time_s, 0.5);
+  EXPECT_EQ(events[0].kind, InputEvent::Kind::press);
+  EXPECT_EQ(events[0].key, Key::enter);
+  EXPECT_NEAR(events[1].time_s, 0.52, 1e-12);
+  EXPECT_EQ(events[1].kind, InputEvent::Kind::release);
+  EXPECT_NEAR(events[2].time_s, 0.6, 1e-12);
+  EXPECT_EQ(events[2].key, Key::right);
+  // The hold starts at 0.6 s too; its release at 1.8 s comes after the screenshot at 0.85 s.
+  EXPECT_EQ(events[3].key, Key::up);
+  EXPECT_EQ(events[3].kind, InputEvent::Kind::press);
+  EXPECT_EQ(events[4].kind, InputEvent::Kind::release);
+  EXPECT_EQ(events[4].key, Key::right);
+  EXPECT_EQ(events[5].kind, InputEvent::Kind::screenshot);
+  EXPECT_NEAR(events[5].time_s, 0.85, 1e-12);
+  EXPECT_EQ(events[6].kind, InputEvent::Kind::close);
+  EXPECT_NEAR(events[7].time_s, 1.8, 1e-12);
+  EXPECT_EQ(events[7].kind, InputEvent::Kind::release);
+
+  for (const char* bad : {"x enter", "100", "100 jump", "-5 enter", "100 hold up", "100 enter now"}) {
+    std::string message = testing::input_error_of([&] { parse_key_script_text(std::string("10 enter\n") + bad, "keys.txt"); });
+    EXPECT_NE(message.find("keys.txt: line 2"), std::string::npos) << bad << " -> " << message;
+  }
+  EXPECT_EQ(parse_observer_spec("simulated:42"), 42u);
+  EXPECT_NE(testing::input_error_of([] { parse_observer_spec("human"); }).find("--observer"), std::string::npos);
+}
+
+TEST(AdjustObserver, AnswersAreTheFirstGridValueAtOrAboveItsLatentThresholds) {
+  testing::TempDir dir;
+  Study study = load_study(testing::make_tiny_set(dir), std::nullopt);
+  SimulatedObserver a(3, study), b(3, study);
+  int ordered = 0;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 1; r <= 3; ++r) {
+      double low = a.latent_lambda(c, r, Question::low), high = a.latent_lambda(c, r, Question::high);
+      ordered += low < high;
+      for (Question q : {Question::low, Question::high, Question::best}) {
+        int index = a.answer_index(c, r, q);
+        EXPECT_EQ(index, b.answer_index(c, r, q));
+        double latent = a.latent_lambda(c, r, q);
+        EXPECT_TRUE(study.lambda(index) >= latent || index == 5);
+        if (index > 0) {
+          EXPECT_LT(study.lambda(index - 1), latent);
+        }
+      }
+    }
+  EXPECT_EQ(ordered, 12);
+}
+
+}  // namespace
+}  // namespace countershade::adjust
