@@ -7,6 +7,7 @@
 
 #include <boost/math/special_functions/erf.hpp>
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 #include <tbb/parallel_for.h>
 #include <Eigen/Dense>
 
@@ -121,6 +122,13 @@ Fit solve(const std::map<double, double>& counts, double step, FitModel model, c
   options.parameter_tolerance = 1e-14;
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;
+  // Ceres reports a stalled minimiser through glog's ERROR log even when silent; the fit's
+  // `converged` flag already records it, so only fatal messages may reach the terminal.
+  static const bool quiet = [] {
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    return true;
+  }();
+  (void)quiet;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
 

@@ -60,7 +60,7 @@ std::string csv_line(const std::vector<std::string>& fields) {
 
 SessionFiles session_files(const fs::path& dir, const std::string& subject, int session) {
   const std::string stem = subject + "_s" + two_digits(session);
-  return {dir / (stem + ".csv"), dir / (stem + ".json"), dir / (stem + ".keys.csv")};
+  return {dir / (stem + ".csv"), dir / (stem + ".json"), dir / (stem + ".keys.tsv")};
 }
 
 const std::vector<std::string>& response_columns() {
@@ -236,7 +236,7 @@ SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& p
     std::string header;
     for (size_t i = 0; i < response_columns().size(); ++i) header += (i ? "," : "") + response_columns()[i];
     csv_ = AppendOnlyFile::create(files_.csv, header + "\n");
-    keys_ = AppendOnlyFile::create(files_.keys, "run,time_s,event,key,trial,question,lambda_index\n");
+    keys_ = AppendOnlyFile::create(files_.keys, "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n");
     sidecar_ = {{"format_version", kSidecarFormatVersion},
                 {"subject", who.subject},
                 {"session", who.session},
@@ -340,7 +340,9 @@ void SessionRecorder::log_line(double time_s, const std::string& event, const st
                                const std::string& trial, const std::string& question, const std::string& lambda_index) {
   char t[32];
   std::snprintf(t, sizeof t, "%.4f", time_s);
-  keys_.append(csv_line({std::to_string(sidecar_["runs"].size()), t, event, key, trial, question, lambda_index}));
+  // Tab-separated (no field holds a tab), so `analyze sessions/*.csv` never picks it up.
+  keys_.append(std::to_string(sidecar_["runs"].size()) + '\t' + t + '\t' + event + '\t' + key + '\t' + trial + '\t' +
+               question + '\t' + lambda_index + '\n');
 }
 
 void SessionRecorder::save() { write_text_atomically(files_.sidecar, sidecar_.dump(2) + "\n"); }

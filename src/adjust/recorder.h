@@ -4,7 +4,7 @@
 //                         appended with one write() and fsync'd before the next stimulus appears;
 //   SUBJECT_sNN.json      the sidecar: configuration, seed, plan, display, and one entry per run
 //                         (start, end, pauses, focus losses, frame timing), replaced atomically;
-//   SUBJECT_sNN.keys.csv  the trajectory: every key event and λ step with its time.
+//   SUBJECT_sNN.keys.tsv  the trajectory: every key event and λ step with its time (tab-separated).
 // A new session never overwrites an existing file; --resume appends to the existing ones.
 
 #include <filesystem>

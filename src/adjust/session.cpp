@@ -53,6 +53,8 @@ std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
 
 struct FrameTimes {
   std::vector<float> all, held;  // intervals in seconds
+  std::vector<float> draw;       // time to build, render and swap a frame
+  std::vector<double> dropped_at;  // session time of the first dropped frames
 
   static OrderedJson summary(std::vector<float> v, double period) {
     OrderedJson j = {{"count", v.size()}};
@@ -273,7 +275,9 @@ int run_session(const SessionOptions& o) {
       }
       fs::path shot;
       if (screenshot_due && o.screenshot) shot = screenshot_path(*o.screenshot, screenshots);
+      const double draw_start = presenter->now();
       const StimulusLayout layout = presenter->draw(content, shot);
+      const double draw_seconds = presenter->now() - draw_start;
       if (!shot.empty()) {
         OrderedJson info = {{"frame", frame}, {"phase", int(procedure.phase())}};
         if (procedure.phase() == Procedure::Phase::question) {
@@ -297,8 +301,11 @@ int run_session(const SessionOptions& o) {
       presenter->pace();
       const double t = presenter->now();
       if (last_frame >= 0 && frame > 20) {  // the first frames calibrate the pacing
-        times.all.push_back(float(t - last_frame));
-        if (procedure.key_held()) times.held.push_back(float(t - last_frame));
+        const double interval = t - last_frame;
+        times.all.push_back(float(interval));
+        times.draw.push_back(float(draw_seconds));
+        if (procedure.key_held()) times.held.push_back(float(interval));
+        if (interval > 1.2 / presenter->refresh_hz() && times.dropped_at.size() < 100) times.dropped_at.push_back(t - t0);
       }
       last_frame = t;
       ++frame;
@@ -311,7 +318,9 @@ int run_session(const SessionOptions& o) {
                                 {"period_ms", 1000 * period},
                                 {"dropped_threshold_ms", 1200 * period},
                                 {"all", FrameTimes::summary(times.all, period)},
-                                {"key_held", FrameTimes::summary(times.held, period)}};
+                                {"key_held", FrameTimes::summary(times.held, period)},
+                                {"draw", FrameTimes::summary(times.draw, period)},
+                                {"dropped_at_s", times.dropped_at}};
   } catch (const std::exception& e) {
     recorder.run()["end"] = std::string("error: ") + e.what();
     recorder.run()["ended_utc"] = utc_timestamp();

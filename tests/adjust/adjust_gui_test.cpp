@@ -87,7 +87,7 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
   EXPECT_EQ(run["preload"]["images"], 26);  // 2 references + 4 conditions × 6 grid images
   EXPECT_NE(run["display"]["gl_renderer"].get<std::string>(), "");
   EXPECT_GT(run["frames"]["all"]["count"].get<int>(), 10);
-  const std::string keys = testing::read_file(dir / "sessions/P01_s01.keys.csv");
+  const std::string keys = testing::read_file(dir / "sessions/P01_s01.keys.tsv");
   EXPECT_NE(keys.find("answer-revised"), std::string::npos);
 }
 
@@ -198,6 +198,44 @@ TEST(AdjustGui, KilledSessionsResumeWithEveryAnswerExactlyOnce) {
   for (const auto& run : sidecar_json["runs"]) interrupted += run["end"] == "interrupted";
   EXPECT_EQ(interrupted, kills);
   EXPECT_EQ(sidecar_json["runs"].back()["end"], "completed");
+}
+
+TEST(AdjustGui, SimulatedObserverSessionsFeedTheAnalysis) {
+  testing::TempDir dir;
+  auto manifest = testing::make_tiny_set(dir);
+  testing::XvfbServer x;
+  std::string csvs;
+  for (int subject = 1; subject <= 5; ++subject) {
+    const std::string id = "S" + std::to_string(subject);
+    ASSERT_EQ(run_app(x, adjust_args(manifest, dir / "sessions", id, {"--observer", "simulated:" + std::to_string(subject)}),
+                      dir / "log.txt"),
+              0)
+        << testing::read_file(dir / "log.txt");
+    csvs += " " + (dir / "sessions" / (id + "_s01.csv")).string();
+  }
+  auto r = testing::run_cli("analyze" + csvs + " -o " + (dir / "report").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto results = json::parse(testing::read_file(dir / "report/results.json"));
+  EXPECT_EQ(results["n_subjects"], 5);
+  EXPECT_TRUE(results["excluded_subjects"].empty());
+  EXPECT_DOUBLE_EQ(results["lambda_step"].get<double>(), 0.4);
+  ASSERT_EQ(results["fits"].size(), 12u);  // 2 scenes × 2 σ × 3 questions
+  // Each fitted threshold lies within the interval-censored answers of its cell.
+  auto rows = analysis::read_responses(
+      std::vector<fs::path>{dir / "sessions/S1_s01.csv", dir / "sessions/S2_s01.csv", dir / "sessions/S3_s01.csv",
+                            dir / "sessions/S4_s01.csv", dir / "sessions/S5_s01.csv"});
+  for (const auto& fit : results["fits"]) {
+    double lo = 1e9, hi = -1e9;
+    for (const auto& row : rows)
+      if (row.scene == fit["scene"] && row.sigma == fit["sigma"].get<double>() &&
+          analysis::kQuestionNames[int(row.question)] == fit["question"]) {
+        lo = std::min(lo, row.lambda - 0.4);
+        hi = std::max(hi, row.lambda);
+      }
+    const double threshold = fit["threshold"];
+    EXPECT_GT(threshold, lo) << fit.dump();
+    EXPECT_LE(threshold, hi + 1e-9) << fit.dump();
+  }
 }
 
 TEST(AdjustGui, RealKeyEventsFromTheXServerDriveTheSession) {
