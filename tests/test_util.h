@@ -41,6 +41,17 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// A small scene for stimulus-set tests: a lit cube and a ball, two samples per pixel.
+inline constexpr const char* kLitCubeScene = R"({
+  "version": 1,
+  "camera": {"eye": [3, 2.2, 4], "target": [0, 0, 0], "fov": 32, "width": 640, "height": 480},
+  "render": {"spp": 2},
+  "display": {"background": 0.18},
+  "objects": [{"name": "cube", "shape": {"type": "box", "size": [1.5, 1.5, 1.5], "subdivisions": 16}, "material": {"albedo": 0.5}},
+              {"name": "ball", "shape": {"type": "sphere", "radius": 0.4, "subdivisions": 3}, "transform": {"translate": [1.3, 0, 0.6]}}],
+  "lights": [{"type": "directional", "direction": [0.35, -1, 0.6], "irradiance": 1.6}, {"type": "ambient", "radiance": 0.25}]
+})";
+
 inline std::filesystem::path write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;

@@ -38,6 +38,14 @@ void answer(SessionRecorder& recorder, Procedure& p, int count) {
   }
 }
 
+// A new session in which the first `count` questions are answered, then left without an end
+// (as if the process was killed).
+void record_session(const Fixture& f, int count) {
+  SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+  Procedure p(f.study.conditions, f.plan);
+  answer(recorder, p, count);
+}
+
 TEST(AdjustRecorder, RowsCarryEveryColumnAndTheAnalysisReadsThem) {
   Fixture f;
   {
@@ -87,11 +95,7 @@ TEST(AdjustRecorder, AnExistingSessionIsNeverOverwritten) {
 
 TEST(AdjustRecorder, ResumeReadsTheAnswersBackAndMarksTheKilledRun) {
   Fixture f;
-  {
-    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
-    Procedure p(f.study.conditions, f.plan);
-    answer(recorder, p, 4);
-  }  // no end recorded: as if the process was killed
+  record_session(f, 4);
   SessionRecorder resumed(f.study, f.plan, f.who, f.sessions(), true);
   const auto& got = resumed.recorded();
   EXPECT_EQ(got.rows, 4);
@@ -109,11 +113,7 @@ TEST(AdjustRecorder, ResumeReadsTheAnswersBackAndMarksTheKilledRun) {
 
 TEST(AdjustRecorder, APartialLastLineIsMovedAsideNotLost) {
   Fixture f;
-  {
-    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
-    Procedure p(f.study.conditions, f.plan);
-    answer(recorder, p, 2);
-  }
+  record_session(f, 2);
   const auto files = session_files(f.sessions(), "P07", 2);
   const std::string whole = testing::read_file(files.csv);
   testing::write_file(files.csv, whole + "P07,front,0.0");  // a write cut short by a power loss
@@ -128,11 +128,7 @@ TEST(AdjustRecorder, APartialLastLineIsMovedAsideNotLost) {
 
 TEST(AdjustRecorder, ResumeRefusesRowsOrPlansFromAnotherStudy) {
   Fixture f;
-  {
-    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
-    Procedure p(f.study.conditions, f.plan);
-    answer(recorder, p, 1);
-  }
+  record_session(f, 1);
   const auto files = session_files(f.sessions(), "P07", 2);
   // Another seed gives another plan.
   std::string message =

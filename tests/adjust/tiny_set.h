@@ -15,15 +15,7 @@ namespace countershade::testing {
 // set into dir/set; returns the manifest's path.
 inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string& adjust = "",
                                            int width = 96, int height = 72) {
-  write_file(dir / "cube.json", R"({
-    "version": 1,
-    "camera": {"eye": [3, 2.2, 4], "target": [0, 0, 0], "fov": 32, "width": 640, "height": 480},
-    "render": {"spp": 2},
-    "display": {"background": 0.18},
-    "objects": [{"name": "cube", "shape": {"type": "box", "size": [1.5, 1.5, 1.5], "subdivisions": 16}, "material": {"albedo": 0.5}},
-                {"name": "ball", "shape": {"type": "sphere", "radius": 0.4, "subdivisions": 3}, "transform": {"translate": [1.3, 0, 0.6]}}],
-    "lights": [{"type": "directional", "direction": [0.35, -1, 0.6], "irradiance": 1.6}, {"type": "ambient", "radiance": 0.25}]
-  })");
+  write_file(dir / "cube.json", kLitCubeScene);
   std::string text = R"({
     "version": 1, "name": "tiny", "seed": 5,
     "lambda": {"min": 0, "max": 2, "step": 0.4},

@@ -25,15 +25,7 @@ namespace fs = std::filesystem;
 
 // A small experiment: the Cornsweet cube and a grey control, three methods.
 fs::path write_experiment(const testing::TempDir& dir, int width = 96, int height = 72, double step = 0.5) {
-  testing::write_file(dir / "cube.json", R"({
-    "version": 1,
-    "camera": {"eye": [3, 2.2, 4], "target": [0, 0, 0], "fov": 32, "width": 640, "height": 480},
-    "render": {"spp": 2},
-    "display": {"background": 0.18},
-    "objects": [{"name": "cube", "shape": {"type": "box", "size": [1.5, 1.5, 1.5], "subdivisions": 16}, "material": {"albedo": 0.5}},
-                {"name": "ball", "shape": {"type": "sphere", "radius": 0.4, "subdivisions": 3}, "transform": {"translate": [1.3, 0, 0.6]}}],
-    "lights": [{"type": "directional", "direction": [0.35, -1, 0.6], "irradiance": 1.6}, {"type": "ambient", "radiance": 0.25}]
-  })");
+  testing::write_file(dir / "cube.json", testing::kLitCubeScene);
   testing::write_file(dir / "grey.json", R"({
     "version": 1,
     "camera": {"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 0, -1], "projection": "orthographic", "height_world": 2,
