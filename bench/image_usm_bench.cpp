@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/gaussian.h"
 #include "core/random.h"
 #include "enhance/depth_usm.h"
 #include "enhance/method.h"
@@ -59,6 +60,20 @@ void BM_DepthUsm(benchmark::State& state) {
 }
 BENCHMARK(BM_DepthUsm)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// One further λ of a prepared view: the darken composition alone.
+void BM_DepthUsmCompose(benchmark::State& state) {
+  const View& view = test_view();
+  MethodOptions options;
+  options.op = "darken";
+  options.kernel_percent = 5;
+  auto prepared = find_method("depth-usm")->prepare(view, options);
+  for (auto _ : state) {
+    Composed out = prepared->compose(1.0);
+    benchmark::DoNotOptimize(out.display.pixels.data());
+  }
+}
+BENCHMARK(BM_DepthUsmCompose)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The spatial importance function alone (normalise D, blur, ΔD = G*D − D).
 void BM_SpatialImportance(benchmark::State& state) {
   const View& view = test_view();
@@ -70,6 +85,17 @@ void BM_SpatialImportance(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SpatialImportance)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The recursive Gaussian alone on a 1920×1080 float plane (σ in px).
+void BM_GaussianBlur(benchmark::State& state) {
+  const View& view = test_view();
+  std::vector<float> out(view.depth.size());
+  for (auto _ : state) {
+    gaussian_blur(view.depth.data(), out.data(), kWidth, kHeight, double(state.range(0)));
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+BENCHMARK(BM_GaussianBlur)->Arg(6)->Arg(28)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // K = 5% against K = 1%, timed alternately in one run.
 void BM_DepthUsmKernelRatio(benchmark::State& state) {

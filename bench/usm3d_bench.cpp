@@ -124,4 +124,3 @@ BENCHMARK(BM_Usm3dOverhead)->Arg(0)->Arg(3)->Unit(benchmark::kSecond)->UseRealTi
 
 }  // namespace
 }  // namespace countershade
-BENCHMARK_MAIN();

@@ -8,10 +8,12 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "core/allocator.h"
 #include "core/error.h"
 #include "core/version.h"
 
 int main(int argc, char** argv) {
+  countershade::keep_freed_buffers_for_reuse();
   CLI::App app{"countershade: renders contrast-enhanced stimuli, runs adjustment studies and "
                "analyses them."};
   app.set_version_flag("--version", countershade::kVersion);

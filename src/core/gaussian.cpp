@@ -12,89 +12,104 @@ namespace countershade {
 namespace {
 
 // Deriche's 4th-order approximation with Farnebäck and Westin's (2006) constants: a causal and
-// an anticausal recursion whose sum approximates convolution with a unit-area Gaussian.
-// The recursion runs in double: for large σ its poles approach 1 and float loses accuracy.
+// an anticausal recursion whose sum approximates convolution with a unit-area Gaussian. The
+// causal impulse response is a sum of two damped oscillations, h(n) = Σ_k e_k^n (a_k cos nθ_k +
+// b_k sin nθ_k), so the filter runs as two second-order sections in parallel. Unlike the direct
+// 4th-order form, these stay accurate in float even for large σ (poles near 1), which doubles the
+// vector width of the recursion. Coefficients are computed in double.
 struct Deriche {
-  double n[4], m[4], d[4];
-  double causal_gain, anticausal_gain;  // steady-state response to a constant input, for the borders
+  struct Section {
+    float n0, n1;  // causal numerator: y(n) = n0 x(n) + n1 x(n−1) − d1 y(n−1) − d2 y(n−2)
+    float m1, m2;  // anticausal numerator: y(n) = m1 x(n+1) + m2 x(n+2) − d1 y(n+1) − d2 y(n+2)
+    float d1, d2;
+    float causal_gain, anticausal_gain;  // steady-state response to a constant input, for the borders
+  } section[2];
 
   explicit Deriche(double sigma) {
-    const double a1 = 1.3530, b1 = 1.8151, w1 = 0.6681, l1 = -1.3932;
-    const double a2 = -0.3531, b2 = 0.0902, w2 = 2.0787, l2 = -1.3732;
-    double s1 = std::sin(w1 / sigma), s2 = std::sin(w2 / sigma);
-    double c1 = std::cos(w1 / sigma), c2 = std::cos(w2 / sigma);
-    double e1 = std::exp(l1 / sigma), e2 = std::exp(l2 / sigma);
-    double N[4], D[4], M[4];
-    N[0] = a1 + a2;
-    N[1] = e2 * (b2 * s2 - (a2 + 2 * a1) * c2) + e1 * (b1 * s1 - (a1 + 2 * a2) * c1);
-    N[2] = 2 * e1 * e2 * ((a1 + a2) * c2 * c1 - b1 * c2 * s1 - b2 * c1 * s2) + a2 * e1 * e1 + a1 * e2 * e2;
-    N[3] = e2 * e1 * e1 * (b2 * s2 - a2 * c2) + e1 * e2 * e2 * (b1 * s1 - a1 * c1);
-    D[0] = -2 * (e2 * c2 + e1 * c1);
-    D[1] = 4 * c2 * c1 * e1 * e2 + e1 * e1 + e2 * e2;
-    D[2] = -2 * c1 * e1 * e2 * e2 - 2 * c2 * e2 * e1 * e1;
-    D[3] = e1 * e1 * e2 * e2;
-    double sum_d = 1 + D[0] + D[1] + D[2] + D[3];
-    double sum_n = N[0] + N[1] + N[2] + N[3];
-    double scale = 2 * sum_n / sum_d - N[0];  // unit area of causal + anticausal response
-    for (double& v : N) v /= scale;
-    M[0] = N[1] - D[0] * N[0];
-    M[1] = N[2] - D[1] * N[0];
-    M[2] = N[3] - D[2] * N[0];
-    M[3] = -D[3] * N[0];
-    double sum_m = M[0] + M[1] + M[2] + M[3];
-    sum_n = N[0] + N[1] + N[2] + N[3];
-    for (int k = 0; k < 4; ++k) {
-      n[k] = N[k];
-      m[k] = M[k];
-      d[k] = D[k];
+    const double a[2] = {1.3530, -0.3531}, b[2] = {1.8151, 0.0902}, w[2] = {0.6681, 2.0787}, l[2] = {-1.3932, -1.3732};
+    double h[2][3], d1[2], d2[2];
+    for (int k = 0; k < 2; ++k) {
+      const double e = std::exp(l[k] / sigma), theta = w[k] / sigma;
+      for (int n = 0; n < 3; ++n) h[k][n] = std::pow(e, n) * (a[k] * std::cos(n * theta) + b[k] * std::sin(n * theta));
+      d1[k] = -2 * e * std::cos(theta);
+      d2[k] = e * e;
     }
-    causal_gain = sum_n / sum_d;
-    anticausal_gain = sum_m / sum_d;
+    // Unit area of the whole (causal + anticausal) response, from the sections' transfer functions at z = 1.
+    double area = 0;
+    for (int k = 0; k < 2; ++k) {
+      const double den = 1 + d1[k] + d2[k];
+      const double n0 = h[k][0], n1 = h[k][1] + d1[k] * h[k][0];
+      const double m1 = h[k][1], m2 = h[k][2] + d1[k] * h[k][1];
+      area += (n0 + n1) / den + (m1 + m2) / den;
+    }
+    for (int k = 0; k < 2; ++k) {
+      const double den = 1 + d1[k] + d2[k];
+      const double n0 = h[k][0] / area, n1 = (h[k][1] + d1[k] * h[k][0]) / area;
+      const double m1 = h[k][1] / area, m2 = (h[k][2] + d1[k] * h[k][1]) / area;
+      section[k] = {float(n0), float(n1), float(m1), float(m2), float(d1[k]), float(d2[k]),
+                    float((n0 + n1) / den), float((m1 + m2) / den)};
+    }
   }
 };
 
 // Filters columns [x0, x1) of a row-major image along y. All columns of a row are independent, so
 // the inner loops run over x without branches and vectorise; rows outside the image are the edge
-// rows (clamp-to-edge) with the recursion at its steady state there.
+// rows (clamp-to-edge) with the recursions at their steady state there.
 // Compiled twice: for AVX2/FMA machines and for the x86-64 baseline, chosen at load time.
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 void deriche_columns(const float* in, float* out, int width, int height, int x0, int x1, const Deriche& f,
-                     std::vector<double>& scratch) {
+                     std::vector<float>& scratch) {
   const size_t w = size_t(x1 - x0);
-  // Causal outputs for rows -4..height-1 (4 leading rows of steady state).
-  scratch.resize((size_t(height) + 4) * w);
-  double* causal = scratch.data() + 4 * w;
+  // Causal sums for every row; the state of each section (its last two outputs) stays in cache.
+  scratch.resize(size_t(height) * w);
+  float* causal = scratch.data();
+  std::vector<float> state(4 * w);
+  float *p1 = state.data(), *p2 = p1 + w, *q1 = p2 + w, *q2 = q1 + w;
+  // Plain local copies: the coefficients are floats too, so stores to the rows could alias them.
+  const float sn0 = f.section[0].n0, sn1 = f.section[0].n1, sm1 = f.section[0].m1, sm2 = f.section[0].m2;
+  const float sd1 = f.section[0].d1, sd2 = f.section[0].d2;
+  const float tn0 = f.section[1].n0, tn1 = f.section[1].n1, tm1 = f.section[1].m1, tm2 = f.section[1].m2;
+  const float td1 = f.section[1].d1, td2 = f.section[1].d2;
+  const float s_causal = f.section[0].causal_gain, t_causal = f.section[1].causal_gain;
+  const float s_anticausal = f.section[0].anticausal_gain, t_anticausal = f.section[1].anticausal_gain;
   const float* first = in + x0;
   const float* last = in + size_t(height - 1) * width + x0;
-  for (int k = 1; k <= 4; ++k)
-    for (size_t i = 0; i < w; ++i) causal[-long(k) * long(w) + long(i)] = f.causal_gain * first[i];
   auto row = [&](int y) { return in + size_t(std::clamp(y, 0, height - 1)) * width + x0; };
-  const double n0 = f.n[0], n1 = f.n[1], n2 = f.n[2], n3 = f.n[3];
-  const double m0 = f.m[0], m1 = f.m[1], m2 = f.m[2], m3 = f.m[3];
-  const double d0 = f.d[0], d1 = f.d[1], d2 = f.d[2], d3 = f.d[3];
-  for (int y = 0; y < height; ++y) {
-    const float *x_0 = row(y), *x_1 = row(y - 1), *x_2 = row(y - 2), *x_3 = row(y - 3);
-    double* c = causal + size_t(y) * w;
-    const double *c1 = c - w, *c2 = c - 2 * w, *c3 = c - 3 * w, *c4 = c - 4 * w;
-    for (size_t i = 0; i < w; ++i)
-      c[i] = n0 * x_0[i] + n1 * x_1[i] + n2 * x_2[i] + n3 * x_3[i] - (d0 * c1[i] + d1 * c2[i] + d2 * c3[i] + d3 * c4[i]);
+  for (size_t i = 0; i < w; ++i) {
+    p1[i] = p2[i] = s_causal * first[i];
+    q1[i] = q2[i] = t_causal * first[i];
   }
-  // Anticausal pass from the last row; the last 4 outputs live in a ring, seeded at steady state.
-  std::vector<double> ring(4 * w);
-  for (int k = 0; k < 4; ++k)
-    for (size_t i = 0; i < w; ++i) ring[size_t(k) * w + i] = f.anticausal_gain * last[i];
-  for (int y = height - 1; y >= 0; --y) {
-    const float *x_1 = row(y + 1), *x_2 = row(y + 2), *x_3 = row(y + 3), *x_4 = row(y + 4);
-    // Ring slot of row r is r mod 4 (rows past the end hold the steady state already).
-    double* a0 = &ring[size_t(y & 3) * w];  // becomes row y; holds row y+4 until written
-    const double *a1 = &ring[size_t((y + 1) & 3) * w], *a2 = &ring[size_t((y + 2) & 3) * w],
-                 *a3 = &ring[size_t((y + 3) & 3) * w];
-    const double* c = causal + size_t(y) * w;
-    float* o = out + size_t(y) * width + x0;
+  for (int y = 0; y < height; ++y) {
+    const float *x_0 = row(y), *x_1 = row(y - 1);
+    float* c = causal + size_t(y) * w;
+#pragma GCC ivdep  // the rows never overlap
     for (size_t i = 0; i < w; ++i) {
-      double a = m0 * x_1[i] + m1 * x_2[i] + m2 * x_3[i] + m3 * x_4[i] - (d0 * a1[i] + d1 * a2[i] + d2 * a3[i] + d3 * a0[i]);
-      a0[i] = a;
-      o[i] = float(c[i] + a);
+      const float ys = sn0 * x_0[i] + sn1 * x_1[i] - (sd1 * p1[i] + sd2 * p2[i]);
+      const float yt = tn0 * x_0[i] + tn1 * x_1[i] - (td1 * q1[i] + td2 * q2[i]);
+      p2[i] = p1[i];
+      p1[i] = ys;
+      q2[i] = q1[i];
+      q1[i] = yt;
+      c[i] = ys + yt;
+    }
+  }
+  for (size_t i = 0; i < w; ++i) {
+    p1[i] = p2[i] = s_anticausal * last[i];
+    q1[i] = q2[i] = t_anticausal * last[i];
+  }
+  for (int y = height - 1; y >= 0; --y) {
+    const float *x_1 = row(y + 1), *x_2 = row(y + 2);
+    const float* c = causal + size_t(y) * w;
+    float* o = out + size_t(y) * width + x0;
+#pragma GCC ivdep
+    for (size_t i = 0; i < w; ++i) {
+      const float ys = sm1 * x_1[i] + sm2 * x_2[i] - (sd1 * p1[i] + sd2 * p2[i]);
+      const float yt = tm1 * x_1[i] + tm2 * x_2[i] - (td1 * q1[i] + td2 * q2[i]);
+      p2[i] = p1[i];
+      p1[i] = ys;
+      q2[i] = q1[i];
+      q1[i] = yt;
+      o[i] = c[i] + (ys + yt);
     }
   }
 }
@@ -117,7 +132,7 @@ void recursive_vertical(const float* in, float* out, int width, int height, cons
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, (width + kColumns - 1) / kColumns),
                       [&](const tbb::blocked_range<int>& r) {
-                        std::vector<double> scratch;
+                        std::vector<float> scratch;
                         for (int b = r.begin(); b != r.end(); ++b)
                           deriche_columns(in, out, width, height, b * kColumns,
                                           std::min(width, (b + 1) * kColumns), f, scratch);
@@ -132,7 +147,7 @@ void recursive_horizontal(float* image, int width, int height, const Deriche& f,
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, (height + kRows - 1) / kRows), [&](const tbb::blocked_range<int>& r) {
       std::vector<float> block(size_t(width) * kRows), filtered(block.size());
-      std::vector<double> scratch;
+      std::vector<float> scratch;
       for (int b = r.begin(); b != r.end(); ++b) {
         int y0 = b * kRows, rows = std::min(kRows, height - y0);
         for (int k = 0; k < rows; ++k)

@@ -66,6 +66,60 @@ void parallel_chunks(size_t n, const Body& body) {
                     [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
 }
 
+// out = clamp(in + a·min(ΔD, 0) + b·max(ΔD, 0)) for `n` RGB pixels; returns how many clipped.
+// Runs in float over blocks (first the per-pixel offsets, then the channels) so that both loops
+// vectorise; compiled for AVX2/FMA machines and for the x86-64 baseline, chosen at load time.
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+unsigned offset_and_clip(const float* in, const float* dd, float* out, size_t n, const float c[6]) {
+  constexpr size_t kBlock = 1024;
+  float off0[kBlock], off1[kBlock], off2[kBlock];
+  unsigned clipped = 0;
+  for (size_t first = 0; first < n; first += kBlock) {
+    const size_t m = std::min(kBlock, n - first);
+    for (size_t k = 0; k < m; ++k) {
+      const float d = dd[first + k], neg = std::min(d, 0.0f), pos = std::max(d, 0.0f);
+      off0[k] = c[0] * neg + c[3] * pos;
+      off1[k] = c[1] * neg + c[4] * pos;
+      off2[k] = c[2] * neg + c[5] * pos;
+    }
+    const float* p = in + 3 * first;
+    float* o = out + 3 * first;
+    for (size_t k = 0; k < m; ++k) {
+      const float v0 = p[3 * k] + off0[k], v1 = p[3 * k + 1] + off1[k], v2 = p[3 * k + 2] + off2[k];
+      const float lo = std::min(v0, std::min(v1, v2)), hi = std::max(v0, std::max(v1, v2));
+      clipped += unsigned(lo < 0.0f) | unsigned(hi > 1.0f);
+      o[3 * k] = std::min(std::max(v0, 0.0f), 1.0f);
+      o[3 * k + 1] = std::min(std::max(v1, 0.0f), 1.0f);
+      o[3 * k + 2] = std::min(std::max(v2, 0.0f), 1.0f);
+    }
+  }
+  return clipped;
+}
+
+// The range of the valid depths (finite and positive) among n values; lo > hi when none is valid.
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+void valid_depth_range(const float* depth, size_t n, float* lo, float* hi) {
+  float l = INFINITY, h = -INFINITY;
+  for (size_t i = 0; i < n; ++i) {
+    const float d = depth[i];
+    const bool valid = d > 0.0f && d < INFINITY;  // NaN fails both
+    l = std::min(l, valid ? d : INFINITY);
+    h = std::max(h, valid ? d : -INFINITY);
+  }
+  *lo = l;
+  *hi = h;
+}
+
+// Linear depth mapped to [0,1] as (d − lo)·scale; invalid depths become 1 (far).
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+void normalize_linear_depth(const float* depth, float* out, size_t n, double lo, double scale) {
+  for (size_t i = 0; i < n; ++i) {
+    const float d = depth[i];
+    const bool valid = d > 0.0f && d < INFINITY;
+    out[i] = valid ? float((double(d) - lo) * scale) : 1.0f;
+  }
+}
+
 class DepthUsmPrepared final : public PreparedEnhancement {
  public:
   DepthUsmPrepared(const View& view, const MethodOptions& options, SpatialImportance importance)
@@ -122,16 +176,11 @@ class DepthUsmPrepared final : public PreparedEnhancement {
     Composed out;
     out.display = Image(view_.width(), view_.height(), 3);
     std::atomic<size_t> clipped{0};
-    switch (op_) {  // one branch-free loop per operator, so each vectorises
-      case Operator::add: clipped = apply_rgb(out.display, [&](size_t, int, double I, double d) { return I + lambda * d; }); break;
-      case Operator::darken:
-        clipped = apply_rgb(out.display, [&](size_t, int, double I, double d) { return I + lambda * std::min(d, 0.0); });
-        break;
-      case Operator::color:
-        clipped = apply_rgb(out.display, [&](size_t, int c, double I, double d) {
-          return I + lambda * (-std::min(d, 0.0) * options_.cold[c] + std::max(d, 0.0) * options_.warm[c]);
-        });
-        break;
+    switch (op_) {
+      // add, darken and color are all I + λ(a·min(ΔD, 0) + b·max(ΔD, 0)) per channel.
+      case Operator::add: clipped = apply_linear(out.display, lambda * glm::dvec3(1.0), lambda * glm::dvec3(1.0)); break;
+      case Operator::darken: clipped = apply_linear(out.display, lambda * glm::dvec3(1.0), glm::dvec3(0.0)); break;
+      case Operator::color: clipped = apply_linear(out.display, -lambda * options_.cold, lambda * options_.warm); break;
       case Operator::contrast:
         clipped = apply_rgb(out.display, [&](size_t i, int c, double I, double d) {
           double alpha = std::clamp(lambda * std::abs(d), 0.0, 1.0);
@@ -140,6 +189,20 @@ class DepthUsmPrepared final : public PreparedEnhancement {
     }
     out.clipped_pixels = clipped;
     return out;
+  }
+
+  // Writes I + a·min(ΔD, 0) + b·max(ΔD, 0), clipped to [0,1], into `result`; returns the clipped
+  // pixel count. This loop is most of the cost of a further λ.
+  size_t apply_linear(Image& result, const glm::dvec3& a, const glm::dvec3& b) const {
+    std::atomic<size_t> clipped{0};
+    const float* in = view_.display.pixels.data();
+    const float* dd = si_.importance.pixels.data();
+    float* out = result.pixels.data();
+    const float coefficients[6] = {float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)};
+    parallel_chunks(view_.lab.size(), [&](size_t begin, size_t end) {
+      clipped += offset_and_clip(in + 3 * begin, dd + begin, out + 3 * begin, end - begin, coefficients);
+    });
+    return clipped;
   }
 
   // Writes op(pixel, channel, I, ΔD) clipped to [0,1] into `result`; returns the clipped pixel count.
@@ -189,13 +252,8 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
   float lo = INFINITY, hi = -INFINITY;
   std::mutex range_mutex;
   parallel_chunks(n, [&](size_t begin, size_t end) {
-    float l = INFINITY, h = -INFINITY;
-    for (size_t i = begin; i < end; ++i) {
-      float d = view.depth[i];
-      bool valid = valid_depth(d);
-      l = std::min(l, valid ? d : INFINITY);
-      h = std::max(h, valid ? d : -INFINITY);
-    }
+    float l, h;
+    valid_depth_range(view.depth.data() + begin, end - begin, &l, &h);
     std::lock_guard<std::mutex> lock(range_mutex);
     lo = std::min(lo, l);
     hi = std::max(hi, h);
@@ -210,13 +268,20 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
   };
   if (lo <= hi) {
     double mlo = mapped(lo), mhi = mapped(hi);
-    parallel_chunks(n, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        float d = view.depth[i];
-        if (!valid_depth(d)) continue;  // background stays at 1 (far)
-        si.depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
-      }
-    });
+    if (!zbuffer) {
+      const double scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
+      parallel_chunks(n, [&](size_t begin, size_t end) {
+        normalize_linear_depth(view.depth.data() + begin, si.depth.pixels.data() + begin, end - begin, lo, scale);
+      });
+    } else {
+      parallel_chunks(n, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          float d = view.depth[i];
+          if (!valid_depth(d)) continue;  // background stays at 1 (far)
+          si.depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
+        }
+      });
+    }
   }
   si.sigma_px = image_sigma_px(options, w, h);
   si.blurred = Image(w, h, 1);
