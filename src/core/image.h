@@ -3,19 +3,43 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace countershade {
 
+// An allocator whose containers leave new floats uninitialised unless a value is given, so an
+// image that is about to be overwritten entirely is not filled first (tens of MB per λ).
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  using std::allocator<T>::allocator;
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
+    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+using PixelVector = std::vector<float, DefaultInitAllocator<float>>;
+
 // Row-major, interleaved channels, top row first.
 struct Image {
   int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;
+  PixelVector pixels;
+
+  // Tag for an image whose every pixel the caller writes before reading any.
+  struct Uninitialized {};
 
   Image() = default;
   Image(int w, int h, int c, float fill = 0.0f)
       : width(w), height(h), channels(c), pixels(size_t(w) * size_t(h) * size_t(c), fill) {}
+  Image(int w, int h, int c, Uninitialized) : width(w), height(h), channels(c), pixels(size_t(w) * size_t(h) * size_t(c)) {}
 
   size_t index(int x, int y, int c = 0) const {
     return (size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c);

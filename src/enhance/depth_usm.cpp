@@ -174,7 +174,7 @@ class DepthUsmPrepared final : public PreparedEnhancement {
       return compose_lightness(view_.display, view_.lab, delta, view_.encoding);
     }
     Composed out;
-    out.display = Image(view_.width(), view_.height(), 3);
+    out.display = Image(view_.width(), view_.height(), 3, Image::Uninitialized{});  // every pixel is written below
     std::atomic<size_t> clipped{0};
     switch (op_) {
       // add, darken and color are all I + λ(a·min(ΔD, 0) + b·max(ΔD, 0)) per channel.
@@ -259,7 +259,8 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
     hi = std::max(hi, h);
   });
   SpatialImportance si;
-  si.depth = Image(w, h, 1, 1.0f);
+  const bool linear_fills_all = options.depth_mapping != "zbuffer" && lo <= hi;
+  si.depth = linear_fills_all ? Image(w, h, 1, Image::Uninitialized{}) : Image(w, h, 1, 1.0f);
   const bool zbuffer = options.depth_mapping == "zbuffer";
   double near = options.z_near.value_or(lo), far = options.z_far.value_or(hi);
   auto mapped = [&](double d) {  // a monotone depth value before normalisation
@@ -284,9 +285,9 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
     }
   }
   si.sigma_px = image_sigma_px(options, w, h);
-  si.blurred = Image(w, h, 1);
+  si.blurred = Image(w, h, 1, Image::Uninitialized{});  // the blur writes every pixel
   gaussian_blur(si.depth.pixels.data(), si.blurred.pixels.data(), w, h, si.sigma_px);
-  si.importance = Image(w, h, 1);
+  si.importance = Image(w, h, 1, Image::Uninitialized{});
   parallel_chunks(n, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) si.importance.pixels[i] = si.blurred.pixels[i] - si.depth.pixels[i];
   });

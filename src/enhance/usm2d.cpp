@@ -35,7 +35,7 @@ class Usm2dPrepared final : public PreparedEnhancement {
   nlohmann::json parameters() const override { return {{"sigma_px", sigma_}}; }
   std::vector<std::pair<std::string, Image>> auxiliary() const override {
     Image blurred(view_.width(), view_.height(), 1);
-    blurred.pixels = blurred_;
+    blurred.pixels.assign(blurred_.begin(), blurred_.end());
     return {{"lightness_blurred", blurred}};
   }
 

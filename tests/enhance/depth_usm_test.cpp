@@ -172,7 +172,7 @@ TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
   o.kernel_percent.reset();
   o.sigma_px = 1.0;
   SpatialImportance si = spatial_importance(view, o);
-  EXPECT_EQ(si.depth.pixels, (std::vector<float>{1.0f, 0.0f, 1.0f, 1.0f}));
+  EXPECT_EQ(std::vector<float>(si.depth.pixels.begin(), si.depth.pixels.end()), (std::vector<float>{1.0f, 0.0f, 1.0f, 1.0f}));
   o.depth_mapping = "zbuffer";
   o.z_near = 1.0;
   o.z_far = 8.0;
