@@ -1,10 +1,10 @@
 #pragma once
 // Separable Gaussian blur of one-channel float images with clamp-to-edge borders.
 //
-// gaussian_blur: a 4th-order recursive (Deriche) filter, as two parallel second-order sections in
-// float, whose cost does not depend on σ, run on
-// several lines at once so it vectorises, multithreaded. Small σ (below kRecursiveMinSigma) uses
-// the exact FIR path, whose cost is then bounded by a ~25-tap kernel.
+// gaussian_blur: a 4th-order recursive (Deriche) filter, run as two parallel second-order sections
+// in float, whose cost does not depend on σ. It filters several lines at once so it vectorises,
+// and is multithreaded. Small σ (below kRecursiveMinSigma) uses the exact FIR path, whose cost is
+// then bounded by a ~25-tap kernel.
 // gaussian_blur_exact: the reference: a double-precision FIR over ±4σ, normalised.
 
 #include <vector>
