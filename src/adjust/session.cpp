@@ -55,7 +55,9 @@ struct FrameTimes {
   std::vector<float> all, held;  // intervals in seconds
   std::vector<float> draw;       // time to build, render and swap a frame
   std::vector<double> dropped_at;  // session time of the first dropped frames
+  std::vector<float> key_to_frame;  // from a key press to the swap of the frame that shows it
 
+  // period > 0: also counts the values over 1.2 periods as dropped frames.
   static OrderedJson summary(std::vector<float> v, double period) {
     OrderedJson j = {{"count", v.size()}};
     if (v.empty()) return j;
@@ -68,7 +70,7 @@ struct FrameTimes {
     j["p95_ms"] = pct(0.95);
     j["p99_ms"] = pct(0.99);
     j["max_ms"] = 1000.0 * v.back();
-    j["dropped"] = std::count_if(v.begin(), v.end(), [&](float x) { return x > 1.2 * period; });
+    if (period > 0) j["dropped"] = std::count_if(v.begin(), v.end(), [&](float x) { return x > 1.2 * period; });
     return j;
   }
 };
@@ -179,6 +181,7 @@ int run_session(const SessionOptions& o) {
     double last_frame = -1;
     int frame = 0;
     std::optional<double> pause_started;
+    std::vector<double> pending_presses;  // presses not yet on screen
 
     auto log = [&](double t, const std::string& event, const std::string& key) { recorder.log_event(t, event, key, procedure); };
     auto handle = [&](const InputEvent& e) {
@@ -191,6 +194,7 @@ int run_session(const SessionOptions& o) {
           return;
         case InputEvent::Kind::press: break;
       }
+      pending_presses.push_back(e.time_s);
       const auto before = procedure.phase();
       if (before == Procedure::Phase::finished) {
         log(e.time_s, "press", key_name(e.key));
@@ -278,6 +282,9 @@ int run_session(const SessionOptions& o) {
       const double draw_start = presenter->now();
       const StimulusLayout layout = presenter->draw(content, shot);
       const double draw_seconds = presenter->now() - draw_start;
+      // The frame just swapped is the first to show these presses.
+      for (double pressed : pending_presses) times.key_to_frame.push_back(float(presenter->now() - t0 - pressed));
+      pending_presses.clear();
       if (!shot.empty()) {
         OrderedJson info = {{"frame", frame}, {"phase", int(procedure.phase())}};
         if (procedure.phase() == Procedure::Phase::question) {
@@ -320,7 +327,8 @@ int run_session(const SessionOptions& o) {
                                 {"all", FrameTimes::summary(times.all, period)},
                                 {"key_held", FrameTimes::summary(times.held, period)},
                                 {"draw", FrameTimes::summary(times.draw, period)},
-                                {"dropped_at_s", times.dropped_at}};
+                                {"dropped_at_s", times.dropped_at},
+                                {"key_to_frame", FrameTimes::summary(times.key_to_frame, 0)}};
   } catch (const std::exception& e) {
     recorder.run()["end"] = std::string("error: ") + e.what();
     recorder.run()["ended_utc"] = utc_timestamp();

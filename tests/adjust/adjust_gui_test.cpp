@@ -87,6 +87,10 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
   EXPECT_EQ(run["preload"]["images"], 26);  // 2 references + 4 conditions × 6 grid images
   EXPECT_NE(run["display"]["gl_renderer"].get<std::string>(), "");
   EXPECT_GT(run["frames"]["all"]["count"].get<int>(), 10);
+  // Every press reaches the screen with the next frame: 1 + 8 × 9 + 3 presses in the script.
+  const auto& latency = run["frames"]["key_to_frame"];
+  EXPECT_EQ(latency["count"], 1 + 8 * 9 + 3);
+  EXPECT_LT(latency["max_ms"].get<double>(), 250.0);
   const std::string keys = testing::read_file(dir / "sessions/P01_s01.keys.tsv");
   EXPECT_NE(keys.find("answer-revised"), std::string::npos);
 }
