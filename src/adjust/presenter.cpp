@@ -198,9 +198,12 @@ unsigned Presenter::upload_texture(const std::vector<uint8_t>& rgba, int width, 
 void Presenter::key_callback(GLFWwindow* w, int key, int, int action, int) {
   auto* self = static_cast<Presenter*>(glfwGetWindowUserPointer(w));
   // GLFW_REPEAT comes at the system's rate; the procedure makes its own, controlled repeats.
-  if (action == GLFW_REPEAT) return;
   auto k = key_of(key);
   if (!k) return;
+  if (action == GLFW_REPEAT) {
+    ++self->repeats_ignored_;
+    return;
+  }
   self->events_.push_back({action == GLFW_PRESS ? WindowEvent::Kind::press : WindowEvent::Kind::release, *k, glfwGetTime()});
 }
 

@@ -81,6 +81,8 @@ class Presenter {
   // Blocks until the next frame is due: vsync where the driver provides it, else a timer.
   void pace();
   bool timer_paced() const { return timer_pacing_; }
+  // How many GLFW_REPEAT events (the system's key repeat) were dropped.
+  long system_repeats_ignored() const { return repeats_ignored_; }
 
  private:
   GLFWwindow* window_ = nullptr;
@@ -93,6 +95,7 @@ class Presenter {
   int frames_ = 0;
   std::vector<double> early_intervals_;
   bool timer_pacing_ = false;
+  long repeats_ignored_ = 0;
   float text_rgb_ = 0;
 
   static void key_callback(GLFWwindow* w, int key, int scancode, int action, int mods);

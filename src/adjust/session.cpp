@@ -329,6 +329,7 @@ int run_session(const SessionOptions& o) {
                                 {"draw", FrameTimes::summary(times.draw, period)},
                                 {"dropped_at_s", times.dropped_at},
                                 {"key_to_frame", FrameTimes::summary(times.key_to_frame, 0)}};
+    recorder.run()["system_key_repeats_ignored"] = presenter->system_repeats_ignored();
   } catch (const std::exception& e) {
     recorder.run()["end"] = std::string("error: ") + e.what();
     recorder.run()["ended_utc"] = utc_timestamp();

@@ -4,6 +4,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -267,6 +268,52 @@ TEST(AdjustGui, RealKeyEventsFromTheXServerDriveTheSession) {
   EXPECT_EQ(sidecar["runs"][0]["end"], "quit");
   ASSERT_EQ(sidecar["runs"][0]["pauses"].size(), 1u);
   EXPECT_EQ(sidecar["runs"][0]["pauses"][0]["quit"], true);
+}
+
+TEST(AdjustGui, AHeldKeyRepeatsAtTheAppsRateNotTheXServers) {
+  testing::TempDir dir;
+  // A 21-value grid (step 0.1), so a held key does not reach the end.
+  auto manifest = testing::make_tiny_set(dir, R"({"start": "zero", "repeat": {"delay_ms": 400, "interval_ms": 100}})",
+                                         96, 72, 0.1);
+  testing::XvfbServer x;
+  testing::Child app(adjust_args(manifest, dir / "sessions", "P06"), x.display(), (dir / "log.txt").string());
+  const std::string xdotool = "DISPLAY=" + x.display() + " xdotool ";
+  bool window = false;
+  for (int i = 0; i < 100 && !window; ++i) {
+    window = std::system((xdotool + "search --name 'countershade adjust' >/dev/null 2>&1").c_str()) == 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_TRUE(window) << testing::read_file(dir / "log.txt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(std::system((xdotool + "key Return").c_str()), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // The X server auto-repeats a held key (GLFW reports those as GLFW_REPEAT); the app ignores
+  // them and steps once on the press, then every 100 ms after 400 ms.
+  ASSERT_EQ(std::system((xdotool + "keydown Right && sleep 1.05 && " + xdotool + "keyup Right").c_str()), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  for (const char* key : {"Return", "Escape", "q"}) {
+    ASSERT_EQ(std::system((xdotool + "key " + key).c_str()), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  }
+  ASSERT_EQ(app.wait(20), 0) << testing::read_file(dir / "log.txt");
+  auto table = analysis::parse_csv(testing::read_file(dir / "sessions/P06_s01.csv"), "csv");
+  ASSERT_EQ(table.rows.size(), 2u);
+  const int index = std::stoi(table.rows[1][7]);
+  EXPECT_EQ(table.rows[1][13], "1");  // one key press
+  // 1 step on the press + one per 100 ms from 0.4 s to ~1.05 s (xdotool's timing adds a little).
+  EXPECT_GE(index, 6);
+  EXPECT_LE(index, 10);
+  int presses = 0, repeats = 0;
+  std::istringstream keys(testing::read_file(dir / "sessions/P06_s01.keys.tsv"));
+  for (std::string line; std::getline(keys, line);) {
+    presses += line.find("\tpress\tright\t") != std::string::npos;
+    repeats += line.find("\trepeat\t") != std::string::npos;
+  }
+  EXPECT_EQ(presses, 1);
+  EXPECT_EQ(repeats, index - 1);
+  // The X server did repeat the key, and the app dropped those events.
+  auto sidecar = json::parse(testing::read_file(dir / "sessions/P06_s01.json"));
+  EXPECT_GT(sidecar["runs"][0]["system_key_repeats_ignored"].get<long>(), 0);
 }
 
 TEST(AdjustGui, AScreenTooSmallForOneToOneIsRefusedWithTheReason) {

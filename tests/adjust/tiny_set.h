@@ -1,6 +1,6 @@
 #pragma once
 // A small stimulus set for the adjustment tests: two views of the lit cube, usm3d at two σ, and
-// a six-value λ grid, so a full session is a few seconds.
+// by default a six-value λ grid, so a full session is a few seconds.
 
 #include <filesystem>
 #include <string>
@@ -14,11 +14,11 @@ namespace countershade::testing {
 // Writes the experiment (with `adjust` as its "adjust" object, when given) and generates the
 // set into dir/set; returns the manifest's path.
 inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string& adjust = "",
-                                           int width = 96, int height = 72) {
+                                           int width = 96, int height = 72, double lambda_step = 0.4) {
   write_file(dir / "cube.json", kLitCubeScene);
   std::string text = R"({
     "version": 1, "name": "tiny", "seed": 5,
-    "lambda": {"min": 0, "max": 2, "step": 0.4},
+    "lambda": {"min": 0, "max": 2, "step": )" + format_value(lambda_step) + R"(},
     "scenes": [{"name": "front", "file": "cube.json", "width": )" + std::to_string(width) + R"(, "height": )" +
                      std::to_string(height) + R"(},
                {"name": "small", "file": "cube.json", "width": 80, "height": 60}],
