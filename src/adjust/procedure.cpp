@@ -228,8 +228,11 @@ std::optional<Answer> Procedure::press(Key key, double time_s) {
   return std::nullopt;
 }
 
-void Procedure::release(Key key, double) {
-  if (held_ && *held_ == key) held_.reset();
+void Procedure::release(Key key, double time_s) {
+  if (held_ && *held_ == key) {
+    tick(time_s);  // the repeats that fell due while the key was still down
+    held_.reset();
+  }
 }
 
 void Procedure::tick(double time_s) {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include <OpenImageIO/imageio.h>
@@ -184,14 +185,21 @@ int run_session(const SessionOptions& o) {
     std::vector<double> pending_presses;  // presses not yet on screen
 
     auto log = [&](double t, const std::string& event, const std::string& key) { recorder.log_event(t, event, key, procedure); };
+    // One trajectory line per auto-repeat step (a late frame can apply several at once).
+    auto log_repeats = [&](double t, int index_before) {
+      for (int k = std::abs(procedure.lambda_index() - index_before); k > 0; --k) log(t, "repeat", "");
+    };
     auto handle = [&](const InputEvent& e) {
       switch (e.kind) {
         case InputEvent::Kind::screenshot: screenshot_due = true; return;
         case InputEvent::Kind::close: end = "closed"; return;
-        case InputEvent::Kind::release:
-          procedure.release(e.key, e.time_s);
+        case InputEvent::Kind::release: {
+          const int index_before = procedure.lambda_index();
+          procedure.release(e.key, e.time_s);  // may apply repeats that fell due before it
+          log_repeats(e.time_s, index_before);
           log(e.time_s, "release", key_name(e.key));
           return;
+        }
         case InputEvent::Kind::press: break;
       }
       pending_presses.push_back(e.time_s);
@@ -250,7 +258,7 @@ int run_session(const SessionOptions& o) {
 
       const int index_before = procedure.lambda_index();
       procedure.tick(now);
-      if (procedure.lambda_index() != index_before) log(now, "repeat", "");
+      log_repeats(now, index_before);
 
       FrameContent content;
       const Instructions& text = study.config.text;

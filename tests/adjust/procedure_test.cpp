@@ -202,6 +202,10 @@ TEST(AdjustProcedure, HeldKeysRepeatAtTheConfiguredRateOnly) {
   p.release(Key::right, 1.75);
   p.tick(3.0);
   EXPECT_EQ(p.lambda_index(), 5);
+  // Repeats due before a release count even when no tick came in between (a late frame).
+  p.press(Key::right, 2.0);
+  p.release(Key::right, 2.75);  // steps at 2.0, then 2.4, 2.5, 2.6, 2.7
+  EXPECT_EQ(p.lambda_index(), 10);
   // Holding down repeats downwards and stops at 0.
   p.press(Key::down, 4.0);
   p.tick(10.0);
@@ -209,7 +213,7 @@ TEST(AdjustProcedure, HeldKeysRepeatAtTheConfiguredRateOnly) {
   p.release(Key::down, 10.0);
   auto a = p.press(Key::enter, 11.0);
   ASSERT_TRUE(a);
-  EXPECT_EQ(a->n_keypresses, 2);  // presses, not repeats
+  EXPECT_EQ(a->n_keypresses, 3);  // presses, not repeats
 }
 
 TEST(AdjustProcedure, PauseFreezesTheTrialAndQuitEndsTheSession) {
