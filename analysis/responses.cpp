@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
 
 namespace countershade::analysis {
 
@@ -114,12 +115,7 @@ std::vector<Response> latest_revisions(std::vector<Response> rows, const CsvTabl
 
 std::vector<Response> read_responses(const std::filesystem::path& path) {
   const std::string file = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw_input_error(file, "no such file");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  CsvTable table = parse_csv(buffer.str(), file);
+  CsvTable table = parse_csv(read_file_bytes(path), file);
   if (table.rows.empty()) throw_input_error(file, "file is empty (expected a header row and responses)");
 
   const auto& header = table.rows[0];

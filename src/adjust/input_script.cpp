@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
 #include "core/random.h"
 
 namespace countershade::adjust {
@@ -26,12 +27,6 @@ constexpr KeyName kKeyNames[] = {{Key::up, "up"},       {Key::down, "down"},    
 double normal(SampleStream& s) {
   double u1 = std::max(s.next(), 1e-300), u2 = s.next();
   return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
-}
-
-uint64_t text_hash(const std::string& text) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return h;
 }
 
 }  // namespace
@@ -97,12 +92,7 @@ std::vector<InputEvent> parse_key_script_text(const std::string& text, const std
 }
 
 std::vector<InputEvent> parse_key_script(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw_input_error(path.string(), "no such file");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_key_script_text(text.str(), path.string());
+  return parse_key_script_text(read_file_bytes(path), path.string());
 }
 
 uint64_t parse_observer_spec(const std::string& spec) {
@@ -124,10 +114,10 @@ double SimulatedObserver::latent_lambda(int condition, int repetition, Question 
   const Condition& c = study_.conditions[size_t(condition)];
   const double top = study_.lambda(c.grid_size - 1);
   // The observer's thresholds for this condition (fixed over repetitions), plus answer noise.
-  SampleStream person(seed_, text_hash(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), 0);
+  SampleStream person(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), 0);
   const double low = 0.2 * top * std::exp(0.2 * normal(person));
   const double ratio[kQuestionCount] = {1.0, 3.0 * std::exp(0.1 * normal(person)), 1.6 * std::exp(0.1 * normal(person))};
-  SampleStream noise(seed_, text_hash(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), uint64_t(repetition) * 8 + int(question) + 1);
+  SampleStream noise(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), uint64_t(repetition) * 8 + int(question) + 1);
   return low * ratio[int(question)] * std::exp(0.05 * normal(noise));
 }
 

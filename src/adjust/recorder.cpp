@@ -14,6 +14,7 @@
 #include "analysis/responses.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_bytes.h"
 #include "core/version.h"
 #include "stimuli/experiment.h"
 
@@ -30,13 +31,6 @@ std::string two_digits(int session) {
   char buffer[16];
   std::snprintf(buffer, sizeof buffer, "%02d", session);
   return buffer;
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 void sync_directory(const fs::path& dir) {
@@ -144,7 +138,7 @@ void AppendOnlyFile::sync() {
 
 RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, const std::vector<Trial>& plan) {
   RecordedAnswers out;
-  std::string text = read_bytes(csv);
+  std::string text = read_file_bytes(csv);
   // A line without its newline can only come from a write cut short by a power loss (a killed
   // process still completes its write). Keep those bytes aside and drop them from the file.
   size_t end = text.rfind('\n');
@@ -255,7 +249,7 @@ SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& p
       if (!fs::is_regular_file(p, ec))
         throw_input_error(p.string(), "no such file: there is no session to resume (start it without --resume)");
     try {
-      sidecar_ = OrderedJson::parse(read_bytes(files_.sidecar));
+      sidecar_ = OrderedJson::parse(read_file_bytes(files_.sidecar));
     } catch (const std::exception&) {
       throw_input_error(files_.sidecar.string(), "not valid JSON");
     }

@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/random.h"
 #include "core/sha256.h"
@@ -99,23 +100,12 @@ int Study::max_height() const {
   return h;
 }
 
-namespace {
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
-
 Study load_study(const fs::path& manifest_path, const std::optional<fs::path>& config_file) {
   Study study;
   study.manifest_path = manifest_path;
   const std::string mfile = manifest_path.string();
   OrderedJson manifest = read_manifest(manifest_path);
-  study.manifest_sha256 = sha256_hex(read_bytes(manifest_path));
+  study.manifest_sha256 = sha256_hex(read_file_bytes(manifest_path));
   auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
   study.set_name = manifest.value("experiment_name", manifest_path.parent_path().filename().string());
   if (manifest.contains("bits") && manifest["bits"] != 8)
@@ -239,9 +229,7 @@ void check_subject_id(const std::string& subject) {
 }
 
 uint64_t session_seed(uint64_t study_seed, const std::string& subject, int session) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a of the subject id
-  for (unsigned char c : subject) h = (h ^ c) * 1099511628211ull;
-  return hash_combine(hash_combine(study_seed, h), uint64_t(session));
+  return hash_combine(hash_combine(study_seed, hash_string(subject)), uint64_t(session));
 }
 
 }  // namespace countershade::adjust

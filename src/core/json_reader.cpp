@@ -6,19 +6,14 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
 
 namespace countershade {
 
 using nlohmann::json;
 
 nlohmann::json parse_json_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw_input_error(path.string(), "no such file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw_input_error(path.string(), "cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string text = buffer.str();
+  std::string text = read_file_bytes(path);
   if (text.empty()) throw_input_error(path.string(), "file is empty");
   // JSON allows repeated keys and nlohmann keeps the last one silently; in a configuration file a
   // repeated key is almost always a mistake, so it is an error.

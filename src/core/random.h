@@ -3,6 +3,7 @@
 // so results do not depend on thread count or scheduling.
 
 #include <cstdint>
+#include <string_view>
 
 namespace countershade {
 
@@ -15,6 +16,13 @@ inline uint64_t mix64(uint64_t x) {
 }
 
 inline uint64_t hash_combine(uint64_t a, uint64_t b) { return mix64(a ^ mix64(b)); }
+
+// FNV-1a of a string: a stable key for names (subject ids, conditions) in seeds.
+inline uint64_t hash_string(std::string_view text) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
 
 // A deterministic stream of uniform numbers in [0,1) for one shading sample.
 class SampleStream {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
 
@@ -125,12 +126,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
   Experiment e;
   e.file = path;
   e.content = parse_json_file(path);
-  {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream bytes;
-    bytes << in.rdbuf();
-    e.sha256 = sha256_hex(bytes.str());
-  }
+  e.sha256 = sha256_hex(read_file_bytes(path));
   JsonObject root(e.content, path.string(), "");
   long long version = root.integer("version");
   if (version != kExperimentFormatVersion)
