@@ -114,8 +114,6 @@ class Procedure {
   int real_trial_count() const;
   // The number of real questions answered at least once (for progress display and the sidecar).
   int answered_count() const { return int(answered_.size()); }
-  // Phase before a pause, so a presenter can still show the paused trial's number.
-  Phase paused_from() const { return paused_from_; }
   // Whether an arrow key is being held (and so auto-repeating), for frame-time statistics.
   bool key_held() const { return held_.has_value(); }
 

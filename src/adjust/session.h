@@ -21,7 +21,6 @@ struct SessionOptions {
   std::optional<std::filesystem::path> script;
   std::optional<std::filesystem::path> screenshot;
   std::optional<std::string> observer;  // "simulated:SEED"
-  bool quiet = false;                   // no progress lines on stderr
 };
 
 // Returns the exit status: 0 when the run ended normally (finished, quit and saved, closed or
