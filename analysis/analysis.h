@@ -32,6 +32,29 @@ struct Exclusion {
   std::string subject, reason;
 };
 
+// One value per included subject × scene × σ × question, flat and in that order (row-major).
+class CellTable {
+ public:
+  CellTable() = default;
+  CellTable(size_t subjects, size_t scenes, size_t sigmas)
+      : subjects_(subjects), scenes_(scenes), sigmas_(sigmas), values_(subjects * scenes * sigmas * kQuestionCount, 0.0) {}
+  double& at(size_t subject, size_t scene, size_t sigma, Question q) { return values_[index(subject, scene, sigma, q)]; }
+  double at(size_t subject, size_t scene, size_t sigma, Question q) const { return values_[index(subject, scene, sigma, q)]; }
+  // A subject's mean over σ in one scene, and over scenes and σ.
+  double sigma_mean(size_t subject, size_t scene, Question q) const;
+  double subject_mean(size_t subject, Question q) const;
+  size_t subjects() const { return subjects_; }
+  size_t scenes() const { return scenes_; }
+  size_t sigmas() const { return sigmas_; }
+
+ private:
+  size_t index(size_t subject, size_t scene, size_t sigma, Question q) const {
+    return ((subject * scenes_ + scene) * sigmas_ + sigma) * kQuestionCount + size_t(q);
+  }
+  size_t subjects_ = 0, scenes_ = 0, sigmas_ = 0;
+  std::vector<double> values_;
+};
+
 // Everything computed for one method block, kept for tables, figures and the report.
 struct BlockResults {
   std::string method;  // "" when the CSV has no method column
@@ -39,8 +62,7 @@ struct BlockResults {
   std::vector<std::string> subjects, scenes, warnings;  // subjects: included, sorted
   std::vector<double> sigmas;
   std::vector<Exclusion> excluded;
-  // JND per included subject, [subject][scene][sigma][question].
-  std::vector<std::vector<std::vector<std::array<double, 3>>>> jnd;
+  CellTable jnd;  // JND per included subject, scene, σ and question
   std::vector<AnovaRow> anova, anova_best_sigma;
   Dendrogram dendrogram;
   std::vector<int> cluster_labels;  // per included subject

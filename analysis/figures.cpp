@@ -6,15 +6,10 @@
 #include <sstream>
 
 #include "core/svg_plot.h"
+#include "core/xml.h"
 
 namespace countershade::analysis {
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
-  return out;
-}
 
 std::string number(double v, int precision = 3) {
   std::ostringstream s;
@@ -46,7 +41,7 @@ std::string figure_questions_by_scene(const BlockResults& r) {
       std::vector<double> v;
       for (size_t i = 0; i < n; ++i) {
         double m = 0;
-        for (size_t g = 0; g < r.sigmas.size(); ++g) m += r.jnd[i][s][g][q] / double(r.sigmas.size());
+        for (size_t g = 0; g < r.sigmas.size(); ++g) m += r.jnd.at(i, s, g, Question(q)) / double(r.sigmas.size());
         v.push_back(m);
       }
       stats[s][q] = summarize(v);
@@ -83,7 +78,7 @@ std::string figure_questions_by_scene(const BlockResults& r) {
           << py(st.mean + st.sem) << "h8M" << cx - 4 << "," << py(st.mean - st.sem) << "h8\" stroke=\"black\"/>\n";
     }
     svg << "<text x=\"" << left + group * (double(s) + 0.5) << "\" y=\"" << top + ph + 18
-        << "\" text-anchor=\"middle\">" << escape(r.scenes[s]) << "</text>\n";
+        << "\" text-anchor=\"middle\">" << xml_escape(r.scenes[s]) << "</text>\n";
   }
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
       << "\" fill=\"none\" stroke=\"#444\"/>\n<text transform=\"translate(16," << top + ph / 2
@@ -111,7 +106,7 @@ std::string figure_lambda_by_sigma(const BlockResults& r) {
       series.dashed = q == Question::high;
       for (size_t g = 0; g < r.sigmas.size(); ++g) {
         double m = 0;
-        for (size_t i = 0; i < r.subjects.size(); ++i) m += r.jnd[i][s][g][int(q)] / double(r.subjects.size());
+        for (size_t i = 0; i < r.subjects.size(); ++i) m += r.jnd.at(i, s, g, q) / double(r.subjects.size());
         series.x.push_back(r.sigmas[g]);
         series.y.push_back(m);
       }
@@ -141,7 +136,7 @@ std::string figure_fits(const BlockResults& r) {
     auto px = [&](double l) { return x0 + pw * l / lmax; };
     auto py = [&](double p) { return y0 + ph * (1.0 - p); };
     svg << "<rect x=\"" << x0 << "\" y=\"" << y0 << "\" width=\"" << pw << "\" height=\"" << ph
-        << "\" fill=\"none\" stroke=\"#888\"/>\n<text x=\"" << x0 << "\" y=\"" << y0 - 4 << "\">" << escape(f.scene)
+        << "\" fill=\"none\" stroke=\"#888\"/>\n<text x=\"" << x0 << "\" y=\"" << y0 - 4 << "\">" << xml_escape(f.scene)
         << ", σ=" << number(f.sigma) << ", " << kQuestionNames[int(f.question)] << " (n=" << f.fit.n << ")</text>\n";
     std::vector<double> a = f.answers;
     std::sort(a.begin(), a.end());
@@ -191,7 +186,7 @@ std::string figure_dendrogram(const BlockResults& r) {
   }
   for (size_t i = 0; i < n; ++i)
     svg << "<text transform=\"translate(" << leaf_x[i] + 4 << "," << top + ph + 8 << ") rotate(90)\" fill=\""
-        << plot_color(size_t(r.cluster_labels[i] - 1)) << "\">" << escape(r.subjects[i]) << " ("
+        << plot_color(size_t(r.cluster_labels[i] - 1)) << "\">" << xml_escape(r.subjects[i]) << " ("
         << r.cluster_labels[i] << ")</text>\n";
   for (int t = 0; t <= 4; ++t)
     svg << "<text x=\"" << left - 6 << "\" y=\"" << py(hmax * t / 4) + 4 << "\" text-anchor=\"end\">"

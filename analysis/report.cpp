@@ -6,6 +6,7 @@
 
 #include "analysis/figures.h"
 #include "core/atomic_file.h"
+#include "core/xml.h"
 
 namespace countershade::analysis {
 namespace {
@@ -36,12 +37,6 @@ std::string table_csv(const json& rows) {
     out << "\n";
   }
   return out.str();
-}
-
-std::string html_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
-  return out;
 }
 
 // APA style: no leading zero for values bounded by 1, "p < .001" below that.
@@ -77,13 +72,13 @@ std::string anova_statement(const json& r) {
 std::string html_table(const json& rows, const std::vector<std::string>& keys) {
   std::ostringstream out;
   out << "<table><tr>";
-  for (const auto& k : keys) out << "<th>" << html_escape(k) << "</th>";
+  for (const auto& k : keys) out << "<th>" << xml_escape(k) << "</th>";
   out << "</tr>\n";
   for (const auto& row : rows) {
     out << "<tr>";
     for (const auto& k : keys) {
       std::string v = !row.contains(k) ? "" : row[k].is_number_float() ? fixed(row[k], 4) : row[k].is_string() ? row[k].get<std::string>() : row[k].dump();
-      out << "<td>" << html_escape(v) << "</td>";
+      out << "<td>" << xml_escape(v) << "</td>";
     }
     out << "</tr>\n";
   }
@@ -96,33 +91,33 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
   const json& r = b.json;
   std::ostringstream h;
   h << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>countershade analysis"
-    << (b.method.empty() ? "" : " — " + html_escape(b.method)) << "</title><style>"
+    << (b.method.empty() ? "" : " — " + xml_escape(b.method)) << "</title><style>"
     << "body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}table{border-collapse:collapse;"
        "margin:0.5em 0 1.5em}td,th{border:1px solid #ccc;padding:2px 8px;font-size:13px;text-align:right}"
        "th{background:#f3f3f3}li{margin:0.3em 0}.warn{color:#a40}</style></head><body>\n"
-    << "<h1>Adjustment study analysis" << (b.method.empty() ? "" : ": " + html_escape(b.method)) << "</h1>\n"
+    << "<h1>Adjustment study analysis" << (b.method.empty() ? "" : ": " + xml_escape(b.method)) << "</h1>\n"
     << "<p>" << r["n_subjects"] << " subjects analysed; JND normalisation: " << r["jnd_normalization"].get<std::string>()
     << "; λ grid step " << r["lambda_step"] << ".</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>";
-    for (const auto& w : b.warnings) h << "<li class=\"warn\">" << html_escape(w) << "</li>";
+    for (const auto& w : b.warnings) h << "<li class=\"warn\">" << xml_escape(w) << "</li>";
     h << "</ul>\n";
   }
   h << "<h2>Chosen λ per scene</h2>\n" << fig12 << "\n" << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
   h << "<h2>Repeated-measures ANOVA: question × scene × σ (JND)</h2>\n<ul>";
-  for (const auto& row : r["anova"]) h << "<li><b>" << html_escape(row["effect"]) << "</b>: " << html_escape(anova_statement(row)) << "</li>";
+  for (const auto& row : r["anova"]) h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row)) << "</li>";
   h << "</ul>\n" << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
   h << "<h2>Does σ change λ_Best? scene × σ on λ_Best (JND)</h2>\n" << fig13 << "\n<ul>";
-  for (const auto& row : r["anova_best_sigma"]) h << "<li><b>" << html_escape(row["effect"]) << "</b>: " << html_escape(anova_statement(row)) << "</li>";
+  for (const auto& row : r["anova_best_sigma"]) h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row)) << "</li>";
   h << "</ul>\n";
   h << "<h2>Pairwise comparisons (paired t-tests, Holm-corrected)</h2>\n<ul>";
   for (const auto& row : r["pairwise"])
-    h << "<li>λ_" << html_escape(row["a"]) << " − λ_" << html_escape(row["b"]) << " = " << fixed(row["mean_diff"], 2)
-      << " JND, t(" << df_text(row["df"]) << ") = " << fixed(row["t"], 2) << ", " << html_escape(apa_p(row["p_holm"])) << "</li>";
+    h << "<li>λ_" << xml_escape(row["a"]) << " − λ_" << xml_escape(row["b"]) << " = " << fixed(row["mean_diff"], 2)
+      << " JND, t(" << df_text(row["df"]) << ") = " << fixed(row["t"], 2) << ", " << xml_escape(apa_p(row["p_holm"])) << "</li>";
   h << "</ul>\n<h2>λ_Best against 1 JND per scene (one-sample t-tests, Holm-corrected)</h2>\n<ul>";
   for (const auto& row : r["best_vs_threshold"])
-    h << "<li>" << html_escape(row["scene"]) << ": λ_Best = " << fixed(row["mean"], 2) << " JND, t(" << df_text(row["df"])
-      << ") = " << fixed(row["t"], 2) << ", " << html_escape(apa_p(row["p_holm"])) << "</li>";
+    h << "<li>" << xml_escape(row["scene"]) << ": λ_Best = " << fixed(row["mean"], 2) << " JND, t(" << df_text(row["df"])
+      << ") = " << fixed(row["t"], 2) << ", " << xml_escape(apa_p(row["p_holm"])) << "</li>";
   h << "</ul>\n<h2>Preference clusters (Ward)</h2>\n" << dendrogram << "\n<ul>";
   const json& c = r["clusters"];
   for (size_t k = 0; k < c["sizes"].size(); ++k)

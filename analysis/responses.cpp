@@ -11,75 +11,6 @@
 
 namespace countershade::analysis {
 
-CsvTable parse_csv(const std::string& input, const std::string& file) {
-  std::string_view text = input;
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
-  CsvTable table;
-  std::vector<std::string> row;
-  std::string field;
-  size_t line = 1, row_line = 1;
-  bool quoted = false, field_started = false, after_quote = false;
-  auto end_field = [&] {
-    row.push_back(std::move(field));
-    field.clear();
-    field_started = after_quote = false;
-  };
-  auto end_row = [&] {
-    end_field();
-    if (!(row.size() == 1 && row[0].empty())) {  // skip blank lines
-      table.rows.push_back(std::move(row));
-      table.lines.push_back(row_line);
-    }
-    row.clear();
-  };
-  for (size_t i = 0; i < text.size(); ++i) {
-    char c = text[i];
-    if (quoted) {
-      if (c == '"') {
-        if (i + 1 < text.size() && text[i + 1] == '"') {
-          field += '"';
-          ++i;
-        } else {
-          quoted = false;
-          after_quote = true;
-        }
-      } else {
-        if (c == '\n') ++line;
-        field += c;
-      }
-      continue;
-    }
-    if (c == '"') {
-      if (field_started || after_quote)
-        throw_input_error(file + ": line " + std::to_string(line) + ", column " + std::to_string(row.size() + 1),
-                          "a quote inside an unquoted field (quote the whole field and double the quote)");
-      quoted = field_started = true;
-    } else if (c == ',') {
-      end_field();
-    } else if (c == '\r' || c == '\n') {
-      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
-      end_row();
-      row_line = ++line;
-    } else {
-      if (after_quote)
-        throw_input_error(file + ": line " + std::to_string(line) + ", column " + std::to_string(row.size() + 1),
-                          "text after a closing quote");
-      field += c;
-      field_started = true;
-    }
-  }
-  if (quoted) throw_input_error(file + ": line " + std::to_string(row_line), "a quoted field is never closed");
-  if (field_started || after_quote || !row.empty()) end_row();
-  return table;
-}
-
-std::string csv_field(const std::string& value) {
-  if (value.find_first_of(",\"\r\n") == std::string::npos) return value;
-  std::string out = "\"";
-  for (char c : value) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 namespace {
 
 // The adjustment app writes a new row, with a higher `revision`, when an observer goes back and
@@ -128,8 +59,8 @@ std::vector<Response> read_responses(const std::filesystem::path& path) {
       throw_input_error(file + ": line 1, column " + std::to_string(c + 1), "duplicate column '" + name + "'");
     column[name] = c;
   }
-  for (const char* required : {"subject", "scene", "sigma", "question", "lambda"})
-    if (!column.count(required)) throw_input_error(file + ": line 1", std::string("missing column '") + required + "'");
+  for (const std::string& required : required_response_columns())
+    if (!column.count(required)) throw_input_error(file + ": line 1", "missing column '" + required + "'");
   if (table.rows.size() == 1) throw_input_error(file, "no responses after the header row");
 
   auto where = [&](size_t r, const std::string& name) {
@@ -166,10 +97,9 @@ std::vector<Response> read_responses(const std::filesystem::path& path) {
     resp.lambda = number(r, "lambda");
     if (resp.lambda < 0) throw_input_error(where(r, "lambda"), "λ must not be negative");
     const std::string& q = row[column["question"]];
-    if (q == "low") resp.question = Question::low;
-    else if (q == "high") resp.question = Question::high;
-    else if (q == "best") resp.question = Question::best;
-    else throw_input_error(where(r, "question"), "unknown question '" + q + "' (expected low, high or best)");
+    auto question = question_from_name(q);
+    if (!question) throw_input_error(where(r, "question"), "unknown question '" + q + "' (expected low, high or best)");
+    resp.question = *question;
     if (column.count("method")) resp.method = row[column["method"]];
     if (column.count("lambda_step")) {
       resp.lambda_step = number(r, "lambda_step");

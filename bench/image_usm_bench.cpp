@@ -14,6 +14,8 @@
 #include "core/gaussian.h"
 #include "core/random.h"
 #include "enhance/depth_usm.h"
+#include "enhance/image_width.h"
+#include "enhance/lightness.h"
 #include "enhance/method.h"
 
 namespace countershade {
@@ -22,8 +24,8 @@ namespace {
 constexpr int kWidth = 1920, kHeight = 1080;
 
 // A synthetic stimulus: textured noise and overlapping discs at different depths on a far wall.
-const View& test_view() {
-  static View view = [] {
+const std::shared_ptr<const View>& test_view() {
+  static std::shared_ptr<const View> view = [] {
     Image display(kWidth, kHeight, 3);
     std::vector<float> depth(size_t(kWidth) * kHeight, 10.0f);
     SampleStream random(7, 0, 0, 0);
@@ -46,27 +48,25 @@ const View& test_view() {
 }
 
 // Spatial importance (normalise, blur, ΔD) plus the darken composition.
+double kernel_sigma_px(double kernel_percent) {
+  ImageWidth width;
+  width.kernel_percent = kernel_percent;
+  return width.sigma_px_for(kWidth, kHeight);
+}
+
 void BM_DepthUsm(benchmark::State& state) {
-  const View& view = test_view();
-  MethodOptions options;
-  options.op = "darken";
-  options.kernel_percent = double(state.range(0));
-  const EnhancementMethod* method = find_method("depth-usm");
+  const nlohmann::json options = {{"operator", "darken"}, {"kernel_percent", double(state.range(0))}};
   for (auto _ : state) {
-    Composed out = method->prepare(view, options)->compose(1.0);
+    Composed out = prepare_method("depth-usm", test_view(), options)->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
   }
-  state.counters["sigma_px"] = image_sigma_px(options, kWidth, kHeight);
+  state.counters["sigma_px"] = kernel_sigma_px(double(state.range(0)));
 }
 BENCHMARK(BM_DepthUsm)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // One further λ of a prepared view: the darken composition alone.
 void BM_DepthUsmCompose(benchmark::State& state) {
-  const View& view = test_view();
-  MethodOptions options;
-  options.op = "darken";
-  options.kernel_percent = 5;
-  auto prepared = find_method("depth-usm")->prepare(view, options);
+  auto prepared = prepare_method("depth-usm", test_view(), {{"operator", "darken"}, {"kernel_percent", 5}});
   for (auto _ : state) {
     Composed out = prepared->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
@@ -76,11 +76,10 @@ BENCHMARK(BM_DepthUsmCompose)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The spatial importance function alone (normalise D, blur, ΔD = G*D − D).
 void BM_SpatialImportance(benchmark::State& state) {
-  const View& view = test_view();
-  MethodOptions options;
-  options.kernel_percent = double(state.range(0));
+  const View& view = *test_view();
+  const double sigma = kernel_sigma_px(double(state.range(0)));
   for (auto _ : state) {
-    SpatialImportance si = spatial_importance(view, options);
+    SpatialImportance si = spatial_importance(view, DepthMapping{}, sigma);
     benchmark::DoNotOptimize(si.importance.pixels.data());
   }
 }
@@ -88,7 +87,7 @@ BENCHMARK(BM_SpatialImportance)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->
 
 // The recursive Gaussian alone on a 1920×1080 float plane (σ in px).
 void BM_GaussianBlur(benchmark::State& state) {
-  const View& view = test_view();
+  const View& view = *test_view();
   std::vector<float> out(view.depth.size());
   for (auto _ : state) {
     gaussian_blur(view.depth.data(), out.data(), kWidth, kHeight, double(state.range(0)));
@@ -99,16 +98,12 @@ BENCHMARK(BM_GaussianBlur)->Arg(6)->Arg(28)->Unit(benchmark::kMillisecond)->UseR
 
 // K = 5% against K = 1%, timed alternately in one run.
 void BM_DepthUsmKernelRatio(benchmark::State& state) {
-  const View& view = test_view();
-  MethodOptions small, large;
-  small.kernel_percent = 1.0;
-  large.kernel_percent = 5.0;
-  const EnhancementMethod* method = find_method("depth-usm");
+  const nlohmann::json small = {{"kernel_percent", 1.0}}, large = {{"kernel_percent", 5.0}};
   std::vector<double> t1, t5;
   for (auto _ : state) {
     for (auto [options, times] : {std::pair{&small, &t1}, std::pair{&large, &t5}}) {
       auto start = std::chrono::steady_clock::now();
-      Composed out = method->prepare(view, *options)->compose(1.0);
+      Composed out = prepare_method("depth-usm", test_view(), *options)->compose(1.0);
       benchmark::DoNotOptimize(out.display.pixels.data());
       times->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
@@ -149,10 +144,10 @@ float oiio_width_for_sigma(double sigma) {
 // 2D unsharp masking at σ = 1% of the diagonal: countershade (lightness, from the display image:
 // CIELAB conversion, blur, composition) against OpenImageIO's unsharp_mask (RGB) in the same run.
 void BM_Usm2dVersusOiio(benchmark::State& state) {
-  const View& view = test_view();
-  MethodOptions options;
-  options.sigma_percent = 1.0;
-  const double sigma = image_sigma_px(options, kWidth, kHeight);
+  const View& view = *test_view();
+  ImageWidth one_percent;
+  one_percent.sigma_percent = 1.0;
+  const double sigma = one_percent.sigma_px_for(kWidth, kHeight);
   const float width = oiio_width_for_sigma(sigma);
   OIIO::ImageBuf src(OIIO::ImageSpec(kWidth, kHeight, 3, OIIO::TypeDesc::FLOAT), (void*)view.display.pixels.data());
   OIIO::ImageBuf dst;
@@ -161,7 +156,7 @@ void BM_Usm2dVersusOiio(benchmark::State& state) {
     auto t0 = std::chrono::steady_clock::now();
     std::vector<Lab> lab = display_to_lab(view.display, view.encoding);  // included: it is part of the method
     benchmark::DoNotOptimize(lab.data());
-    Composed out = find_method("usm2d")->prepare(view, options)->compose(1.0);
+    Composed out = prepare_method("usm2d", test_view(), {{"sigma_percent", 1.0}})->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
     auto t1 = std::chrono::steady_clock::now();
     OIIO::ImageBufAlgo::unsharp_mask(dst, src, "gaussian", width, 1.0f, 0.0f);

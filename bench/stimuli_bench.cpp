@@ -15,17 +15,15 @@ namespace countershade {
 namespace {
 
 void BM_StimulusPerLambda(benchmark::State& state) {
-  Scene scene = load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/ritschel2008/scenes/chamfer.json");
+  auto scene = std::make_shared<Scene>(
+      load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/ritschel2008/scenes/chamfer.json"));
   auto t0 = std::chrono::steady_clock::now();
-  RayTracer tracer(scene);
-  RenderOptions options;
-  options.vertex_radiance = true;
-  options.ring_samples = 3;
-  View view = make_view(scene, render(scene, tracer, options), 8);
+  RenderRequest request;
+  request.vertex_radiance = true;
+  request.ring_samples = 3;
+  auto view = render_view(scene, request, {});
   double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  MethodOptions usm;
-  usm.sigma_fraction = 0.02;
-  auto prepared = find_method("usm3d")->prepare(view, usm);
+  auto prepared = prepare_method("usm3d", view, {{"sigma_fraction", 0.02}});
   auto dir = std::filesystem::temp_directory_path() / "countershade-bench-stimuli";
   std::filesystem::create_directories(dir);
   double lambda = 0.05, per_image = 0, compose = 0;

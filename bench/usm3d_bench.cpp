@@ -66,15 +66,15 @@ void BM_SmoothIgea(benchmark::State& state) {
 BENCHMARK(BM_SmoothIgea)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 struct IgeaView {
-  Scene scene;
-  std::unique_ptr<RayTracer> tracer;
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const RayTracer> tracer;
 };
 
 IgeaView& igea_view() {
   static IgeaView view = [] {
     IgeaView v;
-    v.scene = load_scene(kSource + "/experiments/scenes/igea-sky.json");
-    v.tracer = std::make_unique<RayTracer>(v.scene);
+    v.scene = std::make_shared<Scene>(load_scene(kSource + "/experiments/scenes/igea-sky.json"));
+    v.tracer = std::make_shared<RayTracer>(*v.scene);
     return v;
   }();
   return view;
@@ -85,15 +85,14 @@ IgeaView& igea_view() {
 void BM_Usm3dOverhead(benchmark::State& state) {
   IgeaView& v = igea_view();
   const int ring = int(state.range(0));
-  MethodOptions options;
-  double h = mean_edge_length(v.scene.objects[0].mesh);
-  options.sigma = std::sqrt(50.0 / 2.0) * h;  // n = round(2σ²/h̄²) ≈ 50
+  const double h = mean_edge_length(v.scene->objects[0].mesh);
+  const nlohmann::json options = {{"sigma", std::sqrt(50.0 / 2.0) * h}, {"ring_samples", ring}};  // n = round(2σ²/h̄²) ≈ 50
   double plain = 0, enhanced = 0, extra_lambda = 0;
   int n = 0;
   for (auto _ : state) {
     auto t0 = std::chrono::steady_clock::now();
-    RenderResult base = render(v.scene, *v.tracer);
-    Composed none = find_method("none")->prepare(make_view(v.scene, std::move(base)), {})->compose(0);
+    RenderResult base = render(*v.scene, *v.tracer);
+    Composed none = prepare_method("none", make_view(v.scene, v.tracer, std::move(base)), nlohmann::json::object())->compose(0);
     plain += seconds_since(t0);
     benchmark::DoNotOptimize(none.display.pixels.data());
 
@@ -101,8 +100,8 @@ void BM_Usm3dOverhead(benchmark::State& state) {
     RenderOptions ro;
     ro.vertex_radiance = true;
     ro.ring_samples = ring;
-    View view = make_view(v.scene, render(v.scene, *v.tracer, ro));
-    auto prepared = find_method("usm3d")->prepare(view, options);
+    auto view = make_view(v.scene, v.tracer, render(*v.scene, *v.tracer, ro));
+    auto prepared = prepare_method("usm3d", view, options);
     Composed out = prepared->compose(1.0);
     enhanced += seconds_since(t1);
     n = prepared->parameters()["iterations"]["igea"].get<int>();

@@ -10,11 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "formats/responses.h"
+
 namespace countershade::adjust {
 
-enum class Question { low = 0, high = 1, best = 2 };
-inline constexpr int kQuestionCount = 3;
-inline constexpr const char* kQuestionNames[] = {"low", "high", "best"};
 
 // Which side the enhanced image is shown on. `counterbalanced` only appears in the configuration;
 // every planned trial has a concrete side.

@@ -11,12 +11,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "analysis/responses.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_bytes.h"
+#include "core/number_format.h"
+#include "core/time.h"
 #include "core/version.h"
-#include "stimuli/experiment.h"
+#include "formats/responses.h"
 
 namespace countershade::adjust {
 
@@ -33,104 +34,11 @@ std::string two_digits(int session) {
   return buffer;
 }
 
-void sync_directory(const fs::path& dir) {
-  int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-}
-
-std::string csv_line(const std::vector<std::string>& fields) {
-  std::string line;
-  for (size_t i = 0; i < fields.size(); ++i) {
-    if (i) line += ',';
-    line += analysis::csv_field(fields[i]);
-  }
-  return line + "\n";
-}
-
 }  // namespace
 
 SessionFiles session_files(const fs::path& dir, const std::string& subject, int session) {
   const std::string stem = subject + "_s" + two_digits(session);
   return {dir / (stem + ".csv"), dir / (stem + ".json"), dir / (stem + ".keys.tsv")};
-}
-
-const std::vector<std::string>& response_columns() {
-  static const std::vector<std::string> columns = {
-      "subject",     "scene",        "sigma",      "question",    "lambda",       "method",
-      "lambda_step", "lambda_index", "start_index", "repetition", "session",      "trial",
-      "side",        "n_keypresses", "rt_ms",      "revision",    "timestamp_utc", "stimulus_set",
-      "app_version"};
-  return columns;
-}
-
-std::string utc_timestamp() {
-  auto now = std::chrono::system_clock::now();
-  std::time_t t = std::chrono::system_clock::to_time_t(now);
-  auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1,
-                tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, int(ms));
-  return buffer;
-}
-
-// ---------------------------------------------------------------------------------------------
-// AppendOnlyFile
-
-AppendOnlyFile AppendOnlyFile::create(const fs::path& path, const std::string& header) {
-  AppendOnlyFile f;
-  f.path_ = path;
-  f.fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
-  if (f.fd_ < 0) {
-    if (errno == EEXIST)
-      throw_input_error(path.string(), "already exists; a session is never overwritten (use --resume to continue it, "
-                                       "or another --session number)");
-    throw_input_error(path.string(), std::string("cannot create: ") + std::strerror(errno));
-  }
-  f.append(header);
-  f.sync();
-  sync_directory(path.parent_path());
-  return f;
-}
-
-AppendOnlyFile AppendOnlyFile::open_existing(const fs::path& path) {
-  AppendOnlyFile f;
-  f.path_ = path;
-  f.fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (f.fd_ < 0) throw_input_error(path.string(), std::string("cannot open for appending: ") + std::strerror(errno));
-  return f;
-}
-
-AppendOnlyFile::AppendOnlyFile(AppendOnlyFile&& other) noexcept : fd_(other.fd_), path_(std::move(other.path_)) {
-  other.fd_ = -1;
-}
-
-AppendOnlyFile& AppendOnlyFile::operator=(AppendOnlyFile&& other) noexcept {
-  if (this != &other) {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = other.fd_;
-    path_ = std::move(other.path_);
-    other.fd_ = -1;
-  }
-  return *this;
-}
-
-AppendOnlyFile::~AppendOnlyFile() {
-  if (fd_ >= 0) ::close(fd_);
-}
-
-void AppendOnlyFile::append(const std::string& text) {
-  ssize_t written = ::write(fd_, text.data(), text.size());
-  if (written != ssize_t(text.size()))
-    throw std::runtime_error(path_.string() + ": write failed: " + std::strerror(errno));
-}
-
-void AppendOnlyFile::sync() {
-  if (::fsync(fd_) != 0) throw std::runtime_error(path_.string() + ": fsync failed: " + std::strerror(errno));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -148,7 +56,7 @@ RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, c
     text.resize(keep);
   }
   const std::string file = csv.string();
-  analysis::CsvTable table = analysis::parse_csv(text, file);
+  CsvTable table = parse_csv(text, file);
   if (table.rows.empty() || table.rows[0] != response_columns())
     throw_input_error(file + ": line 1", "not a session file written by this app (unexpected header)");
   auto column = [](const char* name) {
@@ -179,10 +87,9 @@ RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, c
     if (it == plan_index_of_number.end()) throw_input_error(where + " (trial)", "trial " + std::to_string(number) + " is not in the plan");
     const Trial& trial = plan[size_t(it->second)];
     const Condition& c = study.conditions[size_t(trial.condition)];
-    int question = -1;
-    for (int q = 0; q < kQuestionCount; ++q)
-      if (row[column("question")] == kQuestionNames[q]) question = q;
-    if (question < 0) throw_input_error(where + " (question)", "unknown question '" + row[column("question")] + "'");
+    const auto parsed_question = question_from_name(row[column("question")]);
+    if (!parsed_question) throw_input_error(where + " (question)", "unknown question '" + row[column("question")] + "'");
+    const int question = int(*parsed_question);
     const int lambda_index = integer("lambda_index");
     if (row[column("scene")] != c.scene || row[column("method")] != c.method ||
         row[column("sigma")] != format_value(c.sigma) || lambda_index < 0 || lambda_index >= c.grid_size ||

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adjust/procedure.h"
+#include "core/append_file.h"
 #include "adjust/study.h"
 
 namespace countershade::adjust {
@@ -24,32 +25,6 @@ struct SessionFiles {
   std::filesystem::path csv, sidecar, keys;
 };
 SessionFiles session_files(const std::filesystem::path& dir, const std::string& subject, int session);
-
-// The responses CSV header the app writes: the required columns, then every optional one.
-const std::vector<std::string>& response_columns();
-
-// A file that only grows, written with write(2) so a killed process leaves whole lines behind.
-class AppendOnlyFile {
- public:
-  AppendOnlyFile() = default;
-  // Creates the file, failing if it exists (InputError), and writes `header` durably.
-  static AppendOnlyFile create(const std::filesystem::path& path, const std::string& header);
-  // Opens an existing file for appending.
-  static AppendOnlyFile open_existing(const std::filesystem::path& path);
-  AppendOnlyFile(AppendOnlyFile&& other) noexcept;
-  AppendOnlyFile& operator=(AppendOnlyFile&& other) noexcept;
-  AppendOnlyFile(const AppendOnlyFile&) = delete;
-  AppendOnlyFile& operator=(const AppendOnlyFile&) = delete;
-  ~AppendOnlyFile();
-
-  void append(const std::string& text);  // one write() call; throws on a short write
-  void sync();                           // fsync
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  int fd_ = -1;
-  std::filesystem::path path_;
-};
 
 // What an existing session's CSV holds, mapped onto the plan.
 struct RecordedAnswers {
@@ -106,7 +81,5 @@ class SessionRecorder {
 // The plan as stored in the sidecar (one compact object per trial), for the resume check.
 nlohmann::ordered_json plan_to_json(const Study& study, const std::vector<Trial>& plan);
 
-// UTC now as "2026-11-22T03:45:43.123Z".
-std::string utc_timestamp();
 
 }  // namespace countershade::adjust

@@ -18,6 +18,7 @@
 #include "adjust/study.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/time.h"
 
 namespace countershade::adjust {
 
@@ -28,6 +29,23 @@ namespace {
 
 std::atomic<int> g_signal{0};
 void on_signal(int signal) { g_signal = signal; }
+
+// Routes SIGTERM and SIGINT to g_signal while it lives, so the session saves and ends cleanly;
+// restores the previous handlers on every way out.
+class SignalGuard {
+ public:
+  SignalGuard() : term_(std::signal(SIGTERM, on_signal)), interrupt_(std::signal(SIGINT, on_signal)) { g_signal = 0; }
+  ~SignalGuard() {
+    std::signal(SIGTERM, term_);
+    std::signal(SIGINT, interrupt_);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  void (*term_)(int);
+  void (*interrupt_)(int);
+};
 
 // Decodes an 8-bit stimulus into RGBA; the size must be the manifest's.
 std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
@@ -53,9 +71,9 @@ std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
 }
 
 struct FrameTimes {
-  std::vector<float> all, held;  // intervals in seconds
-  std::vector<float> draw;       // time to build, render and swap a frame
-  std::vector<double> dropped_at;  // session time of the first dropped frames
+  std::vector<float> all, held;     // intervals in seconds
+  std::vector<float> draw;          // time to build, render and swap a frame
+  std::vector<double> dropped_at;   // session time of the first dropped frames
   std::vector<float> key_to_frame;  // from a key press to the swap of the frame that shows it
 
   // period > 0: also counts the values over 1.2 periods as dropped frames.
@@ -81,25 +99,25 @@ std::string screenshot_path(const fs::path& base, int count) {
   return (base.parent_path() / (base.stem().string() + "-" + std::to_string(count + 1) + base.extension().string())).string();
 }
 
-}  // namespace
+// What can be wrong with the command's own inputs, found before anything else.
+struct CheckedInputs {
+  std::vector<InputEvent> script;
+  std::optional<uint64_t> observer_seed;
+};
 
-int run_session(const SessionOptions& o) {
-  // Everything that can be wrong with the input is found here, before any window opens.
+CheckedInputs check_inputs(const SessionOptions& o) {
   check_subject_id(o.subject);
   if (o.session < 1 || o.session > 99) throw_input_error("--session", "must be between 1 and 99");
   if (o.script && o.observer) throw_input_error("--observer", "cannot be combined with --script");
-  std::vector<InputEvent> script;
-  if (o.script) script = parse_key_script(*o.script);
-  std::optional<uint64_t> observer_seed;
-  if (o.observer) observer_seed = parse_observer_spec(*o.observer);
-  if (o.screenshot && lower_extension(*o.screenshot) != ".png") throw_input_error(o.screenshot->string(), "screenshots are PNG files");
-  Study study = load_study(o.manifest, o.config);
-  verify_study_images(study);
+  CheckedInputs in;
+  if (o.script) in.script = parse_key_script(*o.script);
+  if (o.observer) in.observer_seed = parse_observer_spec(*o.observer);
+  if (o.screenshot && lower_extension(*o.screenshot) != ".png")
+    throw_input_error(o.screenshot->string(), "screenshots are PNG files");
+  return in;
+}
 
-  PlanSettings settings = study.config.plan;
-  settings.seed = session_seed(study.config.seed.value_or(study.manifest_seed), o.subject, o.session);
-  const std::vector<Trial> plan = plan_trials(study.conditions, settings);
-
+void check_sessions_dir(const SessionOptions& o) {
   std::error_code ec;
   if (!o.resume) {
     fs::create_directories(o.sessions_dir, ec);
@@ -107,25 +125,9 @@ int run_session(const SessionOptions& o) {
   }
   if (fs::is_directory(o.sessions_dir, ec) && ::access(o.sessions_dir.c_str(), W_OK) != 0)
     throw_input_error(o.sessions_dir.string(), "the sessions folder is not writable");
-  const bool new_session = !o.resume;
-  SessionRecorder recorder(study, plan, {o.subject, o.session, settings.seed}, o.sessions_dir, o.resume);
-  const SessionFiles files = recorder.files();
-  auto discard_if_empty = [&] {
-    if (new_session && recorder.run()["answers"] == 0)
-      for (const auto& p : {files.csv, files.sidecar, files.keys}) fs::remove(p, ec);
-  };
+}
 
-  Procedure procedure(study.conditions, plan, study.config.timing);
-  if (o.resume) procedure.resume(recorder.recorded().answered);
-  const int total_questions = procedure.real_trial_count() * kQuestionCount;
-  if (procedure.done()) {
-    recorder.run()["end"] = "already-complete";
-    recorder.save();
-    std::printf("%s session %d is already complete: %d of %d answers in %s\n", o.subject.c_str(), o.session,
-                total_questions, total_questions, files.csv.string().c_str());
-    return 0;
-  }
-
+DisplayOptions display_options(const SessionOptions& o, const Study& study) {
   DisplayOptions display;
   display.fullscreen = o.fullscreen;
   display.monitor = o.monitor;
@@ -135,226 +137,320 @@ int run_session(const SessionOptions& o) {
   display.surround = study.config.surround;
   display.font_px = study.config.font_px;
   display.title = "countershade adjust: " + study.set_name;
-  std::unique_ptr<Presenter> presenter;
+  return display;
+}
+
+// The event loop of one run: routes key events to the procedure and answers to the recorder,
+// draws each frame and keeps the frame statistics.
+class SessionLoop {
+ public:
+  SessionLoop(const SessionOptions& o, const Study& study, Procedure& procedure, SessionRecorder& recorder,
+              Presenter& presenter, CheckedInputs inputs)
+      : o_(o), study_(study), procedure_(procedure), recorder_(recorder), presenter_(presenter),
+        script_(std::move(inputs.script)) {
+    if (inputs.observer_seed) observer_.emplace(*inputs.observer_seed, study);
+  }
+
+  // Runs until the session ends; returns how ("completed", "quit", "closed", ...).
+  std::string run() {
+    preload();
+    if (!end_.empty()) return end_;
+    t0_ = presenter_.now();
+    while (end_.empty()) {
+      const double now = presenter_.now() - t0_;
+      take_input(now);
+      if (!end_.empty()) break;
+      const int index_before = procedure_.lambda_index();
+      procedure_.tick(now);
+      log_repeats(now, index_before);
+      draw_frame();
+      const bool automated = o_.script.has_value() || observer_.has_value();
+      if (automated && procedure_.phase() == Procedure::Phase::finished) end_ = "completed";
+      if (o_.script && !observer_ && next_script_ == script_.size() && end_.empty()) end_ = "script-ended";
+    }
+    return end_;
+  }
+
+  OrderedJson frame_statistics() const {
+    const double period = 1.0 / presenter_.refresh_hz();
+    return {{"pacing", presenter_.timer_paced() ? "timer" : "vsync"},
+            {"period_ms", 1000 * period},
+            {"dropped_threshold_ms", 1200 * period},
+            {"all", FrameTimes::summary(times_.all, period)},
+            {"key_held", FrameTimes::summary(times_.held, period)},
+            {"draw", FrameTimes::summary(times_.draw, period)},
+            {"dropped_at_s", times_.dropped_at},
+            {"key_to_frame", FrameTimes::summary(times_.key_to_frame, 0)}};
+  }
+
+ private:
+  // Every stimulus as a texture, decoding in parallel and uploading in batches, with a progress bar.
+  void preload() {
+    const double start = presenter_.now();
+    texture_.resize(study_.images.size());
+    const size_t batch = 8;
+    for (size_t first = 0; first < study_.images.size() && end_.empty(); first += batch) {
+      const size_t last = std::min(first + batch, study_.images.size());
+      std::vector<std::vector<uint8_t>> pixels(last - first);
+      tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = decode_rgba(study_.images[i]); });
+      for (size_t i = first; i < last; ++i)
+        texture_[i] = presenter_.upload_texture(pixels[i - first], study_.images[i].width, study_.images[i].height);
+      FrameContent loading;
+      loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study_.images.size());
+      loading.progress = double(last) / double(study_.images.size());
+      presenter_.draw(loading);
+      for (const auto& e : presenter_.poll_events())
+        if (e.kind == WindowEvent::Kind::close) end_ = "closed";
+    }
+    recorder_.run()["preload"] = {{"images", study_.images.size()}, {"seconds", presenter_.now() - start}};
+    recorder_.save();
+  }
+
+  void log(double t, const std::string& event, const std::string& key) { recorder_.log_event(t, event, key, procedure_); }
+  // One trajectory line per auto-repeat step (a late frame can apply several at once).
+  void log_repeats(double t, int index_before) {
+    for (int k = std::abs(procedure_.lambda_index() - index_before); k > 0; --k) log(t, "repeat", "");
+  }
+
+  // Window events, the script's due events, the model observer's, and signals.
+  void take_input(double now) {
+    for (const auto& w : presenter_.poll_events()) window_event(w);
+    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && end_.empty()) handle(script_[next_script_++]);
+    if (observer_)
+      for (const auto& e : observer_->act(procedure_, now)) handle(e);
+    if (g_signal) end_ = g_signal == SIGTERM ? "terminated" : "interrupted";
+  }
+
+  void window_event(const WindowEvent& w) {
+    const double t = w.time_s - t0_;
+    switch (w.kind) {
+      case WindowEvent::Kind::press: handle({t, InputEvent::Kind::press, w.key}); break;
+      case WindowEvent::Kind::release: handle({t, InputEvent::Kind::release, w.key}); break;
+      case WindowEvent::Kind::close: end_ = "closed"; break;
+      case WindowEvent::Kind::focus_gained: log(t, "focus-gained", ""); break;
+      case WindowEvent::Kind::focus_lost:
+        log(t, "focus-lost", "");
+        recorder_.run()["focus_losses"].push_back({{"at_s", t}, {"utc", utc_timestamp()}});
+        // Another window took the keyboard: pause, so the trial does not run on unattended.
+        if (procedure_.phase() == Procedure::Phase::question) handle({t, InputEvent::Kind::press, Key::escape});
+        recorder_.save();
+        break;
+    }
+  }
+
+  void handle(const InputEvent& e) {
+    switch (e.kind) {
+      case InputEvent::Kind::screenshot: screenshot_due_ = true; return;
+      case InputEvent::Kind::close: end_ = "closed"; return;
+      case InputEvent::Kind::release: {
+        const int index_before = procedure_.lambda_index();
+        procedure_.release(e.key, e.time_s);  // may apply repeats that fell due before it
+        log_repeats(e.time_s, index_before);
+        log(e.time_s, "release", key_name(e.key));
+        return;
+      }
+      case InputEvent::Kind::press: press(e); return;
+    }
+  }
+
+  void press(const InputEvent& e) {
+    pending_presses_.push_back(e.time_s);
+    const auto before = procedure_.phase();
+    if (before == Procedure::Phase::finished) {
+      log(e.time_s, "press", key_name(e.key));
+      if (e.key == Key::enter || e.key == Key::escape) end_ = "completed";
+      return;
+    }
+    // Logged after the procedure took the key, so an arrow's line shows the new λ index.
+    if (auto answer = procedure_.press(e.key, e.time_s)) {
+      recorder_.record_answer(*answer, e.time_s);
+      recorder_.save();
+    } else {
+      log(e.time_s, "press", key_name(e.key));
+    }
+    track_pause(before, procedure_.phase(), e.time_s);
+  }
+
+  void track_pause(Procedure::Phase before, Procedure::Phase after, double t) {
+    if (after == Procedure::Phase::paused && before != after) {
+      pause_started_ = t;
+      log(t, "pause", "");
+    } else if (before == Procedure::Phase::paused && after != before && after != Procedure::Phase::quit) {
+      recorder_.run()["pauses"].push_back({{"at_s", *pause_started_}, {"seconds", t - *pause_started_}});
+      log(t, "resume", "");
+      recorder_.save();
+    }
+    if (after == Procedure::Phase::quit) {
+      if (pause_started_)
+        recorder_.run()["pauses"].push_back({{"at_s", *pause_started_}, {"seconds", t - *pause_started_}, {"quit", true}});
+      end_ = "quit";
+    }
+  }
+
+  // The images of the current question: (reference, enhanced) relative paths and textures.
+  std::pair<int, int> question_images() const {
+    const auto& images = study_.condition_images[size_t(procedure_.trial().condition)];
+    return {images[0], images[size_t(1 + procedure_.lambda_index())]};
+  }
+
+  FrameContent frame_content() const {
+    FrameContent content;
+    const Instructions& text = study_.config.text;
+    switch (procedure_.phase()) {
+      case Procedure::Phase::instructions: content.message = o_.resume ? text.resume : text.welcome; break;
+      case Procedure::Phase::practice_done: content.message = text.practice_done; break;
+      case Procedure::Phase::paused: content.message = text.paused; break;
+      case Procedure::Phase::finished: content.message = text.finished; break;
+      case Procedure::Phase::quit: break;
+      case Procedure::Phase::question: {
+        const Trial& trial = procedure_.trial();
+        const auto [reference, enhanced] = question_images();
+        content.left_texture = texture_[size_t(trial.side == Side::left ? enhanced : reference)];
+        content.right_texture = texture_[size_t(trial.side == Side::left ? reference : enhanced)];
+        content.image_width = study_.width(trial.condition);
+        content.image_height = study_.height(trial.condition);
+        content.header = trial.practice ? text.practice
+                                        : "Trial " + std::to_string(trial.number) + " of " +
+                                              std::to_string(procedure_.real_trial_count());
+        content.question = text.questions[int(procedure_.question())];
+        content.hint = text.keys_hint;
+        break;
+      }
+    }
+    return content;
+  }
+
+  // The screenshot's sidecar: what was on screen and where.
+  void describe_screenshot(const fs::path& shot, const StimulusLayout& layout) const {
+    OrderedJson info = {{"frame", frame_}, {"phase", int(procedure_.phase())}};
+    if (procedure_.phase() == Procedure::Phase::question) {
+      const Trial& trial = procedure_.trial();
+      const auto [reference, enhanced] = question_images();
+      const std::string ref = study_.images[size_t(reference)].relative;
+      const std::string enh = study_.images[size_t(enhanced)].relative;
+      info["trial"] = trial.number;
+      info["question"] = kQuestionNames[int(procedure_.question())];
+      info["lambda_index"] = procedure_.lambda_index();
+      info["side"] = side_name(trial.side);
+      info["left"] = {{"x", layout.left_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
+                      {"file", trial.side == Side::left ? enh : ref}};
+      info["right"] = {{"x", layout.right_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
+                       {"file", trial.side == Side::left ? ref : enh}};
+    }
+    write_text_atomically(shot.string() + ".json", info.dump(2) + "\n");
+  }
+
+  void draw_frame() {
+    fs::path shot;
+    if (screenshot_due_ && o_.screenshot) shot = screenshot_path(*o_.screenshot, screenshots_);
+    const double draw_start = presenter_.now();
+    const StimulusLayout layout = presenter_.draw(frame_content(), shot);
+    const double draw_seconds = presenter_.now() - draw_start;
+    // The frame just swapped is the first to show these presses.
+    for (double pressed : pending_presses_) times_.key_to_frame.push_back(float(presenter_.now() - t0_ - pressed));
+    pending_presses_.clear();
+    if (!shot.empty()) {
+      describe_screenshot(shot, layout);
+      ++screenshots_;
+      screenshot_due_ = false;
+    }
+    presenter_.pace();
+    record_interval(draw_seconds);
+  }
+
+  void record_interval(double draw_seconds) {
+    const double t = presenter_.now();
+    if (last_frame_ >= 0 && frame_ > 20) {  // the first frames calibrate the pacing
+      const double interval = t - last_frame_;
+      times_.all.push_back(float(interval));
+      times_.draw.push_back(float(draw_seconds));
+      if (procedure_.key_held()) times_.held.push_back(float(interval));
+      if (interval > 1.2 / presenter_.refresh_hz() && times_.dropped_at.size() < 100) times_.dropped_at.push_back(t - t0_);
+    }
+    last_frame_ = t;
+    ++frame_;
+  }
+
+  const SessionOptions& o_;
+  const Study& study_;
+  Procedure& procedure_;
+  SessionRecorder& recorder_;
+  Presenter& presenter_;
+  std::vector<InputEvent> script_;
+  std::optional<SimulatedObserver> observer_;
+  std::vector<unsigned> texture_;
+  std::string end_;
+  double t0_ = 0, last_frame_ = -1;
+  size_t next_script_ = 0;
+  bool screenshot_due_ = false;
+  int screenshots_ = 0, frame_ = 0;
+  FrameTimes times_;
+  std::optional<double> pause_started_;
+  std::vector<double> pending_presses_;  // presses not yet on screen
+};
+
+// Opens the window; a failure is recorded, and a new session without answers leaves no files.
+std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& study, SessionRecorder& recorder) {
   try {
-    presenter = std::make_unique<Presenter>(display);
+    return std::make_unique<Presenter>(display_options(o, study));
   } catch (...) {
     recorder.run()["end"] = "display-failed";
     recorder.save();
-    discard_if_empty();
+    if (!o.resume && recorder.run()["answers"] == 0) {
+      std::error_code ec;
+      for (const auto& p : {recorder.files().csv, recorder.files().sidecar, recorder.files().keys}) fs::remove(p, ec);
+    }
     throw;
   }
+}
+
+}  // namespace
+
+int run_session(const SessionOptions& o) {
+  // Everything that can be wrong with the input is found here, before any window opens.
+  CheckedInputs inputs = check_inputs(o);
+  Study study = load_study(o.manifest, o.config);
+  verify_study_images(study);
+  PlanSettings settings = study.config.plan;
+  settings.seed = session_seed(study.config.seed.value_or(study.manifest_seed), o.subject, o.session);
+  const std::vector<Trial> plan = plan_trials(study.conditions, settings);
+  check_sessions_dir(o);
+  SessionRecorder recorder(study, plan, {o.subject, o.session, settings.seed}, o.sessions_dir, o.resume);
+
+  Procedure procedure(study.conditions, plan, study.config.timing);
+  if (o.resume) procedure.resume(recorder.recorded().answered);
+  const int total_questions = procedure.real_trial_count() * kQuestionCount;
+  if (procedure.done()) {
+    recorder.run()["end"] = "already-complete";
+    recorder.save();
+    std::printf("%s session %d is already complete: %d of %d answers in %s\n", o.subject.c_str(), o.session,
+                total_questions, total_questions, recorder.files().csv.string().c_str());
+    return 0;
+  }
+  std::unique_ptr<Presenter> presenter = open_window(o, study, recorder);
   recorder.run()["display"] = presenter->display_info();
 
-  g_signal = 0;
-  auto old_term = std::signal(SIGTERM, on_signal);
-  auto old_int = std::signal(SIGINT, on_signal);
   std::string end;
-  try {
-    // Preload every stimulus as a texture, decoding in parallel and uploading in batches.
-    const double preload_start = presenter->now();
-    std::vector<unsigned> texture(study.images.size());
-    const size_t batch = 8;
-    for (size_t first = 0; first < study.images.size() && end.empty(); first += batch) {
-      const size_t last = std::min(first + batch, study.images.size());
-      std::vector<std::vector<uint8_t>> pixels(last - first);
-      tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = decode_rgba(study.images[i]); });
-      for (size_t i = first; i < last; ++i)
-        texture[i] = presenter->upload_texture(pixels[i - first], study.images[i].width, study.images[i].height);
-      FrameContent loading;
-      loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study.images.size());
-      loading.progress = double(last) / double(study.images.size());
-      presenter->draw(loading);
-      for (const auto& e : presenter->poll_events())
-        if (e.kind == WindowEvent::Kind::close) end = "closed";
+  {
+    SignalGuard signals;
+    SessionLoop loop(o, study, procedure, recorder, *presenter, std::move(inputs));
+    try {
+      end = loop.run();
+    } catch (const std::exception& e) {
+      recorder.run()["end"] = std::string("error: ") + e.what();
+      recorder.run()["ended_utc"] = utc_timestamp();
+      recorder.save();
+      throw;
     }
-    recorder.run()["preload"] = {{"images", study.images.size()}, {"seconds", presenter->now() - preload_start}};
-    recorder.save();
-
-    const double t0 = presenter->now();
-    std::optional<SimulatedObserver> observer;
-    if (observer_seed) observer.emplace(*observer_seed, study);
-    const bool automated = o.script || observer;
-    size_t next_script = 0;
-    bool screenshot_due = false;
-    int screenshots = 0;
-    FrameTimes times;
-    double last_frame = -1;
-    int frame = 0;
-    std::optional<double> pause_started;
-    std::vector<double> pending_presses;  // presses not yet on screen
-
-    auto log = [&](double t, const std::string& event, const std::string& key) { recorder.log_event(t, event, key, procedure); };
-    // One trajectory line per auto-repeat step (a late frame can apply several at once).
-    auto log_repeats = [&](double t, int index_before) {
-      for (int k = std::abs(procedure.lambda_index() - index_before); k > 0; --k) log(t, "repeat", "");
-    };
-    auto handle = [&](const InputEvent& e) {
-      switch (e.kind) {
-        case InputEvent::Kind::screenshot: screenshot_due = true; return;
-        case InputEvent::Kind::close: end = "closed"; return;
-        case InputEvent::Kind::release: {
-          const int index_before = procedure.lambda_index();
-          procedure.release(e.key, e.time_s);  // may apply repeats that fell due before it
-          log_repeats(e.time_s, index_before);
-          log(e.time_s, "release", key_name(e.key));
-          return;
-        }
-        case InputEvent::Kind::press: break;
-      }
-      pending_presses.push_back(e.time_s);
-      const auto before = procedure.phase();
-      if (before == Procedure::Phase::finished) {
-        log(e.time_s, "press", key_name(e.key));
-        if (e.key == Key::enter || e.key == Key::escape) end = "completed";
-        return;
-      }
-      // Logged after the procedure took the key, so an arrow's line shows the new λ index.
-      if (auto answer = procedure.press(e.key, e.time_s)) {
-        recorder.record_answer(*answer, e.time_s);
-        recorder.save();
-      } else {
-        log(e.time_s, "press", key_name(e.key));
-      }
-      const auto after = procedure.phase();
-      if (after == Procedure::Phase::paused && before != after) {
-        pause_started = e.time_s;
-        log(e.time_s, "pause", "");
-      } else if (before == Procedure::Phase::paused && after != before && after != Procedure::Phase::quit) {
-        recorder.run()["pauses"].push_back({{"at_s", *pause_started}, {"seconds", e.time_s - *pause_started}});
-        log(e.time_s, "resume", "");
-        recorder.save();
-      }
-      if (after == Procedure::Phase::quit) {
-        if (pause_started)
-          recorder.run()["pauses"].push_back({{"at_s", *pause_started}, {"seconds", e.time_s - *pause_started}, {"quit", true}});
-        end = "quit";
-      }
-    };
-
-    while (end.empty()) {
-      const double now = presenter->now() - t0;
-      for (const auto& w : presenter->poll_events()) {
-        const double t = w.time_s - t0;
-        switch (w.kind) {
-          case WindowEvent::Kind::press: handle({t, InputEvent::Kind::press, w.key}); break;
-          case WindowEvent::Kind::release: handle({t, InputEvent::Kind::release, w.key}); break;
-          case WindowEvent::Kind::close: end = "closed"; break;
-          case WindowEvent::Kind::focus_gained: log(t, "focus-gained", ""); break;
-          case WindowEvent::Kind::focus_lost:
-            log(t, "focus-lost", "");
-            recorder.run()["focus_losses"].push_back({{"at_s", t}, {"utc", utc_timestamp()}});
-            // Another window took the keyboard: pause, so the trial does not run on unattended.
-            if (procedure.phase() == Procedure::Phase::question) handle({t, InputEvent::Kind::press, Key::escape});
-            recorder.save();
-            break;
-        }
-      }
-      while (next_script < script.size() && script[next_script].time_s <= now && end.empty()) handle(script[next_script++]);
-      if (observer)
-        for (const auto& e : observer->act(procedure, now)) handle(e);
-      if (g_signal) end = g_signal == SIGTERM ? "terminated" : "interrupted";
-      if (!end.empty()) break;
-
-      const int index_before = procedure.lambda_index();
-      procedure.tick(now);
-      log_repeats(now, index_before);
-
-      FrameContent content;
-      const Instructions& text = study.config.text;
-      switch (procedure.phase()) {
-        case Procedure::Phase::instructions: content.message = o.resume ? text.resume : text.welcome; break;
-        case Procedure::Phase::practice_done: content.message = text.practice_done; break;
-        case Procedure::Phase::paused: content.message = text.paused; break;
-        case Procedure::Phase::finished: content.message = text.finished; break;
-        case Procedure::Phase::quit: break;
-        case Procedure::Phase::question: {
-          const Trial& trial = procedure.trial();
-          const auto& images = study.condition_images[size_t(trial.condition)];
-          const unsigned reference = texture[size_t(images[0])];
-          const unsigned enhanced = texture[size_t(images[size_t(1 + procedure.lambda_index())])];
-          content.left_texture = trial.side == Side::left ? enhanced : reference;
-          content.right_texture = trial.side == Side::left ? reference : enhanced;
-          content.image_width = study.width(trial.condition);
-          content.image_height = study.height(trial.condition);
-          content.header = trial.practice ? text.practice
-                                          : "Trial " + std::to_string(trial.number) + " of " +
-                                                std::to_string(procedure.real_trial_count());
-          content.question = text.questions[int(procedure.question())];
-          content.hint = text.keys_hint;
-          break;
-        }
-      }
-      fs::path shot;
-      if (screenshot_due && o.screenshot) shot = screenshot_path(*o.screenshot, screenshots);
-      const double draw_start = presenter->now();
-      const StimulusLayout layout = presenter->draw(content, shot);
-      const double draw_seconds = presenter->now() - draw_start;
-      // The frame just swapped is the first to show these presses.
-      for (double pressed : pending_presses) times.key_to_frame.push_back(float(presenter->now() - t0 - pressed));
-      pending_presses.clear();
-      if (!shot.empty()) {
-        OrderedJson info = {{"frame", frame}, {"phase", int(procedure.phase())}};
-        if (procedure.phase() == Procedure::Phase::question) {
-          const Trial& trial = procedure.trial();
-          const auto& images = study.condition_images[size_t(trial.condition)];
-          const std::string ref = study.images[size_t(images[0])].relative;
-          const std::string enh = study.images[size_t(images[size_t(1 + procedure.lambda_index())])].relative;
-          info["trial"] = trial.number;
-          info["question"] = kQuestionNames[int(procedure.question())];
-          info["lambda_index"] = procedure.lambda_index();
-          info["side"] = side_name(trial.side);
-          info["left"] = {{"x", layout.left_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
-                          {"file", trial.side == Side::left ? enh : ref}};
-          info["right"] = {{"x", layout.right_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
-                           {"file", trial.side == Side::left ? ref : enh}};
-        }
-        write_text_atomically(shot.string() + ".json", info.dump(2) + "\n");
-        ++screenshots;
-        screenshot_due = false;
-      }
-      presenter->pace();
-      const double t = presenter->now();
-      if (last_frame >= 0 && frame > 20) {  // the first frames calibrate the pacing
-        const double interval = t - last_frame;
-        times.all.push_back(float(interval));
-        times.draw.push_back(float(draw_seconds));
-        if (procedure.key_held()) times.held.push_back(float(interval));
-        if (interval > 1.2 / presenter->refresh_hz() && times.dropped_at.size() < 100) times.dropped_at.push_back(t - t0);
-      }
-      last_frame = t;
-      ++frame;
-
-      if (automated && procedure.phase() == Procedure::Phase::finished) end = "completed";
-      if (o.script && !observer && next_script == script.size() && end.empty()) end = "script-ended";
-    }
-    const double period = 1.0 / presenter->refresh_hz();
-    recorder.run()["frames"] = {{"pacing", presenter->timer_paced() ? "timer" : "vsync"},
-                                {"period_ms", 1000 * period},
-                                {"dropped_threshold_ms", 1200 * period},
-                                {"all", FrameTimes::summary(times.all, period)},
-                                {"key_held", FrameTimes::summary(times.held, period)},
-                                {"draw", FrameTimes::summary(times.draw, period)},
-                                {"dropped_at_s", times.dropped_at},
-                                {"key_to_frame", FrameTimes::summary(times.key_to_frame, 0)}};
+    recorder.run()["frames"] = loop.frame_statistics();
     recorder.run()["system_key_repeats_ignored"] = presenter->system_repeats_ignored();
-  } catch (const std::exception& e) {
-    recorder.run()["end"] = std::string("error: ") + e.what();
-    recorder.run()["ended_utc"] = utc_timestamp();
-    recorder.save();
-    std::signal(SIGTERM, old_term);
-    std::signal(SIGINT, old_int);
-    throw;
   }
-  std::signal(SIGTERM, old_term);
-  std::signal(SIGINT, old_int);
   recorder.run()["end"] = end;
   recorder.run()["ended_utc"] = utc_timestamp();
   recorder.save();
   presenter.reset();
-  const int answered = procedure.answered_count();
   std::printf("%s session %d: %s; %d of %d answers recorded in %s\n", o.subject.c_str(), o.session, end.c_str(),
-              answered, total_questions, files.csv.string().c_str());
+              procedure.answered_count(), total_questions, recorder.files().csv.string().c_str());
   return 0;
 }
 

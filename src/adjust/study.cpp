@@ -14,7 +14,7 @@
 #include "core/json_reader.h"
 #include "core/random.h"
 #include "core/sha256.h"
-#include "stimuli/manifest.h"
+#include "formats/manifest.h"
 
 namespace countershade::adjust {
 
@@ -100,108 +100,152 @@ int Study::max_height() const {
   return h;
 }
 
-Study load_study(const fs::path& manifest_path, const std::optional<fs::path>& config_file) {
-  Study study;
-  study.manifest_path = manifest_path;
-  const std::string mfile = manifest_path.string();
-  OrderedJson manifest = read_manifest(manifest_path);
-  study.manifest_sha256 = sha256_hex(read_file_bytes(manifest_path));
-  auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
-  study.set_name = manifest.value("experiment_name", manifest_path.parent_path().filename().string());
-  if (manifest.contains("bits") && manifest["bits"] != 8)
-    fail("bits", "the adjustment app shows 8-bit stimuli; this set has " + manifest["bits"].dump() +
-                     "-bit images (generate it with \"output\": {\"bits\": 8})");
-  if (manifest.contains("seed") && manifest["seed"].is_number_unsigned()) study.manifest_seed = manifest["seed"];
-  if (!manifest.contains("lambda_grid") || !manifest["lambda_grid"].is_object()) fail("lambda_grid", "missing");
-  const auto& grid = manifest["lambda_grid"];
-  for (const char* key : {"min", "step", "count"})
-    if (!grid.contains(key) || !grid[key].is_number()) fail(std::string("lambda_grid.") + key, "missing or not a number");
-  study.lambda_min = grid["min"];
-  study.lambda_step = grid["step"];
-  const int count = grid["count"];
-  if (!(study.lambda_step > 0) || count < 2) fail("lambda_grid", "needs a positive step and at least two values");
+namespace {
 
-  // Configuration: an explicit file, else the experiment's "adjust" object, else the defaults.
+// The λ grid and the seed the study takes from the set.
+void read_grid(Study& study, const Manifest& manifest, const std::string& mfile) {
+  auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
+  if (manifest.bits != 8)
+    fail("bits", "the adjustment app shows 8-bit stimuli; this set has " + std::to_string(manifest.bits) +
+                     "-bit images (generate it with \"output\": {\"bits\": 8})");
+  study.manifest_seed = manifest.seed;
+  study.lambda_min = manifest.lambda_grid.min;
+  study.lambda_step = manifest.lambda_grid.step;
+  if (!(study.lambda_step > 0) || manifest.lambda_grid.count < 2)
+    fail("lambda_grid", "needs a positive step and at least two values");
+}
+
+// An explicit file, else the experiment's "adjust" object, else the defaults.
+void read_config(Study& study, const Manifest& manifest, const std::string& mfile,
+                 const std::optional<fs::path>& config_file) {
   if (config_file) {
     study.config = parse_study_config(parse_json_file(*config_file), config_file->string(), "");
     study.config_source = {{"file", config_file->string()}};
-  } else if (manifest.contains("experiment") && manifest["experiment"].is_object() &&
-             manifest["experiment"].contains("adjust")) {
-    nlohmann::json adjust = nlohmann::json::parse(manifest["experiment"]["adjust"].dump());
+  } else if (manifest.experiment.is_object() && manifest.experiment.contains("adjust")) {
+    nlohmann::json adjust = nlohmann::json::parse(manifest.experiment["adjust"].dump());
     study.config = parse_study_config(adjust, mfile, "experiment.adjust");
     study.config_source = "experiment.adjust";
   } else {
     study.config_source = "defaults";
   }
+}
 
-  // Group the stimuli into conditions; index 0 (λ = 0) falls back to the scene's reference image.
-  const fs::path set_dir = manifest_path.parent_path();
-  std::map<std::string, size_t> image_of_file;
-  auto add_image = [&](size_t entry) {
-    const auto& s = manifest["stimuli"][entry];
-    std::string rel = s["file"];
-    auto [it, inserted] = image_of_file.emplace(rel, study.images.size());
-    if (inserted)
-      study.images.push_back({resolve_in_set(set_dir, rel), rel, s["sha256"], s["width"], s["height"]});
-    return int(it->second);
-  };
+using ConditionKey = std::tuple<std::string, std::string, double>;
+
+// The set's conditions in manifest order, each with its entries by λ index, and the reference
+// entry of each scene.
+struct SetIndex {
+  std::map<ConditionKey, std::map<int, size_t>> grids;
+  std::vector<ConditionKey> order;
   std::map<std::string, size_t> reference_of_scene;
-  using Key = std::tuple<std::string, std::string, double>;
-  std::map<Key, std::map<int, size_t>> grids;
-  std::vector<Key> order;
-  for (size_t i = 0; i < manifest["stimuli"].size(); ++i) {
-    const auto& s = manifest["stimuli"][i];
+};
+
+SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
+  auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
+  const int count = manifest.lambda_grid.count;
+  SetIndex index;
+  for (size_t i = 0; i < manifest.stimuli.size(); ++i) {
+    const ManifestEntry& s = manifest.stimuli[i];
     const std::string where = "stimuli[" + std::to_string(i) + "]";
-    if (s["method"] == "none") {
-      reference_of_scene.emplace(s["scene"], i);
+    if (s.is_reference()) {
+      index.reference_of_scene.emplace(s.scene, i);
       continue;
     }
-    if (!s.contains("lambda_index") || !s["lambda_index"].is_number_integer()) fail(where + ".lambda_index", "missing");
-    if (!s.contains("sigma") || !s["sigma"].is_number()) fail(where + ".sigma", "missing");
-    std::string method = s.contains("label") && s["label"].is_string() ? s["label"] : s["method"];
-    Key key{s["scene"], method, s["sigma"]};
-    if (!grids.count(key)) order.push_back(key);
-    int index = s["lambda_index"];
-    if (index < 0 || index >= count) fail(where + ".lambda_index", "outside the λ grid (0.." + std::to_string(count - 1) + ")");
-    if (!grids[key].emplace(index, i).second) fail(where + ".lambda_index", "λ index " + std::to_string(index) + " listed twice");
+    if (!s.sigma) fail(where + ".sigma", "missing");
+    ConditionKey key{s.scene, s.condition_method(), *s.sigma};
+    if (!index.grids.count(key)) index.order.push_back(key);
+    if (s.lambda_index >= count) fail(where + ".lambda_index", "outside the λ grid (0.." + std::to_string(count - 1) + ")");
+    if (!index.grids[key].emplace(s.lambda_index, i).second)
+      fail(where + ".lambda_index", "λ index " + std::to_string(s.lambda_index) + " listed twice");
   }
-  const auto& wanted = study.config.conditions;
-  for (const auto& sel : wanted)
-    if (!grids.count({sel.scene, sel.method, sel.sigma}))
+  return index;
+}
+
+bool selected(const std::vector<StudyConfig::Selection>& wanted, const ConditionKey& key) {
+  const auto& [scene, method, sigma] = key;
+  return wanted.empty() || std::any_of(wanted.begin(), wanted.end(), [&](const auto& s) {
+           return s.scene == scene && s.method == method && s.sigma == sigma;
+         });
+}
+
+class StudyBuilder {
+ public:
+  StudyBuilder(Study& study, const Manifest& manifest, std::string mfile)
+      : study_(study), manifest_(manifest), mfile_(std::move(mfile)) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+    throw_input_error(mfile_ + ": " + field, what);
+  }
+
+  int add_image(size_t entry) {
+    const ManifestEntry& s = manifest_.stimuli[entry];
+    auto [it, inserted] = image_of_file_.emplace(s.file, study_.images.size());
+    if (inserted)
+      study_.images.push_back({resolve_in_set(study_.manifest_path.parent_path(), s.file), s.file, s.sha256, s.width, s.height});
+    return int(it->second);
+  }
+
+  // Slot 0 is the reference (the unenhanced side), then one image per λ index; index 0 (λ = 0)
+  // falls back to the scene's reference image.
+  void add_condition(const ConditionKey& key, const SetIndex& index) {
+    const auto& [scene, method, sigma] = key;
+    const int count = manifest_.lambda_grid.count;
+    const auto& entries = index.grids.at(key);
+    auto reference = index.reference_of_scene.find(scene);
+    if (reference == index.reference_of_scene.end())
+      fail("stimuli", "scene '" + scene + "' has no reference (method \"" + kReferenceMethod + "\") image");
+    std::vector<int> images;
+    for (int i = 0; i < count; ++i) {
+      auto it = entries.find(i);
+      if (it != entries.end()) images.push_back(add_image(it->second));
+      else if (i == 0 && study_.lambda(0) == 0) images.push_back(add_image(reference->second));
+      else
+        fail("stimuli", "condition " + scene + " / " + method + " / sigma " + nlohmann::json(sigma).dump() +
+                            " has no image for λ index " + std::to_string(i) + " (the adjustment needs the whole grid)");
+    }
+    const int ref = add_image(reference->second);
+    for (int img : images) check_same_size(img, ref);
+    images.insert(images.begin(), ref);
+    study_.conditions.push_back({scene, method, sigma, count});
+    study_.condition_images.push_back(std::move(images));
+  }
+
+ private:
+  void check_same_size(int img, int ref) const {
+    const auto& a = study_.images[size_t(img)];
+    const auto& b = study_.images[size_t(ref)];
+    if (a.width != b.width || a.height != b.height)
+      fail("stimuli", "'" + a.relative + "' is not the size of its reference '" + b.relative + "'");
+  }
+
+  Study& study_;
+  const Manifest& manifest_;
+  std::string mfile_;
+  std::map<std::string, size_t> image_of_file_;
+};
+
+}  // namespace
+
+Study load_study(const fs::path& manifest_path, const std::optional<fs::path>& config_file) {
+  Study study;
+  study.manifest_path = manifest_path;
+  const std::string mfile = manifest_path.string();
+  const Manifest manifest = read_manifest(manifest_path);
+  study.manifest_sha256 = manifest.file_sha256;
+  study.set_name = manifest.experiment_name;
+  read_grid(study, manifest, mfile);
+  read_config(study, manifest, mfile, config_file);
+
+  const SetIndex index = index_set(manifest, mfile);
+  for (const auto& sel : study.config.conditions)
+    if (!index.grids.count({sel.scene, sel.method, sel.sigma}))
       throw_input_error(config_file ? config_file->string() + ": conditions" : mfile + ": experiment.adjust.conditions",
                         "the set has no condition scene '" + sel.scene + "', method '" + sel.method + "', sigma " +
                             nlohmann::json(sel.sigma).dump());
-  for (const auto& key : order) {
-    const auto& [scene, method, sigma] = key;
-    if (!wanted.empty() && std::none_of(wanted.begin(), wanted.end(), [&](const auto& s) {
-          return s.scene == scene && s.method == method && s.sigma == sigma;
-        }))
-      continue;
-    const auto& grid_entries = grids[key];
-    std::vector<int> images;
-    for (int index = 0; index < count; ++index) {
-      auto it = grid_entries.find(index);
-      if (it != grid_entries.end()) {
-        images.push_back(add_image(it->second));
-      } else if (index == 0 && study.lambda(0) == 0 && reference_of_scene.count(scene)) {
-        images.push_back(add_image(reference_of_scene[scene]));
-      } else {
-        fail("stimuli", "condition " + scene + " / " + method + " / sigma " + nlohmann::json(sigma).dump() +
-                            " has no image for λ index " + std::to_string(index) + " (the adjustment needs the whole grid)");
-      }
-    }
-    if (!reference_of_scene.count(scene)) fail("stimuli", "scene '" + scene + "' has no reference (method \"none\") image");
-    const int reference = add_image(reference_of_scene[scene]);
-    const auto& ref = study.images[size_t(reference)];
-    for (int img : images)
-      if (study.images[size_t(img)].width != ref.width || study.images[size_t(img)].height != ref.height)
-        fail("stimuli", "'" + study.images[size_t(img)].relative + "' is not the size of its reference '" + ref.relative + "'");
-    // Slot 0 of the condition's list is the reference (the unenhanced side); the grid follows.
-    images.insert(images.begin(), reference);
-    study.conditions.push_back({scene, method, sigma, count});
-    study.condition_images.push_back(std::move(images));
-  }
-  if (study.conditions.empty()) fail("stimuli", "no condition with a λ grid (the set has only reference images)");
+  StudyBuilder builder(study, manifest, mfile);
+  for (const auto& key : index.order)
+    if (selected(study.config.conditions, key)) builder.add_condition(key, index);
+  if (study.conditions.empty()) builder.fail("stimuli", "no condition with a λ grid (the set has only reference images)");
   return study;
 }
 

@@ -12,5 +12,6 @@ void add_analyze_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_stimuli_command(CLI::App& app);
 void add_adjust_command(CLI::App& app);
+void add_methods_command(CLI::App& app);
 
 }  // namespace countershade::cli

@@ -58,37 +58,46 @@ std::vector<float> load_depth(const std::string& path, const std::string& kind, 
   return depth;
 }
 
-void run(ImageUsmArgs args) {
-  const EnhancementMethod& method = resolve_method(args.method);
-  if (method.needs_vertex_radiance())
-    throw InputError("--method: " + args.method.method + " needs a rendered scene; use `countershade render`");
-  if (method.needs_depth() && args.depth.empty())
-    throw InputError("--depth: " + args.method.method + " needs a depth or disparity map");
-  fs::path output(args.output);
-  std::string ext = lower_extension(output);
+// What an external image cannot give: a scene. Checked before anything is read.
+void check_image_method(const ResolvedMethod& method, const ImageUsmArgs& args) {
+  const std::string& name = method.method->name();
+  if (method.request.scene || method.request.vertex_radiance)
+    throw InputError("--method: " + name + " works on a rendered scene's surfaces; use `countershade render`");
+  if (method.request.depth && args.depth.empty()) throw InputError("--depth: " + name + " needs a depth or disparity map");
+}
+
+void check_output(const std::string& path) {
+  const fs::path output(path);
+  const std::string ext = lower_extension(output);
   if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
-    throw_input_error(args.output, "output must be .png, .tif or .exr");
-  fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");
+    throw_input_error(path, "output must be .png, .tif or .exr");
+  const fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  if (!fs::is_directory(out_dir)) throw_input_error(path, "output folder does not exist");
+}
+
+void run(const ImageUsmArgs& args, const CLI::App* cmd) {
+  const ResolvedMethod method = resolve_method(cmd, args.method);
+  check_image_method(method, args);
+  check_output(args.output);
 
   int file_bits = 8;
   Image display = load_display_image(args.image, file_bits);
-  int bits = args.bits.value_or(file_bits == 16 ? 16 : 8);
+  const int bits = args.bits.value_or(file_bits == 16 ? 16 : 8);
   std::vector<float> depth;
   if (!args.depth.empty()) depth = load_depth(args.depth, args.depth_kind, display.width, display.height);
-  View view = make_image_view(std::move(display), std::move(depth), DisplayEncoding::srgb(), bits);
+  auto view = make_image_view(std::move(display), std::move(depth), DisplayEncoding::srgb(), bits);
 
-  auto prepared = method.prepare(view, args.method.options);
+  auto prepared = method.method->prepare(make_context(view), *method.parameters);
   Composed result = prepared->compose(args.method.lambda);
-  if (ext == ".exr") {  // back to linear values, like the input EXR convention
+  if (lower_extension(args.output) == ".exr") {  // back to linear values, like the input EXR convention
     for (float& v : result.display.pixels) v = float(srgb_decode(v));
-    write_image(output, result.display);
+    write_image(args.output, result.display);
   } else {
-    write_image(output, result.display, {bits});
+    write_image(args.output, result.display, {bits});
   }
   if (!args.aux.empty()) write_auxiliary(args.aux, *prepared);
   std::fprintf(stderr, "image-usm: wrote %s (%dx%d, %s λ=%g, %zu clipped pixels, %s)\n", args.output.c_str(),
-               view.width(), view.height(), args.method.method.c_str(), args.method.lambda, result.clipped_pixels,
+               view->width(), view->height(), method.method->name().c_str(), args.method.lambda, result.clipped_pixels,
                prepared->parameters().dump().c_str());
 }
 
@@ -105,15 +114,13 @@ void add_image_usm_command(CLI::App& app) {
       ->check(CLI::IsMember({"depth", "disparity"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output image (.png, .tif or .exr)")->required();
-  cmd->add_option("--method", args->method.method, "usm2d or depth-usm")
-      ->check(CLI::IsMember({"usm2d", "depth-usm", "none"}))
-      ->required();
-  add_image_method_options(cmd, args->method);
+  add_method_options(cmd, args->method, "An image-space method, e.g. usm2d or depth-usm (`countershade methods`)");
+  cmd->get_option("--method")->required();
   cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth (default: the input's)")->check(CLI::IsMember({8, 16}));
   cmd->add_option("--aux", args->aux, "Write the method's intermediate images (e.g. D, G*D, ΔD) as EXR here");
-  cmd->callback([args] { run(*args); });
-  cmd->footer(
-      "Examples:\n"
+  cmd->callback([args, cmd] { run(*args, cmd); });
+  cmd->footer(method_parameters_help() +
+      "\nExamples:\n"
       "  countershade image-usm photo.png --depth depth.exr -o out.png --method depth-usm --operator darken "
       "--lambda 0.8 --kernel 5%\n"
       "  countershade image-usm im0.png --depth disp0.pfm --depth-kind disparity -o out.png --method depth-usm "

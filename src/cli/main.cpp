@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   countershade::cli::add_simulate_command(app);
   countershade::cli::add_stimuli_command(app);
   countershade::cli::add_adjust_command(app);
+  countershade::cli::add_methods_command(app);
 
   // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {

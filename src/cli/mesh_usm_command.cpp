@@ -51,12 +51,9 @@ void run(const MeshUsmArgs& args) {
     lab[v] = srgb_to_lab(colors[v]);
     lightness[v] = lab[v].L;
   }
-  MethodOptions options;
-  options.sigma = args.sigma;
-  options.iterations = args.iterations;
-  options.adapt = !args.no_adapt;
+  const SmoothingWidth width{args.sigma, args.iterations, !args.no_adapt};
   SurfaceContrast sc = surface_contrast(adjacency_from_edges(mesh.vertex_count(), mesh.edges()), mesh.positions(),
-                                        lightness, {}, options, args.sigma.value_or(0.0));
+                                        lightness, {}, width);
 
   size_t clipped = 0;
   for (size_t v = 0; v < colors.size(); ++v) {

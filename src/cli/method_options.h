@@ -1,5 +1,7 @@
 #pragma once
-// Command-line options shared by the commands that apply an enhancement method.
+// The command-line side of enhancement methods: --method and --lambda are options of the command;
+// every other "--name value" is collected into a ParameterBag for the method's own parser, so a
+// flag the method does not take is an error naming the method and the flag.
 
 #include <memory>
 #include <string>
@@ -13,18 +15,22 @@ namespace countershade::cli {
 struct MethodArgs {
   std::string method = "none";
   double lambda = 1.0;
-  MethodOptions options;
-  std::string kernel;  // "5%" or "5"
-  std::string cold, warm;
-  bool no_adapt = false;
 };
 
-// Adds --lambda and the image-space options (kernel, σ, depth-usm operator and its settings).
-void add_image_method_options(CLI::App* cmd, MethodArgs& args);
+struct ResolvedMethod {
+  const EnhancementMethod* method = nullptr;
+  std::shared_ptr<const MethodParameters> parameters;
+  RenderRequest request;
+};
 
-// Parses the string-valued options into args.options, checks λ and the method's options.
-// Throws InputError with the option's name.
-const EnhancementMethod& resolve_method(MethodArgs& args);
+// Adds --method and --lambda, and lets the command collect the method's parameters.
+void add_method_options(CLI::App* cmd, MethodArgs& args, const std::string& method_help);
+
+// The method and its parameters from the command's extra words. Throws InputError.
+ResolvedMethod resolve_method(const CLI::App* cmd, const MethodArgs& args);
+
+// A help footer listing each method's parameters (details: `countershade methods`).
+std::string method_parameters_help();
 
 // Writes the prepared method's auxiliary images as EXR into `dir`.
 void write_auxiliary(const std::string& dir, const PreparedEnhancement& prepared);

@@ -8,12 +8,12 @@
 #include <optional>
 
 #include "cli/commands.h"
+#include "cli/method_options.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/progress.h"
-#include "cli/method_options.h"
-#include "core/atomic_file.h"
-#include "enhance/method.h"
+#include "enhance/registry.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -38,8 +38,6 @@ struct RenderArgs {
   std::optional<double> exposure;
   int bits = 8;
   std::string aux;
-  int ring_samples = 3;
-  std::optional<double> refine;
 };
 
 // Writes the G-buffer as EXR files a researcher can open: depth, normal, object id.
@@ -60,57 +58,61 @@ void write_aux(const fs::path& dir, const GBuffer& g) {
   write_image(dir / "object_id.exr", object);
 }
 
-void run(RenderArgs args) {
-  fs::path output(args.output);
-  std::string ext = lower_extension(output);
+// The output's format, checked before any work.
+std::string check_output(const RenderArgs& args, bool enhanced) {
+  const fs::path output(args.output);
+  const std::string ext = lower_extension(output);
   if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
     throw_input_error(args.output, "output must be .png, .tif (display-encoded) or .exr (linear)");
-  fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  const fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
   if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");
+  if (ext == ".exr" && enhanced) throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
+  return ext;
+}
 
-  const EnhancementMethod& method = resolve_method(args.method);
-  const bool enhanced = args.method.method != "none";
-  if (ext == ".exr" && enhanced)
-    throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
+std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderRequest& request) {
+  auto scene = std::make_shared<Scene>(load_scene(args.scene));
+  apply_request(*scene, request);
+  if (args.width) scene->camera.width = *args.width;
+  if (args.height) scene->camera.height = *args.height;
+  if (args.spp) scene->settings.spp = *args.spp;
+  if (args.seed) scene->settings.seed = uint64_t(*args.seed);
+  if (args.exposure) scene->display.exposure_stops = *args.exposure;
+  return scene;
+}
 
-  Scene scene = load_scene(args.scene);
-  if (args.refine) refine_scene(scene, *args.refine);
-  if (args.width) scene.camera.width = *args.width;
-  if (args.height) scene.camera.height = *args.height;
-  if (args.spp) scene.settings.spp = *args.spp;
-  if (args.seed) scene.settings.seed = uint64_t(*args.seed);
-  if (args.exposure) scene.display.exposure_stops = *args.exposure;
+void run(const RenderArgs& args, const CLI::App* cmd) {
+  const ResolvedMethod method = resolve_method(cmd, args.method);
+  const bool enhanced = method.method->enhances();
+  const std::string ext = check_output(args, enhanced);
+  std::shared_ptr<const Scene> scene = load_render_scene(args, method.request);
 
   auto start = std::chrono::steady_clock::now();
-  RayTracer tracer(scene);
   Progress progress("render");
-  RenderOptions options;
-  options.threads = args.threads.value_or(0);
-  options.progress = [&](double f) { progress.update(f); };
-  options.vertex_radiance = method.needs_vertex_radiance();
-  options.ring_samples = args.ring_samples;
-  RenderResult result = render(scene, tracer, options);
-  RayCounts rays = result.rays;
-  if (!args.aux.empty()) write_aux(args.aux, result.gbuffer);
+  ViewOptions vo;
+  vo.bits = args.bits;
+  vo.threads = args.threads.value_or(0);
+  vo.progress = [&](double f) { progress.update(f); };
+  std::shared_ptr<const View> view = render_view(scene, method.request, vo);
+  if (!args.aux.empty()) write_aux(args.aux, view->render.gbuffer);
 
   std::string details;
   if (ext == ".exr") {
-    write_image(output, result.radiance);
+    write_image(args.output, view->render.radiance);
   } else {
-    View view = make_view(scene, std::move(result), args.bits);
-    auto prepared = method.prepare(view, args.method.options);
+    auto prepared = method.method->prepare(make_context(view, vo.threads), *method.parameters);
     Composed stimulus = prepared->compose(args.method.lambda);
-    write_image(output, stimulus.display, {args.bits});
+    write_image(args.output, stimulus.display, {args.bits});
     if (!args.aux.empty()) write_auxiliary(args.aux, *prepared);
     if (enhanced)
-      details = ", " + args.method.method + " λ=" + format_number(args.method.lambda) + ", " +
+      details = ", " + method.method->name() + " λ=" + format_number(args.method.lambda) + ", " +
                 std::to_string(stimulus.clipped_pixels) + " clipped pixels, " + prepared->parameters().dump();
   }
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const RayCounts& rays = view->render.rays;
   char summary[256];
   std::snprintf(summary, sizeof summary, "wrote %s (%dx%d, %d spp, %s, %.2f M rays/s)", args.output.c_str(),
-                scene.camera.width, scene.camera.height, scene.settings.spp, format_seconds(seconds).c_str(),
+                scene->camera.width, scene->camera.height, scene->settings.spp, format_seconds(seconds).c_str(),
                 double(rays.primary + rays.shadow) / seconds * 1e-6);
   progress.finish(summary + details);
 }
@@ -123,22 +125,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene description (JSON, see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png/.tif display-encoded, .exr linear radiance")->required();
-  cmd->add_option("--method", args->method.method, "Enhancement method")
-      ->check(CLI::IsMember(method_names()))
-      ->capture_default_str();
-  cmd->add_option("--sigma", args->method.options.sigma, "usm3d: smoothing width σ in world units");
-  cmd->add_option("--sigma-fraction", args->method.options.sigma_fraction,
-                  "usm3d: σ as a fraction of the scene's bounding-box diagonal");
-  cmd->add_option("--iterations", args->method.options.iterations,
-                  "usm3d: explicit number of smoothing iterations instead of σ");
-  cmd->add_flag("--no-adapt", args->method.no_adapt, "usm3d: constant gain λ·w (no √(1+Var) adaptation)");
-  add_image_method_options(cmd, args->method);
-  cmd->add_option("--ring-samples", args->ring_samples,
-                  "usm3d: anti-aliasing samples per incident triangle for the vertex signal (0 = off)")
-      ->check(CLI::Range(0, 64))
-      ->capture_default_str();
-  cmd->add_option("--refine", args->refine, "usm3d: split mesh edges longer than this world length first")
-      ->check(CLI::PositiveNumber);
+  add_method_options(cmd, args->method, "Enhancement method (`countershade methods` lists them)");
   cmd->add_option("--width", args->width, "Override the camera's width in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", args->height, "Override the camera's height in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel (stratified)")->check(CLI::Range(1, 65536));
@@ -150,14 +137,14 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--aux", args->aux,
                   "Also write depth.exr, normal.exr, object_id.exr and the method's intermediate images "
                   "(e.g. depth-usm's D, G*D and ΔD) to this folder");
-  cmd->callback([args] { run(*args); });
-  cmd->footer(
-      "Examples:\n"
-      "  countershade render experiments/scenes/clutter.json -o clutter.png\n"
-      "  countershade render experiments/scenes/cornsweet-cube.json -o cube.png --method usm3d --lambda 1.5 "
-      "--sigma-fraction 0.05\n"
-      "  countershade render experiments/scenes/clutter.json -o dark.png --method depth-usm --operator darken "
-      "--lambda 0.8 --kernel 5%");
+  cmd->callback([args, cmd] { run(*args, cmd); });
+  cmd->footer(method_parameters_help() +
+              "\nExamples:\n"
+              "  countershade render experiments/scenes/clutter.json -o clutter.png\n"
+              "  countershade render experiments/scenes/cornsweet-cube.json -o cube.png --method usm3d --lambda 1.5 "
+              "--sigma-fraction 0.05\n"
+              "  countershade render experiments/scenes/clutter.json -o dark.png --method depth-usm --operator darken "
+              "--lambda 0.8 --kernel 5%");
 }
 
 }  // namespace countershade::cli

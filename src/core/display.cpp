@@ -87,4 +87,12 @@ double DisplayEncoding::decode(double code) const {
   return 0.0;
 }
 
+Image encode_for_display(const Image& radiance, double exposure_stops, const DisplayEncoding& encoding) {
+  Image out(radiance.width, radiance.height, radiance.channels, Image::Uninitialized{});
+  const double scale = std::exp2(exposure_stops);
+  for (size_t i = 0; i < radiance.pixels.size(); ++i)
+    out.pixels[i] = float(encoding.encode(double(radiance.pixels[i]) * scale));
+  return out;
+}
+
 }  // namespace countershade

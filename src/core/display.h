@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/image.h"
+
 namespace countershade {
 
 class DisplayEncoding {
@@ -31,5 +33,8 @@ class DisplayEncoding {
   double gamma_ = 2.2;
   std::vector<double> codes_, luminances_;
 };
+
+// Exposure (2^stops) and display encoding, per channel: linear radiance -> code values in [0,1].
+Image encode_for_display(const Image& radiance, double exposure_stops, const DisplayEncoding& encoding);
 
 }  // namespace countershade

@@ -12,32 +12,56 @@ namespace countershade {
 
 using nlohmann::json;
 
-nlohmann::json parse_json_file(const std::filesystem::path& path) {
-  std::string text = read_file_bytes(path);
-  if (text.empty()) throw_input_error(path.string(), "file is empty");
-  // JSON allows repeated keys and nlohmann keeps the last one silently; in a configuration file a
-  // repeated key is almost always a mistake, so it is an error.
+namespace {
+
+// Parses JSON text. JSON allows repeated keys and nlohmann keeps the last one silently; in a
+// configuration file a repeated key is almost always a mistake, so it is an error. Numbers too
+// large for a double (1e400) are errors that name the file, not a library exception.
+template <class Json>
+Json parse_strict(const std::string& text, const std::string& file) {
+  if (text.empty()) throw_input_error(file, "file is empty");
   std::vector<std::set<std::string>> keys;
   std::string duplicate;
-  auto check = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) keys.emplace_back();
-    else if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-    else if (event == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+  auto check = [&](int, typename Json::parse_event_t event, Json& parsed) {
+    using Event = typename Json::parse_event_t;
+    if (event == Event::object_start) keys.emplace_back();
+    else if (event == Event::object_end && !keys.empty()) keys.pop_back();
+    else if (event == Event::key && !keys.empty() && !keys.back().insert(parsed.template get<std::string>()).second &&
              duplicate.empty())
-      duplicate = parsed.get<std::string>();
+      duplicate = parsed.template get<std::string>();
     return true;
   };
   try {
-    json value = json::parse(text, check);
-    if (!duplicate.empty()) throw_input_error(path.string(), "the key '" + duplicate + "' appears twice in one object");
+    Json value = Json::parse(text, check);
+    if (!duplicate.empty()) throw_input_error(file, "the key '" + duplicate + "' appears twice in one object");
     return value;
-  } catch (const json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
     // nlohmann's message starts with "[json.exception.parse_error.101] "; keep the readable part.
     std::string message = e.what();
     auto pos = message.find("] ");
     if (pos != std::string::npos) message = message.substr(pos + 2);
-    throw_input_error(path.string(), "malformed JSON: " + message);
+    if (dynamic_cast<const nlohmann::json::out_of_range*>(&e))
+      throw_input_error(file, "a number is too large for a double (" + message + ")");
+    throw_input_error(file, "malformed JSON: " + message);
   }
+}
+
+}  // namespace
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
+  return parse_strict<nlohmann::json>(text, file);
+}
+
+nlohmann::json parse_json_file(const std::filesystem::path& path) {
+  return parse_strict<nlohmann::json>(read_file_bytes(path), path.string());
+}
+
+nlohmann::ordered_json parse_ordered_json_file(const std::filesystem::path& path) {
+  return parse_strict<nlohmann::ordered_json>(read_file_bytes(path), path.string());
+}
+
+nlohmann::ordered_json parse_ordered_json_text(const std::string& text, const std::string& file) {
+  return parse_strict<nlohmann::ordered_json>(text, file);
 }
 
 std::string json_type_name(const json& value) {

@@ -16,6 +16,11 @@ namespace countershade {
 
 // Parses a JSON file; a missing file or malformed JSON is an InputError naming the file.
 nlohmann::json parse_json_file(const std::filesystem::path& path);
+// The same, keeping the keys in the order they were written.
+nlohmann::ordered_json parse_ordered_json_file(const std::filesystem::path& path);
+// Parses JSON text with the same rules; `file` names it in messages.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+nlohmann::ordered_json parse_ordered_json_text(const std::string& text, const std::string& file);
 
 class JsonObject {
  public:
@@ -26,6 +31,7 @@ class JsonObject {
   std::string key_path(const std::string& key) const;
   const std::string& file() const { return file_; }
   const std::string& path() const { return path_; }
+  const nlohmann::json& value() const { return *value_; }
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
   // Required values (an absent key is an error).

@@ -6,20 +6,10 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/xml.h"
 
 namespace countershade {
 namespace {
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
 
 // "Nice" tick positions covering [lo, hi].
 std::vector<double> ticks(double lo, double hi) {
@@ -68,7 +58,7 @@ std::string LinePlot::to_svg() const {
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << escape(title) << "</text>\n";
+      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << xml_escape(title) << "</text>\n";
   for (double t : ticks(x0, x1))
     svg << "<line x1=\"" << px(t) << "\" y1=\"" << top << "\" x2=\"" << px(t) << "\" y2=\"" << top + ph
         << "\" stroke=\"#e5e5e5\"/><text x=\"" << px(t) << "\" y=\"" << top + ph + 16
@@ -79,10 +69,10 @@ std::string LinePlot::to_svg() const {
         << "\" text-anchor=\"end\">" << t << "</text>\n";
   svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
       << "\" fill=\"none\" stroke=\"#444\"/>\n"
-      << "<text x=\"" << left + pw / 2 << "\" y=\"" << height - 12 << "\" text-anchor=\"middle\">" << escape(x_label)
+      << "<text x=\"" << left + pw / 2 << "\" y=\"" << height - 12 << "\" text-anchor=\"middle\">" << xml_escape(x_label)
       << "</text>\n"
       << "<text transform=\"translate(16," << top + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-      << escape(y_label) << "</text>\n";
+      << xml_escape(y_label) << "</text>\n";
   for (size_t k = 0; k < series.size(); ++k) {
     const auto& s = series[k];
     svg << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1.8\""
@@ -92,7 +82,7 @@ std::string LinePlot::to_svg() const {
     double ly = top + 14 + 18 * double(k);
     svg << "<line x1=\"" << left + pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << left + pw + 32 << "\" y2=\"" << ly
         << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"5,3\"" : "")
-        << "/><text x=\"" << left + pw + 38 << "\" y=\"" << ly + 4 << "\">" << escape(s.label) << "</text>\n";
+        << "/><text x=\"" << left + pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
   }
   svg << "</svg>\n";
   return svg.str();

@@ -10,54 +10,62 @@
 
 #include "core/error.h"
 #include "core/gaussian.h"
-#include "enhance/usm2d.h"
+#include "core/parallel.h"
+#include "enhance/image_width.h"
+#include "enhance/lightness.h"
 
 namespace countershade {
+
+GlobalContrast::GlobalContrast(const std::vector<float>& values, double range, bool equalize)
+    : range_(range), equalize_(equalize) {
+  std::vector<double> histogram(kBins, 0.0);
+  for (float v : values) histogram[bin(v)] += 1.0;
+  cdf_.resize(kBins);
+  double total = 0;
+  for (size_t b = 0; b < kBins; ++b) cdf_[b] = total += histogram[b];
+  for (double& c : cdf_) c /= std::max(total, 1.0);
+  // The CDF at the lowest occupied bin: equalisation maps that bin to 0, so a large dark
+  // background stays dark instead of being lifted by its own share of the pixels.
+  for (size_t b = 0; b < kBins; ++b)
+    if (histogram[b] > 0) {
+      cdf_min_ = cdf_[b];
+      break;
+    }
+  auto percentile = [&](double p) {
+    size_t b = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), p) - cdf_.begin());
+    return (double(std::min(b, kBins - 1)) + 0.5) / double(kBins) * range_;
+  };
+  lo_ = percentile(0.01);
+  hi_ = percentile(0.99);
+}
+
+size_t GlobalContrast::bin(float v) const {
+  return std::min(kBins - 1, size_t(std::max(0.0, double(v) / range_) * kBins));
+}
+
+double GlobalContrast::operator()(double v) const {
+  if (equalize_) return cdf_min_ < 1.0 ? (cdf_[bin(float(v))] - cdf_min_) / (1.0 - cdf_min_) * range_ : v;
+  if (hi_ <= lo_) return v;
+  return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) * range_;
+}
+
 namespace {
 
 bool valid_depth(float d) { return std::isfinite(d) && d > 0.0f; }
 
-// Histogram-based global contrast: a 1st–99th percentile stretch or an equalisation, computed
-// jointly over all values (all channels), so colour balance is kept.
-class GlobalContrast {
- public:
-  GlobalContrast(const std::vector<float>& values, double range, bool equalize) : range_(range), equalize_(equalize) {
-    std::vector<double> histogram(kBins, 0.0);
-    for (float v : values) histogram[bin(v)] += 1.0;
-    cdf_.resize(kBins);
-    double total = 0;
-    for (size_t b = 0; b < kBins; ++b) cdf_[b] = total += histogram[b];
-    for (double& c : cdf_) c /= std::max(total, 1.0);
-    auto percentile = [&](double p) {
-      size_t b = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), p) - cdf_.begin());
-      return (double(std::min(b, kBins - 1)) + 0.5) / double(kBins) * range_;
-    };
-    lo_ = percentile(0.01);
-    hi_ = percentile(0.99);
-  }
-  double operator()(double v) const {
-    if (equalize_) return cdf_[bin(float(v))] * range_;
-    if (hi_ <= lo_) return v;
-    return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) * range_;
-  }
-
- private:
-  static constexpr size_t kBins = 4096;
-  size_t bin(float v) const { return std::min(kBins - 1, size_t(std::max(0.0, double(v) / range_) * kBins)); }
-  double range_;
-  bool equalize_;
-  std::vector<double> cdf_;
-  double lo_ = 0, hi_ = 1;
-};
-
 enum class Operator { add, contrast, darken, color };
+enum class ContrastKind { stretch, equalize, local };
 
-Operator parse_operator(const std::string& name) {
-  if (name == "add") return Operator::add;
-  if (name == "contrast") return Operator::contrast;
-  if (name == "color") return Operator::color;
-  return Operator::darken;
-}
+struct DepthUsmParameters final : MethodParameters {
+  ImageWidth width;
+  Operator op = Operator::darken;
+  std::string op_name = "darken";
+  ContrastKind contrast = ContrastKind::stretch;
+  std::string contrast_name = "stretch";
+  bool lab = false;
+  DepthMapping mapping;
+  glm::dvec3 cold{-0.1, -0.05, 0.15}, warm{0.15, 0.1, -0.1};
+};
 
 // Runs body(begin, end) over [0, n) in parallel chunks.
 template <class Body>
@@ -120,173 +128,258 @@ void normalize_linear_depth(const float* depth, float* out, size_t n, double lo,
   }
 }
 
-class DepthUsmPrepared final : public PreparedEnhancement {
- public:
-  DepthUsmPrepared(const View& view, const MethodOptions& options, SpatialImportance importance)
-      : view_(view), options_(options), op_(parse_operator(options.op)), si_(std::move(importance)) {
-    const size_t n = view.lab.size();
-    if (op_ != Operator::contrast) return;
-    // The contrast-enhanced version C(I), once per view and kernel.
-    const bool lab = options.space == "lab";
-    std::vector<float> values(lab ? n : 3 * n);
-    for (size_t i = 0; i < n; ++i) {
-      if (lab) values[i] = float(view.lab[i].L);
-      else for (int c = 0; c < 3; ++c) values[3 * i + c] = view.display.pixels[3 * i + c];
-    }
-    const double range = lab ? 100.0 : 1.0;
-    enhanced_.resize(values.size());
-    if (options.contrast == "local") {
-      // Local contrast enhancement (an unsharp mask with the same kernel): flat, untextured
-      // regions stay as they are, which hides artefacts of noisy depth.
-      int channels = lab ? 1 : 3;
-      std::vector<float> plane(n), blurred(n);
-      for (int c = 0; c < channels; ++c) {
-        for (size_t i = 0; i < n; ++i) plane[i] = values[size_t(channels) * i + c];
-        gaussian_blur(plane.data(), blurred.data(), view.width(), view.height(), si_.sigma_px);
-        for (size_t i = 0; i < n; ++i)
-          enhanced_[size_t(channels) * i + c] = float(std::clamp(2.0 * plane[i] - blurred[i], 0.0, range));
-      }
-    } else {
-      GlobalContrast contrast(values, range, options.contrast == "equalize");
-      for (size_t i = 0; i < values.size(); ++i) enhanced_[i] = float(contrast(values[i]));
-    }
+// C(I) for the contrast operator, once per view and kernel: RGB (3 values per pixel) or L*.
+std::vector<float> contrast_enhanced(const View& view, const DepthUsmParameters& p, double sigma_px, int threads) {
+  const size_t n = view.lab.size();
+  const int channels = p.lab ? 1 : 3;
+  std::vector<float> values(size_t(channels) * n);
+  for (size_t i = 0; i < n; ++i) {
+    if (p.lab) values[i] = float(view.lab[i].L);
+    else for (int c = 0; c < 3; ++c) values[3 * i + c] = view.display.pixels[3 * i + c];
   }
+  const double range = p.lab ? 100.0 : 1.0;
+  std::vector<float> enhanced(values.size());
+  if (p.contrast == ContrastKind::local) {
+    // Local contrast enhancement (an unsharp mask with the same kernel): flat, untextured
+    // regions stay as they are, which hides artefacts of noisy depth.
+    std::vector<float> plane(n), blurred(n);
+    for (int c = 0; c < channels; ++c) {
+      for (size_t i = 0; i < n; ++i) plane[i] = values[size_t(channels) * i + c];
+      gaussian_blur(plane.data(), blurred.data(), view.width(), view.height(), sigma_px, threads);
+      for (size_t i = 0; i < n; ++i)
+        enhanced[size_t(channels) * i + c] = float(std::clamp(2.0 * plane[i] - blurred[i], 0.0, range));
+    }
+  } else {
+    GlobalContrast contrast(values, range, p.contrast == ContrastKind::equalize);
+    for (size_t i = 0; i < values.size(); ++i) enhanced[i] = float(contrast(values[i]));
+  }
+  return enhanced;
+}
+
+// The paper's operators on display RGB.
+class DepthUsmRgb final : public PreparedEnhancement {
+ public:
+  DepthUsmRgb(std::shared_ptr<const View> view, const DepthUsmParameters& p, SpatialImportance si, nlohmann::json record,
+              std::vector<float> enhanced)
+      : view_(std::move(view)), p_(p), si_(std::move(si)), record_(std::move(record)), enhanced_(std::move(enhanced)) {}
 
   Composed compose(double lambda) const override {
-    const size_t n = view_.lab.size();
-    const float* dd = si_.importance.pixels.data();
-    if (options_.space == "lab") {
-      std::vector<double> delta(n);
-      const glm::dvec3 y(0.2126, 0.7152, 0.0722);
-      const double cold = glm::dot(y, options_.cold), warm = glm::dot(y, options_.warm);
-      parallel_chunks(n, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-          double d = dd[i], neg = std::min(d, 0.0), pos = std::max(d, 0.0);
-          switch (op_) {
-            case Operator::add: delta[i] = 100.0 * lambda * d; break;
-            case Operator::darken: delta[i] = 100.0 * lambda * neg; break;
-            case Operator::color: delta[i] = 100.0 * lambda * (-neg * cold + pos * warm); break;
-            case Operator::contrast:
-              delta[i] = std::clamp(lambda * std::abs(d), 0.0, 1.0) * (double(enhanced_[i]) - view_.lab[i].L);
-          }
-        }
-      });
-      return compose_lightness(view_.display, view_.lab, delta, view_.encoding);
-    }
     Composed out;
-    out.display = Image(view_.width(), view_.height(), 3, Image::Uninitialized{});  // every pixel is written below
-    std::atomic<size_t> clipped{0};
-    switch (op_) {
+    out.display = Image(view_->width(), view_->height(), 3, Image::Uninitialized{});  // every pixel is written below
+    switch (p_.op) {
       // add, darken and color are all I + λ(a·min(ΔD, 0) + b·max(ΔD, 0)) per channel.
-      case Operator::add: clipped = apply_linear(out.display, lambda * glm::dvec3(1.0), lambda * glm::dvec3(1.0)); break;
-      case Operator::darken: clipped = apply_linear(out.display, lambda * glm::dvec3(1.0), glm::dvec3(0.0)); break;
-      case Operator::color: clipped = apply_linear(out.display, -lambda * options_.cold, lambda * options_.warm); break;
-      case Operator::contrast:
-        clipped = apply_rgb(out.display, [&](size_t i, int c, double I, double d) {
-          double alpha = std::clamp(lambda * std::abs(d), 0.0, 1.0);
-          return double(enhanced_[3 * i + c]) * alpha + I * (1.0 - alpha);
-        });
+      case Operator::add: out.clipped_pixels = apply_linear(out.display, lambda * glm::dvec3(1.0), lambda * glm::dvec3(1.0)); break;
+      case Operator::darken: out.clipped_pixels = apply_linear(out.display, lambda * glm::dvec3(1.0), glm::dvec3(0.0)); break;
+      case Operator::color: out.clipped_pixels = apply_linear(out.display, -lambda * p_.cold, lambda * p_.warm); break;
+      case Operator::contrast: out.clipped_pixels = apply_contrast(out.display, lambda); break;
     }
-    out.clipped_pixels = clipped;
     return out;
   }
+  nlohmann::json parameters() const override { return record_; }
+  std::vector<std::pair<std::string, Image>> auxiliary() const override {
+    return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};
+  }
 
+ private:
   // Writes I + a·min(ΔD, 0) + b·max(ΔD, 0), clipped to [0,1], into `result`; returns the clipped
   // pixel count. This loop is most of the cost of a further λ.
   size_t apply_linear(Image& result, const glm::dvec3& a, const glm::dvec3& b) const {
     std::atomic<size_t> clipped{0};
-    const float* in = view_.display.pixels.data();
+    const float* in = view_->display.pixels.data();
     const float* dd = si_.importance.pixels.data();
     float* out = result.pixels.data();
     const float coefficients[6] = {float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)};
-    parallel_chunks(view_.lab.size(), [&](size_t begin, size_t end) {
+    parallel_chunks(view_->lab.size(), [&](size_t begin, size_t end) {
       clipped += offset_and_clip(in + 3 * begin, dd + begin, out + 3 * begin, end - begin, coefficients);
     });
     return clipped;
   }
 
-  // Writes op(pixel, channel, I, ΔD) clipped to [0,1] into `result`; returns the clipped pixel count.
-  template <class Op>
-  size_t apply_rgb(Image& result, const Op& op) const {
+  // C(I)·α + I·(1−α), α = clamp(λ|ΔD|, 0, 1), clipped to [0,1]; returns the clipped pixel count.
+  size_t apply_contrast(Image& result, double lambda) const {
     std::atomic<size_t> clipped{0};
-    const float* in = view_.display.pixels.data();
+    const float* in = view_->display.pixels.data();
     const float* dd = si_.importance.pixels.data();
     float* out = result.pixels.data();
-    parallel_chunks(view_.lab.size(), [&](size_t begin, size_t end) {
+    parallel_chunks(view_->lab.size(), [&](size_t begin, size_t end) {
       size_t local = 0;
       for (size_t i = begin; i < end; ++i) {
-        double d = dd[i];
-        double v0 = op(i, 0, in[3 * i], d), v1 = op(i, 1, in[3 * i + 1], d), v2 = op(i, 2, in[3 * i + 2], d);
-        local += (v0 < 0.0) | (v0 > 1.0) | (v1 < 0.0) | (v1 > 1.0) | (v2 < 0.0) | (v2 > 1.0);
-        out[3 * i] = float(std::clamp(v0, 0.0, 1.0));
-        out[3 * i + 1] = float(std::clamp(v1, 0.0, 1.0));
-        out[3 * i + 2] = float(std::clamp(v2, 0.0, 1.0));
+        const double alpha = std::clamp(lambda * std::abs(double(dd[i])), 0.0, 1.0);
+        bool clip = false;
+        for (int c = 0; c < 3; ++c) {
+          const double v = double(enhanced_[3 * i + c]) * alpha + double(in[3 * i + c]) * (1.0 - alpha);
+          clip |= v < 0.0 || v > 1.0;
+          out[3 * i + c] = float(std::clamp(v, 0.0, 1.0));
+        }
+        local += clip;
       }
       clipped += local;
     });
     return clipped;
   }
 
-  nlohmann::json parameters() const override {
-    return {{"operator", options_.op}, {"sigma_px", si_.sigma_px}, {"space", options_.space},
-            {"depth_mapping", options_.depth_mapping}, {"contrast", options_.contrast}};
-  }
-  std::vector<std::pair<std::string, Image>> auxiliary() const override {
-    return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};
-  }
-
- private:
-  const View& view_;
-  MethodOptions options_;
-  Operator op_;
+  std::shared_ptr<const View> view_;
+  DepthUsmParameters p_;
   SpatialImportance si_;
-  std::vector<float> enhanced_;  // C(I): RGB or L*, for the contrast operator
+  nlohmann::json record_;
+  std::vector<float> enhanced_;  // C(I), for the contrast operator
 };
 
-}  // namespace
+// The same scalar term as a lightness-only change (space lab).
+LightnessChange lab_change(const View& view, const DepthUsmParameters& p, const SpatialImportance& si,
+                           const std::vector<float>& enhanced) {
+  const size_t n = view.lab.size();
+  const float* dd = si.importance.pixels.data();
+  LightnessChange change;
+  change.amount.resize(n);
+  if (p.op == Operator::contrast) {
+    change.kind = LightnessChange::Kind::blended;
+    change.weight.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      change.weight[i] = std::abs(dd[i]);
+      change.amount[i] = double(enhanced[i]) - view.lab[i].L;
+    }
+    return change;
+  }
+  change.factor = 100.0;  // ΔD is in [−1, 1]; L* spans 100
+  for (size_t i = 0; i < n; ++i) change.amount[i] = p.op == Operator::add ? double(dd[i]) : std::min(double(dd[i]), 0.0);
+  return change;
+}
 
-SpatialImportance spatial_importance(const View& view, const MethodOptions& options) {
+Operator parse_operator(const std::string& name) {
+  if (name == "add") return Operator::add;
+  if (name == "contrast") return Operator::contrast;
+  if (name == "color") return Operator::color;
+  return Operator::darken;
+}
+
+class DepthUsmMethod final : public EnhancementMethod {
+ public:
+  std::string name() const override { return "depth-usm"; }
+  std::string summary() const override { return "depth-buffer unsharp masking (Luft et al. 2006)"; }
+  MethodAxes axes() const override { return {"strength λ of the operator on ΔD = G*D − D", image_width_axes()}; }
+  std::vector<ParameterDoc> parameter_docs() const override {
+    std::vector<ParameterDoc> docs = image_width_docs();
+    docs.insert(docs.end(), {{"operator", "darken", "add | contrast | darken | color (Luft et al. 2006, eqs. 2–5)"},
+                             {"contrast", "stretch", "C for the contrast operator: stretch | equalize | local"},
+                             {"space", "rgb", "rgb (display RGB, as published) | lab (the same term on L* only)"},
+                             {"depth_mapping", "linear", "linear eye depth | zbuffer (non-linear, near/far)"},
+                             {"z_near", "", "zbuffer near plane (default: the nearest depth)"},
+                             {"z_far", "", "zbuffer far plane (default: the farthest depth)"},
+                             {"cold", "-0.1,-0.05,0.15", "color: the cold colour R,G,B"},
+                             {"warm", "0.15,0.1,-0.1", "color: the warm colour R,G,B"}});
+    return docs;
+  }
+
+  std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
+    auto p = std::make_shared<DepthUsmParameters>();
+    p->width = read_image_width(bag);
+    p->op_name = bag.choice("operator", "darken", {"add", "contrast", "darken", "color"});
+    p->op = parse_operator(p->op_name);
+    p->lab = bag.choice("space", "rgb", {"rgb", "lab"}) == "lab";
+    if (p->op == Operator::color) {
+      if (p->lab)
+        bag.fail("space", "the color operator shifts hue (Luft et al. 2006, eq. 5) and lab changes lightness only; "
+                          "use rgb, or another operator");
+      p->cold = bag.vec3("cold", p->cold);
+      p->warm = bag.vec3("warm", p->warm);
+    }
+    if (p->op == Operator::contrast) {
+      p->contrast_name = bag.choice("contrast", "stretch", {"stretch", "equalize", "local"});
+      p->contrast = p->contrast_name == "equalize" ? ContrastKind::equalize
+                    : p->contrast_name == "local"  ? ContrastKind::local
+                                                   : ContrastKind::stretch;
+    }
+    p->mapping.zbuffer = bag.choice("depth_mapping", "linear", {"linear", "zbuffer"}) == "zbuffer";
+    if (p->mapping.zbuffer) {
+      p->mapping.z_near = bag.optional_number("z_near");
+      p->mapping.z_far = bag.optional_number("z_far");
+    }
+    bag.finish(name());
+    check_image_width(p->width, bag, name());
+    if (p->mapping.z_near && !(*p->mapping.z_near > 0)) bag.fail("z_near", "need 0 < near < far");
+    if (p->mapping.z_far && p->mapping.z_near && !(*p->mapping.z_far > *p->mapping.z_near))
+      bag.fail("z_far", "need 0 < near < far");
+    return p;
+  }
+
+  RenderRequest request(const MethodParameters&) const override {
+    RenderRequest r;
+    r.depth = true;
+    return r;
+  }
+  std::string label(const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<DepthUsmParameters>(parameters);
+    return name() + "-" + p.op_name + (p.lab ? "-lab" : "");
+  }
+
+  std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
+                                               const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<DepthUsmParameters>(parameters);
+    const View& view = *context.view;
+    const double sigma = p.width.sigma_px_for(view.width(), view.height());
+    SpatialImportance si = spatial_importance(view, p.mapping, sigma, context.threads);
+    std::vector<float> enhanced;
+    if (p.op == Operator::contrast) enhanced = contrast_enhanced(view, p, sigma, context.threads);
+    nlohmann::json record = {{"operator", p.op_name}, {"sigma_px", sigma}, {"space", p.lab ? "lab" : "rgb"},
+                             {"depth_mapping", p.mapping.zbuffer ? "zbuffer" : "linear"},
+                             {"contrast", p.contrast_name}};
+    if (!p.lab) return std::make_unique<DepthUsmRgb>(context.view, p, std::move(si), std::move(record), std::move(enhanced));
+    LightnessChange change = lab_change(view, p, si, enhanced);
+    std::vector<std::pair<std::string, Image>> aux = {
+        {"depth_normalized", si.depth}, {"depth_blurred", si.blurred}, {"spatial_importance", si.importance}};
+    return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record), std::move(aux),
+                                               context.threads);
+  }
+};
+
+// D normalised to [0,1] over the valid pixels, background and invalid pixels 1 (far).
+Image normalized_depth(const View& view, const DepthMapping& mapping) {
   const int w = view.width(), h = view.height();
   const size_t n = size_t(w) * h;
-  if (view.depth.size() != n) throw InputError("depth-usm: the view has no depth map of the image's size");
   float lo = INFINITY, hi = -INFINITY;
   std::mutex range_mutex;
   parallel_chunks(n, [&](size_t begin, size_t end) {
-    float l, h;
-    valid_depth_range(view.depth.data() + begin, end - begin, &l, &h);
+    float l, hh;
+    valid_depth_range(view.depth.data() + begin, end - begin, &l, &hh);
     std::lock_guard<std::mutex> lock(range_mutex);
     lo = std::min(lo, l);
-    hi = std::max(hi, h);
+    hi = std::max(hi, hh);
   });
-  SpatialImportance si;
-  const bool linear_fills_all = options.depth_mapping != "zbuffer" && lo <= hi;
-  si.depth = linear_fills_all ? Image(w, h, 1, Image::Uninitialized{}) : Image(w, h, 1, 1.0f);
-  const bool zbuffer = options.depth_mapping == "zbuffer";
-  double near = options.z_near.value_or(lo), far = options.z_far.value_or(hi);
-  auto mapped = [&](double d) {  // a monotone depth value before normalisation
-    if (!zbuffer) return d;
-    return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far);  // the [0,1] z-buffer of a perspective camera
-  };
-  if (lo <= hi) {
-    double mlo = mapped(lo), mhi = mapped(hi);
-    if (!zbuffer) {
-      const double scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
-      parallel_chunks(n, [&](size_t begin, size_t end) {
-        normalize_linear_depth(view.depth.data() + begin, si.depth.pixels.data() + begin, end - begin, lo, scale);
-      });
-    } else {
-      parallel_chunks(n, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-          float d = view.depth[i];
-          if (!valid_depth(d)) continue;  // background stays at 1 (far)
-          si.depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
-        }
-      });
-    }
+  const bool linear_fills_all = !mapping.zbuffer && lo <= hi;
+  Image depth = linear_fills_all ? Image(w, h, 1, Image::Uninitialized{}) : Image(w, h, 1, 1.0f);
+  if (!(lo <= hi)) return depth;
+  if (!mapping.zbuffer) {
+    const double scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
+    parallel_chunks(n, [&](size_t begin, size_t end) {
+      normalize_linear_depth(view.depth.data() + begin, depth.pixels.data() + begin, end - begin, lo, scale);
+    });
+    return depth;
   }
-  si.sigma_px = image_sigma_px(options, w, h);
+  const double near = mapping.z_near.value_or(lo), far = mapping.z_far.value_or(hi);
+  auto mapped = [&](double d) { return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far); };  // perspective z-buffer
+  const double mlo = mapped(lo), mhi = mapped(hi);
+  parallel_chunks(n, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      float d = view.depth[i];
+      if (!valid_depth(d)) continue;  // background stays at 1 (far)
+      depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
+    }
+  });
+  return depth;
+}
+
+}  // namespace
+
+SpatialImportance spatial_importance(const View& view, const DepthMapping& mapping, double sigma_px, int threads) {
+  const int w = view.width(), h = view.height();
+  const size_t n = size_t(w) * h;
+  if (view.depth.size() != n) throw InputError("depth-usm: the view has no depth map of the image's size");
+  SpatialImportance si;
+  si.depth = normalized_depth(view, mapping);
+  si.sigma_px = sigma_px;
   si.blurred = Image(w, h, 1, Image::Uninitialized{});  // the blur writes every pixel
-  gaussian_blur(si.depth.pixels.data(), si.blurred.pixels.data(), w, h, si.sigma_px);
+  gaussian_blur(si.depth.pixels.data(), si.blurred.pixels.data(), w, h, sigma_px, threads);
   si.importance = Image(w, h, 1, Image::Uninitialized{});
   parallel_chunks(n, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) si.importance.pixels[i] = si.blurred.pixels[i] - si.depth.pixels[i];
@@ -294,26 +387,6 @@ SpatialImportance spatial_importance(const View& view, const MethodOptions& opti
   return si;
 }
 
-void DepthUsmMethod::validate(const MethodOptions& o) const {
-  validate_image_width("depth-usm", o);
-  auto one_of = [](const std::string& v, std::initializer_list<const char*> choices) {
-    for (const char* c : choices)
-      if (v == c) return true;
-    return false;
-  };
-  if (!one_of(o.op, {"add", "contrast", "darken", "color"}))
-    throw InputError("--operator: unknown operator '" + o.op + "' (expected add, contrast, darken or color)");
-  if (!one_of(o.contrast, {"stretch", "equalize", "local"}))
-    throw InputError("--contrast: unknown mode '" + o.contrast + "' (expected stretch, equalize or local)");
-  if (!one_of(o.space, {"rgb", "lab"})) throw InputError("--space: expected rgb or lab");
-  if (!one_of(o.depth_mapping, {"linear", "zbuffer"})) throw InputError("--depth-mapping: expected linear or zbuffer");
-  if ((o.z_near && !(*o.z_near > 0)) || (o.z_far && o.z_near && !(*o.z_far > *o.z_near)))
-    throw InputError("--z-near/--z-far: need 0 < near < far");
-}
-
-std::unique_ptr<PreparedEnhancement> DepthUsmMethod::prepare(const View& view, const MethodOptions& options) const {
-  validate(options);
-  return std::make_unique<DepthUsmPrepared>(view, options, spatial_importance(view, options));
-}
+std::unique_ptr<const EnhancementMethod> make_depth_usm_method() { return std::make_unique<DepthUsmMethod>(); }
 
 }  // namespace countershade

@@ -7,7 +7,10 @@
 //   darken    I' = I + λ·min(ΔD, 0)          (negative λ: a bright halo)
 //   color     I' = I + λ·(|min(ΔD,0)|·c_cold + max(ΔD,0)·c_warm)
 // applied to display RGB in [0,1] as in the paper, or with space = lab as a lightness-only change
-// driven by the same scalar term (×100 to L* units; for `color`, the luminance of the colour term).
+// driven by the same scalar term (×100 to L* units). `color` shifts hue, so it has no lab form.
+// The method lives in depth_usm.cpp; this is its spatial importance, which tests use too.
+
+#include <optional>
 
 #include "enhance/method.h"
 
@@ -20,16 +23,29 @@ struct SpatialImportance {
   double sigma_px = 0;
 };
 
-// Computes D, G*D and ΔD for a view's depth map with the options' mapping and kernel.
-SpatialImportance spatial_importance(const View& view, const MethodOptions& options);
+struct DepthMapping {
+  bool zbuffer = false;                  // the perspective z-buffer value instead of linear depth
+  std::optional<double> z_near, z_far;   // its planes (default: the valid depth range)
+};
 
-class DepthUsmMethod final : public EnhancementMethod {
+// D, G*D and ΔD of a view's depth map with Gaussian σ in pixels.
+SpatialImportance spatial_importance(const View& view, const DepthMapping& mapping, double sigma_px, int threads = 0);
+
+// Histogram-based global contrast over all `values` (all channels jointly, so colour balance is
+// kept), in [0, range]: a 1st–99th percentile stretch, or an equalisation that maps the lowest
+// value present to 0 and the highest to `range`.
+class GlobalContrast {
  public:
-  std::string name() const override { return "depth-usm"; }
-  std::string summary() const override { return "depth-buffer unsharp masking (Luft et al. 2006)"; }
-  bool needs_depth() const override { return true; }
-  void validate(const MethodOptions& options) const override;
-  std::unique_ptr<PreparedEnhancement> prepare(const View& view, const MethodOptions& options) const override;
+  GlobalContrast(const std::vector<float>& values, double range, bool equalize);
+  double operator()(double v) const;
+
+ private:
+  static constexpr size_t kBins = 4096;
+  size_t bin(float v) const;
+  double range_;
+  bool equalize_;
+  std::vector<double> cdf_;
+  double cdf_min_ = 0, lo_ = 0, hi_ = 1;
 };
 
 }  // namespace countershade

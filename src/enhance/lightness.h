@@ -1,14 +1,17 @@
 #pragma once
-// Lightness-only composition shared by the enhancement methods: L' = clamp(L + Δ, 0, 100) with
-// a*, b* scaled by L'/L (hue and saturation kept), back to display code values, clipped per
-// channel, with a count of clipped pixels.
+// The one lightness-only composition every lightness method uses (docs/methods, "Colour"):
+// L' = clamp(L + Δ, 0, 100) with a*, b* scaled by L'/L (hue and saturation kept), back to
+// display code values, clipped per channel, with a count of clipped pixels. A method describes
+// its Δ per pixel as a LightnessChange once per σ; composing a λ is then one pass.
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "core/color.h"
 #include "core/display.h"
 #include "core/image.h"
+#include "enhance/method.h"
 
 namespace countershade {
 
@@ -17,15 +20,49 @@ namespace countershade {
 std::vector<Lab> display_to_lab(const Image& display, const DisplayEncoding& encoding);
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
 
-struct Composed {
-  Image display;  // code values in [0,1]
-  size_t clipped_pixels = 0;  // pixels where L' left [0,100] or an RGB channel left [0,1]
+// Δ of one pixel for strength λ.
+struct LightnessChange {
+  enum class Kind {
+    scaled,   // Δ = (λ·factor·gain)·amount
+    blended,  // Δ = clamp(λ·weight, 0, 1)·amount
+  };
+  Kind kind = Kind::scaled;
+  double factor = 1.0;         // scaled: a constant factor (e.g. ΔL* per unit of λ)
+  std::vector<double> amount;  // per pixel
+  std::vector<double> gain;    // scaled: an optional per-pixel gain (empty: 1)
+  std::vector<float> weight;   // blended: per pixel
+
+  double delta(size_t i, double lambda) const {
+    if (kind == Kind::scaled) return (gain.empty() ? lambda * factor : lambda * gain[i]) * amount[i];
+    double alpha = lambda * double(weight[i]);
+    alpha = alpha < 0.0 ? 0.0 : (alpha > 1.0 ? 1.0 : alpha);
+    return alpha * amount[i];
+  }
 };
 
-// Applies lightness changes `delta_L` (one per pixel) to `display`. Pixels with a zero change
-// keep their code values exactly, so an all-zero change reproduces the input bit for bit.
-Composed compose_lightness(const Image& display, const std::vector<Lab>& lab,
-                           const std::vector<double>& delta_L, const DisplayEncoding& encoding,
-                           int threads = 0);
+// Applies the change at strength λ to the view's stimulus. Pixels whose Δ is 0 keep their code
+// values exactly, so λ = 0 reproduces the view bit for bit.
+Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0);
+
+// The prepared state of every lightness method: the view, its change, and what to record.
+class LightnessPrepared final : public PreparedEnhancement {
+ public:
+  LightnessPrepared(std::shared_ptr<const View> view, LightnessChange change, nlohmann::json parameters,
+                    std::vector<std::pair<std::string, Image>> auxiliary = {}, int threads = 0)
+      : view_(std::move(view)), change_(std::move(change)), parameters_(std::move(parameters)),
+        auxiliary_(std::move(auxiliary)), threads_(threads) {}
+
+  Composed compose(double lambda) const override { return compose_lightness(*view_, change_, lambda, threads_); }
+  nlohmann::json parameters() const override { return parameters_; }
+  std::vector<std::pair<std::string, Image>> auxiliary() const override { return auxiliary_; }
+  const LightnessChange& change() const { return change_; }
+
+ private:
+  std::shared_ptr<const View> view_;
+  LightnessChange change_;
+  nlohmann::json parameters_;
+  std::vector<std::pair<std::string, Image>> auxiliary_;
+  int threads_;
+};
 
 }  // namespace countershade

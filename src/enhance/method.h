@@ -1,81 +1,57 @@
 #pragma once
-// The interface every enhancement method implements, and the registry that finds them by name.
+// The interface every enhancement method implements (docs/architecture.md, "Methods").
 //
-// Heavy work happens once: the renderer produces a View (image, G-buffer, per-vertex radiance)
-// once per camera; a method prepares it once per width parameter (σ); the prepared state then
-// composes any number of strengths λ cheaply. Adding a method means one file that implements
-// EnhancementMethod and one line in method.cpp's registry.
+// A method owns its parameters: it parses them from a ParameterBag (experiment files and
+// command-line flags both become one), rejecting keys it does not use. It declares its axes
+// (the strength λ and the width σ with its unit) and what it needs from rendering. Heavy work
+// happens once: the view is rendered once per camera, the method prepares it once per σ, and
+// the prepared state composes any number of strengths λ cheaply.
+//
+// Adding a method means one file that implements EnhancementMethod and one line in the
+// registry (enhance/registry.cpp).
 
+#include <functional>
 #include <memory>
-#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "core/color.h"
 #include "core/image.h"
-#include "enhance/lightness.h"
-#include "render/renderer.h"
-#include "render/scene.h"
+#include "core/parameters.h"
+#include "enhance/view.h"
+#include "render/render_request.h"
 
 namespace countershade {
 
-// Everything produced once per view: by the renderer, or read from an image (+ depth) file.
-struct View {
-  const Scene* scene = nullptr;  // null for external images
-  DisplayEncoding encoding = DisplayEncoding::srgb();
-  RenderResult render;        // G-buffer and vertex radiance (renders only)
-  std::vector<float> depth;   // linear eye depth per pixel; 0, inf or NaN = background/invalid
-  Image display;              // the unenhanced stimulus: code values in [0,1], quantised to `bits`
-  std::vector<Lab> lab;       // CIELAB of `display`, per pixel
-  int bits = 8;
-
-  int width() const { return display.width; }
-  int height() const { return display.height; }
+// A method's own parameter struct derives from this.
+class MethodParameters {
+ public:
+  virtual ~MethodParameters() = default;
 };
 
-// Builds the View of a render: exposure and display encoding, quantised to the output bit depth
-// (8 or 16) so every method starts from exactly the pixels of the reference image, then CIELAB.
-View make_view(const Scene& scene, RenderResult render, int bits = 8);
-
-// The View of an external image (display-encoded code values, 3 channels) with an optional
-// depth map of the same size.
-View make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding, int bits);
-
-// Rounds code values to the nearest n-bit level (kept as floats).
-void quantize_in_place(Image& image, int bits);
-
-// Options of all methods in one plain struct; each method reads the fields it uses and
-// `validate` rejects the ones it cannot use.
-struct MethodOptions {
-  // usm3d
-  std::optional<double> sigma;           // world units
-  std::optional<double> sigma_fraction;  // of the scene's bounding-box diagonal
-  std::optional<int> iterations;         // explicit smoothing iterations instead of σ
-  bool adapt = true;                     // adaptive gain √(1 + Var)
-
-  // usm2d and depth-usm: image-space width, exactly one of
-  std::optional<double> kernel_percent;  // kernel size K as % of the image diagonal, σ_px = K/4
-  std::optional<double> sigma_px;        // σ in pixels
-  std::optional<double> sigma_percent;   // σ as % of the image diagonal
-
-  // depth-usm
-  std::string op = "darken";             // add | contrast | darken | color
-  std::string contrast = "stretch";      // C for `contrast`: stretch | equalize | local
-  std::string space = "rgb";             // rgb (as in Luft et al.) | lab (lightness only)
-  std::string depth_mapping = "linear";  // linear eye depth | zbuffer (non-linear, near/far)
-  std::optional<double> z_near, z_far;   // zbuffer planes (default: the valid depth range)
-  glm::dvec3 cold{-0.1, -0.05, 0.15}, warm{0.15, 0.1, -0.1};
-
-  // cornsweet: the width comes from sigma_px (image mode) or sigma (surface mode)
-  std::string cornsweet_mode = "image";
-  double cornsweet_amplitude = 4.0;  // ΔL* per unit of λ
-  glm::dvec3 edge_point{0.0}, edge_direction{1, 0, 0}, bright_normal{0, 0, 1};
+// One way to give the width σ: the key of its value, its unit and what it means.
+struct WidthAxis {
+  std::string key;   // "sigma", "sigma_px", ...
+  std::string unit;  // "world units", "px", "% of the image diagonal", ...
+  std::string help;
 };
 
-// σ in pixels for an image of the given size from the image-space options (0 if none is given).
-double image_sigma_px(const MethodOptions& options, int width, int height);
+struct MethodAxes {
+  std::string strength_help;      // what λ does
+  std::vector<WidthAxis> widths;  // the σ alternatives (exactly one is given); empty: no σ
+};
+
+// A documented parameter, for `countershade methods` and --help.
+struct ParameterDoc {
+  std::string key, default_value, help;
+};
+
+struct Composed {
+  Image display;              // code values in [0,1]
+  size_t clipped_pixels = 0;  // pixels where L' left [0,100] or an RGB channel left [0,1]
+};
 
 class PreparedEnhancement {
  public:
@@ -88,23 +64,49 @@ class PreparedEnhancement {
   virtual std::vector<std::pair<std::string, Image>> auxiliary() const { return {}; }
 };
 
+// What prepare() may use: the view, and a way to render the view's scene again with hooks.
+struct PrepareContext {
+  std::shared_ptr<const View> view;
+  int threads = 0;  // 0 = all cores
+  // The view's scene rendered again for `request` (its hooks) with the same camera, samples and
+  // seed. Null for external images.
+  std::function<std::shared_ptr<const View>(const RenderRequest&)> render_again;
+};
+
+// The context of a view: render_again re-renders its scene (when it has one) at its bit depth.
+PrepareContext make_context(std::shared_ptr<const View> view, int threads = 0);
+
 class EnhancementMethod {
  public:
   virtual ~EnhancementMethod() = default;
   virtual std::string name() const = 0;
   virtual std::string summary() const = 0;
-  // Whether make_view must include per-vertex radiance (and so a rendered scene).
-  virtual bool needs_vertex_radiance() const { return false; }
-  // Whether the view must carry a depth map.
-  virtual bool needs_depth() const { return false; }
-  // Throws InputError for options this method cannot use (missing σ, σ ≤ 0, ...).
-  virtual void validate(const MethodOptions& options) const = 0;
-  // The once-per-(view, σ) work.
-  virtual std::unique_ptr<PreparedEnhancement> prepare(const View& view, const MethodOptions& options) const = 0;
+  virtual MethodAxes axes() const = 0;
+  virtual std::vector<ParameterDoc> parameter_docs() const = 0;
+  // False only for the unenhanced rendering: its output may be linear radiance (EXR).
+  virtual bool enhances() const { return true; }
+
+  // The one parser: reads every parameter the method takes (the width included) and ends with
+  // bag.finish(name()), so an unused key is an InputError naming the method and the key.
+  virtual std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const = 0;
+  // What the method needs from rendering for these parameters.
+  virtual RenderRequest request(const MethodParameters&) const { return {}; }
+  // The folder name of its stimuli in a set, e.g. "depth-usm-darken" (default: the name).
+  virtual std::string label(const MethodParameters&) const { return name(); }
+  // The once-per-(view, σ) work. Throws InputError when the view lacks what the method needs.
+  virtual std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
+                                                       const MethodParameters& parameters) const = 0;
 };
 
-// nullptr when no method has that name.
-const EnhancementMethod* find_method(const std::string& name);
-std::vector<std::string> method_names();
+// Casts a method's parameters back to its own struct (parse() made them).
+template <class P>
+const P& parameters_as(const MethodParameters& p) {
+  return static_cast<const P&>(p);
+}
+
+// Parses a JSON object of parameters for the named method and prepares the view with them: the
+// short path for tools and tests. Throws InputError for an unknown method or bad parameters.
+std::unique_ptr<PreparedEnhancement> prepare_method(const std::string& method, std::shared_ptr<const View> view,
+                                                    const nlohmann::json& parameters, int threads = 0);
 
 }  // namespace countershade

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "enhance/lightness.h"
 #include "mesh/smoothing.h"
 
 namespace countershade {
@@ -18,30 +19,24 @@ double display_lightness(const glm::dvec3& radiance, const Display& display, int
   return display_pixel_to_lab(code, display.encoding).L;  // the same path as the pixels
 }
 
-double resolve_sigma(const MethodOptions& options, const Scene& scene) {
-  if (options.sigma) return *options.sigma;
-  if (options.sigma_fraction) return *options.sigma_fraction * double(scene.bounds().diagonal());
-  return 0.0;
-}
-
 SurfaceContrast surface_contrast(const VertexAdjacency& adjacency, const std::vector<glm::vec3>& positions,
                                  std::vector<double> lightness, const std::vector<float>& importance,
-                                 const MethodOptions& options, double sigma_world) {
+                                 const SmoothingWidth& width) {
   const size_t n = lightness.size();
   SurfaceContrast out;
   out.lightness = std::move(lightness);
   out.components = connected_components(adjacency);
-  if (options.iterations) {
-    out.iterations.assign(out.components.count, *options.iterations);
+  if (width.iterations) {
+    out.iterations.assign(out.components.count, *width.iterations);
   } else {
     std::vector<double> edge = component_mean_edge_length(positions, adjacency, out.components);
-    for (double h : edge) out.iterations.push_back(iterations_for_sigma(sigma_world, h));
+    for (double h : edge) out.iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
   }
   out.smooth_lightness = out.lightness;
   laplacian_smooth(adjacency, out.components.label, out.iterations, out.smooth_lightness);
 
   std::vector<double> variance(n, 0.0);
-  if (options.adapt) {
+  if (width.adapt) {
     std::vector<double> unit(n);
     for (size_t v = 0; v < n; ++v) unit[v] = out.lightness[v] / 100.0;  // Var in L*/100 units
     variance = one_ring_variance(adjacency, unit);
@@ -55,13 +50,10 @@ SurfaceContrast surface_contrast(const VertexAdjacency& adjacency, const std::ve
 }
 
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const MethodOptions& options, double sigma_world,
-                                 int bits) {
-  const TriangleMesh& mesh = object.mesh;
-  std::vector<double> lightness(mesh.vertex_count());
+                                 const Display& display, const SmoothingWidth& width, int bits) {
+  std::vector<double> lightness(object.mesh.vertex_count());
   for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display, bits);
-  return surface_contrast(object.adjacency, mesh.positions,
-                          std::move(lightness), object.importance, options, sigma_world);
+  return surface_contrast(object.adjacency, object.mesh.positions, std::move(lightness), object.importance, width);
 }
 
 Usm3dPixels usm3d_pixels(const View& view, const std::vector<SurfaceContrast>& objects) {
@@ -82,59 +74,107 @@ Usm3dPixels usm3d_pixels(const View& view, const std::vector<SurfaceContrast>& o
   return out;
 }
 
-void Usm3dMethod::validate(const MethodOptions& o) const {
-  int given = int(o.sigma.has_value()) + int(o.sigma_fraction.has_value()) + int(o.iterations.has_value());
-  if (given != 1) throw InputError("usm3d: give exactly one of --sigma, --sigma-fraction or --iterations");
-  if (o.sigma && !(*o.sigma > 0 && std::isfinite(*o.sigma)))
-    throw InputError("usm3d: --sigma must be a positive world-space length");
-  if (o.sigma_fraction && !(*o.sigma_fraction > 0 && *o.sigma_fraction <= 1))
-    throw InputError("usm3d: --sigma-fraction must be in (0, 1]");
-  if (o.iterations && *o.iterations < 1) throw InputError("usm3d: --iterations must be at least 1");
-}
-
 namespace {
 
-class Usm3dPrepared final : public PreparedEnhancement {
+struct Usm3dParameters final : MethodParameters {
+  std::optional<double> sigma, sigma_fraction;  // world units; fraction of the scene diagonal
+  std::optional<int> iterations;
+  bool adapt = true;
+  int ring_samples = 3;
+  std::optional<double> refine;  // split mesh edges longer than this first
+};
+
+// σ in world units (absolute, or a fraction of the scene diagonal); 0 with explicit iterations.
+double resolve_sigma(const Usm3dParameters& p, const Scene& scene) {
+  if (p.sigma) return *p.sigma;
+  if (p.sigma_fraction) return *p.sigma_fraction * double(scene.bounds().diagonal());
+  return 0.0;
+}
+
+// The iteration count of an object's largest component (components of one object usually share
+// a tessellation, so their counts agree).
+int largest_component_iterations(const SurfaceContrast& sc) {
+  std::vector<size_t> size(sc.components.count, 0);
+  for (uint32_t label : sc.components.label) ++size[label];
+  return sc.iterations[size_t(std::max_element(size.begin(), size.end()) - size.begin())];
+}
+
+class Usm3dMethod final : public EnhancementMethod {
  public:
-  Usm3dPrepared(const View& view, Usm3dPixels pixels, nlohmann::json parameters)
-      : view_(view), pixels_(std::move(pixels)), parameters_(std::move(parameters)) {}
-
-  Composed compose(double lambda) const override {
-    std::vector<double> delta(pixels_.contrast.size());
-    for (size_t i = 0; i < delta.size(); ++i) delta[i] = lambda * pixels_.gain_factor[i] * pixels_.contrast[i];
-    return compose_lightness(view_.display, view_.lab, delta, view_.encoding);
+  std::string name() const override { return "usm3d"; }
+  std::string summary() const override { return "3D unsharp masking over the mesh surface (Ritschel et al. 2008)"; }
+  MethodAxes axes() const override {
+    return {"gain g = λ·w·√(1+Var) on the surface contrast C = L*_pixel − L*_σ",
+            {{"sigma", "world units", "smoothing width σ on the surface"},
+             {"sigma_fraction", "of the scene diagonal", "σ as a fraction of the scene's bounding-box diagonal"},
+             {"iterations", "iterations", "an explicit number of smoothing iterations"}}};
   }
-  nlohmann::json parameters() const override { return parameters_; }
+  std::vector<ParameterDoc> parameter_docs() const override {
+    return {{"sigma", "", "smoothing width σ in world units"},
+            {"sigma_fraction", "", "σ as a fraction of the scene's bounding-box diagonal"},
+            {"iterations", "", "explicit number of smoothing iterations instead of σ"},
+            {"adapt", "true", "adaptive gain √(1+Var) (--no-adapt: constant gain λ·w)"},
+            {"ring_samples", "3", "anti-aliasing samples per incident triangle for the vertex signal (0 = off)"},
+            {"refine", "", "split mesh edges longer than this world length before rendering"}};
+  }
 
- private:
-  const View& view_;
-  Usm3dPixels pixels_;
-  nlohmann::json parameters_;
+  std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
+    auto p = std::make_shared<Usm3dParameters>();
+    p->sigma = bag.optional_number("sigma");
+    p->sigma_fraction = bag.optional_number("sigma_fraction");
+    if (auto n = bag.optional_integer("iterations", 1, 1000000)) p->iterations = int(*n);
+    p->adapt = bag.boolean("adapt", true);
+    p->ring_samples = int(bag.integer_in("ring_samples", 3, 0, 64));
+    p->refine = bag.optional_number("refine");
+    bag.finish(name());
+    const int given = int(p->sigma.has_value()) + int(p->sigma_fraction.has_value()) + int(p->iterations.has_value());
+    if (given != 1)
+      throw_input_error(name(), "give exactly one of " + bag.where("sigma") + ", " + bag.where("sigma_fraction") +
+                                    " or " + bag.where("iterations"));
+    if (p->sigma && !(*p->sigma > 0)) bag.fail("sigma", "must be a positive world-space length");
+    if (p->sigma_fraction && !(*p->sigma_fraction > 0 && *p->sigma_fraction <= 1)) bag.fail("sigma_fraction", "must be in (0, 1]");
+    if (p->refine && !(*p->refine > 0)) bag.fail("refine", "must be a positive world-space length");
+    return p;
+  }
+
+  RenderRequest request(const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<Usm3dParameters>(parameters);
+    RenderRequest r;
+    r.scene = true;
+    r.vertex_radiance = true;
+    r.ring_samples = p.ring_samples;
+    r.refine_edge_length = p.refine;
+    return r;
+  }
+
+  std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
+                                               const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<Usm3dParameters>(parameters);
+    const View& view = *context.view;
+    if (!view.scene) throw InputError("usm3d: needs a rendered scene (it works on mesh surfaces)");
+    const Scene& scene = *view.scene;
+    if (view.render.vertex_radiance.size() != scene.objects.size())
+      throw std::logic_error("usm3d: the view was rendered without vertex radiance");
+    const double sigma = resolve_sigma(p, scene);
+    const SmoothingWidth width{sigma, p.iterations, p.adapt};
+    std::vector<SurfaceContrast> objects;
+    nlohmann::json iterations = nlohmann::json::object();
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+      objects.push_back(surface_contrast(scene.objects[o], view.render.vertex_radiance[o], scene.display, width, view.bits));
+      iterations[scene.objects[o].name] = largest_component_iterations(objects.back());
+    }
+    Usm3dPixels pixels = usm3d_pixels(view, objects);
+    LightnessChange change;
+    change.amount = std::move(pixels.contrast);
+    change.gain = std::move(pixels.gain_factor);
+    nlohmann::json record = {{"sigma", sigma}, {"iterations", iterations}, {"adapt", p.adapt}};
+    return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
+                                               std::vector<std::pair<std::string, Image>>{}, context.threads);
+  }
 };
 
 }  // namespace
 
-std::unique_ptr<PreparedEnhancement> Usm3dMethod::prepare(const View& view, const MethodOptions& options) const {
-  validate(options);
-  if (!view.scene) throw InputError("usm3d: needs a rendered scene (it works on mesh surfaces)");
-  const Scene& scene = *view.scene;
-  if (view.render.vertex_radiance.size() != scene.objects.size())
-    throw std::logic_error("usm3d: the view was rendered without vertex radiance");
-  double sigma = resolve_sigma(options, scene);
-  std::vector<SurfaceContrast> objects;
-  nlohmann::json iterations = nlohmann::json::object();
-  for (size_t o = 0; o < scene.objects.size(); ++o) {
-    objects.push_back(
-        surface_contrast(scene.objects[o], view.render.vertex_radiance[o], scene.display, options, sigma, view.bits));
-    // The iteration count of the object's largest component (components of one object usually
-    // share a tessellation, so their counts agree).
-    std::vector<size_t> size(objects.back().components.count, 0);
-    for (uint32_t label : objects.back().components.label) ++size[label];
-    size_t largest = size_t(std::max_element(size.begin(), size.end()) - size.begin());
-    iterations[scene.objects[o].name] = objects.back().iterations[largest];
-  }
-  nlohmann::json parameters = {{"sigma", sigma}, {"iterations", iterations}, {"adapt", options.adapt}};
-  return std::make_unique<Usm3dPrepared>(view, usm3d_pixels(view, objects), std::move(parameters));
-}
+std::unique_ptr<const EnhancementMethod> make_usm3d_method() { return std::make_unique<Usm3dMethod>(); }
 
 }  // namespace countershade

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/parallel.h"
 #include "core/random.h"
 #include "render/shading.h"
 
@@ -39,21 +40,12 @@ void pixel_samples(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dvec
 
 }  // namespace
 
-void parallel_ranges(size_t n, int threads, const std::function<void(size_t, size_t)>& body) {
-  int concurrency = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(concurrency);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1),
-                      [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
-  });
-}
-
 RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options) {
   const Camera& camera = scene.camera;
   const int width = camera.width, height = camera.height, spp = scene.settings.spp;
   const uint64_t seed = scene.settings.seed;
   CameraRays rays(camera);
-  Shader shader(scene, tracer);
+  Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
 
   RenderResult result;
   result.radiance = Image(width, height, 3);
@@ -117,8 +109,7 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   });
 
   if (options.vertex_radiance)
-    result.vertex_radiance =
-        render_vertex_radiance(scene, tracer, options.threads, options.ring_samples, &result.rays);
+    result.vertex_radiance = render_vertex_radiance(scene, tracer, options, &result.rays);
   return result;
 }
 
@@ -131,9 +122,10 @@ glm::dvec3 triangle_sample_barycentrics(int j, int k) {
 }
 
 std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
-                                                           int threads, int ring_samples, RayCounts* total) {
+                                                           const RenderOptions& options, RayCounts* total) {
+  const int threads = options.threads, ring_samples = options.ring_samples;
   CameraRays rays(scene.camera);
-  Shader shader(scene, tracer);
+  Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
   const int spp = scene.settings.vertex_samples();
   const uint64_t seed = scene.settings.seed;
   std::vector<std::vector<glm::vec3>> out(scene.objects.size());
@@ -216,14 +208,6 @@ std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, c
     vertex_offset += nv;
     triangle_offset += mesh.triangle_count();
   }
-  return out;
-}
-
-Image encode_for_display(const Image& radiance, const Display& display) {
-  Image out(radiance.width, radiance.height, radiance.channels);
-  const double scale = std::exp2(display.exposure_stops);
-  for (size_t i = 0; i < radiance.pixels.size(); ++i)
-    out.pixels[i] = float(display.encoding.encode(double(radiance.pixels[i]) * scale));
   return out;
 }
 

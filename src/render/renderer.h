@@ -4,12 +4,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/image.h"
+#include "render/hooks.h"
 #include "render/ray_tracer.h"
 #include "render/scene.h"
 
@@ -19,6 +21,8 @@ struct RenderOptions {
   int threads = 0;               // 0 = all cores
   bool vertex_radiance = false;  // also shade every mesh vertex
   int ring_samples = 0;          // per-vertex anti-aliasing: samples per incident triangle
+  std::shared_ptr<const ShadingHook> shading_hook;  // optional (render/hooks.h)
+  std::shared_ptr<const TextureHook> texture_hook;
   std::function<void(double)> progress;  // called with the finished fraction, from any thread
 };
 
@@ -50,17 +54,10 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
 // 1-ring. The vertex itself then takes one sample (the ring points do the averaging). The
 // offsets are the same every frame, so the signal stays temporally coherent.
 std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
-                                                           int threads, int ring_samples = 0,
-                                                           RayCounts* counts = nullptr);
+                                                           const RenderOptions& options, RayCounts* counts = nullptr);
 
 // The fixed barycentric coordinates (b0, b1, b2) of sample j of k on every triangle: stratified
 // over the triangle's area.
 glm::dvec3 triangle_sample_barycentrics(int j, int k);
-
-// Exposure and display encoding: linear radiance -> code values in [0,1].
-Image encode_for_display(const Image& radiance, const Display& display);
-
-// Runs `body(begin, end)` over [0, n) on `threads` threads (0 = all) with TBB.
-void parallel_ranges(size_t n, int threads, const std::function<void(size_t, size_t)>& body);
 
 }  // namespace countershade

@@ -62,7 +62,9 @@ SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangl
 
 glm::dvec3 Shader::albedo(const SurfacePoint& point) const {
   const Material& m = scene_.objects[point.object].material;
-  return m.texture ? m.texture->sample(point.uv) : m.albedo;
+  const Texture* texture = texture_hook_ ? texture_hook_->texture(point.object, m) : nullptr;
+  if (!texture) texture = m.texture.get();
+  return texture ? texture->sample(point.uv) : m.albedo;
 }
 
 glm::dvec3 Shader::background(const glm::dvec3& direction) const {
@@ -72,27 +74,41 @@ glm::dvec3 Shader::background(const glm::dvec3& direction) const {
   return glm::dvec3(0.0);
 }
 
-glm::dvec3 Shader::brdf(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
-                        const glm::dvec3& wi, const glm::dvec3& wo) const {
-  glm::dvec3 f = albedo / kPi;
-  if (m.specular == SpecularModel::none) return f;
-  double n_wi = glm::dot(n, wi), n_wo = std::max(glm::dot(n, wo), 1e-4);
-  if (n_wi <= 0) return f;
-  glm::dvec3 h = glm::normalize(wi + wo);
+glm::dvec3 specular_brdf(const ShadingInputs& s, const glm::dvec3& wi) {
+  const Material& m = s.material;
+  const glm::dvec3& n = s.normal;
+  double n_wi = glm::dot(n, wi), n_wo = std::max(glm::dot(n, s.wo), 1e-4);
+  if (m.specular == SpecularModel::none || n_wi <= 0) return glm::dvec3(0.0);
+  glm::dvec3 h = glm::normalize(wi + s.wo);
   double n_h = std::max(glm::dot(n, h), 0.0);
-  if (m.specular == SpecularModel::blinn_phong) {
-    // Energy-normalised Blinn–Phong lobe.
-    return f + m.specular_color * ((m.shininess + 8.0) / (8.0 * kPi)) * std::pow(n_h, m.shininess);
-  }
+  if (m.specular == SpecularModel::blinn_phong)  // energy-normalised Blinn–Phong lobe
+    return m.specular_color * ((m.shininess + 8.0) / (8.0 * kPi)) * std::pow(n_h, m.shininess);
   // Cook–Torrance: GGX distribution, separable Smith masking, Schlick Fresnel.
   double a2 = std::pow(m.roughness, 4.0);
   double d_denominator = n_h * n_h * (a2 - 1.0) + 1.0;
   double D = a2 / (kPi * d_denominator * d_denominator);
   auto g1 = [a2](double c) { return 2.0 * c / (c + std::sqrt(a2 + (1.0 - a2) * c * c)); };
   double G = g1(n_wi) * g1(n_wo);
-  double w_h = std::max(glm::dot(wo, h), 0.0);
+  double w_h = std::max(glm::dot(s.wo, h), 0.0);
   glm::dvec3 F = m.specular_color + (glm::dvec3(1.0) - m.specular_color) * std::pow(1.0 - w_h, 5.0);
-  return f + F * (D * G / (4.0 * n_wi * n_wo));
+  return F * (D * G / (4.0 * n_wi * n_wo));
+}
+
+glm::dvec3 brdf(const ShadingInputs& s, const glm::dvec3& wi) { return s.albedo / kPi + specular_brdf(s, wi); }
+
+glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) {
+  double cos_i = glm::dot(s.normal, wi);
+  return cos_i > 0 ? s.albedo / kPi * incident * cos_i : glm::dvec3(0.0);
+}
+
+glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) {
+  double cos_i = glm::dot(s.normal, wi);
+  return cos_i > 0 ? specular_brdf(s, wi) * incident * cos_i : glm::dvec3(0.0);
+}
+
+glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) {
+  double cos_i = glm::dot(s.normal, wi);
+  return cos_i > 0 ? brdf(s, wi) * incident * cos_i : glm::dvec3(0.0);
 }
 
 bool Shader::visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::dvec3& wi,
@@ -104,33 +120,37 @@ bool Shader::visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::
   return !tracer_.occluded(o, wi, eps, distance - 2 * eps);
 }
 
-glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
-                            SampleStream& random, RayCounts& counts) const {
-  const Material& m = scene_.objects[point.object].material;
-  glm::dvec3 ng = point.geometric_normal, n = point.shading_normal;
-  if (two_sided && glm::dot(ng, wo) < 0) {
-    ng = -ng;
-    n = -n;
-  }
-  const glm::dvec3 a = albedo(point);
-  const glm::dvec3& p = point.position;
-  glm::dvec3 L(0.0);
+struct Shader::Context {
+  ShadingInputs inputs;
+  glm::dvec3 ng;  // geometric normal on the viewed side
+};
 
+glm::dvec3 Shader::light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
+                                double distance, RayCounts& counts) const {
+  // Light from behind the surface never arrives: by the shading normal on the plain path; by the
+  // geometry when a hook may shade with another direction.
+  const double cos_i = glm::dot(c.inputs.normal, wi);
+  const double facing = shading_hook_ ? glm::dot(c.ng, wi) : cos_i;
+  if (facing <= 0 || !visible(c.inputs.point.position, c.ng, wi, distance, counts)) return glm::dvec3(0.0);
+  if (shading_hook_) return shading_hook_->reflect(c.inputs, wi, radiance / divisor);
+  return brdf(c.inputs, wi) * radiance * (cos_i / divisor);
+}
+
+void Shader::directional(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
   for (const auto& light : scene_.directional_lights) {
     double cos_max = std::cos(glm::radians(light.angular_radius_deg));
     int samples = light.angular_radius_deg > 0 ? light.samples : 1;
     glm::dvec3 sum(0.0);
     for (int s = 0; s < samples; ++s) {
       double u1 = random.next(), u2 = random.next();
-      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u1, u2)
-                                                   : light.direction;
-      double cos_i = glm::dot(n, wi);
-      if (cos_i <= 0 || !visible(p, ng, wi, 1e30, counts)) continue;
-      sum += brdf(m, a, n, wi, wo) * light.irradiance * cos_i;
+      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u1, u2) : light.direction;
+      sum += light_sample(c, wi, light.irradiance, 1.0, 1e30, counts);
     }
     L += sum / double(samples);
   }
+}
 
+void Shader::point_lights(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
   for (const auto& light : scene_.point_lights) {
     int samples = light.radius > 0 ? light.samples : 1;
     glm::dvec3 sum(0.0);
@@ -141,55 +161,69 @@ glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, boo
         double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u2;
         target += light.radius * glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
       }
-      glm::dvec3 to_light = target - p;
+      glm::dvec3 to_light = target - c.inputs.point.position;
       double d2 = glm::dot(to_light, to_light);
       if (d2 <= 0) continue;
       double d = std::sqrt(d2);
-      glm::dvec3 wi = to_light / d;
-      double cos_i = glm::dot(n, wi);
-      if (cos_i <= 0 || !visible(p, ng, wi, d, counts)) continue;
-      sum += brdf(m, a, n, wi, wo) * light.intensity * (cos_i / d2);
+      sum += light_sample(c, to_light / d, light.intensity, d2, d, counts);
     }
     L += sum / double(samples);
   }
+}
 
-  if (scene_.environment) {
-    const EnvironmentLight& env = *scene_.environment;
-    glm::dvec3 sum(0.0);
-    for (int s = 0; s < env.samples; ++s) {
-      double u1 = random.next(), u2 = random.next();
-      glm::dvec3 wi, Le(0.0);
-      double pdf;
-      if (env.importance_sampling) {
-        auto sample = env.map->sample(u1, u2, random.next());
-        wi = sample.direction;
-        pdf = sample.pdf;
-        Le = sample.radiance;
-      } else {
-        wi = sample_cosine_hemisphere(n, u1, u2);
-        pdf = std::max(glm::dot(n, wi), 0.0) / kPi;
-      }
-      double cos_i = glm::dot(n, wi);
-      if (cos_i <= 0 || pdf <= 0 || !visible(p, ng, wi, 1e30, counts)) continue;
-      if (!env.importance_sampling) Le = env.map->radiance(wi);
-      sum += brdf(m, a, n, wi, wo) * Le * (cos_i / pdf);
+void Shader::environment(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
+  if (!scene_.environment) return;
+  const EnvironmentLight& env = *scene_.environment;
+  const glm::dvec3& n = c.inputs.normal;
+  glm::dvec3 sum(0.0);
+  for (int s = 0; s < env.samples; ++s) {
+    double u1 = random.next(), u2 = random.next();
+    glm::dvec3 wi, Le(0.0);
+    double pdf;
+    if (env.importance_sampling) {
+      auto sample = env.map->sample(u1, u2, random.next());
+      wi = sample.direction;
+      pdf = sample.pdf;
+      Le = sample.radiance;
+    } else {
+      wi = sample_cosine_hemisphere(n, u1, u2);
+      pdf = std::max(glm::dot(n, wi), 0.0) / kPi;
+      if (pdf > 0) Le = env.map->radiance(wi);
     }
-    L += env.scale * sum / double(env.samples);
+    if (pdf <= 0) continue;
+    sum += light_sample(c, wi, Le, pdf, 1e30, counts);
   }
+  L += env.scale * sum / double(env.samples);
+}
 
+void Shader::ambient(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
   const AmbientLight& ambient = scene_.ambient;
-  if (ambient.radiance != glm::dvec3(0.0)) {
-    double open = 1.0;
-    if (ambient.distance > 0) {
-      int unoccluded = 0;
-      for (int s = 0; s < ambient.samples; ++s) {
-        glm::dvec3 wi = sample_cosine_hemisphere(n, random.next(), random.next());
-        if (visible(p, ng, wi, ambient.distance, counts)) ++unoccluded;
-      }
-      open = double(unoccluded) / ambient.samples;
+  if (ambient.radiance == glm::dvec3(0.0)) return;
+  double open = 1.0;
+  if (ambient.distance > 0) {
+    int unoccluded = 0;
+    for (int s = 0; s < ambient.samples; ++s) {
+      glm::dvec3 wi = sample_cosine_hemisphere(c.inputs.normal, random.next(), random.next());
+      if (visible(c.inputs.point.position, c.ng, wi, ambient.distance, counts)) ++unoccluded;
     }
-    L += a * ambient.radiance * open;
+    open = double(unoccluded) / ambient.samples;
   }
+  L += c.inputs.albedo * ambient.radiance * open;
+}
+
+glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                            SampleStream& random, RayCounts& counts) const {
+  glm::dvec3 ng = point.geometric_normal, n = point.shading_normal;
+  if (two_sided && glm::dot(ng, wo) < 0) {
+    ng = -ng;
+    n = -n;
+  }
+  const Context c{{point, scene_.objects[point.object].material, n, wo, albedo(point)}, ng};
+  glm::dvec3 L(0.0);
+  directional(c, random, counts, L);
+  point_lights(c, random, counts, L);
+  environment(c, random, counts, L);
+  ambient(c, random, counts, L);
   return L;
 }
 

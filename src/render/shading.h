@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/random.h"
+#include "render/hooks.h"
 #include "render/ray_tracer.h"
 #include "render/scene.h"
 
@@ -25,7 +26,10 @@ SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangl
 
 class Shader {
  public:
-  Shader(const Scene& scene, const RayTracer& tracer) : scene_(scene), tracer_(tracer) {}
+  // Hooks may be null (the plain path).
+  Shader(const Scene& scene, const RayTracer& tracer, const ShadingHook* shading_hook = nullptr,
+         const TextureHook* texture_hook = nullptr)
+      : scene_(scene), tracer_(tracer), shading_hook_(shading_hook), texture_hook_(texture_hook) {}
 
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
   // from behind its front face is shaded as the back face (open meshes, planes from below).
@@ -38,13 +42,23 @@ class Shader {
   glm::dvec3 albedo(const SurfacePoint& point) const;
 
  private:
-  glm::dvec3 brdf(const Material& m, const glm::dvec3& albedo, const glm::dvec3& n,
-                  const glm::dvec3& wi, const glm::dvec3& wo) const;
+  struct Context;  // one shading point's inputs
+  // Each light type adds its reflected radiance to L.
+  void directional(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
+  void point_lights(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
+  void environment(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
+  void ambient(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
+  // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
+  // `distance` away: its visibility and its reflection (through the shading hook if there is one).
+  glm::dvec3 light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
+                          double distance, RayCounts& counts) const;
   bool visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::dvec3& wi, double distance,
                RayCounts& counts) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;
+  const ShadingHook* shading_hook_;
+  const TextureHook* texture_hook_;
 };
 
 // Unit vector in the cone of half-angle `max_angle` around `axis`, uniform over the cap.

@@ -4,8 +4,11 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
+#include <cmath>
+#include <set>
 
 #include "core/error.h"
+#include "stimuli/set_layout.h"
 
 namespace countershade {
 namespace {
@@ -53,6 +56,34 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
   Image out(width, height, 3);
   sheet.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, out.pixels.data());
   write_image(output, out);
+}
+
+void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
+  std::set<std::string> files;
+  for (const auto& s : manifest.stimuli) files.insert(s.file);
+  const int count = e.lambda.count(), columns = std::min(e.contact_columns, count);
+  std::vector<int> picks;
+  for (int c = 0; c < columns; ++c)
+    picks.push_back(columns == 1 ? 0 : int(std::lround(double(c) * (count - 1) / (columns - 1))));
+  std::filesystem::create_directories(dir / "contact-sheets");
+  for (size_t s = 0; s < e.scenes.size(); ++s)
+    for (size_t m = 0; m < e.methods.size(); ++m) {
+      if (!e.methods[m].applies_to(e.scenes[s].name)) continue;
+      std::vector<std::string> rows, cols;
+      std::vector<std::vector<std::filesystem::path>> cells;
+      for (int p : picks) cols.push_back("lambda = " + format_value(e.lambda.value(p)));  // ASCII: OIIO text
+      for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g) {
+        rows.push_back("sigma = " + format_value(e.methods[m].sigmas[g]));
+        cells.emplace_back();
+        for (int p : picks) {
+          std::string rel = stimulus_path(e, {s, int(m), g}, p);
+          if (!files.count(rel)) return;  // incomplete (a shard): no sheets
+          cells.back().push_back(dir / rel);
+        }
+      }
+      write_contact_sheet(dir / "contact-sheets" / (e.scenes[s].name + "-" + e.methods[m].label + ".png"),
+                          e.scenes[s].name + " - " + e.methods[m].label, rows, cols, cells);
+    }
 }
 
 }  // namespace countershade

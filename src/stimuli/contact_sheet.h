@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/image.h"
+#include "formats/manifest.h"
+#include "stimuli/experiment.h"
 
 namespace countershade {
 
@@ -18,5 +20,10 @@ struct ContactCell {
 void write_contact_sheet(const std::filesystem::path& output, const std::string& title,
                          const std::vector<std::string>& row_labels, const std::vector<std::string>& column_labels,
                          const std::vector<std::vector<std::filesystem::path>>& cells, int thumbnail_width = 200);
+
+// The contact sheets of a finished set: one per scene and method, σ rows × evenly spaced λ
+// columns (the first and the last included), in DIR/contact-sheets/. A set that misses an image
+// (a shard) gets none.
+void write_set_contact_sheets(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest);
 
 }  // namespace countershade

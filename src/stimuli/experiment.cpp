@@ -11,18 +11,9 @@
 #include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
+#include "enhance/registry.h"
 
 namespace countershade {
-
-std::string format_value(double v) {
-  if (std::abs(v) < 1e-12) v = 0;
-  char buffer[32];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, v);
-    if (std::abs(std::strtod(buffer, nullptr) - v) <= 1e-12 * std::max(1.0, std::abs(v))) break;
-  }
-  return buffer;
-}
 
 int LambdaGrid::count() const { return int(std::floor((max - min) / step + 1e-9)) + 1; }
 
@@ -35,89 +26,53 @@ bool ExperimentMethod::applies_to(const std::string& scene) const {
   return scenes.empty() || std::find(scenes.begin(), scenes.end(), scene) != scenes.end();
 }
 
-MethodOptions ExperimentMethod::for_sigma(double sigma) const {
-  MethodOptions o = options;
-  if (sigma_key == "sigma") o.sigma = sigma;
-  else if (sigma_key == "sigma_fraction") o.sigma_fraction = sigma;
-  else if (sigma_key == "iterations") o.iterations = int(std::lround(sigma));
-  else if (sigma_key == "kernel_percent") o.kernel_percent = sigma;
-  else if (sigma_key == "sigma_px") o.sigma_px = sigma;
-  else if (sigma_key == "sigma_percent") o.sigma_percent = sigma;
-  return o;
-}
-
 namespace {
 
-const std::vector<std::string> kUsm3dKeys = {"sigma", "sigma_fraction", "iterations"};
-const std::vector<std::string> kImageKeys = {"kernel_percent", "sigma_px", "sigma_percent"};
-const std::vector<std::string> kCornsweetKeys = {"sigma_px", "sigma"};
+// The method's width key that the entry gives a σ list under (exactly one), or "" for a method
+// without a width axis.
+std::string width_key(const EnhancementMethod& method, const JsonObject& o) {
+  std::string found, list;
+  int count = 0;
+  for (const auto& w : method.axes().widths) {
+    list += (list.empty() ? "" : ", ") + w.key;
+    if (o.has(w.key)) {
+      found = w.key;
+      ++count;
+    }
+  }
+  if (list.empty()) return "";
+  if (count != 1) o.fail("", method.name() + " needs exactly one σ list (" + list + ")");
+  return found;
+}
+
+void check_label(const JsonObject& o, const std::string& label) {
+  if (label.empty() || label == "." || label == ".." || label.find_first_of("/\\") != std::string::npos)
+    o.fail("label", "'" + label + "' must be a plain folder name (no '/', '\\', '.' or '..')");
+}
 
 ExperimentMethod parse_method(const JsonObject& o) {
   ExperimentMethod m;
-  m.method = o.choice("method", "", method_names());
-  const EnhancementMethod* method = find_method(m.method);
-  m.label = m.method;
-  const auto& keys = m.method == "usm3d" ? kUsm3dKeys : m.method == "cornsweet" ? kCornsweetKeys : kImageKeys;
-  int found = 0;
-  for (const auto& k : keys)
-    if (o.has(k)) {
-      m.sigma_key = k;
-      m.sigmas = o.numbers(k);
-      ++found;
-    }
-  if (m.method == "none") {
-    m.sigmas = {0.0};
-    m.sigma_key = "none";
-  } else {
-    std::string list;
-    for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
-    if (found != 1) o.fail("", "give exactly one σ list (" + list + ")");
-    if (m.sigmas.empty()) o.fail(m.sigma_key, "the σ list is empty");
-    std::set<double> unique(m.sigmas.begin(), m.sigmas.end());
-    if (unique.size() != m.sigmas.size()) o.fail(m.sigma_key, "the σ list has duplicates");
-  }
-  if (m.method == "usm3d") {
-    m.options.adapt = o.boolean_or("adapt", true);
-    m.ring_samples = int(o.integer_in("ring_samples", 3, 0, 64));
-  }
-  if (m.method == "depth-usm") {
-    m.options.op = o.choice("operator", "darken", {"add", "contrast", "darken", "color"});
-    m.options.contrast = o.choice("contrast", "stretch", {"stretch", "equalize", "local"});
-    m.options.depth_mapping = o.choice("depth_mapping", "linear", {"linear", "zbuffer"});
-    if (o.has("cold")) m.options.cold = o.vec3("cold");
-    if (o.has("warm")) m.options.warm = o.vec3("warm");
-    m.label = "depth-usm-" + m.options.op;
-  }
-  if (m.method == "depth-usm" || m.method == "usm2d") {
-    m.options.space = o.choice("space", "rgb", {"rgb", "lab"});
-    if (m.options.space == "lab") m.label += "-lab";
-  }
-  if (m.method == "cornsweet") {
-    m.options.cornsweet_mode = o.choice("mode", "image", {"image", "surface"});
-    m.options.cornsweet_amplitude = o.number_or("amplitude", 4.0);
-    if (o.has("edge_point")) m.options.edge_point = o.vec3("edge_point");
-    if (o.has("edge_direction")) m.options.edge_direction = o.vec3("edge_direction");
-    if (o.has("bright_normal")) m.options.bright_normal = o.vec3("bright_normal");
-    m.label = "cornsweet-" + m.options.cornsweet_mode;
-  }
-  if (o.has("scenes")) {
+  m.method = &method_named(o.string("method"), o.file() + ": " + o.key_path("method"));
+  const std::string key = width_key(*m.method, o);
+  m.sigma_key = key.empty() ? "none" : key;
+  m.sigmas = key.empty() ? std::vector<double>{0.0} : o.numbers(key);
+  if (m.sigmas.empty()) o.fail(key, "the σ list is empty");
+  if (std::set<double>(m.sigmas.begin(), m.sigmas.end()).size() != m.sigmas.size()) o.fail(key, "the σ list has duplicates");
+  if (o.has("scenes"))
     for (const auto& s : o.raw("scenes")) {
       if (!s.is_string()) o.fail("scenes", "expected a list of scene names");
       m.scenes.push_back(s.get<std::string>());
     }
+  const std::set<std::string> own = {"method", "label", "scenes", key};
+  for (size_t g = 0; g < m.sigmas.size(); ++g) {
+    ParameterBag bag = ParameterBag::from_json(o.value(), o.file(), o.path(), own);
+    if (!key.empty()) bag.set(key, m.sigmas[g], o.file() + ": " + o.key_path(key) + "[" + std::to_string(g) + "]");
+    m.parameters.push_back(m.method->parse(bag));
+    m.request.merge(m.method->request(*m.parameters.back()), o.file() + ": " + o.path());
   }
-  if (o.has("label")) m.label = o.string("label");
-  // Every σ must be acceptable to the method.
-  for (double s : m.sigmas) {
-    if (m.method == "none") break;
-    try {
-      method->validate(m.for_sigma(s));
-    } catch (const InputError& e) {
-      o.fail(m.sigma_key, std::string("σ = ") + format_value(s) + ": " + e.what());
-    }
-  }
-  o.finish();
-  return m;
+  m.label = o.has("label") ? o.string("label") : m.method->label(*m.parameters.front());
+  check_label(o, m.label);
+  return m;  // the method's parser has checked every other key (no o.finish())
 }
 
 }  // namespace

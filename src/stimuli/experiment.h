@@ -10,7 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/number_format.h"
 #include "enhance/method.h"
+#include "render/render_request.h"
 #include "render/scene.h"
 
 namespace countershade {
@@ -24,15 +26,14 @@ struct ExperimentScene {
 };
 
 struct ExperimentMethod {
-  std::string method;  // registry name
-  std::string label;   // folder name: method, plus the operator for depth-usm
-  std::string sigma_key;        // which option the σ list sets (sigma, sigma_fraction, kernel_percent, ...)
-  std::vector<double> sigmas;   // one condition each, recorded as "sigma" in the manifest
-  MethodOptions options;        // the rest of the options
-  int ring_samples = 3;         // usm3d: 1-ring supersampling
+  const EnhancementMethod* method = nullptr;
+  std::string label;      // folder name: the method's label unless the experiment gives one
+  std::string sigma_key;  // the width key the σ list was given under ("none" without a width)
+  std::vector<double> sigmas;  // one condition each, recorded as "sigma" in the manifest
+  std::vector<std::shared_ptr<const MethodParameters>> parameters;  // parsed, one per σ
+  RenderRequest request;             // what it needs from rendering, over all its σ
   std::vector<std::string> scenes;  // the scenes it applies to (empty: all)
   bool applies_to(const std::string& scene) const;
-  MethodOptions for_sigma(double sigma) const;
 };
 
 struct LambdaGrid {
@@ -59,7 +60,5 @@ Experiment load_experiment(const std::filesystem::path& path);
 // The scene as the experiment renders it: view overrides and the experiment's seed applied.
 Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene& scene);
 
-// "0.02", "1.25": the shortest text that round-trips a grid value, used in paths and manifests.
-std::string format_value(double v);
 
 }  // namespace countershade

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "stimuli/experiment.h"
-#include "stimuli/manifest.h"
+#include "formats/manifest.h"
 
 namespace countershade {
 

@@ -74,7 +74,7 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
 
   const fs::path csv = dir / "sessions/P01_s01.csv";
   EXPECT_EQ(testing::count_lines(testing::read_file(csv)), 1 + 24 + 1);
-  auto table = analysis::parse_csv(testing::read_file(csv), csv.string());
+  auto table = parse_csv(testing::read_file(csv), csv.string());
   auto rows = analysis::read_responses(csv);
   ASSERT_EQ(rows.size(), 24u);
   Study study = load_study(manifest, std::nullopt);
@@ -194,7 +194,7 @@ TEST(AdjustGui, KilledSessionsResumeWithEveryAnswerExactlyOnce) {
   Study study = load_study(manifest, std::nullopt);
   SimulatedObserver observer(7, study);
   const fs::path csv = sessions / "P03_s01.csv";
-  auto table = analysis::parse_csv(testing::read_file(csv), csv.string());
+  auto table = parse_csv(testing::read_file(csv), csv.string());
   ASSERT_EQ(table.rows.size(), 1u + 96u);
   EXPECT_EQ(analysis::read_responses(csv).size(), 96u);
   std::set<std::pair<int, std::string>> seen;
@@ -248,7 +248,7 @@ TEST(AdjustGui, SimulatedObserverSessionsFeedTheAnalysis) {
     double lo = 1e9, hi = -1e9;
     for (const auto& row : rows)
       if (row.scene == fit["scene"] && row.sigma == fit["sigma"].get<double>() &&
-          analysis::kQuestionNames[int(row.question)] == fit["question"]) {
+          kQuestionNames[int(row.question)] == fit["question"]) {
         lo = std::min(lo, row.lambda - 0.4);
         hi = std::max(hi, row.lambda);
       }
@@ -302,7 +302,7 @@ TEST(AdjustGui, AHeldKeyRepeatsAtTheAppsRateNotTheXServers) {
     std::this_thread::sleep_for(std::chrono::milliseconds(150));
   }
   ASSERT_EQ(app.wait(20), 0) << testing::read_file(dir / "log.txt");
-  auto table = analysis::parse_csv(testing::read_file(dir / "sessions/P06_s01.csv"), "csv");
+  auto table = parse_csv(testing::read_file(dir / "sessions/P06_s01.csv"), "csv");
   ASSERT_EQ(table.rows.size(), 2u);
   const int index = std::stoi(table.rows[1][7]);
   EXPECT_EQ(table.rows[1][13], "1");  // one key press

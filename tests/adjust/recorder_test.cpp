@@ -68,7 +68,7 @@ TEST(AdjustRecorder, RowsCarryEveryColumnAndTheAnalysisReadsThem) {
     EXPECT_DOUBLE_EQ(rows[i].lambda, 0.4 * double(i % 3 + 1));
     EXPECT_DOUBLE_EQ(rows[i].lambda_step, 0.4);
   }
-  auto table = analysis::parse_csv(testing::read_file(files.csv), "csv");
+  auto table = parse_csv(testing::read_file(files.csv), "csv");
   EXPECT_EQ(table.rows[0], response_columns());
   EXPECT_EQ(table.rows[1][11], "1");                         // trial
   EXPECT_EQ(table.rows[1][17], f.study.manifest_sha256);    // stimulus_set

@@ -98,7 +98,8 @@ TEST(ImageUsmCli, BadInputExitsWithTwoAndWritesNothing) {
       {im + depth + " -o " + out + " --method depth-usm --operator blur --lambda 1 --kernel 5%", "--operator"},
       {im + depth + " -o " + out + " --method depth-usm --lambda nan --kernel 5%", "--lambda"},
       {im + " -o " + out + " --method depth-usm --lambda 1 --kernel 5%", "--depth"},
-      {im + depth + " -o " + out + " --method usm3d --lambda 1 --kernel 5%", "--method"},
+      {im + depth + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1", "--method: usm3d works on a rendered scene"},
+      {im + depth + " -o " + out + " --method usm3d --lambda 1 --kernel 5%", "--kernel: usm3d has no parameter"},
       {im + depth + " -o " + (dir / "out.gif").string() + " --method usm2d --lambda 1 --kernel 5%", "output must be"},
       {im + depth + " -o " + out + " --method depth-usm --operator color --cold 1,2 --lambda 1 --kernel 5%", "--cold"},
   };

@@ -1,10 +1,10 @@
-#include "enhance/cornsweet.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.h"
+#include "enhance/lightness.h"
+#include "enhance/registry.h"
 #include "render/ray_tracer.h"
 #include "test_util.h"
 
@@ -13,12 +13,11 @@ namespace {
 
 // On a uniform field the image mode draws exactly ΔL* = ±λ·A·exp(−|d|/w) across the centre line.
 TEST(Cornsweet, ImageProfileFollowsTheDefinition) {
-  View view = make_image_view(Image(101, 8, 3, 0.45f), {}, DisplayEncoding::srgb(), 16);
-  MethodOptions o;
-  o.sigma_px = 6.0;
-  o.cornsweet_amplitude = 4.0;
+  auto shared = make_image_view(Image(101, 8, 3, 0.45f), {}, DisplayEncoding::srgb(), 16);
+  const View& view = *shared;
+  const nlohmann::json o = {{"sigma_px", 6.0}, {"amplitude", 4.0}};
   const double lambda = 1.5;
-  Composed out = find_method("cornsweet")->prepare(view, o)->compose(lambda);
+  Composed out = prepare_method("cornsweet", shared, o)->compose(lambda);
   EXPECT_EQ(out.clipped_pixels, 0u);
   for (int x = 0; x < 101; ++x) {
     size_t i = size_t(3 * 101 + x);
@@ -27,28 +26,26 @@ TEST(Cornsweet, ImageProfileFollowsTheDefinition) {
     double actual = display_pixel_to_lab(&out.display.pixels[3 * i], view.encoding).L - view.lab[i].L;
     EXPECT_NEAR(actual, expected, 1e-3) << x;
   }
-  EXPECT_EQ(find_method("cornsweet")->prepare(view, o)->compose(0.0).display.pixels, view.display.pixels);
+  EXPECT_EQ(prepare_method("cornsweet", shared, o)->compose(0.0).display.pixels, view.display.pixels);
 }
 
 TEST(Cornsweet, SurfaceProfileBrightensOneFaceAndDarkensTheOther) {
   testing::TempDir dir;
-  Scene scene = load_scene(testing::write_file(dir / "s.json", R"({
+  auto scene = std::make_shared<Scene>(load_scene(testing::write_file(dir / "s.json", R"({
     "version": 1,
     "camera": {"eye": [0, 3, 3], "target": [0, 0, 0], "projection": "orthographic", "height_world": 2.2,
                "width": 80, "height": 80},
     "render": {"spp": 1},
     "objects": [{"shape": {"type": "box", "size": [1, 1, 1], "subdivisions": 8}, "material": {"albedo": 0.5}}],
     "lights": [{"type": "ambient", "radiance": 0.6}]
-  })"));
-  RayTracer tracer(scene);
-  View view = make_view(scene, render(scene, tracer), 16);
-  MethodOptions o;
-  o.cornsweet_mode = "surface";
-  o.sigma = 0.1;
-  o.edge_point = {0, 0.5, 0.5};  // the top/front edge
-  o.edge_direction = {1, 0, 0};
-  o.bright_normal = {0, 1, 0};
-  Composed out = find_method("cornsweet")->prepare(view, o)->compose(1.0);
+  })")));
+  ViewOptions vo;
+  vo.bits = 16;
+  auto shared = render_view(scene, RenderRequest{}, vo);
+  const View& view = *shared;
+  nlohmann::json o = {{"mode", "surface"}, {"sigma", 0.1}, {"edge_point", {0, 0.5, 0.5}},  // the top/front edge
+                      {"edge_direction", {1, 0, 0}}, {"bright_normal", {0, 1, 0}}};
+  Composed out = prepare_method("cornsweet", shared, o)->compose(1.0);
   const GBuffer& g = view.render.gbuffer;
   int top = 0, front = 0;
   for (size_t i = 0; i < g.object.size(); ++i) {
@@ -64,8 +61,10 @@ TEST(Cornsweet, SurfaceProfileBrightensOneFaceAndDarkensTheOther) {
   }
   EXPECT_GT(top, 20);
   EXPECT_GT(front, 20);
-  o.sigma.reset();
-  EXPECT_THROW(find_method("cornsweet")->validate(o), InputError);
+  o.erase("sigma");
+  EXPECT_THROW(prepare_method("cornsweet", shared, o), InputError);
+  o["sigma_px"] = 4;  // the image mode's width
+  EXPECT_THROW(prepare_method("cornsweet", shared, o), InputError);
 }
 
 }  // namespace

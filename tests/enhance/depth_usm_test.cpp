@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "enhance/lightness.h"
+#include "enhance/registry.h"
 #include "render/ray_tracer.h"
 #include "test_util.h"
 
@@ -12,23 +14,18 @@ namespace countershade {
 namespace {
 
 struct Rendered {
-  Scene scene;
-  std::unique_ptr<View> view;
+  std::shared_ptr<const View> view;
 };
 
-Rendered render_view(const testing::TempDir& dir, const std::string& json) {
-  Rendered r;
-  r.scene = load_scene(testing::write_file(dir / "scene.json", json));
-  RayTracer tracer(r.scene);
-  r.view = std::make_unique<View>(make_view(r.scene, render(r.scene, tracer)));
-  return r;
+Rendered render_test_view(const testing::TempDir& dir, const std::string& json) {
+  auto scene = std::make_shared<Scene>(load_scene(testing::write_file(dir / "scene.json", json)));
+  return {render_view(scene, RenderRequest{}, {})};
 }
 
-MethodOptions op(const std::string& name, double kernel = 5.0) {
-  MethodOptions o;
-  o.op = name;
-  o.kernel_percent = kernel;
-  return o;
+nlohmann::json op(const std::string& name, double kernel = 5.0) { return {{"operator", name}, {"kernel_percent", kernel}}; }
+
+double sigma_of(const View& view, double kernel = 5.0) {
+  return kernel / 100.0 * std::hypot(double(view.width()), double(view.height())) / 4.0;
 }
 
 // Luft et al.'s Fig. 4: three rectangles one behind the other, flat-shaded, no shadows: a white
@@ -55,21 +52,22 @@ double lightness(const Composed& c, const View& v, size_t i) {
 
 TEST(DepthUsm, LambdaZeroIsTheIdentityForEveryOperator) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, kThreeRectangles);
+  Rendered r = render_test_view(dir, kThreeRectangles);
   for (const char* name : {"add", "contrast", "darken", "color"})
     for (const char* space : {"rgb", "lab"}) {
-      MethodOptions o = op(name);
-      o.space = space;
-      Composed out = find_method("depth-usm")->prepare(*r.view, o)->compose(0.0);
+      if (std::string(name) == "color" && std::string(space) == "lab") continue;  // refused (hue shift)
+      nlohmann::json o = op(name);
+      o["space"] = space;
+      Composed out = prepare_method("depth-usm", r.view, o)->compose(0.0);
       EXPECT_EQ(out.display.pixels, r.view->display.pixels) << name << " " << space;
     }
 }
 
 TEST(DepthUsm, DarkenNeverBrightensAndLeavesForegroundAlone) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, kThreeRectangles);
-  auto prepared = find_method("depth-usm")->prepare(*r.view, op("darken"));
-  SpatialImportance si = spatial_importance(*r.view, op("darken"));
+  Rendered r = render_test_view(dir, kThreeRectangles);
+  auto prepared = prepare_method("depth-usm", r.view, op("darken"));
+  SpatialImportance si = spatial_importance(*r.view, DepthMapping{}, sigma_of(*r.view));
   Composed out = prepared->compose(0.8);
   int darkened = 0;
   for (size_t i = 0; i < r.view->lab.size(); ++i)
@@ -86,11 +84,11 @@ TEST(DepthUsm, DarkenNeverBrightensAndLeavesForegroundAlone) {
 
 TEST(DepthUsm, AddAndDarkenAgreeOnTheBackgroundSide) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, kThreeRectangles);
-  SpatialImportance si = spatial_importance(*r.view, op("add"));
+  Rendered r = render_test_view(dir, kThreeRectangles);
+  SpatialImportance si = spatial_importance(*r.view, DepthMapping{}, sigma_of(*r.view));
   for (double lambda : {-0.6, 0.6}) {
-    Composed add = find_method("depth-usm")->prepare(*r.view, op("add"))->compose(lambda);
-    Composed darken = find_method("depth-usm")->prepare(*r.view, op("darken"))->compose(lambda);
+    Composed add = prepare_method("depth-usm", r.view, op("add"))->compose(lambda);
+    Composed darken = prepare_method("depth-usm", r.view, op("darken"))->compose(lambda);
     int compared = 0;
     for (size_t i = 0; i < r.view->lab.size(); ++i) {
       if (si.importance.pixels[i] > 0) continue;  // background side: ΔD ≤ 0
@@ -105,10 +103,10 @@ TEST(DepthUsm, ColorAddsColdBehindAndWarmInFront) {
   testing::TempDir dir;
   std::string grey = kThreeRectangles;  // mid-grey surfaces so nothing clips
   for (size_t p; (p = grey.find("\"albedo\": 1.0")) != std::string::npos;) grey.replace(p, 13, "\"albedo\": 0.3");
-  Rendered r = render_view(dir, grey);
-  MethodOptions o = op("color");
-  SpatialImportance si = spatial_importance(*r.view, o);
-  Composed out = find_method("depth-usm")->prepare(*r.view, o)->compose(1.5);
+  Rendered r = render_test_view(dir, grey);
+  const glm::dvec3 cold(-0.1, -0.05, 0.15), warm(0.15, 0.1, -0.1);  // the defaults
+  SpatialImportance si = spatial_importance(*r.view, DepthMapping{}, sigma_of(*r.view));
+  Composed out = prepare_method("depth-usm", r.view, op("color"))->compose(1.5);
   EXPECT_EQ(out.clipped_pixels, 0u);
   int behind = 0, in_front = 0;
   for (size_t i = 0; i < r.view->lab.size(); ++i) {
@@ -116,7 +114,7 @@ TEST(DepthUsm, ColorAddsColdBehindAndWarmInFront) {
     if (std::abs(d) < 1e-3) continue;
     glm::dvec3 shift;
     for (int c = 0; c < 3; ++c) shift[c] = out.display.pixels[3 * i + c] - r.view->display.pixels[3 * i + c];
-    const glm::dvec3& colour = d < 0 ? o.cold : o.warm;
+    const glm::dvec3& colour = d < 0 ? cold : warm;
     // The shift is a positive multiple of the one colour: parallel, same direction.
     double scale = glm::dot(shift, colour) / glm::dot(colour, colour);
     EXPECT_GT(scale, 0.0);
@@ -130,10 +128,10 @@ TEST(DepthUsm, ColorAddsColdBehindAndWarmInFront) {
 // Darken separates every rectangle: the far side of each depth edge steps down in lightness.
 TEST(DepthUsm, FigureFourDarkenSeparatesEveryRectangleContrastCannotSeparateWhiteOnWhite) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, kThreeRectangles);
+  Rendered r = render_test_view(dir, kThreeRectangles);
   const GBuffer& g = r.view->render.gbuffer;
-  Composed darken = find_method("depth-usm")->prepare(*r.view, op("darken"))->compose(1.0);
-  Composed contrast = find_method("depth-usm")->prepare(*r.view, op("contrast"))->compose(1.0);
+  Composed darken = prepare_method("depth-usm", r.view, op("darken"))->compose(1.0);
+  Composed contrast = prepare_method("depth-usm", r.view, op("contrast"))->compose(1.0);
   // Walk along a row through back | middle | front and look just beside each edge.
   int y = g.height / 2 - 4;
   auto id = [&](int x) { return g.object[g.index(x, y)]; };
@@ -167,27 +165,56 @@ TEST(DepthUsm, FigureFourDarkenSeparatesEveryRectangleContrastCannotSeparateWhit
 }
 
 TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
-  View view = make_image_view(Image(4, 1, 3, 0.5f), {0.0f, 2.0f, 4.0f, INFINITY}, DisplayEncoding::srgb(), 8);
-  MethodOptions o = op("darken");
-  o.kernel_percent.reset();
-  o.sigma_px = 1.0;
-  SpatialImportance si = spatial_importance(view, o);
+  auto view = make_image_view(Image(4, 1, 3, 0.5f), {0.0f, 2.0f, 4.0f, INFINITY}, DisplayEncoding::srgb(), 8);
+  SpatialImportance si = spatial_importance(*view, DepthMapping{}, 1.0);
   EXPECT_EQ(std::vector<float>(si.depth.pixels.begin(), si.depth.pixels.end()), (std::vector<float>{1.0f, 0.0f, 1.0f, 1.0f}));
-  o.depth_mapping = "zbuffer";
-  o.z_near = 1.0;
-  o.z_far = 8.0;
-  si = spatial_importance(view, o);
+  DepthMapping zbuffer;
+  zbuffer.zbuffer = true;
+  zbuffer.z_near = 1.0;
+  zbuffer.z_far = 8.0;
+  si = spatial_importance(*view, zbuffer, 1.0);
   EXPECT_FLOAT_EQ(si.depth.pixels[1], 0.0f);
   EXPECT_FLOAT_EQ(si.depth.pixels[2], 1.0f);
 }
 
+std::shared_ptr<const MethodParameters> parse(const nlohmann::json& j) {
+  return method_named("depth-usm", "test").parse(ParameterBag::from_json(j, "exp.json", "methods[1]"));
+}
+
 TEST(DepthUsm, ValidatesItsOptions) {
-  const EnhancementMethod* m = find_method("depth-usm");
-  EXPECT_THROW(m->validate(MethodOptions{}), InputError);  // no kernel
-  EXPECT_THROW(m->validate(op("darken", 0.0)), InputError);
-  EXPECT_THROW(m->validate(op("darken", 51.0)), InputError);
-  EXPECT_THROW(m->validate(op("blur")), InputError);
-  EXPECT_NO_THROW(m->validate(op("darken", 50.0)));
+  EXPECT_THROW(parse(nlohmann::json::object()), InputError);  // no kernel
+  EXPECT_THROW(parse(op("darken", 0.0)), InputError);
+  EXPECT_THROW(parse(op("darken", 51.0)), InputError);
+  EXPECT_THROW(parse(op("blur")), InputError);
+  EXPECT_NO_THROW(parse(op("darken", 50.0)));
+  // Keys of other operators are unused, hence errors.
+  nlohmann::json cold = op("darken");
+  cold["cold"] = {0, 0, 1};
+  std::string message = testing::input_error_of([&] { parse(cold); });
+  EXPECT_NE(message.find("methods[1].cold: depth-usm has no parameter 'cold'"), std::string::npos) << message;
+}
+
+// The color operator's point is a hue shift (cold behind, warm in front); the lightness-only lab
+// space used to collapse it to the luminance of the colours. The combination is now refused.
+TEST(DepthUsm, ColorInLabIsRefusedBecauseItWouldDropTheHueShift) {
+  nlohmann::json o = op("color");
+  o["space"] = "lab";
+  std::string message = testing::input_error_of([&] { parse(o); });
+  EXPECT_NE(message.find("methods[1].space"), std::string::npos) << message;
+  EXPECT_NE(message.find("hue"), std::string::npos) << message;
+}
+
+// Equalisation maps the lowest value present to 0: a large dark background stays dark. It used to
+// be lifted to the background's share of the pixels (here 80 % of the range).
+TEST(DepthUsm, EqualisationKeepsTheDarkestValueAtZero) {
+  std::vector<float> values(1000, 0.1f);
+  for (int i = 0; i < 200; ++i) values[size_t(i)] = 0.2f + 0.7f * float(i) / 199.0f;
+  GlobalContrast equalize(values, 1.0, true);
+  EXPECT_NEAR(equalize(0.1), 0.0, 1e-12);
+  EXPECT_NEAR(equalize(0.9), 1.0, 1e-12);
+  EXPECT_NEAR(equalize(0.55), 0.5, 0.02);  // the middle of the spread-out values
+  GlobalContrast stretch(values, 1.0, false);
+  EXPECT_NEAR(stretch(0.1), 0.0, 1e-3);
 }
 
 }  // namespace

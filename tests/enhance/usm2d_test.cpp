@@ -1,15 +1,17 @@
-#include "enhance/usm2d.h"
-
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "core/gaussian.h"
+#include "enhance/image_width.h"
+#include "enhance/lightness.h"
+#include "enhance/registry.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
 
 // A grey step edge as an external image view.
-View step_view(float dark, float light) {
+std::shared_ptr<const View> step_view(float dark, float light) {
   Image img(64, 16, 3);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 64; ++x)
@@ -17,24 +19,25 @@ View step_view(float dark, float light) {
   return make_image_view(img, {}, DisplayEncoding::srgb(), 8);
 }
 
-MethodOptions sigma_px(double s) {
-  MethodOptions o;
-  o.sigma_px = s;
-  return o;
+nlohmann::json sigma_px(double s) { return {{"sigma_px", s}}; }
+
+std::shared_ptr<const MethodParameters> parse(const nlohmann::json& j) {
+  return method_named("usm2d", "test").parse(ParameterBag::from_json(j, "exp.json", "methods[0]"));
 }
 
 TEST(Usm2d, LambdaZeroAndFlatImagesAreUnchanged) {
-  View edge = step_view(0.3f, 0.7f);
-  auto prepared = find_method("usm2d")->prepare(edge, sigma_px(4));
-  EXPECT_EQ(prepared->compose(0.0).display.pixels, edge.display.pixels);
-  View flat = step_view(0.5f, 0.5f);
-  EXPECT_EQ(find_method("usm2d")->prepare(flat, sigma_px(4))->compose(2.0).display.pixels, flat.display.pixels);
+  auto edge = step_view(0.3f, 0.7f);
+  auto prepared = prepare_method("usm2d", edge, sigma_px(4));
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, edge->display.pixels);
+  auto flat = step_view(0.5f, 0.5f);
+  EXPECT_EQ(prepare_method("usm2d", flat, sigma_px(4))->compose(2.0).display.pixels, flat->display.pixels);
 }
 
 TEST(Usm2d, ComposesLambdaTimesLightnessMinusItsBlur) {
-  View edge = step_view(0.3f, 0.7f);
+  auto shared = step_view(0.3f, 0.7f);
+  const View& edge = *shared;
   const double lambda = 0.7, sigma = 4.0;
-  Composed out = find_method("usm2d")->prepare(edge, sigma_px(sigma))->compose(lambda);
+  Composed out = prepare_method("usm2d", shared, sigma_px(sigma))->compose(lambda);
   std::vector<float> L(edge.lab.size()), blurred(L.size());
   for (size_t i = 0; i < L.size(); ++i) L[i] = float(edge.lab[i].L);
   gaussian_blur_exact(L.data(), blurred.data(), 64, 16, sigma);
@@ -49,18 +52,26 @@ TEST(Usm2d, ComposesLambdaTimesLightnessMinusItsBlur) {
 }
 
 TEST(Usm2d, WidthOptionsAreExclusiveAndChecked) {
-  const EnhancementMethod* m = find_method("usm2d");
-  MethodOptions both = sigma_px(2);
-  both.kernel_percent = 3;
-  EXPECT_THROW(m->validate(both), InputError);
-  EXPECT_THROW(m->validate(sigma_px(-1)), InputError);
-  MethodOptions percent;
+  EXPECT_THROW(parse({{"sigma_px", 2}, {"kernel_percent", 3}}), InputError);
+  EXPECT_THROW(parse(sigma_px(-1)), InputError);
+  EXPECT_THROW(parse(nlohmann::json::object()), InputError);
+  EXPECT_NO_THROW(parse({{"sigma_percent", 1.0}}));
+  ImageWidth percent, kernel;
   percent.sigma_percent = 1.0;
-  EXPECT_NO_THROW(m->validate(percent));
-  EXPECT_DOUBLE_EQ(image_sigma_px(percent, 300, 400), 5.0);  // 1% of a 500 px diagonal
-  MethodOptions kernel;
+  EXPECT_DOUBLE_EQ(percent.sigma_px_for(300, 400), 5.0);  // 1% of a 500 px diagonal
   kernel.kernel_percent = 4.0;
-  EXPECT_DOUBLE_EQ(image_sigma_px(kernel, 300, 400), 5.0);  // K = 20 px, σ = K/4
+  EXPECT_DOUBLE_EQ(kernel.sigma_px_for(300, 400), 5.0);  // K = 20 px, σ = K/4
+  // "5%" on the command line is the same kernel.
+  auto text = method_named("usm2d", "test").parse(ParameterBag::from_arguments({"--kernel", "4%"}));
+  EXPECT_NO_THROW(text.get());
+}
+
+// usm2d works on L* by definition; a `space` key used to be accepted and ignored, so a "usm2d-lab"
+// folder held copies of the RGB images. It is now refused, saying why.
+TEST(Usm2d, HasNoColourSpaceToChoose) {
+  std::string message = testing::input_error_of([] { parse({{"sigma_px", 2}, {"space", "lab"}}); });
+  EXPECT_NE(message.find("exp.json: methods[0].space"), std::string::npos) << message;
+  EXPECT_NE(message.find("lightness"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/svg_plot.h"
+#include "enhance/lightness.h"
+#include "enhance/registry.h"
 #include "render/ray_tracer.h"
 #include "test_util.h"
 
@@ -15,19 +17,18 @@ namespace countershade {
 namespace {
 
 struct Rendered {
-  Scene scene;
-  std::unique_ptr<View> view;
+  Scene scene;  // the view's scene, copied for the tests' convenience
+  std::shared_ptr<const View> view;
 };
 
 // Loads a scene from JSON text and renders its view with vertex radiance.
-Rendered render_view(const testing::TempDir& dir, const std::string& json, int ring_samples = 0) {
+Rendered render_test_view(const testing::TempDir& dir, const std::string& json, int ring_samples = 0) {
   Rendered r;
   r.scene = load_scene(testing::write_file(dir / "scene.json", json));
-  RayTracer tracer(r.scene);
-  RenderOptions options;
-  options.vertex_radiance = true;
-  options.ring_samples = ring_samples;
-  r.view = std::make_unique<View>(make_view(r.scene, render(r.scene, tracer, options)));
+  RenderRequest request;
+  request.vertex_radiance = true;
+  request.ring_samples = ring_samples;
+  r.view = render_view(std::make_shared<Scene>(r.scene), request, {});
   return r;
 }
 
@@ -37,11 +38,7 @@ std::vector<uint8_t> bytes_of(const Image& display) {
   return out;
 }
 
-MethodOptions with_sigma(double sigma) {
-  MethodOptions o;
-  o.sigma = sigma;
-  return o;
-}
+nlohmann::json with_sigma(double sigma) { return {{"sigma", sigma}}; }
 
 const char* kTexturedCow = R"({
   "version": 1,
@@ -66,9 +63,9 @@ std::string textured_cow() {
 
 TEST(Usm3d, LambdaZeroIsByteIdenticalToNone) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, textured_cow());
-  auto none = find_method("none")->prepare(*r.view, {})->compose(0.0);
-  auto usm = find_method("usm3d")->prepare(*r.view, with_sigma(0.1));
+  Rendered r = render_test_view(dir, textured_cow());
+  auto none = prepare_method("none", r.view, nlohmann::json::object())->compose(0.0);
+  auto usm = prepare_method("usm3d", r.view, with_sigma(0.1));
   Composed zero = usm->compose(0.0);
   EXPECT_EQ(zero.display.pixels, none.display.pixels);  // exact floats, hence exact bytes
   EXPECT_EQ(zero.clipped_pixels, 0u);
@@ -78,7 +75,7 @@ TEST(Usm3d, LambdaZeroIsByteIdenticalToNone) {
 TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
   testing::TempDir dir;
   // An orthographic view filled by a plane lit head-on: every vertex and pixel has the same radiance.
-  Rendered r = render_view(dir, R"({
+  Rendered r = render_test_view(dir, R"({
     "version": 1,
     "camera": {"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 0, -1], "projection": "orthographic",
                "height_world": 2, "width": 40, "height": 40},
@@ -89,7 +86,7 @@ TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
   auto reference = bytes_of(r.view->display);
   for (double sigma : {0.05, 0.5})
     for (double lambda : {0.5, 3.0, -2.0}) {
-      Composed out = find_method("usm3d")->prepare(*r.view, with_sigma(sigma))->compose(lambda);
+      Composed out = prepare_method("usm3d", r.view, with_sigma(sigma))->compose(lambda);
       EXPECT_EQ(bytes_of(out.display), reference) << sigma << " " << lambda;
       for (size_t i = 0; i < out.display.pixels.size(); ++i)
         ASSERT_NEAR(out.display.pixels[i], r.view->display.pixels[i], 1e-5);
@@ -98,10 +95,8 @@ TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
 
 TEST(Usm3d, KeepsHueAndSaturationWhereNotClipped) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, textured_cow());
-  MethodOptions options;
-  options.sigma_fraction = 0.05;
-  Composed out = find_method("usm3d")->prepare(*r.view, options)->compose(2.5);
+  Rendered r = render_test_view(dir, textured_cow());
+  Composed out = prepare_method("usm3d", r.view, {{"sigma_fraction", 0.05}})->compose(2.5);
   const DisplayEncoding& enc = r.scene.display.encoding;
   int checked = 0;
   for (size_t i = 0; i < r.view->lab.size(); ++i) {
@@ -140,16 +135,16 @@ std::string wall_scene(double bar_x) {
 
 TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
   testing::TempDir dir_a, dir_b;
-  Rendered a = render_view(dir_a, wall_scene(-1.0)), b = render_view(dir_b, wall_scene(-0.4));
+  Rendered a = render_test_view(dir_a, wall_scene(-1.0)), b = render_test_view(dir_b, wall_scene(-0.4));
   const double sigma = 0.3, lambda = 2.0;
-  auto pa = usm3d_pixels(*a.view, {surface_contrast(a.scene.objects[0], a.view->render.vertex_radiance[0], a.scene.display, with_sigma(sigma), sigma),
-                                   surface_contrast(a.scene.objects[1], a.view->render.vertex_radiance[1], a.scene.display, with_sigma(sigma), sigma),
-                                   surface_contrast(a.scene.objects[2], a.view->render.vertex_radiance[2], a.scene.display, with_sigma(sigma), sigma)});
-  auto pb = usm3d_pixels(*b.view, {surface_contrast(b.scene.objects[0], b.view->render.vertex_radiance[0], b.scene.display, with_sigma(sigma), sigma),
-                                   surface_contrast(b.scene.objects[1], b.view->render.vertex_radiance[1], b.scene.display, with_sigma(sigma), sigma),
-                                   surface_contrast(b.scene.objects[2], b.view->render.vertex_radiance[2], b.scene.display, with_sigma(sigma), sigma)});
-  Composed ea = find_method("usm3d")->prepare(*a.view, with_sigma(sigma))->compose(lambda);
-  Composed eb = find_method("usm3d")->prepare(*b.view, with_sigma(sigma))->compose(lambda);
+  auto pa = usm3d_pixels(*a.view, {surface_contrast(a.scene.objects[0], a.view->render.vertex_radiance[0], a.scene.display, SmoothingWidth{sigma}),
+                                   surface_contrast(a.scene.objects[1], a.view->render.vertex_radiance[1], a.scene.display, SmoothingWidth{sigma}),
+                                   surface_contrast(a.scene.objects[2], a.view->render.vertex_radiance[2], a.scene.display, SmoothingWidth{sigma})});
+  auto pb = usm3d_pixels(*b.view, {surface_contrast(b.scene.objects[0], b.view->render.vertex_radiance[0], b.scene.display, SmoothingWidth{sigma}),
+                                   surface_contrast(b.scene.objects[1], b.view->render.vertex_radiance[1], b.scene.display, SmoothingWidth{sigma}),
+                                   surface_contrast(b.scene.objects[2], b.view->render.vertex_radiance[2], b.scene.display, SmoothingWidth{sigma})});
+  Composed ea = prepare_method("usm3d", a.view, with_sigma(sigma))->compose(lambda);
+  Composed eb = prepare_method("usm3d", b.view, with_sigma(sigma))->compose(lambda);
   const GBuffer& ga = a.view->render.gbuffer;
   const GBuffer& gb = b.view->render.gbuffer;
   // Wall pixels whose whole 3×3 neighbourhood is wall in both frames (no anti-aliasing overlap).
@@ -196,8 +191,9 @@ struct Profile {
   double peak = 0, half_width = 0;      // on the front face
 };
 
-Profile cube_profile(const View& view, double sigma, double lambda) {
-  Composed out = find_method("usm3d")->prepare(view, with_sigma(sigma))->compose(lambda);
+Profile cube_profile(const std::shared_ptr<const View>& shared, double sigma, double lambda) {
+  const View& view = *shared;
+  Composed out = prepare_method("usm3d", shared, with_sigma(sigma))->compose(lambda);
   EXPECT_EQ(out.clipped_pixels, 0u);
   const GBuffer& g = view.render.gbuffer;
   int x = g.width / 2, edge = -1;
@@ -227,7 +223,7 @@ Profile cube_profile(const View& view, double sigma, double lambda) {
 
 TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
   testing::TempDir dir;
-  Rendered r = render_view(dir, R"({
+  Rendered r = render_test_view(dir, R"({
     "version": 1,
     "camera": {"eye": [0, 4, 4], "target": [0, 0, 0], "projection": "orthographic", "height_world": 2.6,
                "width": 160, "height": 160},
@@ -240,7 +236,7 @@ TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
   })");
   // Amplitude grows linearly with λ.
   std::vector<double> lambdas = {0.5, 1.0, 2.0}, peaks;
-  for (double l : lambdas) peaks.push_back(cube_profile(*r.view, 0.15, l).peak);
+  for (double l : lambdas) peaks.push_back(cube_profile(r.view, 0.15, l).peak);
   double mx = 0, my = 0;
   for (size_t i = 0; i < 3; ++i) mx += lambdas[i] / 3, my += peaks[i] / 3;
   double sxy = 0, sxx = 0, syy = 0;
@@ -252,7 +248,7 @@ TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
   EXPECT_GT(sxy * sxy / (sxx * syy), 0.99);
   EXPECT_GT(peaks[0], 1.0) << "a visible overshoot (ΔL* > 1) already at λ = 0.5";
 
-  Profile narrow = cube_profile(*r.view, 0.1, 1.0), wide = cube_profile(*r.view, 0.3, 1.0);
+  Profile narrow = cube_profile(r.view, 0.1, 1.0), wide = cube_profile(r.view, 0.3, 1.0);
   EXPECT_GT(wide.half_width, narrow.half_width + 2) << "the Cornsweet profile widens with σ";
   // Overshoot on the brighter front face, undershoot on the top face next to the edge.
   for (size_t k = 0; k < narrow.offset.size(); ++k) {
@@ -273,7 +269,7 @@ TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
     size_t k = 0;
     for (double sigma : {0.1, 0.2, 0.3})
       for (double lambda : {1.0, 2.0}) {
-        Profile p = cube_profile(*r.view, sigma, lambda);
+        Profile p = cube_profile(r.view, sigma, lambda);
         char label[64];
         std::snprintf(label, sizeof label, "σ=%.1f λ=%.0f", sigma, lambda);
         plot.series.push_back({label, p.offset, p.delta_L, plot_color(k / 2), lambda == 1.0});
@@ -299,13 +295,13 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
     })";
   };
   testing::TempDir d1, d2;
-  Rendered bright = render_view(d1, scene(0.95)), dark = render_view(d2, scene(0.05));
+  Rendered bright = render_test_view(d1, scene(0.95)), dark = render_test_view(d2, scene(0.05));
   for (double sigma : {0.2, 1.0}) {
-    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertex_radiance[0], bright.scene.display, with_sigma(sigma), sigma);
-    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertex_radiance[0], dark.scene.display, with_sigma(sigma), sigma);
+    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertex_radiance[0], bright.scene.display, SmoothingWidth{sigma});
+    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertex_radiance[0], dark.scene.display, SmoothingWidth{sigma});
     EXPECT_EQ(sa.smooth_lightness, sb.smooth_lightness);
-    Composed ea = find_method("usm3d")->prepare(*bright.view, with_sigma(sigma))->compose(2.0);
-    Composed eb = find_method("usm3d")->prepare(*dark.view, with_sigma(sigma))->compose(2.0);
+    Composed ea = prepare_method("usm3d", bright.view, with_sigma(sigma))->compose(2.0);
+    Composed eb = prepare_method("usm3d", dark.view, with_sigma(sigma))->compose(2.0);
     const GBuffer& g = bright.view->render.gbuffer;
     int pixels = 0;
     for (size_t i = 0; i < g.object.size(); ++i) {
@@ -320,18 +316,18 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
 TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   testing::TempDir d1, d2;
   std::string base = textured_cow();
-  Rendered plus = render_view(d1, base);
+  Rendered plus = render_test_view(d1, base);
   std::string negative = base;
   negative.replace(negative.find("\"fit\": true"), 11, "\"fit\": true, \"importance\": -1");
-  Rendered minus = render_view(d2, negative);
-  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display, with_sigma(0.1), 0.1);
+  Rendered minus = render_test_view(d2, negative);
+  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display, SmoothingWidth{0.1});
   for (double g : sc.gain_factor) {
     EXPECT_GE(g, 1.0);
     EXPECT_LE(g, std::sqrt(1.25));  // Var of values in [0,1] is at most 1/4
   }
-  auto p = usm3d_pixels(*plus.view, {surface_contrast(plus.scene.objects[0], plus.view->render.vertex_radiance[0], plus.scene.display, with_sigma(0.1), 0.1), sc});
-  auto m = usm3d_pixels(*minus.view, {surface_contrast(minus.scene.objects[0], minus.view->render.vertex_radiance[0], minus.scene.display, with_sigma(0.1), 0.1),
-                                      surface_contrast(minus.scene.objects[1], minus.view->render.vertex_radiance[1], minus.scene.display, with_sigma(0.1), 0.1)});
+  auto p = usm3d_pixels(*plus.view, {surface_contrast(plus.scene.objects[0], plus.view->render.vertex_radiance[0], plus.scene.display, SmoothingWidth{0.1}), sc});
+  auto m = usm3d_pixels(*minus.view, {surface_contrast(minus.scene.objects[0], minus.view->render.vertex_radiance[0], minus.scene.display, SmoothingWidth{0.1}),
+                                      surface_contrast(minus.scene.objects[1], minus.view->render.vertex_radiance[1], minus.scene.display, SmoothingWidth{0.1})});
   int cow_pixels = 0;
   for (size_t i = 0; i < p.gain_factor.size(); ++i)
     if (plus.view->render.gbuffer.object[i] == 1) {
@@ -339,9 +335,8 @@ TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
       ++cow_pixels;
     }
   EXPECT_GT(cow_pixels, 300);
-  MethodOptions no_adapt = with_sigma(0.1);
-  no_adapt.adapt = false;
-  auto flat = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display, no_adapt, 0.1);
+  auto flat = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display,
+                               SmoothingWidth{0.1, std::nullopt, false});
   for (double g : flat.gain_factor) EXPECT_EQ(g, 1.0);
 }
 
@@ -360,16 +355,21 @@ TEST(Usm3d, RingSamplesLieInsideTheTriangleAndSpreadOverIt) {
   }
 }
 
-TEST(Usm3d, ValidatesItsOptions) {
-  const EnhancementMethod* m = find_method("usm3d");
-  ASSERT_NE(m, nullptr);
-  EXPECT_THROW(m->validate({}), InputError);
-  MethodOptions both = with_sigma(0.1);
-  both.iterations = 3;
-  EXPECT_THROW(m->validate(both), InputError);
-  EXPECT_THROW(m->validate(with_sigma(-1)), InputError);
-  EXPECT_THROW(m->validate(with_sigma(std::nan(""))), InputError);
-  EXPECT_NO_THROW(m->validate(with_sigma(0.1)));
+TEST(Usm3d, ParsesItsParametersAndRejectsTheRest) {
+  const EnhancementMethod& m = method_named("usm3d", "test");
+  auto parse = [&](const nlohmann::json& j) { return m.parse(ParameterBag::from_json(j, "exp.json", "methods[0]")); };
+  EXPECT_THROW(parse(nlohmann::json::object()), InputError);
+  EXPECT_THROW(parse({{"sigma", 0.1}, {"iterations", 3}}), InputError);
+  EXPECT_THROW(parse(with_sigma(-1)), InputError);
+  EXPECT_THROW(m.parse(ParameterBag::from_arguments({"--sigma", "nan"})), InputError);
+  EXPECT_NO_THROW(parse(with_sigma(0.1)));
+  // A key usm3d does not use names the method and the key, from a file and from the command line.
+  std::string message = testing::input_error_of([&] { parse({{"sigma", 0.1}, {"kernel", 5}}); });
+  EXPECT_NE(message.find("exp.json: methods[0].kernel"), std::string::npos) << message;
+  EXPECT_NE(message.find("usm3d has no parameter 'kernel'"), std::string::npos) << message;
+  message = testing::input_error_of(
+      [&] { m.parse(ParameterBag::from_arguments({"--kernel", "5%", "--operator", "add"})); });
+  EXPECT_NE(message.find("--kernel: usm3d has no parameter 'kernel'"), std::string::npos) << message;
 }
 
 }  // namespace

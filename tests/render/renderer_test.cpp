@@ -165,7 +165,7 @@ TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
   auto png_bytes = [&](int threads, const std::string& name) {
     RenderOptions options;
     options.threads = threads;
-    Image display = encode_for_display(render(scene, tracer, options).radiance, scene.display);
+    Image display = encode_for_display(render(scene, tracer, options).radiance, scene.display.exposure_stops, scene.display.encoding);
     write_image(dir / name, display);
     return testing::read_file(dir / name);
   };
@@ -207,7 +207,7 @@ TEST(Renderer, VertexRadianceEqualsPixelRadianceAtAProjectedVertex) {
     scene.camera.eye = p + aside + 3.0 * n;
     scene.camera.target = p + aside;
     RenderResult result = render(scene, tracer);
-    auto vertex_radiance = render_vertex_radiance(scene, tracer, 0);  // view-dependent: per camera
+    auto vertex_radiance = render_vertex_radiance(scene, tracer, RenderOptions{});  // view-dependent: per camera
     ASSERT_EQ(result.gbuffer.object[result.gbuffer.index(16, 16)], 0);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(result.radiance.at(16, 16, c), vertex_radiance[0][v][c], 1e-4 * (1.0 + vertex_radiance[0][v][c]))

@@ -52,6 +52,12 @@ OrderedJson manifest_of(const fs::path& dir, const std::string& name = "manifest
   return OrderedJson::parse(in);
 }
 
+// The manifest without the fields that differ between runs (timings, timestamps).
+OrderedJson reproducible_part(OrderedJson manifest) {
+  manifest.erase("run");
+  return manifest;
+}
+
 GenerateOptions jobs(int n) {
   GenerateOptions o;
   o.jobs = n;
@@ -206,7 +212,7 @@ TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
       {variant("\"step\": 0.5", "\"step\": 0"), "lambda.step: must be positive"},
       {variant("\"step\": 0.5", "\"step\": -0.1"), "lambda.step: must be positive"},
       {variant("{\"name\": \"grey\"", "{\"name\": \"cube\""), "duplicate scene name 'cube'"},
-      {variant("\"method\": \"usm2d\"", "\"method\": \"blur\""), "unknown value 'blur'"},
+      {variant("\"method\": \"usm2d\"", "\"method\": \"blur\""), "unknown method 'blur'"},
       {variant("\"sigma_fraction\": [0.03, 0.08]", "\"sigma_fraction\": []"), "the σ list is empty"},
       {variant("\"seed\": 5", "\"seed\": 5, \"colour\": 1"), "colour: unknown key"},
   };

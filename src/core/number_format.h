@@ -1,0 +1,11 @@
+#pragma once
+// Numbers as text in file names, manifests and CSV files.
+
+#include <string>
+
+namespace countershade {
+
+// "0.02", "1.25": the shortest text that reads back as the same grid value (within 1e-12).
+std::string format_value(double v);
+
+}  // namespace countershade

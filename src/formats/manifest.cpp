@@ -1,0 +1,215 @@
+#include "formats/manifest.h"
+
+#include <algorithm>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/file_bytes.h"
+#include "core/json_reader.h"
+#include "core/sha256.h"
+
+namespace countershade {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::set<std::string> kEntryKeys = {"file",   "scene",  "method",         "label",  "sigma",
+                                          "sigma_kind", "lambda", "lambda_index", "clipped_pixels",
+                                          "width", "height", "size", "sha256"};
+
+class ManifestReader {
+ public:
+  explicit ManifestReader(const fs::path& path) : path_(path) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+    throw_input_error(path_.string() + ": " + field, what);
+  }
+  const OrderedJson& need(const OrderedJson& o, const std::string& where, const char* key) const {
+    if (!o.contains(key)) fail(where + key, "missing");
+    return o[key];
+  }
+  std::string string(const OrderedJson& o, const std::string& where, const char* key) const {
+    const OrderedJson& v = need(o, where, key);
+    if (!v.is_string()) fail(where + key, "not a string");
+    return v.get<std::string>();
+  }
+  double number(const OrderedJson& o, const std::string& where, const char* key) const {
+    const OrderedJson& v = need(o, where, key);
+    if (!v.is_number()) fail(where + key, "not a number");
+    return v.get<double>();
+  }
+  int64_t integer(const OrderedJson& o, const std::string& where, const char* key, int64_t lo, int64_t hi) const {
+    const OrderedJson& v = need(o, where, key);
+    if (!v.is_number_integer()) fail(where + key, "not an integer");
+    int64_t i = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX) ? INT64_MAX : v.get<int64_t>();
+    if (i < lo || i > hi) fail(where + key, "out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return i;
+  }
+
+  ManifestEntry entry(const OrderedJson& s, size_t i) const {
+    const std::string where = "stimuli[" + std::to_string(i) + "].";
+    if (!s.is_object()) fail("stimuli[" + std::to_string(i) + "]", "not an object");
+    ManifestEntry e;
+    e.file = string(s, where, "file");
+    try {
+      resolve_in_set(path_.parent_path(), e.file);
+    } catch (const InputError& error) {
+      fail(where + "file", error.what());
+    }
+    e.scene = string(s, where, "scene");
+    e.method = string(s, where, "method");
+    e.sha256 = string(s, where, "sha256");
+    e.width = int(integer(s, where, "width", 1, 1 << 20));
+    e.height = int(integer(s, where, "height", 1, 1 << 20));
+    if (s.contains("label")) e.label = string(s, where, "label");
+    if (s.contains("sigma")) e.sigma = number(s, where, "sigma");
+    if (s.contains("sigma_kind")) e.sigma_kind = string(s, where, "sigma_kind");
+    if (s.contains("lambda")) e.lambda = number(s, where, "lambda");
+    if (s.contains("lambda_index")) e.lambda_index = int(integer(s, where, "lambda_index", 0, 1 << 30));
+    if (s.contains("clipped_pixels")) e.clipped_pixels = uint64_t(integer(s, where, "clipped_pixels", 0, INT64_MAX));
+    if (s.contains("size")) e.size = uint64_t(integer(s, where, "size", 0, INT64_MAX));
+    if (!e.is_reference()) {
+      for (const char* key : {"sigma", "lambda", "lambda_index"})
+        if (!s.contains(key)) fail(where + key, "missing (every enhanced stimulus has one)");
+    }
+    for (auto it = s.begin(); it != s.end(); ++it)
+      if (!kEntryKeys.count(it.key())) e.extra[it.key()] = it.value();
+    return e;
+  }
+
+  Manifest read(const OrderedJson& m) const {
+    if (!m.is_object()) fail("", "expected an object");
+    Manifest out;
+    if (!m.contains("format_version") || m["format_version"] != kManifestFormatVersion)
+      fail("format_version", "missing or unsupported (expected " + std::to_string(kManifestFormatVersion) + ")");
+    if (!m.contains("stimuli") || !m["stimuli"].is_array()) fail("stimuli", "missing or not an array");
+    out.software_version = m.value("software_version", "");
+    out.experiment_name = m.value("experiment_name", path_.parent_path().filename().string());
+    out.experiment_sha256 = m.value("experiment_sha256", "");
+    if (m.contains("experiment")) out.experiment = m["experiment"];
+    if (m.contains("seed")) out.seed = uint64_t(integer(m, "", "seed", 0, INT64_MAX));
+    if (m.contains("bits")) out.bits = int(integer(m, "", "bits", 1, 32));
+    if (m.contains("lambda_grid")) out.lambda_grid = grid(m["lambda_grid"]);
+    if (m.contains("shard")) {
+      const OrderedJson& sh = m["shard"];
+      out.shard = std::make_pair(int(integer(sh, "shard.", "index", 1, 1 << 20)), int(integer(sh, "shard.", "count", 1, 1 << 20)));
+    }
+    for (size_t i = 0; i < m["stimuli"].size(); ++i) out.stimuli.push_back(entry(m["stimuli"][i], i));
+    if (m.contains("run")) out.run = m["run"];
+    return out;
+  }
+
+  LambdaGridInfo grid(const OrderedJson& g) const {
+    if (!g.is_object()) fail("lambda_grid", "not an object");
+    LambdaGridInfo out;
+    out.min = number(g, "lambda_grid.", "min");
+    out.step = number(g, "lambda_grid.", "step");
+    out.count = int(integer(g, "lambda_grid.", "count", 1, 1 << 24));
+    out.max = g.contains("max") ? number(g, "lambda_grid.", "max") : out.min + out.step * (out.count - 1);
+    return out;
+  }
+
+ private:
+  fs::path path_;
+};
+
+}  // namespace
+
+fs::path resolve_in_set(const fs::path& set_dir, const std::string& relative) {
+  fs::path p(relative);
+  if (relative.empty() || p.is_absolute()) throw InputError("path '" + relative + "' must be relative to the set folder");
+  for (const auto& part : p)
+    if (part == "..") throw InputError("path '" + relative + "' leaves the set folder");
+  return set_dir / p;
+}
+
+ManifestEntry parse_manifest_entry(const OrderedJson& json, const fs::path& file, size_t index) {
+  return ManifestReader(file).entry(json, index);
+}
+
+OrderedJson to_json(const ManifestEntry& e) {
+  OrderedJson j;
+  j["file"] = e.file;
+  j["scene"] = e.scene;
+  j["method"] = e.method;
+  if (!e.label.empty()) j["label"] = e.label;
+  if (e.sigma) j["sigma"] = *e.sigma;
+  if (!e.sigma_kind.empty()) j["sigma_kind"] = e.sigma_kind;
+  j["lambda"] = e.lambda;
+  j["lambda_index"] = e.lambda_index;
+  j["clipped_pixels"] = e.clipped_pixels;
+  for (auto it = e.extra.begin(); it != e.extra.end(); ++it) j[it.key()] = it.value();
+  j["width"] = e.width;
+  j["height"] = e.height;
+  j["size"] = e.size;
+  j["sha256"] = e.sha256;
+  return j;
+}
+
+OrderedJson to_json(const Manifest& m) {
+  OrderedJson j;
+  j["format_version"] = m.format_version;
+  j["software_version"] = m.software_version;
+  j["experiment_name"] = m.experiment_name;
+  j["experiment_sha256"] = m.experiment_sha256;
+  j["experiment"] = m.experiment;
+  j["seed"] = m.seed;
+  j["bits"] = m.bits;
+  j["lambda_grid"] = {{"min", m.lambda_grid.min}, {"max", m.lambda_grid.max}, {"step", m.lambda_grid.step},
+                      {"count", m.lambda_grid.count}};
+  if (m.shard) j["shard"] = {{"index", m.shard->first}, {"count", m.shard->second}};
+  j["stimuli"] = OrderedJson::array();
+  for (const auto& e : m.stimuli) j["stimuli"].push_back(to_json(e));
+  j["run"] = m.run;
+  return j;
+}
+
+Manifest read_manifest(const fs::path& path) {
+  const std::string bytes = read_file_bytes(path);
+  Manifest m = ManifestReader(path).read(parse_ordered_json_text(bytes, path.string()));
+  m.file_sha256 = sha256_hex(bytes);
+  return m;
+}
+
+void write_manifest(const fs::path& path, const Manifest& manifest) {
+  write_text_atomically(path, to_json(manifest).dump(2) + "\n");
+}
+
+std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
+  Manifest manifest = read_manifest(manifest_path);
+  const auto dir = manifest_path.parent_path();
+  std::vector<std::string> problems;
+  std::set<fs::path> listed;
+  for (const auto& s : manifest.stimuli) {
+    auto file = resolve_in_set(dir, s.file);
+    listed.insert(fs::weakly_canonical(file));
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) {
+      problems.push_back(s.file + ": missing");
+      continue;
+    }
+    if (s.size && fs::file_size(file) != s.size) problems.push_back(s.file + ": size differs from the manifest");
+    if (sha256_file(file) != s.sha256) problems.push_back(s.file + ": sha256 differs from the manifest");
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".png") continue;
+    auto rel = fs::relative(entry.path(), dir).string();
+    if (rel.rfind("contact-sheets", 0) == 0) continue;
+    if (!listed.count(fs::weakly_canonical(entry.path()))) problems.push_back(rel + ": not in the manifest");
+  }
+  return problems;
+}
+
+OrderedJson reproducible_part(const Manifest& manifest) {
+  OrderedJson copy = to_json(manifest);
+  copy.erase("run");
+  return copy;
+}
+
+void sort_entries(std::vector<ManifestEntry>& entries) {
+  std::sort(entries.begin(), entries.end(), [](const ManifestEntry& a, const ManifestEntry& b) { return a.file < b.file; });
+}
+
+}  // namespace countershade

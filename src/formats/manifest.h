@@ -1,0 +1,84 @@
+#pragma once
+// The manifest of a stimulus set (docs/data-formats): what every file is, how it was made, and
+// its checksum. The one owner of the format: the generator writes it, the app, the audit and
+// the tests read it. Paths are relative to the set folder and may not leave it.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace countershade {
+
+using OrderedJson = nlohmann::ordered_json;
+
+inline constexpr int kManifestFormatVersion = 1;
+// The `method` of a scene's reference (unenhanced) image.
+inline constexpr const char* kReferenceMethod = "none";
+
+struct LambdaGridInfo {
+  double min = 0, max = 0, step = 0;
+  int count = 0;
+};
+
+struct ManifestEntry {
+  std::string file;  // relative to the set folder
+  std::string scene, method;
+  std::string label;                // the method's folder name; empty for references
+  std::optional<double> sigma;      // absent for references
+  std::string sigma_kind;           // the width key the σ list was given under
+  double lambda = 0;
+  int lambda_index = 0;
+  uint64_t clipped_pixels = 0;
+  OrderedJson extra = OrderedJson::object();  // method details: parameters, operator, iterations, noise, ...
+  int width = 0, height = 0;
+  uint64_t size = 0;
+  std::string sha256;
+
+  bool is_reference() const { return method == kReferenceMethod; }
+  // The condition's name in studies: the label, or the method when there is none.
+  const std::string& condition_method() const { return label.empty() ? method : label; }
+};
+
+struct Manifest {
+  int format_version = kManifestFormatVersion;
+  std::string software_version, experiment_name, experiment_sha256;
+  OrderedJson experiment = OrderedJson::object();  // the experiment file as read
+  uint64_t seed = 1;
+  int bits = 8;
+  LambdaGridInfo lambda_grid;
+  std::optional<std::pair<int, int>> shard;  // index, count
+  std::vector<ManifestEntry> stimuli;
+  OrderedJson run = OrderedJson::object();  // timings and timestamps: differ between runs
+  std::string file_sha256;  // of the file it was read from (not written)
+};
+
+OrderedJson to_json(const ManifestEntry& entry);
+OrderedJson to_json(const Manifest& manifest);
+
+// One entry from its JSON (e.g. a journal line); `file` and `index` name it in messages.
+ManifestEntry parse_manifest_entry(const OrderedJson& json, const std::filesystem::path& file, size_t index);
+
+// Reads a manifest and checks its structure; throws InputError naming the file and the field.
+Manifest read_manifest(const std::filesystem::path& path);
+// Writes it atomically.
+void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
+
+// Joins a manifest's relative path to its folder; rejects absolute paths and paths that leave it.
+std::filesystem::path resolve_in_set(const std::filesystem::path& set_dir, const std::string& relative);
+
+// Checks a finished set: every listed file exists with its size and sha256, and every PNG in the
+// folder is listed. Returns the problems found (empty when the set is intact).
+std::vector<std::string> verify_stimulus_set(const std::filesystem::path& manifest_path);
+
+// The manifest without the fields that legitimately differ between runs (timings, timestamps).
+OrderedJson reproducible_part(const Manifest& manifest);
+
+// Sorts entries by file name, the order a manifest lists them in.
+void sort_entries(std::vector<ManifestEntry>& entries);
+
+}  // namespace countershade

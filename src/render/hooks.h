@@ -1,0 +1,54 @@
+#pragma once
+// Hooks through which an enhancement method reaches into rendering (docs/architecture.md).
+// Both are optional: a render without hooks takes the plain path and pays nothing for them.
+//
+// - A shading hook changes how one light sample is reflected: it may shade with another light
+//   (or guide) direction per shading component, or scale or replace the result. Visibility
+//   (shadow rays, environment occlusion) is always traced for the original direction.
+// - A texture hook replaces the texture a material samples (e.g. a filtered mip pyramid).
+
+#include <memory>
+
+#include <glm/vec3.hpp>
+
+#include "render/scene.h"
+
+namespace countershade {
+
+struct SurfacePoint;
+
+// What the shader knows at one shading point, for the viewed side of the surface.
+struct ShadingInputs {
+  const SurfacePoint& point;
+  const Material& material;
+  glm::dvec3 normal;  // shading normal, on the side the viewer sees
+  glm::dvec3 wo;      // unit direction towards the viewer
+  glm::dvec3 albedo;  // diffuse reflectance at the point (texture or material)
+};
+
+// The material's BRDF for light from `wi` (diffuse plus specular), and its specular part.
+glm::dvec3 brdf(const ShadingInputs& s, const glm::dvec3& wi);
+glm::dvec3 specular_brdf(const ShadingInputs& s, const glm::dvec3& wi);
+
+// The plain reflection of one light sample: BRDF(wi, wo)·incident·max(0, n·wi), where
+// `incident` is the sample's radiance already divided by its probability density.
+glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
+// The diffuse and specular parts of that reflection separately (they add up to reflect_plain).
+glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
+glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
+
+class ShadingHook {
+ public:
+  virtual ~ShadingHook() = default;
+  // The radiance reflected towards s.wo from one visible light sample from direction `wi`.
+  virtual glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const = 0;
+};
+
+class TextureHook {
+ public:
+  virtual ~TextureHook() = default;
+  // The texture object `object` samples instead of its material's own (nullptr: keep it).
+  virtual const Texture* texture(unsigned object, const Material& material) const = 0;
+};
+
+}  // namespace countershade
