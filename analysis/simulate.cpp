@@ -49,7 +49,7 @@ std::vector<Response> simulate_responses(const SimulationDesign& d) {
             r.question = Question(q);
             r.lambda = std::round(lambda / d.lambda_step) * d.lambda_step;
             r.lambda_step = d.lambda_step;
-            r.method = "usm3d";
+            r.method = d.method;
             r.source = "simulated";
             out.push_back(r);
           }

@@ -26,6 +26,7 @@ struct SimulationDesign {
   double high_jnd = 4.0;           // λ_High in JND at the smallest σ
   double high_sigma_slope = -0.1;  // change of ln λ_High per σ step
   uint64_t seed = 1;
+  std::string method = "simulated";  // the method column: one analysis block
 };
 
 // One response per subject × scene × σ × question × repetition, in a reproducible order.

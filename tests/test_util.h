@@ -70,9 +70,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs the countershade binary with `arguments` (already shell-quoted).
-inline CommandResult run_cli(const std::string& arguments) {
-  std::string command = std::string(COUNTERSHADE_BINARY) + " " + arguments + " 2>&1";
+// Runs `program` with `arguments` (already shell-quoted).
+inline CommandResult run_program(const std::string& program, const std::string& arguments) {
+  std::string command = program + " " + arguments + " 2>&1";
   CommandResult result;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return result;
@@ -83,6 +83,9 @@ inline CommandResult run_cli(const std::string& arguments) {
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
+
+// Runs the countershade binary with `arguments` (already shell-quoted).
+inline CommandResult run_cli(const std::string& arguments) { return run_program(COUNTERSHADE_BINARY, arguments); }
 
 // The message of the InputError that `f` throws, or "(no error)".
 inline std::string input_error_of(const std::function<void()>& f) {

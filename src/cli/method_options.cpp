@@ -11,14 +11,14 @@
 namespace countershade::cli {
 
 void add_method_options(CLI::App* cmd, MethodArgs& args, const std::string& method_help) {
-  cmd->add_option("--method", args.method, method_help)->capture_default_str();
+  cmd->add_option("--method", args.method, method_help + " (default: the unenhanced rendering)");
   cmd->add_option("--lambda", args.lambda, "Enhancement strength λ (0 = unenhanced)")->capture_default_str();
   cmd->allow_extras();  // the method's own parameters
 }
 
 ResolvedMethod resolve_method(const CLI::App* cmd, const MethodArgs& args) {
   ResolvedMethod r;
-  r.method = &method_named(args.method, "--method");
+  r.method = args.method.empty() ? &unenhanced_method() : &method_named(args.method, "--method");
   if (!std::isfinite(args.lambda)) throw InputError("--lambda: must be a finite number");
   ParameterBag bag = ParameterBag::from_arguments(cmd->remaining());
   r.parameters = r.method->parse(bag);

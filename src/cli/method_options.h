@@ -13,7 +13,7 @@
 namespace countershade::cli {
 
 struct MethodArgs {
-  std::string method = "none";
+  std::string method;  // empty: the unenhanced rendering
   double lambda = 1.0;
 };
 

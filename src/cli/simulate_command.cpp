@@ -25,6 +25,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--weak-fraction", d->weak_fraction, "Share of observers preferring weak enhancement")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--seed", *seed, "Random seed")->capture_default_str();
+  cmd->add_option("--method", d->method, "The method column (one analysis block)")->capture_default_str();
   cmd->callback([=] {
     d->seed = uint64_t(*seed);
     auto responses = analysis::simulate_responses(*d);

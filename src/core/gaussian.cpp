@@ -8,6 +8,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/parallel.h"
+
 namespace countershade {
 namespace {
 
@@ -198,7 +200,7 @@ void check(int width, int height, double sigma) {
 
 void gaussian_blur_exact(const float* in, float* out, int width, int height, double sigma, int threads) {
   check(width, height, sigma);
-  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  tbb::task_arena arena(worker_count(threads));
   std::vector<double> kernel = gaussian_kernel(sigma);
   std::vector<float> a(size_t(width) * height), b(a.size());
   fir_rows(in, a.data(), width, height, kernel, arena);
@@ -210,7 +212,7 @@ void gaussian_blur_exact(const float* in, float* out, int width, int height, dou
 void gaussian_blur(const float* in, float* out, int width, int height, double sigma, int threads) {
   check(width, height, sigma);
   if (sigma < kRecursiveMinSigma) return gaussian_blur_exact(in, out, width, height, sigma, threads);
-  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  tbb::task_arena arena(worker_count(threads));
   Deriche filter(sigma);
   if (in == out) {  // the vertical pass reads rows it has already written otherwise
     std::vector<float> copy(in, in + size_t(width) * height);

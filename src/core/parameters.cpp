@@ -217,14 +217,14 @@ glm::dvec3 ParameterBag::vec3(const std::string& key, const glm::dvec3& fallback
 std::string ParameterBag::known_list() const {
   std::string list;
   for (const auto& k : known_) list += (list.empty() ? "" : ", ") + (command_line_ ? "--" + kebab_case(k) : k);
-  return list.empty() ? "none" : list;
+  return list.empty() ? "it takes no parameters" : list;
 }
 
 void ParameterBag::finish(const std::string& owner) const {
   for (const auto& [key, entry] : entries_)
     if (!known_.count(key))
       throw_input_error(entry.where, owner + " has no parameter '" + (command_line_ ? kebab_case(key) : key) +
-                                         "' (its parameters: " + known_list() + ")");
+                                         "' (" + (known_.empty() ? known_list() : "its parameters: " + known_list()) + ")");
 }
 
 nlohmann::ordered_json ParameterBag::to_json() const {

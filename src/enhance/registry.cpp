@@ -61,6 +61,12 @@ std::vector<std::string> method_names() {
   return names;
 }
 
+const EnhancementMethod& unenhanced_method() {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  return *r.methods.front();  // the first built-in
+}
+
 const EnhancementMethod& method_named(const std::string& name, const std::string& where) {
   if (const EnhancementMethod* m = find_method(name)) return *m;
   std::string list;

@@ -115,7 +115,10 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
   }
 }
 
-TriangleMesh load_mesh(const std::filesystem::path& path) {
+namespace {
+
+// The file exists, is not empty and has a format we read; returns the lower-case extension.
+std::string check_mesh_file(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw_input_error(path.string(), "no such mesh file");
@@ -123,16 +126,11 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
   std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
     throw_input_error(path.string(), "unsupported mesh format '" + ext + "' (use OBJ, PLY, OFF or STL)");
-  size_t expected_triangles = ext == ".obj" ? check_obj(path) : 0;
+  return ext;
+}
 
-  OMesh om;
-  om.request_vertex_colors();
-  om.request_vertex_texcoords2D();
-  om.request_halfedge_texcoords2D();
-  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor |
-                                  OpenMesh::IO::Options::VertexTexCoord |
-                                  OpenMesh::IO::Options::FaceTexCoord;
-
+// Reads through OpenMesh and returns what it wrote to its error stream.
+std::string read_open_mesh(const std::filesystem::path& path, OMesh& om, OpenMesh::IO::Options& options) {
   // OpenMesh reports dropped faces (complex edges, non-manifold vertices) only on its error
   // stream; capture it so they become an error rather than a silently incomplete mesh. The
   // capture is connected once: OpenMesh allocates on every connect() and never frees on
@@ -145,38 +143,29 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
     omlog().disable();
     return log;
   }();
-  bool ok;
-  std::string log;
-  {
-    std::lock_guard<std::mutex> lock(omerr_mutex);
-    reader_log->str("");
-    reader_log->clear();
-    ok = OpenMesh::IO::read_mesh(om, path.string(), options);
-    log = reader_log->str();
-  }
-  if (!ok) throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
-  if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
-      log.find("failed") != std::string::npos ||
-      (expected_triangles > 0 && om.n_faces() < expected_triangles)) {
-    throw_input_error(path.string(),
-                      "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
-  }
+  std::lock_guard<std::mutex> lock(omerr_mutex);
+  reader_log->str("");
+  reader_log->clear();
+  if (!OpenMesh::IO::read_mesh(om, path.string(), options))
+    throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
+  return reader_log->str();
+}
 
+// Positions, colours, and per-corner UVs (from the face's halfedges, else the vertices).
+TriangleMesh to_triangle_mesh(OMesh& om, const OpenMesh::IO::Options& options) {
   TriangleMesh mesh;
   mesh.positions.reserve(om.n_vertices());
   for (auto vh : om.vertices()) {
     auto p = om.point(vh);
     mesh.positions.emplace_back(p[0], p[1], p[2]);
   }
-  bool has_colors = options.check(OpenMesh::IO::Options::VertexColor);
-  if (has_colors) {
+  if (options.check(OpenMesh::IO::Options::VertexColor))
     for (auto vh : om.vertices()) {
       auto c = om.color(vh);
       mesh.vertex_colors.emplace_back(c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f);
     }
-  }
-  bool face_uvs = options.check(OpenMesh::IO::Options::FaceTexCoord);
-  bool vertex_uvs = options.check(OpenMesh::IO::Options::VertexTexCoord);
+  const bool face_uvs = options.check(OpenMesh::IO::Options::FaceTexCoord);
+  const bool vertex_uvs = options.check(OpenMesh::IO::Options::VertexTexCoord);
   mesh.triangles.reserve(om.n_faces());
   for (auto fh : om.faces()) {
     glm::uvec3 tri;
@@ -184,17 +173,33 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
     for (auto heh : om.fh_range(fh)) {
       auto vh = om.to_vertex_handle(heh);
       tri[c] = unsigned(vh.idx());
-      if (face_uvs) {
-        auto uv = om.texcoord2D(heh);
-        mesh.corner_uvs.emplace_back(uv[0], uv[1]);
-      } else if (vertex_uvs) {
-        auto uv = om.texcoord2D(vh);
+      if (face_uvs || vertex_uvs) {
+        auto uv = face_uvs ? om.texcoord2D(heh) : om.texcoord2D(vh);
         mesh.corner_uvs.emplace_back(uv[0], uv[1]);
       }
       if (++c == 3) break;
     }
     mesh.triangles.push_back(tri);
   }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::filesystem::path& path) {
+  const std::string ext = check_mesh_file(path);
+  const size_t expected_triangles = ext == ".obj" ? check_obj(path) : 0;
+  OMesh om;
+  om.request_vertex_colors();
+  om.request_vertex_texcoords2D();
+  om.request_halfedge_texcoords2D();
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor | OpenMesh::IO::Options::VertexTexCoord |
+                                  OpenMesh::IO::Options::FaceTexCoord;
+  const std::string log = read_open_mesh(path, om, options);
+  if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
+      log.find("failed") != std::string::npos || (expected_triangles > 0 && om.n_faces() < expected_triangles))
+    throw_input_error(path.string(), "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
+  TriangleMesh mesh = to_triangle_mesh(om, options);
   validate_mesh(mesh, path.string());
   return mesh;
 }

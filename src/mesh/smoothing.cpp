@@ -8,6 +8,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/parallel.h"
+
 namespace countershade {
 
 int iterations_for_sigma(double sigma, double mean_edge_length) {
@@ -24,7 +26,7 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
   std::vector<double> next(values);
   const uint32_t* offsets = adjacency.offsets.data();
   const uint32_t* neighbours = adjacency.neighbours.data();
-  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  tbb::task_arena arena(worker_count(threads));
   for (int step = 0; step < most; ++step) {
     const double* src = values.data();
     double* dst = next.data();

@@ -54,7 +54,7 @@ ExperimentMethod parse_method(const JsonObject& o) {
   ExperimentMethod m;
   m.method = &method_named(o.string("method"), o.file() + ": " + o.key_path("method"));
   const std::string key = width_key(*m.method, o);
-  m.sigma_key = key.empty() ? "none" : key;
+  m.sigma_key = key;
   m.sigmas = key.empty() ? std::vector<double>{0.0} : o.numbers(key);
   if (m.sigmas.empty()) o.fail(key, "the σ list is empty");
   if (std::set<double>(m.sigmas.begin(), m.sigmas.end()).size() != m.sigmas.size()) o.fail(key, "the σ list has duplicates");

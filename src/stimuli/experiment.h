@@ -28,7 +28,7 @@ struct ExperimentScene {
 struct ExperimentMethod {
   const EnhancementMethod* method = nullptr;
   std::string label;      // folder name: the method's label unless the experiment gives one
-  std::string sigma_key;  // the width key the σ list was given under ("none" without a width)
+  std::string sigma_key;  // the width key the σ list was given under ("" without a width)
   std::vector<double> sigmas;  // one condition each, recorded as "sigma" in the manifest
   std::vector<std::shared_ptr<const MethodParameters>> parameters;  // parsed, one per σ
   RenderRequest request;             // what it needs from rendering, over all its σ

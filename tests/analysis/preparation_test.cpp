@@ -24,10 +24,10 @@ TEST(Preparation, EachMethodIsItsOwnBlock) {
   rows.insert(rows.end(), other.begin(), other.end());
   auto blocks = analyze(rows, AnalysisOptions{});
   ASSERT_EQ(blocks.size(), 2u);
-  EXPECT_EQ(blocks[0].method, "usm2d");
-  EXPECT_EQ(blocks[0].json["n_subjects"], 5);
-  EXPECT_EQ(blocks[1].method, "usm3d");
-  EXPECT_EQ(blocks[1].json["n_subjects"], 6);
+  EXPECT_EQ(blocks[0].method, "simulated");
+  EXPECT_EQ(blocks[0].json["n_subjects"], 6);
+  EXPECT_EQ(blocks[1].method, "usm2d");
+  EXPECT_EQ(blocks[1].json["n_subjects"], 5);
 }
 
 TEST(Preparation, ALowOfZeroExcludesTheSubjectWithAReason) {

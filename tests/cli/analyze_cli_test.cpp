@@ -40,7 +40,7 @@ TEST(AnalyzeCli, SimulatedStudyRoundTripsWithMethodBlocks) {
   r = run_cli("analyze " + (dir / "sim.csv").string() + " -o " + (dir / "out").string() + " --bootstrap 0 --no-figures");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   auto results = nlohmann::json::parse(testing::read_file(dir / "out/results.json"));
-  EXPECT_EQ(results["method"], "usm3d");
+  EXPECT_EQ(results["method"], "simulated");
   EXPECT_EQ(results["n_subjects"], 12);
   EXPECT_FALSE(std::filesystem::exists(dir / "out/report.html"));
 }

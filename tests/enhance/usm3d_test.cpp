@@ -40,6 +40,12 @@ std::vector<uint8_t> bytes_of(const Image& display) {
 
 nlohmann::json with_sigma(double sigma) { return {{"sigma", sigma}}; }
 
+SmoothingWidth width_of(double sigma) {
+  SmoothingWidth w;
+  w.sigma = sigma;
+  return w;
+}
+
 const char* kTexturedCow = R"({
   "version": 1,
   "camera": {"eye": [1.4, 0.9, 1.6], "target": [0, 0.4, 0], "fov": 35, "width": 96, "height": 72},
@@ -137,12 +143,12 @@ TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
   testing::TempDir dir_a, dir_b;
   Rendered a = render_test_view(dir_a, wall_scene(-1.0)), b = render_test_view(dir_b, wall_scene(-0.4));
   const double sigma = 0.3, lambda = 2.0;
-  auto pa = usm3d_pixels(*a.view, {surface_contrast(a.scene.objects[0], a.view->render.vertex_radiance[0], a.scene.display, SmoothingWidth{sigma}),
-                                   surface_contrast(a.scene.objects[1], a.view->render.vertex_radiance[1], a.scene.display, SmoothingWidth{sigma}),
-                                   surface_contrast(a.scene.objects[2], a.view->render.vertex_radiance[2], a.scene.display, SmoothingWidth{sigma})});
-  auto pb = usm3d_pixels(*b.view, {surface_contrast(b.scene.objects[0], b.view->render.vertex_radiance[0], b.scene.display, SmoothingWidth{sigma}),
-                                   surface_contrast(b.scene.objects[1], b.view->render.vertex_radiance[1], b.scene.display, SmoothingWidth{sigma}),
-                                   surface_contrast(b.scene.objects[2], b.view->render.vertex_radiance[2], b.scene.display, SmoothingWidth{sigma})});
+  auto pa = usm3d_pixels(*a.view, {surface_contrast(a.scene.objects[0], a.view->render.vertex_radiance[0], a.scene.display, width_of(sigma)),
+                                   surface_contrast(a.scene.objects[1], a.view->render.vertex_radiance[1], a.scene.display, width_of(sigma)),
+                                   surface_contrast(a.scene.objects[2], a.view->render.vertex_radiance[2], a.scene.display, width_of(sigma))});
+  auto pb = usm3d_pixels(*b.view, {surface_contrast(b.scene.objects[0], b.view->render.vertex_radiance[0], b.scene.display, width_of(sigma)),
+                                   surface_contrast(b.scene.objects[1], b.view->render.vertex_radiance[1], b.scene.display, width_of(sigma)),
+                                   surface_contrast(b.scene.objects[2], b.view->render.vertex_radiance[2], b.scene.display, width_of(sigma))});
   Composed ea = prepare_method("usm3d", a.view, with_sigma(sigma))->compose(lambda);
   Composed eb = prepare_method("usm3d", b.view, with_sigma(sigma))->compose(lambda);
   const GBuffer& ga = a.view->render.gbuffer;
@@ -297,8 +303,8 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
   testing::TempDir d1, d2;
   Rendered bright = render_test_view(d1, scene(0.95)), dark = render_test_view(d2, scene(0.05));
   for (double sigma : {0.2, 1.0}) {
-    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertex_radiance[0], bright.scene.display, SmoothingWidth{sigma});
-    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertex_radiance[0], dark.scene.display, SmoothingWidth{sigma});
+    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertex_radiance[0], bright.scene.display, width_of(sigma));
+    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertex_radiance[0], dark.scene.display, width_of(sigma));
     EXPECT_EQ(sa.smooth_lightness, sb.smooth_lightness);
     Composed ea = prepare_method("usm3d", bright.view, with_sigma(sigma))->compose(2.0);
     Composed eb = prepare_method("usm3d", dark.view, with_sigma(sigma))->compose(2.0);
@@ -320,14 +326,14 @@ TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   std::string negative = base;
   negative.replace(negative.find("\"fit\": true"), 11, "\"fit\": true, \"importance\": -1");
   Rendered minus = render_test_view(d2, negative);
-  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display, SmoothingWidth{0.1});
+  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display, width_of(0.1));
   for (double g : sc.gain_factor) {
     EXPECT_GE(g, 1.0);
     EXPECT_LE(g, std::sqrt(1.25));  // Var of values in [0,1] is at most 1/4
   }
-  auto p = usm3d_pixels(*plus.view, {surface_contrast(plus.scene.objects[0], plus.view->render.vertex_radiance[0], plus.scene.display, SmoothingWidth{0.1}), sc});
-  auto m = usm3d_pixels(*minus.view, {surface_contrast(minus.scene.objects[0], minus.view->render.vertex_radiance[0], minus.scene.display, SmoothingWidth{0.1}),
-                                      surface_contrast(minus.scene.objects[1], minus.view->render.vertex_radiance[1], minus.scene.display, SmoothingWidth{0.1})});
+  auto p = usm3d_pixels(*plus.view, {surface_contrast(plus.scene.objects[0], plus.view->render.vertex_radiance[0], plus.scene.display, width_of(0.1)), sc});
+  auto m = usm3d_pixels(*minus.view, {surface_contrast(minus.scene.objects[0], minus.view->render.vertex_radiance[0], minus.scene.display, width_of(0.1)),
+                                      surface_contrast(minus.scene.objects[1], minus.view->render.vertex_radiance[1], minus.scene.display, width_of(0.1))});
   int cow_pixels = 0;
   for (size_t i = 0; i < p.gain_factor.size(); ++i)
     if (plus.view->render.gbuffer.object[i] == 1) {

@@ -1,0 +1,55 @@
+// One further λ of every lightness method at 1920×1080: the lightness-only composition alone,
+// after the once-per-σ preparation.
+//   build/bin/countershade_bench --benchmark_filter=ComposeLightness
+
+#include <benchmark/benchmark.h>
+
+#include "enhance/method.h"
+
+namespace countershade {
+namespace {
+
+constexpr int kWidth = 1920, kHeight = 1080;
+
+// The Cornsweet cube at 1920×1080, one sample per pixel (the composition does not care).
+std::shared_ptr<const View> rendered_view() {
+  static std::shared_ptr<const View> view = [] {
+    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/cornsweet-cube.json"));
+    scene->camera.width = kWidth;
+    scene->camera.height = kHeight;
+    scene->settings.spp = 1;
+    RenderRequest request;
+    request.vertex_radiance = true;
+    return render_view(scene, request, {});
+  }();
+  return view;
+}
+
+struct Case {
+  const char* method;
+  nlohmann::json parameters;
+};
+
+const Case kCases[] = {
+    {"usm3d", {{"sigma_fraction", 0.05}}},
+    {"usm2d", {{"sigma_percent", 1.0}}},
+    {"cornsweet", {{"sigma_px", 16}}},
+    {"depth-usm", {{"operator", "darken"}, {"space", "lab"}, {"kernel_percent", 5}}},
+    {"depth-usm", {{"operator", "contrast"}, {"space", "lab"}, {"kernel_percent", 5}}},
+};
+
+void BM_ComposeLightness(benchmark::State& state) {
+  const Case& c = kCases[state.range(0)];
+  auto prepared = prepare_method(c.method, rendered_view(), c.parameters);
+  double lambda = 0.5;
+  for (auto _ : state) {
+    Composed out = prepared->compose(lambda);
+    benchmark::DoNotOptimize(out.display.pixels.data());
+    lambda += 0.01;
+  }
+  state.SetLabel(std::string(c.method) + " " + c.parameters.dump());
+}
+BENCHMARK(BM_ComposeLightness)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace countershade

@@ -1,0 +1,113 @@
+// The rendering hooks: a shading hook changes how light is reflected but never what is in
+// shadow; a texture hook replaces what a material samples; without hooks nothing changes.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "enhance/method.h"
+#include "render/hooks.h"
+#include "render/shading.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+// A lit floor with a box casting a hard shadow on it, seen from above.
+const char* kShadowScene = R"({
+  "version": 1,
+  "camera": {"eye": [0, 6, 0.01], "target": [0, 0, 0], "projection": "orthographic", "height_world": 4,
+             "width": 64, "height": 64},
+  "render": {"spp": 1},
+  "objects": [{"name": "floor", "shape": {"type": "plane", "size": 4, "subdivisions": 8}, "material": {"albedo": 0.6}},
+              {"name": "box", "shape": {"type": "box", "size": [0.8, 1.5, 0.8]}, "transform": {"translate": [0, 0.75, 0]}}],
+  "lights": [{"type": "directional", "direction": [1, 0.6, 0], "irradiance": 2}]
+})";
+
+class PlainHook final : public ShadingHook {
+ public:
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
+    return reflect_plain(s, wi, incident);
+  }
+};
+
+// Shades as if every light came straight along the normal.
+class HeadOnHook final : public ShadingHook {
+ public:
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&, const glm::dvec3& incident) const override {
+    return reflect_plain(s, s.normal, incident);
+  }
+};
+
+class ConstantTexture final : public TextureHook {
+ public:
+  ConstantTexture() {
+    texture_.width = texture_.height = 1;
+    texture_.texels = {glm::vec3(0.25f, 0.5f, 0.75f)};
+  }
+  const Texture* texture(unsigned, const Material&) const override { return &texture_; }
+
+ private:
+  Texture texture_;
+};
+
+std::shared_ptr<const View> base_view(const testing::TempDir& dir, const std::string& json) {
+  return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "s.json", json))), {}, {});
+}
+
+TEST(Hooks, APlainShadingHookRendersThePlainImage) {
+  testing::TempDir dir;
+  auto view = base_view(dir, kShadowScene);
+  RenderRequest request;
+  request.shading_hook = std::make_shared<PlainHook>();
+  auto hooked = make_context(view).render_again(request);
+  const auto& a = view->render.radiance.pixels;
+  const auto& b = hooked->render.radiance.pixels;
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) ASSERT_NEAR(a[i], b[i], 1e-6 * (1.0 + a[i])) << i;
+}
+
+TEST(Hooks, AShadingHookChangesShadingButNotShadows) {
+  testing::TempDir dir;
+  auto view = base_view(dir, kShadowScene);
+  RenderRequest request;
+  request.shading_hook = std::make_shared<HeadOnHook>();
+  auto hooked = make_context(view).render_again(request);
+  const GBuffer& g = view->render.gbuffer;
+  int shadow = 0, lit = 0;
+  const double head_on = 0.6 / M_PI * 2.0;  // albedo/π · irradiance · cos 0
+  for (size_t i = 0; i < g.object.size(); ++i) {
+    if (g.object[i] != 0) continue;  // the floor only
+    const float before = view->render.radiance.pixels[3 * i], after = hooked->render.radiance.pixels[3 * i];
+    if (before == 0.0f) {  // in the box's shadow: stays dark
+      EXPECT_EQ(after, 0.0f) << i;
+      ++shadow;
+    } else {  // lit: now as if lit head-on, brighter than the grazing light
+      EXPECT_NEAR(after, head_on, 1e-5) << i;
+      EXPECT_GT(after, before);
+      ++lit;
+    }
+  }
+  EXPECT_GT(shadow, 50);
+  EXPECT_GT(lit, 500);
+}
+
+TEST(Hooks, ATextureHookReplacesWhatTheMaterialSamples) {
+  testing::TempDir dir;
+  std::string scene = kShadowScene;
+  auto view = base_view(dir, scene);
+  RenderRequest request;
+  request.texture_hook = std::make_shared<ConstantTexture>();
+  auto hooked = make_context(view).render_again(request);
+  const GBuffer& g = view->render.gbuffer;
+  for (size_t i = 0; i < g.object.size(); ++i) {
+    if (g.object[i] != 0 || view->render.radiance.pixels[3 * i] == 0.0f) continue;
+    // Albedo 0.6 before; (0.25, 0.5, 0.75) after: each channel scales by its ratio.
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(hooked->render.radiance.pixels[3 * i + c], view->render.radiance.pixels[3 * i + c] * (0.25 + 0.25 * c) / 0.6,
+                  1e-5);
+  }
+}
+
+}  // namespace
+}  // namespace countershade
