@@ -2,6 +2,10 @@
 // CIELAB and sRGB conversions (D65 white, 2° observer, sRGB primaries), in double precision.
 // The constants follow scikit-image, which produced the project's reference conversions.
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
 #include <glm/vec3.hpp>
 
 namespace countershade {
@@ -14,17 +18,96 @@ struct Lab {
 double srgb_decode(double code);
 double srgb_encode(double linear);
 
-glm::dvec3 linear_rgb_to_xyz(const glm::dvec3& rgb);
-glm::dvec3 xyz_to_linear_rgb(const glm::dvec3& xyz);
+namespace color_constants {
+
+// D65 reference white (2° observer) and the sRGB -> XYZ matrix as used by scikit-image.
+inline constexpr double kWhite[3] = {0.95047, 1.0, 1.08883};
+inline constexpr double kInverseWhite[3] = {1.0 / 0.95047, 1.0, 1.0 / 1.08883};
+inline constexpr double kRgbToXyz[3][3] = {{0.412453, 0.357580, 0.180423},
+                                           {0.212671, 0.715160, 0.072169},
+                                           {0.019334, 0.119193, 0.950227}};
+
+struct Matrix3 {
+  double m[3][3];
+};
+// The inverse by cofactors, evaluated at compile time (each operation correctly rounded, as at
+// run time).
+constexpr Matrix3 inverse(const double (&a)[3][3]) {
+  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                     a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                     a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  Matrix3 r{};
+  r.m[0][0] = (a[1][1] * a[2][2] - a[1][2] * a[2][1]) / det;
+  r.m[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det;
+  r.m[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det;
+  r.m[1][0] = (a[1][2] * a[2][0] - a[1][0] * a[2][2]) / det;
+  r.m[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
+  r.m[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
+  r.m[2][0] = (a[1][0] * a[2][1] - a[1][1] * a[2][0]) / det;
+  r.m[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det;
+  r.m[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
+  return r;
+}
+inline constexpr Matrix3 kXyzToRgb = inverse(kRgbToXyz);
+
+inline glm::dvec3 apply(const double (&m)[3][3], const glm::dvec3& v) {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+
+// Divisions by constants are multiplications by their reciprocals: the lightness composition runs
+// these for millions of pixels, and a division costs several multiplications.
+inline constexpr double k1_116 = 1.0 / 116.0, k1_500 = 1.0 / 500.0, k1_200 = 1.0 / 200.0, k1_7787 = 1.0 / 7.787;
+
+inline double lab_f_inverse(double t) { return t > 0.2068966 ? t * t * t : (t - 16.0 / 116.0) * k1_7787; }
+
+// The cube root for t in [2^-300, 2^300], within a few ulp, from +, −, ×, ÷ and the exponent bits
+// only, so that a vectorised loop can compute exactly the same values (see display_to_lab):
+// t = m·2^e with m in [1,2); e = 3q + r; cbrt(t) = cbrt(m·2^r)·2^q.
+inline double cube_root(double t) {
+  const uint64_t bits = std::bit_cast<uint64_t>(t);
+  const int64_t e = std::clamp(int64_t(bits >> 52) - 1023, int64_t(-300), int64_t(300));
+  const double m = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
+  const int64_t q = (((e + 300) * 21846) >> 16) - 100;  // floor(e / 3) for |e| ≤ 300
+  const int64_t r = e - 3 * q;
+  // cbrt on [1, 2) to 2e-7 (a least-squares polynomial), times cbrt(2^r); one Halley step then
+  // brings it to within a few ulp.
+  double y = 0.4476214805743782 +
+             m * (0.9480536967987485 +
+                  m * (-0.6625905808117523 +
+                       m * (0.3820491194094191 + m * (-0.14276857566904744 + m * (0.03044327453163275 + m * -0.0028082221513328876)))));
+  const double x = m * (r == 0 ? 1.0 : (r == 1 ? 2.0 : 4.0));
+  y *= r == 0 ? 1.0 : (r == 1 ? 1.2599210498948732 : 1.5874010519681994);
+  const double y3 = y * y * y;
+  y = y * (y3 + 2.0 * x) / (2.0 * y3 + x);
+  return y * std::bit_cast<double>(uint64_t(q + 1023) << 52);
+}
+
+}  // namespace color_constants
+
+// The conversions towards linear RGB are inline: the lightness composition runs them for
+// millions of pixels per stimulus.
+inline glm::dvec3 linear_rgb_to_xyz(const glm::dvec3& rgb) { return color_constants::apply(color_constants::kRgbToXyz, rgb); }
+inline glm::dvec3 xyz_to_linear_rgb(const glm::dvec3& xyz) { return color_constants::apply(color_constants::kXyzToRgb.m, xyz); }
 Lab xyz_to_lab(const glm::dvec3& xyz);
-glm::dvec3 lab_to_xyz(const Lab& lab);
+inline glm::dvec3 lab_to_xyz(const Lab& lab) {
+  using namespace color_constants;
+  const double fy = (lab.L + 16.0) * k1_116;
+  const double fx = lab.a * k1_500 + fy;
+  const double fz = fy - lab.b * k1_200;
+  return {lab_f_inverse(fx) * kWhite[0], lab_f_inverse(fy) * kWhite[1], lab_f_inverse(fz) * kWhite[2]};
+}
 
 Lab linear_rgb_to_lab(const glm::dvec3& rgb);
-glm::dvec3 lab_to_linear_rgb(const Lab& lab);
+inline glm::dvec3 lab_to_linear_rgb(const Lab& lab) { return xyz_to_linear_rgb(lab_to_xyz(lab)); }
 Lab srgb_to_lab(const glm::dvec3& srgb);
 
 // Lightness-only change: L' = clamp(L_new, 0, 100) and a, b scaled by k = L'/L (k = 1 when
 // L < 1e-6), so hue angle and saturation stay as they were.
-Lab with_lightness(const Lab& lab, double new_lightness);
+inline Lab with_lightness(const Lab& lab, double new_lightness) {
+  const double L = new_lightness < 0.0 ? 0.0 : (new_lightness > 100.0 ? 100.0 : new_lightness);
+  const double k = lab.L < 1e-6 ? 1.0 : L / lab.L;
+  return {L, k * lab.a, k * lab.b};
+}
 
 }  // namespace countershade

@@ -22,6 +22,7 @@ class DisplayEncoding {
   Kind kind() const { return kind_; }
   double gamma_exponent() const { return gamma_; }
   std::string describe() const;
+  bool operator==(const DisplayEncoding& other) const = default;
 
   // Linear relative luminance in [0,1] (clamped) -> code value in [0,1].
   double encode(double linear) const;

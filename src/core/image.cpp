@@ -1,5 +1,7 @@
 #include "core/image.h"
 
+#include <sys/mman.h>
+
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -12,6 +14,20 @@
 #include "core/error.h"
 
 namespace countershade {
+
+void* allocate_large(size_t bytes) {
+  constexpr size_t kHugePage = size_t(2) << 20;
+  if (bytes < 2 * kHugePage) {
+    void* p = std::malloc(bytes ? bytes : 1);
+    if (!p) throw std::bad_alloc();
+    return p;
+  }
+  const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* p = std::aligned_alloc(kHugePage, rounded);
+  if (!p) throw std::bad_alloc();
+  ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint; without huge pages the buffer works all the same
+  return p;
+}
 namespace {
 
 // PFM (portable float map, the Middlebury disparity format): "PF" (RGB) or "Pf" (grey), width,

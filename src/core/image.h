@@ -2,6 +2,7 @@
 // A plain float image and its file I/O through OpenImageIO.
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -27,6 +28,28 @@ struct DefaultInitAllocator : std::allocator<T> {
 };
 
 using PixelVector = std::vector<float, DefaultInitAllocator<float>>;
+
+// Memory for a buffer of `bytes`, in huge pages where it is large; release with std::free.
+void* allocate_large(size_t bytes);
+
+// The same for aggregates of numbers that have default member values (such as Lab): a buffer
+// that is about to be overwritten is left as it is, not filled with those values.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  using std::allocator<T>::allocator;
+  // Large buffers in transparent huge pages: a fresh 50 MB buffer then faults in 25 pages, not
+  // 12,000 (about 30 ms on the reference machine).
+  T* allocate(size_t n) { return static_cast<T*>(allocate_large(n * sizeof(T))); }
+  void deallocate(T* p, size_t) { std::free(p); }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) > 0) ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 // Row-major, interleaved channels, top row first.
 struct Image {

@@ -16,8 +16,9 @@
 namespace countershade {
 
 // CIELAB of every pixel of a display-encoded image (code values in [0,1]), decoded with the
-// display's own encoding.
-std::vector<Lab> display_to_lab(const Image& display, const DisplayEncoding& encoding);
+// display's own encoding. With `bits`, values that are exact codes of that depth are decoded
+// through a table (the same values as DisplayEncoding::decode, without a pow per channel).
+LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits = 0);
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
 
 // Δ of one pixel for strength λ.

@@ -49,7 +49,7 @@ struct ParameterDoc {
 };
 
 struct Composed {
-  Image display;              // code values in [0,1]
+  Image display;              // the stimulus: code values of the view's bit depth, as values in [0,1]
   size_t clipped_pixels = 0;  // pixels where L' left [0,100] or an RGB channel left [0,1]
 };
 

@@ -16,7 +16,7 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
   view->bits = bits;
   view->display = encode_for_display(render.radiance, scene->display.exposure_stops, view->encoding);
   quantize_in_place(view->display, bits);
-  view->lab = display_to_lab(view->display, view->encoding);
+  view->lab = display_to_lab(view->display, view->encoding, bits);
   view->depth = render.gbuffer.depth;
   view->render = std::move(render);
   view->scene = std::move(scene);
@@ -31,7 +31,7 @@ std::shared_ptr<const View> make_image_view(Image display, std::vector<float> de
   view->bits = bits;
   view->display = std::move(display);
   quantize_in_place(view->display, bits);
-  view->lab = display_to_lab(view->display, encoding);
+  view->lab = display_to_lab(view->display, encoding, bits);
   view->depth = std::move(depth);
   return view;
 }

@@ -16,6 +16,9 @@
 
 namespace countershade {
 
+// CIELAB per pixel; left unfilled until written (a 1920×1080 view holds 50 MB of it).
+using LabPixels = std::vector<Lab, UninitializedAllocator<Lab>>;
+
 struct View {
   std::shared_ptr<const Scene> scene;       // null for external images
   std::shared_ptr<const RayTracer> tracer;  // the scene's BVH, for renders with hooks
@@ -23,7 +26,7 @@ struct View {
   RenderResult render;        // G-buffer and vertex radiance (renders only)
   std::vector<float> depth;   // linear eye depth per pixel; 0, inf or NaN = background/invalid
   Image display;              // the unenhanced stimulus: code values in [0,1], quantised to `bits`
-  std::vector<Lab> lab;       // CIELAB of `display`, per pixel
+  LabPixels lab;              // CIELAB of `display`, per pixel
   int bits = 8;
 
   int width() const { return display.width; }

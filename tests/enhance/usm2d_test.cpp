@@ -10,13 +10,14 @@
 namespace countershade {
 namespace {
 
-// A grey step edge as an external image view.
+// A grey step edge as an external image view, at 16 bits so that the quantisation of the composed
+// stimulus (half a level: 0.002 L*) stays far below the tolerances.
 std::shared_ptr<const View> step_view(float dark, float light) {
   Image img(64, 16, 3);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 64; ++x)
       for (int c = 0; c < 3; ++c) img.at(x, y, c) = x < 32 ? dark : light;
-  return make_image_view(img, {}, DisplayEncoding::srgb(), 8);
+  return make_image_view(img, {}, DisplayEncoding::srgb(), 16);
 }
 
 nlohmann::json sigma_px(double s) { return {{"sigma_px", s}}; }

@@ -1,0 +1,60 @@
+#pragma once
+// Display code values from linear values, fast and exact: the same integer code as
+// quantize(float(encoding.encode(x)), bits), found through thresholds computed once per
+// encoding and bit depth instead of a pow() per channel. A code k is given to every linear value
+// at or above threshold k; a small table indexed by the value's binary exponent and top mantissa
+// bits holds at most one threshold per bucket, so a lookup is one load and one comparison.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/display.h"
+
+namespace countershade {
+
+class CodeQuantizer {
+ public:
+  CodeQuantizer(const DisplayEncoding& encoding, int bits);
+
+  // The code of a linear value in [0,1] (clamped; NaN is 0).
+  uint32_t code(double linear) const;
+  // The same code as a value in [0,1] (code / (2^bits − 1)).
+  float value(double linear) const { return float(code(linear)) / levels_; }
+  int bits() const { return bits_; }
+  bool uses_table() const { return mantissa_bits_ > 0; }
+
+  // The quantizer of an encoding and bit depth, built once per process (building one for 16
+  // bits takes a while) and shared.
+  static const CodeQuantizer& shared(const DisplayEncoding& encoding, int bits);
+
+  // The reference: what the quantizer must reproduce.
+  uint32_t exact_code(double linear) const;
+
+  // The table, for loops that look up many values at once (uses_table() only). For x in [0,1]:
+  //   b = clamp((bits(x) >> shift) − offset, 0, last),
+  //   code = bucket[b].below + (x ≥ bucket[b].threshold).
+  struct Bucket {
+    double threshold;  // the one threshold inside the bucket, or +inf
+    uint32_t below;    // the code at the bucket's start
+  };
+  struct Table {
+    int shift = 0;
+    int64_t offset = 0, last = 0;
+    const Bucket* bucket = nullptr;
+  };
+  Table table() const;
+
+ private:
+  uint32_t search(double linear) const;  // binary search over all thresholds (no table)
+  bool build_table(int mantissa_bits);
+
+  DisplayEncoding encoding_;
+  int bits_;
+  float levels_;
+  std::vector<double> thresholds_;  // [k]: the smallest linear value whose code is at least k (k ≥ 1)
+  uint32_t code_at_zero_ = 0, code_at_one_ = 0;
+  int mantissa_bits_ = 0;           // 0: no table, binary search
+  std::vector<Bucket> buckets_;  // then one bucket for x = 1
+};
+
+}  // namespace countershade

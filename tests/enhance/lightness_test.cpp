@@ -1,0 +1,81 @@
+// The lightness composition's fast paths against the scalar colour functions they must equal.
+
+#include "enhance/lightness.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace countershade {
+namespace {
+
+// The vectorised conversion (decoding table, cube root) gives the scalar function's values bit
+// for bit, for exact codes of 8 and 16 bits and for values that are not codes.
+TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
+  std::mt19937 random(3);
+  for (int bits : {8, 16}) {
+    const float levels = float((1u << bits) - 1u);
+    Image image(131, 7, 3);  // an odd size: the vector blocks and their remainders
+    std::uniform_int_distribution<int> code(0, int(levels));
+    for (float& v : image.pixels) v = float(code(random)) / levels;
+    image.pixels[5] = 0.123456f;  // not a code: decoded directly
+    for (const auto& encoding : {DisplayEncoding::srgb(), DisplayEncoding::gamma(2.2)}) {
+      LabPixels lab = display_to_lab(image, encoding, bits);
+      for (size_t i = 0; i < lab.size(); ++i) {
+        const Lab expected = display_pixel_to_lab(&image.pixels[3 * i], encoding);
+        ASSERT_EQ(lab[i].L, expected.L) << i;
+        ASSERT_EQ(lab[i].a, expected.a) << i;
+        ASSERT_EQ(lab[i].b, expected.b) << i;
+      }
+    }
+  }
+}
+
+// The cube root is within a few ulp of the correctly rounded one over its whole range.
+TEST(Lightness, CubeRootIsAccurate) {
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<double> exponent(-60.0, 30.0);
+  for (int i = 0; i < 200000; ++i) {
+    const double t = std::exp2(exponent(random));
+    ASSERT_NEAR(color_constants::cube_root(t), std::cbrt(t), 8 * std::abs(std::nextafter(std::cbrt(t), 0.0) - std::cbrt(t)))
+        << t;
+  }
+}
+
+// The vectorised composition gives the scalar colour functions' result, quantised exactly like a
+// written stimulus, for random colours and changes (clipping included).
+TEST(Lightness, ComposeEqualsTheScalarDefinition) {
+  std::mt19937 random(5);
+  Image display(97, 5, 3);
+  std::uniform_int_distribution<int> code(0, 255);
+  for (float& v : display.pixels) v = float(code(random)) / 255.0f;
+  auto view = make_image_view(display, {}, DisplayEncoding::srgb(), 8);
+  LightnessChange change;
+  std::normal_distribution<double> delta(0.0, 20.0);
+  for (size_t i = 0; i < view->lab.size(); ++i) change.amount.push_back(i % 7 == 0 ? 0.0 : delta(random));
+  for (double lambda : {0.0, 0.3, 1.0, 3.0}) {
+    Composed out = compose_lightness(*view, change, lambda);
+    size_t clipped = 0;
+    for (size_t i = 0; i < view->lab.size(); ++i) {
+      const double d = lambda * change.amount[i];
+      if (d == 0.0) {
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(out.display.pixels[3 * i + c], view->display.pixels[3 * i + c]);
+        continue;
+      }
+      const double target = view->lab[i].L + d;
+      const glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(view->lab[i], target));
+      bool clip = target < 0.0 || target > 100.0;
+      for (int c = 0; c < 3; ++c) {
+        clip |= rgb[c] < -1e-9 || rgb[c] > 1.0 + 1e-9;
+        const float expected = float(quantize(float(view->encoding.encode(std::clamp(rgb[c], 0.0, 1.0))), 8)) / 255.0f;
+        ASSERT_EQ(out.display.pixels[3 * i + c], expected) << i << " " << c << " λ " << lambda;
+      }
+      clipped += clip;
+    }
+    EXPECT_EQ(out.clipped_pixels, clipped) << lambda;
+  }
+}
+
+}  // namespace
+}  // namespace countershade
