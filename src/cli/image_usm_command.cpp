@@ -66,19 +66,11 @@ void check_image_method(const ResolvedMethod& method, const ImageUsmArgs& args) 
   if (method.request.depth && args.depth.empty()) throw InputError("--depth: " + name + " needs a depth or disparity map");
 }
 
-void check_output(const std::string& path) {
-  const fs::path output(path);
-  const std::string ext = lower_extension(output);
-  if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
-    throw_input_error(path, "output must be .png, .tif or .exr");
-  const fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (!fs::is_directory(out_dir)) throw_input_error(path, "output folder does not exist");
-}
 
 void run(const ImageUsmArgs& args, const CLI::App* cmd) {
   const ResolvedMethod method = resolve_method(cmd, args.method);
   check_image_method(method, args);
-  check_output(args.output);
+  check_output_file(args.output, {".png", ".tif", ".tiff", ".exr"}, ".png, .tif or .exr");
 
   int file_bits = 8;
   Image display = load_display_image(args.image, file_bits);

@@ -37,11 +37,8 @@ void run(const MeshUsmArgs& args) {
   if (args.sigma && !(*args.sigma > 0 && std::isfinite(*args.sigma)))
     throw InputError("--sigma: must be a positive, finite world-space length");
   if (args.iterations && *args.iterations < 1) throw InputError("--iterations: must be at least 1");
-  fs::path output(args.output);
-  std::string ext = lower_extension(output);
-  if (ext != ".ply") throw_input_error(args.output, "output must be a .ply file (it carries vertex colours)");
-  fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");
+  const fs::path output(args.output);
+  check_output_file(output, {".ply"}, "a .ply file (it carries vertex colours)");
 
   ColoredMeshFile mesh = ColoredMeshFile::read(args.input);
   std::vector<glm::dvec3> colors = mesh.colors();

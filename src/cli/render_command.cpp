@@ -60,12 +60,8 @@ void write_aux(const fs::path& dir, const GBuffer& g) {
 
 // The output's format, checked before any work.
 std::string check_output(const RenderArgs& args, bool enhanced) {
-  const fs::path output(args.output);
-  const std::string ext = lower_extension(output);
-  if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
-    throw_input_error(args.output, "output must be .png, .tif (display-encoded) or .exr (linear)");
-  const fs::path out_dir = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (!fs::is_directory(out_dir)) throw_input_error(args.output, "output folder does not exist");
+  const std::string ext = check_output_file(args.output, {".png", ".tif", ".tiff", ".exr"},
+                                            ".png, .tif (display-encoded) or .exr (linear)");
   if (ext == ".exr" && enhanced) throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
   return ext;
 }

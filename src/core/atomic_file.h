@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace countershade {
 
@@ -18,5 +19,11 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 
 // The extension of `path` in lower case, with its dot (".png"); file formats are chosen by it.
 std::string lower_extension(const std::filesystem::path& path);
+
+// Checks, before any work, that `path` can become an output file: its extension is one of
+// `extensions` (else InputError "<path>: output must be <formats>"), its folder exists and can
+// be written, and it is not a folder itself. Returns the extension.
+std::string check_output_file(const std::filesystem::path& path, const std::vector<std::string>& extensions,
+                              const std::string& formats);
 
 }  // namespace countershade
