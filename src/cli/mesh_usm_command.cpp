@@ -14,7 +14,7 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "enhance/usm3d.h"
-#include "mesh/adjacency.h"
+#include "mesh/surface_graph.h"
 #include "mesh/colored_mesh.h"
 
 namespace countershade::cli {
@@ -49,7 +49,9 @@ void run(const MeshUsmArgs& args) {
     lightness[v] = lab[v].L;
   }
   const SmoothingWidth width{args.sigma, args.iterations, !args.no_adapt};
-  SurfaceContrast sc = surface_contrast(adjacency_from_edges(mesh.vertex_count(), mesh.edges()), mesh.positions(),
+  // The 1-ring of the triangulated mesh, as rendering sees it, with vertices welded at seams.
+  const std::vector<glm::vec3> positions = mesh.positions();
+  SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), positions,
                                         lightness, {}, width);
 
   size_t clipped = 0;

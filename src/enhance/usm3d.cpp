@@ -19,33 +19,38 @@ double display_lightness(const glm::dvec3& radiance, const Display& display, int
   return display_pixel_to_lab(code, display.encoding).L;  // the same path as the pixels
 }
 
-SurfaceContrast surface_contrast(const VertexAdjacency& adjacency, const std::vector<glm::vec3>& positions,
+SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
                                  std::vector<double> lightness, const std::vector<float>& importance,
                                  const SmoothingWidth& width) {
-  const size_t n = lightness.size();
+  const VertexAdjacency& adjacency = surface.adjacency;
+  const size_t n = surface.point_count();
   SurfaceContrast out;
-  out.lightness = std::move(lightness);
-  out.components = connected_components(adjacency);
+  out.components = surface.components;
   if (width.iterations) {
     out.iterations.assign(out.components.count, *width.iterations);
   } else {
-    std::vector<double> edge = component_mean_edge_length(positions, adjacency, out.components);
-    for (double h : edge) out.iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
+    std::vector<glm::vec3> points(n);
+    for (size_t p = 0; p < n; ++p) points[p] = positions[surface.first_vertex[p]];
+    for (double h : component_mean_edge_length(points, adjacency, out.components))
+      out.iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
   }
-  out.smooth_lightness = out.lightness;
-  laplacian_smooth(adjacency, out.components.label, out.iterations, out.smooth_lightness);
+  const std::vector<double> point_lightness = surface.to_points(lightness);
+  std::vector<double> smooth = point_lightness;
+  laplacian_smooth(adjacency, out.components.label, out.iterations, smooth);
 
   std::vector<double> variance(n, 0.0);
   if (width.adapt) {
     std::vector<double> unit(n);
-    for (size_t v = 0; v < n; ++v) unit[v] = out.lightness[v] / 100.0;  // Var in L*/100 units
+    for (size_t p = 0; p < n; ++p) unit[p] = point_lightness[p] / 100.0;  // Var in L*/100 units
     variance = one_ring_variance(adjacency, unit);
   }
-  out.gain_factor.resize(n);
-  for (size_t v = 0; v < n; ++v) {
-    double w = importance.empty() ? 1.0 : double(importance[v]);
-    out.gain_factor[v] = w * std::sqrt(1.0 + variance[v]);
-  }
+  std::vector<double> weight(importance.begin(), importance.end());
+  if (!weight.empty()) weight = surface.to_points(weight);
+  std::vector<double> gain(n);
+  for (size_t p = 0; p < n; ++p) gain[p] = (weight.empty() ? 1.0 : weight[p]) * std::sqrt(1.0 + variance[p]);
+  out.lightness = std::move(lightness);
+  out.smooth_lightness = surface.to_vertices(smooth);
+  out.gain_factor = surface.to_vertices(gain);
   return out;
 }
 
@@ -53,7 +58,7 @@ SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::ve
                                  const Display& display, const SmoothingWidth& width, int bits) {
   std::vector<double> lightness(object.mesh.vertex_count());
   for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display, bits);
-  return surface_contrast(object.adjacency, object.mesh.positions, std::move(lightness), object.importance, width);
+  return surface_contrast(object.surface, object.mesh.positions, std::move(lightness), object.importance, width);
 }
 
 Usm3dPixels usm3d_pixels(const View& view, const std::vector<SurfaceContrast>& objects) {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "enhance/method.h"
-#include "mesh/adjacency.h"
+#include "mesh/surface_graph.h"
 
 namespace countershade {
 
@@ -27,16 +27,17 @@ struct SurfaceContrast {
   std::vector<double> smooth_lightness;  // L*_σ
   std::vector<double> gain_factor;       // w·√(1+Var) (or w with adaptation off)
   std::vector<int> iterations;           // per connected component
-  Components components;
+  Components components;                 // of the surface's points
 };
 
 // Lightness of a linear radiance under the display's exposure, encoding and `bits` quantisation
 // (exactly what the stimulus shows), in CIELAB L*.
 double display_lightness(const glm::dvec3& radiance, const Display& display, int bits);
 
-// Steps 3 and 5 of the method on any per-vertex lightness: smoothing per component, and the gain
-// factor w·√(1+Var) (importance may be empty: w = 1).
-SurfaceContrast surface_contrast(const VertexAdjacency& adjacency, const std::vector<glm::vec3>& positions,
+// Steps 3 and 5 of the method on any per-vertex lightness: smoothing over the welded surface per
+// connected component, and the gain factor w·√(1+Var) (importance may be empty: w = 1). Vertices
+// at one point of the surface (a seam) share its values.
+SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
                                  std::vector<double> lightness, const std::vector<float>& importance,
                                  const SmoothingWidth& width);
 

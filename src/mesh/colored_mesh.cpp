@@ -48,13 +48,12 @@ std::vector<glm::vec3> ColoredMeshFile::positions() const {
   return out;
 }
 
-std::vector<std::pair<uint32_t, uint32_t>> ColoredMeshFile::edges() const {
-  std::vector<std::pair<uint32_t, uint32_t>> out;
-  out.reserve(impl_->mesh.n_edges());
-  for (auto eh : impl_->mesh.edges()) {
-    auto heh = impl_->mesh.halfedge_handle(eh, 0);
-    out.emplace_back(uint32_t(impl_->mesh.from_vertex_handle(heh).idx()),
-                     uint32_t(impl_->mesh.to_vertex_handle(heh).idx()));
+std::vector<std::vector<uint32_t>> ColoredMeshFile::polygons() const {
+  std::vector<std::vector<uint32_t>> out;
+  out.reserve(impl_->mesh.n_faces());
+  for (auto fh : impl_->mesh.faces()) {
+    out.emplace_back();
+    for (auto vh : impl_->mesh.fv_range(fh)) out.back().push_back(uint32_t(vh.idx()));
   }
   return out;
 }

@@ -21,8 +21,8 @@ class ColoredMeshFile {
 
   size_t vertex_count() const;
   std::vector<glm::vec3> positions() const;
-  // Undirected polygon edges (the 1-ring of the mesh as stored, not of a triangulation).
-  std::vector<std::pair<uint32_t, uint32_t>> edges() const;
+  // The faces as stored: each a list of vertex indices.
+  std::vector<std::vector<uint32_t>> polygons() const;
   // Colours as stored, in [0,1] (8-bit per channel in the file).
   std::vector<glm::dvec3> colors() const;
   void set_colors(const std::vector<glm::dvec3>& colors);

@@ -323,7 +323,7 @@ class SceneLoader {
                                          : std::vector<float>(obj.mesh.vertex_count(), 1.0f);
     compute_corner_normals(obj.mesh, crease);
     if (o.has("transform")) transform_mesh(obj.mesh, transform(o.object("transform")));
-    obj.adjacency = adjacency_from_triangles(obj.mesh.vertex_count(), obj.mesh.triangles);
+    obj.surface = surface_graph(obj.mesh.positions, obj.mesh.triangles);
     o.finish();
     return obj;
   }
@@ -408,7 +408,7 @@ size_t refine_scene(Scene& scene, double max_edge_length) {
   size_t splits = 0;
   for (auto& object : scene.objects) {
     splits += refine_long_edges(object.mesh, max_edge_length, &object.importance);
-    object.adjacency = adjacency_from_triangles(object.mesh.vertex_count(), object.mesh.triangles);
+    object.surface = surface_graph(object.mesh.positions, object.mesh.triangles);
   }
   return splits;
 }

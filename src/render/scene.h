@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/display.h"
-#include "mesh/adjacency.h"
+#include "mesh/surface_graph.h"
 #include "mesh/triangle_mesh.h"
 #include "render/camera.h"
 #include "render/environment.h"
@@ -45,7 +45,7 @@ struct Object {
   TriangleMesh mesh;  // world space, corner normals filled
   Material material;
   std::vector<float> importance;  // per-vertex weight for 3D unsharp masking (default 1)
-  VertexAdjacency adjacency;      // 1-ring of every vertex, built once per mesh (load, refinement)
+  SurfaceGraph surface;           // welded points and their 1-ring, built once per mesh (load, refinement)
 };
 
 struct DirectionalLight {

@@ -1,0 +1,112 @@
+#include "mesh/surface_graph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/triangle_mesh.h"
+
+namespace countershade {
+namespace {
+
+double default_tolerance(const std::vector<glm::vec3>& positions) {
+  BoundingBox box;
+  for (const auto& p : positions) box.extend(p);
+  return box.valid() ? 1e-6 * double(box.diagonal()) : 0.0;
+}
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+// Groups of vertices within `tolerance` (transitively), numbered by their lowest vertex.
+std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions, double tolerance) {
+  const size_t n = positions.size();
+  std::vector<uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const double cell = tolerance > 0 ? 2.0 * tolerance : 1.0;
+  auto key_of = [&](const glm::ivec3& c) {
+    return (uint64_t(uint32_t(c.x)) * 73856093u) ^ (uint64_t(uint32_t(c.y)) * 19349663u) ^ (uint64_t(uint32_t(c.z)) * 83492791u);
+  };
+  std::unordered_multimap<uint64_t, uint32_t> grid;
+  grid.reserve(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    const glm::ivec3 c(glm::floor(glm::dvec3(positions[v]) / cell));
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto range = grid.equal_range(key_of(c + glm::ivec3(dx, dy, dz)));
+          for (auto it = range.first; it != range.second; ++it)
+            if (glm::length(glm::dvec3(positions[it->second]) - glm::dvec3(positions[v])) <= tolerance) {
+              const uint32_t a = find_root(parent, it->second), b = find_root(parent, v);
+              parent[std::max(a, b)] = std::min(a, b);
+            }
+        }
+    grid.emplace(key_of(c), v);
+  }
+  for (uint32_t v = 0; v < n; ++v) parent[v] = find_root(parent, v);
+  return parent;  // each vertex's lowest-index partner
+}
+
+}  // namespace
+
+SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
+                           const std::vector<std::pair<uint32_t, uint32_t>>& edges, double tolerance) {
+  SurfaceGraph g;
+  const std::vector<uint32_t> root = weld(positions, tolerance < 0 ? default_tolerance(positions) : tolerance);
+  g.point_of.assign(positions.size(), 0);
+  std::vector<uint32_t> point_of_root(positions.size(), UINT32_MAX);
+  for (uint32_t v = 0; v < positions.size(); ++v) {
+    if (point_of_root[root[v]] == UINT32_MAX) {
+      point_of_root[root[v]] = uint32_t(g.first_vertex.size());
+      g.first_vertex.push_back(v);
+    }
+    g.point_of[v] = point_of_root[root[v]];
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> point_edges;
+  point_edges.reserve(edges.size());
+  for (const auto& [a, b] : edges) point_edges.emplace_back(g.point_of[a], g.point_of[b]);
+  g.adjacency = adjacency_from_edges(g.point_count(), point_edges);
+  g.components = connected_components(g.adjacency);
+  return g;
+}
+
+SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
+                           double tolerance) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  edges.reserve(3 * triangles.size());
+  for (const auto& t : triangles)
+    for (int c = 0; c < 3; ++c) edges.emplace_back(t[c], t[(c + 1) % 3]);
+  return surface_graph(positions, edges, tolerance);
+}
+
+std::vector<double> SurfaceGraph::to_points(const std::vector<double>& per_vertex) const {
+  std::vector<double> sum(point_count(), 0.0), count(point_count(), 0.0);
+  for (size_t v = 0; v < per_vertex.size(); ++v) {
+    sum[point_of[v]] += per_vertex[v];
+    count[point_of[v]] += 1.0;
+  }
+  for (size_t p = 0; p < sum.size(); ++p) sum[p] = count[p] > 1 ? sum[p] / count[p] : sum[p];
+  return sum;
+}
+
+std::vector<double> SurfaceGraph::to_vertices(const std::vector<double>& per_point) const {
+  std::vector<double> out(point_of.size());
+  for (size_t v = 0; v < out.size(); ++v) out[v] = per_point[point_of[v]];
+  return out;
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(const std::vector<std::vector<uint32_t>>& polygons) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (const auto& p : polygons) {
+    for (size_t i = 0; i < p.size(); ++i) edges.emplace_back(p[i], p[(i + 1) % p.size()]);
+    for (size_t i = 2; i + 1 < p.size(); ++i) edges.emplace_back(p[0], p[i]);
+  }
+  return edges;
+}
+
+}  // namespace countershade
