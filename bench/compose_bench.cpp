@@ -11,20 +11,6 @@ namespace {
 
 constexpr int kWidth = 1920, kHeight = 1080;
 
-// The Cornsweet cube at 1920×1080, one sample per pixel (the composition does not care).
-std::shared_ptr<const View> rendered_view() {
-  static std::shared_ptr<const View> view = [] {
-    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/cornsweet-cube.json"));
-    scene->camera.width = kWidth;
-    scene->camera.height = kHeight;
-    scene->settings.spp = 1;
-    RenderRequest request;
-    request.vertex_radiance = true;
-    return render_view(scene, request, {});
-  }();
-  return view;
-}
-
 struct Case {
   const char* method;
   nlohmann::json parameters;
@@ -37,6 +23,23 @@ const Case kCases[] = {
     {"depth-usm", {{"operator", "darken"}, {"space", "lab"}, {"kernel_percent", 5}}},
     {"depth-usm", {{"operator", "contrast"}, {"space", "lab"}, {"kernel_percent", 5}}},
 };
+
+// The Cornsweet cube at 1920×1080, one sample per pixel (the composition does not care),
+// rendered for every case.
+std::shared_ptr<const View> rendered_view() {
+  static std::shared_ptr<const View> view = [] {
+    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/cornsweet-cube.json"));
+    scene->camera.width = kWidth;
+    scene->camera.height = kHeight;
+    scene->settings.spp = 1;
+    scene->settings.vertex_spp = 4;
+    ViewPlan plan;
+    plan.max_abs_lambda = 3;
+    for (const Case& c : kCases) plan.add(c.method, c.parameters);
+    return render_view(scene, plan, {});
+  }();
+  return view;
+}
 
 void BM_ComposeLightness(benchmark::State& state) {
   const Case& c = kCases[state.range(0)];

@@ -18,12 +18,10 @@ void BM_StimulusPerLambda(benchmark::State& state) {
   auto scene = std::make_shared<Scene>(
       load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/ritschel2008/scenes/chamfer.json"));
   auto t0 = std::chrono::steady_clock::now();
-  RenderRequest request;
-  request.vertex_radiance = true;
-  request.ring_samples = 3;
-  auto view = render_view(scene, request, {});
+  const nlohmann::json parameters = {{"sigma_fraction", 0.02}};
+  auto view = render_view(scene, plan_for("usm3d", parameters, 3.0), {});
   double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  auto prepared = prepare_method("usm3d", view, {{"sigma_fraction", 0.02}});
+  auto prepared = prepare_method("usm3d", view, parameters);
   auto dir = std::filesystem::temp_directory_path() / "countershade-bench-stimuli";
   std::filesystem::create_directories(dir);
   double lambda = 0.05, per_image = 0, compose = 0;

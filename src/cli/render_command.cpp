@@ -1,5 +1,6 @@
 // `countershade render`: one scene to one image, plus optional auxiliary buffers.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include "core/image.h"
 #include "core/progress.h"
 #include "enhance/registry.h"
+#include "enhance/stimulus_noise.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -35,27 +37,34 @@ struct RenderArgs {
   MethodArgs method;
   std::optional<int> width, height, spp, threads;
   std::optional<long long> seed;
-  std::optional<double> exposure;
+  std::optional<double> exposure, noise;
   int bits = 8;
   std::string aux;
 };
 
-// Writes the G-buffer as EXR files a researcher can open: depth, normal, object id.
-void write_aux(const fs::path& dir, const GBuffer& g) {
+// Writes the G-buffer and the sampling as EXR files a researcher can open: depth, normal, object
+// id, samples per pixel and the estimated L* noise of the unenhanced image per pixel.
+void write_aux(const fs::path& dir, const RenderResult& r) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw_input_error(dir.string(), "cannot create folder (" + ec.message() + ")");
+  const GBuffer& g = r.gbuffer;
   Image depth(g.width, g.height, 1), normal(g.width, g.height, 3), object(g.width, g.height, 1);
+  Image spp(g.width, g.height, 1), noise(g.width, g.height, 1);
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       size_t i = g.index(x, y);
       depth.at(x, y) = g.depth[i];
       for (int c = 0; c < 3; ++c) normal.at(x, y, c) = g.normal[i][c];
       object.at(x, y) = float(g.object[i]);
+      spp.at(x, y) = float(r.spp[i]);
+      noise.at(x, y) = r.noise[i];
     }
   write_image(dir / "depth.exr", depth);
   write_image(dir / "normal.exr", normal);
   write_image(dir / "object_id.exr", object);
+  write_image(dir / "spp.exr", spp);
+  write_image(dir / "noise.exr", noise);
 }
 
 // The output's format, checked before any work.
@@ -72,9 +81,34 @@ std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderReq
   if (args.width) scene->camera.width = *args.width;
   if (args.height) scene->camera.height = *args.height;
   if (args.spp) scene->settings.spp = *args.spp;
+  if (args.noise) {
+    if (scene->settings.sampling == SamplingMode::independent)
+      throw_input_error(args.scene, "render.sampler: the independent sampler takes a fixed spp, not --noise");
+    scene->settings.spp.reset();
+    scene->settings.noise.target = *args.noise;
+    scene->settings.noise.p99 = std::max(scene->settings.noise.p99, 4 * *args.noise);
+  }
   if (args.seed) scene->settings.seed = uint64_t(*args.seed);
   if (args.exposure) scene->display.exposure_stops = *args.exposure;
   return scene;
+}
+
+// "wrote out.png (512x384, spp 16/41.3/1024, noise 0.31 L* RMS, p99 0.92, 12.1 s, 3.2 M rays/s)".
+std::string render_summary(const std::string& output, const View& view, const NoiseSummary& noise, double seconds) {
+  const RenderResult& r = view.render;
+  const SampleCounts& spp = r.sampling.pixels;
+  char text[320];
+  std::snprintf(text, sizeof text, "wrote %s (%dx%d, spp %u/%.1f/%u min/mean/max, noise %.2f L* RMS, p99 %.2f%s, %s, %.2f M rays/s",
+                output.c_str(), view.width(), view.height(), spp.min, spp.mean, spp.max, noise.rms, noise.p99,
+                r.sampling.stopped_by.empty() ? "" : (", stopped by " + r.sampling.stopped_by).c_str(),
+                format_seconds(seconds).c_str(), double(r.rays.primary + r.rays.shadow) / seconds * 1e-6);
+  std::string out = text;
+  if (!r.vertices.front.empty()) {
+    std::snprintf(text, sizeof text, "; vertex signal %.1f samples per point, %s", r.vertices.samples.mean,
+                  format_seconds(r.vertices.seconds).c_str());
+    out += text;
+  }
+  return out + ")";
 }
 
 void run(const RenderArgs& args, const CLI::App* cmd) {
@@ -89,28 +123,28 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
   vo.bits = args.bits;
   vo.threads = args.threads.value_or(0);
   vo.progress = [&](double f) { progress.update(f); };
-  std::shared_ptr<const View> view = render_view(scene, method.request, vo);
-  if (!args.aux.empty()) write_aux(args.aux, view->render.gbuffer);
+  ViewPlan plan;
+  plan.uses.push_back({method.method, method.parameters, nlohmann::json::object()});
+  plan.max_abs_lambda = std::abs(args.method.lambda);
+  std::shared_ptr<const View> view = render_view(scene, plan, vo);
+  if (!args.aux.empty()) write_aux(args.aux, view->render);
 
   std::string details;
+  NoiseSummary noise = summarize_noise(view->render.noise);
   if (ext == ".exr") {
     write_image(args.output, view->render.radiance);
   } else {
-    auto prepared = method.method->prepare(make_context(view, vo.threads), *method.parameters);
+    auto prepared = method.method->prepare(make_use_context(view, 0, vo.threads), *method.parameters);
     Composed stimulus = prepared->compose(args.method.lambda);
     write_image(args.output, stimulus.display, {args.bits});
+    noise = summarize_noise(stimulus_noise(*view, prepared->noise(args.method.lambda), stimulus.display));
     if (!args.aux.empty()) write_auxiliary(args.aux, *prepared);
     if (enhanced)
       details = ", " + method.method->name() + " λ=" + format_number(args.method.lambda) + ", " +
                 std::to_string(stimulus.clipped_pixels) + " clipped pixels, " + prepared->parameters().dump();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const RayCounts& rays = view->render.rays;
-  char summary[256];
-  std::snprintf(summary, sizeof summary, "wrote %s (%dx%d, %d spp, %s, %.2f M rays/s)", args.output.c_str(),
-                scene->camera.width, scene->camera.height, scene->settings.spp, format_seconds(seconds).c_str(),
-                double(rays.primary + rays.shadow) / seconds * 1e-6);
-  progress.finish(summary + details);
+  progress.finish(render_summary(args.output, *view, noise, seconds) + details);
 }
 
 }  // namespace
@@ -124,14 +158,19 @@ void add_render_command(CLI::App& app) {
   add_method_options(cmd, args->method, "Enhancement method (`countershade methods` lists them)");
   cmd->add_option("--width", args->width, "Override the camera's width in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", args->height, "Override the camera's height in pixels")->check(CLI::Range(1, 16384));
-  cmd->add_option("--spp", args->spp, "Samples per pixel (stratified)")->check(CLI::Range(1, 65536));
+  auto* spp = cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")
+                  ->check(CLI::Range(1, 65536));
+  cmd->add_option("--noise", args->noise, "Sample to this L* noise RMS of the written image (the scene's budget otherwise)")
+      ->check(CLI::Range(0.01, 100.0))
+      ->excludes(spp);
   cmd->add_option("--seed", args->seed, "Random seed; the same seed gives byte-identical output")
       ->check(CLI::Range(0ll, 1ll << 53));
   cmd->add_option("--exposure", args->exposure, "Override the exposure in stops")->check(CLI::Range(-30.0, 30.0));
   cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth")->check(CLI::IsMember({8, 16}))->capture_default_str();
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->add_option("--aux", args->aux,
-                  "Also write depth.exr, normal.exr, object_id.exr and the method's intermediate images "
+                  "Also write depth.exr, normal.exr, object_id.exr, spp.exr, noise.exr (L* per pixel) and the "
+                  "method's intermediate images "
                   "(e.g. depth-usm's D, G*D and ΔD) to this folder");
   cmd->callback([args, cmd] { run(*args, cmd); });
   cmd->footer(method_parameters_help() +

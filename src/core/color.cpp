@@ -27,6 +27,8 @@ Lab xyz_to_lab(const glm::dvec3& xyz) {
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
 
+double cielab_lightness(double Y) { return 116.0 * lab_f(Y * color_constants::kInverseWhite[1]) - 16.0; }
+
 Lab linear_rgb_to_lab(const glm::dvec3& rgb) { return xyz_to_lab(linear_rgb_to_xyz(rgb)); }
 
 Lab srgb_to_lab(const glm::dvec3& srgb) {

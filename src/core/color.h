@@ -102,6 +102,18 @@ Lab linear_rgb_to_lab(const glm::dvec3& rgb);
 inline glm::dvec3 lab_to_linear_rgb(const Lab& lab) { return xyz_to_linear_rgb(lab_to_xyz(lab)); }
 Lab srgb_to_lab(const glm::dvec3& srgb);
 
+// CIELAB L* of a relative luminance Y (white = 1), as linear_rgb_to_lab computes it.
+double cielab_lightness(double Y);
+// The relative luminance Y whose CIELAB L* is `lightness` (the inverse of cielab_lightness).
+inline double luminance_of_lightness(double lightness) {
+  return color_constants::lab_f_inverse((lightness + 16.0) * color_constants::k1_116) * color_constants::kWhite[1];
+}
+// The luminance Y of linear sRGB (the second row of the sRGB -> XYZ matrix).
+inline double luminance_of(const glm::dvec3& rgb) {
+  const auto& m = color_constants::kRgbToXyz;
+  return m[1][0] * rgb.x + m[1][1] * rgb.y + m[1][2] * rgb.z;
+}
+
 // Lightness-only change: L' = clamp(L_new, 0, 100) and a, b scaled by k = L'/L (k = 1 when
 // L < 1e-6), so hue angle and saturation stay as they were.
 inline Lab with_lightness(const Lab& lab, double new_lightness) {

@@ -17,4 +17,9 @@ std::string format_value(double v) {
   return buffer;
 }
 
+double round_to(double v, int decimals) {
+  const double scale = std::pow(10.0, decimals);
+  return std::round(v * scale) / scale;
+}
+
 }  // namespace countershade

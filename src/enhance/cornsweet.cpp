@@ -4,13 +4,16 @@
 //   mode "image":   the edge is the image's vertical centre line, d and w in pixels (a flat 2D
 //                   stimulus when the view is a uniform field);
 //   mode "surface": the edge is a 3D line (edge_point, edge_direction), d is the distance of each
-//                   pixel's surface point from it and w is in world units; pixels whose normal
-//                   lies within 60° of bright_normal take +, the others −.
+//                   surface point from it and w is in world units; points whose normal lies
+//                   within 60° of bright_normal take +, the others −. The profile is averaged
+//                   over each pixel's samples, so silhouettes get no outline.
 
 #include <cmath>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "enhance/lightness.h"
 #include "render/shading.h"
@@ -37,21 +40,50 @@ std::vector<double> image_profile(int w, int h, double width) {
   return profile;
 }
 
-// The same across a 3D edge, from each pixel's hit point (0 for background).
-std::vector<double> surface_profile(const View& view, const CornsweetParameters& p) {
-  const GBuffer& g = view.render.gbuffer;
-  std::vector<double> profile(size_t(g.width) * g.height, 0.0);
-  const glm::dvec3 dir = glm::normalize(p.edge_direction), bright = glm::normalize(p.bright_normal);
-  for (size_t i = 0; i < profile.size(); ++i) {
-    if (g.object[i] < 0) continue;
-    const glm::dvec3 point = surface_point(*view.scene, unsigned(g.object[i]), unsigned(g.triangle[i]),
-                                           g.barycentrics[i].x, g.barycentrics[i].y).position;
-    const glm::dvec3 offset = point - p.edge_point;
-    const double d = glm::length(offset - glm::dot(offset, dir) * dir);
-    const double side = glm::dot(glm::dvec3(g.normal[i]), bright) > 0.5 ? 1.0 : -1.0;
-    profile[i] = side * std::exp(-d / p.width);
+// The signed profile side·exp(−d/w) across a 3D edge at a sample's surface point: d is the
+// point's distance from the edge line, the side is + where the normal facing the camera lies
+// within 60° of bright_normal.
+class SurfaceProfile final : public SampleField {
+ public:
+  explicit SurfaceProfile(const CornsweetParameters& p)
+      : point_(p.edge_point), direction_(glm::normalize(p.edge_direction)), bright_(glm::normalize(p.bright_normal)),
+        width_(p.width) {}
+  double value(const SampleHit& hit) const override {
+    const glm::dvec3 offset = hit.point.position - point_;
+    const double d = glm::length(offset - glm::dot(offset, direction_) * direction_);
+    const glm::dvec3 normal = hit.back ? -hit.point.shading_normal : hit.point.shading_normal;
+    return (glm::dot(normal, bright_) > 0.5 ? 1.0 : -1.0) * std::exp(-d / width_);
   }
-  return profile;
+
+ private:
+  glm::dvec3 point_, direction_, bright_;
+  double width_;
+};
+
+class SurfaceProfileStage final : public SurfaceStage {
+ public:
+  explicit SurfaceProfileStage(const CornsweetParameters& p) : field_(std::make_shared<SurfaceProfile>(p)) {}
+  SampleFields fields() const override { return {field_}; }
+
+ private:
+  std::shared_ptr<const SurfaceProfile> field_;
+};
+
+// The surface profile per pixel, coverage-correct: the pixel's change is what the surface
+// samples' change does to the pixel's luminance, to first order. With p̄ the profile averaged over
+// all samples (background 0), a ΔL* of λ·A on the surface changes the pixel's L* by
+// λ·A·p̄·(dY/dL* at the surface's L*) / (dY/dL* at the pixel's L*), and dY/dL* ∝ (L* + 16)².
+// A pixel wholly on the surface gets λ·A·p̄; background pixels get nothing.
+std::vector<double> surface_profile(const View& view, const std::vector<float>& profile) {
+  const RenderResult& r = view.render;
+  std::vector<double> amount(profile.size(), 0.0);
+  for (size_t i = 0; i < amount.size(); ++i) {
+    if (!(r.coverage[i] > 0)) continue;
+    const double surface = cielab_lightness(double(r.surface_luminance[i]) / double(r.coverage[i])) + 16.0;
+    const double pixel = cielab_lightness(double(r.luminance[i])) + 16.0;
+    amount[i] = double(profile[i]) * (surface * surface) / (pixel * pixel);
+  }
+  return amount;
 }
 
 class CornsweetMethod final : public EnhancementMethod {
@@ -99,6 +131,11 @@ class CornsweetMethod final : public EnhancementMethod {
     r.scene = parameters_as<CornsweetParameters>(parameters).surface;
     return r;
   }
+  std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext&,
+                                                    const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<CornsweetParameters>(parameters);
+    return p.surface ? std::make_shared<SurfaceProfileStage>(p) : nullptr;
+  }
   std::string label(const MethodParameters& parameters) const override {
     return name() + (parameters_as<CornsweetParameters>(parameters).surface ? "-surface" : "-image");
   }
@@ -108,8 +145,11 @@ class CornsweetMethod final : public EnhancementMethod {
     const auto& p = parameters_as<CornsweetParameters>(parameters);
     const View& view = *context.view;
     if (p.surface && !view.scene) throw InputError("cornsweet: the surface mode needs a rendered scene");
+    if (p.surface && context.fields.size() != 1)
+      throw std::logic_error("cornsweet: the view was not rendered for these parameters (render it for a plan with them)");
     LightnessChange change;
-    change.amount = p.surface ? surface_profile(view, p) : image_profile(view.width(), view.height(), p.width);
+    change.amount = p.surface ? surface_profile(view, *context.fields[0])
+                              : image_profile(view.width(), view.height(), p.width);
     change.factor = p.amplitude;
     nlohmann::json record = {{"mode", p.surface ? "surface" : "image"}, {"amplitude_per_lambda", p.amplitude},
                              {"width", p.width}};

@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
+#include "enhance/stimulus_noise.h"
 
 namespace countershade {
 
@@ -160,8 +161,9 @@ std::vector<float> contrast_enhanced(const View& view, const DepthUsmParameters&
 class DepthUsmRgb final : public PreparedEnhancement {
  public:
   DepthUsmRgb(std::shared_ptr<const View> view, const DepthUsmParameters& p, SpatialImportance si, nlohmann::json record,
-              std::vector<float> enhanced)
-      : view_(std::move(view)), p_(p), si_(std::move(si)), record_(std::move(record)), enhanced_(std::move(enhanced)) {}
+              std::vector<float> enhanced, const ChangeNoise* change_noise)
+      : view_(std::move(view)), p_(p), si_(std::move(si)), record_(std::move(record)), enhanced_(std::move(enhanced)),
+        change_noise_(change_noise) {}
 
   Composed compose(double lambda) const override {
     Composed out;
@@ -179,6 +181,7 @@ class DepthUsmRgb final : public PreparedEnhancement {
   std::vector<std::pair<std::string, Image>> auxiliary() const override {
     return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};
   }
+  NoiseModel noise(double lambda) const override { return lambda_noise(*view_, change_noise_, lambda); }
 
  private:
   // Writes I + a·min(ΔD, 0) + b·max(ΔD, 0), clipped to [0,1], into `result`; returns the clipped
@@ -222,7 +225,8 @@ class DepthUsmRgb final : public PreparedEnhancement {
   DepthUsmParameters p_;
   SpatialImportance si_;
   nlohmann::json record_;
-  std::vector<float> enhanced_;  // C(I), for the contrast operator
+  std::vector<float> enhanced_;
+  const ChangeNoise* change_noise_;  // C(I), for the contrast operator
 };
 
 // The same scalar term as a lightness-only change (space lab).
@@ -308,6 +312,12 @@ class DepthUsmMethod final : public EnhancementMethod {
     r.depth = true;
     return r;
   }
+  // The contrast operator blends towards a contrast-stretched image, which carries a pixel's own
+  // noise (modelled as c = L); the other operators add a change that depends on depth only.
+  std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters& parameters) const override {
+    if (parameters_as<DepthUsmParameters>(parameters).op != Operator::contrast) return nullptr;
+    return std::make_shared<LightnessTimes>(1.0);
+  }
   std::string label(const MethodParameters& parameters) const override {
     const auto& p = parameters_as<DepthUsmParameters>(parameters);
     return name() + "-" + p.op_name + (p.lab ? "-lab" : "");
@@ -324,12 +334,14 @@ class DepthUsmMethod final : public EnhancementMethod {
     nlohmann::json record = {{"operator", p.op_name}, {"sigma_px", sigma}, {"space", p.lab ? "lab" : "rgb"},
                              {"depth_mapping", p.mapping.zbuffer ? "zbuffer" : "linear"},
                              {"contrast", p.contrast_name}};
-    if (!p.lab) return std::make_unique<DepthUsmRgb>(context.view, p, std::move(si), std::move(record), std::move(enhanced));
+    if (!p.lab)
+      return std::make_unique<DepthUsmRgb>(context.view, p, std::move(si), std::move(record), std::move(enhanced),
+                                           context.change_noise);
     LightnessChange change = lab_change(view, p, si, enhanced);
     std::vector<std::pair<std::string, Image>> aux = {
         {"depth_normalized", si.depth}, {"depth_blurred", si.blurred}, {"spatial_importance", si.importance}};
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record), std::move(aux),
-                                               context.threads);
+                                               context.threads, plain_noise(context));
   }
 };
 

@@ -11,6 +11,7 @@
 
 #include "core/code_quantizer.h"
 #include "core/parallel.h"
+#include "enhance/stimulus_noise.h"
 
 namespace countershade {
 
@@ -268,6 +269,10 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
       4096);
   out.clipped_pixels = clipped;
   return out;
+}
+
+NoiseFunction plain_noise(const PrepareContext& context) {
+  return [view = context.view, change = context.change_noise](double lambda) { return lambda_noise(*view, change, lambda); };
 }
 
 }  // namespace countershade

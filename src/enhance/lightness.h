@@ -5,6 +5,7 @@
 // its Δ per pixel as a LightnessChange once per σ; composing a λ is then one pass.
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -45,17 +46,25 @@ struct LightnessChange {
 // values exactly, so λ = 0 reproduces the view bit for bit.
 Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0);
 
+// The sampling noise of the stimulus of strength λ (PreparedEnhancement::noise).
+using NoiseFunction = std::function<NoiseModel(double lambda)>;
+
+// The noise of L + λ·c from the render's estimate of the context's change (none: the view's).
+NoiseFunction plain_noise(const PrepareContext& context);
+
 // The prepared state of every lightness method: the view, its change, and what to record.
 class LightnessPrepared final : public PreparedEnhancement {
  public:
   LightnessPrepared(std::shared_ptr<const View> view, LightnessChange change, nlohmann::json parameters,
-                    std::vector<std::pair<std::string, Image>> auxiliary = {}, int threads = 0)
+                    std::vector<std::pair<std::string, Image>> auxiliary = {}, int threads = 0,
+                    NoiseFunction noise = {})
       : view_(std::move(view)), change_(std::move(change)), parameters_(std::move(parameters)),
-        auxiliary_(std::move(auxiliary)), threads_(threads) {}
+        auxiliary_(std::move(auxiliary)), threads_(threads), noise_(std::move(noise)) {}
 
   Composed compose(double lambda) const override { return compose_lightness(*view_, change_, lambda, threads_); }
   nlohmann::json parameters() const override { return parameters_; }
   std::vector<std::pair<std::string, Image>> auxiliary() const override { return auxiliary_; }
+  NoiseModel noise(double lambda) const override { return noise_ ? noise_(lambda) : NoiseModel{}; }
   const LightnessChange& change() const { return change_; }
 
  private:
@@ -64,6 +73,7 @@ class LightnessPrepared final : public PreparedEnhancement {
   nlohmann::json parameters_;
   std::vector<std::pair<std::string, Image>> auxiliary_;
   int threads_;
+  NoiseFunction noise_;
 };
 
 }  // namespace countershade

@@ -5,6 +5,15 @@
 
 namespace countershade {
 
+PrepareContext make_use_context(std::shared_ptr<const View> view, size_t use, int threads) {
+  PrepareContext context = make_context(std::move(view), threads);
+  context.stage = context.view->stages.at(use);
+  for (size_t f : context.view->stage_fields.at(use)) context.fields.push_back(&context.view->render.fields.at(f));
+  if (const int change = context.view->change_noise.at(use); change >= 0)
+    context.change_noise = &context.view->render.change_noise.at(size_t(change));
+  return context;
+}
+
 PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
   PrepareContext context;
   context.threads = threads;
@@ -24,11 +33,21 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
   return context;
 }
 
+MethodUse parse_method(const std::string& method, const nlohmann::json& parameters) {
+  MethodUse use;
+  use.method = &method_named(method, "method");
+  use.parameters = use.method->parse(ParameterBag::from_json(parameters, method, "parameters"));
+  use.parameters_json = parameters;
+  return use;
+}
+
 std::unique_ptr<PreparedEnhancement> prepare_method(const std::string& method, std::shared_ptr<const View> view,
                                                     const nlohmann::json& parameters, int threads) {
-  const EnhancementMethod& m = method_named(method, "method");
-  auto parsed = m.parse(ParameterBag::from_json(parameters, method, "parameters"));
-  return m.prepare(make_context(std::move(view), threads), *parsed);
+  const MethodUse use = parse_method(method, parameters);
+  for (size_t u = 0; u < view->uses.size(); ++u)
+    if (view->uses[u].method == use.method && view->uses[u].parameters_json == parameters)
+      return use.method->prepare(make_use_context(view, u, threads), *view->uses[u].parameters);
+  return use.method->prepare(make_context(view, threads), *use.parameters);  // no stage
 }
 
 }  // namespace countershade

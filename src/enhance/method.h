@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "core/parameters.h"
 #include "enhance/view.h"
 #include "render/render_request.h"
+#include "render/sample_field.h"
 
 namespace countershade {
 
@@ -53,6 +55,20 @@ struct Composed {
   size_t clipped_pixels = 0;  // pixels where L' left [0,100] or an RGB channel left [0,1]
 };
 
+// The sampling noise of a stimulus, per pixel: the standard deviation of its L* between renders
+// with other seeds, before quantisation. Empty: the view's own (render.noise).
+struct NoiseModel {
+  std::vector<float> sigma;
+};
+
+// What a method computes from the per-vertex signal before the pixels are sampled: the
+// per-sample fields it needs averaged over each pixel (render/sample_field.h).
+class SurfaceStage {
+ public:
+  virtual ~SurfaceStage() = default;
+  virtual SampleFields fields() const = 0;
+};
+
 class PreparedEnhancement {
  public:
   virtual ~PreparedEnhancement() = default;
@@ -62,19 +78,29 @@ class PreparedEnhancement {
   virtual nlohmann::json parameters() const { return nlohmann::json::object(); }
   // Intermediate images a researcher may want to inspect (name without extension, image).
   virtual std::vector<std::pair<std::string, Image>> auxiliary() const { return {}; }
+  // How the stimulus of strength λ amplifies the view's sampling noise.
+  virtual NoiseModel noise(double /*lambda*/) const { return {}; }
 };
 
-// What prepare() may use: the view, and a way to render the view's scene again with hooks.
+// What prepare() may use: the view, this method's surface stage and fields, and a way to render
+// the view's scene again with hooks.
 struct PrepareContext {
   std::shared_ptr<const View> view;
+  std::shared_ptr<const SurfaceStage> stage;  // from surface_stage(), when the method has one
+  std::vector<const std::vector<float>*> fields;  // the stage's fields, averaged per pixel
+  const ChangeNoise* change_noise = nullptr;      // the render's noise estimate of its change per λ
   int threads = 0;  // 0 = all cores
   // The view's scene rendered again for `request` (its hooks) with the same camera, samples and
   // seed. Null for external images.
   std::function<std::shared_ptr<const View>(const RenderRequest&)> render_again;
 };
 
-// The context of a view: render_again re-renders its scene (when it has one) at its bit depth.
-PrepareContext make_context(std::shared_ptr<const View> view, int threads = 0);
+// What a surface stage sees: the scene and its render so far (the G-buffer, the vertex signal).
+struct SurfaceContext {
+  const Scene& scene;
+  const RenderResult& render;
+  int threads = 0;
+};
 
 class EnhancementMethod {
  public:
@@ -91,6 +117,21 @@ class EnhancementMethod {
   virtual std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const = 0;
   // What the method needs from rendering for these parameters.
   virtual RenderRequest request(const MethodParameters&) const { return {}; }
+  // The work between the vertex signal and the pixels (default: none).
+  virtual std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext&, const MethodParameters&) const {
+    return nullptr;
+  }
+  // How the method changes a pixel's L* per unit λ, from a replicate's means and its stage's
+  // fields (render/sample_field.h), so that the pixels are sampled until the stimulus meets the
+  // noise budget. Default: none (the change does not carry the pixel's noise).
+  virtual std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const { return nullptr; }
+  // For methods that build on the vertex signal (request().vertex_radiance): per object, the L*
+  // error its vertices must reach so that the stimulus's share `allowed` of the noise budget holds
+  // at |λ| ≤ max_abs_lambda, and how far around the visible surface that matters.
+  virtual std::vector<VertexNeed> vertex_needs(const Scene&, const MethodParameters&, double /*max_abs_lambda*/,
+                                               double /*allowed*/) const {
+    return {};
+  }
   // The folder name of its stimuli in a set, e.g. "depth-usm-darken" (default: the name).
   virtual std::string label(const MethodParameters&) const { return name(); }
   // The once-per-(view, σ) work. Throws InputError when the view lacks what the method needs.
@@ -104,8 +145,17 @@ const P& parameters_as(const MethodParameters& p) {
   return static_cast<const P&>(p);
 }
 
-// Parses a JSON object of parameters for the named method and prepares the view with them: the
-// short path for tools and tests. Throws InputError for an unknown method or bad parameters.
+// Parses a JSON object of parameters for the named method (InputError for an unknown method or
+// bad parameters).
+MethodUse parse_method(const std::string& method, const nlohmann::json& parameters);
+
+// The context of a method that has no surface stage (or of an external image's view).
+PrepareContext make_context(std::shared_ptr<const View> view, int threads = 0);
+// The context of use `use` of the plan the view was rendered for: its stage and fields.
+PrepareContext make_use_context(std::shared_ptr<const View> view, size_t use, int threads = 0);
+
+// Prepares the named method with these parameters on a view: the short path for tools and
+// tests. A method with a surface stage must be one of the uses the view was rendered for.
 std::unique_ptr<PreparedEnhancement> prepare_method(const std::string& method, std::shared_ptr<const View> view,
                                                     const nlohmann::json& parameters, int threads = 0);
 

@@ -2,6 +2,8 @@
 // composed lightness-only. σ in pixels, as % of the image diagonal, or from a kernel size K%
 // (σ = K/4).
 
+#include <cmath>
+
 #include "core/gaussian.h"
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
@@ -43,7 +45,12 @@ class Usm2dMethod final : public EnhancementMethod {
     for (size_t i = 0; i < lightness.size(); ++i) change.amount[i] = double(lightness[i]) - double(blurred.pixels[i]);
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), nlohmann::json{{"sigma_px", sigma}},
                                                std::vector<std::pair<std::string, Image>>{{"lightness_blurred", blurred}},
-                                               context.threads);
+                                               context.threads, plain_noise(context));
+  }
+
+  // The detail L − G*L passes the pixel's noise (the blurred image's is negligible).
+  std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const override {
+    return std::make_shared<LightnessTimes>(1.0);
   }
 };
 

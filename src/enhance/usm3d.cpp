@@ -4,20 +4,35 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/color.h"
 #include "core/image.h"
+#include "core/random.h"
 #include "enhance/lightness.h"
+#include "enhance/stimulus_noise.h"
 #include "mesh/smoothing.h"
+#include "render/shading.h"
 
 namespace countershade {
 
-double display_lightness(const glm::dvec3& radiance, const Display& display, int bits) {
-  const double scale = std::exp2(display.exposure_stops);
-  const float levels = float((1u << bits) - 1u);
-  float code[3];
-  for (int c = 0; c < 3; ++c)
-    code[c] = float(quantize(float(display.encoding.encode(radiance[c] * scale)), bits)) / levels;
-  return display_pixel_to_lab(code, display.encoding).L;  // the same path as the pixels
+double display_lightness(const glm::dvec3& radiance, const Display& display) {
+  return cielab_lightness(display_luminance(radiance, std::exp2(display.exposure_stops)));
 }
+
+namespace {
+
+// The smoothing iterations of every connected component.
+std::vector<int> component_iterations(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
+                                      const SmoothingWidth& width) {
+  if (width.iterations) return std::vector<int>(surface.components.count, *width.iterations);
+  std::vector<glm::vec3> points(surface.point_count());
+  for (size_t p = 0; p < points.size(); ++p) points[p] = positions[surface.first_vertex[p]];
+  std::vector<int> iterations;
+  for (double h : component_mean_edge_length(points, surface.adjacency, surface.components))
+    iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
+  return iterations;
+}
+
+}  // namespace
 
 SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
                                  std::vector<double> lightness, const std::vector<float>& importance,
@@ -26,14 +41,7 @@ SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<
   const size_t n = surface.point_count();
   SurfaceContrast out;
   out.components = surface.components;
-  if (width.iterations) {
-    out.iterations.assign(out.components.count, *width.iterations);
-  } else {
-    std::vector<glm::vec3> points(n);
-    for (size_t p = 0; p < n; ++p) points[p] = positions[surface.first_vertex[p]];
-    for (double h : component_mean_edge_length(points, adjacency, out.components))
-      out.iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
-  }
+  out.iterations = component_iterations(surface, positions, width);
   const std::vector<double> point_lightness = surface.to_points(lightness);
   std::vector<double> smooth = point_lightness;
   laplacian_smooth(adjacency, out.components.label, out.iterations, smooth);
@@ -55,28 +63,10 @@ SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<
 }
 
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const SmoothingWidth& width, int bits) {
+                                 const Display& display, const SmoothingWidth& width) {
   std::vector<double> lightness(object.mesh.vertex_count());
-  for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display, bits);
+  for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], display);
   return surface_contrast(object.surface, object.mesh.positions, std::move(lightness), object.importance, width);
-}
-
-Usm3dPixels usm3d_pixels(const View& view, const std::vector<SurfaceContrast>& objects) {
-  const GBuffer& g = view.render.gbuffer;
-  const size_t n = size_t(g.width) * g.height;
-  Usm3dPixels out;
-  out.contrast.assign(n, 0.0);
-  out.gain_factor.assign(n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    if (g.object[i] < 0) continue;
-    const SurfaceContrast& sc = objects[size_t(g.object[i])];
-    const glm::uvec3& tri = view.scene->objects[size_t(g.object[i])].mesh.triangles[size_t(g.triangle[i])];
-    double b1 = g.barycentrics[i].x, b2 = g.barycentrics[i].y, b0 = 1.0 - b1 - b2;
-    double smooth = b0 * sc.smooth_lightness[tri.x] + b1 * sc.smooth_lightness[tri.y] + b2 * sc.smooth_lightness[tri.z];
-    out.contrast[i] = view.lab[i].L - smooth;
-    out.gain_factor[i] = b0 * sc.gain_factor[tri.x] + b1 * sc.gain_factor[tri.y] + b2 * sc.gain_factor[tri.z];
-  }
-  return out;
 }
 
 namespace {
@@ -96,12 +86,174 @@ double resolve_sigma(const Usm3dParameters& p, const Scene& scene) {
   return 0.0;
 }
 
+// The component with the most points.
+size_t largest_component(const Components& components) {
+  std::vector<size_t> size(components.count, 0);
+  for (uint32_t label : components.label) ++size[label];
+  return size_t(std::max_element(size.begin(), size.end()) - size.begin());
+}
+
 // The iteration count of an object's largest component (components of one object usually share
 // a tessellation, so their counts agree).
-int largest_component_iterations(const SurfaceContrast& sc) {
-  std::vector<size_t> size(sc.components.count, 0);
-  for (uint32_t label : sc.components.label) ++size[label];
-  return sc.iterations[size_t(std::max_element(size.begin(), size.end()) - size.begin())];
+int largest_component_iterations(const SurfaceContrast& sc) { return sc.iterations[largest_component(sc.components)]; }
+
+// The standard error of the smoothed signal at every vertex, from the signal's own errors: the
+// smoothing is linear, so it is estimated by smoothing a few random-sign copies of the errors
+// and taking their mean square (each vertex's estimate is rough; over pixels it is accurate).
+std::vector<float> smoothed_noise(const Object& object, const SurfaceContrast& sc, const std::vector<float>& noise) {
+  constexpr int kProbes = 4;
+  const SurfaceGraph& surface = object.surface;
+  const std::vector<double> sigma = surface.to_points(std::vector<double>(noise.begin(), noise.end()));
+  std::vector<double> sum(sigma.size(), 0.0);
+  for (int probe = 0; probe < kProbes; ++probe) {
+    std::vector<double> z(sigma.size());
+    for (size_t p = 0; p < z.size(); ++p) z[p] = (mix64(hash_combine(uint64_t(probe), p)) & 1 ? 1.0 : -1.0) * sigma[p];
+    laplacian_smooth(surface.adjacency, sc.components.label, sc.iterations, z);
+    for (size_t p = 0; p < z.size(); ++p) sum[p] += z[p] * z[p] / kProbes;
+  }
+  for (double& v : sum) v = std::sqrt(v);
+  const std::vector<double> per_vertex = surface.to_vertices(sum);
+  return std::vector<float>(per_vertex.begin(), per_vertex.end());
+}
+
+// One object's smoothed signal, for the front and (where the camera sees it) the back.
+struct ObjectSurface {
+  SurfaceContrast side[2];
+  bool has_back = false;
+  std::vector<float> smooth_noise[2];  // per vertex, L*
+  const SurfaceContrast& of(bool back) const { return side[back && has_back]; }
+  const std::vector<float>& noise_of(bool back) const { return smooth_noise[back && has_back]; }
+};
+
+// What the stage computed from the vertex signal; shared by the stage, its fields and the
+// prepared method.
+struct Usm3dSurface {
+  const Scene* scene = nullptr;
+  std::vector<ObjectSurface> objects;
+  double sigma = 0;
+  nlohmann::json iterations = nlohmann::json::object();
+
+  // A per-vertex quantity of the side a point is seen from, interpolated at its barycentrics.
+  template <class Get>
+  double interpolate(const SurfacePoint& point, bool back, Get get) const {
+    const glm::uvec3& t = scene->objects[point.object].mesh.triangles[point.triangle];
+    const ObjectSurface& object = objects[point.object];
+    const double b0 = 1.0 - point.b1 - point.b2;
+    return b0 * get(object, back, t.x) + point.b1 * get(object, back, t.y) + point.b2 * get(object, back, t.z);
+  }
+};
+
+// The luminance whose L* is the smoothed signal's, at a sample's surface point.
+class SmoothLuminance final : public SampleField {
+ public:
+  explicit SmoothLuminance(std::shared_ptr<const Usm3dSurface> s) : s_(std::move(s)) {}
+  double value(const SampleHit& hit) const override {
+    const double L = s_->interpolate(hit.point, hit.back, [](const ObjectSurface& o, bool back, uint32_t v) {
+      return o.of(back).smooth_lightness[v];
+    });
+    return luminance_of_lightness(L);
+  }
+
+ private:
+  std::shared_ptr<const Usm3dSurface> s_;
+};
+
+// The gain factor w·√(1+Var) at a sample's surface point.
+class GainFactor final : public SampleField {
+ public:
+  explicit GainFactor(std::shared_ptr<const Usm3dSurface> s) : s_(std::move(s)) {}
+  double value(const SampleHit& hit) const override {
+    return s_->interpolate(hit.point, hit.back, [](const ObjectSurface& o, bool back, uint32_t v) {
+      return o.of(back).gain_factor[v];
+    });
+  }
+
+ private:
+  std::shared_ptr<const Usm3dSurface> s_;
+};
+
+class Usm3dStage final : public SurfaceStage {
+ public:
+  explicit Usm3dStage(std::shared_ptr<const Usm3dSurface> surface) : surface_(std::move(surface)) {}
+  SampleFields fields() const override {
+    return {std::make_shared<SmoothLuminance>(surface_), std::make_shared<GainFactor>(surface_)};
+  }
+  const std::shared_ptr<const Usm3dSurface>& surface() const { return surface_; }
+
+ private:
+  std::shared_ptr<const Usm3dSurface> surface_;
+};
+
+std::shared_ptr<const Usm3dSurface> smooth_surfaces(const Scene& scene, const VertexSignal& signal,
+                                                    const Usm3dParameters& p) {
+  auto out = std::make_shared<Usm3dSurface>();
+  out->scene = &scene;
+  out->sigma = resolve_sigma(p, scene);
+  const SmoothingWidth width{out->sigma, p.iterations, p.adapt};
+  out->objects.resize(scene.objects.size());
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    ObjectSurface& surface = out->objects[o];
+    surface.has_back = !signal.back[o].empty();
+    for (int side = 0; side < (surface.has_back ? 2 : 1); ++side) {
+      const auto& radiance = side ? signal.back[o] : signal.front[o];
+      surface.side[side] = surface_contrast(scene.objects[o], radiance, scene.display, width);
+      surface.smooth_noise[side] =
+          smoothed_noise(scene.objects[o], surface.side[side], side ? signal.back_noise[o] : signal.front_noise[o]);
+    }
+    out->iterations[scene.objects[o].name] = largest_component_iterations(surface.side[0]);
+  }
+  return out;
+}
+
+// The per-pixel contrast, coverage-correct: C = L*(Y) − L*(Y − D), where Y is the mean display
+// luminance of all the pixel's samples and D the mean over its surface samples of their
+// luminance less the smoothed signal's (background samples add 0 to D). So a surface of uniform
+// radiance has D = 0 and C = 0 at every pixel, its silhouette included, and two objects never
+// exchange contrast at a shared edge.
+double coverage_contrast(double luminance, double surface_luminance, double smooth_luminance) {
+  const double d = surface_luminance - smooth_luminance;
+  return cielab_lightness(luminance) - cielab_lightness(std::max(luminance - d, 0.0));
+}
+
+// The change per unit λ of one replicate, g·C, for the pixel pass's noise estimate; g is the mean
+// gain factor over the surface samples.
+class Usm3dChange final : public ChangePerLambda {
+ public:
+  double value(const PixelMeans& m) const override {
+    if (!(m.coverage > 0)) return 0.0;
+    return m.fields[1] / m.coverage * coverage_contrast(m.luminance, m.surface_luminance, m.fields[0]);
+  }
+};
+
+struct CoverageContrast {
+  std::vector<double> contrast, gain;
+  std::vector<float> smooth_noise;  // per unit λ: |g|·coverage·(the smoothed signal's L* error)
+};
+
+CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface,
+                                   const std::vector<const std::vector<float>*>& fields) {
+  const RenderResult& r = view.render;
+  const GBuffer& g = r.gbuffer;
+  const size_t n = r.luminance.size();
+  CoverageContrast out;
+  out.contrast.assign(n, 0.0);
+  out.gain.assign(n, 0.0);
+  out.smooth_noise.assign(n, 0.0f);
+  const std::vector<float>& smooth_luminance = *fields[0];
+  const std::vector<float>& gain = *fields[1];
+  for (size_t p = 0; p < n; ++p) {
+    if (!(r.coverage[p] > 0)) continue;
+    out.contrast[p] = coverage_contrast(r.luminance[p], r.surface_luminance[p], smooth_luminance[p]);
+    out.gain[p] = double(gain[p]) / double(r.coverage[p]);
+    if (g.object[p] < 0) continue;
+    const SurfacePoint centre = surface_point(*view.scene, unsigned(g.object[p]), unsigned(g.triangle[p]),
+                                              g.barycentrics[p].x, g.barycentrics[p].y);
+    const double error = surface.interpolate(centre, g.back[p] != 0, [](const ObjectSurface& o, bool back, uint32_t v) {
+      return double(o.noise_of(back)[v]);
+    });
+    out.smooth_noise[p] = float(std::abs(out.gain[p]) * r.coverage[p] * error);
+  }
+  return out;
 }
 
 class Usm3dMethod final : public EnhancementMethod {
@@ -152,29 +304,61 @@ class Usm3dMethod final : public EnhancementMethod {
     return r;
   }
 
+  std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext& context,
+                                                    const MethodParameters& parameters) const override {
+    if (context.render.vertices.front.size() != context.scene.objects.size())
+      throw std::logic_error("usm3d: the view was rendered without vertex radiance");
+    return std::make_shared<Usm3dStage>(
+        smooth_surfaces(context.scene, context.render.vertices, parameters_as<Usm3dParameters>(parameters)));
+  }
+
+  std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const override {
+    return std::make_shared<Usm3dChange>();
+  }
+  // The smoothed signal's error is the vertices' divided by √(1 + 6n) (n steps of the 1-ring
+  // mean average over about 6n vertices, see docs/performance.md), then multiplied by the gain
+  // λ·|w|·√(1+Var) ≤ λ·|w|·√1.25. It matters within three σ (in rings) of what the camera sees.
+  std::vector<VertexNeed> vertex_needs(const Scene& scene, const MethodParameters& parameters, double max_abs_lambda,
+                                       double allowed) const override {
+    const auto& p = parameters_as<Usm3dParameters>(parameters);
+    const SmoothingWidth width{resolve_sigma(p, scene), p.iterations, p.adapt};
+    std::vector<VertexNeed> needs;
+    for (const auto& object : scene.objects) {
+      double weight = object.importance.empty() ? 1.0 : 0.0;
+      for (float w : object.importance) weight = std::max(weight, double(std::abs(w)));
+      // The largest component's smoothing: small loose parts would make the need of the whole
+      // object needlessly strict.
+      const std::vector<int> iterations = component_iterations(object.surface, object.mesh.positions, width);
+      const int n = iterations.empty() ? 1 : iterations[largest_component(object.surface.components)];
+      const int widest = iterations.empty() ? 1 : *std::max_element(iterations.begin(), iterations.end());
+      const double gain = max_abs_lambda * weight * std::sqrt(1.25);
+      VertexNeed need;
+      need.noise = gain > 0 ? allowed * std::sqrt(1.0 + 6.0 * n) / gain : scene.settings.noise.target;
+      need.rings = int(std::ceil(3.0 * std::sqrt(widest / 2.0))) + 1;
+      needs.push_back(need);
+    }
+    return needs;
+  }
+
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
                                                const MethodParameters& parameters) const override {
     const auto& p = parameters_as<Usm3dParameters>(parameters);
-    const View& view = *context.view;
-    if (!view.scene) throw InputError("usm3d: needs a rendered scene (it works on mesh surfaces)");
-    const Scene& scene = *view.scene;
-    if (view.render.vertex_radiance.size() != scene.objects.size())
-      throw std::logic_error("usm3d: the view was rendered without vertex radiance");
-    const double sigma = resolve_sigma(p, scene);
-    const SmoothingWidth width{sigma, p.iterations, p.adapt};
-    std::vector<SurfaceContrast> objects;
-    nlohmann::json iterations = nlohmann::json::object();
-    for (size_t o = 0; o < scene.objects.size(); ++o) {
-      objects.push_back(surface_contrast(scene.objects[o], view.render.vertex_radiance[o], scene.display, width, view.bits));
-      iterations[scene.objects[o].name] = largest_component_iterations(objects.back());
-    }
-    Usm3dPixels pixels = usm3d_pixels(view, objects);
+    if (!context.view->scene) throw InputError("usm3d: needs a rendered scene (it works on mesh surfaces)");
+    const auto* stage = dynamic_cast<const Usm3dStage*>(context.stage.get());
+    if (!stage || context.fields.size() != 2)
+      throw std::logic_error("usm3d: the view was not rendered for these parameters (render it for a plan with them)");
+    auto pixels = std::make_shared<const CoverageContrast>(coverage_contrast(*context.view, *stage->surface(), context.fields));
     LightnessChange change;
-    change.amount = std::move(pixels.contrast);
-    change.gain = std::move(pixels.gain_factor);
-    nlohmann::json record = {{"sigma", sigma}, {"iterations", iterations}, {"adapt", p.adapt}};
+    change.amount = pixels->contrast;
+    change.gain = pixels->gain;
+    nlohmann::json record = {{"sigma", stage->surface()->sigma}, {"iterations", stage->surface()->iterations},
+                             {"adapt", p.adapt}};
+    NoiseFunction noise = [view = context.view, change = context.change_noise, pixels](double lambda) {
+      return lambda_noise(*view, change, lambda, pixels->smooth_noise);
+    };
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
-                                               std::vector<std::pair<std::string, Image>>{}, context.threads);
+                                               std::vector<std::pair<std::string, Image>>{}, context.threads,
+                                               std::move(noise));
   }
 };
 

@@ -30,9 +30,8 @@ struct SurfaceContrast {
   Components components;                 // of the surface's points
 };
 
-// Lightness of a linear radiance under the display's exposure, encoding and `bits` quantisation
-// (exactly what the stimulus shows), in CIELAB L*.
-double display_lightness(const glm::dvec3& radiance, const Display& display, int bits);
+// CIELAB L* of a linear radiance as the display shows it: exposed, clamped per channel.
+double display_lightness(const glm::dvec3& radiance, const Display& display);
 
 // Steps 3 and 5 of the method on any per-vertex lightness: smoothing over the welded surface per
 // connected component, and the gain factor w·√(1+Var) (importance may be empty: w = 1). Vertices
@@ -41,16 +40,8 @@ SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<
                                  std::vector<double> lightness, const std::vector<float>& importance,
                                  const SmoothingWidth& width);
 
-// The same for a rendered object: lightness of its display-referred vertex radiance, quantised
-// like the view's pixels (`bits`) so a uniform surface has C = 0 exactly.
+// The same for a rendered object, from the display lightness of its vertex radiance.
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const SmoothingWidth& width, int bits = 8);
-
-// Per-pixel results of a view, exposed for tests: contrast C and gain factor per pixel (0 for
-// background).
-struct Usm3dPixels {
-  std::vector<double> contrast, gain_factor;
-};
-Usm3dPixels usm3d_pixels(const View& view, const std::vector<SurfaceContrast>& objects);
+                                 const Display& display, const SmoothingWidth& width);
 
 }  // namespace countershade

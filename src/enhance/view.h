@@ -6,6 +6,8 @@
 #include <memory>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/color.h"
 #include "core/display.h"
 #include "core/image.h"
@@ -19,6 +21,26 @@ namespace countershade {
 // CIELAB per pixel; left unfilled until written (a 1920×1080 view holds 50 MB of it).
 using LabPixels = std::vector<Lab, UninitializedAllocator<Lab>>;
 
+class SurfaceStage;
+class EnhancementMethod;
+class MethodParameters;
+
+// One method with its parameters (one σ of an experiment's method, or a command line's).
+struct MethodUse {
+  const EnhancementMethod* method = nullptr;
+  std::shared_ptr<const MethodParameters> parameters;
+  nlohmann::json parameters_json;  // as given, to find the use again (prepare_method)
+};
+
+// What a view is rendered for: every method that will enhance it, and the strongest λ they use.
+struct ViewPlan {
+  std::vector<MethodUse> uses;
+  double max_abs_lambda = 0;
+  RenderRequest request() const;  // the uses' requests merged
+  // Adds a use of the named method (InputError for an unknown method or bad parameters).
+  ViewPlan& add(const std::string& method, const nlohmann::json& parameters);
+};
+
 struct View {
   std::shared_ptr<const Scene> scene;       // null for external images
   std::shared_ptr<const RayTracer> tracer;  // the scene's BVH, for renders with hooks
@@ -28,6 +50,12 @@ struct View {
   Image display;              // the unenhanced stimulus: code values in [0,1], quantised to `bits`
   LabPixels lab;              // CIELAB of `display`, per pixel
   int bits = 8;
+  // Per use of the plan the view was rendered for: its surface stage (or null) and the indices of
+  // the stage's fields in render.fields.
+  std::vector<MethodUse> uses;
+  std::vector<std::shared_ptr<const SurfaceStage>> stages;
+  std::vector<std::vector<size_t>> stage_fields;
+  std::vector<int> change_noise;  // index into render.change_noise, or -1
 
   int width() const { return display.width; }
   int height() const { return display.height; }
@@ -55,8 +83,14 @@ struct ViewOptions {
   std::function<void(double)> progress;
 };
 
-// Renders a scene for a (merged) request and makes its view.
-std::shared_ptr<const View> render_view(std::shared_ptr<const Scene> scene, const RenderRequest& request,
+// Renders a scene for a plan and makes its view: one render for every use, with the fields their
+// surface stages ask for, sampled to the noise budget at the plan's strongest λ.
+std::shared_ptr<const View> render_view(std::shared_ptr<const Scene> scene, const ViewPlan& plan,
                                         const ViewOptions& options);
+// The plain view (no methods).
+std::shared_ptr<const View> render_view(std::shared_ptr<const Scene> scene, const ViewOptions& options = {});
+
+// The plan of one method.
+ViewPlan plan_for(const std::string& method, const nlohmann::json& parameters, double max_abs_lambda);
 
 }  // namespace countershade

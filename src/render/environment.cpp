@@ -4,6 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <glm/vec2.hpp>
+
+#include "core/fast_math.h"
+
 namespace countershade {
 namespace {
 
@@ -14,9 +18,22 @@ double luminance(const glm::dvec3& c) { return 0.212671 * c.x + 0.715160 * c.y +
 }  // namespace
 
 glm::dvec3 equirect_direction(double u, double v) {
-  double phi = 2.0 * kPi * u, theta = kPi * v;
-  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+  double sin_phi, cos_phi, sin_theta, cos_theta;
+  sincos_turns(u, sin_phi, cos_phi);          // φ = 2πu
+  sincos_turns(0.5 * v, sin_theta, cos_theta);  // θ = πv
+  return {sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi};
 }
+
+namespace {
+
+// The (u, v) of a unit direction: the inverse of equirect_direction.
+glm::dvec2 equirect_coordinates(const glm::dvec3& d) {
+  double u = std::atan2(d.x, -d.z) / (2.0 * kPi);
+  if (u < 0) u += 1.0;
+  return {u, std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi};
+}
+
+}  // namespace
 
 EnvironmentMap::EnvironmentMap(const Image& image) : width_(image.width), height_(image.height) {
   texels_.resize(size_t(width_) * height_);
@@ -101,18 +118,17 @@ glm::dvec3 EnvironmentMap::radiance_at(double u, double v) const {
   int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
   double tx = fx - x0, ty = fy - y0;
   auto at = [&](int x, int y) -> const glm::dvec3& {
-    x = ((x % width_) + width_) % width_;
+    x = x < 0 ? x + width_ : (x >= width_ ? x - width_ : x);  // u in [0, 1]: one wrap at most
     y = std::clamp(y, 0, height_ - 1);
-    return texel(x, y);
+    return texel(std::clamp(x, 0, width_ - 1), y);
   };
   return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
          ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
 glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& d) const {
-  double u = std::atan2(d.x, -d.z) / (2.0 * kPi);
-  if (u < 0) u += 1.0;
-  return radiance_at(u, std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi);
+  const glm::dvec2 uv = equirect_coordinates(d);
+  return radiance_at(uv.x, uv.y);
 }
 
 // A uniform (u,v) point inside a texel has solid-angle density p / (sinθ · 2π/W · π/H).
@@ -127,17 +143,13 @@ EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2, double u3) c
   size_t index = (scaled - double(slot)) < alias_threshold_[slot] ? slot : alias_[slot];
   int x = int(index % size_t(width_)), y = int(index / size_t(width_));
   double u = (x + u2) / width_, v = (y + u3) / height_;
-  double theta = kPi * v, phi = 2.0 * kPi * u;
-  double sin_theta = std::sin(theta);
-  glm::dvec3 d(sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi));
-  return {d, pdf_of_texel(index, sin_theta), radiance_at(u, v)};
+  const glm::dvec3 d = equirect_direction(u, v);
+  return {d, pdf_of_texel(index, std::sqrt(std::max(0.0, 1.0 - d.y * d.y))), radiance_at(u, v)};
 }
 
 double EnvironmentMap::pdf(const glm::dvec3& d) const {
-  double u = std::atan2(d.x, -d.z) / (2.0 * kPi);
-  if (u < 0) u += 1.0;
-  double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
-  int x = std::min(int(u * width_), width_ - 1), y = std::min(int(v * height_), height_ - 1);
+  const glm::dvec2 uv = equirect_coordinates(d);
+  int x = std::min(int(uv.x * width_), width_ - 1), y = std::min(int(uv.y * height_), height_ - 1);
   return pdf_of_texel(size_t(y) * width_ + x, std::sqrt(std::max(0.0, 1.0 - d.y * d.y)));
 }
 

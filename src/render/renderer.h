@@ -1,10 +1,17 @@
 #pragma once
-// One render of a view: the linear radiance image, a G-buffer from the pixel-centre rays and,
-// on request, the outgoing radiance towards the camera at every mesh vertex.
+// One render of a view, in three passes:
+//   1. the pixel centres: the G-buffer (depth, normal, ids, which side of a surface is seen);
+//   2. on request, the outgoing radiance towards the camera at every mesh vertex, for the side of
+//      the surface the pixels show (render/vertex_pass.h);
+//   3. the pixels, sampled until each meets the noise budget (render/pixel_pass.h), averaging the
+//      per-sample fields that the enhancement methods ask for after seeing pass 2.
+// Every sample is a pure function of the seed, so the image does not depend on threads.
 
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -13,18 +20,10 @@
 #include "core/image.h"
 #include "render/hooks.h"
 #include "render/ray_tracer.h"
+#include "render/sample_field.h"
 #include "render/scene.h"
 
 namespace countershade {
-
-struct RenderOptions {
-  int threads = 0;               // 0 = all cores
-  bool vertex_radiance = false;  // also shade every mesh vertex
-  int ring_samples = 0;          // per-vertex anti-aliasing: samples per incident triangle
-  std::shared_ptr<const ShadingHook> shading_hook;  // optional (render/hooks.h)
-  std::shared_ptr<const TextureHook> texture_hook;
-  std::function<void(double)> progress;  // called with the finished fraction, from any thread
-};
 
 // Per-pixel data from the ray through each pixel centre. Background pixels have object = -1,
 // depth = +inf and a zero normal.
@@ -34,30 +33,90 @@ struct GBuffer {
   std::vector<glm::vec3> normal;           // world-space shading normal, facing the camera
   std::vector<int32_t> object, triangle;   // ids, -1 for background
   std::vector<glm::vec2> barycentrics;     // (b1, b2) of the hit triangle
+  std::vector<uint8_t> back;               // 1 where the camera sees the back of the triangle
   size_t index(int x, int y) const { return size_t(y) * width + x; }
+};
+
+struct SampleCounts {
+  uint32_t min = 0, max = 0;
+  double mean = 0;
+};
+
+// The per-vertex signal: outgoing radiance towards the camera for the front of every vertex and,
+// for objects that the camera sees from behind somewhere, for the back; and the standard error of
+// each value's L*.
+struct VertexSignal {
+  std::vector<std::vector<glm::vec3>> front, back;        // [object][vertex]; back empty where unseen
+  std::vector<std::vector<float>> front_noise, back_noise;  // [object][vertex], L*
+  SampleCounts samples;                                     // per shading point
+  double seconds = 0;
+};
+
+// What the methods of a view ask of the pixel pass, once the vertex signal exists.
+struct PixelRequest {
+  struct Change {
+    std::shared_ptr<const ChangePerLambda> change;
+    size_t first_field = 0;  // its method's fields start here in `fields`
+  };
+  SampleFields fields;
+  std::vector<Change> changes;  // every pixel meets the budget for each of them at ±max_abs_lambda
+  double max_abs_lambda = 0;
+  double share = 1.0;           // of the noise budget left to the pixels' own noise
+};
+
+struct SamplingReport {
+  SampleCounts pixels;
+  bool budget_met = true;  // every pixel sampled to its target
+  std::string stopped_by;  // "", "max_spp", "time_limit"
+  int rounds = 0;
+  double seconds = 0;
 };
 
 struct RenderResult {
   Image radiance;  // linear RGB
   GBuffer gbuffer;
-  std::vector<std::vector<glm::vec3>> vertex_radiance;  // [object][vertex], when requested
+  VertexSignal vertices;                   // when requested
+  std::vector<std::vector<float>> fields;  // [field][pixel]: mean over the pixel's samples
+  // Per pixel, means over all samples of the display luminance (exposed, clamped to [0,1] per
+  // channel) of every sample, and of the samples that hit a surface (0 for the others), and the
+  // share of samples that hit a surface.
+  std::vector<float> luminance, surface_luminance, coverage;
+  std::vector<float> noise;      // per pixel: the standard error of its L*, pooled over 3×3 neighbours
+  std::vector<ChangeNoise> change_noise;  // per requested change
+  std::vector<uint32_t> spp;     // per pixel
+  SamplingReport sampling;
   RayCounts rays;
+};
+
+// What the methods need of one object's vertex signal: the L* standard error its relevant
+// vertices must reach, and how far around the visible surface (in rings of the welded 1-ring
+// graph) a vertex is relevant. Other vertices take the first round's samples only.
+struct VertexNeed {
+  double noise = 0.5;
+  int rings = 0;
+};
+
+struct RenderOptions {
+  int threads = 0;               // 0 = all cores
+  bool vertex_radiance = false;  // pass 2
+  int ring_samples = 0;          // per-vertex anti-aliasing: points per incident triangle
+  // Per object (default: the budget's target for every vertex seen, and one ring around them).
+  std::vector<VertexNeed> vertex_needs;
+  std::shared_ptr<const ShadingHook> shading_hook;  // optional (render/hooks.h)
+  std::shared_ptr<const TextureHook> texture_hook;
+  // Called between passes 2 and 3 with what is rendered so far.
+  std::function<PixelRequest(const RenderResult&)> before_pixels;
+  std::function<void(double)> progress;  // called with the finished fraction, from any thread
 };
 
 RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options = {});
 
-// Outgoing radiance towards the camera at every vertex of every object. A vertex whose incident
-// corners differ (a crease or a UV seam) gets the mean over those corners, weighted by how many
-// corners share each variant, shaded with the scene's vertex_samples(). With `ring_samples` =
-// k > 0, every triangle is shaded at k fixed barycentric points (one sample each) and a vertex
-// averages its own value with the points of all its incident triangles: anti-aliasing over the
-// 1-ring. The vertex itself then takes one sample (the ring points do the averaging). The
-// offsets are the same every frame, so the signal stays temporally coherent.
-std::vector<std::vector<glm::vec3>> render_vertex_radiance(const Scene& scene, const RayTracer& tracer,
-                                                           const RenderOptions& options, RayCounts* counts = nullptr);
-
 // The fixed barycentric coordinates (b0, b1, b2) of sample j of k on every triangle: stratified
 // over the triangle's area.
 glm::dvec3 triangle_sample_barycentrics(int j, int k);
+
+// The display luminance of linear radiance: exposed, clamped to [0,1] per channel, Y of sRGB
+// primaries. L* of a pixel or a vertex is the CIELAB lightness of it.
+double display_luminance(const glm::dvec3& radiance, double exposure_scale);
 
 }  // namespace countershade

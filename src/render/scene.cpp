@@ -117,8 +117,14 @@ class SceneLoader {
 
   RenderSettings settings(const JsonObject& o) {
     RenderSettings s;
-    s.spp = int(o.integer_in("spp", s.spp, 1, 65536));
-    s.vertex_spp = int(o.integer_in("vertex_spp", 0, 0, 65536));
+    if (o.has("spp") && o.has("noise")) o.fail("noise", "give either a fixed spp or a noise budget, not both");
+    if (o.has("spp")) s.spp = int(o.integer_in("spp", 16, 1, 65536));
+    if (o.has("vertex_spp")) s.vertex_spp = int(o.integer_in("vertex_spp", 4, 1, 65536));
+    if (o.has("noise")) s.noise = read_noise_budget(o.object("noise"));
+    s.sampling = o.choice("sampler", "sobol", {"sobol", "independent"}) == "sobol" ? SamplingMode::sobol
+                                                                                : SamplingMode::independent;
+    if (s.sampling == SamplingMode::independent && !s.spp)
+      o.fail("sampler", "the independent sampler takes a fixed spp (the noise budget samples adaptively with sobol)");
     s.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
     o.finish();
     return s;
@@ -328,6 +334,7 @@ class SceneLoader {
     return obj;
   }
 
+
   // Centres the mesh on the origin in x and z, stands it on y = 0 and scales its largest extent to 1.
   static void fit_to_unit(TriangleMesh& mesh) {
     BoundingBox box = bounding_box(mesh);
@@ -403,6 +410,18 @@ class SceneLoader {
 }  // namespace
 
 Scene load_scene(const fs::path& path) { return SceneLoader(path).load(); }
+
+NoiseBudget read_noise_budget(const JsonObject& o) {
+  NoiseBudget b;
+  b.target = o.number_in("target", b.target, 0.01, 100.0);
+  b.p99 = o.number_in("p99", std::max(b.p99, 4 * b.target), b.target, 1000.0);
+  b.min_spp = int(o.integer_in("min_spp", b.min_spp, 2, 65536));
+  b.max_spp = int(o.integer_in("max_spp", b.max_spp, b.min_spp, 65536));
+  if (b.min_spp % 2) o.fail("min_spp", "must be even (the samples form two replicates)");
+  b.time_limit_s = o.number_in("time_limit", 0.0, 0.0, 1e7);
+  o.finish();
+  return b;
+}
 
 size_t refine_scene(Scene& scene, double max_edge_length) {
   size_t splits = 0;

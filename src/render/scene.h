@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/display.h"
+#include "core/sampler.h"
 #include "mesh/surface_graph.h"
 #include "mesh/triangle_mesh.h"
 #include "render/camera.h"
@@ -83,14 +84,30 @@ struct Display {
   std::optional<glm::dvec3> background;  // linear radiance where camera rays miss; overrides env
 };
 
+// How many samples an image takes. By default a noise budget: every pixel is sampled until the
+// standard error of its L* meets the target (see render/pixel_pass.h). A fixed count is there for
+// those who want one.
+struct NoiseBudget {
+  double target = 0.5;       // RMS sampling noise of the written image, in L*
+  double p99 = 2.0;          // the 99th percentile of its per-pixel error, in L*
+  int min_spp = 16, max_spp = 4096;
+  double time_limit_s = 0;   // 0: none. When it stops the sampling the image is not reproducible.
+};
+
 struct RenderSettings {
-  int spp = 16;
-  // Samples per vertex for the per-vertex signal (0: spp/4, at least 1). Smoothing low-pass
-  // filters that signal, so it needs fewer samples than the pixels do.
-  int vertex_spp = 0;
+  std::optional<int> spp;         // a fixed count per pixel instead of the budget
+  std::optional<int> vertex_spp;  // a fixed count per vertex instead of the budget
+  NoiseBudget noise;
+  SamplingMode sampling = SamplingMode::sobol;
   uint64_t seed = 1;
 
-  int vertex_samples() const { return vertex_spp > 0 ? vertex_spp : std::max(1, spp / 4); }
+  // The fixed count per vertex: vertex_spp, or with a fixed spp a quarter of it (the smoothing
+  // averages many vertices); none under the budget.
+  std::optional<int> fixed_vertex_spp() const {
+    if (vertex_spp) return vertex_spp;
+    if (spp) return std::max(1, *spp / 4);
+    return std::nullopt;
+  }
 };
 
 struct Scene {
@@ -108,6 +125,10 @@ struct Scene {
 };
 
 Scene load_scene(const std::filesystem::path& path);
+
+// A "noise" object: target, p99, min_spp, max_spp, time_limit (scene and experiment files).
+class JsonObject;
+NoiseBudget read_noise_budget(const JsonObject& o);
 
 // Splits every edge longer than `max_edge_length` (tessellation refinement before surface
 // smoothing). Returns the number of splits.

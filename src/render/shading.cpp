@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/fast_math.h"
+
 namespace countershade {
 namespace {
 
@@ -26,17 +28,19 @@ void orthonormal_basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
 glm::dvec3 sample_cone(const glm::dvec3& axis, double cos_max, double u1, double u2) {
   double cos_theta = 1.0 - u1 * (1.0 - cos_max);
   double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  double phi = 2.0 * kPi * u2;
+  double sin_phi, cos_phi;
+  sincos_turns(u2, sin_phi, cos_phi);
   glm::dvec3 t, b;
   orthonormal_basis(axis, t, b);
-  return glm::normalize(sin_theta * std::cos(phi) * t + sin_theta * std::sin(phi) * b + cos_theta * axis);
+  return glm::normalize(sin_theta * cos_phi * t + sin_theta * sin_phi * b + cos_theta * axis);
 }
 
 glm::dvec3 sample_cosine_hemisphere(const glm::dvec3& n, double u1, double u2) {
-  double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+  double r = std::sqrt(u1), sin_phi, cos_phi;
+  sincos_turns(u2, sin_phi, cos_phi);
   glm::dvec3 t, b;
   orthonormal_basis(n, t, b);
-  return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
+  return glm::normalize(r * cos_phi * t + r * sin_phi * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
 }
 
 SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1, double b2) {
@@ -47,6 +51,8 @@ SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangl
   SurfacePoint sp;
   sp.object = object;
   sp.triangle = triangle;
+  sp.b1 = b1;
+  sp.b2 = b2;
   sp.position = b0 * p0 + b1 * p1 + b2 * p2;
   sp.geometric_normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
   size_t c = 3 * size_t(triangle);
@@ -136,30 +142,31 @@ glm::dvec3 Shader::light_sample(const Context& c, const glm::dvec3& wi, const gl
   return brdf(c.inputs, wi) * radiance * (cos_i / divisor);
 }
 
-void Shader::directional(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
+void Shader::directional(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
   for (const auto& light : scene_.directional_lights) {
     double cos_max = std::cos(glm::radians(light.angular_radius_deg));
     int samples = light.angular_radius_deg > 0 ? light.samples : 1;
     glm::dvec3 sum(0.0);
     for (int s = 0; s < samples; ++s) {
-      double u1 = random.next(), u2 = random.next();
-      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u1, u2) : light.direction;
+      const glm::dvec2 u = random.next2d();
+      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u.x, u.y) : light.direction;
       sum += light_sample(c, wi, light.irradiance, 1.0, 1e30, counts);
     }
     L += sum / double(samples);
   }
 }
 
-void Shader::point_lights(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
+void Shader::point_lights(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
   for (const auto& light : scene_.point_lights) {
     int samples = light.radius > 0 ? light.samples : 1;
     glm::dvec3 sum(0.0);
     for (int s = 0; s < samples; ++s) {
-      double u1 = random.next(), u2 = random.next();
+      const glm::dvec2 u = random.next2d();
       glm::dvec3 target = light.position;
       if (light.radius > 0) {  // uniform point on the spherical light
-        double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u2;
-        target += light.radius * glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
+        double z = 1.0 - 2.0 * u.x, r = std::sqrt(std::max(0.0, 1.0 - z * z)), sin_phi, cos_phi;
+        sincos_turns(u.y, sin_phi, cos_phi);
+        target += light.radius * glm::dvec3(r * cos_phi, r * sin_phi, z);
       }
       glm::dvec3 to_light = target - c.inputs.point.position;
       double d2 = glm::dot(to_light, to_light);
@@ -171,17 +178,18 @@ void Shader::point_lights(const Context& c, SampleStream& random, RayCounts& cou
   }
 }
 
-void Shader::environment(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
+void Shader::environment(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
   if (!scene_.environment) return;
   const EnvironmentLight& env = *scene_.environment;
   const glm::dvec3& n = c.inputs.normal;
   glm::dvec3 sum(0.0);
   for (int s = 0; s < env.samples; ++s) {
-    double u1 = random.next(), u2 = random.next();
+    const glm::dvec2 u = random.next2d();
+    const double u1 = u.x, u2 = u.y;
     glm::dvec3 wi, Le(0.0);
     double pdf;
     if (env.importance_sampling) {
-      auto sample = env.map->sample(u1, u2, random.next());
+      auto sample = env.map->sample(u1, u2, random.next1d());
       wi = sample.direction;
       pdf = sample.pdf;
       Le = sample.radiance;
@@ -196,14 +204,15 @@ void Shader::environment(const Context& c, SampleStream& random, RayCounts& coun
   L += env.scale * sum / double(env.samples);
 }
 
-void Shader::ambient(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const {
+void Shader::ambient(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
   const AmbientLight& ambient = scene_.ambient;
   if (ambient.radiance == glm::dvec3(0.0)) return;
   double open = 1.0;
   if (ambient.distance > 0) {
     int unoccluded = 0;
     for (int s = 0; s < ambient.samples; ++s) {
-      glm::dvec3 wi = sample_cosine_hemisphere(c.inputs.normal, random.next(), random.next());
+      const glm::dvec2 u = random.next2d();
+      glm::dvec3 wi = sample_cosine_hemisphere(c.inputs.normal, u.x, u.y);
       if (visible(c.inputs.point.position, c.ng, wi, ambient.distance, counts)) ++unoccluded;
     }
     open = double(unoccluded) / ambient.samples;
@@ -212,7 +221,7 @@ void Shader::ambient(const Context& c, SampleStream& random, RayCounts& counts, 
 }
 
 glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
-                            SampleStream& random, RayCounts& counts) const {
+                            Sampler& random, RayCounts& counts) const {
   glm::dvec3 ng = point.geometric_normal, n = point.shading_normal;
   if (two_sided && glm::dot(ng, wo) < 0) {
     ng = -ng;

@@ -5,7 +5,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "core/random.h"
+#include "core/sampler.h"
 #include "render/hooks.h"
 #include "render/ray_tracer.h"
 #include "render/scene.h"
@@ -18,6 +18,7 @@ struct SurfacePoint {
   glm::dvec3 shading_normal;    // unit, interpolated corner normal
   glm::dvec2 uv{0.0};
   unsigned object = 0, triangle = 0;
+  double b1 = 0, b2 = 0;  // barycentrics of corners 1 and 2
 };
 
 // The point at barycentrics (b1, b2) of a triangle, with interpolated normal and UV.
@@ -34,7 +35,7 @@ class Shader {
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
   // from behind its front face is shaded as the back face (open meshes, planes from below).
   glm::dvec3 radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
-                      SampleStream& random, RayCounts& counts) const;
+                      Sampler& random, RayCounts& counts) const;
 
   // What a camera ray that hits nothing sees.
   glm::dvec3 background(const glm::dvec3& direction) const;
@@ -44,10 +45,10 @@ class Shader {
  private:
   struct Context;  // one shading point's inputs
   // Each light type adds its reflected radiance to L.
-  void directional(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
-  void point_lights(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
-  void environment(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
-  void ambient(const Context& c, SampleStream& random, RayCounts& counts, glm::dvec3& L) const;
+  void directional(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
+  void point_lights(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
+  void environment(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
+  void ambient(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
   // `distance` away: its visibility and its reflection (through the shading hook if there is one).
   glm::dvec3 light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,

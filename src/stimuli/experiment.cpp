@@ -106,6 +106,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
     if (e.bits != 8 && e.bits != 16) out.fail("bits", "must be 8 or 16");
     out.finish();
   }
+  if (root.has("noise")) e.noise = read_noise_budget(root.object("noise"));
   if (root.has("contact_sheet")) {
     JsonObject c = root.object("contact_sheet");
     e.contact_columns = int(c.integer_in("columns", 6, 2, 32));
@@ -148,7 +149,14 @@ Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene&
   Scene scene = load_scene(s.file);
   if (s.width) scene.camera.width = *s.width;
   if (s.height) scene.camera.height = *s.height;
+  if (experiment.noise) {
+    scene.settings.noise = *experiment.noise;
+    scene.settings.spp.reset();
+  }
   if (s.spp) scene.settings.spp = *s.spp;
+  if (scene.settings.sampling == SamplingMode::independent && !scene.settings.spp)
+    throw_input_error(experiment.file.string() + ": scenes (" + s.name + ")",
+                      "the scene uses the independent sampler, which takes a fixed spp; give the scene an spp");
   scene.settings.seed = experiment.seed;
   return scene;
 }

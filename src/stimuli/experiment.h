@@ -53,6 +53,7 @@ struct Experiment {
   std::vector<ExperimentScene> scenes;
   std::vector<ExperimentMethod> methods;
   int contact_columns = 6;
+  std::optional<NoiseBudget> noise;  // replaces the scenes' budgets (a scene's spp still wins)
 };
 
 Experiment load_experiment(const std::filesystem::path& path);

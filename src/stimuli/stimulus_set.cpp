@@ -16,6 +16,7 @@
 #include "core/sha256.h"
 #include "core/time.h"
 #include "core/version.h"
+#include "enhance/stimulus_noise.h"
 #include "stimuli/contact_sheet.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/set_layout.h"
@@ -91,6 +92,41 @@ RenderRequest scene_request(const Experiment& e, size_t scene) {
   return request;
 }
 
+// Every (method, σ) applied to a scene, rendered for at once: the noise budget holds at the
+// grid's strongest λ for all of them, the reference included.
+struct ScenePlan {
+  ViewPlan plan;
+  std::map<std::pair<int, int>, size_t> use_of;  // (method, σ index) -> index into plan.uses
+};
+
+ScenePlan scene_plan(const Experiment& e, size_t scene) {
+  ScenePlan out;
+  out.plan.max_abs_lambda = std::max(std::abs(e.lambda.min), std::abs(e.lambda.max));
+  for (size_t m = 0; m < e.methods.size(); ++m) {
+    const ExperimentMethod& method = e.methods[m];
+    if (!method.applies_to(e.scenes[scene].name)) continue;
+    for (size_t s = 0; s < method.parameters.size(); ++s) {
+      out.use_of[{int(m), int(s)}] = out.plan.uses.size();
+      out.plan.uses.push_back({method.method, method.parameters[s], nlohmann::json::object()});
+    }
+  }
+  return out;
+}
+
+// The noise estimate and sample counts of an image as written (docs/data-formats).
+void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& model, const Image& written) {
+  const NoiseBudget& budget = view.scene->settings.noise;
+  const NoiseSummary noise = summarize_noise(stimulus_noise(view, model, written));
+  const SamplingReport& sampling = view.render.sampling;
+  const bool fixed = view.scene->settings.spp.has_value();
+  entry.extra["noise"] = {{"rms", round_to(noise.rms, 4)}, {"p99", round_to(noise.p99, 4)}};
+  if (!fixed)
+    entry.extra["noise"]["budget"] = {{"target", budget.target}, {"p99", budget.p99},
+                                      {"met", noise.rms <= budget.target && noise.p99 <= budget.p99}};
+  entry.extra["spp"] = {{"min", sampling.pixels.min}, {"mean", round_to(sampling.pixels.mean, 2)},
+                        {"max", sampling.pixels.max}};
+}
+
 class SetGenerator {
  public:
   SetGenerator(const Experiment& e, const fs::path& dir, const GenerateOptions& options)
@@ -105,7 +141,7 @@ class SetGenerator {
   void record(ManifestEntry entry, bool is_new);
   void make_scene(size_t scene, const std::vector<SetUnit>& units);
   void write_reference(size_t scene, const View& view);
-  void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view);
+  void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view, size_t use);
   void finish();
 
   const Experiment& e_;
@@ -179,16 +215,17 @@ void SetGenerator::write_reference(size_t scene, const View& view) {
   entry.scene = e_.scenes[scene].name;
   entry.method = kReferenceMethod;
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
+  record_noise(entry, view, NoiseModel{}, view.display);
   entry = write_stimulus(dir_, std::move(entry), view.display, e_.bits);
   encode_seconds_.fetch_add(since(te));
   record(std::move(entry), true);
 }
 
-void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view) {
+void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view, size_t use) {
   const ExperimentMethod& m = e_.methods[size_t(u.method)];
   auto tp = Clock::now();
   std::unique_ptr<PreparedEnhancement> prepared;
-  run_with_threads(options_.jobs, [&] { prepared = m.method->prepare(make_context(view, options_.jobs), *m.parameters[u.sigma]); });
+  run_with_threads(options_.jobs, [&] { prepared = m.method->prepare(make_use_context(view, use, options_.jobs), *m.parameters[u.sigma]); });
   report_.prepare_seconds += since(tp);
   const nlohmann::json parameters = prepared->parameters();
   run_with_threads(options_.jobs, [&] {
@@ -199,7 +236,9 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       Composed c = prepared->compose(e_.lambda.value(l));
       compose_seconds_.fetch_add(since(tc));
       auto te = Clock::now();
-      ManifestEntry entry = write_stimulus(dir_, stimulus_entry(e_, u, l, c, parameters), c.display, e_.bits);
+      ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
+      record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
+      entry = write_stimulus(dir_, std::move(entry), c.display, e_.bits);
       encode_seconds_.fetch_add(since(te));
       record(std::move(entry), true);
     });
@@ -221,12 +260,13 @@ void SetGenerator::make_scene(size_t scene, const std::vector<SetUnit>& units) {
   vo.bits = e_.bits;
   vo.threads = options_.jobs;
   std::shared_ptr<const View> view;
-  run_with_threads(options_.jobs, [&] { view = render_view(scenes_[scene], scene_request(e_, scene), vo); });
+  const ScenePlan plan = scene_plan(e_, scene);
+  run_with_threads(options_.jobs, [&] { view = render_view(scenes_[scene], plan.plan, vo); });
   report_.render_seconds += since(t0);
   for (const auto& u : units) {
     if (u.scene != scene) continue;
     if (u.is_reference()) write_reference(scene, *view);
-    else write_condition(u, view);
+    else write_condition(u, view, plan.use_of.at({u.method, int(u.sigma)}));
   }
 }
 

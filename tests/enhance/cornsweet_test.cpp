@@ -41,10 +41,10 @@ TEST(Cornsweet, SurfaceProfileBrightensOneFaceAndDarkensTheOther) {
   })")));
   ViewOptions vo;
   vo.bits = 16;
-  auto shared = render_view(scene, RenderRequest{}, vo);
-  const View& view = *shared;
   nlohmann::json o = {{"mode", "surface"}, {"sigma", 0.1}, {"edge_point", {0, 0.5, 0.5}},  // the top/front edge
                       {"edge_direction", {1, 0, 0}}, {"bright_normal", {0, 1, 0}}};
+  auto shared = render_view(scene, plan_for("cornsweet", o, 1.0), vo);
+  const View& view = *shared;
   Composed out = prepare_method("cornsweet", shared, o)->compose(1.0);
   const GBuffer& g = view.render.gbuffer;
   int top = 0, front = 0;

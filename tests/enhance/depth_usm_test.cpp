@@ -19,7 +19,7 @@ struct Rendered {
 
 Rendered render_test_view(const testing::TempDir& dir, const std::string& json) {
   auto scene = std::make_shared<Scene>(load_scene(testing::write_file(dir / "scene.json", json)));
-  return {render_view(scene, RenderRequest{}, {})};
+  return {render_view(scene)};
 }
 
 nlohmann::json op(const std::string& name, double kernel = 5.0) { return {{"operator", name}, {"kernel_percent", kernel}}; }

@@ -21,17 +21,25 @@ struct Rendered {
   std::shared_ptr<const View> view;
 };
 
-// Loads a scene from JSON text and renders its view with vertex radiance.
-Rendered render_test_view(const testing::TempDir& dir, const std::string& json, int ring_samples = 0, int bits = 8) {
+nlohmann::json with_sigma(double sigma) { return {{"sigma", sigma}}; }
+
+// Loads a scene from JSON text and renders its view for usm3d with each of `uses` (parameters).
+Rendered render_test_view(const testing::TempDir& dir, const std::string& json, const std::vector<nlohmann::json>& uses,
+                          int bits = 8) {
   Rendered r;
   r.scene = load_scene(testing::write_file(dir / "scene.json", json));
-  RenderRequest request;
-  request.vertex_radiance = true;
-  request.ring_samples = ring_samples;
+  ViewPlan plan;
+  plan.max_abs_lambda = 3;
+  for (const auto& use : uses) plan.add("usm3d", use);
   ViewOptions options;
   options.bits = bits;
-  r.view = render_view(std::make_shared<Scene>(r.scene), request, options);
+  r.view = render_view(std::make_shared<Scene>(r.scene), plan, options);
   return r;
+}
+
+// The per-pixel contrast (amount) and gain of a prepared usm3d.
+const LightnessChange& change_of(const PreparedEnhancement& prepared) {
+  return dynamic_cast<const LightnessPrepared&>(prepared).change();
 }
 
 std::vector<uint8_t> bytes_of(const Image& display) {
@@ -40,7 +48,7 @@ std::vector<uint8_t> bytes_of(const Image& display) {
   return out;
 }
 
-nlohmann::json with_sigma(double sigma) { return {{"sigma", sigma}}; }
+nlohmann::json with_ring(double sigma) { return {{"sigma", sigma}, {"ring_samples", 3}}; }
 
 SmoothingWidth width_of(double sigma) {
   SmoothingWidth w;
@@ -71,7 +79,7 @@ std::string textured_cow() {
 
 TEST(Usm3d, LambdaZeroIsByteIdenticalToNone) {
   testing::TempDir dir;
-  Rendered r = render_test_view(dir, textured_cow());
+  Rendered r = render_test_view(dir, textured_cow(), {with_sigma(0.1)});
   auto none = prepare_method("none", r.view, nlohmann::json::object())->compose(0.0);
   auto usm = prepare_method("usm3d", r.view, with_sigma(0.1));
   Composed zero = usm->compose(0.0);
@@ -90,11 +98,11 @@ TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
     "render": {"spp": 4},
     "objects": [{"shape": {"type": "plane", "size": 4, "subdivisions": 24}, "material": {"albedo": [0.6, 0.4, 0.3]}}],
     "lights": [{"type": "directional", "direction": [0, 1, 0], "irradiance": 1.5}]
-  })", 3);
+  })", {with_ring(0.05), with_ring(0.5)});
   auto reference = bytes_of(r.view->display);
   for (double sigma : {0.05, 0.5})
     for (double lambda : {0.5, 3.0, -2.0}) {
-      Composed out = prepare_method("usm3d", r.view, with_sigma(sigma))->compose(lambda);
+      Composed out = prepare_method("usm3d", r.view, with_ring(sigma))->compose(lambda);
       EXPECT_EQ(bytes_of(out.display), reference) << sigma << " " << lambda;
       for (size_t i = 0; i < out.display.pixels.size(); ++i)
         ASSERT_NEAR(out.display.pixels[i], r.view->display.pixels[i], 1e-5);
@@ -104,7 +112,7 @@ TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
 TEST(Usm3d, KeepsHueAndSaturationWhereNotClipped) {
   testing::TempDir dir;
   // 16-bit stimuli: the composed stimulus is code values, which round hue.
-  Rendered r = render_test_view(dir, textured_cow(), 0, 16);
+  Rendered r = render_test_view(dir, textured_cow(), {{{"sigma_fraction", 0.05}}}, 16);
   Composed out = prepare_method("usm3d", r.view, {{"sigma_fraction", 0.05}})->compose(2.5);
   const DisplayEncoding& enc = r.scene.display.encoding;
   int checked = 0;
@@ -146,16 +154,15 @@ std::string wall_scene(double bar_x) {
 
 TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
   testing::TempDir dir_a, dir_b;
-  Rendered a = render_test_view(dir_a, wall_scene(-1.0)), b = render_test_view(dir_b, wall_scene(-0.4));
   const double sigma = 0.3, lambda = 2.0;
-  auto pa = usm3d_pixels(*a.view, {surface_contrast(a.scene.objects[0], a.view->render.vertex_radiance[0], a.scene.display, width_of(sigma)),
-                                   surface_contrast(a.scene.objects[1], a.view->render.vertex_radiance[1], a.scene.display, width_of(sigma)),
-                                   surface_contrast(a.scene.objects[2], a.view->render.vertex_radiance[2], a.scene.display, width_of(sigma))});
-  auto pb = usm3d_pixels(*b.view, {surface_contrast(b.scene.objects[0], b.view->render.vertex_radiance[0], b.scene.display, width_of(sigma)),
-                                   surface_contrast(b.scene.objects[1], b.view->render.vertex_radiance[1], b.scene.display, width_of(sigma)),
-                                   surface_contrast(b.scene.objects[2], b.view->render.vertex_radiance[2], b.scene.display, width_of(sigma))});
-  Composed ea = prepare_method("usm3d", a.view, with_sigma(sigma))->compose(lambda);
-  Composed eb = prepare_method("usm3d", b.view, with_sigma(sigma))->compose(lambda);
+  Rendered a = render_test_view(dir_a, wall_scene(-1.0), {with_sigma(sigma)});
+  Rendered b = render_test_view(dir_b, wall_scene(-0.4), {with_sigma(sigma)});
+  auto prepared_a = prepare_method("usm3d", a.view, with_sigma(sigma));
+  auto prepared_b = prepare_method("usm3d", b.view, with_sigma(sigma));
+  const std::vector<double>& contrast_a = change_of(*prepared_a).amount;
+  const std::vector<double>& contrast_b = change_of(*prepared_b).amount;
+  Composed ea = prepared_a->compose(lambda);
+  Composed eb = prepared_b->compose(lambda);
   const GBuffer& ga = a.view->render.gbuffer;
   const GBuffer& gb = b.view->render.gbuffer;
   // Wall pixels whose whole 3×3 neighbourhood is wall in both frames (no anti-aliasing overlap).
@@ -181,8 +188,8 @@ TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
     for (int x = 0; x < ga.width; ++x) {
       if (!wall_in_both(x, y)) continue;
       size_t i = ga.index(x, y);
-      EXPECT_NEAR(pa.contrast[i], pb.contrast[i], 1e-4) << x << "," << y;
-      largest_contrast = std::max(largest_contrast, std::abs(pa.contrast[i]));
+      EXPECT_NEAR(contrast_a[i], contrast_b[i], 1e-4) << x << "," << y;
+      largest_contrast = std::max(largest_contrast, std::abs(contrast_a[i]));
       ++compared;
       if (near_bar_in_a(x, y)) {
         ++around_silhouette;
@@ -244,7 +251,7 @@ TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
                  "material": {"albedo": 0.5}}],
     "lights": [{"type": "directional", "direction": [0, 0.35, 1], "irradiance": 1.2},
                {"type": "ambient", "radiance": 0.2}]
-  })");
+  })", {with_sigma(0.1), with_sigma(0.15), with_sigma(0.2), with_sigma(0.3)});
   // Amplitude grows linearly with λ.
   std::vector<double> lambdas = {0.5, 1.0, 2.0}, peaks;
   for (double l : lambdas) peaks.push_back(cube_profile(r.view, 0.15, l).peak);
@@ -306,10 +313,11 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
     })";
   };
   testing::TempDir d1, d2;
-  Rendered bright = render_test_view(d1, scene(0.95)), dark = render_test_view(d2, scene(0.05));
+  const std::vector<nlohmann::json> uses = {with_sigma(0.2), with_sigma(1.0)};
+  Rendered bright = render_test_view(d1, scene(0.95), uses), dark = render_test_view(d2, scene(0.05), uses);
   for (double sigma : {0.2, 1.0}) {
-    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertex_radiance[0], bright.scene.display, width_of(sigma));
-    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertex_radiance[0], dark.scene.display, width_of(sigma));
+    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertices.front[0], bright.scene.display, width_of(sigma));
+    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertices.front[0], dark.scene.display, width_of(sigma));
     EXPECT_EQ(sa.smooth_lightness, sb.smooth_lightness);
     Composed ea = prepare_method("usm3d", bright.view, with_sigma(sigma))->compose(2.0);
     Composed eb = prepare_method("usm3d", dark.view, with_sigma(sigma))->compose(2.0);
@@ -327,26 +335,37 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
 TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   testing::TempDir d1, d2;
   std::string base = textured_cow();
-  Rendered plus = render_test_view(d1, base);
+  Rendered plus = render_test_view(d1, base, {with_sigma(0.1)});
   std::string negative = base;
   negative.replace(negative.find("\"fit\": true"), 11, "\"fit\": true, \"importance\": -1");
-  Rendered minus = render_test_view(d2, negative);
-  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display, width_of(0.1));
+  Rendered minus = render_test_view(d2, negative, {with_sigma(0.1)});
+  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertices.front[1], plus.scene.display, width_of(0.1));
   for (double g : sc.gain_factor) {
     EXPECT_GE(g, 1.0);
     EXPECT_LE(g, std::sqrt(1.25));  // Var of values in [0,1] is at most 1/4
   }
-  auto p = usm3d_pixels(*plus.view, {surface_contrast(plus.scene.objects[0], plus.view->render.vertex_radiance[0], plus.scene.display, width_of(0.1)), sc});
-  auto m = usm3d_pixels(*minus.view, {surface_contrast(minus.scene.objects[0], minus.view->render.vertex_radiance[0], minus.scene.display, width_of(0.1)),
-                                      surface_contrast(minus.scene.objects[1], minus.view->render.vertex_radiance[1], minus.scene.display, width_of(0.1))});
+  auto prepared_plus = prepare_method("usm3d", plus.view, with_sigma(0.1));
+  auto prepared_minus = prepare_method("usm3d", minus.view, with_sigma(0.1));
+  const std::vector<double>& p = change_of(*prepared_plus).gain;
+  const std::vector<double>& m = change_of(*prepared_minus).gain;
+  // Inside the cow (its 3×3 neighbourhood all cow, so every sample is): the gain reverses. Edge
+  // pixels mix the cow's gain with the floor's, as their samples do.
+  const GBuffer& g = plus.view->render.gbuffer;
+  auto inside_cow = [&](int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (g.object[g.index(std::clamp(x + dx, 0, g.width - 1), std::clamp(y + dy, 0, g.height - 1))] != 1) return false;
+    return true;
+  };
   int cow_pixels = 0;
-  for (size_t i = 0; i < p.gain_factor.size(); ++i)
-    if (plus.view->render.gbuffer.object[i] == 1) {
-      EXPECT_DOUBLE_EQ(m.gain_factor[i], -p.gain_factor[i]);
-      ++cow_pixels;
-    }
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x)
+      if (inside_cow(x, y)) {
+        EXPECT_DOUBLE_EQ(m[g.index(x, y)], -p[g.index(x, y)]);
+        ++cow_pixels;
+      }
   EXPECT_GT(cow_pixels, 300);
-  auto flat = surface_contrast(plus.scene.objects[1], plus.view->render.vertex_radiance[1], plus.scene.display,
+  auto flat = surface_contrast(plus.scene.objects[1], plus.view->render.vertices.front[1], plus.scene.display,
                                SmoothingWidth{0.1, std::nullopt, false});
   for (double g : flat.gain_factor) EXPECT_EQ(g, 1.0);
 }

@@ -136,7 +136,7 @@ TEST(Renderer, PointInShadowReceivesNoDirectLight) {
     return sp;
   };
   const glm::dvec3 up(0, 1, 0);
-  SampleStream random(1, kDomainPixel, 0, 0);
+  Sampler random(SamplingMode::sobol, 1, kDomainPixel, 0, 0);
   EXPECT_EQ(shader.radiance(ground_point(-1.0, 0.0), up, false, random, counts), glm::dvec3(0.0));
   EXPECT_EQ(shader.radiance(ground_point(-1.4, 0.4), up, false, random, counts), glm::dvec3(0.0));
   glm::dvec3 lit = shader.radiance(ground_point(1.5, 0.0), up, false, random, counts);
@@ -206,8 +206,10 @@ TEST(Renderer, VertexRadianceEqualsPixelRadianceAtAProjectedVertex) {
     glm::dvec3 aside = 1e-6 * glm::normalize(glm::cross(n, glm::dvec3(0, 1, 0)));
     scene.camera.eye = p + aside + 3.0 * n;
     scene.camera.target = p + aside;
-    RenderResult result = render(scene, tracer);
-    auto vertex_radiance = render_vertex_radiance(scene, tracer, RenderOptions{});  // view-dependent: per camera
+    RenderOptions options;
+    options.vertex_radiance = true;  // view-dependent: per camera
+    RenderResult result = render(scene, tracer, options);
+    const auto& vertex_radiance = result.vertices.front;
     ASSERT_EQ(result.gbuffer.object[result.gbuffer.index(16, 16)], 0);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(result.radiance.at(16, 16, c), vertex_radiance[0][v][c], 1e-4 * (1.0 + vertex_radiance[0][v][c]))

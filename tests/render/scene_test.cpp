@@ -31,10 +31,33 @@ TEST(Scene, LoadsMinimalSceneWithDefaults) {
   EXPECT_EQ(scene.objects[0].name, "ball");
   EXPECT_EQ(scene.objects[0].mesh.corner_normals.size(), 3 * scene.objects[0].mesh.triangle_count());
   EXPECT_EQ(scene.objects[0].importance.size(), scene.objects[0].mesh.vertex_count());
-  EXPECT_EQ(scene.settings.spp, 16);
+  // The default is the noise budget: 0.5 L* RMS, p99 2, adaptive Sobol sampling.
+  EXPECT_FALSE(scene.settings.spp.has_value());
+  EXPECT_FALSE(scene.settings.fixed_vertex_spp().has_value());
+  EXPECT_EQ(scene.settings.noise.target, 0.5);
+  EXPECT_EQ(scene.settings.noise.p99, 2.0);
+  EXPECT_EQ(scene.settings.sampling, SamplingMode::sobol);
   EXPECT_EQ(scene.display.encoding.kind(), DisplayEncoding::Kind::srgb);
   ASSERT_EQ(scene.directional_lights.size(), 1u);
   EXPECT_NEAR(scene.directional_lights[0].direction.y, std::sqrt(0.5), 1e-12);
+}
+
+TEST(Scene, ReadsTheNoiseBudgetOrAFixedCount) {
+  testing::TempDir dir;
+  auto budget = load_scene(testing::write_file(
+      dir / "budget.json", variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"target\": 0.3, "
+                                                   "\"min_spp\": 8, \"max_spp\": 512, \"time_limit\": 60}}")));
+  EXPECT_FALSE(budget.settings.spp.has_value());
+  EXPECT_EQ(budget.settings.noise.target, 0.3);
+  EXPECT_EQ(budget.settings.noise.p99, 2.0);  // the default, at least 4 × the target
+  EXPECT_EQ(budget.settings.noise.min_spp, 8);
+  EXPECT_EQ(budget.settings.noise.max_spp, 512);
+  EXPECT_EQ(budget.settings.noise.time_limit_s, 60.0);
+  auto fixed = load_scene(testing::write_file(
+      dir / "fixed.json", variant("\"version\": 1", "\"version\": 1, \"render\": {\"spp\": 12, \"sampler\": \"independent\"}")));
+  EXPECT_EQ(fixed.settings.spp, 12);
+  EXPECT_EQ(fixed.settings.fixed_vertex_spp(), 3);  // a quarter, unless vertex_spp says otherwise
+  EXPECT_EQ(fixed.settings.sampling, SamplingMode::independent);
 }
 
 TEST(Scene, RelativePathsResolveAgainstTheSceneFile) {
@@ -82,6 +105,16 @@ TEST(Scene, BadInputNamesFileAndKeyPath) {
        "lights[0].file: " + (dir / "sky.exr").string() + ": no such image file"},
       {variant("\"objects\": [", "\"objects\": [], \"unused\": ["), "objects: a scene needs at least one object"},
       {variant("\"target\": [0, 0, 0]", "\"target\": [0, 0, 5]"), "camera.target: must differ from eye"},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"spp\": 4, \"noise\": {}}"),
+       "render.noise: give either a fixed spp or a noise budget, not both"},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"min_spp\": 5}}"),
+       "render.noise.min_spp: must be even"},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"target\": 0}}"),
+       "render.noise.target: "},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"min_spp\": 64, \"max_spp\": 32}}"),
+       "render.noise.max_spp: "},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"sampler\": \"independent\"}"),
+       "render.sampler: the independent sampler takes a fixed spp"},
   };
   int i = 0;
   for (const auto& c : cases) {

@@ -1,0 +1,317 @@
+#include "render/pixel_pass.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include <glm/geometric.hpp>
+
+#include "core/color.h"
+#include "core/parallel.h"
+#include "core/random.h"
+#include "render/camera.h"
+
+namespace countershade {
+namespace {
+
+constexpr int kTile = 16;
+
+// Running sums per pixel and replicate: radiance, display luminances, coverage and fields.
+struct Sums {
+  Sums(size_t n, size_t fields) : count(n, 0) {
+    for (int r = 0; r < 2; ++r) {
+      for (auto& c : rgb[r]) c.assign(n, 0.0);
+      y_all[r].assign(n, 0.0);
+      y_surface[r].assign(n, 0.0);
+      hits[r].assign(n, 0.0);
+      field[r].assign(fields, std::vector<double>(n, 0.0));
+    }
+  }
+  std::vector<double> rgb[2][3], y_all[2], y_surface[2], hits[2];
+  std::vector<std::vector<double>> field[2];  // [replicate][field][pixel]
+  std::vector<uint32_t> count;
+  double samples(int r, size_t p) const { return double(r == 0 ? (count[p] + 1) / 2 : count[p] / 2); }
+};
+
+// Latin-hypercube positions for `spp` samples in the unit pixel (the independent sampler's).
+void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dvec2>& out) {
+  out.resize(size_t(spp));
+  SampleStream random(seed, kDomainCamera, pixel, 0);
+  std::vector<int> permutation(static_cast<size_t>(spp));
+  for (int i = 0; i < spp; ++i) permutation[size_t(i)] = i;
+  for (int i = spp - 1; i > 0; --i)
+    std::swap(permutation[size_t(i)], permutation[size_t(std::min(i, int(random.next() * (i + 1))))]);
+  for (int i = 0; i < spp; ++i)
+    out[size_t(i)] = {(i + random.next()) / spp, (permutation[size_t(i)] + random.next()) / spp};
+}
+
+class PixelSampler {
+ public:
+  PixelSampler(const PixelPassInput& in, Sums& sums)
+      : in_(in), sums_(sums), rays_(in.scene.camera), width_(in.scene.camera.width),
+        exposure_(std::exp2(in.scene.display.exposure_stops)), fixed_spp_(in.scene.settings.spp.value_or(0)) {}
+
+  // Takes samples [count, target) of a pixel.
+  void sample(size_t pixel, uint32_t target, RayCounts& rays, std::vector<glm::dvec2>& lhs) {
+    const RenderSettings& settings = in_.scene.settings;
+    if (settings.sampling == SamplingMode::independent) latin_hypercube(settings.seed, pixel, fixed_spp_, lhs);
+    for (uint32_t s = sums_.count[pixel]; s < target; ++s) one_sample(pixel, s, rays, lhs);
+    sums_.count[pixel] = target;
+  }
+
+ private:
+  void one_sample(size_t pixel, uint32_t s, RayCounts& counts, const std::vector<glm::dvec2>& lhs) {
+    const RenderSettings& settings = in_.scene.settings;
+    Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
+    glm::dvec2 offset(0.5);
+    if (settings.sampling == SamplingMode::independent) offset = lhs[s];
+    else if (fixed_spp_ != 1) offset = sampler.next2d();
+    const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
+    const Ray ray = rays_.ray(x + offset.x, y + offset.y);
+    ++counts.primary;
+    const auto hit = in_.tracer.intersect(ray.origin, ray.direction);
+    glm::dvec3 radiance;
+    if (!hit) {
+      radiance = in_.shader.background(ray.direction);
+    } else {
+      const SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
+      radiance = in_.shader.radiance(sp, -ray.direction, true, sampler, counts);
+      const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
+      auto& fields = sums_.field[Sampler::replicate(s)];
+      for (size_t f = 0; f < fields.size(); ++f) fields[f][pixel] += in_.request.fields[f]->value(sample_hit);
+    }
+    const int r = Sampler::replicate(s);
+    for (int c = 0; c < 3; ++c) sums_.rgb[r][c][pixel] += radiance[c];
+    const double y_display = display_luminance(radiance, exposure_);
+    sums_.y_all[r][pixel] += y_display;
+    if (hit) {
+      sums_.y_surface[r][pixel] += y_display;
+      sums_.hits[r][pixel] += 1.0;
+    }
+  }
+
+  const PixelPassInput& in_;
+  Sums& sums_;
+  CameraRays rays_;
+  int width_;
+  double exposure_;
+  int fixed_spp_;
+};
+
+// Pixel indices tile by tile, so that neighbouring samples share caches.
+std::vector<uint32_t> tile_order(int width, int height) {
+  std::vector<uint32_t> order;
+  order.reserve(size_t(width) * height);
+  for (int ty = 0; ty < height; ty += kTile)
+    for (int tx = 0; tx < width; tx += kTile)
+      for (int y = ty; y < std::min(ty + kTile, height); ++y)
+        for (int x = tx; x < std::min(tx + kTile, width); ++x) order.push_back(uint32_t(y * width + x));
+  return order;
+}
+
+// Per pixel, the products of the replicates' differences: (ΔL)²/4 estimates Var(L), ΔL·Δc/4
+// Cov(L, c) and (Δc)²/4 Var(c), for every requested change c.
+struct ReplicateSpread {
+  std::vector<double> LL;
+  std::vector<std::vector<double>> LC, CC;  // [change][pixel]
+};
+
+ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request, double exposure) {
+  const size_t n = sums.count.size(), changes = request.changes.size();
+  ReplicateSpread out{std::vector<double>(n, 0.0), std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0)),
+                      std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0))};
+  std::vector<double> fields[2] = {std::vector<double>(request.fields.size()), std::vector<double>(request.fields.size())};
+  for (size_t p = 0; p < n; ++p) {
+    if (sums.count[p] < 2) continue;
+    PixelMeans means[2];
+    for (int r = 0; r < 2; ++r) {
+      const double k = sums.samples(r, p);
+      const glm::dvec3 mean(sums.rgb[r][0][p] / k, sums.rgb[r][1][p] / k, sums.rgb[r][2][p] / k);
+      for (size_t f = 0; f < fields[r].size(); ++f) fields[r][f] = sums.field[r][f][p] / k;
+      means[r] = {cielab_lightness(display_luminance(mean, exposure)), sums.y_all[r][p] / k, sums.y_surface[r][p] / k,
+                  sums.hits[r][p] / k, fields[r].data()};
+    }
+    const double dL = means[0].lightness - means[1].lightness;
+    out.LL[p] = 0.25 * dL * dL;
+    for (size_t c = 0; c < changes; ++c) {
+      const PixelRequest::Change& change = request.changes[c];
+      double value[2];
+      for (int r = 0; r < 2; ++r) {
+        PixelMeans own = means[r];
+        own.fields = fields[r].data() + change.first_field;
+        value[r] = change.change->value(own);
+      }
+      const double dc = value[0] - value[1];
+      out.LC[c][p] = 0.25 * dL * dc;
+      out.CC[c][p] = 0.25 * dc * dc;
+    }
+  }
+  return out;
+}
+
+// A 3×3 mean or maximum, clamped at the borders.
+std::vector<double> filter3x3(const std::vector<double>& in, int width, int height, bool maximum) {
+  std::vector<double> out(in.size());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      double acc = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = std::clamp(x + dx, 0, width - 1), yy = std::clamp(y + dy, 0, height - 1);
+          const double value = in[size_t(yy) * width + xx];
+          acc = maximum ? std::max(acc, value) : acc + value;
+        }
+      out[size_t(y) * width + x] = maximum ? acc : acc / 9.0;
+    }
+  return out;
+}
+
+// The largest variance of a pixel's stimuli: of L itself and of L + λ·c for every change at the
+// strongest ±λ.
+std::vector<double> largest_variance(const ReplicateSpread& pooled, double lambda) {
+  std::vector<double> out = pooled.LL;
+  for (size_t c = 0; c < pooled.LC.size(); ++c)
+    for (size_t p = 0; p < out.size(); ++p)
+      out[p] = std::max(out[p], pooled.LL[p] + 2.0 * lambda * std::abs(pooled.LC[c][p]) + lambda * lambda * pooled.CC[c][p]);
+  return out;
+}
+
+class AdaptiveSampling {
+ public:
+  AdaptiveSampling(const PixelPassInput& in, RenderResult& result)
+      : in_(in), result_(result), width_(in.scene.camera.width), height_(in.scene.camera.height),
+        sums_(size_t(width_) * height_, in.request.fields.size()), order_(tile_order(width_, height_)) {}
+
+  void run() {
+    const RenderSettings& settings = in_.scene.settings;
+    const auto start = std::chrono::steady_clock::now();
+    const uint32_t first = uint32_t(settings.spp.value_or(settings.noise.min_spp));
+    std::vector<uint32_t> target(sums_.count.size(), first);
+    std::vector<uint32_t> active = order_;
+    while (!active.empty()) {
+      const auto round_start = std::chrono::steady_clock::now();
+      sample_round(active, target);
+      ++result_.sampling.rounds;
+      estimate();
+      if (settings.spp) break;  // a fixed count: one round
+      active = unconverged(active, target);
+      const double elapsed = seconds_since(start), last = seconds_since(round_start);
+      if (!active.empty() && settings.noise.time_limit_s > 0 && elapsed + 2 * last > settings.noise.time_limit_s) {
+        result_.sampling.stopped_by = "time_limit";
+        break;
+      }
+    }
+    result_.sampling.seconds = seconds_since(start);
+    result_.sampling.budget_met = settings.spp || result_.sampling.stopped_by.empty();
+    finish();
+  }
+
+ private:
+  static double seconds_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  }
+  double exposure() const { return std::exp2(in_.scene.display.exposure_stops); }
+
+  void sample_round(const std::vector<uint32_t>& active, const std::vector<uint32_t>& target) {
+    PixelSampler sampler(in_, sums_);
+    std::mutex mutex;
+    std::atomic<size_t> done{0};
+    const int round = result_.sampling.rounds;
+    parallel_ranges(
+        active.size(), in_.threads,
+        [&](size_t begin, size_t end) {
+          RayCounts counts;
+          std::vector<glm::dvec2> lhs;
+          for (size_t i = begin; i < end; ++i) sampler.sample(active[i], target[active[i]], counts, lhs);
+          std::lock_guard<std::mutex> lock(mutex);
+          result_.rays += counts;
+          done += end - begin;
+          if (in_.progress) in_.progress(progress(round, double(done) / double(active.size())));
+        },
+        64);
+  }
+
+  // A rough share of the work done: the first round is most of it when few pixels need more.
+  double progress(int round, double within) const {
+    const int rounds = 1 + int(std::log2(double(in_.scene.settings.noise.max_spp) / in_.scene.settings.noise.min_spp));
+    return std::min(1.0, (round + within) / double(in_.scene.settings.spp ? 1 : std::max(1, rounds)));
+  }
+
+  // The 3×3 means are the estimates (nine replicate pairs). A further 3×3 mean of the stimuli's
+  // largest variance decides: an estimate from one pixel's two replicates is too rough to stop on
+  // (it stops pixels that were merely lucky and wastes samples on unlucky ones).
+  void estimate() {
+    ReplicateSpread spread = replicate_spread(sums_, in_.request, exposure());
+    pooled_.LL = filter3x3(spread.LL, width_, height_, false);
+    pooled_.LC.resize(spread.LC.size());
+    pooled_.CC.resize(spread.CC.size());
+    for (size_t c = 0; c < spread.LC.size(); ++c) {
+      pooled_.LC[c] = filter3x3(spread.LC[c], width_, height_, false);
+      pooled_.CC[c] = filter3x3(spread.CC[c], width_, height_, false);
+    }
+    decision_ = filter3x3(largest_variance(pooled_, in_.request.max_abs_lambda), width_, height_, false);
+  }
+
+  // The active pixels that still miss their target, with their next sample counts.
+  std::vector<uint32_t> unconverged(const std::vector<uint32_t>& active, std::vector<uint32_t>& target) {
+    const NoiseBudget& budget = in_.scene.settings.noise;
+    std::vector<uint32_t> next;
+    for (uint32_t p : active) {
+      if (std::sqrt(decision_[p]) <= in_.request.share * budget.target) continue;
+      if (sums_.count[p] >= uint32_t(budget.max_spp)) {
+        result_.sampling.stopped_by = "max_spp";
+        continue;
+      }
+      target[p] = std::min<uint32_t>(2 * sums_.count[p], uint32_t(budget.max_spp));
+      next.push_back(p);
+    }
+    return next;
+  }
+
+  void finish() {
+    const size_t n = sums_.count.size();
+    result_.radiance = Image(width_, height_, 3, Image::Uninitialized{});
+    result_.fields.assign(in_.request.fields.size(), std::vector<float>(n));
+    result_.luminance.resize(n);
+    result_.surface_luminance.resize(n);
+    result_.coverage.resize(n);
+    result_.noise.resize(n);
+    result_.spp = sums_.count;
+    for (size_t p = 0; p < n; ++p) {
+      const double k = double(sums_.count[p]);
+      auto both = [&](const std::vector<double>* v) { return float((v[0][p] + v[1][p]) / k); };
+      for (int c = 0; c < 3; ++c) result_.radiance.pixels[3 * p + c] = float((sums_.rgb[0][c][p] + sums_.rgb[1][c][p]) / k);
+      for (size_t f = 0; f < result_.fields.size(); ++f)
+        result_.fields[f][p] = float((sums_.field[0][f][p] + sums_.field[1][f][p]) / k);
+      result_.luminance[p] = both(sums_.y_all);
+      result_.surface_luminance[p] = both(sums_.y_surface);
+      result_.coverage[p] = both(sums_.hits);
+      result_.noise[p] = float(std::sqrt(pooled_.LL[p]));
+    }
+    result_.change_noise.resize(pooled_.LC.size());
+    for (size_t c = 0; c < pooled_.LC.size(); ++c) {
+      result_.change_noise[c].covariance.assign(pooled_.LC[c].begin(), pooled_.LC[c].end());
+      result_.change_noise[c].variance.assign(pooled_.CC[c].begin(), pooled_.CC[c].end());
+    }
+    auto [lo, hi] = std::minmax_element(sums_.count.begin(), sums_.count.end());
+    double total = 0;
+    for (uint32_t c : sums_.count) total += c;
+    result_.sampling.pixels = {*lo, *hi, total / double(n)};
+  }
+
+  const PixelPassInput& in_;
+  RenderResult& result_;
+  int width_, height_;
+  Sums sums_;
+  std::vector<uint32_t> order_;
+  ReplicateSpread pooled_;
+  std::vector<double> decision_;
+};
+
+}  // namespace
+
+void pixel_pass(const PixelPassInput& input, RenderResult& result) { AdaptiveSampling(input, result).run(); }
+
+}  // namespace countershade

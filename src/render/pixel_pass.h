@@ -1,0 +1,32 @@
+#pragma once
+// The pixels of a render, sampled until each meets the noise budget.
+//
+// Every pixel's samples form two replicates with independent scrambles (core/sampler.h); half the
+// difference of the replicates' L* estimates the standard error of the pixel's L*, and likewise
+// for every change per λ the methods ask for (render/sample_field.h), so the noise of every
+// stimulus L + λ·c is known. Sampling goes in rounds: every pixel starts with min_spp samples, and
+// a pixel whose largest stimulus noise at ±λ_max, averaged over its neighbourhood (two 3×3
+// means), still exceeds its share of the budget doubles its samples, up to max_spp. The decisions
+// depend only on the samples, never on timing (unless a time limit stops the rounds), so the
+// image is the same at any thread count.
+
+#include <functional>
+
+#include "render/renderer.h"
+#include "render/shading.h"
+
+namespace countershade {
+
+struct PixelPassInput {
+  const Scene& scene;
+  const RayTracer& tracer;
+  const Shader& shader;
+  const PixelRequest& request;
+  int threads = 0;
+  std::function<void(double)> progress;
+};
+
+// Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.
+void pixel_pass(const PixelPassInput& input, RenderResult& result);
+
+}  // namespace countershade

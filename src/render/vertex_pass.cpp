@@ -1,0 +1,289 @@
+#include "render/vertex_pass.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include "core/color.h"
+#include "core/parallel.h"
+#include "core/random.h"
+#include "render/camera.h"
+
+namespace countershade {
+namespace {
+
+constexpr uint64_t kBackDomain = 16;  // added to a domain for the back side
+
+// Replicate sums of radiance at one shading point.
+struct PointSums {
+  glm::dvec3 sum[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+  uint32_t count = 0;
+  glm::dvec3 mean(int r) const {
+    const uint32_t k = r == 0 ? (count + 1) / 2 : count / 2;
+    return k ? sum[r] / double(k) : glm::dvec3(0.0);
+  }
+  glm::dvec3 total_mean() const { return count ? (sum[0] + sum[1]) / double(count) : glm::dvec3(0.0); }
+};
+
+// The distinct shading variants of each vertex: a representative corner and how many corners
+// share its normal and UV.
+struct Variants {
+  std::vector<uint32_t> offsets;                       // #V + 1
+  std::vector<std::pair<uint32_t, uint32_t>> entries;  // (corner, count)
+};
+
+Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc) {
+  Variants out;
+  out.offsets.push_back(0);
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const size_t first = out.entries.size();
+    for (uint32_t i = vc.offsets[v]; i < vc.offsets[v + 1]; ++i) {
+      const uint32_t corner = vc.corners[i];
+      auto same = [&](const std::pair<uint32_t, uint32_t>& e) {
+        return mesh.corner_normals[e.first] == mesh.corner_normals[corner] &&
+               (!mesh.has_uvs() || mesh.corner_uvs[e.first] == mesh.corner_uvs[corner]);
+      };
+      auto it = std::find_if(out.entries.begin() + long(first), out.entries.end(), same);
+      if (it != out.entries.end()) ++it->second;
+      else out.entries.emplace_back(corner, 1);
+    }
+    out.offsets.push_back(uint32_t(out.entries.size()));
+  }
+  return out;
+}
+
+// One object, one side: its points, their sums, and the rounds.
+class ObjectSide {
+ public:
+  ObjectSide(const VertexPassInput& in, unsigned object, bool back, uint64_t vertex_offset, uint64_t triangle_offset)
+      : in_(in), object_(object), back_(back), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
+        variants_(vertex_variants(mesh_, corners_)), own_(variants_.entries.size()),
+        ring_(mesh_.triangle_count() * size_t(std::max(in.ring_samples, 0))), rays_(in.scene.camera),
+        vertex_count_(mesh_.vertex_count(), 0),
+        triangle_count_(mesh_.triangle_count(), 0), vertex_offset_(vertex_offset), triangle_offset_(triangle_offset) {}
+
+  // Samples every point up to the counts its vertex (or triangle) asks for.
+  void sample(const std::vector<uint32_t>& vertex_target, const std::vector<uint32_t>& triangle_target, RayCounts& rays) {
+    parallel_ranges(mesh_.vertex_count(), in_.threads, [&](size_t begin, size_t end) {
+      RayCounts counts;
+      for (size_t v = begin; v < end; ++v) sample_vertex(v, vertex_target[v], counts);
+      add(rays, counts);
+    }, 256);
+    if (ring_.empty()) return;
+    parallel_ranges(mesh_.triangle_count(), in_.threads, [&](size_t begin, size_t end) {
+      RayCounts counts;
+      for (size_t t = begin; t < end; ++t) sample_triangle(t, triangle_target[t], counts);
+      add(rays, counts);
+    }, 256);
+  }
+
+  // The vertex's value from replicate r (or from all samples with r = -1).
+  glm::dvec3 value(size_t v, int r) const {
+    glm::dvec3 own(0.0);
+    double weight = 0;
+    for (uint32_t i = variants_.offsets[v]; i < variants_.offsets[v + 1]; ++i) {
+      const double count = variants_.entries[i].second;
+      own += count * (r < 0 ? own_[i].total_mean() : own_[i].mean(r));
+      weight += count;
+    }
+    own = weight > 0 ? own / weight : own;
+    const int k = std::max(in_.ring_samples, 0);
+    if (k == 0) return own;
+    glm::dvec3 ring(0.0);
+    for (uint32_t i = corners_.offsets[v]; i < corners_.offsets[v + 1]; ++i) {
+      const size_t t = corners_.corners[i] / 3;
+      for (int j = 0; j < k; ++j) ring += r < 0 ? ring_[t * k + j].total_mean() : ring_[t * k + j].mean(r);
+    }
+    return (own + ring) / (1.0 + double(k) * double(corners_.offsets[v + 1] - corners_.offsets[v]));
+  }
+
+  const std::vector<uint32_t>& vertex_samples() const { return vertex_count_; }
+  const TriangleMesh& mesh() const { return mesh_; }
+  const VertexCorners& corners() const { return corners_; }
+
+ private:
+  static void add(RayCounts& total, const RayCounts& counts) {
+    static std::mutex mutex;
+    std::lock_guard<std::mutex> lock(mutex);
+    total += counts;
+  }
+
+  SurfacePoint oriented(SurfacePoint sp) const {
+    if (back_) {
+      sp.geometric_normal = -sp.geometric_normal;
+      sp.shading_normal = -sp.shading_normal;
+    }
+    return sp;
+  }
+
+  void shade(const SurfacePoint& sp, uint64_t domain, uint64_t index, uint32_t from, uint32_t to, PointSums& sums,
+             RayCounts& counts) const {
+    const RenderSettings& settings = in_.scene.settings;
+    const glm::dvec3 wo = rays_.towards_viewer(sp.position);
+    for (uint32_t s = from; s < to; ++s) {
+      Sampler sampler(settings.sampling, settings.seed, domain + (back_ ? kBackDomain : 0), index, s);
+      sums.sum[Sampler::replicate(s)] += in_.shader.radiance(sp, wo, false, sampler, counts);
+    }
+    sums.count = std::max(sums.count, to);
+  }
+
+  void sample_vertex(size_t v, uint32_t target, RayCounts& counts) {
+    if (target <= vertex_count_[v]) return;
+    for (uint32_t i = variants_.offsets[v]; i < variants_.offsets[v + 1]; ++i) {
+      const uint32_t corner = variants_.entries[i].first, c = corner % 3;
+      SurfacePoint sp = surface_point(in_.scene, object_, corner / 3, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0);
+      sp.position = mesh_.positions[v];  // exactly the vertex, not a barycentric round-off
+      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]), vertex_count_[v],
+            target, own_[i], counts);
+    }
+    vertex_count_[v] = target;
+  }
+
+  void sample_triangle(size_t t, uint32_t target, RayCounts& counts) {
+    if (target <= triangle_count_[t]) return;
+    const int k = in_.ring_samples;
+    for (int j = 0; j < k; ++j) {
+      const glm::dvec3 b = triangle_sample_barycentrics(j, k);
+      const SurfacePoint sp = surface_point(in_.scene, object_, unsigned(t), b.y, b.z);
+      shade(oriented(sp), kDomainTriangle, (triangle_offset_ + t) * uint64_t(k) + uint64_t(j), triangle_count_[t],
+            target, ring_[t * k + j], counts);
+    }
+    triangle_count_[t] = target;
+  }
+
+  const VertexPassInput& in_;
+  unsigned object_;
+  bool back_;
+  const TriangleMesh& mesh_;
+  VertexCorners corners_;
+  Variants variants_;
+  std::vector<PointSums> own_, ring_;
+  CameraRays rays_;
+  std::vector<uint32_t> vertex_count_, triangle_count_;
+  uint64_t vertex_offset_, triangle_offset_;
+};
+
+// The squared L* error of every vertex, pooled: the larger of its own and its 1-ring's mean.
+std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& surface, double exposure) {
+  const size_t nv = side.mesh().vertex_count();
+  std::vector<double> variance(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const double L0 = cielab_lightness(display_luminance(side.value(v, 0), exposure));
+    const double L1 = cielab_lightness(display_luminance(side.value(v, 1), exposure));
+    variance[v] = 0.25 * (L0 - L1) * (L0 - L1);
+  }
+  const std::vector<double> points = surface.to_points(variance);
+  std::vector<double> pooled(points.size());
+  for (size_t p = 0; p < points.size(); ++p) {
+    double ring = 0;
+    for (uint32_t q : surface.adjacency.of(p)) ring += points[q];
+    const size_t n = surface.adjacency.of(p).size();
+    pooled[p] = std::max(points[p], n ? ring / double(n) : 0.0);
+  }
+  return surface.to_vertices(pooled);
+}
+
+// The vertices within `rings` of a triangle that a pixel centre sees from this side.
+std::vector<uint8_t> relevant_vertices(const GBuffer& g, unsigned object, bool back, const Object& o, int rings) {
+  const SurfaceGraph& surface = o.surface;
+  std::vector<uint8_t> near(surface.point_count(), 0);
+  std::vector<uint32_t> frontier;
+  for (size_t p = 0; p < g.object.size(); ++p) {
+    if (g.object[p] != int32_t(object) || bool(g.back[p]) != back) continue;
+    const glm::uvec3& t = o.mesh.triangles[size_t(g.triangle[p])];
+    for (uint32_t v : {t.x, t.y, t.z})
+      if (!near[surface.point_of[v]]) {
+        near[surface.point_of[v]] = 1;
+        frontier.push_back(surface.point_of[v]);
+      }
+  }
+  for (int ring = 0; ring < rings && !frontier.empty(); ++ring) {
+    std::vector<uint32_t> next;
+    for (uint32_t p : frontier)
+      for (uint32_t q : surface.adjacency.of(p))
+        if (!near[q]) {
+          near[q] = 1;
+          next.push_back(q);
+        }
+    frontier.swap(next);
+  }
+  std::vector<uint8_t> out(o.mesh.vertex_count());
+  for (size_t v = 0; v < out.size(); ++v) out[v] = near[surface.point_of[v]];
+  return out;
+}
+
+// Samples one side of one object to its need (or its fixed count); returns the values and errors.
+void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<uint8_t>& relevant, const SurfaceGraph& surface,
+                 double target, RayCounts& rays, std::vector<glm::vec3>& values, std::vector<float>& noise) {
+  const RenderSettings& settings = in.scene.settings;
+  const double exposure = std::exp2(in.scene.display.exposure_stops);
+  const std::optional<int> fixed = settings.fixed_vertex_spp();
+  const uint32_t max = uint32_t(fixed.value_or(settings.noise.max_spp));
+  std::vector<uint32_t> vertex_target(side.mesh().vertex_count(), uint32_t(fixed.value_or(2)));
+  std::vector<uint32_t> triangle_target(side.mesh().triangle_count(), vertex_target.empty() ? 2 : vertex_target[0]);
+  std::vector<double> variance;
+  for (bool more = true; more;) {
+    side.sample(vertex_target, triangle_target, rays);
+    variance = pooled_variance(side, surface, exposure);
+    more = false;
+    if (fixed) break;
+    for (size_t v = 0; v < variance.size(); ++v) {
+      const uint32_t count = side.vertex_samples()[v];
+      if (!relevant[v] || variance[v] <= target * target || count >= max) continue;
+      vertex_target[v] = std::min(2 * count, max);
+      for (uint32_t i = side.corners().offsets[v]; i < side.corners().offsets[v + 1]; ++i) {
+        const size_t t = side.corners().corners[i] / 3;
+        triangle_target[t] = std::max(triangle_target[t], std::min(2 * count, max));
+      }
+      more = true;
+    }
+  }
+  values.resize(variance.size());
+  noise.resize(variance.size());
+  for (size_t v = 0; v < variance.size(); ++v) {
+    values[v] = glm::vec3(side.value(v, -1));
+    noise[v] = float(std::sqrt(variance[v]));
+  }
+}
+
+}  // namespace
+
+VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
+  const auto start = std::chrono::steady_clock::now();
+  VertexSignal signal;
+  const size_t objects = in.scene.objects.size();
+  signal.front.resize(objects);
+  signal.back.resize(objects);
+  signal.front_noise.resize(objects);
+  signal.back_noise.resize(objects);
+  RayCounts counts;
+  uint64_t vertex_offset = 0, triangle_offset = 0;
+  double total = 0, points = 0;
+  signal.samples.min = UINT32_MAX;
+  for (unsigned o = 0; o < objects; ++o) {
+    const Object& object = in.scene.objects[o];
+    for (bool back : {false, true}) {
+      if (back && !(o < in.back.size() && in.back[o])) continue;
+      ObjectSide side(in, o, back, vertex_offset, triangle_offset);
+      const VertexNeed need = in.needs.at(o);
+      sample_side(in, side, relevant_vertices(in.gbuffer, o, back, object, need.rings), object.surface, need.noise,
+                  counts, back ? signal.back[o] : signal.front[o], back ? signal.back_noise[o] : signal.front_noise[o]);
+      for (uint32_t c : side.vertex_samples()) {
+        signal.samples.min = std::min(signal.samples.min, c);
+        signal.samples.max = std::max(signal.samples.max, c);
+        total += c;
+        points += 1;
+      }
+    }
+    vertex_offset += object.mesh.vertex_count();
+    triangle_offset += object.mesh.triangle_count();
+  }
+  signal.samples.mean = points ? total / points : 0.0;
+  if (!points) signal.samples.min = 0;
+  if (rays) *rays += counts;
+  signal.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return signal;
+}
+
+}  // namespace countershade
