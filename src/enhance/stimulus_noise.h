@@ -30,7 +30,8 @@ NoiseSummary summarize_noise(const std::vector<float>& sigma);
 
 // The quantisation's effect on a normal error of standard deviation r·q (q the L* step of one
 // code): the root mean square of the difference of two independently rounded values, over √2,
-// in steps. 0 at r = 0, r/√π for small r, √(r² + 1/12) for large r.
+// in steps. 0 at r = 0, √(r/√π) for small r (a rounding flips with probability ∝ r), √(r² + 1/12)
+// for large r.
 double quantized_noise_steps(double r);
 
 }  // namespace countershade

@@ -315,8 +315,8 @@ class Usm3dMethod final : public EnhancementMethod {
   std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const override {
     return std::make_shared<Usm3dChange>();
   }
-  // The smoothed signal's error is the vertices' divided by √(1 + 6n) (n steps of the 1-ring
-  // mean average over about 6n vertices, see docs/performance.md), then multiplied by the gain
+  // The smoothed signal's error is the vertices' divided by √(6n) (n steps of the 1-ring mean
+  // average over at least 6n vertices of valence 6, see tests/mesh/smoothing_test), then multiplied by the gain
   // λ·|w|·√(1+Var) ≤ λ·|w|·√1.25. It matters within three σ (in rings) of what the camera sees.
   std::vector<VertexNeed> vertex_needs(const Scene& scene, const MethodParameters& parameters, double max_abs_lambda,
                                        double allowed) const override {
@@ -333,7 +333,7 @@ class Usm3dMethod final : public EnhancementMethod {
       const int widest = iterations.empty() ? 1 : *std::max_element(iterations.begin(), iterations.end());
       const double gain = max_abs_lambda * weight * std::sqrt(1.25);
       VertexNeed need;
-      need.noise = gain > 0 ? allowed * std::sqrt(1.0 + 6.0 * n) / gain : scene.settings.noise.target;
+      need.noise = gain > 0 ? allowed * std::sqrt(6.0 * n) / gain : scene.settings.noise.target;
       need.rings = int(std::ceil(3.0 * std::sqrt(widest / 2.0))) + 1;
       needs.push_back(need);
     }

@@ -264,10 +264,19 @@ class AdaptiveSampling {
         result_.sampling.stopped_by = "max_spp";
         continue;
       }
-      target[p] = std::min<uint32_t>(2 * sums_.count[p], uint32_t(budget.max_spp));
+      target[p] = next_count(sums_.count[p], decision_[p] / std::pow(in_.request.share * budget.target, 2));
       next.push_back(p);
     }
     return next;
+  }
+
+  // The count at which a pixel whose variance is `excess` × its target's should meet it (the
+  // variance falls as 1/count), with a 10 % margin, an even count (two replicates), at least a
+  // quarter more and at most four times the samples so far (the estimate is rough).
+  uint32_t next_count(uint32_t count, double excess) const {
+    const double wanted = std::clamp(1.1 * excess, 1.25, 4.0) * count;
+    const uint32_t even = 2 * uint32_t(std::ceil(0.5 * wanted));
+    return std::min<uint32_t>(even, uint32_t(in_.scene.settings.noise.max_spp));
   }
 
   void finish() {

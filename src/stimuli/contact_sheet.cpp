@@ -5,9 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
+#include <map>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "stimuli/set_layout.h"
 
 namespace countershade {
@@ -32,10 +33,10 @@ Image thumbnail(const Image& in, int width) {
 
 void write_contact_sheet(const std::filesystem::path& output, const std::string& title,
                          const std::vector<std::string>& row_labels, const std::vector<std::string>& column_labels,
-                         const std::vector<std::vector<std::filesystem::path>>& cells, int thumbnail_width) {
+                         const std::vector<std::vector<ContactCell>>& cells, int thumbnail_width) {
   if (cells.empty() || cells[0].empty()) return;
-  Image first = thumbnail(read_image(cells[0][0]), thumbnail_width);
-  const int tw = first.width, th = first.height, gap = 8, left = 110, top = 56;
+  Image first = thumbnail(read_image(cells[0][0].file), thumbnail_width);
+  const int tw = first.width, th = first.height, gap = 8 + 16, left = 110, top = 56;  // 16: the captions
   const int cols = int(column_labels.size()), rows = int(row_labels.size());
   const int width = left + cols * (tw + gap), height = top + rows * (th + gap);
   OIIO::ImageBuf sheet(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
@@ -47,10 +48,13 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
   for (int r = 0; r < rows; ++r) {
     OIIO::ImageBufAlgo::render_text(sheet, 8, top + r * (th + gap) + th / 2, row_labels[size_t(r)], 14, "DejaVuSans", ink);
     for (int c = 0; c < cols; ++c) {
-      Image t = r == 0 && c == 0 ? first : thumbnail(read_image(cells[size_t(r)][size_t(c)]), thumbnail_width);
+      const ContactCell& cell = cells[size_t(r)][size_t(c)];
+      Image t = r == 0 && c == 0 ? first : thumbnail(read_image(cell.file), thumbnail_width);
       int x0 = left + c * (tw + gap), y0 = top + r * (th + gap);
       for (int y = 0; y < std::min(th, t.height); ++y)
         for (int x = 0; x < std::min(tw, t.width); ++x) sheet.setpixel(x0 + x, y0 + y, &t.pixels[t.index(x, y)], 3);
+      if (!cell.caption.empty())
+        OIIO::ImageBufAlgo::render_text(sheet, x0, y0 + th + 14, cell.caption, 12, "DejaVuSans", ink);
     }
   }
   Image out(width, height, 3);
@@ -58,9 +62,20 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
   write_image(output, out);
 }
 
+namespace {
+
+// "noise 0.21 L*" from a manifest entry's noise estimate, or "" without one.
+std::string noise_caption(const ManifestEntry& entry) {
+  const auto noise = entry.extra.find("noise");
+  if (noise == entry.extra.end() || !noise->contains("rms")) return "";
+  return "noise " + format_value(round_to((*noise)["rms"].get<double>(), 2)) + " L*";
+}
+
+}  // namespace
+
 void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
-  std::set<std::string> files;
-  for (const auto& s : manifest.stimuli) files.insert(s.file);
+  std::map<std::string, std::string> captions;  // file → caption
+  for (const auto& s : manifest.stimuli) captions[s.file] = noise_caption(s);
   const int count = e.lambda.count(), columns = std::min(e.contact_columns, count);
   std::vector<int> picks;
   for (int c = 0; c < columns; ++c)
@@ -70,15 +85,16 @@ void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& 
     for (size_t m = 0; m < e.methods.size(); ++m) {
       if (!e.methods[m].applies_to(e.scenes[s].name)) continue;
       std::vector<std::string> rows, cols;
-      std::vector<std::vector<std::filesystem::path>> cells;
+      std::vector<std::vector<ContactCell>> cells;
       for (int p : picks) cols.push_back("lambda = " + format_value(e.lambda.value(p)));  // ASCII: OIIO text
       for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g) {
         rows.push_back("sigma = " + format_value(e.methods[m].sigmas[g]));
         cells.emplace_back();
         for (int p : picks) {
           std::string rel = stimulus_path(e, {s, int(m), g}, p);
-          if (!files.count(rel)) return;  // incomplete (a shard): no sheets
-          cells.back().push_back(dir / rel);
+          const auto caption = captions.find(rel);
+          if (caption == captions.end()) return;  // incomplete (a shard): no sheets
+          cells.back().push_back({dir / rel, caption->second});
         }
       }
       write_contact_sheet(dir / "contact-sheets" / (e.scenes[s].name + "-" + e.methods[m].label + ".png"),

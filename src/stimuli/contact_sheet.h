@@ -14,16 +14,17 @@ namespace countershade {
 
 struct ContactCell {
   std::filesystem::path file;  // a stimulus PNG
+  std::string caption;         // printed under the thumbnail (ASCII); may be empty
 };
 
-// rows[r][c] are the stimuli at row label r and column label c.
+// cells[r][c] is the stimulus at row label r and column label c.
 void write_contact_sheet(const std::filesystem::path& output, const std::string& title,
                          const std::vector<std::string>& row_labels, const std::vector<std::string>& column_labels,
-                         const std::vector<std::vector<std::filesystem::path>>& cells, int thumbnail_width = 200);
+                         const std::vector<std::vector<ContactCell>>& cells, int thumbnail_width = 200);
 
 // The contact sheets of a finished set: one per scene and method, σ rows × evenly spaced λ
-// columns (the first and the last included), in DIR/contact-sheets/. A set that misses an image
-// (a shard) gets none.
+// columns (the first and the last included), in DIR/contact-sheets/, each thumbnail captioned
+// with its estimated sampling noise (L* RMS). A set that misses an image (a shard) gets none.
 void write_set_contact_sheets(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest);
 
 }  // namespace countershade

@@ -52,6 +52,24 @@ TEST(Smoothing, ImpulseSpreadMatchesRequestedSigma) {
   }
 }
 
+// The noise model of the vertex signal's sampling: n steps reduce independent vertex errors by at
+// least √(6n) (the sum of the squared weights of an interior vertex, ≤ 1/(6n), is the smoothed
+// error's variance), and not by much more, so the vertex pass does not oversample either.
+TEST(Smoothing, IndependentVertexErrorsShrinkBySqrtSixN) {
+  TriangleMesh grid = make_plane(1.0, 100);
+  VertexAdjacency adj = adjacency_from_triangles(grid.vertex_count(), grid.triangles);
+  Components comps = connected_components(adj);
+  for (int n : {1, 2, 4, 16, 64}) {
+    std::vector<double> weights(grid.vertex_count(), 0.0);
+    weights[50 * 101 + 50] = 1.0;
+    laplacian_smooth(adj, comps.label, {n}, weights);
+    double variance = 0;
+    for (double w : weights) variance += w * w;
+    EXPECT_LE(variance, 1.0 / (6.0 * n) + 1e-12) << "n = " << n;
+    EXPECT_GE(variance, 0.7 / (6.0 * n)) << "n = " << n;
+  }
+}
+
 // The CSR path against a naive double loop over OpenMesh's vertex-vertex circulators.
 TEST(Smoothing, BunnyMatchesNaiveOpenMeshReference) {
   auto path = testing::mesh_path("stanford-bunny.obj");

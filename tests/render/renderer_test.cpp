@@ -176,6 +176,40 @@ TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
   EXPECT_NE(png_bytes(2, "other.png"), one) << "a different seed should change the noise";
 }
 
+// Adaptive sampling decides per pixel and per vertex how many samples to take; those decisions,
+// like the samples, must not depend on how the work is split over threads.
+TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
+  testing::TempDir dir;
+  Scene scene = scene_from(dir, R"({
+    "version": 1,
+    "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], "width": 48, "height": 36},
+    "render": {"seed": 7},
+    "objects": [
+      {"shape": {"type": "plane", "size": 4, "subdivisions": 8}},
+      {"shape": {"type": "sphere", "radius": 0.4, "subdivisions": 3}, "transform": {"translate": [0, 0.4, 0]}}
+    ],
+    "lights": [
+      {"type": "point", "position": [1, 3, 1], "intensity": 8, "radius": 0.3, "samples": 1},
+      {"type": "ambient", "radiance": 0.1, "occlusion_distance": 0.5, "samples": 1}
+    ]
+  })");
+  RayTracer tracer(scene);
+  auto run = [&](int threads) {
+    RenderOptions options;
+    options.threads = threads;
+    options.vertex_radiance = true;
+    return render(scene, tracer, options);
+  };
+  RenderResult one = run(1), two = run(2);
+  EXPECT_EQ(one.radiance.pixels, two.radiance.pixels);
+  EXPECT_EQ(one.spp, two.spp);
+  EXPECT_EQ(one.noise, two.noise);
+  EXPECT_EQ(one.vertices.front, two.vertices.front);
+  EXPECT_EQ(one.vertices.front_noise, two.vertices.front_noise);
+  EXPECT_GT(one.sampling.pixels.max, one.sampling.pixels.min) << "the soft shadow should need more samples";
+  EXPECT_TRUE(one.sampling.budget_met) << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
+}
+
 // A vertex placed on the ray through the centre pixel of an odd-sized orthographic view
 // must get the same radiance from the vertex path as from the pixel path.
 TEST(Renderer, VertexRadianceEqualsPixelRadianceAtAProjectedVertex) {

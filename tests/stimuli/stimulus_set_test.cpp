@@ -23,9 +23,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A small experiment: the Cornsweet cube and a grey control, three methods.
+// A small experiment: the Cornsweet cube, sampled adaptively to a noise budget, and a grey control
+// with a fixed count; three methods.
 fs::path write_experiment(const testing::TempDir& dir, int width = 96, int height = 72, double step = 0.5) {
-  testing::write_file(dir / "cube.json", testing::kLitCubeScene);
+  std::string cube = testing::kLitCubeScene;
+  const std::string fixed = R"("render": {"spp": 2})";
+  cube.replace(cube.find(fixed), fixed.size(), R"("render": {"noise": {"target": 0.8, "max_spp": 64}})");
+  testing::write_file(dir / "cube.json", cube);
   testing::write_file(dir / "grey.json", R"({
     "version": 1,
     "camera": {"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 0, -1], "projection": "orthographic", "height_world": 2,
