@@ -77,9 +77,10 @@ void collect_design(BlockResults& b, const std::vector<const Response*>& rows) {
   b.sigmas.assign(sigmas.begin(), sigmas.end());
 }
 
-// Each subject's answers per cell, repetitions averaged; subjects with a missing cell or a cell
-// without a JND scale are excluded with their reason. Returns the included subjects' means.
-CellTable subject_means(BlockResults& b, const std::vector<const Response*>& rows) {
+// Each subject's answers per cell, repetitions averaged; subjects with a missing cell or, when
+// `needs_low` (subject normalisation), a cell whose mean λ_Low is 0 (no JND scale) are excluded
+// with their reason. Returns the included subjects' means.
+CellTable subject_means(BlockResults& b, const std::vector<const Response*>& rows, bool needs_low) {
   const size_t ns = b.scenes.size(), nsig = b.sigmas.size();
   std::map<std::string, std::vector<std::vector<double>>> answers;  // subject → cell → answers
   for (const Response* r : rows) {
@@ -98,7 +99,7 @@ CellTable subject_means(BlockResults& b, const std::vector<const Response*>& row
       repeated += cells[c].size() > 1;
       for (double x : cells[c]) means[c] += x / double(cells[c].size());
     }
-    for (size_t s = 0; s < ns && reason.empty(); ++s)
+    for (size_t s = 0; s < ns && reason.empty() && needs_low; ++s)
       for (size_t g = 0; g < nsig && reason.empty(); ++g)
         if (means[(s * nsig + g) * kQuestionCount + size_t(Question::low)] <= 0)
           reason = "lambda_low of 0 in scene " + b.scenes[s] + ", sigma " + json(b.sigmas[g]).dump() + " (no JND scale)";
@@ -253,6 +254,9 @@ json fit_json(const BlockResults::FitEntry& entry, const AnalysisOptions& option
             {"log_threshold_se", entry.fit.log_threshold_se},
             {"log_sd", entry.fit.scale},
             {"n", entry.fit.n},
+            {"left_censored", entry.fit.left_censored},
+            {"right_censored", entry.fit.right_censored},
+            {"identified", entry.fit.identified},
             {"converged", entry.fit.converged}};
   if (options.bootstrap > 0) {
     f["ci_low"] = entry.fit.ci_low;
@@ -262,24 +266,68 @@ json fit_json(const BlockResults::FitEntry& entry, const AnalysisOptions& option
   return f;
 }
 
+// A cell's answers as intervals (methods.md, threshold fits), its grid for the bootstrap, and
+// how many answers were λ = 0.
+struct CellAnswers {
+  std::vector<AnswerInterval> intervals;
+  AnswerGrid grid;
+  size_t zeros = 0;
+};
+
+CellAnswers cell_answers(const std::vector<const Response*>& cell, double step) {
+  CellAnswers out;
+  out.grid.step = step;
+  out.grid.first = step;  // without lambda_index, the grid's first value is taken as one step
+  bool first_known = false;
+  for (const Response* r : cell) {
+    bool zero = false;
+    out.intervals.push_back(answer_interval(r->lambda, r->lambda_index, step, r->lambda_max, &zero));
+    out.zeros += zero;
+    if (r->lambda_index >= 0) {
+      const double first = r->lambda - r->lambda_index * step;
+      out.grid.first = first_known ? std::min(out.grid.first, first) : first;
+      first_known = true;
+    }
+    if (r->lambda_max > 0) out.grid.top = std::isinf(out.grid.top) ? r->lambda_max : std::max(out.grid.top, r->lambda_max);
+  }
+  return out;
+}
+
+std::string cell_name(const BlockResults::FitEntry& e) {
+  return e.scene + ", sigma " + json(e.sigma).dump() + ", " + question_name(e.question);
+}
+
+void fit_cell(BlockResults& b, BlockResults::FitEntry& entry, const CellAnswers& cell, const AnalysisOptions& options) {
+  if (cell.zeros)
+    b.warnings.push_back(std::to_string(cell.zeros) + " answers of lambda = 0 counted as (0, lambda_1]: " + cell_name(entry));
+  entry.fit = fit_threshold(cell.intervals, options.model);
+  if (!entry.fit.identified)
+    b.warnings.push_back("fit unidentified (every answer censored at the " +
+                         std::string(entry.fit.left_censored == entry.fit.n ? "bottom" : "top") +
+                         " of the grid): " + cell_name(entry));
+  else if (!entry.fit.converged)
+    b.warnings.push_back("fit did not converge: " + cell_name(entry));
+  if (options.bootstrap > 0)
+    bootstrap_threshold(entry.fit, cell.grid, options.bootstrap, hash_combine(options.seed, uint64_t(b.fits.size())));
+}
+
 // Threshold fits on the raw answers of the included subjects (repetitions kept).
 void add_fits(BlockResults& b, const std::vector<const Response*>& rows, const AnalysisOptions& options) {
   const std::set<std::string> included(b.subjects.begin(), b.subjects.end());
+  if (std::none_of(rows.begin(), rows.end(), [](const Response* r) { return r->lambda_max > 0; }))
+    b.warnings.push_back("no lambda_max column: no answer is right-censored at the top of the grid");
   b.json["fits"] = json::array();
   for (size_t s = 0; s < b.scenes.size(); ++s)
     for (size_t g = 0; g < b.sigmas.size(); ++g)
       for (Question q : kQuestions) {
         BlockResults::FitEntry entry{b.scenes[s], b.sigmas[g], q, {}, {}};
+        std::vector<const Response*> cell;
         for (const Response* r : rows)
-          if (included.count(r->subject) && r->scene == entry.scene && r->sigma == entry.sigma && r->question == q)
+          if (included.count(r->subject) && r->scene == entry.scene && r->sigma == entry.sigma && r->question == q) {
+            cell.push_back(r);
             entry.answers.push_back(r->lambda);
-        entry.fit = fit_threshold(entry.answers, b.lambda_step, options.model);
-        if (!entry.fit.converged)
-          b.warnings.push_back("fit did not converge: " + entry.scene + ", sigma " + json(entry.sigma).dump() + ", " +
-                               question_name(q));
-        if (options.bootstrap > 0)
-          bootstrap_threshold(entry.fit, b.lambda_step, options.bootstrap,
-                              hash_combine(options.seed, uint64_t(b.fits.size())));
+          }
+        fit_cell(b, entry, cell_answers(cell, b.lambda_step), options);
         b.json["fits"].push_back(fit_json(entry, options));
         b.fits.push_back(std::move(entry));
       }
@@ -291,7 +339,8 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   b.method = method;
   b.lambda_step = resolve_step(rows, options);
   collect_design(b, rows);
-  const CellTable means = subject_means(b, rows);
+  // Dividing by a subject's own λ_Low needs it positive; the group mean does not.
+  const CellTable means = subject_means(b, rows, options.normalization == "subject");
   const size_t n = b.subjects.size();
   if (n < 3) throw InputError("method block '" + method + "': only " + std::to_string(n) + " complete subjects (need 3 or more)");
   b.jnd = jnd_cells(means, options.normalization);

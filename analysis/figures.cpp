@@ -115,9 +115,60 @@ std::string figure_lambda_by_sigma(const BlockResults& r) {
   return plot.to_svg();
 }
 
+namespace {
+
+// One panel of the fit figure: the empirical CDF of the answers (steps), the fitted CDF, the
+// threshold (dashed, labelled) and numeric axes.
+struct FitPanel {
+  double x0, y0, width, height, lmax;
+  double px(double l) const { return x0 + width * l / lmax; }
+  double py(double p) const { return y0 + height * (1.0 - p); }
+
+  void axes(std::ostringstream& svg) const {
+    svg << "<rect x=\"" << x0 << "\" y=\"" << y0 << "\" width=\"" << width << "\" height=\"" << height
+        << "\" fill=\"none\" stroke=\"#888\"/>\n";
+    for (double t : nice_ticks(0.0, lmax))
+      svg << "<line x1=\"" << px(t) << "\" x2=\"" << px(t) << "\" y1=\"" << py(0) << "\" y2=\"" << py(0) + 4
+          << "\" stroke=\"#444\"/><text x=\"" << px(t) << "\" y=\"" << py(0) + 14 << "\" text-anchor=\"middle\">"
+          << number(t) << "</text>\n";
+    for (double p : {0.0, 0.5, 1.0})
+      svg << "<line x1=\"" << x0 - 4 << "\" x2=\"" << x0 << "\" y1=\"" << py(p) << "\" y2=\"" << py(p)
+          << "\" stroke=\"#444\"/><text x=\"" << x0 - 6 << "\" y=\"" << py(p) + 3 << "\" text-anchor=\"end\">"
+          << number(p) << "</text>\n";
+    svg << "<text x=\"" << x0 + width << "\" y=\"" << py(0) + 26 << "\" text-anchor=\"end\">λ</text>\n";
+  }
+
+  void curves(std::ostringstream& svg, const BlockResults::FitEntry& f) const {
+    const char* colour = kQuestionColours[int(f.question)];
+    std::vector<double> a = f.answers;
+    std::sort(a.begin(), a.end());
+    svg << "<path fill=\"none\" stroke=\"#444\" d=\"M" << px(0) << "," << py(0);
+    for (size_t i = 0; i < a.size(); ++i) svg << "H" << px(a[i]) << "V" << py(double(i + 1) / double(a.size()));
+    svg << "H" << px(lmax) << "\"/>\n<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.8\" points=\"";
+    for (int t = 0; t <= 100; ++t) svg << px(lmax * t / 100.0) << "," << py(fit_cdf(f.fit, lmax * t / 100.0)) << " ";
+    svg << "\"/>\n";
+    if (!(f.fit.threshold <= lmax)) return;  // the median lies beyond the axis
+    svg << "<line x1=\"" << px(f.fit.threshold) << "\" x2=\"" << px(f.fit.threshold) << "\" y1=\"" << py(0)
+        << "\" y2=\"" << py(0.5) << "\" stroke=\"" << colour << "\" stroke-dasharray=\"3,2\"/>\n<text x=\""
+        << px(f.fit.threshold) + 3 << "\" y=\"" << py(0.5) - 3 << "\">" << number(f.fit.threshold) << "</text>\n";
+  }
+};
+
+// A panel's title: the cell, n, and how many answers were censored at either end of the grid.
+std::string panel_title(const BlockResults::FitEntry& f) {
+  std::string title = xml_escape(f.scene) + ", σ=" + number(f.sigma) + ", " + kQuestionNames[int(f.question)] +
+                      " (n=" + std::to_string(f.fit.n);
+  if (f.fit.left_censored) title += ", " + std::to_string(f.fit.left_censored) + " at first";
+  if (f.fit.right_censored) title += ", " + std::to_string(f.fit.right_censored) + " at top";
+  if (!f.fit.identified) title += ", unidentified";
+  return title + ")";
+}
+
+}  // namespace
+
 std::string figure_fits(const BlockResults& r) {
-  const int cols = 3, rows = int((r.fits.size() + 2) / 3), pw = 200, ph = 110, gap = 40;
-  const int width = cols * (pw + gap) + gap, height = rows * (ph + gap) + 50;
+  const int cols = 3, rows = int((r.fits.size() + 2) / 3), pw = 220, ph = 110, gap_x = 56, gap_y = 64;
+  const int width = cols * (pw + gap_x) + gap_x, height = rows * (ph + gap_y) + 64;
   // One λ range per question (column): λ_Low answers are much smaller than λ_High ones.
   double column_max[3] = {0, 0, 0};
   for (const auto& f : r.fits)
@@ -128,31 +179,15 @@ std::string figure_fits(const BlockResults& r) {
       << "\" font-family=\"sans-serif\" font-size=\"10\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << width / 2 << "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">Fitted "
       << (r.fits.empty() ? "" : fit_model_name(r.fits[0].fit.model))
-      << " threshold distributions (lines) over the empirical cumulative distributions (steps)</text>\n";
+      << " threshold distributions (lines; dashed: the threshold)</text>\n<text x=\"" << width / 2
+      << "\" y=\"36\" text-anchor=\"middle\" font-size=\"11\">steps: the share of answers at or below λ</text>\n";
   for (size_t k = 0; k < r.fits.size(); ++k) {
     const auto& f = r.fits[k];
-    const double lmax = column_max[int(f.question)];
-    double x0 = gap + double(k % cols) * (pw + gap), y0 = 40 + double(k / cols) * (ph + gap);
-    auto px = [&](double l) { return x0 + pw * l / lmax; };
-    auto py = [&](double p) { return y0 + ph * (1.0 - p); };
-    svg << "<rect x=\"" << x0 << "\" y=\"" << y0 << "\" width=\"" << pw << "\" height=\"" << ph
-        << "\" fill=\"none\" stroke=\"#888\"/>\n<text x=\"" << x0 << "\" y=\"" << y0 - 4 << "\">" << xml_escape(f.scene)
-        << ", σ=" << number(f.sigma) << ", " << kQuestionNames[int(f.question)] << " (n=" << f.fit.n << ")</text>\n";
-    std::vector<double> a = f.answers;
-    std::sort(a.begin(), a.end());
-    svg << "<path fill=\"none\" stroke=\"#444\" d=\"M" << px(0) << "," << py(0);
-    for (size_t i = 0; i < a.size(); ++i)
-      svg << "H" << px(a[i]) << "V" << py(double(i + 1) / double(a.size()));
-    svg << "H" << px(lmax) << "\"/>\n<polyline fill=\"none\" stroke=\"" << kQuestionColours[int(f.question)]
-        << "\" stroke-width=\"1.8\" points=\"";
-    for (int t = 0; t <= 100; ++t) {
-      double l = lmax * t / 100.0;
-      svg << px(l) << "," << py(fit_cdf(f.fit, l)) << " ";
-    }
-    svg << "\"/>\n<line x1=\"" << px(f.fit.threshold) << "\" x2=\"" << px(f.fit.threshold) << "\" y1=\"" << py(0)
-        << "\" y2=\"" << py(0.5) << "\" stroke=\"" << kQuestionColours[int(f.question)]
-        << "\" stroke-dasharray=\"3,2\"/>\n<text x=\"" << x0 + pw << "\" y=\"" << y0 + ph + 12
-        << "\" text-anchor=\"end\">λ → " << number(lmax) << "</text>\n";
+    const FitPanel panel{gap_x + double(k % cols) * (pw + gap_x), 64 + double(k / cols) * (ph + gap_y), double(pw),
+                         double(ph), column_max[int(f.question)]};
+    svg << "<text x=\"" << panel.x0 << "\" y=\"" << panel.y0 - 5 << "\">" << panel_title(f) << "</text>\n";
+    panel.axes(svg);
+    panel.curves(svg, f);
   }
   svg << "</svg>\n";
   return svg.str();
@@ -161,7 +196,7 @@ std::string figure_fits(const BlockResults& r) {
 std::string figure_dendrogram(const BlockResults& r) {
   const Dendrogram& d = r.dendrogram;
   const size_t n = r.subjects.size();
-  const int width = std::max(420, int(n) * 28 + 120), height = 360, left = 60, top = 40, bottom = 60;
+  const int width = std::max(560, int(n) * 28 + 120), height = 360, left = 60, top = 40, bottom = 60;
   const double pw = width - left - 40, ph = height - top - bottom;
   double hmax = d.heights.empty() ? 1.0 : nice_max(d.heights.back());
   std::vector<double> leaf_x(n);
@@ -188,10 +223,14 @@ std::string figure_dendrogram(const BlockResults& r) {
     svg << "<text transform=\"translate(" << leaf_x[i] + 4 << "," << top + ph + 8 << ") rotate(90)\" fill=\""
         << plot_color(size_t(r.cluster_labels[i] - 1)) << "\">" << xml_escape(r.subjects[i]) << " ("
         << r.cluster_labels[i] << ")</text>\n";
-  for (int t = 0; t <= 4; ++t)
-    svg << "<text x=\"" << left - 6 << "\" y=\"" << py(hmax * t / 4) + 4 << "\" text-anchor=\"end\">"
-        << number(hmax * t / 4) << "</text>\n";
-  svg << "<text transform=\"translate(16," << top + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">height</text>\n</svg>\n";
+  svg << "<line x1=\"" << left - 8 << "\" x2=\"" << left - 8 << "\" y1=\"" << py(0) << "\" y2=\"" << py(hmax)
+      << "\" stroke=\"#444\"/>\n";
+  for (double t : nice_ticks(0.0, hmax))
+    svg << "<line x1=\"" << left - 12 << "\" x2=\"" << left - 8 << "\" y1=\"" << py(t) << "\" y2=\"" << py(t)
+        << "\" stroke=\"#444\"/><text x=\"" << left - 14 << "\" y=\"" << py(t) + 4 << "\" text-anchor=\"end\">"
+        << number(t) << "</text>\n";
+  svg << "<text transform=\"translate(16," << top + ph / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">merge height (Ward, JND)</text>\n</svg>\n";
   return svg.str();
 }
 

@@ -40,79 +40,100 @@ T reduced(FitModel model, double lambda, const T& location, const T& log_scale) 
   return (x - location) / exp(log_scale);
 }
 
-// The probability of one grid answer: the interval (λ − step, λ], or (0, λ] at the first step.
+// The model's survival function 1 − F of the reduced variable, computed directly so that a far
+// right tail keeps its precision.
 template <class T>
-T interval_probability(FitModel model, double lambda, double step, const T& location, const T& log_scale) {
-  double upper = std::max(lambda, step);
-  T p_upper = standard_cdf(model, reduced(model, upper, location, log_scale));
-  double lower = upper - step;
-  if (lower <= 1e-9 * step) {
-    if (model != FitModel::logistic) return p_upper;  // left-censored: F(0) = 0 on a log scale
-    return p_upper - standard_cdf(model, (T(0.0) - location) / exp(log_scale));
+T standard_survival(FitModel model, const T& z) {
+  switch (model) {
+    case FitModel::lognormal: return T(0.5) * erfc(z / T(std::numbers::sqrt2));
+    case FitModel::weibull: return exp(-exp(z));
+    case FitModel::logistic: return T(1.0) / (T(1.0) + exp(z));
   }
-  return p_upper - standard_cdf(model, reduced(model, lower, location, log_scale));
+  return z;
 }
 
-// One distinct answer value with its count: residual √(2·count·(−ln P)), so the sum of squares is
+// The probability of one answer's interval (lower, upper]: F(upper) − F(lower), with F(0) = 0
+// for every model (left-censoring) and F(∞) = 1 (right-censoring).
+template <class T>
+T interval_probability(FitModel model, const AnswerInterval& a, const T& location, const T& log_scale) {
+  const bool left = !(a.lower > 0), right = std::isinf(a.upper);
+  if (left && right) return T(1.0);
+  if (right) return standard_survival(model, reduced(model, a.lower, location, log_scale));
+  const T upper = standard_cdf(model, reduced(model, a.upper, location, log_scale));
+  if (left) return upper;
+  return upper - standard_cdf(model, reduced(model, a.lower, location, log_scale));
+}
+
+using AnswerCounts = std::map<AnswerInterval, double>;
+
+// One distinct interval with its count: residual √(2·count·(−ln P)), so the sum of squares is
 // −2 ln L and Ceres' minimum is the maximum-likelihood estimate.
 struct AnswerResidual {
-  AnswerResidual(FitModel model, double lambda, double step, double count)
-      : model(model), lambda(lambda), step(step), count(count) {}
+  AnswerResidual(FitModel model, AnswerInterval interval, double count) : model(model), interval(interval), count(count) {}
   template <class T>
   bool operator()(const T* const params, T* residual) const {
-    T p = interval_probability(model, lambda, step, params[0], params[1]);
+    T p = interval_probability(model, interval, params[0], params[1]);
     if (!(p > T(1e-300))) p = T(1e-300);
     residual[0] = sqrt(T(2.0 * count) * -log(p) + T(1e-300));
     return true;
   }
   FitModel model;
-  double lambda, step, count;
+  AnswerInterval interval;
+  double count;
 };
 
-double negative_log_likelihood(FitModel model, const std::map<double, double>& counts, double step, const double* q) {
+double negative_log_likelihood(FitModel model, const AnswerCounts& counts, const double* q) {
   double nll = 0;
-  for (const auto& [lambda, count] : counts)
-    nll -= count * std::log(std::max(1e-300, interval_probability(model, lambda, step, q[0], q[1])));
+  for (const auto& [interval, count] : counts)
+    nll -= count * std::log(std::max(1e-300, interval_probability(model, interval, q[0], q[1])));
   return nll;
 }
 
 // Gradient of −ln L by automatic differentiation.
-Eigen::Vector2d gradient(FitModel model, const std::map<double, double>& counts, double step, const double* q) {
+Eigen::Vector2d gradient(FitModel model, const AnswerCounts& counts, const double* q) {
   using J = ceres::Jet<double, 2>;
   J location(q[0], 0), log_scale(q[1], 1), nll(0.0);
-  for (const auto& [lambda, count] : counts) nll -= J(count) * log(interval_probability(model, lambda, step, location, log_scale));
+  for (const auto& [interval, count] : counts) nll -= J(count) * log(interval_probability(model, interval, location, log_scale));
   return {nll.v[0], nll.v[1]};
 }
 
 // The observed information: the Hessian of −ln L, by central differences of the exact gradient.
-Eigen::Matrix2d hessian(FitModel model, const std::map<double, double>& counts, double step, const double* q) {
+Eigen::Matrix2d hessian(FitModel model, const AnswerCounts& counts, const double* q) {
   Eigen::Matrix2d h;
   for (int k = 0; k < 2; ++k) {
     double e = 1e-5 * std::max(1.0, std::abs(q[k]));
     double plus[2] = {q[0], q[1]}, minus[2] = {q[0], q[1]};
     plus[k] += e;
     minus[k] -= e;
-    h.col(k) = (gradient(model, counts, step, plus) - gradient(model, counts, step, minus)) / (2 * e);
+    h.col(k) = (gradient(model, counts, plus) - gradient(model, counts, minus)) / (2 * e);
   }
   return 0.5 * (h + h.transpose());
 }
 
-Fit solve(const std::map<double, double>& counts, double step, FitModel model, const double* start) {
-  double q[2] = {start[0], start[1]};
+// An interval's end on the model's scale, for bounds and starting values: its upper end, or its
+// lower end when it is open above.
+double model_scale_point(FitModel model, const AnswerInterval& a) {
+  const double x = std::isinf(a.upper) ? a.lower : a.upper;
+  return model == FitModel::logistic ? x : std::log(x);
+}
+
+// Minimises −ln L with Ceres within bounds around the answers; returns whether the solution is
+// usable.
+bool minimize(FitModel model, const AnswerCounts& counts, double* q) {
   ceres::Problem problem;
-  for (const auto& [lambda, count] : counts)
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnswerResidual, 1, 2>(
-                                 new AnswerResidual(model, lambda, step, count)),
-                             nullptr, q);
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const auto& [lambda, count] : counts) {
-    double x = model == FitModel::logistic ? std::max(lambda, step) : std::log(std::max(lambda, step));
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, narrowest = lo;
+  for (const auto& [interval, count] : counts) {
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<AnswerResidual, 1, 2>(new AnswerResidual(model, interval, count)), nullptr, q);
+    const double x = model_scale_point(model, interval);
     lo = std::min(lo, x);
     hi = std::max(hi, x);
+    if (!std::isinf(interval.upper)) narrowest = std::min(narrowest, interval.upper - interval.lower);
   }
+  if (std::isinf(narrowest)) narrowest = std::exp(lo);  // every answer open above
   problem.SetParameterLowerBound(q, 0, lo - 10.0);
   problem.SetParameterUpperBound(q, 0, hi + 10.0);
-  problem.SetParameterLowerBound(q, 1, std::log(1e-4 * (model == FitModel::logistic ? step : 1.0)));
+  problem.SetParameterLowerBound(q, 1, std::log(1e-4 * (model == FitModel::logistic ? narrowest : 1.0)));
   problem.SetParameterUpperBound(q, 1, std::log(100.0 * std::max(1.0, hi - lo + 1.0)));
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
@@ -131,56 +152,103 @@ Fit solve(const std::map<double, double>& counts, double step, FitModel model, c
   (void)quiet;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
+  return summary.IsSolutionUsable();
+}
 
-  // Polish with Newton steps on the exact likelihood: the Gauss–Newton model of the square-root
-  // residuals converges slowly near the optimum.
+// Newton steps on the exact likelihood: the Gauss–Newton model of the square-root residuals
+// converges slowly near the optimum.
+void polish(FitModel model, const AnswerCounts& counts, double* q) {
   for (int it = 0; it < 20; ++it) {
-    Eigen::Vector2d g = gradient(model, counts, step, q);
-    Eigen::Matrix2d h = hessian(model, counts, step, q);
+    Eigen::Vector2d g = gradient(model, counts, q);
+    Eigen::Matrix2d h = hessian(model, counts, q);
     if (h.determinant() <= 0) break;
     Eigen::Vector2d dq = h.ldlt().solve(g);
-    double base = negative_log_likelihood(model, counts, step, q), t = 1.0;
+    double base = negative_log_likelihood(model, counts, q), t = 1.0;
     double next[2];
     for (int tries = 0; tries < 30; ++tries, t *= 0.5) {
       next[0] = q[0] - t * dq[0];
       next[1] = q[1] - t * dq[1];
-      if (negative_log_likelihood(model, counts, step, next) <= base + 1e-12) break;
+      if (negative_log_likelihood(model, counts, next) <= base + 1e-12) break;
     }
     q[0] = next[0];
     q[1] = next[1];
     if (dq.norm() * t < 1e-12) break;
   }
+}
 
+// The log-threshold (the log-median) and its gradient with respect to (μ, ln σ), for the delta
+// method.
+std::pair<double, Eigen::Vector2d> log_median(FitModel model, double location, double scale) {
+  switch (model) {
+    case FitModel::lognormal: return {location, {1.0, 0.0}};
+    case FitModel::weibull: {  // median = exp(μ + σ ln ln 2)
+      const double c = std::log(std::log(2.0));
+      return {location + scale * c, {1.0, scale * c}};
+    }
+    case FitModel::logistic: {  // median = μ on the λ scale
+      const double mu = std::max(location, 1e-300);
+      return {std::log(mu), {1.0 / mu, 0.0}};
+    }
+  }
+  return {location, {1.0, 0.0}};
+}
+
+Fit solve(const AnswerCounts& counts, FitModel model, const double* start) {
+  double q[2] = {start[0], start[1]};
+  const bool usable = minimize(model, counts, q);
+  polish(model, counts, q);
   Fit fit;
   fit.model = model;
   fit.location = q[0];
   fit.scale = std::exp(q[1]);
-  for (const auto& [lambda, count] : counts) fit.n += size_t(count);
-  Eigen::Matrix2d h = hessian(model, counts, step, q);
-  fit.converged = summary.IsSolutionUsable() && h.determinant() > 0 && gradient(model, counts, step, q).norm() < 1e-4 * std::max(1.0, double(fit.n));
-  fit.location_se = h.determinant() > 0 ? std::sqrt(h.inverse()(0, 0)) : std::nan("");
-  switch (model) {
-    case FitModel::lognormal:
-      fit.log_threshold = fit.location;
-      fit.log_threshold_se = fit.location_se;
-      break;
-    case FitModel::weibull:  // median = exp(μ + σ ln ln 2); SE reported for μ
-      fit.log_threshold = fit.location + fit.scale * std::log(std::log(2.0));
-      fit.log_threshold_se = fit.location_se;
-      break;
-    case FitModel::logistic:  // median = μ on the λ scale; delta method for ln μ
-      fit.log_threshold = std::log(std::max(fit.location, 1e-300));
-      fit.log_threshold_se = fit.location_se / std::max(fit.location, 1e-300);
-      break;
+  for (const auto& [interval, count] : counts) {
+    fit.n += size_t(count);
+    fit.left_censored += !(interval.lower > 0) ? size_t(count) : 0;
+    fit.right_censored += std::isinf(interval.upper) ? size_t(count) : 0;
   }
+  fit.identified = fit.left_censored < fit.n && fit.right_censored < fit.n;
+  const Eigen::Matrix2d h = hessian(model, counts, q);
+  const bool positive = h.determinant() > 0 && h(0, 0) > 0;
+  fit.converged = fit.identified && usable && positive &&
+                  gradient(model, counts, q).norm() < 1e-4 * std::max(1.0, double(fit.n));
+  const Eigen::Matrix2d covariance = positive ? Eigen::Matrix2d(h.inverse()) : Eigen::Matrix2d::Constant(std::nan(""));
+  fit.location_se = std::sqrt(covariance(0, 0));
+  const auto [log_threshold, d] = log_median(model, fit.location, fit.scale);
+  fit.log_threshold = log_threshold;
+  fit.log_threshold_se = std::sqrt(d.dot(covariance * d));
   fit.threshold = std::exp(fit.log_threshold);
   return fit;
 }
 
-std::map<double, double> count_answers(const std::vector<double>& answers, double step) {
-  std::map<double, double> counts;
-  for (double a : answers) counts[std::round(a / step) * step] += 1.0;  // snap to the grid
+AnswerCounts count_answers(const std::vector<AnswerInterval>& answers) {
+  AnswerCounts counts;
+  for (const auto& a : answers) counts[a] += 1.0;
   return counts;
+}
+
+// A threshold drawn from the fitted model, by its inverse CDF.
+double draw_threshold(const Fit& fit, SampleStream& random) {
+  const double u = std::clamp(random.next(), 1e-12, 1.0 - 1e-12);
+  double z;
+  switch (fit.model) {
+    case FitModel::lognormal: z = -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u); break;
+    case FitModel::weibull: z = std::log(-std::log(1.0 - u)); break;
+    default: z = std::log(u / (1.0 - u));
+  }
+  const double v = fit.location + fit.scale * z;
+  return fit.model == FitModel::logistic ? v : std::exp(v);
+}
+
+// The answer an observer with threshold t gives on the grid: the first value at or above t, at
+// most the top.
+AnswerInterval grid_answer(const AnswerGrid& grid, double t) {
+  int index = std::max(0, int(std::ceil(std::min((t - grid.first) / grid.step, 1e9) - 1e-9)));
+  double lambda = grid.first + index * grid.step;
+  if (lambda >= grid.top - 1e-9 * grid.step) {
+    index = int(std::lround((grid.top - grid.first) / grid.step));
+    lambda = grid.top;
+  }
+  return answer_interval(lambda, index, grid.step, std::isinf(grid.top) ? 0.0 : grid.top);
 }
 
 }  // namespace
@@ -201,19 +269,32 @@ const char* fit_model_name(FitModel model) {
   return "?";
 }
 
-Fit fit_threshold(const std::vector<double>& answers, double step, FitModel model) {
-  auto counts = count_answers(answers, step);
+AnswerInterval answer_interval(double lambda, int index, double step, double top, bool* zero) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const double tolerance = 1e-9 * step;
+  if (zero) *zero = lambda <= tolerance;
+  if (lambda <= tolerance) return {0.0, step};  // (0, λ_1] on a grid that starts at 0
+  AnswerInterval a{lambda - step, lambda};
+  if (index == 0 || a.lower <= tolerance) a.lower = 0.0;
+  if (top > 0 && lambda >= top - tolerance) a.upper = kInfinity;
+  return a;
+}
+
+Fit fit_threshold(const std::vector<AnswerInterval>& answers, FitModel model) {
   // Start from the moments of the answers on the model's scale.
-  double sum = 0, sq = 0, n = 0;
-  for (double a : answers) {
-    double x = model == FitModel::logistic ? std::max(a, step) : std::log(std::max(a, step));
+  double sum = 0, sq = 0, n = 0, narrowest = std::numeric_limits<double>::infinity();
+  for (const auto& a : answers) {
+    const double x = model_scale_point(model, a);
     sum += x;
     sq += x * x;
     n += 1;
+    if (!std::isinf(a.upper)) narrowest = std::min(narrowest, a.upper - a.lower);
   }
-  double mean = sum / n, sd = std::sqrt(std::max(sq / n - mean * mean, 0.0));
-  double start[2] = {mean, std::log(std::max(sd, model == FitModel::logistic ? step : 0.05))};
-  return solve(counts, step, model, start);
+  if (answers.empty()) throw InputError("a threshold fit needs at least one answer");
+  if (std::isinf(narrowest)) narrowest = 1.0;
+  const double mean = sum / n, sd = std::sqrt(std::max(sq / n - mean * mean, 0.0));
+  const double start[2] = {mean, std::log(std::max(sd, model == FitModel::logistic ? narrowest : 0.05))};
+  return solve(count_answers(answers), model, start);
 }
 
 double fit_cdf(const Fit& fit, double lambda) {
@@ -222,26 +303,15 @@ double fit_cdf(const Fit& fit, double lambda) {
   return standard_cdf(fit.model, (x - fit.location) / fit.scale);
 }
 
-void bootstrap_threshold(Fit& fit, double step, int resamples, uint64_t seed) {
+void bootstrap_threshold(Fit& fit, const AnswerGrid& grid, int resamples, uint64_t seed) {
   const double start[2] = {fit.location, std::log(fit.scale)};
   // Each resample has its own random stream, so the result does not depend on scheduling.
   std::vector<double> results(size_t(resamples), std::nan(""));
   tbb::parallel_for(0, resamples, [&](int b) {
-    std::vector<double> sample(fit.n);
+    std::vector<AnswerInterval> sample(fit.n);
     SampleStream random(seed, 5, uint64_t(b), 0);
-    for (double& x : sample) {
-      // Inverse-CDF draw, then the grid answer whose interval contains it.
-      double u = std::clamp(random.next(), 1e-12, 1.0 - 1e-12), z;
-      switch (fit.model) {
-        case FitModel::lognormal: z = -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u); break;
-        case FitModel::weibull: z = std::log(-std::log(1.0 - u)); break;
-        default: z = std::log(u / (1.0 - u));
-      }
-      double v = fit.location + fit.scale * z;
-      double lambda = fit.model == FitModel::logistic ? v : std::exp(v);
-      x = std::max(1.0, std::ceil(lambda / step - 1e-9)) * step;
-    }
-    Fit refit = solve(count_answers(sample, step), step, fit.model, start);
+    for (auto& a : sample) a = grid_answer(grid, draw_threshold(fit, random));
+    Fit refit = solve(count_answers(sample), fit.model, start);
     if (refit.converged) results[size_t(b)] = refit.threshold;
   });
   std::vector<double> thresholds;

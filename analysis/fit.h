@@ -1,11 +1,13 @@
 #pragma once
-// Threshold fits by maximum likelihood with interval censoring from the λ grid: an answer λ means
-// the observer's threshold lies in (λ − step, λ]; an answer at the first grid step (or 0) is
-// left-censored, (0, step]. Solved with Ceres (bounded), standard errors from the observed
-// information (the exact Hessian of the log-likelihood, as R's survreg reports them), and a
-// seeded parametric bootstrap for confidence intervals.
+// Threshold fits by maximum likelihood with interval censoring from the λ grid (methods.md,
+// threshold fits): an answer at grid index i means the observer's threshold lies in
+// (λ_{i−1}, λ_i]; the first grid value is left-censored, (0, λ_i]; an answer at the top of the
+// grid is right-censored, (λ_{i−1}, ∞). Solved with Ceres (bounded), standard errors from the
+// observed information (the exact Hessian of the log-likelihood, as R's survreg reports them),
+// and a seeded parametric bootstrap for confidence intervals.
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,25 @@ enum class FitModel { lognormal, weibull, logistic };
 FitModel parse_fit_model(const std::string& name);  // throws InputError
 const char* fit_model_name(FitModel model);
 
+// Where an answer puts the threshold: (lower, upper]. lower = 0 is left-censored, upper = ∞
+// right-censored.
+struct AnswerInterval {
+  double lower = 0, upper = 0;
+  bool operator<(const AnswerInterval& o) const { return lower < o.lower || (lower == o.lower && upper < o.upper); }
+};
+
+// The λ grid an answer was given on: λ_i = first + i·step, and the top the observer could reach
+// (∞ when unknown: nothing is right-censored).
+struct AnswerGrid {
+  double first = 0, step = 0;
+  double top = std::numeric_limits<double>::infinity();
+};
+
+// The interval of an answer λ at grid index `index` (−1: unknown, then λ_{i−1} = λ − step) on a
+// grid with the given step and top (0: unknown). An answer of λ = 0 counts as (0, λ_1] and sets
+// *zero when given.
+AnswerInterval answer_interval(double lambda, int index, double step, double top, bool* zero = nullptr);
+
 struct Fit {
   FitModel model = FitModel::lognormal;
   double location = 0, scale = 0;  // μ and σ of the model (log scale for lognormal and Weibull)
@@ -23,18 +44,20 @@ struct Fit {
   double log_threshold = 0;  // ln(threshold)
   double log_threshold_se = 0;
   size_t n = 0;
-  bool converged = false;
+  size_t left_censored = 0, right_censored = 0;  // answers at the bottom and the top of the grid
+  bool identified = true;    // false when every answer is censored on the same side
+  bool converged = false;    // never true for an unidentified fit
   double ci_low = 0, ci_high = 0;  // bootstrap 95% CI of the threshold (when bootstrapped)
   int bootstrap = 0;
 };
 
-// Fits `answers` (raw λ values on a grid of `step`).
-Fit fit_threshold(const std::vector<double>& answers, double step, FitModel model);
+Fit fit_threshold(const std::vector<AnswerInterval>& answers, FitModel model);
 
 // The model's cumulative distribution function at λ.
 double fit_cdf(const Fit& fit, double lambda);
 
-// Adds percentile bootstrap CIs from B data sets simulated from `fit` and quantised to the grid.
-void bootstrap_threshold(Fit& fit, double step, int resamples, uint64_t seed);
+// Adds percentile bootstrap CIs from B data sets simulated from `fit` and answered on `grid`
+// (the first grid value at or above each simulated threshold, at most the top).
+void bootstrap_threshold(Fit& fit, const AnswerGrid& grid, int resamples, uint64_t seed);
 
 }  // namespace countershade::analysis

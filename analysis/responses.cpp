@@ -42,72 +42,99 @@ std::vector<Response> latest_revisions(std::vector<Response> rows, const CsvTabl
   return out;
 }
 
-}  // namespace
-
-std::vector<Response> read_responses(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  CsvTable table = parse_csv(read_file_bytes(path), file);
-  if (table.rows.empty()) throw_input_error(file, "file is empty (expected a header row and responses)");
-
-  const auto& header = table.rows[0];
-  std::map<std::string, size_t> column;
-  for (size_t c = 0; c < header.size(); ++c) {
-    std::string name = header[c];
-    while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.pop_back();
-    while (!name.empty() && (name.front() == ' ' || name.front() == '\t')) name.erase(name.begin());
-    if (column.count(name))
-      throw_input_error(file + ": line 1, column " + std::to_string(c + 1), "duplicate column '" + name + "'");
-    column[name] = c;
-  }
-  for (const std::string& required : required_response_columns())
-    if (!column.count(required)) throw_input_error(file + ": line 1", "missing column '" + required + "'");
-  if (table.rows.size() == 1) throw_input_error(file, "no responses after the header row");
-
-  auto where = [&](size_t r, const std::string& name) {
-    return file + ": line " + std::to_string(table.lines[r]) + ", column " + std::to_string(column.at(name) + 1) +
-           " (" + name + ")";
-  };
-  auto number = [&](size_t r, const std::string& name) {
-    const std::string& text = table.rows[r][column.at(name)];
-    size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
+// Reads the rows of one responses CSV; every error names the file, the line and the column.
+class ResponseRows {
+ public:
+  ResponseRows(CsvTable table, std::string file) : table_(std::move(table)), file_(std::move(file)) {
+    if (table_.rows.empty()) throw_input_error(file_, "file is empty (expected a header row and responses)");
+    const auto& header = table_.rows[0];
+    for (size_t c = 0; c < header.size(); ++c) {
+      if (column_.count(header[c]))
+        throw_input_error(file_ + ": line 1, column " + std::to_string(c + 1), "duplicate column '" + header[c] + "'");
+      column_[header[c]] = c;
     }
-    if (text.empty() || used != text.size() || !std::isfinite(v))
-      throw_input_error(where(r, name), "'" + text + "' is not a number");
-    return v;
-  };
+    for (const std::string& required : required_response_columns())
+      if (!column_.count(required)) throw_input_error(file_ + ": line 1", "missing column '" + required + "'");
+    if (table_.rows.size() == 1) throw_input_error(file_, "no responses after the header row");
+  }
 
-  std::vector<Response> out;
-  for (size_t r = 1; r < table.rows.size(); ++r) {
-    const auto& row = table.rows[r];
-    if (row.size() != header.size())
-      throw_input_error(file + ": line " + std::to_string(table.lines[r]),
-                        "expected " + std::to_string(header.size()) + " fields, found " + std::to_string(row.size()));
+  std::vector<Response> read() const {
+    std::vector<Response> out;
+    for (size_t r = 1; r < table_.rows.size(); ++r) out.push_back(row(r));
+    return latest_revisions(std::move(out), table_, column_);
+  }
+
+ private:
+  Response row(size_t r) const {
+    if (table_.rows[r].size() != table_.rows[0].size())
+      throw_input_error(file_ + ": line " + std::to_string(table_.lines[r]),
+                        "expected " + std::to_string(table_.rows[0].size()) + " fields, found " +
+                            std::to_string(table_.rows[r].size()));
     Response resp;
-    resp.source = file + ":" + std::to_string(table.lines[r]);
-    resp.subject = row[column["subject"]];
-    resp.scene = row[column["scene"]];
+    resp.source = file_ + ":" + std::to_string(table_.lines[r]);
+    resp.subject = text(r, "subject");
+    resp.scene = text(r, "scene");
     if (resp.subject.empty()) throw_input_error(where(r, "subject"), "empty subject id");
     if (resp.scene.empty()) throw_input_error(where(r, "scene"), "empty scene name");
     resp.sigma = number(r, "sigma");
     resp.lambda = number(r, "lambda");
     if (resp.lambda < 0) throw_input_error(where(r, "lambda"), "λ must not be negative");
-    const std::string& q = row[column["question"]];
-    auto question = question_from_name(q);
-    if (!question) throw_input_error(where(r, "question"), "unknown question '" + q + "' (expected low, high or best)");
+    auto question = question_from_name(text(r, "question"));
+    if (!question)
+      throw_input_error(where(r, "question"), "unknown question '" + text(r, "question") + "' (expected low, high or best)");
     resp.question = *question;
-    if (column.count("method")) resp.method = row[column["method"]];
-    if (column.count("lambda_step")) {
+    if (column_.count("method")) resp.method = text(r, "method");
+    read_grid(r, resp);
+    return resp;
+  }
+
+  // The optional grid columns: step, index and the top of the grid.
+  void read_grid(size_t r, Response& resp) const {
+    if (column_.count("lambda_step")) {
       resp.lambda_step = number(r, "lambda_step");
       if (!(resp.lambda_step > 0)) throw_input_error(where(r, "lambda_step"), "must be positive");
     }
-    out.push_back(std::move(resp));
+    if (column_.count("lambda_index")) {
+      const double index = number(r, "lambda_index");
+      if (index < 0 || index != std::floor(index) || index > 1e9)
+        throw_input_error(where(r, "lambda_index"), "'" + text(r, "lambda_index") + "' is not a whole number ≥ 0");
+      resp.lambda_index = int(index);
+    }
+    if (column_.count("lambda_max")) {
+      resp.lambda_max = number(r, "lambda_max");
+      if (!(resp.lambda_max > 0)) throw_input_error(where(r, "lambda_max"), "must be positive");
+      if (resp.lambda > resp.lambda_max * (1 + 1e-9))
+        throw_input_error(where(r, "lambda"), "λ " + text(r, "lambda") + " is above lambda_max " + text(r, "lambda_max"));
+    }
   }
-  return latest_revisions(std::move(out), table, column);
+
+  const std::string& text(size_t r, const std::string& name) const { return table_.rows[r][column_.at(name)]; }
+  std::string where(size_t r, const std::string& name) const {
+    return file_ + ": line " + std::to_string(table_.lines[r]) + ", column " + std::to_string(column_.at(name) + 1) +
+           " (" + name + ")";
+  }
+  double number(size_t r, const std::string& name) const {
+    const std::string& t = text(r, name);
+    size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(t, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (t.empty() || used != t.size() || !std::isfinite(v)) throw_input_error(where(r, name), "'" + t + "' is not a number");
+    return v;
+  }
+
+  CsvTable table_;
+  std::string file_;
+  std::map<std::string, size_t> column_;
+};
+
+}  // namespace
+
+std::vector<Response> read_responses(const std::filesystem::path& path) {
+  return ResponseRows(parse_csv(read_file_bytes(path), path.string()), path.string()).read();
 }
 
 std::vector<Response> read_responses(const std::vector<std::filesystem::path>& paths) {

@@ -15,6 +15,8 @@ struct Response {
   double sigma = 0, lambda = 0;
   Question question = Question::low;
   double lambda_step = 0;  // 0 when the column is absent
+  int lambda_index = -1;   // the answer's index on its grid; -1 when the column is absent
+  double lambda_max = 0;   // the top of the grid the observer could reach; 0 when absent
   std::string source;      // "file:line", for messages
 };
 

@@ -20,6 +20,18 @@ double normal(SampleStream& random) {
   return -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u);
 }
 
+// λ_i on the decimal grid, as a stimulus set writes it.
+double grid_value(const SimulationDesign& d, int index) {
+  return std::round((d.lambda_min + index * d.lambda_step) * 1e9) / 1e9;
+}
+
+// The index of the first grid value at or above t, at most the top of the grid.
+int grid_index(const SimulationDesign& d, double t) {
+  const int top = int(std::floor((d.lambda_max - d.lambda_min) / d.lambda_step + 1e-9));
+  const double steps = std::ceil((t - d.lambda_min) / d.lambda_step - 1e-9);
+  return int(std::clamp(steps, 0.0, double(top)));
+}
+
 }  // namespace
 
 std::vector<Response> simulate_responses(const SimulationDesign& d) {
@@ -40,15 +52,15 @@ std::vector<Response> simulate_responses(const SimulationDesign& d) {
             if (q == int(Question::best)) log_lambda += std::log(d.best_jnd[weak ? 0 : 1]);
             if (q == int(Question::high)) log_lambda += std::log(d.high_jnd) + d.high_sigma_slope * double(g);
             log_lambda += d.answer_sd * normal(random);
-            double lambda = std::ceil(std::exp(log_lambda) / d.lambda_step - 1e-9) * d.lambda_step;
-            lambda = std::clamp(lambda, d.lambda_step, d.lambda_max);
             Response r;
             r.subject = id;
             r.scene = d.scenes[sc];
             r.sigma = d.sigmas[g];
             r.question = Question(q);
-            r.lambda = std::round(lambda / d.lambda_step) * d.lambda_step;
+            r.lambda_index = grid_index(d, std::exp(log_lambda));
+            r.lambda = grid_value(d, r.lambda_index);
             r.lambda_step = d.lambda_step;
+            r.lambda_max = grid_value(d, grid_index(d, d.lambda_max));
             r.method = d.method;
             r.source = "simulated";
             out.push_back(r);
@@ -60,10 +72,11 @@ std::vector<Response> simulate_responses(const SimulationDesign& d) {
 void write_responses_csv(const std::vector<Response>& responses, const std::string& path, double lambda_step) {
   std::ostringstream csv;
   csv.precision(12);
-  csv << "subject,scene,sigma,question,lambda,lambda_step,method\n";
+  csv << "subject,scene,sigma,question,lambda,lambda_step,lambda_index,lambda_max,method\n";
   for (const auto& r : responses)
     csv << csv_field(r.subject) << "," << csv_field(r.scene) << "," << r.sigma << "," << kQuestionNames[int(r.question)]
-        << "," << r.lambda << "," << lambda_step << "," << csv_field(r.method) << "\n";
+        << "," << r.lambda << "," << lambda_step << "," << r.lambda_index << "," << r.lambda_max << ","
+        << csv_field(r.method) << "\n";
   write_text_atomically(path, csv.str());
 }
 

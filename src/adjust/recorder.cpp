@@ -212,6 +212,7 @@ void SessionRecorder::record_answer(const Answer& a, double time_s) {
                                      c.method,
                                      format_value(study_.lambda_step),
                                      std::to_string(a.lambda_index),
+                                     format_value(study_.lambda_max(t.condition)),
                                      std::to_string(a.start_index),
                                      std::to_string(t.repetition),
                                      std::to_string(who_.session),

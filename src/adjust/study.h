@@ -78,6 +78,8 @@ struct Study {
 
   // λ of a grid index, derived from the index and rounded to the decimal grid as the set does.
   double lambda(int index) const;
+  // The top of the grid an observer can reach in a condition (the responses' lambda_max).
+  double lambda_max(int condition) const { return lambda(int(condition_images[size_t(condition)].size()) - 2); }
   int width(int condition) const { return images[size_t(condition_images[size_t(condition)][0])].width; }
   int height(int condition) const { return images[size_t(condition_images[size_t(condition)][0])].height; }
   int max_width() const;

@@ -18,7 +18,10 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("-o,--output", *output, "Responses CSV to write")->required();
   cmd->add_option("--subjects", d->subjects, "Number of observers")->check(CLI::Range(3, 100000))->capture_default_str();
   cmd->add_option("--repetitions", d->repetitions, "Answers per cell")->check(CLI::Range(1, 100))->capture_default_str();
+  cmd->add_option("--lambda-min", d->lambda_min, "First value of the λ grid")->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--lambda-step", d->lambda_step, "λ grid step")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--lambda-max", d->lambda_max, "Top of the λ grid (answers beyond it are censored there)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--low", d->low, "Group λ_Low")->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--answer-sd", d->answer_sd, "Within-subject SD of ln λ")->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--high-jnd", d->high_jnd, "λ_High in JND")->check(CLI::PositiveNumber)->capture_default_str();
@@ -28,6 +31,8 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--method", d->method, "The method column (one analysis block)")->capture_default_str();
   cmd->callback([=] {
     d->seed = uint64_t(*seed);
+    if (!(d->lambda_max >= d->lambda_min + d->lambda_step))
+      throw InputError("--lambda-max: must be at least one step above --lambda-min");
     auto responses = analysis::simulate_responses(*d);
     analysis::write_responses_csv(responses, *output, d->lambda_step);
     std::fprintf(stderr, "simulate: wrote %s (%zu responses from %d observers)\n", output->c_str(), responses.size(),

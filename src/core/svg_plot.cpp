@@ -9,10 +9,8 @@
 #include "core/xml.h"
 
 namespace countershade {
-namespace {
 
-// "Nice" tick positions covering [lo, hi].
-std::vector<double> ticks(double lo, double hi) {
+std::vector<double> nice_ticks(double lo, double hi) {
   double span = hi - lo;
   if (!(span > 0)) return {lo};
   double step = std::pow(10.0, std::floor(std::log10(span / 5)));
@@ -25,8 +23,6 @@ std::vector<double> ticks(double lo, double hi) {
   for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step) out.push_back(std::abs(t) < 1e-12 * span ? 0 : t);
   return out;
 }
-
-}  // namespace
 
 const std::string& plot_color(size_t index) {
   static const std::vector<std::string> palette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
@@ -59,11 +55,11 @@ std::string LinePlot::to_svg() const {
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << xml_escape(title) << "</text>\n";
-  for (double t : ticks(x0, x1))
+  for (double t : nice_ticks(x0, x1))
     svg << "<line x1=\"" << px(t) << "\" y1=\"" << top << "\" x2=\"" << px(t) << "\" y2=\"" << top + ph
         << "\" stroke=\"#e5e5e5\"/><text x=\"" << px(t) << "\" y=\"" << top + ph + 16
         << "\" text-anchor=\"middle\">" << t << "</text>\n";
-  for (double t : ticks(y0, y1))
+  for (double t : nice_ticks(y0, y1))
     svg << "<line x1=\"" << left << "\" y1=\"" << py(t) << "\" x2=\"" << left + pw << "\" y2=\"" << py(t)
         << "\" stroke=\"#e5e5e5\"/><text x=\"" << left - 6 << "\" y=\"" << py(t) + 4
         << "\" text-anchor=\"end\">" << t << "</text>\n";

@@ -23,6 +23,9 @@ struct LinePlot {
   void write(const std::filesystem::path& path) const;  // atomic
 };
 
+// "Nice" tick positions covering [lo, hi]: steps of 1, 2 or 5 × 10^k, at most 7 of them.
+std::vector<double> nice_ticks(double lo, double hi);
+
 // A palette of distinguishable colours (colour-blind friendly order).
 const std::string& plot_color(size_t index);
 

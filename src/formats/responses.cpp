@@ -20,7 +20,7 @@ const std::vector<std::string>& required_response_columns() {
 const std::vector<std::string>& response_columns() {
   static const std::vector<std::string> columns = {
       "subject",     "scene",        "sigma",       "question",   "lambda",        "method",
-      "lambda_step", "lambda_index", "start_index", "repetition",   "session",
+      "lambda_step", "lambda_index", "lambda_max", "start_index", "repetition", "session",
       "trial",       "side",         "n_keypresses", "rt_ms",     "revision",      "timestamp_utc",
       "stimulus_set", "app_version"};
   return columns;

@@ -1,6 +1,7 @@
 // The adjustment app end to end: the real binary in a real window on a private Xvfb server,
 // driven by key scripts, the simulated observer, xdotool, and SIGKILL.
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <set>
@@ -19,6 +20,12 @@
 
 namespace countershade::adjust {
 namespace {
+
+// The position of a column in the responses CSV the app writes.
+size_t column(const std::string& name) {
+  const auto& columns = response_columns();
+  return size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+}
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -82,14 +89,14 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
   std::map<int, std::set<std::string>> questions_of_trial;
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
-    const int trial = std::stoi(row[11]), revision = std::stoi(row[15]);
+    const int trial = std::stoi(row[column("trial")]), revision = std::stoi(row[column("revision")]);
     const std::string question = row[3];
     int expected = question == "low" ? 1 : question == "high" ? 3 : 2;
     if (trial == 1 && question == "low" && revision == 1) expected = 2;
     EXPECT_EQ(std::stoi(row[7]), expected) << "trial " << trial << " " << question;
     EXPECT_EQ(row[4], format_value(study.lambda(expected)));
-    EXPECT_EQ(row[8], "0");  // start index
-    if (revision == 0) ++per_condition[row[1] + "/" + row[2] + "/rep" + row[9]];
+    EXPECT_EQ(row[column("start_index")], "0");
+    if (revision == 0) ++per_condition[row[1] + "/" + row[2] + "/rep" + row[column("repetition")]];
     questions_of_trial[trial].insert(question);
   }
   EXPECT_EQ(per_condition.size(), 8u);  // 4 conditions × 2 repetitions
@@ -201,7 +208,7 @@ TEST(AdjustGui, KilledSessionsResumeWithEveryAnswerExactlyOnce) {
   auto sidecar_json = json::parse(testing::read_file(sidecar));
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
-    const int trial = std::stoi(row[11]);
+    const int trial = std::stoi(row[column("trial")]);
     EXPECT_TRUE(seen.insert({trial, row[3]}).second) << "trial " << trial << " " << row[3] << " twice";
     const auto& planned = sidecar_json["plan"][size_t(trial - 1)];
     int condition = -1;
@@ -305,7 +312,7 @@ TEST(AdjustGui, AHeldKeyRepeatsAtTheAppsRateNotTheXServers) {
   auto table = parse_csv(testing::read_file(dir / "sessions/P06_s01.csv"), "csv");
   ASSERT_EQ(table.rows.size(), 2u);
   const int index = std::stoi(table.rows[1][7]);
-  EXPECT_EQ(table.rows[1][13], "1");  // one key press
+  EXPECT_EQ(table.rows[1][column("n_keypresses")], "1");  // one key press
   // 1 step on the press + one at 0.4, 0.6, 0.8 and 1.0 s: 5. The release is timed when the app
   // polls for it, so a late frame can add one or two steps; the X server's rate would give ~10.
   EXPECT_GE(index, 4);

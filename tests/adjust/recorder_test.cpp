@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "analysis/responses.h"
 #include "tiny_set.h"
 
@@ -70,8 +72,14 @@ TEST(AdjustRecorder, RowsCarryEveryColumnAndTheAnalysisReadsThem) {
   }
   auto table = parse_csv(testing::read_file(files.csv), "csv");
   EXPECT_EQ(table.rows[0], response_columns());
-  EXPECT_EQ(table.rows[1][11], "1");                         // trial
-  EXPECT_EQ(table.rows[1][17], f.study.manifest_sha256);    // stimulus_set
+  auto field = [&](size_t row, const std::string& name) {
+    const auto& header = table.rows[0];
+    return table.rows[row][size_t(std::find(header.begin(), header.end(), name) - header.begin())];
+  };
+  EXPECT_EQ(field(1, "trial"), "1");
+  EXPECT_EQ(field(1, "stimulus_set"), f.study.manifest_sha256);
+  EXPECT_EQ(field(1, "lambda_max"), format_value(f.study.lambda_max(f.plan[0].condition)));
+  for (const auto& r : rows) EXPECT_DOUBLE_EQ(r.lambda_max, f.study.lambda_max(f.plan[0].condition));
   EXPECT_EQ(testing::count_lines(testing::read_file(files.keys)) > 5, true);
   auto sidecar = nlohmann::json::parse(testing::read_file(files.sidecar));
   EXPECT_EQ(sidecar["seed"], 99);

@@ -41,6 +41,25 @@ TEST(Preparation, ALowOfZeroExcludesTheSubjectWithAReason) {
   EXPECT_EQ(blocks[0].json["n_subjects"], 5);
 }
 
+// Under group normalisation nothing is divided by a subject's own λ_Low, so a λ_Low of 0 keeps
+// the subject; the λ = 0 answers count as (0, λ_1] in the fits, with a warning per cell.
+TEST(Preparation, ALowOfZeroExcludesOnlyUnderSubjectNormalisation) {
+  auto rows = small_study(6, 3);
+  for (auto& r : rows)
+    if (r.subject == "S002" && r.question == Question::low && r.scene == "b") {
+      r.lambda = 0.0;
+      r.lambda_index = 0;
+    }
+  AnalysisOptions group;
+  group.normalization = "group";
+  auto blocks = analyze(rows, group);
+  EXPECT_TRUE(blocks[0].excluded.empty());
+  EXPECT_EQ(blocks[0].json["n_subjects"], 6);
+  int zero_warnings = 0;
+  for (const auto& w : blocks[0].warnings) zero_warnings += w.find("answers of lambda = 0") != std::string::npos;
+  EXPECT_EQ(zero_warnings, 2);  // scene b at both σ
+}
+
 TEST(Preparation, GroupNormalisationDividesByTheMeanLow) {
   auto rows = small_study(8, 4);
   AnalysisOptions group;

@@ -1,15 +1,34 @@
 // Parameter recovery: simulated studies with a known threshold are recovered within their
-// bootstrap confidence intervals in at least 90 of 100 seeded runs.
+// bootstrap confidence intervals in at least 90 of 100 seeded runs, also when a third of the
+// answers hit the top of the grid.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "analysis/fit.h"
 #include "analysis/simulate.h"
 
 namespace countershade::analysis {
 namespace {
+
+// The answers to one question as the analysis fits them (methods.md, threshold fits); with
+// `ceiling` false, answers at the top count as exact, as earlier versions fitted them.
+std::vector<AnswerInterval> intervals_of(const std::vector<Response>& rows, Question q, bool ceiling = true) {
+  std::vector<AnswerInterval> out;
+  for (const auto& r : rows)
+    if (r.question == q) out.push_back(answer_interval(r.lambda, r.lambda_index, r.lambda_step, ceiling ? r.lambda_max : 0.0));
+  return out;
+}
+
+AnswerGrid grid_of(const SimulationDesign& d) { return {d.lambda_min, d.lambda_step, d.lambda_max}; }
+
+std::vector<AnswerInterval> on_grid(const std::vector<double>& answers, double step) {
+  std::vector<AnswerInterval> out;
+  for (double a : answers) out.push_back(answer_interval(a, -1, step, 0.0));
+  return out;
+}
 
 TEST(Recovery, KnownThresholdLiesInTheBootstrapIntervalInAtLeast90Of100Studies) {
   SimulationDesign design;
@@ -23,13 +42,11 @@ TEST(Recovery, KnownThresholdLiesInTheBootstrapIntervalInAtLeast90Of100Studies) 
   double sum_threshold = 0;
   for (uint64_t seed = 1; seed <= 100; ++seed) {
     design.seed = seed;
-    std::vector<double> answers;
-    for (const auto& r : simulate_responses(design))
-      if (r.question == Question::low) answers.push_back(r.lambda);
+    const auto answers = intervals_of(simulate_responses(design), Question::low);
     ASSERT_EQ(answers.size(), 30u);
-    Fit fit = fit_threshold(answers, design.lambda_step, FitModel::lognormal);
+    Fit fit = fit_threshold(answers, FitModel::lognormal);
     ASSERT_TRUE(fit.converged) << "seed " << seed;
-    bootstrap_threshold(fit, design.lambda_step, 200, seed);
+    bootstrap_threshold(fit, grid_of(design), 200, seed);
     ASSERT_GT(fit.bootstrap, 190);
     covered += fit.ci_low <= truth && truth <= fit.ci_high;
     sum_threshold += fit.threshold;
@@ -39,11 +56,52 @@ TEST(Recovery, KnownThresholdLiesInTheBootstrapIntervalInAtLeast90Of100Studies) 
   EXPECT_NEAR(sum_threshold / runs, truth, 0.01) << "the estimate is unbiased on average";
 }
 
+// λ_High with its median at 0.8 × λ_max: ln λ has SD 0.52 over the population (subjects 0.45,
+// answers 0.26), so about a third of the answers lie beyond the grid and are given at its top.
+// Right-censored there, the fit's intervals cover the truth; fitted as exact answers at the top
+// (earlier versions), the median is biased low and the intervals miss it.
+TEST(Recovery, ThresholdNearTheTopOfTheGridIsRecoveredWithRightCensoring) {
+  SimulationDesign design;
+  design.subjects = 30;
+  design.scenes = {"chamfer"};
+  design.sigmas = {0.02};
+  design.low_subject_sd = 0.45;
+  design.answer_sd = 0.26;
+  const double truth = design.low * design.high_jnd;  // λ_High's median at the first σ
+  design.lambda_max = truth / 0.8;
+  int covered = 0, covered_bootstrap = 0, covered_naive = 0, censored = 0, answers_seen = 0;
+  for (uint64_t seed = 1; seed <= 100; ++seed) {
+    design.seed = seed;
+    const auto rows = simulate_responses(design);
+    Fit fit = fit_threshold(intervals_of(rows, Question::high), FitModel::lognormal);
+    Fit naive = fit_threshold(intervals_of(rows, Question::high, false), FitModel::lognormal);
+    ASSERT_TRUE(fit.converged) << "seed " << seed;
+    censored += int(fit.right_censored);
+    answers_seen += int(fit.n);
+    auto wald_covers = [&](const Fit& f) {
+      return std::abs(f.log_threshold - std::log(truth)) <= 1.96 * f.log_threshold_se;
+    };
+    covered += wald_covers(fit);
+    covered_naive += wald_covers(naive);
+    bootstrap_threshold(fit, grid_of(design), 100, seed);
+    covered_bootstrap += fit.ci_low <= truth && truth <= fit.ci_high;
+  }
+  const double share = double(censored) / answers_seen;
+  EXPECT_GT(share, 0.25);
+  EXPECT_LT(share, 0.42);
+  EXPECT_GE(covered, 90) << "Wald intervals of the censored fit";
+  EXPECT_GE(covered_bootstrap, 90) << "bootstrap intervals of the censored fit";
+  EXPECT_LT(covered_naive, 90) << "the fit without right-censoring covers the truth " << covered_naive << " times";
+  std::printf("right-censored answers %.0f %%; 95 %% CI covers the true median: censored fit %d/100 (Wald), "
+              "%d/100 (bootstrap); without censoring %d/100\n",
+              100 * share, covered, covered_bootstrap, covered_naive);
+}
+
 TEST(Recovery, SameSeedGivesTheSameBootstrapInterval) {
-  std::vector<double> answers = {0.25, 0.3, 0.3, 0.35, 0.2, 0.4, 0.3, 0.25, 0.45, 0.3};
-  Fit a = fit_threshold(answers, 0.05, FitModel::lognormal), b = a;
-  bootstrap_threshold(a, 0.05, 100, 7);
-  bootstrap_threshold(b, 0.05, 100, 7);
+  const auto answers = on_grid({0.25, 0.3, 0.3, 0.35, 0.2, 0.4, 0.3, 0.25, 0.45, 0.3}, 0.05);
+  Fit a = fit_threshold(answers, FitModel::lognormal), b = a;
+  bootstrap_threshold(a, {0.0, 0.05}, 100, 7);
+  bootstrap_threshold(b, {0.0, 0.05}, 100, 7);
   EXPECT_EQ(a.ci_low, b.ci_low);
   EXPECT_EQ(a.ci_high, b.ci_high);
   EXPECT_LT(a.ci_low, a.threshold);
@@ -57,11 +115,11 @@ TEST(Recovery, WeibullAndLogisticModelsFitTheirOwnData) {
     double u = i / 200.0, x = 1.0 + 0.1 * std::log(u / (1 - u));
     answers.push_back(std::max(1.0, std::ceil(x / 0.05 - 1e-9)) * 0.05);
   }
-  Fit logistic = fit_threshold(answers, 0.05, FitModel::logistic);
+  Fit logistic = fit_threshold(on_grid(answers, 0.05), FitModel::logistic);
   EXPECT_TRUE(logistic.converged);
   EXPECT_NEAR(logistic.threshold, 1.0, 0.02);
   EXPECT_NEAR(logistic.scale, 0.1, 0.01);
-  Fit weibull = fit_threshold(answers, 0.05, FitModel::weibull);
+  Fit weibull = fit_threshold(on_grid(answers, 0.05), FitModel::weibull);
   EXPECT_TRUE(weibull.converged);
   EXPECT_NEAR(weibull.threshold, 1.0, 0.05);  // a different shape, but the same median region
   EXPECT_NEAR(fit_cdf(logistic, logistic.threshold), 0.5, 1e-9);

@@ -1,4 +1,4 @@
-// The analysis against independent results computed with R 4.2 (afex, survival) for the two
+// The analysis against independent results computed with R 4.2 (afex, survival) for the three
 // example studies, compared number by number with the tolerances of docs/data-formats.
 
 #include <gtest/gtest.h>
@@ -87,6 +87,9 @@ void check_study(const std::string& study) {
 
 TEST(AnalysisReference, StudyAMatchesR) { check_study("study_a"); }
 TEST(AnalysisReference, StudyBWithRepetitionsAndAnIncompleteSubjectMatchesR) { check_study("study_b"); }
+// A grid from 0.2 to 2.0: 55 answers at its first value (left-censored) and 25 λ_High answers at
+// its top (right-censored), as R's survreg fits interval2 data with open ends.
+TEST(AnalysisReference, StudyCWithAGridFromAFifthAndAnswersAtBothEndsMatchesR) { check_study("study_c"); }
 
 }  // namespace
 }  // namespace countershade::analysis
