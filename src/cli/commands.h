@@ -1,9 +1,20 @@
 #pragma once
 // One registration function per subcommand; main.cpp calls them all.
 
+#include <stdexcept>
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 namespace countershade::cli {
+
+// Thrown by a command that did its work but must exit with another status (e.g. a strict audit
+// whose checks failed); main prints the message as one line and exits with `status`.
+class CommandFailed : public std::runtime_error {
+ public:
+  CommandFailed(const std::string& what, int status) : std::runtime_error(what), status(status) {}
+  int status;
+};
 
 void add_render_command(CLI::App& app);
 void add_mesh_usm_command(CLI::App& app);
@@ -13,5 +24,6 @@ void add_simulate_command(CLI::App& app);
 void add_stimuli_command(CLI::App& app);
 void add_adjust_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
+void add_audit_command(CLI::App& app);
 
 }  // namespace countershade::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   countershade::cli::add_stimuli_command(app);
   countershade::cli::add_adjust_command(app);
   countershade::cli::add_methods_command(app);
+  countershade::cli::add_audit_command(app);
 
   // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {
@@ -47,6 +48,9 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::fprintf(stderr, "countershade: error: %s (see --help)\n", e.what());
     return 2;
+  } catch (const countershade::cli::CommandFailed& e) {
+    std::fprintf(stderr, "countershade: %s\n", e.what());
+    return e.status;
   } catch (const countershade::InputError& e) {
     std::fprintf(stderr, "countershade: error: %s\n", e.what());
     return 2;

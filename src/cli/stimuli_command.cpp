@@ -1,13 +1,26 @@
 // `countershade stimuli`: an experiment file -> a complete, documented stimulus set.
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "stimuli/audit.h"
 #include "stimuli/stimulus_set.h"
 
 namespace countershade::cli {
+namespace {
+
+// The one-line audit of a finished set (`countershade audit` writes the full report).
+void print_audit_summary(const std::filesystem::path& manifest, int jobs) {
+  AuditOptions options;
+  options.threads = jobs;
+  std::fprintf(stderr, "stimuli: audit: %s (countershade audit %s -o DIR for the report)\n",
+               audit_stimulus_set(manifest, options).summary().c_str(), manifest.string().c_str());
+}
+
+}  // namespace
 
 void add_stimuli_command(CLI::App& app) {
   struct Args {
@@ -29,6 +42,7 @@ void add_stimuli_command(CLI::App& app) {
     if (args->merge) {
       auto path = merge_shard_manifests(experiment, args->output);
       std::fprintf(stderr, "stimuli: merged shards into %s\n", path.string().c_str());
+      print_audit_summary(path, args->jobs);
       return;
     }
     GenerateOptions options;
@@ -42,6 +56,7 @@ void add_stimuli_command(CLI::App& app) {
                  "compose %.1f s, encode %.1f s (thread time), total %.1f s\n",
                  r.images_written, r.images_skipped, r.render_seconds, r.prepare_seconds, r.compose_seconds,
                  r.encode_seconds, r.total_seconds);
+    if (options.shards == 1) print_audit_summary(std::filesystem::path(args->output) / "manifest.json", args->jobs);
   });
   cmd->footer(
       "Examples:\n"

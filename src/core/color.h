@@ -114,6 +114,10 @@ inline double luminance_of(const glm::dvec3& rgb) {
   return m[1][0] * rgb.x + m[1][1] * rgb.y + m[1][2] * rgb.z;
 }
 
+// The CIEDE2000 colour difference (k_L = k_C = k_H = 1), as specified by Sharma, Wu and Dalal
+// (2005), hue-angle wrap-arounds and neutral colours included.
+double ciede2000(const Lab& first, const Lab& second);
+
 // Lightness-only change: L' = clamp(L_new, 0, 100) and a, b scaled by k = L'/L (k = 1 when
 // L < 1e-6), so hue angle and saturation stay as they were.
 inline Lab with_lightness(const Lab& lab, double new_lightness) {

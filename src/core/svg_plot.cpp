@@ -75,6 +75,7 @@ std::string LinePlot::to_svg() const {
         << (s.dashed ? " stroke-dasharray=\"5,3\"" : "") << " points=\"";
     for (size_t i = 0; i < s.x.size(); ++i) svg << px(s.x[i]) << "," << py(s.y[i]) << " ";
     svg << "\"/>\n";
+    if (s.label.empty()) continue;  // no legend entry
     double ly = top + 14 + 18 * double(k);
     svg << "<line x1=\"" << left + pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << left + pw + 32 << "\" y2=\"" << ly
         << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"5,3\"" : "")

@@ -1,5 +1,7 @@
 #include "stimuli/experiment.h"
 
+#include "stimuli/audit.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -89,6 +91,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
   e.name = root.string_or("name", path.stem().string());
   if (root.has("description")) root.string("description");
   if (root.has("adjust")) root.object("adjust");  // the adjustment procedure; checked by `adjust`
+  if (root.has("audit")) read_audit_limits(root.object("audit"));  // the audit's limits, checked now
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
   if (root.has("lambda")) {
     JsonObject l = root.object("lambda");

@@ -17,21 +17,24 @@ struct Reference {
   Lab lab;
 };
 
-std::vector<Reference> load_reference() {
-  std::ifstream in(testing::shared_dir() / "reference/color/srgb_to_lab.csv");
+// The rows of a numeric CSV under ../shared/reference/color, after its header.
+std::vector<std::vector<double>> read_reference_csv(const std::string& name) {
+  std::ifstream in(testing::shared_dir() / "reference/color" / name);
   std::string line;
-  std::getline(in, line);  // header: srgb_r,srgb_g,srgb_b,linear_r,linear_g,linear_b,L,a,b
-  std::vector<Reference> rows;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
   while (std::getline(in, line)) {
     std::stringstream fields(line);
-    double v[9];
-    for (double& x : v) {
-      std::string f;
-      std::getline(fields, f, ',');
-      x = std::stod(f);
-    }
-    rows.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}});
+    rows.emplace_back();
+    for (std::string f; std::getline(fields, f, ',');) rows.back().push_back(std::stod(f));
   }
+  return rows;
+}
+
+std::vector<Reference> load_reference() {
+  std::vector<Reference> rows;  // srgb_r,srgb_g,srgb_b,linear_r,linear_g,linear_b,L,a,b
+  for (const auto& v : read_reference_csv("srgb_to_lab.csv"))
+    rows.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}});
   return rows;
 }
 
@@ -44,6 +47,20 @@ TEST(Color, MatchesReferenceSrgbToLab) {
                                std::pow(lab.b - r.lab.b, 2));
     EXPECT_LT(delta_e, 1e-3) << "sRGB " << r.srgb.x << "," << r.srgb.y << "," << r.srgb.z;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(srgb_decode(r.srgb[c]), r.linear[c], 1e-9);
+  }
+}
+
+// 300 pairs computed with scikit-image, neutral colours and hue-angle wrap-arounds included.
+// The file gives the inputs to 6 decimals, which moves ΔE by up to ~1e-6 of its value; hence a
+// tolerance of 1e-6 relative to max(1, ΔE).
+TEST(Color, Ciede2000MatchesTheReference) {
+  const auto rows = read_reference_csv("ciede2000.csv");  // L1,a1,b1,L2,a2,b2,dE2000
+  ASSERT_EQ(rows.size(), 300u);
+  for (const auto& v : rows) {
+    const Lab first{v[0], v[1], v[2]}, second{v[3], v[4], v[5]};
+    const double tolerance = 1e-6 * std::max(1.0, v[6]);
+    EXPECT_NEAR(ciede2000(first, second), v[6], tolerance) << v[0] << "," << v[1] << "," << v[2] << " / " << v[3];
+    EXPECT_NEAR(ciede2000(second, first), v[6], tolerance) << "symmetric";
   }
 }
 

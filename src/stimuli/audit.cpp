@@ -1,0 +1,191 @@
+#include "stimuli/audit.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "core/color.h"
+#include "core/display.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/number_format.h"
+#include "enhance/lightness.h"
+#include "formats/manifest.h"
+
+namespace countershade {
+namespace {
+
+// A decoded stimulus: code values and CIELAB per pixel.
+struct Decoded {
+  int width = 0, height = 0, bits = 8;
+  std::vector<uint16_t> codes;  // 3 per pixel
+  LabPixels lab;
+};
+
+// The display encoding a reference entry records ("srgb", "gamma 2.2"); a measured table is not
+// stored in the manifest, so its sets are decoded as sRGB (noted in the report).
+DisplayEncoding encoding_of(const ManifestEntry& reference, std::vector<std::string>& notes) {
+  const auto it = reference.extra.find("display_encoding");
+  const std::string text = it != reference.extra.end() && it->is_string() ? it->get<std::string>() : "srgb";
+  if (text.rfind("gamma ", 0) == 0) return DisplayEncoding::gamma(std::stod(text.substr(6)));
+  if (text != "srgb")
+    notes.push_back(reference.scene + ": display encoding '" + text + "' is not stored in the manifest; L* decoded as sRGB");
+  return DisplayEncoding::srgb();
+}
+
+Decoded decode(const std::filesystem::path& file, const DisplayEncoding& encoding) {
+  Decoded d;
+  Image image = read_image(file, &d.bits);
+  if (image.channels != 3) throw_input_error(file.string(), "expected an RGB image");
+  d.width = image.width;
+  d.height = image.height;
+  d.codes.resize(image.pixels.size());
+  // Code values, and back to code / levels exactly as the generator holds them (the readers'
+  // float conversion may differ in the last bit, which would miss the decoding table).
+  const float levels = float((1u << d.bits) - 1u);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    d.codes[i] = uint16_t(quantize(image.pixels[i], d.bits));
+    image.pixels[i] = float(d.codes[i]) / levels;
+  }
+  d.lab = display_to_lab(image, encoding, d.bits);
+  return d;
+}
+
+void lightness_statistics(const Decoded& d, StimulusAudit& out) {
+  double sum = 0, squares = 0;
+  for (const Lab& lab : d.lab) sum += lab.L;
+  const double n = double(d.lab.size()), mean = sum / n;
+  for (const Lab& lab : d.lab) squares += (lab.L - mean) * (lab.L - mean);
+  out.mean_lightness = mean;
+  out.rms_contrast = std::sqrt(squares / n);
+}
+
+// The 99th percentile (R's type 7 without interpolation: the value at ⌊0.99·(n − 1)⌋) of values
+// that are 0 except at `nonzero`.
+double percentile99(std::vector<float> nonzero, size_t n) {
+  const size_t k = size_t(0.99 * double(n - 1)), zeros = n - nonzero.size();
+  if (k < zeros) return 0.0;
+  auto at = nonzero.begin() + long(k - zeros);
+  std::nth_element(nonzero.begin(), at, nonzero.end());
+  return *at;
+}
+
+// ΔE2000, changed and clipped pixels against the reference.
+void compare_with_reference(const Decoded& d, const Decoded& reference, StimulusAudit& out) {
+  const size_t n = d.lab.size();
+  const uint16_t top = uint16_t((1u << d.bits) - 1u);
+  std::vector<float> differences;
+  double sum = 0;
+  size_t changed = 0, clipped = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const uint16_t *c = &d.codes[3 * p], *r = &reference.codes[3 * p];
+    if (c[0] == r[0] && c[1] == r[1] && c[2] == r[2]) continue;
+    ++changed;
+    bool at_limit = false;
+    for (int k = 0; k < 3; ++k) at_limit |= (c[k] == 0 || c[k] == top) && c[k] != r[k];
+    clipped += at_limit;
+    const float e = float(ciede2000(reference.lab[p], d.lab[p]));
+    differences.push_back(e);
+    sum += e;
+  }
+  out.changed_fraction = double(changed) / double(n);
+  out.clipped_fraction = double(clipped) / double(n);
+  out.delta_e_mean = sum / double(n);
+  out.delta_e_p99 = percentile99(std::move(differences), n);
+}
+
+StimulusAudit describe(const ManifestEntry& e) {
+  StimulusAudit s;
+  s.file = e.file;
+  s.scene = e.scene;
+  s.reference = e.is_reference();
+  s.lambda = e.lambda;
+  s.sigma = e.sigma.value_or(0.0);
+  if (!s.reference) s.condition = e.condition_method() + " sigma " + format_value(s.sigma);
+  const auto noise = e.extra.find("noise");
+  if (noise != e.extra.end() && noise->is_object()) {
+    if (noise->contains("rms")) s.noise_rms = (*noise)["rms"].get<double>();
+    if (noise->contains("p99")) s.noise_p99 = (*noise)["p99"].get<double>();
+    if (noise->contains("budget")) s.noise_met = (*noise)["budget"]["met"].get<bool>();
+  }
+  return s;
+}
+
+}  // namespace
+
+AuditLimits read_audit_limits(const JsonObject& o) {
+  AuditLimits limits;
+  limits.max_drift = o.number_in("max_drift", limits.max_drift, 0.0, 100.0);
+  limits.max_clipped = o.number_in("max_clipped", limits.max_clipped, 0.0, 1.0);
+  if (o.has("screen")) {
+    JsonObject screen = o.object("screen");
+    limits.screen_width = int(screen.integer_in("width", 0, 1, 65536));
+    limits.screen_height = int(screen.integer_in("height", 0, 1, 65536));
+    limits.gap_px = int(screen.integer_in("gap_px", limits.gap_px, 0, 65536));
+    screen.finish();
+  }
+  o.finish();
+  return limits;
+}
+
+size_t AuditReport::failed() const {
+  return size_t(std::count_if(checks.begin(), checks.end(), [](const AuditCheck& c) { return !c.passed; }));
+}
+
+std::string AuditReport::summary() const {
+  std::ostringstream s;
+  s << stimuli.size() << " images, " << checks.size() << " checks, " << failed() << " failed";
+  size_t shown = 0;
+  for (const auto& c : checks)
+    if (!c.passed && shown++ < 3) s << (shown == 1 ? ": " : "; ") << c.scene << " " << c.condition << " " << c.detail;
+  if (failed() > 3) s << "; ...";
+  return s.str();
+}
+
+AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const AuditOptions& options) {
+  const Manifest manifest = read_manifest(manifest_path);
+  const auto problems = verify_stimulus_set(manifest_path);
+  if (!problems.empty())
+    throw_input_error(manifest_path.string(), "the set does not match its manifest (" + problems.front() +
+                                                  (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") + ")");
+  const std::filesystem::path dir = manifest_path.parent_path();
+  AuditReport report;
+  report.manifest = manifest_path;
+  report.set_name = manifest.experiment_name;
+  if (manifest.experiment.contains("audit"))
+    report.limits = read_audit_limits(JsonObject(manifest.experiment["audit"], manifest_path.string(), "experiment.audit"));
+  std::map<std::string, Decoded> references;
+  std::map<std::string, DisplayEncoding> encodings;
+  for (const auto& e : manifest.stimuli)
+    if (e.is_reference()) {
+      encodings.emplace(e.scene, encoding_of(e, report.notes));
+      references.emplace(e.scene, decode(resolve_in_set(dir, e.file), encodings.at(e.scene)));
+    }
+  report.stimuli.resize(manifest.stimuli.size());
+  std::atomic<size_t> done{0};
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), manifest.stimuli.size(), [&](size_t i) {
+      const ManifestEntry& e = manifest.stimuli[i];
+      StimulusAudit s = describe(e);
+      const auto reference = references.find(e.scene);
+      if (reference == references.end()) throw_input_error(manifest_path.string(), "scene " + e.scene + " has no reference image");
+      const Decoded d = e.is_reference() ? reference->second : decode(resolve_in_set(dir, e.file), encodings.at(e.scene));
+      if (d.width != reference->second.width || d.height != reference->second.height || d.bits != reference->second.bits)
+        throw_input_error(e.file, "differs in size or bit depth from its scene's reference");
+      lightness_statistics(d, s);
+      compare_with_reference(d, reference->second, s);
+      report.stimuli[i] = std::move(s);
+      if (options.progress) options.progress(double(++done) / double(manifest.stimuli.size()));
+    });
+  });
+  add_audit_checks(report, manifest);
+  return report;
+}
+
+}  // namespace countershade

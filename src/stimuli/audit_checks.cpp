@@ -1,0 +1,116 @@
+// The audit's checks: each condition (scene × method × σ) against the limits of the
+// experiment's "audit" block, and the set against the declared screen.
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/number_format.h"
+#include "stimuli/audit.h"
+
+namespace countershade {
+namespace {
+
+std::string fixed(double v, int decimals) { return format_value(round_to(v, decimals)); }
+
+AuditCheck lambda_zero_check(const AuditCondition& c) {
+  AuditCheck check{"lambda 0 equals reference", c.scene, c.name, true, "no lambda = 0 image"};
+  for (const auto* s : c.stimuli)
+    if (s->lambda == 0.0) {
+      check.passed = s->changed_fraction == 0.0;
+      check.detail = check.passed ? "identical pixels"
+                                  : fixed(100 * s->changed_fraction, 3) + " % of pixels differ (max dE " +
+                                        fixed(s->delta_e_p99, 2) + " at p99)";
+    }
+  return check;
+}
+
+AuditCheck drift_check(const AuditCondition& c, double limit) {
+  AuditCheck check{"mean L* drift", c.scene, c.name, true, ""};
+  double worst = 0, at = 0;
+  for (const auto* s : c.stimuli) {
+    const double drift = s->mean_lightness - c.reference->mean_lightness;
+    if (std::abs(drift) > std::abs(worst)) {
+      worst = drift;
+      at = s->lambda;
+    }
+  }
+  check.passed = std::abs(worst) <= limit;
+  check.detail = (worst >= 0 ? "+" : "") + fixed(worst, 2) + " L* at lambda " + format_value(at) + " (limit " +
+                 format_value(limit) + ")";
+  return check;
+}
+
+AuditCheck clipping_check(const AuditCondition& c, double limit) {
+  AuditCheck check{"clipped pixels", c.scene, c.name, true, ""};
+  double worst = 0, at = 0;
+  for (const auto* s : c.stimuli)
+    if (s->clipped_fraction > worst) {
+      worst = s->clipped_fraction;
+      at = s->lambda;
+    }
+  check.passed = worst <= limit;
+  check.detail = fixed(100 * worst, 2) + " % at lambda " + format_value(at) + " (limit " + format_value(100 * limit) + " %)";
+  return check;
+}
+
+AuditCheck noise_check(const AuditCondition& c) {
+  AuditCheck check{"noise within budget", c.scene, c.name, true, "no noise estimate in the manifest"};
+  double worst = 0;
+  bool any = false;
+  for (const auto* s : c.stimuli) {
+    if (!s->noise_rms) continue;
+    any = true;
+    worst = std::max(worst, *s->noise_rms);
+    if (s->noise_met && !*s->noise_met) check.passed = false;
+  }
+  if (any) check.detail = "largest RMS " + fixed(worst, 2) + " L*" + (check.passed ? "" : ", budget missed");
+  return check;
+}
+
+// Two images side by side, 1:1, with the app's gap: they must fit the declared screen.
+AuditCheck screen_check(const AuditLimits& limits, const Manifest& manifest) {
+  AuditCheck check{"fits the screen 1:1", "", "", true, ""};
+  int width = 0, height = 0;
+  for (const auto& e : manifest.stimuli) {
+    width = std::max(width, e.width);
+    height = std::max(height, e.height);
+  }
+  const int needed = 2 * width + limits.gap_px;
+  check.passed = needed <= *limits.screen_width && height <= *limits.screen_height;
+  check.detail = "two " + std::to_string(width) + "x" + std::to_string(height) + " images and a " +
+                 std::to_string(limits.gap_px) + " px gap need " + std::to_string(needed) + "x" + std::to_string(height) +
+                 "; the screen is " + std::to_string(*limits.screen_width) + "x" + std::to_string(*limits.screen_height);
+  return check;
+}
+
+}  // namespace
+
+std::vector<AuditCondition> audit_conditions(const AuditReport& report) {
+  std::map<std::string, const StimulusAudit*> references;
+  for (const auto& s : report.stimuli)
+    if (s.reference) references[s.scene] = &s;
+  std::vector<AuditCondition> out;
+  std::map<std::pair<std::string, std::string>, size_t> index;
+  for (const auto& s : report.stimuli) {
+    if (s.reference) continue;
+    auto [it, inserted] = index.emplace(std::make_pair(s.scene, s.condition), out.size());
+    if (inserted) out.push_back({s.scene, s.condition, {}, references[s.scene]});
+    out[it->second].stimuli.push_back(&s);
+  }
+  for (auto& c : out)
+    std::sort(c.stimuli.begin(), c.stimuli.end(), [](auto* a, auto* b) { return a->lambda < b->lambda; });
+  return out;
+}
+
+void add_audit_checks(AuditReport& report, const Manifest& manifest) {
+  for (const AuditCondition& c : audit_conditions(report)) {
+    report.checks.push_back(lambda_zero_check(c));
+    report.checks.push_back(drift_check(c, report.limits.max_drift));
+    report.checks.push_back(clipping_check(c, report.limits.max_clipped));
+    report.checks.push_back(noise_check(c));
+  }
+  if (report.limits.screen_width) report.checks.push_back(screen_check(report.limits, manifest));
+}
+
+}  // namespace countershade
