@@ -13,6 +13,7 @@ namespace countershade::adjust {
 
 namespace {
 
+constexpr double kMaxScriptDelayMs = 3.6e6;  // one hour
 constexpr double kTapSeconds = 0.020;  // how long a scripted key press is held
 
 struct KeyName {
@@ -62,7 +63,8 @@ std::vector<InputEvent> parse_key_script_text(const std::string& text, const std
     } catch (const std::exception&) {
       throw_input_error(where, "'" + delay_text + "' is not a delay in milliseconds");
     }
-    if (!(delay_ms >= 0) || !std::isfinite(delay_ms)) throw_input_error(where, "the delay must be 0 or more milliseconds");
+    if (!(delay_ms >= 0) || !(delay_ms <= kMaxScriptDelayMs))
+      throw_input_error(where, "the delay must be between 0 and 3600000 milliseconds (an hour; a longer pause is a typo)");
     if (!(words >> action)) throw_input_error(where, "missing action after the delay");
     time_s += delay_ms / 1000;
     if (action == "screenshot" || action == "close") {
@@ -72,6 +74,7 @@ std::vector<InputEvent> parse_key_script_text(const std::string& text, const std
       double hold_ms = -1;
       if (!(words >> key_text >> hold_ms) || !(hold_ms >= 0))
         throw_input_error(where, "expected 'hold KEY MILLISECONDS'");
+      if (!(hold_ms <= kMaxScriptDelayMs)) throw_input_error(where, "a key is held for at most 3600000 milliseconds (an hour)");
       auto key = key_from_name(key_text);
       if (!key) throw_input_error(where, "unknown key '" + key_text + "'");
       events.push_back({time_s, InputEvent::Kind::press, *key});

@@ -26,4 +26,10 @@ void add_adjust_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
 void add_audit_command(CLI::App& app);
 
+// Sign checks with one short line of message (use these, not CLI::PositiveNumber).
+extern const CLI::Validator kPositive, kNonNegative;
+
+// Adds a check to every floating-point option of every command: NaN and infinity are refused.
+void reject_non_finite_numbers(CLI::App& app);
+
 }  // namespace countershade::cli

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "cli/commands.h"
+#include "mesh/smoothing.h"
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
@@ -36,7 +37,8 @@ void run(const MeshUsmArgs& args) {
     throw InputError("mesh-usm: give exactly one of --sigma or --iterations");
   if (args.sigma && !(*args.sigma > 0 && std::isfinite(*args.sigma)))
     throw InputError("--sigma: must be a positive, finite world-space length");
-  if (args.iterations && *args.iterations < 1) throw InputError("--iterations: must be at least 1");
+  if (args.iterations && (*args.iterations < 1 || *args.iterations > kMaxSmoothingIterations))
+    throw InputError("--iterations: must be between 1 and 1000000 (a million 1-ring steps take minutes already)");
   const fs::path output(args.output);
   check_output_file(output, {".ply"}, "a .ply file (it carries vertex colours)");
 

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
 #include <bit>
 #include <cctype>
 #include <cstring>
@@ -28,6 +29,27 @@ void* allocate_large(size_t bytes) {
   ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint; without huge pages the buffer works all the same
   return p;
 }
+void check_image_size(const std::filesystem::path& path, long long width, long long height, int channels) {
+  constexpr long long kMaxPixels = 16384LL * 16384LL;
+  if (width > 65536 || height > 65536 || width * height > kMaxPixels || channels > 16) {
+    const double gigabytes = double(width) * double(height) * channels * sizeof(float) / 1e9;
+    throw_input_error(path.string(), "image is " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                                         std::to_string(channels) + " channels (" + std::to_string(int(gigabytes + 0.5)) +
+                                         " GB in memory); the limit is 16384x16384 pixels and 16 channels");
+  }
+}
+
+void check_finite(const std::filesystem::path& path, const Image& image, bool allow_infinity) {
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    if (allow_infinity ? std::isnan(image.pixels[i]) : !std::isfinite(image.pixels[i])) {
+      const size_t pixel = i / size_t(image.channels);
+      throw_input_error(path.string(), "pixel (" + std::to_string(pixel % size_t(image.width)) + ", " +
+                                           std::to_string(pixel / size_t(image.width)) + ") channel " +
+                                           std::to_string(i % size_t(image.channels)) +
+                                           (allow_infinity ? " is not a number (NaN)" : " is not a finite number"));
+    }
+}
+
 namespace {
 
 // PFM (portable float map, the Middlebury disparity format): "PF" (RGB) or "Pf" (grey), width,
@@ -44,6 +66,7 @@ Image read_pfm(const std::filesystem::path& path) {
     throw_input_error(path.string(), "invalid PFM header");
   in.get();  // the single whitespace character after the scale
   const int channels = magic == "PF" ? 3 : 1;
+  check_image_size(path, width, height, channels);
   Image image(width, height, channels);
   const bool little = scale < 0;
   const bool host_little = std::endian::native == std::endian::little;
@@ -57,6 +80,7 @@ Image read_pfm(const std::filesystem::path& path) {
       std::memcpy(&image.pixels[size_t(y) * width * channels + k], b, 4);
     }
   }
+  check_finite(path, image, true);
   return image;
 }
 
@@ -93,6 +117,7 @@ Image read_image(const std::filesystem::path& path, int* bits) {
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw_input_error(path.string(), "image is empty");
+  check_image_size(path, spec.width, spec.height, spec.nchannels);
   if (bits) *bits = spec.format.is_floating_point() ? 0 : int(spec.format.size() * 8);
   Image image(spec.width, spec.height, spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
@@ -100,6 +125,7 @@ Image read_image(const std::filesystem::path& path, int* bits) {
     std::replace(message.begin(), message.end(), '\n', ' ');
     throw_input_error(path.string(), "cannot decode image (" + message + ")");
   }
+  if (spec.format.is_floating_point()) check_finite(path, image, true);
   return image;
 }
 

@@ -79,7 +79,12 @@ struct ImageWriteOptions {
 // Reads any format OpenImageIO knows (PNG, EXR, TIFF, PFM, HDR, ...) as float. Integer formats
 // come back scaled to [0,1]. Throws InputError naming the file when it cannot be read.
 // `bits`, when given, receives the file's integer bit depth (8, 16, ...) or 0 for float formats.
+// Refuses images over 16384x16384 pixels before allocating them, and NaN in float images
+// (+inf stays: depth maps mark the background with it; radiance readers call check_finite).
 Image read_image(const std::filesystem::path& path, int* bits = nullptr);
+void check_image_size(const std::filesystem::path& path, long long width, long long height, int channels);
+// Throws InputError naming the first pixel and channel that is NaN or (unless allowed) infinite.
+void check_finite(const std::filesystem::path& path, const Image& image, bool allow_infinity = false);
 
 // Writes by extension: .png/.tif/.tiff quantised (round to nearest) to 8 or 16 bits, .exr/.pfm/.hdr
 // as float. The file appears atomically: a temporary file in the same folder, then a rename.

@@ -114,6 +114,8 @@ double JsonObject::number(const std::string& key) const {
 
 long long JsonObject::integer(const std::string& key) const {
   const json& v = at(key);
+  if (v.is_number_unsigned() && v.get<unsigned long long>() > 9007199254740992ull)  // 2^53: beyond every limit
+    fail(key, "got " + std::to_string(v.get<unsigned long long>()) + ", which is too large");
   if (v.is_number_integer() || v.is_number_unsigned()) return v.get<long long>();
   if (v.is_number_float()) {
     double d = v.get<double>();

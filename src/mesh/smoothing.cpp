@@ -2,20 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/error.h"
 #include "core/parallel.h"
 
 namespace countershade {
 
 int iterations_for_sigma(double sigma, double mean_edge_length) {
   if (!(mean_edge_length > 0)) return 1;
-  double n = std::round(2.0 * sigma * sigma / (mean_edge_length * mean_edge_length));
-  return int(std::clamp(n, 1.0, 1e9));
+  const double n = std::round(2.0 * sigma * sigma / (mean_edge_length * mean_edge_length));
+  if (!(n <= kMaxSmoothingIterations)) {
+    std::ostringstream what;
+    what << "sigma = " << sigma << " needs " << n << " smoothing iterations on a mesh whose edges average "
+         << mean_edge_length << "; the limit is " << kMaxSmoothingIterations
+         << " (use a smaller sigma, or --refine a coarse mesh less finely)";
+    throw InputError(what.str());
+  }
+  return int(std::max(n, 1.0));
 }
 
 void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,

@@ -10,8 +10,12 @@
 
 namespace countershade {
 
+// The most smoothing iterations a width may ask for: a million 1-ring steps take minutes on a
+// large mesh; beyond that a σ is a mistake (or wants a coarser mesh), not a stimulus.
+inline constexpr double kMaxSmoothingIterations = 1e6;
+
 // n = max(1, round(2σ²/h̄²)): on a regular triangulation each averaging step spreads a signal by
-// h̄²/2 per axis, so n steps give a spread of σ.
+// h̄²/2 per axis, so n steps give a spread of σ. Throws InputError above kMaxSmoothingIterations.
 int iterations_for_sigma(double sigma, double mean_edge_length);
 
 // Smooths `values` (#V) in place: v_i <- mean of v_j over the 1-ring (v_i itself excluded),

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -179,6 +180,9 @@ class SceneLoader {
       glm::dmat4 t;
       for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) t[c][r] = m[size_t(r * 4 + c)];
+      // A singular linear part collapses the object to a plane, line or point (no normals).
+      if (!(std::abs(glm::determinant(glm::dmat3(t))) > 1e-12))
+        o.fail("matrix", "is singular (the determinant of its 3x3 part is 0): the object would have no volume or area");
       o.finish();
       return t;
     }
@@ -238,6 +242,7 @@ class SceneLoader {
     Image image;
     try {
       image = read_image(file);
+      check_finite(file, image);  // radiance and albedo: no infinity either
     } catch (const InputError& e) {
       o.fail(key, e.what());
     }
@@ -370,6 +375,7 @@ class SceneLoader {
         Image image;
         try {
           image = read_image(file);
+          check_finite(file, image);
         } catch (const InputError& e) {
           o.fail("file", e.what());
         }

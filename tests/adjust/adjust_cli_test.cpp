@@ -49,6 +49,12 @@ TEST(AdjustCli, BadInputIsRefusedBeforeAnyWindowOpens) {
   testing::write_file(dir / "keys.txt", "100 enter\n50 jump\n");
   expect_refused(run_without_display("adjust " + set + " --subject P1 --script " + (dir / "keys.txt").string() + sessions),
                  "keys.txt: line 2");
+  // Absurd delays would hang the session: at most an hour per delay and per held key.
+  for (const char* script : {"99999999999999999999 enter\n", "0 hold up 999999999999\n"}) {
+    testing::write_file(dir / "keys.txt", script);
+    expect_refused(run_without_display("adjust " + set + " --subject P1 --script " + (dir / "keys.txt").string() + sessions),
+                   "3600000");
+  }
 
   // A changed image, then a missing one.
   fs::path image = dir / "set/small/usm3d/sigma-0.08/lambda-0.8.png";

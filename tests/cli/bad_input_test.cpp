@@ -1,0 +1,134 @@
+// Bad input found by trying the commands as a hostile but realistic user would: every case ends
+// quickly with exit status 2 and one line naming the file or the option and the problem.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdint>
+#include <limits>
+
+#include "core/image.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kScene = R"({
+  "version": 1,
+  "camera": {"eye": [0, 1, 4], "target": [0, 0, 0], "width": 40, "height": 30},
+  "render": {"spp": 2},
+  "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 3}OBJECT_EXTRA}],
+  "lights": [{"type": "directional", "direction": [1, 1, 1], "irradiance": 2}]
+})";
+
+std::string scene_with(const std::string& object_extra) {
+  std::string s = kScene;
+  s.replace(s.find("OBJECT_EXTRA"), 12, object_extra);
+  return s;
+}
+
+// CRC-32 of PNG chunks (bitwise; a test needs no table).
+uint32_t crc32(const std::string& bytes) {
+  uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char b : bytes) {
+    crc ^= b;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+std::string big_endian(uint32_t v) {
+  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+}
+
+std::string png_chunk(const std::string& type_and_data) {
+  return big_endian(uint32_t(type_and_data.size() - 4)) + type_and_data + big_endian(crc32(type_and_data));
+}
+
+// A PNG whose header claims width × height pixels, with an empty image data chunk.
+std::string png_header_only(uint32_t width, uint32_t height) {
+  const std::string ihdr = "IHDR" + big_endian(width) + big_endian(height) + std::string("\x08\x02\x00\x00\x00", 5);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk(ihdr) + png_chunk("IDAT") + png_chunk("IEND");
+}
+
+struct Case {
+  std::string arguments, expected;  // expected: a part of the one-line message
+};
+
+void expect_refused(const Case& c) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = testing::run_cli(c.arguments);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 2) << c.arguments << "\n" << r.output;
+  EXPECT_EQ(testing::count_lines(r.output), 1) << c.arguments << "\n" << r.output;
+  EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.arguments << "\n" << r.output;
+  EXPECT_LT(seconds, 5.0) << c.arguments;
+}
+
+TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
+  testing::TempDir dir;
+  const std::string scene = testing::write_file(dir / "s.json", scene_with("")).string();
+  const std::string singular =
+      testing::write_file(dir / "singular.json",
+                          scene_with(R"(, "transform": {"matrix": [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]})"))
+          .string();
+  const std::string out = (dir / "o.png").string();
+  for (const Case& c : std::vector<Case>{
+           {"render " + singular + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1", "singular"},
+           {"render " + scene + " -o " + out + " --exposure nan", "finite"},
+           {"render " + scene + " -o " + out + " --exposure inf", "finite"},
+           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 1e300", "smoothing iterations"},
+           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --iterations 2147483647", "--iterations"},
+       })
+    expect_refused(c);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(BadInput, ImagesThatClaimHugeSizesOrHoldNaNAreRefusedByName) {
+  testing::TempDir dir;
+  const std::string bomb = testing::write_file(dir / "bomb.png", png_header_only(60000, 60000)).string();
+  Image nan_texture(4, 4, 3);
+  nan_texture.pixels[5] = std::numeric_limits<float>::quiet_NaN();
+  write_image(dir / "nan.exr", nan_texture);
+  nan_texture.pixels[5] = std::numeric_limits<float>::infinity();
+  write_image(dir / "inf.exr", nan_texture);
+  std::string plane = scene_with(R"(, "material": {"texture": ")" + (dir / "nan.exr").string() + R"("})");
+  plane.replace(plane.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48, R"("type": "plane", "size": 2)");
+  const std::string textured = testing::write_file(dir / "textured.json", plane).string();
+  plane.replace(plane.find("nan.exr"), 7, "inf.exr");
+  const std::string infinite = testing::write_file(dir / "infinite.json", plane).string();
+  for (const Case& c : std::vector<Case>{
+           {"image-usm " + bomb + " -o " + (dir / "o.png").string() + " --method usm2d --lambda 1 --sigma-px 2", "16384"},
+           {"render " + textured + " -o " + (dir / "t.png").string(), "pixel (1, 0) channel 2 is not a number"},
+           {"render " + infinite + " -o " + (dir / "t.png").string(), "pixel (1, 0) channel 2 is not a finite number"},
+       })
+    expect_refused(c);
+}
+
+TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {
+  testing::TempDir dir;
+  const std::string out = " -o " + (dir / "sim.csv").string();
+  for (const Case& c : std::vector<Case>{
+           {"simulate" + out + " --lambda-step nan", "finite"},
+           {"simulate" + out + " --low nan", "finite"},
+           {"simulate" + out + " --answer-sd inf", "finite"},
+           {"simulate" + out + " --weak-fraction nan", "finite"},
+           {"simulate" + out + " --lambda-step 0", "--lambda-step: must be more than 0, not 0"},
+           {"simulate" + out + " --subjects 100000 --repetitions 100", "the limit is 10000000"},
+       })
+    expect_refused(c);
+  EXPECT_FALSE(fs::exists(dir / "sim.csv"));
+}
+
+TEST(BadInput, ScenesNameTheKeyOfAnOutOfRangeSeed) {
+  testing::TempDir dir;
+  std::string s = scene_with("");
+  s.replace(s.find(R"("spp": 2)"), 8, R"("spp": 2, "seed": 18446744073709551615)");
+  const std::string scene = testing::write_file(dir / "seed.json", s).string();
+  expect_refused({"render " + scene + " -o " + (dir / "o.png").string(), "18446744073709551615"});
+}
+
+}  // namespace
+}  // namespace countershade
