@@ -228,6 +228,8 @@ void add_clusters(BlockResults& b, int clusters) {
   for (size_t i = 0; i < n; ++i)
     for (size_t s = 0; s < ns; ++s) prefs(long(i), long(s)) = jnd.sigma_mean(i, s, Question::best);
   const int k = std::clamp(clusters, 1, int(n));
+  if (k != clusters)
+    b.warnings.push_back("--clusters " + std::to_string(clusters) + " lowered to " + std::to_string(k) + " (the number of subjects)");
   b.dendrogram = ward_d2(prefs);
   b.cluster_labels = cut_tree(b.dendrogram, int(n), k);
   json assignments = json::object();
@@ -342,7 +344,13 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   // Dividing by a subject's own λ_Low needs it positive; the group mean does not.
   const CellTable means = subject_means(b, rows, options.normalization == "subject");
   const size_t n = b.subjects.size();
-  if (n < 3) throw InputError("method block '" + method + "': only " + std::to_string(n) + " complete subjects (need 3 or more)");
+  if (n < 3) {
+    const std::string& source = rows.front()->source;  // "file:line"
+    throw InputError(source.substr(0, source.rfind(':')) + ": " + (method.empty() ? "" : "method " + method + ": ") +
+                     "only " + std::to_string(n) + " subjects have answers in every cell (need 3 or more; " +
+                     std::to_string(b.excluded.size()) + " excluded" +
+                     (b.excluded.empty() ? "" : ", e.g. " + b.excluded.front().subject + ": " + b.excluded.front().reason) + ")");
+  }
   b.jnd = jnd_cells(means, options.normalization);
 
   json& out = b.json;

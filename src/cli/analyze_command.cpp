@@ -1,5 +1,7 @@
 // `countershade analyze`: recorded sessions -> results.json, CSV tables, SVG figures and a report.
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +30,15 @@ struct AnalyzeArgs {
   bool no_figures = false;
 };
 
+// Before any work: the output folder exists and is writable, or its nearest existing parent is.
+void check_output_folder(const fs::path& output) {
+  std::error_code ec;
+  fs::path existing = fs::absolute(output, ec);
+  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+  if (!fs::is_directory(existing, ec)) throw_input_error(output.string(), "cannot create the output folder (" + existing.string() + " is not a folder)");
+  if (::access(existing.c_str(), W_OK) != 0) throw_input_error(output.string(), "cannot write in " + existing.string());
+}
+
 void run(const AnalyzeArgs& args) {
   analysis::AnalysisOptions options;
   options.normalization = args.normalization;
@@ -37,11 +48,12 @@ void run(const AnalyzeArgs& args) {
   options.bootstrap = args.bootstrap;
   options.seed = uint64_t(args.seed);
   std::vector<fs::path> inputs(args.inputs.begin(), args.inputs.end());
+  check_output_folder(args.output);
   auto responses = analysis::read_responses(inputs);
-  std::error_code ec;
+  auto results = analysis::analyze(responses, options);
+  std::error_code ec;  // created only now: a failed analysis leaves no empty folder behind
   fs::create_directories(args.output, ec);
   if (ec || !fs::is_directory(args.output)) throw_input_error(args.output, "cannot create the output folder");
-  auto results = analysis::analyze(responses, options);
   for (const auto& block : results)
     for (const auto& w : block.warnings)
       std::fprintf(stderr, "analyze: warning%s: %s\n", block.method.empty() ? "" : (" (" + block.method + ")").c_str(),

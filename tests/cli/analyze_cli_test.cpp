@@ -56,7 +56,9 @@ TEST(AnalyzeCli, BadInputExitsWithTwoAndOneLine) {
       {no_step.string() + " -o " + (dir / "o").string(), "--lambda-step"},
       {(dir / "none.csv").string() + " -o " + (dir / "o").string(), "no such file"},
       {no_step.string() + " -o " + (dir / "o").string() + " --model gamma", "--model"},
-      {no_step.string() + " -o " + (dir / "o").string() + " --lambda-step 0.05", "complete subjects"},
+      {no_step.string() + " -o " + (dir / "o").string() + " --lambda-step 0.05",
+       "b.csv: only 0 subjects have answers in every cell"},
+      {no_step.string() + " -o " + (dir / "b.csv/o").string() + " --lambda-step 0.05", "is not a folder"},
   };
   for (const auto& c : cases) {
     auto r = run_cli("analyze " + c.args);
@@ -64,6 +66,7 @@ TEST(AnalyzeCli, BadInputExitsWithTwoAndOneLine) {
     EXPECT_EQ(count_lines(r.output), 1) << r.output;
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
   }
+  EXPECT_FALSE(std::filesystem::exists(dir / "o")) << "a failed analysis leaves no output folder";
 }
 
 }  // namespace
