@@ -1,7 +1,5 @@
 // `countershade analyze`: recorded sessions -> results.json, CSV tables, SVG figures and a report.
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,15 +27,6 @@ struct AnalyzeArgs {
   long long seed = 1;
   bool no_figures = false;
 };
-
-// Before any work: the output folder exists and is writable, or its nearest existing parent is.
-void check_output_folder(const fs::path& output) {
-  std::error_code ec;
-  fs::path existing = fs::absolute(output, ec);
-  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
-  if (!fs::is_directory(existing, ec)) throw_input_error(output.string(), "cannot create the output folder (" + existing.string() + " is not a folder)");
-  if (::access(existing.c_str(), W_OK) != 0) throw_input_error(output.string(), "cannot write in " + existing.string());
-}
 
 void run(const AnalyzeArgs& args) {
   analysis::AnalysisOptions options;

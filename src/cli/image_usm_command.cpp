@@ -71,6 +71,7 @@ void run(const ImageUsmArgs& args, const CLI::App* cmd) {
   const ResolvedMethod method = resolve_method(cmd, args.method);
   check_image_method(method, args);
   check_output_file(args.output, {".png", ".tif", ".tiff", ".exr"}, ".png, .tif or .exr");
+  if (!args.aux.empty()) check_output_folder(args.aux);  // before anything is written
 
   int file_bits = 8;
   Image display = load_display_image(args.image, file_bits);

@@ -72,6 +72,7 @@ std::string check_output(const RenderArgs& args, bool enhanced) {
   const std::string ext = check_output_file(args.output, {".png", ".tif", ".tiff", ".exr"},
                                             ".png, .tif (display-encoded) or .exr (linear)");
   if (ext == ".exr" && enhanced) throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
+  if (!args.aux.empty()) check_output_folder(args.aux);
   return ext;
 }
 

@@ -1,5 +1,6 @@
 #include "core/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -44,6 +45,34 @@ std::string lower_extension(const std::filesystem::path& path) {
   return ext;
 }
 
+namespace {
+
+// Whether a file can be created in `dir`: tried, since permissions alone do not tell (root,
+// read-only mounts, /proc).
+bool can_create_in(const std::filesystem::path& dir) {
+  const std::filesystem::path probe = dir / (".countershade-probe-" + std::to_string(::getpid()));
+  const int fd = ::open(probe.c_str(), O_CREAT | O_EXCL | O_WRONLY, 0600);
+  if (fd < 0) return false;
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return true;
+}
+
+}  // namespace
+
+void check_output_folder(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
+    throw_input_error(folder.string(), "is a file, not a folder");
+  fs::path existing = fs::absolute(folder, ec);
+  while (existing.has_parent_path() && existing != existing.parent_path() && !fs::exists(existing, ec))
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing, ec))
+    throw_input_error(folder.string(), "cannot create the folder (" + existing.string() + " is not a folder)");
+  if (!can_create_in(existing)) throw_input_error(folder.string(), "cannot write in " + existing.string());
+}
+
 std::string check_output_file(const std::filesystem::path& path, const std::vector<std::string>& extensions,
                               const std::string& formats) {
   namespace fs = std::filesystem;
@@ -53,7 +82,7 @@ std::string check_output_file(const std::filesystem::path& path, const std::vect
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw_input_error(path.string(), "output folder does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) throw_input_error(path.string(), "output folder is not writable");
+  if (!can_create_in(dir)) throw_input_error(path.string(), "output folder is not writable");
   if (fs::is_directory(path, ec)) throw_input_error(path.string(), "is a folder, not a file");
   return ext;
 }

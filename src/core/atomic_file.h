@@ -26,4 +26,8 @@ std::string lower_extension(const std::filesystem::path& path);
 std::string check_output_file(const std::filesystem::path& path, const std::vector<std::string>& extensions,
                               const std::string& formats);
 
+// Checks, before any work, that `folder` is a folder or can become one: not a file, and a file
+// can be created in it or in its nearest existing parent. Throws InputError naming it.
+void check_output_folder(const std::filesystem::path& folder);
+
 }  // namespace countershade

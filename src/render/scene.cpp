@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/image.h"
 #include "core/json_reader.h"
 #include "mesh/mesh_io.h"
@@ -429,7 +430,30 @@ NoiseBudget read_noise_budget(const JsonObject& o) {
   return b;
 }
 
+namespace {
+
+// About how many triangles splitting every edge to max_edge_length makes: a triangle whose
+// longest edge is k lengths long becomes about k² triangles.
+double refined_triangle_estimate(const Scene& scene, double max_edge_length) {
+  double total = 0;
+  for (const auto& object : scene.objects)
+    for (const auto& t : object.mesh.triangles) {
+      const auto& p = object.mesh.positions;
+      const double longest = std::max({glm::distance(p[t.x], p[t.y]), glm::distance(p[t.y], p[t.z]), glm::distance(p[t.z], p[t.x])});
+      const double k = std::max(1.0, std::ceil(longest / max_edge_length));
+      total += k * k;
+    }
+  return total;
+}
+
+}  // namespace
+
 size_t refine_scene(Scene& scene, double max_edge_length) {
+  constexpr double kMaxTriangles = 5e7;  // about 10 GB of mesh, vertex signal and smoothing
+  const double estimate = refined_triangle_estimate(scene, max_edge_length);
+  if (!(estimate <= kMaxTriangles))
+    throw InputError("--refine " + format_value(max_edge_length) + ": splitting edges to that length would make about " +
+                     format_value(double(std::llround(estimate))) + " triangles; the limit is 50000000 (choose a longer length)");
   size_t splits = 0;
   for (auto& object : scene.objects) {
     splits += refine_long_edges(object.mesh, max_edge_length, &object.importance);

@@ -81,6 +81,8 @@ TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
            {"render " + scene + " -o " + out + " --exposure inf", "finite"},
            {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 1e300", "smoothing iterations"},
            {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --iterations 2147483647", "--iterations"},
+           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1 --refine 1e-9", "the limit is 50000000"},
+           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1 --refine nan", "--refine"},
        })
     expect_refused(c);
   EXPECT_FALSE(fs::exists(out));
@@ -105,6 +107,26 @@ TEST(BadInput, ImagesThatClaimHugeSizesOrHoldNaNAreRefusedByName) {
            {"render " + infinite + " -o " + (dir / "t.png").string(), "pixel (1, 0) channel 2 is not a finite number"},
        })
     expect_refused(c);
+}
+
+// Outputs are checked before any work: a failed run leaves an existing output untouched.
+TEST(BadInput, OutputsAreCheckedBeforeAnythingIsWritten) {
+  testing::TempDir dir;
+  Image grey(16, 16, 3, 0.5f);
+  write_image(dir / "in.png", grey);
+  write_image(dir / "exist.png", Image(16, 16, 3, 0.1f));
+  testing::write_file(dir / "keep.png", "keep");
+  const std::string before = testing::read_file(dir / "exist.png");
+  expect_refused({"image-usm " + (dir / "in.png").string() + " -o " + (dir / "exist.png").string() +
+                      " --method usm2d --lambda 1 --sigma-px 2 --aux " + (dir / "keep.png").string(),
+                  "is a file, not a folder"});
+  EXPECT_EQ(testing::read_file(dir / "exist.png"), before);
+  EXPECT_EQ(testing::read_file(dir / "keep.png"), "keep");
+  const std::string scene = testing::write_file(dir / "s.json", scene_with("")).string();
+  expect_refused({"render " + scene + " -o /proc/o.png", "not writable"});
+  expect_refused({"render " + scene + " -o " + (dir / "o.png").string() + " --aux " + (dir / "keep.png").string(),
+                  "is a file, not a folder"});
+  EXPECT_FALSE(fs::exists(dir / "o.png"));
 }
 
 TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {
