@@ -1,5 +1,6 @@
 #include "stimuli/experiment.h"
 
+#include "adjust/study.h"
 #include "stimuli/audit.h"
 
 #include <algorithm>
@@ -90,7 +91,9 @@ Experiment load_experiment(const std::filesystem::path& path) {
     root.fail("version", "unsupported experiment format version " + std::to_string(version));
   e.name = root.string_or("name", path.stem().string());
   if (root.has("description")) root.string("description");
-  if (root.has("adjust")) root.object("adjust");  // the adjustment procedure; checked by `adjust`
+  // The adjustment procedure: parsed now as `adjust` will parse it, so a typo fails here, not
+  // in front of the first participant.
+  if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
   if (root.has("audit")) read_audit_limits(root.object("audit"));  // the audit's limits, checked now
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
   if (root.has("lambda")) {

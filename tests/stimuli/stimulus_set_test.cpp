@@ -219,6 +219,10 @@ TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
       {variant("\"method\": \"usm2d\"", "\"method\": \"blur\""), "unknown method 'blur'"},
       {variant("\"sigma_fraction\": [0.03, 0.08]", "\"sigma_fraction\": []"), "the σ list is empty"},
       {variant("\"seed\": 5", "\"seed\": 5, \"colour\": 1"), "colour: unknown key"},
+      // The adjustment procedure is checked with the experiment, not first in front of a participant.
+      {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitions\": -1}"), "adjust.repetitions"},
+      {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitons\": 2}"), "adjust.repetitons: unknown key"},
+      {variant("\"seed\": 5", "\"seed\": 5, \"audit\": {\"max_drift\": -1}"), "audit.max_drift"},
   };
   int i = 0;
   for (const auto& c : cases) {
