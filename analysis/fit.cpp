@@ -117,20 +117,28 @@ double model_scale_point(FitModel model, const AnswerInterval& a) {
   return model == FitModel::logistic ? x : std::log(x);
 }
 
+// The narrowest closed interval: the grid step, the natural unit of the logistic's scale. When
+// every answer is open above, `fallback`.
+double narrowest_interval(const AnswerCounts& counts, double fallback) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const auto& [interval, count] : counts)
+    if (!std::isinf(interval.upper)) narrowest = std::min(narrowest, interval.upper - interval.lower);
+  return std::isinf(narrowest) ? fallback : narrowest;
+}
+
 // Minimises −ln L with Ceres within bounds around the answers; returns whether the solution is
 // usable.
 bool minimize(FitModel model, const AnswerCounts& counts, double* q) {
   ceres::Problem problem;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo, narrowest = lo;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [interval, count] : counts) {
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<AnswerResidual, 1, 2>(new AnswerResidual(model, interval, count)), nullptr, q);
     const double x = model_scale_point(model, interval);
     lo = std::min(lo, x);
     hi = std::max(hi, x);
-    if (!std::isinf(interval.upper)) narrowest = std::min(narrowest, interval.upper - interval.lower);
   }
-  if (std::isinf(narrowest)) narrowest = std::exp(lo);  // every answer open above
+  const double narrowest = narrowest_interval(counts, std::exp(lo));
   problem.SetParameterLowerBound(q, 0, lo - 10.0);
   problem.SetParameterUpperBound(q, 0, hi + 10.0);
   problem.SetParameterLowerBound(q, 1, std::log(1e-4 * (model == FitModel::logistic ? narrowest : 1.0)));
@@ -281,20 +289,19 @@ AnswerInterval answer_interval(double lambda, int index, double step, double top
 }
 
 Fit fit_threshold(const std::vector<AnswerInterval>& answers, FitModel model) {
+  if (answers.empty()) throw InputError("a threshold fit needs at least one answer");
   // Start from the moments of the answers on the model's scale.
-  double sum = 0, sq = 0, n = 0, narrowest = std::numeric_limits<double>::infinity();
+  double sum = 0, sq = 0, n = 0;
   for (const auto& a : answers) {
     const double x = model_scale_point(model, a);
     sum += x;
     sq += x * x;
     n += 1;
-    if (!std::isinf(a.upper)) narrowest = std::min(narrowest, a.upper - a.lower);
   }
-  if (answers.empty()) throw InputError("a threshold fit needs at least one answer");
-  if (std::isinf(narrowest)) narrowest = 1.0;
+  const AnswerCounts counts = count_answers(answers);
   const double mean = sum / n, sd = std::sqrt(std::max(sq / n - mean * mean, 0.0));
-  const double start[2] = {mean, std::log(std::max(sd, model == FitModel::logistic ? narrowest : 0.05))};
-  return solve(count_answers(answers), model, start);
+  const double start[2] = {mean, std::log(std::max(sd, model == FitModel::logistic ? narrowest_interval(counts, 1.0) : 0.05))};
+  return solve(counts, model, start);
 }
 
 double fit_cdf(const Fit& fit, double lambda) {

@@ -1,10 +1,10 @@
 // `countershade audit`: measures a finished stimulus set and checks it for confounds.
 
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "stimuli/audit.h"
@@ -26,10 +26,7 @@ void add_audit_command(CLI::App& app) {
   cmd->add_option("--jobs", args->jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->add_flag("--strict", args->strict, "Exit with status 1 when a check fails");
   cmd->callback([args] {
-    std::error_code ec;
-    std::filesystem::create_directories(args->output, ec);
-    if (ec || !std::filesystem::is_directory(args->output))
-      throw_input_error(args->output, "cannot create the output folder");
+    check_output_folder(args->output);  // created by the report writer, after the audit succeeded
     Progress progress("audit");
     AuditOptions options;
     options.threads = args->jobs;

@@ -212,4 +212,23 @@ void sort_entries(std::vector<ManifestEntry>& entries) {
   std::sort(entries.begin(), entries.end(), [](const ManifestEntry& a, const ManifestEntry& b) { return a.file < b.file; });
 }
 
+void set_image_noise(ManifestEntry& entry, const ImageNoise& noise) {
+  OrderedJson& j = entry.extra["noise"];
+  j = {{"rms", noise.rms}, {"p99", noise.p99}};
+  if (noise.budget) j["budget"] = {{"target", noise.budget->target}, {"p99", noise.budget->p99}, {"met", noise.budget->met}};
+}
+
+std::optional<ImageNoise> image_noise(const ManifestEntry& entry) {
+  const auto j = entry.extra.find("noise");
+  if (j == entry.extra.end() || !j->is_object() || !j->contains("rms")) return std::nullopt;
+  ImageNoise noise;
+  noise.rms = (*j)["rms"].get<double>();
+  noise.p99 = j->value("p99", 0.0);
+  if (j->contains("budget")) {
+    const OrderedJson& b = (*j)["budget"];
+    noise.budget = ImageNoise::Budget{b.value("target", 0.0), b.value("p99", 0.0), b.value("met", false)};
+  }
+  return noise;
+}
+
 }  // namespace countershade

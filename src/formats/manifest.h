@@ -44,6 +44,19 @@ struct ManifestEntry {
   const std::string& condition_method() const { return label.empty() ? method : label; }
 };
 
+// The sampling noise recorded for an image (entry.extra["noise"], docs/stimulus-sets.md): the
+// estimate in L* and, for images sampled to a budget, the budget and whether it was met.
+struct ImageNoise {
+  double rms = 0, p99 = 0;
+  struct Budget {
+    double target = 0, p99 = 0;
+    bool met = false;
+  };
+  std::optional<Budget> budget;
+};
+void set_image_noise(ManifestEntry& entry, const ImageNoise& noise);
+std::optional<ImageNoise> image_noise(const ManifestEntry& entry);  // none when not recorded
+
 struct Manifest {
   int format_version = kManifestFormatVersion;
   std::string software_version, experiment_name, experiment_sha256;

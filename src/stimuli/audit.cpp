@@ -107,11 +107,10 @@ StimulusAudit describe(const ManifestEntry& e) {
   s.lambda = e.lambda;
   s.sigma = e.sigma.value_or(0.0);
   if (!s.reference) s.condition = e.condition_method() + " sigma " + format_value(s.sigma);
-  const auto noise = e.extra.find("noise");
-  if (noise != e.extra.end() && noise->is_object()) {
-    if (noise->contains("rms")) s.noise_rms = (*noise)["rms"].get<double>();
-    if (noise->contains("p99")) s.noise_p99 = (*noise)["p99"].get<double>();
-    if (noise->contains("budget")) s.noise_met = (*noise)["budget"]["met"].get<bool>();
+  if (const auto noise = image_noise(e)) {
+    s.noise_rms = noise->rms;
+    s.noise_p99 = noise->p99;
+    if (noise->budget) s.noise_met = noise->budget->met;
   }
   return s;
 }
@@ -175,7 +174,9 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
       StimulusAudit s = describe(e);
       const auto reference = references.find(e.scene);
       if (reference == references.end()) throw_input_error(manifest_path.string(), "scene " + e.scene + " has no reference image");
-      const Decoded d = e.is_reference() ? reference->second : decode(resolve_in_set(dir, e.file), encodings.at(e.scene));
+      Decoded own;
+      if (!e.is_reference()) own = decode(resolve_in_set(dir, e.file), encodings.at(e.scene));
+      const Decoded& d = e.is_reference() ? reference->second : own;
       if (d.width != reference->second.width || d.height != reference->second.height || d.bits != reference->second.bits)
         throw_input_error(e.file, "differs in size or bit depth from its scene's reference");
       lightness_statistics(d, s);

@@ -79,9 +79,15 @@ std::string checks_csv(const AuditReport& r) {
   return csv.str();
 }
 
-// One measure of a condition against λ, with the limit as dashed lines where there is one.
+// A measure's limit, drawn dashed: at +value, and at −value too for a two-sided one (drift).
+struct PlotLimit {
+  double value;
+  bool two_sided = false;
+};
+
+// One measure of a condition against λ, with its limit where there is one.
 std::string measure_plot(const AuditCondition& c, const std::string& title, const std::string& unit,
-                         double (*value)(const StimulusAudit&, const StimulusAudit&), std::optional<double> limit) {
+                         double (*value)(const StimulusAudit&, const StimulusAudit&), std::optional<PlotLimit> limit) {
   LinePlot plot;
   plot.title = title;
   plot.x_label = "λ";
@@ -96,14 +102,12 @@ std::string measure_plot(const AuditCondition& c, const std::string& title, cons
     series.y.push_back(value(*s, *c.reference));
   }
   plot.series.push_back(series);
-  if (limit) {
+  if (limit)
     for (double sign : {1.0, -1.0}) {
-      if (sign < 0 && title.find("drift") == std::string::npos) continue;
-      PlotSeries line{sign > 0 ? "limit" : "", {series.x.front(), series.x.back()}, {sign * *limit, sign * *limit},
-                      "#D55E00", true};
-      plot.series.push_back(line);
+      if (sign < 0 && !limit->two_sided) continue;
+      const double y = sign * limit->value;
+      plot.series.push_back({sign > 0 ? "limit" : "", {series.x.front(), series.x.back()}, {y, y}, "#D55E00", true});
     }
-  }
   return plot.to_svg();
 }
 
@@ -111,12 +115,12 @@ std::string condition_plots(const AuditCondition& c, const AuditLimits& limits) 
   std::string out;
   out += measure_plot(c, "mean L* drift from the reference", "ΔL*",
                       [](const StimulusAudit& s, const StimulusAudit& r) { return s.mean_lightness - r.mean_lightness; },
-                      limits.max_drift);
+                      PlotLimit{limits.max_drift, true});
   out += measure_plot(c, "RMS contrast (SD of L*)", "L*", [](const StimulusAudit& s, const StimulusAudit&) { return s.rms_contrast; },
                       std::nullopt);
   out += measure_plot(c, "clipped pixels", "%",
                       [](const StimulusAudit& s, const StimulusAudit&) { return 100 * s.clipped_fraction; },
-                      100 * limits.max_clipped);
+                      PlotLimit{100 * limits.max_clipped});
   out += measure_plot(c, "CIEDE2000 to the reference, mean", "ΔE00",
                       [](const StimulusAudit& s, const StimulusAudit&) { return s.delta_e_mean; }, std::nullopt);
   out += measure_plot(c, "CIEDE2000 to the reference, p99", "ΔE00",

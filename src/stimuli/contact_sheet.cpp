@@ -66,9 +66,8 @@ namespace {
 
 // "noise 0.21 L*" from a manifest entry's noise estimate, or "" without one.
 std::string noise_caption(const ManifestEntry& entry) {
-  const auto noise = entry.extra.find("noise");
-  if (noise == entry.extra.end() || !noise->contains("rms")) return "";
-  return "noise " + format_value(round_to((*noise)["rms"].get<double>(), 2)) + " L*";
+  const auto noise = image_noise(entry);
+  return noise ? "noise " + format_value(round_to(noise->rms, 2)) + " L*" : "";
 }
 
 }  // namespace

@@ -119,10 +119,10 @@ void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& mode
   const NoiseSummary noise = summarize_noise(stimulus_noise(view, model, written));
   const SamplingReport& sampling = view.render.sampling;
   const bool fixed = view.scene->settings.spp.has_value();
-  entry.extra["noise"] = {{"rms", round_to(noise.rms, 4)}, {"p99", round_to(noise.p99, 4)}};
+  ImageNoise recorded{round_to(noise.rms, 4), round_to(noise.p99, 4), std::nullopt};
   if (!fixed)
-    entry.extra["noise"]["budget"] = {{"target", budget.target}, {"p99", budget.p99},
-                                      {"met", noise.rms <= budget.target && noise.p99 <= budget.p99}};
+    recorded.budget = ImageNoise::Budget{budget.target, budget.p99, noise.rms <= budget.target && noise.p99 <= budget.p99};
+  set_image_noise(entry, recorded);
   entry.extra["spp"] = {{"min", sampling.pixels.min}, {"mean", round_to(sampling.pixels.mean, 2)},
                         {"max", sampling.pixels.max}};
 }

@@ -85,8 +85,12 @@ TEST(Audit, MeasuresMatchHandComputedImages) {
   EXPECT_NEAR(s.delta_e_p99, grey_difference(L100, L200), 1e-4);
   // λ = 0 equals the reference; λ = 1 drifts by far more than 1 L* and clips 12.5 %.
   for (const auto& c : r.checks) {
-    if (c.check == "lambda 0 equals reference") EXPECT_TRUE(c.passed) << c.detail;
-    if (c.check == "mean L* drift" || c.check == "clipped pixels") EXPECT_FALSE(c.passed) << c.detail;
+    if (c.check == "lambda 0 equals reference") {
+      EXPECT_TRUE(c.passed) << c.detail;
+    }
+    if (c.check == "mean L* drift" || c.check == "clipped pixels") {
+      EXPECT_FALSE(c.passed) << c.detail;
+    }
   }
 }
 
