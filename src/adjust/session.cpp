@@ -112,8 +112,7 @@ CheckedInputs check_inputs(const SessionOptions& o) {
   CheckedInputs in;
   if (o.script) in.script = parse_key_script(*o.script);
   if (o.observer) in.observer_seed = parse_observer_spec(*o.observer);
-  if (o.screenshot && lower_extension(*o.screenshot) != ".png")
-    throw_input_error(o.screenshot->string(), "screenshots are PNG files");
+  if (o.screenshot) check_output_file(*o.screenshot, {".png"}, "a PNG file (screenshots are PNG)");
   return in;
 }
 

@@ -13,6 +13,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_bytes.h"
+#include "core/png_check.h"
 
 namespace countershade {
 
@@ -97,6 +99,13 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
+// PNG files are checked chunk by chunk before libpng sees them (see core/png_check.h).
+void check_chunks_if_png(const std::filesystem::path& path) {
+  char head[8] = {};
+  std::ifstream(path, std::ios::binary).read(head, sizeof head);
+  if (has_png_signature(std::string_view(head, sizeof head))) check_png_chunks(path, read_file_bytes(path));
+}
+
 }  // namespace
 
 Image read_image(const std::filesystem::path& path, int* bits) {
@@ -108,6 +117,7 @@ Image read_image(const std::filesystem::path& path, int* bits) {
     if (bits) *bits = 0;
     return read_pfm(path);
   }
+  check_chunks_if_png(path);
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string message = OIIO::geterror();

@@ -56,6 +56,14 @@ TEST(AdjustCli, BadInputIsRefusedBeforeAnyWindowOpens) {
                    "3600000");
   }
 
+  // Screenshots: the folder must exist and be writable before the session files exist.
+  expect_refused(run_without_display("adjust " + set + " --subject P1 --screenshot " + (dir / "no/shot.png").string() + sessions),
+                 "no/shot.png");
+  expect_refused(run_without_display("adjust " + set + " --subject P1 --screenshot " + (dir / "shot.jpg").string() + sessions),
+                 "PNG");
+  expect_refused(run_without_display("adjust " + set + " --subject P1 --screenshot " + (dir / "blocker/shot.png").string() + sessions),
+                 "blocker");
+
   // A changed image, then a missing one.
   fs::path image = dir / "set/small/usm3d/sigma-0.08/lambda-0.8.png";
   std::string bytes = testing::read_file(image);

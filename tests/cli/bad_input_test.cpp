@@ -109,6 +109,32 @@ TEST(BadInput, ImagesThatClaimHugeSizesOrHoldNaNAreRefusedByName) {
     expect_refused(c);
 }
 
+// A truncated or damaged PNG (as an image or as a texture) is one line of ours: libpng used to
+// print its own "libpng error:" line first.
+TEST(BadInput, TruncatedAndDamagedPngsAreOneLine) {
+  testing::TempDir dir;
+  Image picture(64, 48, 3);
+  for (size_t i = 0; i < picture.pixels.size(); ++i) picture.pixels[i] = float(i % 97) / 96.0f;
+  write_image(dir / "whole.png", picture);
+  const std::string whole = testing::read_file(dir / "whole.png");
+  const std::string truncated = testing::write_file(dir / "truncated.png", whole.substr(0, whole.size() / 2)).string();
+  std::string flipped = whole;
+  flipped[flipped.size() / 2] = char(flipped[flipped.size() / 2] ^ 0x5a);
+  const std::string damaged = testing::write_file(dir / "damaged.png", flipped).string();
+  const std::string no_end = testing::write_file(dir / "no_end.png", whole.substr(0, whole.size() - 12)).string();
+  std::string plane = scene_with(R"(, "material": {"texture": ")" + truncated + R"("})");
+  plane.replace(plane.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48, R"("type": "plane", "size": 2)");
+  const std::string textured = testing::write_file(dir / "textured.json", plane).string();
+  const std::string usm = " -o " + (dir / "o.png").string() + " --method usm2d --lambda 1 --sigma-px 2";
+  for (const Case& c : std::vector<Case>{
+           {"image-usm " + truncated + usm, "truncated.png: truncated PNG: chunk IDAT at byte"},
+           {"image-usm " + damaged + usm, "damaged.png: damaged PNG: chunk IDAT at byte"},
+           {"image-usm " + no_end + usm, "no_end.png: truncated PNG: the file ends at byte"},
+           {"render " + textured + " -o " + (dir / "t.png").string(), "truncated.png: truncated PNG"},
+       })
+    expect_refused(c);
+}
+
 // Outputs are checked before any work: a failed run leaves an existing output untouched.
 TEST(BadInput, OutputsAreCheckedBeforeAnythingIsWritten) {
   testing::TempDir dir;
