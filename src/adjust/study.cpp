@@ -162,9 +162,8 @@ SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
 }
 
 bool selected(const std::vector<StudyConfig::Selection>& wanted, const ConditionKey& key) {
-  const auto& [scene, method, sigma] = key;
   return wanted.empty() || std::any_of(wanted.begin(), wanted.end(), [&](const auto& s) {
-           return s.scene == scene && s.method == method && s.sigma == sigma;
+           return std::tie(s.scene, s.method, s.sigma) == key;
          });
 }
 

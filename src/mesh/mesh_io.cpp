@@ -14,87 +14,13 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "mesh/mesh_file_check.h"
+#include "mesh/off_reader.h"
 
 namespace countershade {
 namespace {
 
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-
-// OpenMesh's OBJ reader skips vertices it cannot parse and faces with bad indices, printing only
-// a warning; check the file first so such meshes are errors with a line number. Returns the
-// number of triangles the file describes after fan triangulation.
-size_t check_obj(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  long long vertices = 0, texcoords = 0;
-  size_t line_number = 0, triangles = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.size() < 2) continue;
-    if (line[0] == 'v' && line[1] == ' ') {
-      ++vertices;
-      const char* cursor = line.c_str() + 2;
-      for (int k = 0; k < 3; ++k) {
-        char* end = nullptr;
-        double value = std::strtod(cursor, &end);
-        if (end == cursor)
-          throw_input_error(path.string() + ": line " + std::to_string(line_number),
-                            "vertex " + std::to_string(vertices - 1) + " has fewer than 3 coordinates");
-        if (!std::isfinite(value))
-          throw_input_error(path.string() + ": line " + std::to_string(line_number),
-                            "vertex " + std::to_string(vertices - 1) + " has a NaN or infinite coordinate");
-        cursor = end;
-      }
-    } else if (line[0] == 'v' && line[1] == 't') {
-      ++texcoords;
-    } else if (line[0] == 'f' && line[1] == ' ') {
-      std::istringstream fields(line.substr(2));
-      std::string corner;
-      int count = 0;
-      std::vector<long long> face;
-      while (fields >> corner) {
-        ++count;
-        long long index[2] = {0, 0};
-        size_t start = 0;
-        for (int k = 0; k < 2 && start <= corner.size(); ++k) {
-          size_t end = corner.find('/', start);
-          std::string part = corner.substr(start, end == std::string::npos ? end : end - start);
-          if (!part.empty()) {
-            try {
-              index[k] = std::stoll(part);
-            } catch (...) {
-              throw_input_error(path.string() + ": line " + std::to_string(line_number),
-                                "face index '" + part + "' is not a number");
-            }
-          }
-          if (end == std::string::npos) break;
-          start = end + 1;
-        }
-        long long limits[2] = {vertices, texcoords};
-        const char* names[2] = {"vertex", "texture coordinate"};
-        for (int k = 0; k < 2; ++k) {
-          long long i = index[k];
-          if (k == 1 && i == 0) continue;  // no texture coordinate given
-          long long resolved = i < 0 ? limits[k] + i + 1 : i;
-          if (i == 0 || resolved < 1 || resolved > limits[k])
-            throw_input_error(path.string() + ": line " + std::to_string(line_number),
-                              std::string("face ") + names[k] + " index " + std::to_string(i) +
-                                  " is out of range (1.." + std::to_string(limits[k]) + ")");
-          if (k == 0) face.push_back(resolved);
-        }
-      }
-      std::sort(face.begin(), face.end());
-      if (std::adjacent_find(face.begin(), face.end()) != face.end())
-        throw_input_error(path.string() + ": line " + std::to_string(line_number),
-                          "face is degenerate (a vertex appears twice)");
-      triangles += size_t(std::max(0, count - 2));
-      if (count < 3)
-        throw_input_error(path.string() + ": line " + std::to_string(line_number),
-                          "face has fewer than 3 vertices");
-    }
-  }
-  return triangles;
-}
 
 }  // namespace
 
@@ -129,8 +55,9 @@ std::string check_mesh_file(const std::filesystem::path& path) {
   return ext;
 }
 
-// Reads through OpenMesh and returns what it wrote to its error stream.
-std::string read_open_mesh(const std::filesystem::path& path, OMesh& om, OpenMesh::IO::Options& options) {
+// Runs `read` with OpenMesh's error stream captured and returns what it wrote there.
+template <typename Read>
+std::string capture_open_mesh_errors(Read&& read) {
   // OpenMesh reports dropped faces (complex edges, non-manifold vertices) only on its error
   // stream; capture it so they become an error rather than a silently incomplete mesh. The
   // capture is connected once: OpenMesh allocates on every connect() and never frees on
@@ -146,9 +73,46 @@ std::string read_open_mesh(const std::filesystem::path& path, OMesh& om, OpenMes
   std::lock_guard<std::mutex> lock(omerr_mutex);
   reader_log->str("");
   reader_log->clear();
-  if (!OpenMesh::IO::read_mesh(om, path.string(), options))
-    throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
+  read();
   return reader_log->str();
+}
+
+// The faces of an OFF file added to `om` (which triangulates polygons); returns the number of
+// triangles they should give.
+size_t add_polygons(const PolygonSoup& soup, OMesh& om, OpenMesh::IO::Options& options) {
+  for (size_t v = 0; v < soup.positions.size(); ++v) {
+    const glm::vec3& p = soup.positions[v];
+    const auto vh = om.add_vertex(OMesh::Point(p.x, p.y, p.z));
+    if (!soup.colours.empty()) {
+      const glm::vec3 c = soup.colours[v] * 255.0f + 0.5f;
+      om.set_color(vh, OMesh::Color(uint8_t(c.x), uint8_t(c.y), uint8_t(c.z)));
+    }
+  }
+  options = soup.colours.empty() ? OpenMesh::IO::Options() : OpenMesh::IO::Options(OpenMesh::IO::Options::VertexColor);
+  size_t triangles = 0;
+  std::vector<OMesh::VertexHandle> corners;
+  for (const auto& face : soup.faces) {
+    corners.clear();
+    for (unsigned v : face) corners.push_back(om.vertex_handle(v));
+    om.add_face(corners);
+    triangles += face.size() - 2;
+  }
+  return triangles;
+}
+
+// The file read into `om`, by countershade's OFF reader or by OpenMesh; returns OpenMesh's error
+// output and, for OBJ and OFF, the number of triangles the file describes (else 0).
+std::string read_into_open_mesh(const std::filesystem::path& path, const std::string& ext, OMesh& om,
+                                OpenMesh::IO::Options& options, size_t& expected_triangles) {
+  if (ext == ".off") {
+    const PolygonSoup soup = read_off(path);
+    return capture_open_mesh_errors([&] { expected_triangles = add_polygons(soup, om, options); });
+  }
+  expected_triangles = check_mesh_file_structure(path, ext);
+  return capture_open_mesh_errors([&] {
+    if (!OpenMesh::IO::read_mesh(om, path.string(), options))
+      throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
+  });
 }
 
 // Positions, colours, and per-corner UVs (from the face's halfedges, else the vertices).
@@ -188,14 +152,14 @@ TriangleMesh to_triangle_mesh(OMesh& om, const OpenMesh::IO::Options& options) {
 
 TriangleMesh load_mesh(const std::filesystem::path& path) {
   const std::string ext = check_mesh_file(path);
-  const size_t expected_triangles = ext == ".obj" ? check_obj(path) : 0;
   OMesh om;
   om.request_vertex_colors();
   om.request_vertex_texcoords2D();
   om.request_halfedge_texcoords2D();
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor | OpenMesh::IO::Options::VertexTexCoord |
                                   OpenMesh::IO::Options::FaceTexCoord;
-  const std::string log = read_open_mesh(path, om, options);
+  size_t expected_triangles = 0;
+  const std::string log = read_into_open_mesh(path, ext, om, options, expected_triangles);
   if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
       log.find("failed") != std::string::npos || (expected_triangles > 0 && om.n_faces() < expected_triangles))
     throw_input_error(path.string(), "mesh is non-manifold: some faces could not be added (complex edge or vertex)");

@@ -1,0 +1,26 @@
+#pragma once
+// Small helpers for reading the text of mesh files (PLY headers, OFF lines).
+
+#include <charconv>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace countershade {
+
+// The whitespace-separated words of a line.
+inline std::vector<std::string> split_words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// A whole non-negative decimal integer, or false.
+inline bool parse_count(const std::string& text, unsigned long long& value) {
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace countershade
