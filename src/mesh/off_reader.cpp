@@ -75,6 +75,27 @@ OffHeader read_off_header(std::istream& in, const std::string& file, size_t& num
   return h;
 }
 
+// One face line: "n i1 … in [colour]" with n ≥ 3 distinct indices below `vertices`.
+std::vector<unsigned> off_face(const std::vector<std::string>& w, const std::string& where, unsigned long long f,
+                               unsigned long long vertices) {
+  const std::vector<double> values = off_numbers(w, 0, where);
+  const double n = values[0];
+  const std::string face_name = "face " + std::to_string(f);
+  if (n < 3 || n != std::floor(n) || n + 1 > double(values.size()))
+    throw_input_error(where, face_name + " must list at least 3 vertex indices after their count");
+  std::vector<unsigned> face;
+  for (size_t k = 1; k <= size_t(n); ++k) {
+    if (values[k] < 0 || values[k] >= double(vertices) || values[k] != std::floor(values[k]))
+      throw_input_error(where, face_name + " vertex index " + w[k] + " is out of range (0.." + std::to_string(vertices - 1) + ")");
+    face.push_back(unsigned(values[k]));
+  }
+  std::vector<unsigned> sorted = face;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    throw_input_error(where, face_name + " is degenerate (a vertex appears twice)");
+  return face;
+}
+
 }  // namespace
 
 PolygonSoup read_off(const std::filesystem::path& path) {
@@ -99,21 +120,9 @@ PolygonSoup read_off(const std::filesystem::path& path) {
   }
   for (unsigned long long f = 0; f < h.faces; ++f) {
     if (!next_off_line(in, w, number)) throw_input_error(file, "OFF file ends before face " + std::to_string(f));
-    const std::string where = file + ": line " + std::to_string(number);
-    const std::vector<double> values = off_numbers(w, 0, where);
-    const double n = values[0];
-    if (n < 3 || n != std::floor(n) || n + 1 > double(values.size()))
-      throw_input_error(where, "face " + std::to_string(f) + " must list at least 3 vertex indices after their count");
-    std::vector<unsigned>& face = soup.faces.emplace_back();
-    for (size_t k = 1; k <= size_t(n); ++k) {
-      if (values[k] < 0 || values[k] >= double(h.vertices) || values[k] != std::floor(values[k]))
-        throw_input_error(where, "face " + std::to_string(f) + " vertex index " + w[k] + " is out of range (0.." +
-                                     std::to_string(h.vertices - 1) + ")");
-      face.push_back(unsigned(values[k]));
-    }
+    soup.faces.push_back(off_face(w, file + ": line " + std::to_string(number), f, h.vertices));
   }
   return soup;
 }
-
 
 }  // namespace countershade

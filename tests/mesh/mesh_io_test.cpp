@@ -94,6 +94,7 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeOpenMeshReadsThem) {
       {"short.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ends before face 1"},
       {"colour.off", "COFF\n3 1 0\n0 0 0 2.5 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n", "colour must be"},
       {"nocolour.off", "COFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "line 3: a COFF vertex needs a colour"},
+      {"repeated.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n", "line 6: face 0 is degenerate"},
       {"variant.off", "4OFF\n3 1 0\n", "OFF variant '4OFF' is not supported"},
       {"garbage.stl", "not an STL at all", "neither a binary STL"},
       {"colour.obj", "v 0 0 0 1 2 3\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a colour outside [0, 1]"},
