@@ -29,17 +29,23 @@ std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions, double toler
   std::vector<uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
   const double cell = tolerance > 0 ? 2.0 * tolerance : 1.0;
-  auto key_of = [&](const glm::ivec3& c) {
-    return (uint64_t(uint32_t(c.x)) * 73856093u) ^ (uint64_t(uint32_t(c.y)) * 19349663u) ^ (uint64_t(uint32_t(c.z)) * 83492791u);
+  auto key_of = [&](const glm::i64vec3& c) {
+    return (uint64_t(c.x) * 73856093u) ^ (uint64_t(c.y) * 19349663u) ^ (uint64_t(c.z) * 83492791u);
+  };
+  // Cell coordinates as 64-bit integers, clamped so that far or non-finite points cannot overflow
+  // the conversion (they only share cells then, which costs comparisons, not correctness).
+  auto cell_of = [&](const glm::vec3& p) {
+    const glm::dvec3 c = glm::clamp(glm::floor(glm::dvec3(p) / cell), glm::dvec3(-0x1p62), glm::dvec3(0x1p62));
+    return glm::i64vec3(std::isnan(c.x) ? 0 : c.x, std::isnan(c.y) ? 0 : c.y, std::isnan(c.z) ? 0 : c.z);
   };
   std::unordered_multimap<uint64_t, uint32_t> grid;
   grid.reserve(n);
   for (uint32_t v = 0; v < n; ++v) {
-    const glm::ivec3 c(glm::floor(glm::dvec3(positions[v]) / cell));
+    const glm::i64vec3 c = cell_of(positions[v]);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          auto range = grid.equal_range(key_of(c + glm::ivec3(dx, dy, dz)));
+          auto range = grid.equal_range(key_of(c + glm::i64vec3(dx, dy, dz)));
           for (auto it = range.first; it != range.second; ++it)
             if (glm::length(glm::dvec3(positions[it->second]) - glm::dvec3(positions[v])) <= tolerance) {
               const uint32_t a = find_root(parent, it->second), b = find_root(parent, v);

@@ -335,11 +335,21 @@ class SceneLoader {
                                          : std::vector<float>(obj.mesh.vertex_count(), 1.0f);
     compute_corner_normals(obj.mesh, crease);
     if (o.has("transform")) transform_mesh(obj.mesh, transform(o.object("transform")));
+    check_world_positions(o, obj.mesh);
     obj.surface = surface_graph(obj.mesh.positions, obj.mesh.triangles);
     o.finish();
     return obj;
   }
 
+
+  // Transformed positions must stay finite and within ±1e15 (a translation of 1e88 overflows float,
+  // and the renderer's welding and ray tracing need room for their own arithmetic).
+  static void check_world_positions(const JsonObject& o, const TriangleMesh& mesh) {
+    constexpr float kLimit = 1e15f;
+    for (const glm::vec3& p : mesh.positions)
+      if (!(std::abs(p.x) <= kLimit && std::abs(p.y) <= kLimit && std::abs(p.z) <= kLimit))
+        o.fail("transform", "puts vertices outside ±1e15 (or makes them not finite); scenes are in metres");
+  }
 
   // Centres the mesh on the origin in x and z, stands it on y = 0 and scales its largest extent to 1.
   static void fit_to_unit(TriangleMesh& mesh) {

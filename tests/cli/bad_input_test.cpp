@@ -74,9 +74,13 @@ TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
       testing::write_file(dir / "singular.json",
                           scene_with(R"(, "transform": {"matrix": [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]})"))
           .string();
+  // Found by the fuzzer: a translation beyond float's range made positions infinite.
+  const std::string far =
+      testing::write_file(dir / "far.json", scene_with(R"(, "transform": {"translate": [0, 0, 4e88]})")).string();
   const std::string out = (dir / "o.png").string();
   for (const Case& c : std::vector<Case>{
            {"render " + singular + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1", "singular"},
+           {"render " + far + " -o " + out, "objects[0].transform: puts vertices outside ±1e15"},
            {"render " + scene + " -o " + out + " --exposure nan", "finite"},
            {"render " + scene + " -o " + out + " --exposure inf", "finite"},
            {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 1e300", "smoothing iterations"},
