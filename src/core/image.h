@@ -29,8 +29,10 @@ struct DefaultInitAllocator : std::allocator<T> {
 
 using PixelVector = std::vector<float, DefaultInitAllocator<float>>;
 
-// Memory for a buffer of `bytes`, in huge pages where it is large; release with std::free.
+// Memory for a buffer of `bytes`, in huge pages where it is large; release with release_large,
+// which keeps a few large buffers for reuse by the next allocation of the same size.
 void* allocate_large(size_t bytes);
+void release_large(void* p, size_t bytes);
 
 // The same for aggregates of numbers that have default member values (such as Lab): a buffer
 // that is about to be overwritten is left as it is, not filled with those values.
@@ -44,7 +46,7 @@ struct UninitializedAllocator : std::allocator<T> {
   // Large buffers in transparent huge pages: a fresh 50 MB buffer then faults in 25 pages, not
   // 12,000 (about 30 ms on the reference machine).
   T* allocate(size_t n) { return static_cast<T*>(allocate_large(n * sizeof(T))); }
-  void deallocate(T* p, size_t) { std::free(p); }
+  void deallocate(T* p, size_t n) { release_large(p, n * sizeof(T)); }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     if constexpr (sizeof...(Args) > 0) ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
