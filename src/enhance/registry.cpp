@@ -13,7 +13,8 @@ namespace countershade {
   X(usm3d)                              \
   X(usm2d)                              \
   X(depth_usm)                          \
-  X(cornsweet)
+  X(cornsweet)                          \
+  X(lla)
 
 #define COUNTERSHADE_DECLARE_FACTORY(id) std::unique_ptr<const EnhancementMethod> make_##id##_method();
 COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)

@@ -1,0 +1,92 @@
+// The `lla` method end to end: λ = 0 is the plain render, λ > 0 sharpens the shading of features,
+// and surface-mode normals do not depend on the camera.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "enhance/lightness.h"
+#include "enhance/method.h"
+#include "enhance/multiscale_normals.h"
+#include "render/shading.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+// A faceted ball (crease angle 0: every facet flat) on a grey background, lit from the upper left.
+std::string faceted_ball(const std::string& eye) {
+  return R"({
+  "version": 1,
+  "camera": {"eye": )" + eye + R"(, "target": [0, 0, 0], "fov": 30, "width": 96, "height": 72},
+  "render": {"spp": 4},
+  "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 2}, "crease_angle": 0, "material": {"albedo": 0.6}}],
+  "lights": [{"type": "directional", "direction": [-0.5, 0.8, 0.6], "irradiance": 2}, {"type": "ambient", "radiance": 0.1}]
+})";
+}
+
+std::shared_ptr<const View> render_ball(const testing::TempDir& dir, const std::string& eye) {
+  return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "ball.json", faceted_ball(eye)))));
+}
+
+// RMS difference of L* between horizontally neighbouring object pixels: how much the facets differ.
+double facet_contrast(const Image& display, const View& view) {
+  double sum = 0;
+  size_t n = 0;
+  for (int y = 0; y < display.height; ++y)
+    for (int x = 1; x < display.width; ++x) {
+      const size_t i = size_t(y) * display.width + x;
+      if (!(view.depth[i] > 0 && std::isfinite(view.depth[i])) || !(view.depth[i - 1] > 0 && std::isfinite(view.depth[i - 1])))
+        continue;
+      const double d = display_pixel_to_lab(&display.pixels[3 * i], view.encoding).L -
+                       display_pixel_to_lab(&display.pixels[3 * (i - 1)], view.encoding).L;
+      sum += d * d, ++n;
+    }
+  return std::sqrt(sum / double(n));
+}
+
+TEST(Lla, LambdaZeroIsThePlainRenderAndLambdaOneSharpensTheFacets) {
+  testing::TempDir dir;
+  const auto view = render_ball(dir, "[0, 0.5, 5]");
+  const auto prepared = prepare_method("lla", view, {{"sigma", 0.15}});
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  const Image enhanced = prepared->compose(1.0).display;
+  for (float v : enhanced.pixels) ASSERT_TRUE(std::isfinite(v));
+  const double plain = facet_contrast(view->display, *view), aligned = facet_contrast(enhanced, *view);
+  EXPECT_GT(aligned, 1.3 * plain) << "plain " << plain << ", aligned " << aligned;
+}
+
+// Surface-mode normals live on the mesh: rendering from another camera (a 1° orbit) gives the
+// same smoothed normal at the same surface point, to the last bit.
+TEST(Lla, SurfaceNormalsDoNotDependOnTheCamera) {
+  testing::TempDir a, b;
+  const double t = std::acos(-1.0) / 180.0;
+  const auto first = render_ball(a, "[0, 0.5, 5]");
+  const auto second = render_ball(b, "[" + std::to_string(5 * std::sin(t)) + ", 0.5, " + std::to_string(5 * std::cos(t)) + "]");
+  const MultiscaleNormals n1(first->scene, 0.15, 3), n2(second->scene, 0.15, 3);
+  for (unsigned triangle : {0u, 17u, 101u, 250u}) {
+    SurfacePoint p;
+    p.triangle = triangle, p.b1 = 0.3, p.b2 = 0.2;
+    p.shading_normal = glm::dvec3(0, 0, 1);
+    for (int k = 2; k <= 3; ++k) {
+      const glm::dvec3 u = n1.at(p, k), v = n2.at(p, k);
+      EXPECT_LT(glm::length(u - v), 1e-6) << triangle;
+      EXPECT_NEAR(glm::length(u), 1.0, 1e-9);
+    }
+  }
+}
+
+TEST(Lla, ParametersAreCheckedWithTheirKeys) {
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", nlohmann::json::object()); }).find("sigma"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"profile", {1, 1, 1}}}); }).find("needs 2 values"),
+            std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"profile", {1, 2}}}); }).find("[0, 1]"),
+            std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"kernel", 5}}); }).find("kernel"),
+            std::string::npos);
+  EXPECT_NO_THROW(parse_method("lla", {{"sigma", 0.1}, {"scales", 4}, {"profile", {1, 0.5, 0.2}}, {"gamma", 0}}));
+}
+
+}  // namespace
+}  // namespace countershade
