@@ -92,3 +92,13 @@ glm::dvec3 MultiscaleNormals::at(const SurfacePoint& point, int k) const {
 }
 
 }  // namespace countershade
+
+namespace countershade {
+
+void MultiscaleNormals::at_shading_point(const ShadingInputs& s, glm::dvec3* n) const {
+  const double side = glm::dot(s.normal, s.point.shading_normal) < 0 ? -1.0 : 1.0;
+  n[0] = s.normal;
+  for (int k = 2; k <= scales_; ++k) n[k - 1] = side * at(s.point, k);
+}
+
+}  // namespace countershade

@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "render/hooks.h"
 #include "render/scene.h"
 
 namespace countershade {
@@ -24,6 +25,9 @@ class MultiscaleNormals {
   int scales() const { return scales_; }
   // n_k (k = 2 … S) at a surface point, interpolated over its triangle and normalised.
   glm::dvec3 at(const SurfacePoint& point, int k) const;
+  // n_1 … n_S at a shading point into n[0 … S−1]: n_1 its shading normal, the smoothed ones turned
+  // to the side the viewer sees as the shading normal is.
+  void at_shading_point(const ShadingInputs& s, glm::dvec3* n) const;
   // The smoothing iterations of scale k (2 … S) per component of object `object`.
   const std::vector<int>& iterations(size_t object, int k) const { return iterations_[object][size_t(k - 2)]; }
 

@@ -14,7 +14,8 @@ namespace countershade {
   X(usm2d)                              \
   X(depth_usm)                          \
   X(cornsweet)                          \
-  X(lla)
+  X(lla)                                \
+  X(exaggerated_shading)
 
 #define COUNTERSHADE_DECLARE_FACTORY(id) std::unique_ptr<const EnhancementMethod> make_##id##_method();
 COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)

@@ -1,4 +1,4 @@
-// The `lla` method end to end: λ = 0 is the plain render, λ > 0 sharpens the shading of features,
+// The shading methods end to end (`lla`, `exaggerated-shading`): λ = 0 is the plain render, λ > 0 sharpens the shading of features,
 // and surface-mode normals do not depend on the camera.
 
 #include <gtest/gtest.h>
@@ -46,6 +46,18 @@ double facet_contrast(const Image& display, const View& view) {
   return std::sqrt(sum / double(n));
 }
 
+// Standard deviation of L* over the object's pixels: the overall lit-to-unlit range.
+double lightness_spread(const Image& display, const View& view) {
+  double sum = 0, sum2 = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < view.depth.size(); ++i) {
+    if (!(view.depth[i] > 0 && std::isfinite(view.depth[i]))) continue;
+    const double l = display_pixel_to_lab(&display.pixels[3 * i], view.encoding).L;
+    sum += l, sum2 += l * l, ++n;
+  }
+  return std::sqrt(std::max(0.0, sum2 / double(n) - (sum / double(n)) * (sum / double(n))));
+}
+
 TEST(Lla, LambdaZeroIsThePlainRenderAndLambdaOneSharpensTheFacets) {
   testing::TempDir dir;
   const auto view = render_ball(dir, "[0, 0.5, 5]");
@@ -86,6 +98,24 @@ TEST(Lla, ParametersAreCheckedWithTheirKeys) {
   EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"kernel", 5}}); }).find("kernel"),
             std::string::npos);
   EXPECT_NO_THROW(parse_method("lla", {{"sigma", 0.1}, {"scales", 4}, {"profile", {1, 0.5, 0.2}}, {"gamma", 0}}));
+}
+
+// Exaggerated shading: λ = 0 is the plain render; λ = 1 replaces the diffuse term, which flattens
+// the ball's overall shading (the lit/unlit range over the object shrinks) while facets still show.
+TEST(ExaggeratedShading, LambdaZeroIsPlainAndFullStrengthFlattensTheOverallShading) {
+  testing::TempDir dir;
+  const auto view = render_ball(dir, "[0, 0.5, 5]");
+  const auto prepared = prepare_method("exaggerated-shading", view, {{"sigma", 0.15}});
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  const Image es = prepared->compose(1.0).display;
+  EXPECT_LT(lightness_spread(es, *view), 0.8 * lightness_spread(view->display, *view));
+  EXPECT_GT(facet_contrast(es, *view), 0.0);
+  EXPECT_NE(testing::input_error_of([] { parse_method("exaggerated-shading", {{"sigma", 0.1}, {"weights", {0.5, 0.2, 0.2}}}); })
+                .find("must sum to 1"),
+            std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_method("exaggerated-shading", {{"sigma", 0.1}, {"weights", {0.5, 0.5}}}); })
+                .find("needs 3 values"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,51 @@
+#pragma once
+// What the methods that change shading share (`lla`, `exaggerated-shading`): the normal scales
+// they read (σ_1 and S), and a prepared state that renders the scene again with a hook per λ.
+
+#include <functional>
+#include <memory>
+
+#include "core/parameters.h"
+#include "enhance/method.h"
+#include "enhance/multiscale_normals.h"
+
+namespace countershade {
+
+inline constexpr int kMaxNormalScales = 8;
+
+// σ_1 (the finest smoothing width, world units) and the number of scales S.
+struct NormalScales {
+  double sigma = 0;
+  int scales = 3;
+};
+
+// Reads `scales` (2 … 8, default 3) now, and σ_1 as `sigma`; call check_normal_scales after
+// bag.finish() so that an unknown key is reported first.
+NormalScales read_normal_scales(const ParameterBag& bag, std::optional<double>& sigma);
+void check_normal_scales(const ParameterBag& bag, NormalScales& scales, const std::optional<double>& sigma);
+WidthAxis normal_scales_axis();
+std::vector<ParameterDoc> normal_scales_docs();
+
+// The smoothed normals of the context's scene; InputError naming `method` without a scene.
+std::shared_ptr<const MultiscaleNormals> scene_normals(const PrepareContext& context, const NormalScales& scales,
+                                                       const std::string& method);
+
+// Each λ rendered again with the hook `hook_for(λ)`; a null hook gives the view itself (λ = 0).
+class HookedRender final : public PreparedEnhancement {
+ public:
+  using HookFor = std::function<std::shared_ptr<const ShadingHook>(double lambda)>;
+  HookedRender(const PrepareContext& context, HookFor hook_for, nlohmann::json parameters)
+      : view_(context.view), render_again_(context.render_again), hook_for_(std::move(hook_for)),
+        parameters_(std::move(parameters)) {}
+
+  Composed compose(double lambda) const override;
+  nlohmann::json parameters() const override { return parameters_; }
+
+ private:
+  std::shared_ptr<const View> view_;
+  std::function<std::shared_ptr<const View>(const RenderRequest&)> render_again_;
+  HookFor hook_for_;
+  nlohmann::json parameters_;
+};
+
+}  // namespace countershade
