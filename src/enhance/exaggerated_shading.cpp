@@ -90,11 +90,7 @@ class EsMethod final : public EnhancementMethod {
     if (std::abs(sum - 1) > 1e-9) bag.fail("weights", "must sum to 1");
     return p;
   }
-  RenderRequest request(const MethodParameters&) const override {
-    RenderRequest r;
-    r.scene = true;
-    return r;
-  }
+  RenderRequest request(const MethodParameters&) const override { return shading_request(); }
   // λ in [0, 1] blends the plain render and exaggerated shading; λ ≤ 0 is the view itself.
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
                                                const MethodParameters& parameters) const override {

@@ -81,11 +81,7 @@ class LlaMethod final : public EnhancementMethod {
     return p;
   }
 
-  RenderRequest request(const MethodParameters&) const override {
-    RenderRequest r;
-    r.scene = true;
-    return r;
-  }
+  RenderRequest request(const MethodParameters&) const override { return shading_request(); }
 
   // Every λ is a render with the aligned light; with all strengths 0 it is the view itself.
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,

@@ -15,7 +15,8 @@ namespace countershade {
   X(depth_usm)                          \
   X(cornsweet)                          \
   X(lla)                                \
-  X(exaggerated_shading)
+  X(exaggerated_shading)                \
+  X(radiance_scaling)
 
 #define COUNTERSHADE_DECLARE_FACTORY(id) std::unique_ptr<const EnhancementMethod> make_##id##_method();
 COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)

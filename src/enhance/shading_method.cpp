@@ -25,9 +25,19 @@ std::vector<ParameterDoc> normal_scales_docs() {
           {"scales", "3", "number of normal scales S (2 to 8)"}};
 }
 
+RenderRequest shading_request() {
+  RenderRequest r;
+  r.scene = true;
+  return r;
+}
+
+void require_scene(const PrepareContext& context, const std::string& method) {
+  if (!context.render_again) throw InputError(method + " changes the shading of a rendered scene; it needs a scene");
+}
+
 std::shared_ptr<const MultiscaleNormals> scene_normals(const PrepareContext& context, const NormalScales& scales,
                                                        const std::string& method) {
-  if (!context.render_again) throw InputError(method + " changes the shading of a rendered scene; it needs a scene");
+  require_scene(context, method);
   return std::make_shared<const MultiscaleNormals>(context.view->scene, scales.sigma, scales.scales, context.threads);
 }
 

@@ -26,6 +26,11 @@ void check_normal_scales(const ParameterBag& bag, NormalScales& scales, const st
 WidthAxis normal_scales_axis();
 std::vector<ParameterDoc> normal_scales_docs();
 
+// What every shading method asks of rendering: a scene (its renders with hooks come later).
+RenderRequest shading_request();
+// InputError naming `method` when the context has no scene to render again (an external image).
+void require_scene(const PrepareContext& context, const std::string& method);
+
 // The smoothed normals of the context's scene; InputError naming `method` without a scene.
 std::shared_ptr<const MultiscaleNormals> scene_normals(const PrepareContext& context, const NormalScales& scales,
                                                        const std::string& method);
@@ -47,5 +52,14 @@ class HookedRender final : public PreparedEnhancement {
   HookFor hook_for_;
   nlohmann::json parameters_;
 };
+
+}  // namespace countershade
+
+namespace countershade {
+
+// Radiance scaling's pieces, for tests: the scale σ(κ, δ) for enhancement α, and the view's
+// curvature κ per pixel (positive on convex parts).
+double radiance_scale(double kappa, double delta, double alpha, double gamma);
+Image view_curvature(const View& view, double tau);
 
 }  // namespace countershade

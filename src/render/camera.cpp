@@ -23,6 +23,13 @@ Ray CameraRays::ray(double x, double y) const {
   return {camera_.eye, glm::normalize(forward_ + sx * right_ + sy * up_)};
 }
 
+glm::dvec2 CameraRays::film_position(const glm::dvec3& p) const {
+  const glm::dvec3 d = p - camera_.eye;
+  const double depth = camera_.orthographic ? 1.0 : glm::dot(d, forward_);
+  const double sx = glm::dot(d, right_) / depth, sy = glm::dot(d, up_) / depth;
+  return {(sx / half_width_ + 1.0) * camera_.width / 2.0, (1.0 - sy / half_height_) * camera_.height / 2.0};
+}
+
 double CameraRays::eye_depth(const glm::dvec3& p) const { return glm::dot(p - camera_.eye, forward_); }
 
 glm::dvec3 CameraRays::towards_viewer(const glm::dvec3& p) const {

@@ -28,6 +28,11 @@ class CameraRays {
   double eye_depth(const glm::dvec3& p) const;
   // Unit direction from a surface point towards the viewer.
   glm::dvec3 towards_viewer(const glm::dvec3& p) const;
+  // Film position (x, y) in pixels of a world point in front of the camera: the inverse of ray().
+  glm::dvec2 film_position(const glm::dvec3& p) const;
+  // The camera's basis: right, up (both on the film) and the viewing direction.
+  const glm::dvec3& right() const { return right_; }
+  const glm::dvec3& up() const { return up_; }
   const glm::dvec3& forward() const { return forward_; }
 
  private:

@@ -1,4 +1,4 @@
-// The shading methods end to end (`lla`, `exaggerated-shading`): λ = 0 is the plain render, λ > 0 sharpens the shading of features,
+// The shading methods end to end (`lla`, `exaggerated-shading`, `radiance-scaling`): λ = 0 is the plain render, λ > 0 sharpens the shading of features,
 // and surface-mode normals do not depend on the camera.
 
 #include <gtest/gtest.h>
@@ -9,6 +9,7 @@
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
+#include "enhance/shading_method.h"
 #include "render/shading.h"
 #include "test_util.h"
 
@@ -116,6 +117,37 @@ TEST(ExaggeratedShading, LambdaZeroIsPlainAndFullStrengthFlattensTheOverallShadi
   EXPECT_NE(testing::input_error_of([] { parse_method("exaggerated-shading", {{"sigma", 0.1}, {"weights", {0.5, 0.5}}}); })
                 .find("needs 3 values"),
             std::string::npos);
+}
+
+TEST(RadianceScaling, TheScaleIsOneWithoutCurvatureAndMonotoneInIt) {
+  for (double delta : {0.0, 0.2, 0.5, 0.8, 1.0})
+    for (double alpha : {0.1, 0.5, 1.0}) EXPECT_NEAR(radiance_scale(0.0, delta, alpha, 1.0), 1.0, 1e-12);
+  for (double delta : {0.1, 0.3, 0.7, 0.9}) {
+    double previous = radiance_scale(-1.0, delta, 0.5, 1.0);
+    const bool rising = radiance_scale(1.0, delta, 0.5, 1.0) > previous;
+    for (int k = -99; k <= 100; ++k) {
+      const double s = radiance_scale(k / 100.0, delta, 0.5, 1.0);
+      EXPECT_TRUE(rising ? s >= previous : s <= previous) << delta << " " << k;
+      previous = s;
+    }
+  }
+  // Lit parts of concave places (κ < 0) get darker, as in the paper's figures.
+  EXPECT_LT(radiance_scale(-0.8, 0.9, 0.8, 1.0), 1.0);
+}
+
+// A smooth ball is convex everywhere: its curvature is positive inside its outline.
+TEST(RadianceScaling, CurvatureIsPositiveOnAConvexBallAndLambdaZeroIsPlain) {
+  testing::TempDir dir;
+  std::string smooth = faceted_ball("[0, 0.5, 5]");
+  smooth.replace(smooth.find("\"crease_angle\": 0"), 17, "\"crease_angle\": 90");
+  const auto view = render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "smooth.json", smooth))));
+  const Image kappa = view_curvature(*view, 10.0);
+  EXPECT_GT(kappa.at(48, 36), 0.0f);
+  EXPECT_GT(kappa.at(40, 30), 0.0f);
+  EXPECT_EQ(kappa.at(2, 2), 0.0f);  // background
+  const auto prepared = prepare_method("radiance-scaling", view, {{"tau", 10.0}});
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  EXPECT_NE(prepared->compose(1.0).display.pixels, view->display.pixels);
 }
 
 }  // namespace
