@@ -86,6 +86,8 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeOpenMeshReadsThem) {
       {"count.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nend_header\n",
        "declares 4000000000 elements"},
       {"keyword.ply", ply + "vertex 1 2 3\nend_header\n", "unexpected PLY header line"},
+      {"orphan.ply", "ply\nformat binary_little_endian 1.0\nproperty float u\nend_header\n", "line 3: a property before any element"},
+      {"element.ply", ply + "element faec 4\nend_header\n", "element 'faec' is not read"},
       {"count.off", "OFF\n4000000000 1 0\n0 0 0\n", "declares 4000000000 vertices"},
       {"binary.off", "OFF BINARY\n", "binary OFF"},
       {"nocount.off", "OFF\n# nothing\n", "no vertex and face counts"},
