@@ -29,8 +29,9 @@ void check_obj_vertex(const std::string& rest, const std::string& where, long lo
   }
   const std::string vertex = "vertex " + std::to_string(index);
   if (count < 3) throw_input_error(where, vertex + " has fewer than 3 coordinates");
+  // Positions are stored as float: a value beyond float's range would become infinite.
   for (int k = 0; k < count; ++k)
-    if (!std::isfinite(values[k])) throw_input_error(where, vertex + " has a NaN or infinite " + (k < 3 ? "coordinate" : "value"));
+    if (!(std::abs(values[k]) <= 1e38)) throw_input_error(where, vertex + " has a NaN or infinite " + (k < 3 ? "coordinate" : "value"));
   if (count == 6 && std::any_of(values + 3, values + 6, [](double c) { return c < 0 || c > 1; }))
     throw_input_error(where, vertex + " has a colour outside [0, 1]");
 }
@@ -56,11 +57,10 @@ long long obj_corner(const std::string& corner, const std::string& where, const 
     const size_t end = corner.find('/', start);
     const std::string part = corner.substr(start, end == std::string::npos ? end : end - start);
     if (!part.empty()) {
-      try {
-        index[k] = std::stoll(part);
-      } catch (...) {
-        throw_input_error(where, "face index '" + part + "' is not a number");
-      }
+      // The whole field must be an integer: OpenMesh reads "1x" differently from us.
+      const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), index[k]);
+      if (error != std::errc() || end != part.data() + part.size() || index[k] == 0)
+        throw_input_error(where, "face index '" + part + "' is not a non-zero integer");
     }
     if (end == std::string::npos) break;
     start = end + 1;

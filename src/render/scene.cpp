@@ -203,11 +203,27 @@ class SceneLoader {
     return glm::scale(t, scale);
   }
 
+  // A primitive's triangles are counted before it is built: a box of 4096 subdivisions would have
+  // 2e8 of them. The fuzz build keeps inputs small enough to finish within its time limit under
+  // the sanitizers.
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+  static constexpr double kMaxPrimitiveTriangles = 2e5;
+#else
+  static constexpr double kMaxPrimitiveTriangles = 5e7;
+#endif
+  static void check_triangles(const JsonObject& o, double triangles) {
+    if (triangles > kMaxPrimitiveTriangles)
+      o.fail("subdivisions", "would make about " + std::to_string(std::llround(triangles)) + " triangles (the limit is " +
+                                 std::to_string(std::llround(kMaxPrimitiveTriangles)) + ")");
+  }
+
   TriangleMesh shape(const JsonObject& o) {
     std::string type = o.choice("type", "", {"plane", "box", "sphere", "cylinder"});
     TriangleMesh mesh;
     if (type == "plane") {
-      mesh = make_plane(positive(o, "size", 1.0), int(o.integer_in("subdivisions", 32, 1, 4096)));
+      const int subdivisions = int(o.integer_in("subdivisions", 32, 1, 4096));
+      check_triangles(o, 2.0 * subdivisions * subdivisions);
+      mesh = make_plane(positive(o, "size", 1.0), subdivisions);
     } else if (type == "box") {
       glm::dvec3 size = o.vec3_or("size", glm::dvec3(1.0));
       if (size.x <= 0 || size.y <= 0 || size.z <= 0) o.fail("size", "must be positive");
@@ -222,8 +238,9 @@ class SceneLoader {
         if (!(radius > 0) || radius >= 0.5 * std::min({size.x, size.y, size.z}))
           o.fail(key, "must be positive and less than half the smallest side");
       }
-      mesh = make_box(size, profile, radius, int(o.integer_in("edge_segments", 4, 1, 256)),
-                      int(o.integer_in("subdivisions", 32, 1, 4096)));
+      const int segments = int(o.integer_in("edge_segments", 4, 1, 256)), subdivisions = int(o.integer_in("subdivisions", 32, 1, 4096));
+      check_triangles(o, 12.0 * (subdivisions + segments) * (subdivisions + segments));
+      mesh = make_box(size, profile, radius, segments, subdivisions);
     } else if (type == "sphere") {
       mesh = make_sphere(positive(o, "radius", 1.0), int(o.integer_in("subdivisions", 4, 0, 8)));
     } else {

@@ -77,10 +77,14 @@ TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
   // Found by the fuzzer: a translation beyond float's range made positions infinite.
   const std::string far =
       testing::write_file(dir / "far.json", scene_with(R"(, "transform": {"translate": [0, 0, 4e88]})")).string();
+  std::string box = scene_with("");
+  box.replace(box.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48, R"("type": "box", "subdivisions": 4096)");
+  const std::string huge_box = testing::write_file(dir / "huge_box.json", box).string();
   const std::string out = (dir / "o.png").string();
   for (const Case& c : std::vector<Case>{
            {"render " + singular + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1", "singular"},
            {"render " + far + " -o " + out, "objects[0].transform: puts vertices outside ±1e15"},
+           {"render " + huge_box + " -o " + out, "would make about 201720000 triangles (the limit is 50000000)"},
            {"render " + scene + " -o " + out + " --exposure nan", "finite"},
            {"render " + scene + " -o " + out + " --exposure inf", "finite"},
            {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 1e300", "smoothing iterations"},

@@ -49,7 +49,7 @@ TEST(MeshIo, BadMeshesAreInputErrorsNamingTheFile) {
       {"nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "NaN or infinite"},
       {"inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n", "NaN or infinite"},
       {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "out of range"},
-      {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "out of range"},
+      {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "face index '0' is not a non-zero integer"},
       {"noface.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no faces"},
       {"degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "degenerate"},
       {"repeated.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 4\n", "degenerate"},
@@ -102,6 +102,9 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeOpenMeshReadsThem) {
       {"colour.obj", "v 0 0 0 1 2 3\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a colour outside [0, 1]"},
       {"formfeed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf\f1/1 2 3\n", "line 4: face texture coordinate index 1 is out of range (1..0)"},
       {"normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//2 2//1 3//1\n", "face normal index 2 is out of range (1..1)"},
+      {"junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1x/0 2 3\n", "face index '1x' is not a non-zero integer"},
+      {"zero_texcoord.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/0 2 3\n", "face index '0' is not a non-zero integer"},
+      {"beyond.obj", "v 0 1e129 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a NaN or infinite coordinate"},
       {"texcoord.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan 0\nf 1/1 2/1 3/1\n", "texture coordinate 0 needs two finite numbers"},
       {"nancolour.obj", "v 0 0 0 nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a NaN or infinite value"},
   };
