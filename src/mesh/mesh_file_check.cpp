@@ -17,35 +17,38 @@
 namespace countershade {
 namespace {
 
+// Every word of a line as a number; a word that is not wholly a number is an error (OpenMesh's
+// reader stops at it and drops the vertex, so its vertex count would differ from ours).
+std::vector<double> obj_numbers(const std::string& rest, const std::string& where) {
+  std::vector<double> values;
+  std::istringstream words(rest);
+  for (std::string w; words >> w;) {
+    char* end = nullptr;
+    const double v = std::strtod(w.c_str(), &end);
+    if (end != w.c_str() + w.size()) throw_input_error(where, "'" + w + "' is not a number");
+    values.push_back(v);
+  }
+  return values;
+}
+
 // "v x y z [r g b]": three finite coordinates and, when a colour follows, its channels in [0, 1]
 // (OpenMesh converts them to bytes unchecked).
 void check_obj_vertex(const std::string& rest, const std::string& where, long long index) {
-  const char* cursor = rest.c_str();
-  double values[6];
-  int count = 0;
-  for (char* end = nullptr; count < 6; cursor = end, ++count) {
-    values[count] = std::strtod(cursor, &end);
-    if (end == cursor) break;
-  }
+  const std::vector<double> values = obj_numbers(rest, where);
   const std::string vertex = "vertex " + std::to_string(index);
-  if (count < 3) throw_input_error(where, vertex + " has fewer than 3 coordinates");
+  if (values.size() < 3) throw_input_error(where, vertex + " has fewer than 3 coordinates");
   // Positions are stored as float: a value beyond float's range would become infinite.
-  for (int k = 0; k < count; ++k)
+  for (size_t k = 0; k < values.size(); ++k)
     if (!(std::abs(values[k]) <= 1e38)) throw_input_error(where, vertex + " has a NaN or infinite " + (k < 3 ? "coordinate" : "value"));
-  if (count == 6 && std::any_of(values + 3, values + 6, [](double c) { return c < 0 || c > 1; }))
+  if (values.size() >= 6 && std::any_of(values.begin() + 3, values.begin() + 6, [](double c) { return c < 0 || c > 1; }))
     throw_input_error(where, vertex + " has a colour outside [0, 1]");
 }
 
-// "vt u v": two finite numbers (a NaN would reach the texture lookup).
+// "vt u v [w]": finite numbers (a NaN would reach the texture lookup).
 void check_obj_texcoord(const std::string& rest, const std::string& where, long long index) {
-  const char* cursor = rest.c_str();
-  for (int k = 0; k < 2; ++k) {
-    char* end = nullptr;
-    const double value = std::strtod(cursor, &end);
-    if (end == cursor || !std::isfinite(value))
-      throw_input_error(where, "texture coordinate " + std::to_string(index) + " needs two finite numbers");
-    cursor = end;
-  }
+  const std::vector<double> values = obj_numbers(rest, where);
+  if (values.size() < 2 || !std::isfinite(values[0]) || !std::isfinite(values[1]))
+    throw_input_error(where, "texture coordinate " + std::to_string(index) + " needs two finite numbers");
 }
 
 // One corner of a face ("v", "v/vt", "v/vt/vn", "v//vn"): its vertex index resolved (1-based,

@@ -105,6 +105,7 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeOpenMeshReadsThem) {
       {"junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1x/0 2 3\n", "face index '1x' is not a non-zero integer"},
       {"zero_texcoord.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/0 2 3\n", "face index '0' is not a non-zero integer"},
       {"beyond.obj", "v 0 1e129 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a NaN or infinite coordinate"},
+      {"word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 21e?c1\nf 1 2 3\n", "line 3: '21e?c1' is not a number"},
       {"texcoord.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan 0\nf 1/1 2/1 3/1\n", "texture coordinate 0 needs two finite numbers"},
       {"nancolour.obj", "v 0 0 0 nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a NaN or infinite value"},
   };
