@@ -55,8 +55,6 @@ inline const char* const kSupportMesh =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
     "f 1/1 3/3 2/2\nf 1/1 2/2 4/3\nf 1/1 4/3 3/3\nf 2/2 3/3 4/1\n";
 
-inline std::string as_text(const uint8_t* data, size_t size) { return {reinterpret_cast<const char*>(data), size}; }
-
 // Runs `read` on one input: an InputError is the expected answer to bad input; anything else is
 // a finding.
 template <typename Read>

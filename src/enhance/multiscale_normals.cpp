@@ -91,10 +91,6 @@ glm::dvec3 MultiscaleNormals::at(const SurfacePoint& point, int k) const {
   return length > 1e-12 ? n / length : point.shading_normal;
 }
 
-}  // namespace countershade
-
-namespace countershade {
-
 void MultiscaleNormals::at_shading_point(const ShadingInputs& s, glm::dvec3* n) const {
   const double side = glm::dot(s.normal, s.point.shading_normal) < 0 ? -1.0 : 1.0;
   n[0] = s.normal;

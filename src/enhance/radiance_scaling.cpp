@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "enhance/method.h"
+#include "enhance/radiance_scaling.h"
 #include "enhance/shading_method.h"
 #include "render/camera.h"
 #include "render/shading.h"

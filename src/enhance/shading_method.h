@@ -54,12 +54,3 @@ class HookedRender final : public PreparedEnhancement {
 };
 
 }  // namespace countershade
-
-namespace countershade {
-
-// Radiance scaling's pieces, for tests: the scale σ(κ, δ) for enhancement α, and the view's
-// curvature κ per pixel (positive on convex parts).
-double radiance_scale(double kappa, double delta, double alpha, double gamma);
-Image view_curvature(const View& view, double tau);
-
-}  // namespace countershade

@@ -23,9 +23,8 @@ std::vector<double> obj_numbers(const std::string& rest, const std::string& wher
   std::vector<double> values;
   std::istringstream words(rest);
   for (std::string w; words >> w;) {
-    char* end = nullptr;
-    const double v = std::strtod(w.c_str(), &end);
-    if (end != w.c_str() + w.size()) throw_input_error(where, "'" + w + "' is not a number");
+    double v = 0;
+    if (!parse_number(w, v)) throw_input_error(where, "'" + w + "' is not a number");
     values.push_back(v);
   }
   return values;

@@ -2,6 +2,7 @@
 // Small helpers for reading the text of mesh files (PLY headers, OFF lines).
 
 #include <charconv>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +22,13 @@ inline bool parse_count(const std::string& text, unsigned long long& value) {
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, value);
   return ec == std::errc() && ptr == end;
+}
+
+// A word that is wholly a decimal number (strtod's syntax, so also "nan" and "inf"), or false.
+inline bool parse_number(const std::string& word, double& value) {
+  char* end = nullptr;
+  value = std::strtod(word.c_str(), &end);
+  return !word.empty() && end == word.c_str() + word.size();
 }
 
 }  // namespace countershade

@@ -27,9 +27,8 @@ bool next_off_line(std::istream& in, std::vector<std::string>& w, size_t& number
 std::vector<double> off_numbers(const std::vector<std::string>& w, size_t first, const std::string& where) {
   std::vector<double> values;
   for (size_t k = first; k < w.size(); ++k) {
-    char* end = nullptr;
-    const double v = std::strtod(w[k].c_str(), &end);
-    if (end != w[k].c_str() + w[k].size() || !std::isfinite(v))
+    double v = 0;
+    if (!parse_number(w[k], v) || !std::isfinite(v))
       throw_input_error(where, "'" + w[k] + "' is not a finite number");
     values.push_back(v);
   }

@@ -9,7 +9,7 @@
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
-#include "enhance/shading_method.h"
+#include "enhance/radiance_scaling.h"
 #include "render/shading.h"
 #include "test_util.h"
 
@@ -31,6 +31,12 @@ std::shared_ptr<const View> render_ball(const testing::TempDir& dir, const std::
   return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "ball.json", faceted_ball(eye)))));
 }
 
+bool on_object(const View& view, size_t i) { return view.depth[i] > 0 && std::isfinite(view.depth[i]); }
+
+double lightness_at(const Image& display, const View& view, size_t i) {
+  return display_pixel_to_lab(&display.pixels[3 * i], view.encoding).L;
+}
+
 // RMS difference of L* between horizontally neighbouring object pixels: how much the facets differ.
 double facet_contrast(const Image& display, const View& view) {
   double sum = 0;
@@ -38,10 +44,8 @@ double facet_contrast(const Image& display, const View& view) {
   for (int y = 0; y < display.height; ++y)
     for (int x = 1; x < display.width; ++x) {
       const size_t i = size_t(y) * display.width + x;
-      if (!(view.depth[i] > 0 && std::isfinite(view.depth[i])) || !(view.depth[i - 1] > 0 && std::isfinite(view.depth[i - 1])))
-        continue;
-      const double d = display_pixel_to_lab(&display.pixels[3 * i], view.encoding).L -
-                       display_pixel_to_lab(&display.pixels[3 * (i - 1)], view.encoding).L;
+      if (!on_object(view, i) || !on_object(view, i - 1)) continue;
+      const double d = lightness_at(display, view, i) - lightness_at(display, view, i - 1);
       sum += d * d, ++n;
     }
   return std::sqrt(sum / double(n));
@@ -52,18 +56,24 @@ double lightness_spread(const Image& display, const View& view) {
   double sum = 0, sum2 = 0;
   size_t n = 0;
   for (size_t i = 0; i < view.depth.size(); ++i) {
-    if (!(view.depth[i] > 0 && std::isfinite(view.depth[i]))) continue;
-    const double l = display_pixel_to_lab(&display.pixels[3 * i], view.encoding).L;
+    if (!on_object(view, i)) continue;
+    const double l = lightness_at(display, view, i);
     sum += l, sum2 += l * l, ++n;
   }
   return std::sqrt(std::max(0.0, sum2 / double(n) - (sum / double(n)) * (sum / double(n))));
 }
 
+// The method prepared on the ball seen from the front, after checking that λ = 0 is the plain render.
+std::unique_ptr<PreparedEnhancement> prepared_on_ball(const std::shared_ptr<const View>& view, const std::string& method) {
+  auto prepared = prepare_method(method, view, {{"sigma", 0.15}});
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels) << method;
+  return prepared;
+}
+
 TEST(Lla, LambdaZeroIsThePlainRenderAndLambdaOneSharpensTheFacets) {
   testing::TempDir dir;
   const auto view = render_ball(dir, "[0, 0.5, 5]");
-  const auto prepared = prepare_method("lla", view, {{"sigma", 0.15}});
-  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  const auto prepared = prepared_on_ball(view, "lla");
   const Image enhanced = prepared->compose(1.0).display;
   for (float v : enhanced.pixels) ASSERT_TRUE(std::isfinite(v));
   const double plain = facet_contrast(view->display, *view), aligned = facet_contrast(enhanced, *view);
@@ -106,8 +116,7 @@ TEST(Lla, ParametersAreCheckedWithTheirKeys) {
 TEST(ExaggeratedShading, LambdaZeroIsPlainAndFullStrengthFlattensTheOverallShading) {
   testing::TempDir dir;
   const auto view = render_ball(dir, "[0, 0.5, 5]");
-  const auto prepared = prepare_method("exaggerated-shading", view, {{"sigma", 0.15}});
-  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  const auto prepared = prepared_on_ball(view, "exaggerated-shading");
   const Image es = prepared->compose(1.0).display;
   EXPECT_LT(lightness_spread(es, *view), 0.8 * lightness_spread(view->display, *view));
   EXPECT_GT(facet_contrast(es, *view), 0.0);
