@@ -12,6 +12,7 @@
 #include "enhance/method.h"
 #include "enhance/radiance_scaling.h"
 #include "enhance/shading_method.h"
+#include "enhance/view_curvature.h"
 #include "render/camera.h"
 #include "render/shading.h"
 
@@ -33,50 +34,21 @@ double radiance_scale(double kappa, double delta, double alpha, double gamma) {
   return denominator > 1e-12 ? numerator / denominator : 1.0;
 }
 
-// κ per pixel of the view: tanh(−τ·div g) of the screen gradient field g = −(n_x, n_y)/n_z of the
-// view-space normals (central differences in pixels; 0 where a neighbour is background), so that
-// κ > 0 on convex and κ < 0 on concave parts. Background pixels are 0.
-Image view_curvature(const View& view, double tau) {
-  const GBuffer& g = view.render.gbuffer;
-  const CameraRays camera(view.scene->camera);
-  std::vector<glm::dvec2> field(g.normal.size(), glm::dvec2(0.0));
-  std::vector<char> valid(g.normal.size(), 0);
-  for (size_t i = 0; i < field.size(); ++i) {
-    if (g.object[i] < 0) continue;
-    const glm::dvec3 n(g.normal[i]);
-    const double nz = std::max(-glm::dot(n, camera.forward()), 1e-3);
-    field[i] = -glm::dvec2(glm::dot(n, camera.right()), glm::dot(n, camera.up())) / nz;
-    valid[i] = 1;
-  }
-  Image kappa(g.width, g.height, 1);
-  for (int y = 1; y + 1 < g.height; ++y)
-    for (int x = 1; x + 1 < g.width; ++x) {
-      const size_t i = g.index(x, y), l = i - 1, r = i + 1, above = i - size_t(g.width), below = i + size_t(g.width);
-      if (!valid[i] || !valid[l] || !valid[r] || !valid[above] || !valid[below]) continue;
-      // Film rows grow downwards while the view's y axis points up.
-      const double divergence = 0.5 * (field[r].x - field[l].x) + 0.5 * (field[above].y - field[below].y);
-      kappa.at(x, y) = float(std::tanh(-tau * divergence));
-    }
-  return kappa;
-}
-
 namespace {
 
 class RsHook final : public ShadingHook {
  public:
-  RsHook(std::shared_ptr<const Image> kappa, const Camera& camera, double alpha, double gamma)
+  RsHook(std::shared_ptr<const ViewCurvature> kappa, const Camera& camera, double alpha, double gamma)
       : kappa_(std::move(kappa)), camera_(camera), alpha_(alpha), gamma_(gamma) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
-    const glm::dvec2 film = camera_.film_position(s.point.position);
-    const int x = std::clamp(int(std::floor(film.x)), 0, kappa_->width - 1);
-    const int y = std::clamp(int(std::floor(film.y)), 0, kappa_->height - 1);
+    const double kappa = kappa_->at(camera_.film_position(s.point.position));
     const double delta = std::max(0.0, glm::dot(s.normal, wi));
-    return reflect_plain(s, wi, incident) * radiance_scale(kappa_->at(x, y), delta, alpha_, gamma_);
+    return reflect_plain(s, wi, incident) * radiance_scale(kappa, delta, alpha_, gamma_);
   }
 
  private:
-  std::shared_ptr<const Image> kappa_;
+  std::shared_ptr<const ViewCurvature> kappa_;
   CameraRays camera_;
   double alpha_, gamma_;
 };
@@ -102,7 +74,7 @@ class RsMethod final : public EnhancementMethod {
                                                const MethodParameters& parameters) const override {
     require_scene(context, name());
     const auto& p = parameters_as<RsParameters>(parameters);
-    auto kappa = std::make_shared<const Image>(view_curvature(*context.view, p.tau));
+    auto kappa = std::make_shared<const ViewCurvature>(*context.view, p.tau);
     auto hook_for = [p, kappa, camera = context.view->scene->camera](double lambda) -> std::shared_ptr<const ShadingHook> {
       const double alpha = std::clamp(lambda, 0.0, 1.0);
       return alpha > 0 ? std::make_shared<RsHook>(kappa, camera, alpha, p.gamma) : nullptr;

@@ -10,6 +10,7 @@
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
 #include "enhance/radiance_scaling.h"
+#include "enhance/view_curvature.h"
 #include "render/shading.h"
 #include "test_util.h"
 
@@ -150,10 +151,23 @@ TEST(RadianceScaling, CurvatureIsPositiveOnAConvexBallAndLambdaZeroIsPlain) {
   std::string smooth = faceted_ball("[0, 0.5, 5]");
   smooth.replace(smooth.find("\"crease_angle\": 0"), 17, "\"crease_angle\": 90");
   const auto view = render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "smooth.json", smooth))));
-  const Image kappa = view_curvature(*view, 10.0);
+  const ViewCurvature curvature(*view, 10.0);
+  const Image& kappa = curvature.pixels();
   EXPECT_GT(kappa.at(48, 36), 0.0f);
   EXPECT_GT(kappa.at(40, 30), 0.0f);
   EXPECT_EQ(kappa.at(2, 2), 0.0f);  // background
+  // The outline too: a curvature of 0 there would draw a ring of plain shading around the object.
+  const GBuffer& g = view->render.gbuffer;
+  int outline = 0;
+  for (int y = 1; y + 1 < g.height; ++y)
+    for (int x = 1; x + 1 < g.width; ++x) {
+      if (g.object[g.index(x, y)] < 0) continue;
+      const bool at_outline = g.object[g.index(x - 1, y)] < 0 || g.object[g.index(x + 1, y)] < 0 ||
+                              g.object[g.index(x, y - 1)] < 0 || g.object[g.index(x, y + 1)] < 0;
+      outline += at_outline;
+      EXPECT_GT(kappa.at(x, y), 0.0f) << x << "," << y << (at_outline ? " (outline)" : "");
+    }
+  EXPECT_GT(outline, 20);
   const auto prepared = prepare_method("radiance-scaling", view, {{"tau", 10.0}});
   EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
   EXPECT_NE(prepared->compose(1.0).display.pixels, view->display.pixels);

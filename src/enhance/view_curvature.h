@@ -1,0 +1,33 @@
+#pragma once
+// The view-dependent curvature κ that radiance scaling and light warping read (Vergne et al.
+// 2010): the divergence of the screen gradient field of the view's normals, through tanh.
+
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "core/image.h"
+#include "enhance/view.h"
+
+namespace countershade {
+
+class ViewCurvature {
+ public:
+  // κ = tanh(−τ·div g) per object pixel, g = −(n_x, n_y)/n_z of the view-space normals, so that
+  // κ > 0 on convex and κ < 0 on concave parts. Next to the background the derivative is
+  // one-sided, so an outline pixel has the curvature of its own surface, not 0.
+  ViewCurvature(const View& view, double tau);
+
+  // κ at a film position in pixels (pixel x covers [x, x+1)), interpolated bilinearly over the
+  // object pixels among the four nearest; 0 when none of them is an object pixel.
+  double at(const glm::dvec2& film) const;
+
+  // κ per pixel; background pixels are 0.
+  const Image& pixels() const { return kappa_; }
+
+ private:
+  Image kappa_;
+  std::vector<char> object_;
+};
+
+}  // namespace countershade
