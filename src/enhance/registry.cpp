@@ -16,7 +16,8 @@ namespace countershade {
   X(cornsweet)                          \
   X(lla)                                \
   X(exaggerated_shading)                \
-  X(radiance_scaling)
+  X(radiance_scaling)                   \
+  X(light_warping)
 
 #define COUNTERSHADE_DECLARE_FACTORY(id) std::unique_ptr<const EnhancementMethod> make_##id##_method();
 COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "mesh/mesh_text.h"
+#include "mesh/ply_check.h"
 
 namespace countershade {
 namespace {
@@ -112,80 +113,6 @@ size_t check_obj(const std::filesystem::path& path) {
     else if (keyword == "f") triangles += check_obj_face(rest, where, defined);
   }
   return triangles;
-}
-
-bool is_ply_type(const std::string& t) {
-  static const char* const kTypes[] = {"char",  "uchar",  "short",   "ushort",  "int",     "uint",    "float",
-                                       "double", "int8",  "uint8",   "int16",   "uint16",  "int32",   "uint32",
-                                       "float32", "float64"};
-  return std::find_if(std::begin(kTypes), std::end(kTypes), [&](const char* k) { return t == k; }) != std::end(kTypes);
-}
-
-// "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME", with known types.
-bool is_ply_property(const std::vector<std::string>& w) {
-  if (w.size() == 3) return is_ply_type(w[1]);
-  return w.size() == 5 && w[1] == "list" && is_ply_type(w[2]) && is_ply_type(w[3]);
-}
-
-// One PLY header line (after the first), which must be printable ASCII with a known keyword.
-// What a PLY header has declared so far.
-struct PlyHeader {
-  bool format = false;
-  unsigned long long elements = 0;  // the sum of the element counts
-  bool element = false;             // an element line came (properties belong to the last one)
-};
-
-void check_ply_header_line(const std::string& line, const std::vector<std::string>& w, const std::string& where,
-                           PlyHeader& header) {
-  if (std::any_of(line.begin(), line.end(), [](char c) { return (c < 0x20 && c != '\t') || c > 0x7e; }))
-    throw_input_error(where, "PLY header holds a control or non-ASCII character");
-  const std::string keyword = w.empty() ? "" : w[0];
-  if (keyword == "format") {
-    header.format = w.size() == 3 && (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian") &&
-                    w[2] == "1.0";
-    if (!header.format) throw_input_error(where, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
-  } else if (keyword == "element") {
-    unsigned long long count = 0;
-    if (w.size() != 3 || !parse_count(w[2], count)) throw_input_error(where, "expected 'element NAME COUNT'");
-    // OpenMesh's reader handles vertex and face elements; it crashed on others (found by the fuzzer).
-    if (w[1] != "vertex" && w[1] != "face") throw_input_error(where, "element '" + w[1] + "' is not read (only vertex and face)");
-    header.elements += std::min(count, 1ull << 62);
-    header.element = true;
-  } else if (keyword == "property") {
-    if (!header.element) throw_input_error(where, "a property before any element line");
-    if (!is_ply_property(w)) throw_input_error(where, "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
-  } else if (keyword != "comment" && keyword != "obj_info") {
-    throw_input_error(where, "unexpected PLY header line (expected format, element, property, comment or end_header)");
-  }
-}
-
-// The PLY header: "ply", a known format, elements with counts the file can hold, and end_header
-// within the first megabyte.
-void check_ply(const std::filesystem::path& path) {
-  constexpr std::streamoff kMaxHeader = 1 << 20;
-  std::ifstream in(path, std::ios::binary);
-  const std::string file = path.string();
-  std::string line;
-  PlyHeader header;
-  for (size_t number = 1; std::getline(in, line); ++number) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::string where = file + ": line " + std::to_string(number);
-    const std::vector<std::string> w = split_words(line);
-    if (number == 1) {
-      if (line != "ply") throw_input_error(file, "not a PLY file (the first line is not 'ply')");
-    } else if (line == "end_header") {
-      if (!header.format) throw_input_error(file, "PLY header has no format line");
-      const auto body = std::filesystem::file_size(path) - std::uintmax_t(in.tellg());
-      if (header.elements > body)
-        throw_input_error(file, "PLY header declares " + std::to_string(header.elements) + " elements but only " +
-                                    std::to_string(body) + " bytes follow it");
-      return;
-    } else {
-      check_ply_header_line(line, w, where, header);
-    }
-    if (in.tellg() > kMaxHeader) break;
-  }
-  throw_input_error(file, "PLY header has no end_header line");
 }
 
 // STL: binary when the size is 84 + 50 bytes per triangle as the header says, else ASCII ('solid').

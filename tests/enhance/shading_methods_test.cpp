@@ -1,4 +1,4 @@
-// The shading methods end to end (`lla`, `exaggerated-shading`, `radiance-scaling`): λ = 0 is the plain render, λ > 0 sharpens the shading of features,
+// The shading methods end to end (`lla`, `exaggerated-shading`, `radiance-scaling`, `light-warping`): λ = 0 is the plain render, λ > 0 sharpens the shading of features,
 // and surface-mode normals do not depend on the camera.
 
 #include <gtest/gtest.h>
@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "enhance/light_warping.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
@@ -30,6 +31,13 @@ std::string faceted_ball(const std::string& eye) {
 
 std::shared_ptr<const View> render_ball(const testing::TempDir& dir, const std::string& eye) {
   return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "ball.json", faceted_ball(eye)))));
+}
+
+// The same ball with smooth normals (every edge below the crease angle).
+std::shared_ptr<const View> render_smooth_ball(const testing::TempDir& dir) {
+  std::string smooth = faceted_ball("[0, 0.5, 5]");
+  smooth.replace(smooth.find("\"crease_angle\": 0"), 17, "\"crease_angle\": 90");
+  return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "smooth.json", smooth))));
 }
 
 bool on_object(const View& view, size_t i) { return view.depth[i] > 0 && std::isfinite(view.depth[i]); }
@@ -148,9 +156,7 @@ TEST(RadianceScaling, TheScaleIsOneWithoutCurvatureAndMonotoneInIt) {
 // A smooth ball is convex everywhere: its curvature is positive inside its outline.
 TEST(RadianceScaling, CurvatureIsPositiveOnAConvexBallAndLambdaZeroIsPlain) {
   testing::TempDir dir;
-  std::string smooth = faceted_ball("[0, 0.5, 5]");
-  smooth.replace(smooth.find("\"crease_angle\": 0"), 17, "\"crease_angle\": 90");
-  const auto view = render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "smooth.json", smooth))));
+  const auto view = render_smooth_ball(dir);
   const ViewCurvature curvature(*view, 10.0);
   const Image& kappa = curvature.pixels();
   EXPECT_GT(kappa.at(48, 36), 0.0f);
@@ -171,6 +177,45 @@ TEST(RadianceScaling, CurvatureIsPositiveOnAConvexBallAndLambdaZeroIsPlain) {
   const auto prepared = prepare_method("radiance-scaling", view, {{"tau", 10.0}});
   EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
   EXPECT_NE(prepared->compose(1.0).display.pixels, view->display.pixels);
+}
+
+double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+}
+
+// The warp keeps λ = 0 and κ = 0 as they are, turns the light towards r on convex parts and away
+// on concave ones, stays in the plane of the light and r, and never leaves [0, π] from r.
+TEST(LightWarping, TheWarpTurnsTheLightTowardsOrAwayFromTheReflectedViewAndStaysInItsPlane) {
+  const glm::dvec3 r = glm::normalize(glm::dvec3(0.1, 0.2, 1.0));
+  for (double azimuth : {0.0, 1.0, 2.5, 4.0})
+    for (double polar : {0.05, 0.6, 1.5, 2.4, 3.1}) {
+      const glm::dvec3 wi = glm::normalize(glm::dvec3(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
+                                                      std::cos(polar)));
+      EXPECT_LT(glm::length(warp_light(wi, r, 0.7, 0.0) - wi), 1e-12);
+      EXPECT_LT(glm::length(warp_light(wi, r, 0.0, 3.0) - wi), 1e-12);
+      const double before = angle_between(wi, r);
+      double previous = before;
+      for (double lambda : {0.5, 1.0, 2.0, 4.0}) {
+        const glm::dvec3 convex = warp_light(wi, r, 0.8, lambda), concave = warp_light(wi, r, -0.8, lambda);
+        EXPECT_NEAR(glm::length(convex), 1.0, 1e-12);
+        EXPECT_NEAR(glm::dot(convex, glm::cross(wi, r)), 0.0, 1e-12);  // in the plane of wi and r
+        EXPECT_LT(angle_between(convex, r), previous);                  // monotone in λ
+        EXPECT_GT(angle_between(concave, r), before);
+        EXPECT_LE(angle_between(concave, r), std::acos(-1.0) + 1e-12);
+        previous = angle_between(convex, r);
+      }
+    }
+}
+
+TEST(LightWarping, LambdaZeroIsPlainAndAWarpChangesTheConvexBall) {
+  testing::TempDir dir;
+  const auto view = render_smooth_ball(dir);
+  const auto prepared = prepare_method("light-warping", view, {{"tau", 10.0}});
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  const Image warped = prepared->compose(2.0).display;
+  for (float v : warped.pixels) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_NE(warped.pixels, view->display.pixels);
+  EXPECT_NE(testing::input_error_of([] { parse_method("light-warping", {{"gamma", 1.0}}); }).find("gamma"), std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,13 @@
+#pragma once
+// Light warping's direction warp (the method lives in light_warping.cpp), for tests.
+
+#include <glm/vec3.hpp>
+
+namespace countershade {
+
+// The unit light direction `wi` rotated in its plane with the view-reflected direction `r`: the
+// angle φ between them becomes f·φ with f = e/(1 + (e − 1)·φ/π), e = exp(−λ·κ). Convex parts
+// (κ > 0) pull the light towards r, concave parts push it away, and φ stays within [0, π].
+glm::dvec3 warp_light(const glm::dvec3& wi, const glm::dvec3& r, double kappa, double lambda);
+
+}  // namespace countershade
