@@ -57,11 +57,11 @@ class LwMethod final : public EnhancementMethod {
   std::string summary() const override { return "light warping: light turned by view-dependent curvature (shading)"; }
   MethodAxes axes() const override { return {"warp strength λ (0 = plain)", {}}; }
   std::vector<ParameterDoc> parameter_docs() const override {
-    return {{"tau", "1", "τ in pixels: κ = tanh(τ·curvature of the screen-space normal field)"}};
+    return {curvature_tau_doc()};
   }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<LwParameters>();
-    p->tau = bag.number_in("tau", 1.0, 0.0, 1e6);
+    p->tau = read_curvature_tau(bag);
     bag.finish(name());
     return p;
   }

@@ -60,12 +60,12 @@ class RsMethod final : public EnhancementMethod {
   MethodAxes axes() const override { return {"enhancement α = clamp(λ, 0, 1)", {}}; }
   std::vector<ParameterDoc> parameter_docs() const override {
     return {{"gamma", "1", "γ: how strongly curvature scales the light"},
-            {"tau", "1", "τ in pixels: κ = tanh(τ·curvature of the screen-space normal field)"}};
+            curvature_tau_doc()};
   }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<RsParameters>();
     p->gamma = bag.number_in("gamma", 1.0, 0.0, 50.0);
-    p->tau = bag.number_in("tau", 1.0, 0.0, 1e6);
+    p->tau = read_curvature_tau(bag);
     bag.finish(name());
     return p;
   }

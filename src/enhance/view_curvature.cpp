@@ -21,6 +21,12 @@ double derivative(bool has_before, bool has_after, double v_before, double v_i, 
 
 }  // namespace
 
+double read_curvature_tau(const ParameterBag& bag) { return bag.number_in("tau", 1.0, 0.0, 1e6); }
+
+ParameterDoc curvature_tau_doc() {
+  return {"tau", "1", "τ in pixels: κ = tanh(τ·curvature of the screen-space normal field)"};
+}
+
 ViewCurvature::ViewCurvature(const View& view, double tau) : kappa_(view.render.gbuffer.width, view.render.gbuffer.height, 1) {
   const GBuffer& g = view.render.gbuffer;
   const CameraRays camera(view.scene->camera);

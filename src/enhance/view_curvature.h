@@ -7,9 +7,14 @@
 #include <glm/vec2.hpp>
 
 #include "core/image.h"
+#include "enhance/method.h"
 #include "enhance/view.h"
 
 namespace countershade {
+
+// The `tau` parameter of the methods that read κ (τ in pixels, default 1), and its documentation.
+double read_curvature_tau(const ParameterBag& bag);
+ParameterDoc curvature_tau_doc();
 
 class ViewCurvature {
  public:
