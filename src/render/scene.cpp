@@ -385,6 +385,7 @@ class SceneLoader {
       l.irradiance = non_negative_color(o, "irradiance", l.irradiance);
       l.angular_radius_deg = o.number_in("angular_radius", 0.0, 0.0, 45.0);
       l.samples = int(o.integer_in("samples", l.angular_radius_deg > 0 ? 4 : 1, 1, 4096));
+      l.shadows = o.boolean_or("shadows", true);
       scene.directional_lights.push_back(l);
     } else if (type == "point") {
       PointLight l;

@@ -54,6 +54,7 @@ struct DirectionalLight {
   glm::dvec3 irradiance{1.0};     // on a surface facing the light
   double angular_radius_deg = 0;  // 0 = hard shadows
   int samples = 1;                // shadow rays per shading sample for soft shadows
+  bool shadows = true;            // false: no shadow rays, only the attached shading (n·l)
 };
 
 struct PointLight {

@@ -137,7 +137,7 @@ glm::dvec3 Shader::light_sample(const Context& c, const glm::dvec3& wi, const gl
   // geometry when a hook may shade with another direction.
   const double cos_i = glm::dot(c.inputs.normal, wi);
   const double facing = shading_hook_ ? glm::dot(c.ng, wi) : cos_i;
-  if (facing <= 0 || !visible(c.inputs.point.position, c.ng, wi, distance, counts)) return glm::dvec3(0.0);
+  if (facing <= 0 || (distance > 0 && !visible(c.inputs.point.position, c.ng, wi, distance, counts))) return glm::dvec3(0.0);
   if (shading_hook_) return shading_hook_->reflect(c.inputs, wi, radiance / divisor);
   return brdf(c.inputs, wi) * radiance * (cos_i / divisor);
 }
@@ -150,7 +150,8 @@ void Shader::directional(const Context& c, Sampler& random, RayCounts& counts, g
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
       glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u.x, u.y) : light.direction;
-      sum += light_sample(c, wi, light.irradiance, 1.0, 1e30, counts);
+      // Without shadows the light reaches every point that faces it (distance 0: no shadow ray).
+      sum += light_sample(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
     }
     L += sum / double(samples);
   }

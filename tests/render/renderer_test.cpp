@@ -142,6 +142,12 @@ TEST(Renderer, PointInShadowReceivesNoDirectLight) {
   glm::dvec3 lit = shader.radiance(ground_point(1.5, 0.0), up, false, random, counts);
   EXPECT_NEAR(lit.x, 0.5 / kPi * 2.0 * std::sqrt(0.5), 1e-9);
   EXPECT_GT(counts.shadow, 0u);
+  // "shadows": false: the shadowed point gets the same light as the lit one, and no shadow ray is cast.
+  scene.directional_lights[0].shadows = false;
+  Shader unshadowed(scene, tracer);
+  RayCounts none;
+  EXPECT_EQ(unshadowed.radiance(ground_point(-1.0, 0.0), up, false, random, none), lit);
+  EXPECT_EQ(none.shadow, 0u);
 }
 
 TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
