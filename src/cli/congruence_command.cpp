@@ -9,7 +9,6 @@
 #include "core/atomic_file.h"
 #include "core/display.h"
 #include "core/false_colour.h"
-#include "enhance/lightness.h"
 #include "stimuli/congruence.h"
 
 namespace countershade::cli {
@@ -19,22 +18,12 @@ struct CongruenceArgs {
   std::string image, depth, map;
 };
 
-// L* of every pixel of a display image decoded as sRGB.
-Image lightness_of(const Image& display, int bits) {
-  const LabPixels lab = display_to_lab(display, DisplayEncoding{}, bits);
-  Image lightness(display.width, display.height, 1);
-  for (size_t i = 0; i < lab.size(); ++i) lightness.pixels[i] = float(lab[i].L);
-  return lightness;
-}
-
 void run(const CongruenceArgs& args) {
   if (!args.map.empty()) check_output_file(args.map, {".png", ".tif", ".tiff", ".exr"}, ".png, .tif or .exr");
   int bits = 0;
   const Image display = load_display_image(args.image, bits);
-  const std::vector<float> depth_values = load_depth(args.depth, "depth", display.width, display.height);
-  Image depth(display.width, display.height, 1);
-  std::copy(depth_values.begin(), depth_values.end(), depth.pixels.begin());
-  const Congruence c = congruence(lightness_of(display, bits), depth);
+  const std::vector<float> depth = load_depth(args.depth, "depth", display.width, display.height);
+  const Congruence c = display_congruence(display, DisplayEncoding{}, bits, depth);
   if (!args.map.empty()) write_image(args.map, false_colour_image(c.map));
   std::printf("congruence: %s, %zu interior pixels%s, score %.6f\n", args.image.c_str(), c.interior_pixels,
               args.map.empty() ? "" : (", map " + args.map).c_str(), c.score);

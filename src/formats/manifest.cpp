@@ -177,6 +177,27 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
   write_text_atomically(path, to_json(manifest).dump(2) + "\n");
 }
 
+namespace {
+
+// A stimulus's congruence map (entry.extra["congruence_map"]: file and sha256), where it has one.
+void check_congruence_map(const fs::path& dir, const ManifestEntry& s, std::set<fs::path>& listed,
+                          std::vector<std::string>& problems) {
+  if (!s.extra.contains("congruence_map")) return;
+  const OrderedJson& map = s.extra["congruence_map"];
+  if (!map.is_object() || !map.contains("file") || !map["file"].is_string() || !map.contains("sha256")) {
+    problems.push_back(s.file + ": congruence_map needs a file and a sha256");
+    return;
+  }
+  const std::string rel = map["file"].get<std::string>();
+  const fs::path file = resolve_in_set(dir, rel);
+  listed.insert(fs::weakly_canonical(file));
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) problems.push_back(rel + ": missing");
+  else if (sha256_file(file) != map["sha256"]) problems.push_back(rel + ": sha256 differs from the manifest");
+}
+
+}  // namespace
+
 std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
   Manifest manifest = read_manifest(manifest_path);
   const auto dir = manifest_path.parent_path();
@@ -192,6 +213,7 @@ std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
     }
     if (s.size && fs::file_size(file) != s.size) problems.push_back(s.file + ": size differs from the manifest");
     if (sha256_file(file) != s.sha256) problems.push_back(s.file + ": sha256 differs from the manifest");
+    check_congruence_map(dir, s, listed, problems);
   }
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".png") continue;

@@ -39,7 +39,8 @@ struct ManifestEntry {
   uint64_t size = 0;
   std::string sha256;
 
-  bool is_reference() const { return method == kReferenceMethod; }
+  // The reference has no label; the method `none` in an experiment has one (a control condition).
+  bool is_reference() const { return method == kReferenceMethod && label.empty(); }
   // The condition's name in studies: the label, or the method when there is none.
   const std::string& condition_method() const { return label.empty() ? method : label; }
 };

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/gaussian.h"
+#include "enhance/lightness.h"
 
 namespace countershade {
 namespace {
@@ -128,6 +129,17 @@ Congruence congruence(const Image& lightness, const Image& depth) {
   }
   out.score = weight > 0 ? agreement / weight : 0.0;
   return out;
+}
+
+Congruence display_congruence(const Image& display, const DisplayEncoding& encoding, int bits,
+                              const std::vector<float>& depth) {
+  const LabPixels lab = display_to_lab(display, encoding, bits);
+  Image lightness(display.width, display.height, 1);
+  for (size_t i = 0; i < lab.size(); ++i) lightness.pixels[i] = float(lab[i].L);
+  Image depth_image(display.width, display.height, 1);
+  if (depth.size() != depth_image.pixels.size()) throw std::invalid_argument("congruence: depth size differs from the image");
+  std::copy(depth.begin(), depth.end(), depth_image.pixels.begin());
+  return congruence(lightness, depth_image);
 }
 
 }  // namespace countershade

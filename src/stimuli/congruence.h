@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/display.h"
 #include "core/image.h"
 
 namespace countershade {
@@ -22,6 +23,11 @@ struct Congruence {
 // foreground pixels have a finite, positive depth (0, inf and NaN are background).
 // Throws std::invalid_argument when the sizes differ or an image is not one channel.
 Congruence congruence(const Image& lightness, const Image& depth);
+
+// The score of a display image (decoded with `encoding` at `bits`, 0 = float) against a depth
+// buffer of the same size (values as for `congruence`).
+Congruence display_congruence(const Image& display, const DisplayEncoding& encoding, int bits,
+                              const std::vector<float>& depth);
 
 // The 99th-percentile rule's percentile: linear interpolation between order statistics
 // (x sorted, h = (n − 1)·p, x[⌊h⌋] + (h − ⌊h⌋)·(x[⌊h⌋+1] − x[⌊h⌋]); R's type 7); 0 for no values.

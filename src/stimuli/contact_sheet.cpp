@@ -64,17 +64,21 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
 
 namespace {
 
-// "noise 0.21 L*" from a manifest entry's noise estimate, or "" without one.
-std::string noise_caption(const ManifestEntry& entry) {
+// "noise 0.21 L*" from a manifest entry's noise estimate, and ", C 0.531" with its congruence
+// score; "" without either.
+std::string caption_of(const ManifestEntry& entry) {
   const auto noise = image_noise(entry);
-  return noise ? "noise " + format_value(round_to(noise->rms, 2)) + " L*" : "";
+  std::string caption = noise ? "noise " + format_value(round_to(noise->rms, 2)) + " L*" : "";
+  if (entry.extra.contains("congruence"))
+    caption += (caption.empty() ? "" : ", ") + std::string("C ") + format_value(round_to(entry.extra["congruence"].get<double>(), 3));
+  return caption;
 }
 
 }  // namespace
 
 void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
   std::map<std::string, std::string> captions;  // file → caption
-  for (const auto& s : manifest.stimuli) captions[s.file] = noise_caption(s);
+  for (const auto& s : manifest.stimuli) captions[s.file] = caption_of(s);
   const int count = e.lambda.count(), columns = std::min(e.contact_columns, count);
   std::vector<int> picks;
   for (int c = 0; c < columns; ++c)

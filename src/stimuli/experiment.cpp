@@ -15,6 +15,10 @@
 #include "core/json_reader.h"
 #include "core/sha256.h"
 #include "enhance/registry.h"
+#include "render/camera.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace countershade {
 
@@ -78,6 +82,87 @@ ExperimentMethod parse_method(const JsonObject& o) {
   return m;  // the method's parser has checked every other key (no o.finish())
 }
 
+LambdaGrid read_lambda_grid(const JsonObject& l) {
+  LambdaGrid grid;
+  grid.min = l.number_or("min", 0.0);
+  grid.max = l.number_or("max", 3.0);
+  grid.step = l.number_or("step", 0.05);
+  if (!(grid.step > 0)) l.fail("step", "must be positive");
+  if (grid.max < grid.min) l.fail("max", "the λ range is empty (max < min)");
+  if (grid.count() > 100000) l.fail("step", "more than 100000 λ values");
+  l.finish();
+  return grid;
+}
+
+int read_output_bits(const JsonObject& out) {
+  const int bits = int(out.integer_or("bits", 8));
+  if (bits != 8 && bits != 16) out.fail("bits", "must be 8 or 16");
+  out.finish();
+  return bits;
+}
+
+ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& base) {
+  ExperimentScene scene;
+  scene.name = s.string("name");
+  if (scene.name.empty() || scene.name.find_first_of("/\\. ") != std::string::npos)
+    s.fail("name", "must be a plain name (no '/', '\\\\', '.' or spaces): it becomes a folder");
+  std::filesystem::path file = s.string("file");
+  scene.file = file.is_absolute() ? file : base / file;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(scene.file, ec)) s.fail("file", "unknown scene: no such file " + scene.file.string());
+  if (s.has("width")) scene.width = int(s.integer_in("width", 0, 1, 16384));
+  if (s.has("height")) scene.height = int(s.integer_in("height", 0, 1, 16384));
+  if (s.has("spp")) scene.spp = int(s.integer_in("spp", 0, 1, 65536));
+  return scene;
+}
+
+// An angle for a folder name: two decimals at most, no trailing zeros, 'p' for the point ("51p43").
+std::string degrees_name(double degrees) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", degrees);
+  std::string name = text;
+  while (name.back() == '0') name.pop_back();
+  if (name.back() == '.') name.pop_back();
+  std::replace(name.begin(), name.end(), '.', 'p');
+  return name == "-0" ? "0" : name;
+}
+
+// "light_directions": {"elevations": [degrees…], "azimuths": N}: one scene per (elevation,
+// azimuth), the azimuths 360°/N apart from 0, named NAME-eELEVATION-aAZIMUTH.
+std::vector<ExperimentScene> light_variants(const ExperimentScene& scene, const JsonObject& d) {
+  std::vector<double> elevations = d.numbers("elevations");
+  const int azimuths = int(d.integer_in("azimuths", 1, 1, 360));
+  d.finish();
+  if (elevations.empty()) d.fail("elevations", "needs at least one elevation");
+  std::vector<ExperimentScene> out;
+  for (double elevation : elevations) {
+    if (!(elevation > -90 && elevation < 90)) d.fail("elevations", "each elevation must lie in (-90, 90) degrees");
+    for (int k = 0; k < azimuths; ++k) {
+      ExperimentScene variant = scene;
+      variant.light = ViewLight{elevation, 360.0 * k / azimuths};
+      variant.name += "-e" + degrees_name(elevation) + "-a" + degrees_name(variant.light->azimuth);
+      out.push_back(variant);
+    }
+  }
+  return out;
+}
+
+std::vector<ExperimentScene> parse_scenes(const JsonObject& root, const std::filesystem::path& base) {
+  std::vector<ExperimentScene> scenes;
+  std::set<std::string> names;
+  for (const auto& s : root.objects("scenes")) {
+    const ExperimentScene scene = parse_scene(s, base);
+    const std::vector<ExperimentScene> variants =
+        s.has("light_directions") ? light_variants(scene, s.object("light_directions")) : std::vector<ExperimentScene>{scene};
+    s.finish();
+    for (const auto& v : variants) {
+      if (!names.insert(v.name).second) s.fail("name", "duplicate scene name '" + v.name + "'");
+      scenes.push_back(v);
+    }
+  }
+  return scenes;
+}
+
 }  // namespace
 
 Experiment load_experiment(const std::filesystem::path& path) {
@@ -96,46 +181,18 @@ Experiment load_experiment(const std::filesystem::path& path) {
   if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
   if (root.has("audit")) read_audit_limits(root.object("audit"));  // the audit's limits, checked now
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
-  if (root.has("lambda")) {
-    JsonObject l = root.object("lambda");
-    e.lambda.min = l.number_or("min", 0.0);
-    e.lambda.max = l.number_or("max", 3.0);
-    e.lambda.step = l.number_or("step", 0.05);
-    if (!(e.lambda.step > 0)) l.fail("step", "must be positive");
-    if (e.lambda.max < e.lambda.min) l.fail("max", "the λ range is empty (max < min)");
-    if (e.lambda.count() > 100000) l.fail("step", "more than 100000 λ values");
-    l.finish();
-  }
-  if (root.has("output")) {
-    JsonObject out = root.object("output");
-    e.bits = int(out.integer_or("bits", 8));
-    if (e.bits != 8 && e.bits != 16) out.fail("bits", "must be 8 or 16");
-    out.finish();
-  }
+  if (root.has("lambda")) e.lambda = read_lambda_grid(root.object("lambda"));
+  if (root.has("output")) e.bits = read_output_bits(root.object("output"));
   if (root.has("noise")) e.noise = read_noise_budget(root.object("noise"));
   if (root.has("contact_sheet")) {
-    JsonObject c = root.object("contact_sheet");
+    const JsonObject c = root.object("contact_sheet");
     e.contact_columns = int(c.integer_in("columns", 6, 2, 32));
     c.finish();
   }
+  e.congruence = root.boolean_or("congruence", false);
+  e.scenes = parse_scenes(root, path.parent_path());
   std::set<std::string> names;
-  const std::filesystem::path base = path.parent_path();
-  for (const auto& s : root.objects("scenes")) {
-    ExperimentScene scene;
-    scene.name = s.string("name");
-    if (scene.name.empty() || scene.name.find_first_of("/\\. ") != std::string::npos)
-      s.fail("name", "must be a plain name (no '/', '\\\\', '.' or spaces): it becomes a folder");
-    if (!names.insert(scene.name).second) s.fail("name", "duplicate scene name '" + scene.name + "'");
-    std::filesystem::path file = s.string("file");
-    scene.file = file.is_absolute() ? file : base / file;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(scene.file, ec)) s.fail("file", "unknown scene: no such file " + scene.file.string());
-    if (s.has("width")) scene.width = int(s.integer_in("width", 0, 1, 16384));
-    if (s.has("height")) scene.height = int(s.integer_in("height", 0, 1, 16384));
-    if (s.has("spp")) scene.spp = int(s.integer_in("spp", 0, 1, 65536));
-    s.finish();
-    e.scenes.push_back(scene);
-  }
+  for (const auto& scene : e.scenes) names.insert(scene.name);
   if (e.scenes.empty()) root.fail("scenes", "an experiment needs at least one scene");
   std::set<std::string> labels;
   for (const auto& m : root.objects("methods")) {
@@ -151,6 +208,15 @@ Experiment load_experiment(const std::filesystem::path& path) {
   return e;
 }
 
+glm::dvec3 view_light_direction(const Camera& camera, const ViewLight& light) {
+  const CameraRays rays(camera);
+  const double e = glm::radians(light.elevation), a = glm::radians(light.azimuth);
+  // The horizon's direction towards the viewer, and the view's right and up.
+  const glm::dvec3 towards_viewer = -rays.forward(), right = rays.right(), up = rays.up();
+  const glm::dvec3 horizon = std::cos(a) * towards_viewer + std::sin(a) * right;
+  return glm::normalize(std::cos(e) * horizon + std::sin(e) * up);
+}
+
 Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene& s) {
   Scene scene = load_scene(s.file);
   if (s.width) scene.camera.width = *s.width;
@@ -160,6 +226,12 @@ Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene&
     scene.settings.spp.reset();
   }
   if (s.spp) scene.settings.spp = *s.spp;
+  if (s.light) {
+    if (scene.directional_lights.empty())
+      throw_input_error(experiment.file.string() + ": scenes (" + s.name + ")",
+                        "light_directions needs a scene with a directional light");
+    for (auto& light : scene.directional_lights) light.direction = view_light_direction(scene.camera, *s.light);
+  }
   if (scene.settings.sampling == SamplingMode::independent && !scene.settings.spp)
     throw_input_error(experiment.file.string() + ": scenes (" + s.name + ")",
                       "the scene uses the independent sampler, which takes a fixed spp; give the scene an spp");

@@ -19,10 +19,17 @@ namespace countershade {
 
 inline constexpr int kExperimentFormatVersion = 1;
 
+// A light direction relative to the view: elevation above the view's horizon and azimuth from
+// the direction towards the viewer (positive to the viewer's right), both in degrees.
+struct ViewLight {
+  double elevation = 0, azimuth = 0;
+};
+
 struct ExperimentScene {
   std::string name;
   std::filesystem::path file;
   std::optional<int> width, height, spp;
+  std::optional<ViewLight> light;  // every directional light of the scene points this way
 };
 
 struct ExperimentMethod {
@@ -54,12 +61,15 @@ struct Experiment {
   std::vector<ExperimentMethod> methods;
   int contact_columns = 6;
   std::optional<NoiseBudget> noise;  // replaces the scenes' budgets (a scene's spp still wins)
+  bool congruence = false;            // score every stimulus (methods.md, "Congruence score")
 };
 
 Experiment load_experiment(const std::filesystem::path& path);
 
-// The scene as the experiment renders it: view overrides and the experiment's seed applied.
-Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene& scene);
+// The unit direction towards a light at `light` relative to the camera's view.
+glm::dvec3 view_light_direction(const Camera& camera, const ViewLight& light);
 
+// The scene as the experiment renders it: view and light overrides and the experiment's seed applied.
+Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene& scene);
 
 }  // namespace countershade

@@ -11,12 +11,15 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/false_colour.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/sha256.h"
 #include "core/time.h"
 #include "core/version.h"
 #include "enhance/stimulus_noise.h"
+#include "stimuli/congruence.h"
+#include "stimuli/congruence_figures.h"
 #include "stimuli/contact_sheet.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/set_layout.h"
@@ -127,6 +130,16 @@ void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& mode
                         {"max", sampling.pixels.max}};
 }
 
+// The congruence score of a stimulus, and its map in false colour as congruence/FILE.
+void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Image& display, const View& view, int bits) {
+  const Congruence c = display_congruence(display, view.encoding, bits, view.depth);
+  entry.extra["congruence"] = round_to(c.score, 4);
+  const std::string map = "congruence/" + entry.file;
+  fs::create_directories((set_dir / map).parent_path());
+  write_image(set_dir / map, false_colour_image(c.map));
+  entry.extra["congruence_map"] = {{"file", map}, {"sha256", sha256_file(set_dir / map)}};
+}
+
 class SetGenerator {
  public:
   SetGenerator(const Experiment& e, const fs::path& dir, const GenerateOptions& options)
@@ -216,6 +229,7 @@ void SetGenerator::write_reference(size_t scene, const View& view) {
   entry.method = kReferenceMethod;
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
   record_noise(entry, view, NoiseModel{}, view.display);
+  if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits);
   entry = write_stimulus(dir_, std::move(entry), view.display, e_.bits);
   encode_seconds_.fetch_add(since(te));
   record(std::move(entry), true);
@@ -238,6 +252,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
+      if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits);
       entry = write_stimulus(dir_, std::move(entry), c.display, e_.bits);
       encode_seconds_.fetch_add(since(te));
       record(std::move(entry), true);
@@ -291,6 +306,7 @@ void SetGenerator::finish() {
   std::error_code ec;
   fs::remove(journal_path_, ec);
   if (options_.contact_sheets && options_.shards == 1) write_set_contact_sheets(e_, dir_, manifest);
+  if (e_.congruence && options_.shards == 1) write_congruence_figures(e_, dir_, manifest, options_.contact_sheets);
   report_.manifest = manifest_path_;
   progress_.finish("wrote " + manifest_path_.string() + " (" + std::to_string(entries_.size()) + " images, " +
                    format_seconds(report_.total_seconds) + ")");
@@ -358,6 +374,7 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir) {
   manifest.run = {{"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
   write_manifest(dir / "manifest.json", manifest);
   write_set_contact_sheets(e, dir, manifest);
+  if (e.congruence) write_congruence_figures(e, dir, manifest, true);
   return dir / "manifest.json";
 }
 

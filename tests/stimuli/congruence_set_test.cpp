@@ -1,0 +1,104 @@
+// Sets that score congruence: scenes swept over view-relative light directions, the score and map
+// of every stimulus in the manifest (checked like the stimuli), and the figures.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <glm/geometric.hpp>
+
+#include "core/error.h"
+#include "render/camera.h"
+#include "stimuli/congruence.h"
+#include "stimuli/experiment.h"
+#include "stimuli/stimulus_set.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path write_ball_experiment(const testing::TempDir& dir, const std::string& directions) {
+  testing::write_file(dir / "ball.json", R"({
+    "version": 1,
+    "camera": {"eye": [0, 1, 5], "target": [0, 0, 0], "fov": 30, "width": 48, "height": 36},
+    "render": {"spp": 2},
+    "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 3}, "material": {"albedo": 0.6}}],
+    "lights": [{"type": "directional", "direction": [0, 0, 1], "irradiance": 2, "shadows": false}]
+  })");
+  return testing::write_file(dir / "experiment.json", R"({
+    "version": 1, "name": "sweep", "seed": 3, "congruence": true,
+    "lambda": {"min": 1, "max": 1, "step": 1},
+    "scenes": [{"name": "ball", "file": "ball.json", "light_directions": )" + directions + R"(}],
+    "methods": [{"method": "none"}, {"method": "radiance-scaling", "tau": 4}]
+  })");
+}
+
+TEST(CongruenceSet, LightDirectionsAreRelativeToTheView) {
+  Camera camera;
+  camera.eye = {0, 1, 5}, camera.target = {0, 0, 0};
+  const CameraRays rays(camera);
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0}) + rays.forward()), 1e-12);  // towards the viewer
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 90}) - rays.right()), 1e-12);
+  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
+}
+
+TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
+  testing::TempDir dir;
+  const Experiment e = load_experiment(write_ball_experiment(dir, R"({"elevations": [0, 60], "azimuths": 4})"));
+  ASSERT_EQ(e.scenes.size(), 8u);
+  EXPECT_EQ(e.scenes[1].name, "ball-e0-a90");
+  EXPECT_EQ(e.scenes[7].name, "ball-e60-a270");
+  GenerateOptions options;
+  options.jobs = 2;
+  generate_stimulus_set(e, dir / "set", options);
+  EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
+
+  // The recorded score is the score of the written pixels against the scene's depth.
+  const Manifest manifest = read_manifest(dir / "set/manifest.json");
+  ASSERT_EQ(manifest.stimuli.size(), 8u * 3u);  // reference, none, radiance-scaling per scene
+  const auto view = render_view(std::make_shared<Scene>(load_experiment_scene(e, e.scenes[0])));
+  const ManifestEntry& reference = *std::find_if(manifest.stimuli.begin(), manifest.stimuli.end(), [&](const ManifestEntry& s) {
+    return s.is_reference() && s.scene == e.scenes[0].name;
+  });
+  int bits = 0;
+  const Image written = read_image(dir / "set" / reference.file, &bits);
+  const double score = display_congruence(written, view->encoding, bits, view->depth).score;
+  EXPECT_NEAR(reference.extra["congruence"].get<double>(), score, 1e-4);
+  EXPECT_GT(score, 0.3);  // a lit ball's shading follows its shape
+  for (const auto& s : manifest.stimuli) EXPECT_TRUE(s.extra.contains("congruence_map")) << s.file;
+  // The method `none` is a condition of its own, not a second reference.
+  EXPECT_EQ(std::count_if(manifest.stimuli.begin(), manifest.stimuli.end(), [](const ManifestEntry& s) { return s.is_reference(); }), 8);
+
+  // The figures: one table row per scene and condition, the plot and a sheet per condition.
+  std::ifstream csv(dir / "set/congruence.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 1 + 8 * 3);
+  EXPECT_TRUE(fs::is_regular_file(dir / "set/congruence.svg"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "set/contact-sheets/congruence-radiance-scaling.png"));
+
+  // A changed map is reported.
+  const std::string map = manifest.stimuli[2].extra["congruence_map"]["file"].get<std::string>();
+  std::ofstream(dir / "set" / map, std::ios::app) << "x";
+  const auto problems = verify_stimulus_set(dir / "set/manifest.json");
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find(map + ": sha256 differs"), std::string::npos);
+}
+
+TEST(CongruenceSet, BadLightDirectionsAreOneLine) {
+  testing::TempDir dir;
+  auto error_of = [&](const std::string& directions) {
+    return testing::input_error_of([&] { load_experiment(write_ball_experiment(dir, directions)); });
+  };
+  EXPECT_NE(error_of(R"({"elevations": [90], "azimuths": 2})").find("(-90, 90)"), std::string::npos);
+  EXPECT_NE(error_of(R"({"elevations": [], "azimuths": 2})").find("at least one elevation"), std::string::npos);
+  EXPECT_NE(error_of(R"({"elevations": [10], "azimuths": 0})").find("azimuths"), std::string::npos);
+  EXPECT_NE(error_of(R"({"elevations": [10], "tilt": 3})").find("tilt"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace countershade
