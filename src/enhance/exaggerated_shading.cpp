@@ -41,7 +41,7 @@ double exaggerated(const glm::dvec3* n, int scales, const glm::dvec3& light, con
 
 class EsHook final : public ShadingHook {
  public:
-  EsHook(std::shared_ptr<const MultiscaleNormals> normals, EsParameters parameters, double blend)
+  EsHook(std::shared_ptr<const NormalScaleField> normals, EsParameters parameters, double blend)
       : normals_(std::move(normals)), parameters_(std::move(parameters)), blend_(blend) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
@@ -53,7 +53,7 @@ class EsHook final : public ShadingHook {
   }
 
  private:
-  std::shared_ptr<const MultiscaleNormals> normals_;
+  std::shared_ptr<const NormalScaleField> normals_;
   EsParameters parameters_;
   double blend_;
 };
@@ -95,12 +95,15 @@ class EsMethod final : public EnhancementMethod {
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
                                                const MethodParameters& parameters) const override {
     const auto& p = parameters_as<EsParameters>(parameters);
-    auto hook_for = [p, normals = scene_normals(context, p.normals, name())](double lambda) -> std::shared_ptr<const ShadingHook> {
+    auto normals = scene_normals(context, p.normals, name());
+    auto hook_for = [p, normals](double lambda) -> std::shared_ptr<const ShadingHook> {
       const double blend = std::clamp(lambda, 0.0, 1.0);
       return blend > 0 ? std::make_shared<EsHook>(normals, p, blend) : nullptr;
     };
-    return std::make_unique<HookedRender>(
-        context, hook_for, nlohmann::json{{"scales", p.normals.scales}, {"contrast", p.contrast}, {"weights", p.weights}});
+    nlohmann::json recorded = describe_normals(p.normals, *normals);
+    recorded["contrast"] = p.contrast;
+    recorded["weights"] = p.weights;
+    return std::make_unique<HookedRender>(context, hook_for, recorded);
   }
 };
 

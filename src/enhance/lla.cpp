@@ -2,8 +2,8 @@
 // from the coarsest scale of the normal field to the finest, so that every feature gets a lit and
 // an unlit side (enhance/light_alignment.h). Diffuse shading is guided by the multi-scale normals,
 // specular shading by the reflected view vectors. Visibility stays that of the original light
-// (the shading hook). `surface` mode: the normals are smoothed over the mesh
-// (enhance/multiscale_normals.h). λ scales the per-scale strengths: s_i = clamp(λ·profile_i, 0, 1).
+// (the shading hook). The normals come in `surface` or `image` mode (enhance/normal_field.h).
+// λ scales the per-scale strengths: s_i = clamp(λ·profile_i, 0, 1).
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,7 @@ struct LlaParameters final : MethodParameters {
 // multi-scale normals, the specular term towards the reflected view vectors.
 class AlignmentHook final : public ShadingHook {
  public:
-  AlignmentHook(std::shared_ptr<const MultiscaleNormals> normals, std::vector<double> strengths, double gamma)
+  AlignmentHook(std::shared_ptr<const NormalScaleField> normals, std::vector<double> strengths, double gamma)
       : normals_(std::move(normals)), strengths_(std::move(strengths)), gamma_(gamma) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
@@ -45,7 +45,7 @@ class AlignmentHook final : public ShadingHook {
   }
 
  private:
-  std::shared_ptr<const MultiscaleNormals> normals_;
+  std::shared_ptr<const NormalScaleField> normals_;
   std::vector<double> strengths_;
   double gamma_;
 };
@@ -94,12 +94,10 @@ class LlaMethod final : public EnhancementMethod {
       if (std::all_of(strengths.begin(), strengths.end(), [](double s) { return s <= 0; })) return nullptr;
       return std::make_shared<AlignmentHook>(normals, std::move(strengths), p.gamma);
     };
-    nlohmann::json iterations = nlohmann::json::array();
-    for (size_t o = 0; o < context.view->scene->objects.size(); ++o)
-      for (int k = 2; k <= p.normals.scales; ++k) iterations.push_back(normals->iterations(o, k));
-    return std::make_unique<HookedRender>(context, hook_for,
-                                          nlohmann::json{{"scales", p.normals.scales}, {"gamma", p.gamma},
-                                                         {"profile", p.profile}, {"smoothing_iterations", iterations}});
+    nlohmann::json recorded = describe_normals(p.normals, *normals);
+    recorded["gamma"] = p.gamma;
+    recorded["profile"] = p.profile;
+    return std::make_unique<HookedRender>(context, hook_for, recorded);
   }
 };
 

@@ -97,4 +97,11 @@ void MultiscaleNormals::at_shading_point(const ShadingInputs& s, glm::dvec3* n) 
   for (int k = 2; k <= scales_; ++k) n[k - 1] = side * at(s.point, k);
 }
 
+nlohmann::json MultiscaleNormals::describe() const {
+  nlohmann::json iterations = nlohmann::json::array();
+  for (size_t o = 0; o < iterations_.size(); ++o)
+    for (int k = 2; k <= scales_; ++k) iterations.push_back(iterations_[o][size_t(k - 2)]);
+  return {{"mode", "surface"}, {"smoothing_iterations", iterations}};
+}
+
 }  // namespace countershade

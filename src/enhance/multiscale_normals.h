@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "enhance/normal_field.h"
 #include "render/hooks.h"
 #include "render/scene.h"
 
@@ -17,17 +18,19 @@ namespace countershade {
 
 struct SurfacePoint;
 
-class MultiscaleNormals {
+class MultiscaleNormals final : public NormalScaleField {
  public:
   // Smooths the normals of every object of `scene` for scales 2 … `scales`.
   MultiscaleNormals(std::shared_ptr<const Scene> scene, double sigma1, int scales, int threads = 0);
 
-  int scales() const { return scales_; }
+  int scales() const override { return scales_; }
   // n_k (k = 2 … S) at a surface point, interpolated over its triangle and normalised.
   glm::dvec3 at(const SurfacePoint& point, int k) const;
   // n_1 … n_S at a shading point into n[0 … S−1]: n_1 its shading normal, the smoothed ones turned
   // to the side the viewer sees as the shading normal is.
-  void at_shading_point(const ShadingInputs& s, glm::dvec3* n) const;
+  void at_shading_point(const ShadingInputs& s, glm::dvec3* n) const override;
+  // {"mode": "surface", "smoothing_iterations": per object, scale and component}.
+  nlohmann::json describe() const override;
   // The smoothing iterations of scale k (2 … S) per component of object `object`.
   const std::vector<int>& iterations(size_t object, int k) const { return iterations_[object][size_t(k - 2)]; }
 

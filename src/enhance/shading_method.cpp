@@ -1,6 +1,7 @@
 #include "enhance/shading_method.h"
 
 #include "core/error.h"
+#include "enhance/image_normals.h"
 
 namespace countershade {
 
@@ -8,21 +9,31 @@ NormalScales read_normal_scales(const ParameterBag& bag, std::optional<double>& 
   NormalScales s;
   sigma = bag.optional_number("sigma");
   s.scales = int(bag.integer_in("scales", 3, 2, kMaxNormalScales));
+  s.image = bag.choice("mode", "surface", {"surface", "image"}) == "image";
+  if (bag.has("depth_tolerance") && !s.image) bag.fail("depth_tolerance", "applies to mode image only");
+  s.depth_tolerance = bag.number_in("depth_tolerance", 0.02, 1e-6, 10.0);
   return s;
 }
 
 void check_normal_scales(const ParameterBag& bag, NormalScales& scales, const std::optional<double>& sigma) {
-  if (!sigma || !(*sigma > 0)) bag.fail("sigma", "is required: the finest smoothing width, a positive world length");
+  if (!sigma || !(*sigma > 0))
+    bag.fail("sigma", scales.image ? "is required: the finest filter width, a positive number of pixels"
+                                   : "is required: the finest smoothing width, a positive world length");
+  if (scales.image && *sigma > 1000) bag.fail("sigma", "must be at most 1000 pixels");
   scales.sigma = *sigma;
 }
 
 WidthAxis normal_scales_axis() {
-  return {"sigma", "world units", "the finest smoothing width σ_1 of the normals (scale k+1 smooths over σ_1·1.7^(k−1))"};
+  return {"sigma", "world units (pixels with mode image)",
+          "the finest smoothing width σ_1 of the normals (scale k+1 smooths over σ_1·1.7^(k−1))"};
 }
 
 std::vector<ParameterDoc> normal_scales_docs() {
-  return {{"sigma", "", "finest smoothing width σ_1 of the normals, world units"},
-          {"scales", "3", "number of normal scales S (2 to 8)"}};
+  return {{"sigma", "", "finest smoothing width σ_1 of the normals, world units (pixels with mode image)"},
+          {"scales", "3", "number of normal scales S (2 to 8)"},
+          {"mode", "surface", "surface: normals smoothed over the mesh (view-independent); image: G-buffer normals, "
+                              "bilateral-filtered with a depth range kernel (the paper's, changes with the view)"},
+          {"depth_tolerance", "0.02", "image mode: the range kernel's σ as a fraction of the pixel's depth"}};
 }
 
 RenderRequest shading_request() {
@@ -35,10 +46,19 @@ void require_scene(const PrepareContext& context, const std::string& method) {
   if (!context.render_again) throw InputError(method + " changes the shading of a rendered scene; it needs a scene");
 }
 
-std::shared_ptr<const MultiscaleNormals> scene_normals(const PrepareContext& context, const NormalScales& scales,
-                                                       const std::string& method) {
+std::shared_ptr<const NormalScaleField> scene_normals(const PrepareContext& context, const NormalScales& scales,
+                                                      const std::string& method) {
   require_scene(context, method);
+  if (scales.image)
+    return std::make_shared<const ImageNormals>(*context.view, scales.sigma, scales.scales, scales.depth_tolerance,
+                                                context.threads);
   return std::make_shared<const MultiscaleNormals>(context.view->scene, scales.sigma, scales.scales, context.threads);
+}
+
+nlohmann::json describe_normals(const NormalScales& scales, const NormalScaleField& normals) {
+  nlohmann::json out = normals.describe();
+  out["scales"] = scales.scales;
+  return out;
 }
 
 Composed HookedRender::compose(double lambda) const {

@@ -13,26 +13,33 @@ namespace countershade {
 
 inline constexpr int kMaxNormalScales = 8;
 
-// σ_1 (the finest smoothing width, world units) and the number of scales S.
+// σ_1 (the finest smoothing width: world units in `surface` mode, pixels in `image` mode), the
+// number of scales S, the mode, and image mode's depth tolerance.
 struct NormalScales {
   double sigma = 0;
   int scales = 3;
+  bool image = false;
+  double depth_tolerance = 0.02;
 };
 
-// Reads `scales` (2 … 8, default 3) now, and σ_1 as `sigma`; call check_normal_scales after
+// Reads `scales` (2 … 8, default 3), `mode` (surface or image) and `depth_tolerance` now, and σ_1 as `sigma`; call check_normal_scales after
 // bag.finish() so that an unknown key is reported first.
 NormalScales read_normal_scales(const ParameterBag& bag, std::optional<double>& sigma);
 void check_normal_scales(const ParameterBag& bag, NormalScales& scales, const std::optional<double>& sigma);
 WidthAxis normal_scales_axis();
 std::vector<ParameterDoc> normal_scales_docs();
 
+// The normals' entries of a method's recorded parameters: scales, mode and the mode's figures.
+nlohmann::json describe_normals(const NormalScales& scales, const NormalScaleField& normals);
+
 // What every shading method asks of rendering: a scene (its renders with hooks come later).
 RenderRequest shading_request();
 // InputError naming `method` when the context has no scene to render again (an external image).
 void require_scene(const PrepareContext& context, const std::string& method);
 
-// The smoothed normals of the context's scene; InputError naming `method` without a scene.
-std::shared_ptr<const MultiscaleNormals> scene_normals(const PrepareContext& context, const NormalScales& scales,
+// The multi-scale normals of the context's view in the chosen mode; InputError naming `method`
+// without a scene.
+std::shared_ptr<const NormalScaleField> scene_normals(const PrepareContext& context, const NormalScales& scales,
                                                        const std::string& method);
 
 // Each λ rendered again with the hook `hook_for(λ)`; a null hook gives the view itself (λ = 0).

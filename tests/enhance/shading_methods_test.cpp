@@ -7,7 +7,9 @@
 
 #include "core/error.h"
 #include "enhance/light_warping.h"
+#include "enhance/light_alignment.h"
 #include "enhance/lightness.h"
+#include "enhance/shading_method.h"
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
 #include "enhance/radiance_scaling.h"
@@ -109,6 +111,59 @@ TEST(Lla, SurfaceNormalsDoNotDependOnTheCamera) {
   }
 }
 
+// The light that LLA computes at one surface point from two views of it (the second a 1° orbit of
+// the first): the same in surface mode (< 1e-6), different in image mode, whose normals are
+// filtered on the view's pixels.
+double largest_rotation_change(const std::string& mode) {
+  testing::TempDir a, b;
+  const double t = std::acos(-1.0) / 180.0;
+  const auto first = render_ball(a, "[0, 0.5, 5]");
+  const auto second = render_ball(b, "[" + std::to_string(5 * std::sin(t)) + ", 0.5, " + std::to_string(5 * std::cos(t)) + "]");
+  const nlohmann::json parameters = {{"sigma", mode == "image" ? 3.0 : 0.15}, {"mode", mode}};
+  const PrepareContext c1 = make_context(first), c2 = make_context(second);
+  NormalScales scales;
+  scales.sigma = parameters["sigma"], scales.image = mode == "image";
+  const auto n1 = scene_normals(c1, scales, "lla"), n2 = scene_normals(c2, scales, "lla");
+  const Object& ball = first->scene->objects[0];
+  const glm::dvec3 light = glm::normalize(glm::dvec3(-0.5, 0.8, 0.6));
+  const double strengths[2] = {1.0, 1.0};
+  double largest = 0;
+  for (unsigned triangle = 0; triangle < ball.mesh.triangles.size(); ++triangle) {
+    SurfacePoint p;
+    const glm::uvec3 v = ball.mesh.triangles[triangle];
+    p.triangle = triangle, p.b1 = 0.3, p.b2 = 0.3;
+    p.position = 0.4 * glm::dvec3(ball.mesh.positions[v.x]) + 0.3 * glm::dvec3(ball.mesh.positions[v.y]) +
+                 0.3 * glm::dvec3(ball.mesh.positions[v.z]);
+    p.shading_normal = p.geometric_normal = glm::normalize(p.position);
+    if (glm::dot(p.shading_normal, glm::normalize(first->scene->camera.eye - p.position)) < 0.5) continue;
+    glm::dvec3 l[2];
+    for (int view = 0; view < 2; ++view) {
+      const ShadingInputs s{p, ball.material, p.shading_normal, glm::normalize((view ? second : first)->scene->camera.eye - p.position),
+                            glm::dvec3(0.6)};
+      glm::dvec3 n[kMaxNormalScales];
+      (view ? n2 : n1)->at_shading_point(s, n);
+      l[view] = align_light(light, std::span<const glm::dvec3>(n, 3), strengths, 3.0);
+    }
+    largest = std::max(largest, glm::length(l[0] - l[1]));
+  }
+  return largest;
+}
+
+TEST(Lla, ImageModeIsPlainAtLambdaZeroAndSharpensTheFacets) {
+  testing::TempDir dir;
+  const auto view = render_ball(dir, "[0, 0.5, 5]");
+  const auto prepared = prepare_method("lla", view, {{"sigma", 3.0}, {"mode", "image"}});
+  EXPECT_EQ(prepared->compose(0.0).display.pixels, view->display.pixels);
+  const Image enhanced = prepared->compose(1.0).display;
+  EXPECT_GT(facet_contrast(enhanced, *view), 1.3 * facet_contrast(view->display, *view));
+  EXPECT_EQ(prepared->parameters()["mode"], "image");
+}
+
+TEST(Lla, TheLightRotationIsViewIndependentInSurfaceModeOnly) {
+  EXPECT_LT(largest_rotation_change("surface"), 1e-6);
+  EXPECT_GT(largest_rotation_change("image"), 1e-3);
+}
+
 TEST(Lla, ParametersAreCheckedWithTheirKeys) {
   EXPECT_NE(testing::input_error_of([] { parse_method("lla", nlohmann::json::object()); }).find("sigma"), std::string::npos);
   EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"profile", {1, 1, 1}}}); }).find("needs 2 values"),
@@ -118,6 +173,11 @@ TEST(Lla, ParametersAreCheckedWithTheirKeys) {
   EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"kernel", 5}}); }).find("kernel"),
             std::string::npos);
   EXPECT_NO_THROW(parse_method("lla", {{"sigma", 0.1}, {"scales", 4}, {"profile", {1, 0.5, 0.2}}, {"gamma", 0}}));
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"depth_tolerance", 0.1}}); }).find("mode image only"),
+            std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 5000}, {"mode", "image"}}); }).find("1000 pixels"),
+            std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 1}, {"mode", "screen"}}); }).find("mode"), std::string::npos);
 }
 
 // Exaggerated shading: λ = 0 is the plain render; λ = 1 replaces the diffuse term, which flattens
