@@ -44,7 +44,9 @@ std::string LinePlot::to_svg() const {
   y0 -= pad;
   y1 += pad;
   if (x1 == x0) x1 = x0 + 1;
-  const double left = 70, right = 150, top = 40, bottom = 55;
+  size_t longest = 0;  // the legend's widest label sets the right margin (about 7 px a character)
+  for (const auto& s : series) longest = std::max(longest, s.label.size());
+  const double left = 70, right = std::max(150.0, 48.0 + 7.0 * double(longest)), top = 40, bottom = 55;
   const double pw = width - left - right, ph = height - top - bottom;
   auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
   auto py = [&](double y) { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; };

@@ -1,5 +1,6 @@
 #include "stimuli/congruence_figures.h"
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -60,9 +61,11 @@ void write_table(const std::filesystem::path& path, const Experiment& e, const s
 void write_plot(const std::filesystem::path& path, const Experiment& e, const std::vector<Condition>& conditions) {
   LinePlot plot;
   plot.title = e.name + ": congruence per scene at lambda " + format_value(e.lambda.max);
-  plot.x_label = "scene (in the experiment's order; names in congruence.csv)";
+  const bool swept = std::all_of(e.scenes.begin(), e.scenes.end(), [](const ExperimentScene& s) { return s.light.has_value(); });
+  plot.x_label = swept ? "light direction: by elevation, then azimuth (names in congruence.csv)"
+                       : "scene (in the experiment's order; names in congruence.csv)";
   plot.y_label = "congruence";
-  plot.width = 760;
+  plot.width = 900;
   for (size_t k = 0; k < conditions.size(); ++k) {
     PlotSeries series{conditions[k].name, {}, {}, plot_color(k), k == 0};
     for (size_t i = 0; i < conditions[k].per_scene.size(); ++i)
@@ -86,8 +89,8 @@ void write_sheet(const std::filesystem::path& dir, const Experiment& e, const Co
   std::string file = c.name;
   for (char& ch : file)
     if (ch == ' ') ch = '-';
-  write_contact_sheet(dir / "contact-sheets" / ("congruence-" + file + ".png"), e.name + " - " + c.name + ": render and congruence",
-                      rows, {"render", "congruence map (0 blue, 1 yellow)"}, cells, 160);
+  write_contact_sheet(dir / "contact-sheets" / ("congruence-" + file + ".png"), c.name + ": congruence", rows,
+                      {"render", "map (0 blue, 1 yellow)"}, cells, 240);
 }
 
 }  // namespace

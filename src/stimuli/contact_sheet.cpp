@@ -36,9 +36,12 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
                          const std::vector<std::vector<ContactCell>>& cells, int thumbnail_width) {
   if (cells.empty() || cells[0].empty()) return;
   Image first = thumbnail(read_image(cells[0][0].file), thumbnail_width);
-  const int tw = first.width, th = first.height, gap = 8 + 16, left = 110, top = 56;  // 16: the captions
+  size_t longest_row = 0;  // row labels are about 8 px a character at 14 px
+  for (const auto& label : row_labels) longest_row = std::max(longest_row, label.size());
+  const int tw = first.width, th = first.height, gap = 8 + 16, top = 56;  // 16: the captions
+  const int left = std::max(110, 16 + 8 * int(longest_row));
   const int cols = int(column_labels.size()), rows = int(row_labels.size());
-  const int width = left + cols * (tw + gap), height = top + rows * (th + gap);
+  const int width = std::max(left + cols * (tw + gap), 20 + 10 * int(title.size())), height = top + rows * (th + gap);
   OIIO::ImageBuf sheet(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
   const float grey[3] = {0.5f, 0.5f, 0.5f}, ink[3] = {1.0f, 1.0f, 1.0f};
   OIIO::ImageBufAlgo::fill(sheet, grey);
