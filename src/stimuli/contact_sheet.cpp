@@ -90,6 +90,7 @@ void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& 
   for (size_t s = 0; s < e.scenes.size(); ++s)
     for (size_t m = 0; m < e.methods.size(); ++m) {
       if (!e.methods[m].applies_to(e.scenes[s].name)) continue;
+      if (count == 1 && e.methods[m].sigmas.size() == 1) continue;  // one image: nothing to compare
       std::vector<std::string> rows, cols;
       std::vector<std::vector<ContactCell>> cells;
       for (int p : picks) cols.push_back("lambda = " + format_value(e.lambda.value(p)));  // ASCII: OIIO text

@@ -24,7 +24,8 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
 
 // The contact sheets of a finished set: one per scene and method, σ rows × evenly spaced λ
 // columns (the first and the last included), in DIR/contact-sheets/, each thumbnail captioned
-// with its estimated sampling noise (L* RMS). A set that misses an image (a shard) gets none.
+// with its estimated sampling noise (L* RMS). A set that misses an image (a shard) gets none, and a
+// condition with one σ and one λ gets none (a sheet of one image).
 void write_set_contact_sheets(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest);
 
 }  // namespace countershade

@@ -80,6 +80,7 @@ TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   EXPECT_EQ(lines, 1 + 8 * 3);
   EXPECT_TRUE(fs::is_regular_file(dir / "set/congruence.svg"));
   EXPECT_TRUE(fs::is_regular_file(dir / "set/contact-sheets/congruence-radiance-scaling.png"));
+  EXPECT_FALSE(fs::exists(dir / "set/contact-sheets/ball-e0-a0-radiance-scaling.png"));  // one image: no sheet
 
   // A changed map is reported.
   const std::string map = manifest.stimuli[2].extra["congruence_map"]["file"].get<std::string>();
