@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
 
 #include <glm/geometric.hpp>
 
@@ -56,7 +58,7 @@ std::vector<glm::vec3> to_vertices(const SurfaceGraph& surface, const std::vecto
 }  // namespace
 
 MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, double sigma1, int scales, int threads)
-    : scene_(std::move(shared_scene)), scales_(scales), vertex_normals_(scene_->objects.size()),
+    : scene_(std::move(shared_scene)), sigma1_(sigma1), scales_(scales), vertex_normals_(scene_->objects.size()),
       iterations_(scene_->objects.size()) {
   const Scene& scene = *scene_;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
@@ -80,6 +82,32 @@ MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, 
       iterations_[o].push_back(target);
     }
   }
+}
+
+bool MultiscaleNormals::same_input(const Scene& scene, double sigma1, int scales) const {
+  if (sigma1 != sigma1_ || scales != scales_ || scene.objects.size() != scene_->objects.size()) return false;
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const TriangleMesh &a = scene.objects[o].mesh, &b = scene_->objects[o].mesh;
+    if (a.positions != b.positions || a.triangles != b.triangles) return false;
+  }
+  return true;
+}
+
+std::shared_ptr<const MultiscaleNormals> MultiscaleNormals::shared(std::shared_ptr<const Scene> scene, double sigma1,
+                                                                   int scales, int threads) {
+  constexpr size_t kKept = 2;  // a few MB each for a large scan; the sets's scenes come in order
+  static std::mutex mutex;
+  static std::deque<std::shared_ptr<const MultiscaleNormals>> recent;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& normals : recent)
+      if (normals->same_input(*scene, sigma1, scales)) return normals;
+  }
+  auto made = std::make_shared<const MultiscaleNormals>(std::move(scene), sigma1, scales, threads);
+  std::lock_guard<std::mutex> lock(mutex);
+  recent.push_front(made);
+  if (recent.size() > kKept) recent.pop_back();
+  return made;
 }
 
 glm::dvec3 MultiscaleNormals::at(const SurfacePoint& point, int k) const {

@@ -22,6 +22,10 @@ class MultiscaleNormals final : public NormalScaleField {
  public:
   // Smooths the normals of every object of `scene` for scales 2 … `scales`.
   MultiscaleNormals(std::shared_ptr<const Scene> scene, double sigma1, int scales, int threads = 0);
+  // The same, shared with the last scenes asked for whose meshes are identical (compared vertex by
+  // vertex) at the same σ_1 and S: the light-direction variants of one scene smooth once.
+  static std::shared_ptr<const MultiscaleNormals> shared(std::shared_ptr<const Scene> scene, double sigma1, int scales,
+                                                         int threads = 0);
 
   int scales() const override { return scales_; }
   // n_k (k = 2 … S) at a surface point, interpolated over its triangle and normalised.
@@ -35,7 +39,10 @@ class MultiscaleNormals final : public NormalScaleField {
   const std::vector<int>& iterations(size_t object, int k) const { return iterations_[object][size_t(k - 2)]; }
 
  private:
+  bool same_input(const Scene& scene, double sigma1, int scales) const;
+
   std::shared_ptr<const Scene> scene_;
+  double sigma1_;
   int scales_;
   std::vector<std::vector<std::vector<glm::vec3>>> vertex_normals_;  // [object][k − 2][vertex]
   std::vector<std::vector<std::vector<int>>> iterations_;            // [object][k − 2][component]

@@ -52,7 +52,7 @@ std::shared_ptr<const NormalScaleField> scene_normals(const PrepareContext& cont
   if (scales.image)
     return std::make_shared<const ImageNormals>(*context.view, scales.sigma, scales.scales, scales.depth_tolerance,
                                                 context.threads);
-  return std::make_shared<const MultiscaleNormals>(context.view->scene, scales.sigma, scales.scales, context.threads);
+  return MultiscaleNormals::shared(context.view->scene, scales.sigma, scales.scales, context.threads);
 }
 
 nlohmann::json describe_normals(const NormalScales& scales, const NormalScaleField& normals) {

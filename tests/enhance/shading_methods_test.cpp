@@ -164,6 +164,19 @@ TEST(Lla, TheLightRotationIsViewIndependentInSurfaceModeOnly) {
   EXPECT_GT(largest_rotation_change("image"), 1e-3);
 }
 
+// Two views of the same mesh (a light-direction sweep, an orbit) share their surface normals; another
+// σ does not.
+TEST(Lla, SurfaceNormalsAreSharedBetweenScenesWithTheSameMeshes) {
+  testing::TempDir a, b;
+  const auto first = render_ball(a, "[0, 0.5, 5]"), second = render_ball(b, "[0.2, 0.5, 5]");
+  NormalScales scales;
+  scales.sigma = 0.21;
+  const auto n1 = scene_normals(make_context(first), scales, "lla");
+  EXPECT_EQ(n1, scene_normals(make_context(second), scales, "lla"));
+  scales.sigma = 0.22;
+  EXPECT_NE(n1, scene_normals(make_context(second), scales, "lla"));
+}
+
 TEST(Lla, ParametersAreCheckedWithTheirKeys) {
   EXPECT_NE(testing::input_error_of([] { parse_method("lla", nlohmann::json::object()); }).find("sigma"), std::string::npos);
   EXPECT_NE(testing::input_error_of([] { parse_method("lla", {{"sigma", 0.1}, {"profile", {1, 1, 1}}}); }).find("needs 2 values"),
