@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/parallel.h"
+#include "enhance/film_lookup.h"
 #include "render/shading.h"
 
 namespace countershade {
@@ -61,16 +62,8 @@ ImageNormals::ImageNormals(const View& view, double sigma1_px, int scales, doubl
 
 glm::dvec3 ImageNormals::at(const glm::dvec2& film, int k, const glm::dvec3& fallback) const {
   const std::vector<glm::vec3>& normals = normals_[size_t(k - 2)];
-  const double fx = film.x - 0.5, fy = film.y - 0.5;
-  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-  const double tx = fx - x0, ty = fy - y0;
-  glm::dvec3 sum(0.0);
-  for (int dy = 0; dy < 2; ++dy)
-    for (int dx = 0; dx < 2; ++dx) {
-      const int x = std::clamp(x0 + dx, 0, width_ - 1), y = std::clamp(y0 + dy, 0, height_ - 1);
-      const size_t i = size_t(y) * size_t(width_) + size_t(x);
-      if (object_[i]) sum += (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * glm::dvec3(normals[i]);
-    }
+  const glm::dvec3 sum = interpolate_in_mask<glm::dvec3>(film, width_, height_, object_,
+                                                         [&](size_t i) { return glm::dvec3(normals[i]); }).first;
   return glm::length(sum) > 1e-12 ? glm::normalize(sum) : fallback;
 }
 

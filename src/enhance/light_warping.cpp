@@ -12,7 +12,6 @@
 #include "enhance/method.h"
 #include "enhance/shading_method.h"
 #include "enhance/view_curvature.h"
-#include "render/camera.h"
 #include "render/shading.h"
 
 namespace countershade {
@@ -36,18 +35,16 @@ struct LwParameters final : MethodParameters {
 
 class LwHook final : public ShadingHook {
  public:
-  LwHook(std::shared_ptr<const ViewCurvature> kappa, const Camera& camera, double lambda)
-      : kappa_(std::move(kappa)), camera_(camera), lambda_(lambda) {}
+  LwHook(std::shared_ptr<const ViewCurvature> kappa, double lambda) : kappa_(std::move(kappa)), lambda_(lambda) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
-    const double kappa = kappa_->at(camera_.film_position(s.point.position));
+    const double kappa = kappa_->at(s.point.position);
     const glm::dvec3 r = 2 * glm::dot(s.normal, s.wo) * s.normal - s.wo;
     return reflect_plain(s, warp_light(wi, r, kappa, lambda_), incident);
   }
 
  private:
   std::shared_ptr<const ViewCurvature> kappa_;
-  CameraRays camera_;
   double lambda_;
 };
 
@@ -71,8 +68,8 @@ class LwMethod final : public EnhancementMethod {
     require_scene(context, name());
     const auto& p = parameters_as<LwParameters>(parameters);
     auto kappa = std::make_shared<const ViewCurvature>(*context.view, p.tau);
-    auto hook_for = [kappa, camera = context.view->scene->camera](double lambda) -> std::shared_ptr<const ShadingHook> {
-      return lambda != 0 ? std::make_shared<LwHook>(kappa, camera, lambda) : nullptr;
+    auto hook_for = [kappa](double lambda) -> std::shared_ptr<const ShadingHook> {
+      return lambda != 0 ? std::make_shared<LwHook>(kappa, lambda) : nullptr;
     };
     return std::make_unique<HookedRender>(context, hook_for, nlohmann::json{{"tau", p.tau}});
   }

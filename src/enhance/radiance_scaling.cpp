@@ -13,7 +13,6 @@
 #include "enhance/radiance_scaling.h"
 #include "enhance/shading_method.h"
 #include "enhance/view_curvature.h"
-#include "render/camera.h"
 #include "render/shading.h"
 
 namespace countershade {
@@ -38,18 +37,17 @@ namespace {
 
 class RsHook final : public ShadingHook {
  public:
-  RsHook(std::shared_ptr<const ViewCurvature> kappa, const Camera& camera, double alpha, double gamma)
-      : kappa_(std::move(kappa)), camera_(camera), alpha_(alpha), gamma_(gamma) {}
+  RsHook(std::shared_ptr<const ViewCurvature> kappa, double alpha, double gamma)
+      : kappa_(std::move(kappa)), alpha_(alpha), gamma_(gamma) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
-    const double kappa = kappa_->at(camera_.film_position(s.point.position));
+    const double kappa = kappa_->at(s.point.position);
     const double delta = std::max(0.0, glm::dot(s.normal, wi));
     return reflect_plain(s, wi, incident) * radiance_scale(kappa, delta, alpha_, gamma_);
   }
 
  private:
   std::shared_ptr<const ViewCurvature> kappa_;
-  CameraRays camera_;
   double alpha_, gamma_;
 };
 
@@ -75,9 +73,9 @@ class RsMethod final : public EnhancementMethod {
     require_scene(context, name());
     const auto& p = parameters_as<RsParameters>(parameters);
     auto kappa = std::make_shared<const ViewCurvature>(*context.view, p.tau);
-    auto hook_for = [p, kappa, camera = context.view->scene->camera](double lambda) -> std::shared_ptr<const ShadingHook> {
+    auto hook_for = [p, kappa](double lambda) -> std::shared_ptr<const ShadingHook> {
       const double alpha = std::clamp(lambda, 0.0, 1.0);
-      return alpha > 0 ? std::make_shared<RsHook>(kappa, camera, alpha, p.gamma) : nullptr;
+      return alpha > 0 ? std::make_shared<RsHook>(kappa, alpha, p.gamma) : nullptr;
     };
     return std::make_unique<HookedRender>(context, hook_for, nlohmann::json{{"gamma", p.gamma}, {"tau", p.tau}});
   }

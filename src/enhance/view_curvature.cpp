@@ -5,7 +5,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/camera.h"
+#include "enhance/film_lookup.h"
 
 namespace countershade {
 namespace {
@@ -27,16 +27,16 @@ ParameterDoc curvature_tau_doc() {
   return {"tau", "1", "τ in pixels: κ = tanh(τ·curvature of the screen-space normal field)"};
 }
 
-ViewCurvature::ViewCurvature(const View& view, double tau) : kappa_(view.render.gbuffer.width, view.render.gbuffer.height, 1) {
+ViewCurvature::ViewCurvature(const View& view, double tau)
+    : camera_(view.scene->camera), kappa_(view.render.gbuffer.width, view.render.gbuffer.height, 1) {
   const GBuffer& g = view.render.gbuffer;
-  const CameraRays camera(view.scene->camera);
   std::vector<glm::dvec2> field(g.normal.size(), glm::dvec2(0.0));
   object_.assign(g.normal.size(), 0);
   for (size_t i = 0; i < field.size(); ++i) {
     if (g.object[i] < 0) continue;
     const glm::dvec3 n(g.normal[i]);
-    const double nz = std::max(-glm::dot(n, camera.forward()), 1e-3);
-    field[i] = -glm::dvec2(glm::dot(n, camera.right()), glm::dot(n, camera.up())) / nz;
+    const double nz = std::max(-glm::dot(n, camera_.forward()), 1e-3);
+    field[i] = -glm::dvec2(glm::dot(n, camera_.right()), glm::dot(n, camera_.up())) / nz;
     object_[i] = 1;
   }
   for (int y = 1; y + 1 < g.height; ++y)
@@ -50,19 +50,9 @@ ViewCurvature::ViewCurvature(const View& view, double tau) : kappa_(view.render.
     }
 }
 
-double ViewCurvature::at(const glm::dvec2& film) const {
-  const double fx = film.x - 0.5, fy = film.y - 0.5;
-  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-  const double tx = fx - x0, ty = fy - y0;
-  double sum = 0, weight = 0;
-  for (int dy = 0; dy < 2; ++dy)
-    for (int dx = 0; dx < 2; ++dx) {
-      const int x = std::clamp(x0 + dx, 0, kappa_.width - 1), y = std::clamp(y0 + dy, 0, kappa_.height - 1);
-      if (!object_[size_t(y) * size_t(kappa_.width) + size_t(x)]) continue;
-      const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty);
-      sum += w * kappa_.at(x, y);
-      weight += w;
-    }
+double ViewCurvature::at(const glm::dvec3& p) const {
+  const auto [sum, weight] = interpolate_in_mask<double>(camera_.film_position(p), kappa_.width, kappa_.height, object_,
+                                                         [&](size_t i) { return double(kappa_.pixels[i]); });
   return weight > 0 ? sum / weight : 0.0;
 }
 

@@ -4,11 +4,12 @@
 
 #include <vector>
 
-#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "render/camera.h"
 
 namespace countershade {
 
@@ -23,14 +24,15 @@ class ViewCurvature {
   // one-sided, so an outline pixel has the curvature of its own surface, not 0.
   ViewCurvature(const View& view, double tau);
 
-  // κ at a film position in pixels (pixel x covers [x, x+1)), interpolated bilinearly over the
-  // object pixels among the four nearest; 0 when none of them is an object pixel.
-  double at(const glm::dvec2& film) const;
+  // κ where the world point `p` projects to, interpolated bilinearly over the object pixels among
+  // the four nearest; 0 when none of them is an object pixel.
+  double at(const glm::dvec3& p) const;
 
   // κ per pixel; background pixels are 0.
   const Image& pixels() const { return kappa_; }
 
  private:
+  CameraRays camera_;
   Image kappa_;
   std::vector<char> object_;
 };
