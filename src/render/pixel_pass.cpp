@@ -12,6 +12,7 @@
 #include "core/parallel.h"
 #include "core/random.h"
 #include "render/camera.h"
+#include "render/ray_differentials.h"
 
 namespace countershade {
 namespace {
@@ -76,7 +77,9 @@ class PixelSampler {
     if (!hit) {
       radiance = in_.shader.background(ray.direction);
     } else {
-      const SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
+      SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
+      if (in_.scene.objects[hit->object].mesh.has_uvs())  // the footprint picks the texture's mip level
+        set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
       radiance = in_.shader.radiance(sp, -ray.direction, true, sampler, counts);
       const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
       auto& fields = sums_.field[Sampler::replicate(s)];

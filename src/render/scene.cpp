@@ -19,23 +19,10 @@
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
 #include "mesh/refine.h"
+#include "render/procedural_texture.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
-
-glm::dvec3 Texture::sample(const glm::dvec2& uv) const {
-  double fx = (uv.x - std::floor(uv.x)) * width - 0.5;
-  double fy = (1.0 - (uv.y - std::floor(uv.y))) * height - 0.5;  // v = 0 is the bottom row
-  int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-  double tx = fx - x0, ty = fy - y0;
-  auto at = [&](int x, int y) {
-    x = ((x % width) + width) % width;
-    y = ((y % height) + height) % height;
-    return glm::dvec3(texels[size_t(y) * width + x]);
-  };
-  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
-         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
-}
 
 BoundingBox Scene::bounds() const {
   BoundingBox box;
@@ -264,21 +251,21 @@ class SceneLoader {
     } catch (const InputError& e) {
       o.fail(key, e.what());
     }
-    auto tex = std::make_shared<Texture>();
-    tex->width = image.width;
-    tex->height = image.height;
-    tex->texels.resize(size_t(image.width) * image.height);
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < image.width; ++x) {
-        glm::vec3 c;
-        for (int k = 0; k < 3; ++k) {
-          float v = image.at(x, y, std::min(k, image.channels - 1));
-          c[k] = srgb_encoded ? float(srgb_decode(v)) : v;
-        }
-        tex->texels[size_t(y) * image.width + x] = c;
-      }
+    auto tex = std::make_shared<const Texture>(level_from_image(image, srgb_encoded));
     textures_.emplace_back(cache_key, tex);
     return tex;
+  }
+
+  std::shared_ptr<const Texture> procedural_texture(const JsonObject& o) {
+    o.choice("pattern", "checker-noise", {"checker-noise"});
+    CheckerNoise spec;
+    spec.size = int(o.integer_in("size", 1024, 8, 8192));
+    spec.squares = int(o.integer_in("squares", 16, 2, 1024));
+    if (spec.squares % 2 != 0 || spec.squares > spec.size) o.fail("squares", "must be even and at most the size, so that the pattern tiles");
+    spec.noise = o.number_in("noise", 0.35, 0.0, 1.0);
+    spec.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
+    o.finish();
+    return std::make_shared<const Texture>(checker_noise(spec));
   }
 
   Material material(const JsonObject& o) {
@@ -286,7 +273,14 @@ class SceneLoader {
     m.albedo = non_negative_color(o, "albedo", m.albedo);
     if (m.albedo.x > 1 || m.albedo.y > 1 || m.albedo.z > 1) o.fail("albedo", "must be at most 1");
     std::string encoding = o.choice("texture_encoding", "srgb", {"srgb", "linear"});
-    if (o.has("texture")) m.texture = texture(o, "texture", encoding == "srgb");
+    if (o.has("texture") && o.raw("texture").is_object()) {
+      if (o.has("texture_encoding")) o.fail("texture_encoding", "applies to texture image files only");
+      m.texture = procedural_texture(o.object("texture"));
+    } else if (o.has("texture")) {
+      m.texture = texture(o, "texture", encoding == "srgb");
+    }
+    if (o.has("texture_repeat") && !m.texture) o.fail("texture_repeat", "applies to a material with a texture only");
+    m.texture_repeat = o.number_in("texture_repeat", 1.0, 1e-3, 1e4);
     if (o.has("specular")) {
       JsonObject s = o.object("specular");
       std::string model = s.choice("model", "", {"blinn-phong", "cook-torrance"});

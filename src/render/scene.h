@@ -18,23 +18,18 @@
 #include "mesh/triangle_mesh.h"
 #include "render/camera.h"
 #include "render/environment.h"
+#include "render/texture.h"
 
 namespace countershade {
 
 inline constexpr int kSceneFormatVersion = 1;
-
-// An image texture holding linear RGB, sampled bilinearly with wrap-around.
-struct Texture {
-  int width = 0, height = 0;
-  std::vector<glm::vec3> texels;  // linear RGB, top row first
-  glm::dvec3 sample(const glm::dvec2& uv) const;
-};
 
 enum class SpecularModel { none, blinn_phong, cook_torrance };
 
 struct Material {
   glm::dvec3 albedo{0.8};                   // diffuse reflectance (used when there is no texture)
   std::shared_ptr<const Texture> texture;   // diffuse reflectance from the mesh UVs
+  double texture_repeat = 1;                // the texture tiles this many times across the UV square
   SpecularModel specular = SpecularModel::none;
   glm::dvec3 specular_color{0.04};          // Blinn–Phong ks, or Cook–Torrance F0
   double shininess = 64.0;                  // Blinn–Phong exponent

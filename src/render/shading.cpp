@@ -70,7 +70,9 @@ glm::dvec3 Shader::albedo(const SurfacePoint& point) const {
   const Material& m = scene_.objects[point.object].material;
   const Texture* texture = texture_hook_ ? texture_hook_->texture(point.object, m) : nullptr;
   if (!texture) texture = m.texture.get();
-  return texture ? texture->sample(point.uv) : m.albedo;
+  if (!texture) return m.albedo;
+  const double repeat = m.texture_repeat;
+  return texture->sample(point.uv * repeat, point.duv_dx * repeat, point.duv_dy * repeat);
 }
 
 glm::dvec3 Shader::background(const glm::dvec3& direction) const {

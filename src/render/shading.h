@@ -17,6 +17,7 @@ struct SurfacePoint {
   glm::dvec3 geometric_normal;  // unit, on the counter-clockwise (front) side
   glm::dvec3 shading_normal;    // unit, interpolated corner normal
   glm::dvec2 uv{0.0};
+  glm::dvec2 duv_dx{0.0}, duv_dy{0.0};  // UV change per pixel along the film's x and y (0: no footprint)
   unsigned object = 0, triangle = 0;
   double b1 = 0, b2 = 0;  // barycentrics of corners 1 and 2
 };

@@ -41,10 +41,7 @@ class HeadOnHook final : public ShadingHook {
 
 class ConstantTexture final : public TextureHook {
  public:
-  ConstantTexture() {
-    texture_.width = texture_.height = 1;
-    texture_.texels = {glm::vec3(0.25f, 0.5f, 0.75f)};
-  }
+  ConstantTexture() : texture_(TextureLevel{1, 1, {glm::vec3(0.25f, 0.5f, 0.75f)}}) {}
   const Texture* texture(unsigned, const Material&) const override { return &texture_; }
 
  private:

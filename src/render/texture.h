@@ -1,0 +1,64 @@
+#pragma once
+// Image textures as mip pyramids (docs/methods.md, "Texture-space filtering").
+//
+// Level 0 holds the texels as loaded; each further level halves the size (rounded down, at least
+// 1) by box filtering, down to 1×1. A lookup with no footprint reads level 0 bilinearly, as a
+// texture without a pyramid would; a lookup with the footprint of a pixel (the UV derivatives
+// from ray differentials) picks the level whose texels are about a pixel wide and blends the two
+// nearest levels (trilinear filtering). Where a texture is magnified the level is 0, so the plain
+// render changes only where textures are minified.
+
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/image.h"
+
+namespace countershade {
+
+// One level: linear RGB, top row first, wrapping at the borders.
+struct TextureLevel {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> texels;
+
+  const glm::vec3& at(int x, int y) const { return texels[size_t(y) * size_t(width) + size_t(x)]; }
+  // Bilinear lookup with wrap-around; v = 0 is the bottom row.
+  glm::dvec3 bilinear(const glm::dvec2& uv) const;
+};
+
+// A level from an image's first three channels (one channel: grey), decoded from sRGB or taken as
+// linear values; and back to a linear 3-channel float image.
+TextureLevel level_from_image(const Image& image, bool srgb_encoded);
+Image image_from_level(const TextureLevel& level);
+
+// The next coarser level: max(1, ⌊w/2⌋) × max(1, ⌊h/2⌋), each texel the area-weighted mean of the
+// finer texels it covers (exactly the 2×2 mean where the finer size is even).
+TextureLevel downsample(const TextureLevel& finer);
+
+class Texture {
+ public:
+  Texture() = default;
+  // The pyramid of `base`, built by box filtering.
+  explicit Texture(TextureLevel base);
+  // A pyramid made elsewhere (e.g. filtered level by level); levels[0] is the finest, and each
+  // must have the size downsample() would give.
+  static Texture from_levels(std::vector<TextureLevel> levels);
+
+  int width() const { return levels_.front().width; }
+  int height() const { return levels_.front().height; }
+  const std::vector<TextureLevel>& levels() const { return levels_; }
+
+  // Level 0, bilinear (no footprint).
+  glm::dvec3 sample(const glm::dvec2& uv) const { return levels_.front().bilinear(uv); }
+  // Trilinear lookup for a footprint given by the UV derivatives along the film's x and y.
+  glm::dvec3 sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
+  // The (fractional) level for that footprint: log2 of its longer side in level-0 texels,
+  // clamped to [0, levels − 1].
+  double level_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
+
+ private:
+  std::vector<TextureLevel> levels_{TextureLevel{1, 1, {glm::vec3(0.0f)}}};
+};
+
+}  // namespace countershade
