@@ -17,7 +17,8 @@ namespace countershade {
   X(lla)                                \
   X(exaggerated_shading)                \
   X(radiance_scaling)                   \
-  X(light_warping)
+  X(light_warping)                       \
+  X(texture_filter)
 
 #define COUNTERSHADE_DECLARE_FACTORY(id) std::unique_ptr<const EnhancementMethod> make_##id##_method();
 COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)

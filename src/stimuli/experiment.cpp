@@ -163,6 +163,21 @@ std::vector<ExperimentScene> parse_scenes(const JsonObject& root, const std::fil
   return scenes;
 }
 
+// The contact sheets' columns and the measures recorded per stimulus (congruence, coherence).
+void read_figure_options(const JsonObject& root, Experiment& e) {
+  if (root.has("contact_sheet")) {
+    const JsonObject c = root.object("contact_sheet");
+    e.contact_columns = int(c.integer_in("columns", 6, 2, 32));
+    c.finish();
+  }
+  e.congruence = root.boolean_or("congruence", false);
+  if (root.has("coherence")) {
+    const JsonObject c = root.object("coherence");
+    e.coherence_dolly = c.number_in("dolly", 0.02, 1e-4, 0.5);
+    c.finish();
+  }
+}
+
 }  // namespace
 
 Experiment load_experiment(const std::filesystem::path& path) {
@@ -184,12 +199,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
   if (root.has("lambda")) e.lambda = read_lambda_grid(root.object("lambda"));
   if (root.has("output")) e.bits = read_output_bits(root.object("output"));
   if (root.has("noise")) e.noise = read_noise_budget(root.object("noise"));
-  if (root.has("contact_sheet")) {
-    const JsonObject c = root.object("contact_sheet");
-    e.contact_columns = int(c.integer_in("columns", 6, 2, 32));
-    c.finish();
-  }
-  e.congruence = root.boolean_or("congruence", false);
+  read_figure_options(root, e);
   e.scenes = parse_scenes(root, path.parent_path());
   std::set<std::string> names;
   for (const auto& scene : e.scenes) names.insert(scene.name);

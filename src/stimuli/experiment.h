@@ -62,6 +62,9 @@ struct Experiment {
   int contact_columns = 6;
   std::optional<NoiseBudget> noise;  // replaces the scenes' budgets (a scene's spp still wins)
   bool congruence = false;            // score every stimulus (methods.md, "Congruence score")
+  // Measure every stimulus's perspective coherence under a camera dolly of this fraction of the
+  // eye–target distance (methods.md, "Perspective coherence metric").
+  std::optional<double> coherence_dolly;
 };
 
 Experiment load_experiment(const std::filesystem::path& path);

@@ -19,7 +19,9 @@
 #include "core/version.h"
 #include "enhance/stimulus_noise.h"
 #include "stimuli/congruence.h"
+#include "stimuli/coherence_figures.h"
 #include "stimuli/congruence_figures.h"
+#include "stimuli/perspective_coherence.h"
 #include "stimuli/contact_sheet.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/set_layout.h"
@@ -140,6 +142,24 @@ void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Imag
   entry.extra["congruence_map"] = {{"file", map}, {"sha256", sha256_file(set_dir / map)}};
 }
 
+// The stimulus's perspective coherence (for the reference: the plain render's own reprojection
+// error), in L*, with the number of pixels it covers.
+void record_coherence(ManifestEntry& entry, const View& view, const std::vector<float>& first,
+                      const View& moved, const std::vector<float>& second) {
+  const Reprojection r = reprojection_rms(view, first, moved, second);
+  entry.extra["coherence"] = round_to(r.rms, 4);
+  entry.extra["coherence_pixels"] = r.pixels;
+}
+
+// The view again with its camera dollied, for the coherence metric (null without one).
+std::shared_ptr<const View> moved_view(const Experiment& e, const Scene& scene, const ViewPlan& plan,
+                                       const ViewOptions& options) {
+  if (!e.coherence_dolly) return nullptr;
+  auto moved = std::make_shared<Scene>(scene);
+  moved->camera = dollied(scene.camera, *e.coherence_dolly);
+  return render_view(moved, plan, options);
+}
+
 class SetGenerator {
  public:
   SetGenerator(const Experiment& e, const fs::path& dir, const GenerateOptions& options)
@@ -153,8 +173,9 @@ class SetGenerator {
   bool all_done(size_t scene, const std::vector<SetUnit>& units) const;
   void record(ManifestEntry entry, bool is_new);
   void make_scene(size_t scene, const std::vector<SetUnit>& units);
-  void write_reference(size_t scene, const View& view);
-  void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view, size_t use);
+  void write_reference(size_t scene, const View& view, const View* moved);
+  void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view,
+                       const std::shared_ptr<const View>& moved, size_t use);
   void finish();
 
   const Experiment& e_;
@@ -219,7 +240,7 @@ void SetGenerator::record(ManifestEntry entry, bool is_new) {
   progress_.update(double(++finished_) / double(std::max<size_t>(total_, 1)));
 }
 
-void SetGenerator::write_reference(size_t scene, const View& view) {
+void SetGenerator::write_reference(size_t scene, const View& view, const View* moved) {
   const std::string rel = reference_path(e_, scene);
   if (done_.count(rel)) return record(done_[rel], false);
   auto te = Clock::now();
@@ -230,16 +251,21 @@ void SetGenerator::write_reference(size_t scene, const View& view) {
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
   record_noise(entry, view, NoiseModel{}, view.display);
   if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits);
+  if (moved) record_coherence(entry, view, plain_lightness(view), *moved, plain_lightness(*moved));
   entry = write_stimulus(dir_, std::move(entry), view.display, e_.bits);
   encode_seconds_.fetch_add(since(te));
   record(std::move(entry), true);
 }
 
-void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view, size_t use) {
+void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view,
+                                   const std::shared_ptr<const View>& moved, size_t use) {
   const ExperimentMethod& m = e_.methods[size_t(u.method)];
   auto tp = Clock::now();
-  std::unique_ptr<PreparedEnhancement> prepared;
-  run_with_threads(options_.jobs, [&] { prepared = m.method->prepare(make_use_context(view, use, options_.jobs), *m.parameters[u.sigma]); });
+  std::unique_ptr<PreparedEnhancement> prepared, prepared_moved;
+  run_with_threads(options_.jobs, [&] {
+    prepared = m.method->prepare(make_use_context(view, use, options_.jobs), *m.parameters[u.sigma]);
+    if (moved) prepared_moved = m.method->prepare(make_use_context(moved, use, options_.jobs), *m.parameters[u.sigma]);
+  });
   report_.prepare_seconds += since(tp);
   const nlohmann::json parameters = prepared->parameters();
   run_with_threads(options_.jobs, [&] {
@@ -253,6 +279,9 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits);
+      if (moved)
+        record_coherence(entry, *view, enhancement_layer(*view, c.display), *moved,
+                         enhancement_layer(*moved, prepared_moved->compose(e_.lambda.value(l)).display));
       entry = write_stimulus(dir_, std::move(entry), c.display, e_.bits);
       encode_seconds_.fetch_add(since(te));
       record(std::move(entry), true);
@@ -274,14 +303,17 @@ void SetGenerator::make_scene(size_t scene, const std::vector<SetUnit>& units) {
   ViewOptions vo;
   vo.bits = e_.bits;
   vo.threads = options_.jobs;
-  std::shared_ptr<const View> view;
+  std::shared_ptr<const View> view, moved;
   const ScenePlan plan = scene_plan(e_, scene);
-  run_with_threads(options_.jobs, [&] { view = render_view(scenes_[scene], plan.plan, vo); });
+  run_with_threads(options_.jobs, [&] {
+    view = render_view(scenes_[scene], plan.plan, vo);
+    moved = moved_view(e_, *scenes_[scene], plan.plan, vo);
+  });
   report_.render_seconds += since(t0);
   for (const auto& u : units) {
     if (u.scene != scene) continue;
-    if (u.is_reference()) write_reference(scene, *view);
-    else write_condition(u, view, plan.use_of.at({u.method, int(u.sigma)}));
+    if (u.is_reference()) write_reference(scene, *view, moved.get());
+    else write_condition(u, view, moved, plan.use_of.at({u.method, int(u.sigma)}));
   }
 }
 
@@ -307,6 +339,7 @@ void SetGenerator::finish() {
   fs::remove(journal_path_, ec);
   if (options_.contact_sheets && options_.shards == 1) write_set_contact_sheets(e_, dir_, manifest);
   if (e_.congruence && options_.shards == 1) write_congruence_figures(e_, dir_, manifest, options_.contact_sheets);
+  if (options_.shards == 1) write_coherence_figures(e_, dir_, manifest);
   report_.manifest = manifest_path_;
   progress_.finish("wrote " + manifest_path_.string() + " (" + std::to_string(entries_.size()) + " images, " +
                    format_seconds(report_.total_seconds) + ")");
@@ -375,6 +408,7 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir) {
   write_manifest(dir / "manifest.json", manifest);
   write_set_contact_sheets(e, dir, manifest);
   if (e.congruence) write_congruence_figures(e, dir, manifest, true);
+  write_coherence_figures(e, dir, manifest);
   return dir / "manifest.json";
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "render/procedural_texture.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/texture.h"
@@ -53,6 +54,18 @@ TEST(Texture, WithoutFootprintOrMagnifiedTheLookupIsLevelZeroBilinear) {
   EXPECT_EQ(texture.sample(uv, {0.5 / 16, 0}, {0, 0.9 / 16}), texture.levels()[0].bilinear(uv));
   EXPECT_DOUBLE_EQ(texture.level_of({4.0 / 16, 0}, {0, 1.0 / 16}), 2.0);
   EXPECT_DOUBLE_EQ(texture.level_of({100, 0}, {0, 0}), 4.0);  // clamped to the 1×1 level
+}
+
+TEST(ProceduralTexture, CheckerNoiseAlternatesSquaresStaysInRangeAndFollowsItsSeed) {
+  const TextureLevel a = checker_noise({64, 4, 0.35, 1}), b = checker_noise({64, 4, 0.35, 2});
+  EXPECT_EQ(a.texels, checker_noise({64, 4, 0.35, 1}).texels);
+  EXPECT_NE(a.texels, b.texels);
+  double light = 0, dark = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) light += a.at(x, y).x, dark += a.at(x + 16, y).x;
+  EXPECT_GT(light, 2 * dark);  // the square at the origin is light, its neighbour dark
+  for (const glm::vec3& t : a.texels)
+    for (int c = 0; c < 3; ++c) EXPECT_TRUE(t[c] >= 0 && t[c] <= 1);
 }
 
 // A square plane (size 2, UVs over [0,1]²) seen head-on from `distance`, lit by a constant

@@ -1,0 +1,38 @@
+#pragma once
+// Perspective coherence (docs/enhancement-methods.md, "Perspective coherence"): the same view
+// rendered twice, the second time with the camera moved a little towards its target (a dolly).
+// The second frame is reprojected into the first through the depth buffer and the two cameras;
+// the metric is the RMS difference of the enhancement layer (enhanced L* − plain L*) over the
+// surface pixels seen in both frames. An enhancement that stays attached to the surface keeps it
+// near the plain render's own reprojection error (the same RMS of plain L*).
+
+#include <cstddef>
+#include <vector>
+
+#include "core/image.h"
+#include "enhance/view.h"
+#include "render/camera.h"
+
+namespace countershade {
+
+// The camera moved towards its target by `fraction` of the eye–target distance.
+Camera dollied(const Camera& camera, double fraction);
+
+// L* of a stimulus minus L* of the view's own (plain) image, per pixel.
+std::vector<float> enhancement_layer(const View& view, const Image& display);
+// L* of the view's plain image, per pixel.
+std::vector<float> plain_lightness(const View& view);
+
+struct Reprojection {
+  double rms = 0;     // L*
+  size_t pixels = 0;  // pixels of the first frame that entered the RMS
+};
+
+// RMS of first_values(x) − moved_values(x′) over the pixels x of `first` (with all 8 neighbours on
+// a surface) whose surface point lands at x′ in `moved` where the moved frame sees that same
+// point: its four nearest pixels are surface pixels whose bilinear 1/depth matches the point's
+// within 1 %. moved_values is interpolated bilinearly there.
+Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
+                              const std::vector<float>& moved_values);
+
+}  // namespace countershade

@@ -1,0 +1,112 @@
+// Perspective coherence: a layer attached to the surface survives the dolly's reprojection, a layer
+// fixed to the screen does not; and a set that asks for the metric records it and plots it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+#include "stimuli/experiment.h"
+#include "stimuli/perspective_coherence.h"
+#include "stimuli/stimulus_set.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = std::numbers::pi;
+
+const char* kGround = R"({"version": 1,
+  "camera": {"eye": [0, 1.5, 4], "target": [0, 0.2, -6], "fov": 50, "width": 96, "height": 72},
+  "render": {"spp": 1},
+  "objects": [{"name": "ground", "shape": {"type": "plane", "size": 40, "subdivisions": 4},
+               "material": {"texture": {"size": 64, "squares": 8}, "texture_repeat": 4}}],
+  "lights": [{"type": "directional", "direction": [0.3, 1, 0.4], "irradiance": 2, "shadows": false}]})";
+
+std::shared_ptr<const View> ground_view(const fs::path& file, double dolly) {
+  auto scene = std::make_shared<Scene>(load_scene(file));
+  scene->camera = dollied(scene->camera, dolly);
+  return render_view(scene);
+}
+
+// A value per pixel from the world point the pixel sees.
+std::vector<float> attached(const View& v, const std::function<double(const glm::dvec3&)>& f) {
+  const CameraRays rays(v.scene->camera);
+  std::vector<float> out(v.depth.size(), 0.0f);
+  for (int y = 0; y < v.height(); ++y)
+    for (int x = 0; x < v.width(); ++x) {
+      const size_t i = size_t(y) * size_t(v.width()) + size_t(x);
+      if (!std::isfinite(v.depth[i])) continue;
+      const Ray r = rays.ray(x + 0.5, y + 0.5);
+      out[i] = float(f(r.origin + r.direction * (double(v.depth[i]) / glm::dot(r.direction, rays.forward()))));
+    }
+  return out;
+}
+
+std::vector<float> screen_fixed(const View& v) {
+  std::vector<float> out(v.depth.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = float(5 * std::sin(2 * kPi * double(i % size_t(v.width())) / 12));
+  return out;
+}
+
+TEST(PerspectiveCoherence, ADollyMovesTheEyeTowardsTheTarget) {
+  Camera c;
+  c.eye = {0, 0, 10};
+  c.target = {0, 0, 0};
+  EXPECT_EQ(dollied(c, 0.02).eye, glm::dvec3(0, 0, 9.8));
+  EXPECT_EQ(dollied(c, 0.02).target, c.target);
+}
+
+TEST(PerspectiveCoherence, ALayerOnTheSurfaceIsCoherentAndOneOnTheScreenIsNot) {
+  testing::TempDir dir;
+  const fs::path file = testing::write_file(dir / "ground.json", kGround);
+  const auto first = ground_view(file, 0), moved = ground_view(file, 0.02);
+  auto wave = [](const glm::dvec3& p) { return 5 * std::sin(2 * kPi * p.x / 3) * std::cos(2 * kPi * p.z / 4); };
+  const Reprojection on_surface = reprojection_rms(*first, attached(*first, wave), *moved, attached(*moved, wave));
+  const Reprojection on_screen = reprojection_rms(*first, screen_fixed(*first), *moved, screen_fixed(*moved));
+  // The ground fills the lower half of the frame; the rows nearest the horizon (depth changing
+  // fast) and the borders drop out.
+  EXPECT_GT(on_surface.pixels, size_t(96 * 72 / 4));
+  EXPECT_EQ(on_screen.pixels, on_surface.pixels);
+  EXPECT_LT(on_surface.rms, 0.05);
+  EXPECT_GT(on_screen.rms, 0.5) << "on the surface " << on_surface.rms;
+  const Reprojection same = reprojection_rms(*first, screen_fixed(*first), *first, screen_fixed(*first));
+  EXPECT_LT(same.rms, 1e-5);  // no motion: every pixel lands on itself
+}
+
+TEST(PerspectiveCoherence, ASetRecordsEveryStimulusAndPlotsIt) {
+  testing::TempDir dir;
+  testing::write_file(dir / "ground.json", kGround);
+  ::setenv("COUNTERSHADE_CACHE", (dir / "cache").c_str(), 1);
+  const fs::path file = testing::write_file(dir / "experiment.json", R"({
+    "version": 1, "name": "coherent", "seed": 3, "coherence": {"dolly": 0.02},
+    "lambda": {"min": 0.5, "max": 1, "step": 0.5},
+    "scenes": [{"name": "ground", "file": "ground.json"}],
+    "methods": [{"method": "texture-filter", "mode": "texture", "sigma": [1]},
+                {"method": "texture-filter", "mode": "post", "sigma": [1]}]})");
+  GenerateOptions options;
+  options.contact_sheets = false;
+  generate_stimulus_set(load_experiment(file), dir / "set", options);
+  EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
+  const std::string csv = testing::read_file(dir / "set/coherence.csv");
+  EXPECT_EQ(testing::count_lines(csv), 1 + 1 + 2 * 2);  // header, plain, two methods at two λ
+  EXPECT_NE(csv.find("ground,plain,,"), std::string::npos) << csv;
+  EXPECT_TRUE(fs::exists(dir / "set/coherence-ground.svg"));
+  const std::string manifest = testing::read_file(dir / "set/manifest.json");
+  EXPECT_NE(manifest.find("\"coherence_pixels\""), std::string::npos);
+}
+
+TEST(PerspectiveCoherence, ADollyOutOfRangeIsAnError) {
+  testing::TempDir dir;
+  testing::write_file(dir / "ground.json", kGround);
+  const fs::path file = testing::write_file(dir / "experiment.json", R"({
+    "version": 1, "coherence": {"dolly": 0.9}, "scenes": [{"name": "g", "file": "ground.json"}],
+    "methods": [{"method": "none"}]})");
+  EXPECT_NE(testing::input_error_of([&] { load_experiment(file); }).find("coherence.dolly"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace countershade
