@@ -5,8 +5,9 @@
 // 1) by box filtering, down to 1×1. A lookup with no footprint reads level 0 bilinearly, as a
 // texture without a pyramid would; a lookup with the footprint of a pixel (the UV derivatives
 // from ray differentials) picks the level whose texels are about a pixel wide and blends the two
-// nearest levels (trilinear filtering). Where a texture is magnified the level is 0, so the plain
-// render changes only where textures are minified.
+// nearest levels (trilinear filtering), with several such probes along the footprint where it is
+// elongated. Where a texture is magnified the level is 0 and one probe, so the plain render
+// changes only where textures are minified.
 
 #include <vector>
 
@@ -51,13 +52,24 @@ class Texture {
 
   // Level 0, bilinear (no footprint).
   glm::dvec3 sample(const glm::dvec2& uv) const { return levels_.front().bilinear(uv); }
-  // Trilinear lookup for a footprint given by the UV derivatives along the film's x and y.
+  // Filtered lookup for a footprint given by the UV derivatives along the film's x and y: up to
+  // kMaxAnisotropy trilinear probes spread along the footprint's longer axis, each at the level
+  // whose texels match the footprint's width per probe (GPU-style anisotropic filtering, so that
+  // textures seen at grazing angles are not blurred along their shorter axis too).
   glm::dvec3 sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
-  // The (fractional) level for that footprint: log2 of its longer side in level-0 texels,
-  // clamped to [0, levels − 1].
+  // The (fractional) level of that lookup: log2 of the width each probe covers in level-0 texels
+  // (the longer side over the number of probes, at least the shorter side), clamped to
+  // [0, levels − 1].
   double level_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
+  // The number of probes: the footprint's longer side over its shorter, rounded, at most
+  // kMaxAnisotropy (1 where the texture is magnified).
+  int probes_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
+
+  static constexpr int kMaxAnisotropy = 8;
 
  private:
+  glm::dvec3 trilinear(const glm::dvec2& uv, double level) const;
+
   std::vector<TextureLevel> levels_{TextureLevel{1, 1, {glm::vec3(0.0f)}}};
 };
 

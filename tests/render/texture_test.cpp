@@ -52,8 +52,23 @@ TEST(Texture, WithoutFootprintOrMagnifiedTheLookupIsLevelZeroBilinear) {
   const glm::dvec2 uv(0.3, 0.71);
   EXPECT_EQ(texture.sample(uv, {0, 0}, {0, 0}), texture.levels()[0].bilinear(uv));
   EXPECT_EQ(texture.sample(uv, {0.5 / 16, 0}, {0, 0.9 / 16}), texture.levels()[0].bilinear(uv));
-  EXPECT_DOUBLE_EQ(texture.level_of({4.0 / 16, 0}, {0, 1.0 / 16}), 2.0);
-  EXPECT_DOUBLE_EQ(texture.level_of({100, 0}, {0, 0}), 4.0);  // clamped to the 1×1 level
+  EXPECT_DOUBLE_EQ(texture.level_of({4.0 / 16, 0}, {0, 4.0 / 16}), 2.0);
+  EXPECT_DOUBLE_EQ(texture.level_of({100, 0}, {0, 100}), 4.0);  // clamped to the 1×1 level
+}
+
+// An elongated footprint takes several probes along its longer axis at the level of its shorter.
+TEST(Texture, AnElongatedFootprintIsFilteredAnisotropically) {
+  const Texture texture(pattern(64, 64, [](int x, int y) { return float(((x / 2) ^ (y / 2)) & 1); }));
+  EXPECT_EQ(texture.probes_of({8.0 / 64, 0}, {0, 2.0 / 64}), 4);
+  EXPECT_DOUBLE_EQ(texture.level_of({8.0 / 64, 0}, {0, 2.0 / 64}), 1.0);
+  EXPECT_EQ(texture.probes_of({64.0 / 64, 0}, {0, 1.0 / 64}), Texture::kMaxAnisotropy);
+  EXPECT_DOUBLE_EQ(texture.level_of({64.0 / 64, 0}, {0, 1.0 / 64}), 3.0);  // 64 texels over 8 probes
+  // Four probes at level 1 along x, 2 texels apart: their mean.
+  const glm::dvec2 uv(0.5, 0.5), dx(8.0 / 64, 0);
+  glm::dvec3 mean(0.0);
+  for (int i = 0; i < 4; ++i) mean += texture.levels()[1].bilinear(uv + dx * ((i + 0.5) / 4 - 0.5)) / 4.0;
+  const glm::dvec3 got = texture.sample(uv, dx, {0, 2.0 / 64});
+  EXPECT_NEAR(got.x, mean.x, 1e-12);
 }
 
 TEST(ProceduralTexture, CheckerNoiseAlternatesSquaresStaysInRangeAndFollowsItsSeed) {

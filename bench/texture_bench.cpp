@@ -1,0 +1,87 @@
+// Mip-mapped textures and texture-space filtering (docs/performance.md):
+//   build/bin/countershade_bench --benchmark_filter='Texture'
+// - TexturePyramidBuild: the box-filtered pyramid of a 2048² texture.
+// - TextureFilterPyramid/{unsharp,bilateral,dog}: one filter over every level of that pyramid
+//   (mip mode, σ = 2 texels, no cache): the work done once per (texture, filter, σ).
+// - TextureLookup{Single,Trilinear}: one lookup at random UVs, level 0 bilinear against trilinear
+//   with a footprint of 2.8 texels (level 1.5); their ratio is the cost of mip-mapping a lookup.
+// - TextureFilterExtraLambda: one λ of texture-filter in mip mode on the semmo2015 ground
+//   (512×384): the filtered pyramid at that λ plus the render with it, against the plain render
+//   (counter vs_render).
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <random>
+
+#include "enhance/filtered_pyramid.h"
+#include "enhance/method.h"
+#include "enhance/view.h"
+#include "render/procedural_texture.h"
+#include "stimuli/experiment.h"
+
+namespace countershade {
+namespace {
+
+const TextureLevel& texture_2048() {
+  static const TextureLevel level = checker_noise({2048, 32, 0.35, 1});
+  return level;
+}
+
+void BM_TexturePyramidBuild(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(Texture(texture_2048()));
+}
+BENCHMARK(BM_TexturePyramidBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_TextureFilterPyramid(benchmark::State& state) {
+  const auto plain = std::make_shared<const Texture>(texture_2048());
+  LightnessFilter f;
+  f.kind = FilterKind(state.range(0));
+  state.SetLabel(filter_name(f.kind));
+  for (auto _ : state) benchmark::DoNotOptimize(filter_pyramid(plain, TextureMode::mip, f, {}, std::nullopt));
+}
+BENCHMARK(BM_TextureFilterPyramid)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+void lookups(benchmark::State& state, const glm::dvec2& footprint) {
+  static const Texture texture(texture_2048());
+  std::mt19937_64 random(1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<glm::dvec2> uvs(4096);
+  for (auto& uv : uvs) uv = {u(random), u(random)};
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(texture.sample(uvs[i], footprint, glm::dvec2(0.0)));
+    i = (i + 1) & 4095;
+  }
+}
+void BM_TextureLookupSingle(benchmark::State& s) { lookups(s, glm::dvec2(0.0)); }
+void BM_TextureLookupTrilinear(benchmark::State& s) { lookups(s, glm::dvec2(2.83 / 2048, 0.0)); }
+BENCHMARK(BM_TextureLookupSingle);
+BENCHMARK(BM_TextureLookupTrilinear);
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void BM_TextureFilterExtraLambda(benchmark::State& state) {
+  const Experiment e = load_experiment(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/semmo2015/experiment.json");
+  const auto scene = std::make_shared<const Scene>(load_experiment_scene(e, e.scenes[0]));
+  const nlohmann::json parameters{{"mode", "mip"}, {"filter", "unsharp"}, {"sigma", 1}};
+  double render = 0, compose = 0;
+  for (auto _ : state) {
+    auto t = std::chrono::steady_clock::now();
+    const auto view = render_view(scene);
+    render += seconds_since(t);
+    const auto prepared = prepare_method("texture-filter", view, parameters);
+    t = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(prepared->compose(1.0));
+    compose += seconds_since(t);
+  }
+  state.counters["render_s"] = render / double(state.iterations());
+  state.counters["compose_s"] = compose / double(state.iterations());
+  state.counters["vs_render"] = compose / render;
+}
+BENCHMARK(BM_TextureFilterExtraLambda)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+
+}  // namespace
+}  // namespace countershade
