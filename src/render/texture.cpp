@@ -79,14 +79,16 @@ TextureLevel downsample(const TextureLevel& finer) {
   out.width = std::max(1, finer.width / 2);
   out.height = std::max(1, finer.height / 2);
   out.texels.resize(size_t(out.width) * size_t(out.height));
+  std::vector<Span> columns(size_t(out.width));
+  for (int x = 0; x < out.width; ++x) columns[size_t(x)] = span(x, finer.width, out.width);
   for (int y = 0; y < out.height; ++y) {
     const Span sy = span(y, finer.height, out.height);
     for (int x = 0; x < out.width; ++x) {
-      const Span sx = span(x, finer.width, out.width);
+      const Span& sx = columns[size_t(x)];
       glm::dvec3 sum(0.0);
       for (int j = 0; j < sy.count; ++j)
         for (int i = 0; i < sx.count; ++i)
-          sum += sy.weight[j] * sx.weight[i] * glm::dvec3(finer.at(sx.first + i, sy.first + j));
+          sum += (sy.weight[j] * sx.weight[i]) * glm::dvec3(finer.at(sx.first + i, sy.first + j));
       out.texels[size_t(y) * size_t(out.width) + size_t(x)] = glm::vec3(sum);
     }
   }
