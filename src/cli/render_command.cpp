@@ -117,6 +117,7 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
   const bool enhanced = method.method->enhances();
   const std::string ext = check_output(args, enhanced);
   std::shared_ptr<const Scene> scene = load_render_scene(args, method.request);
+  method.method->check_scene(*scene, *method.parameters);
 
   auto start = std::chrono::steady_clock::now();
   Progress progress("render");

@@ -26,7 +26,8 @@ std::vector<double> nice_ticks(double lo, double hi) {
 
 const std::string& plot_color(size_t index) {
   static const std::vector<std::string> palette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                                   "#E69F00", "#56B4E9", "#000000", "#F0E442"};
+                                                   "#E69F00", "#56B4E9", "#000000", "#F0E442",
+                                                   "#882255", "#44AA99", "#999933", "#AA4499"};
   return palette[index % palette.size()];
 }
 

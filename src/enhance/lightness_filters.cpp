@@ -88,6 +88,10 @@ LightnessFilter read_lightness_filter(const ParameterBag& bag) {
   for (const char* key : {"tau", "phi"})
     if (bag.has(key) && f.kind != FilterKind::dog) bag.fail(key, "applies to filter dog only");
   f.sigma = bag.number_in("sigma", 2.0, 0.1, 256.0);
+  // The bilateral window is (2⌈3σ⌉ + 1)² samples per sample: σ = 8 already costs 2401.
+  if (f.kind == FilterKind::bilateral && f.sigma > kMaxBilateralSigma)
+    bag.fail("sigma", "must be at most " + std::to_string(int(kMaxBilateralSigma)) +
+                          " for filter bilateral (its cost grows with σ²)");
   f.sigma_r = bag.number_in("sigma_r", 10.0, 0.01, 1000.0);
   f.tau = bag.number_in("tau", 1.0, 0.0, 100.0);
   f.phi = bag.number_in("phi", 0.5, 1e-3, 100.0);

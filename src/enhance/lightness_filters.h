@@ -16,6 +16,7 @@
 namespace countershade {
 
 enum class FilterKind { unsharp, bilateral, dog };
+inline constexpr double kMaxBilateralSigma = 8;
 enum class Borders { wrap, clamp };
 
 struct LightnessFilter {

@@ -134,6 +134,9 @@ class EnhancementMethod {
   }
   // The folder name of its stimuli in a set, e.g. "depth-usm-darken" (default: the name).
   virtual std::string label(const MethodParameters&) const { return name(); }
+  // Checks, before anything renders, that `scene` has what the method needs (e.g. a texture);
+  // throws InputError naming the method and what is missing. Default: anything goes.
+  virtual void check_scene(const Scene&, const MethodParameters&) const {}
   // The once-per-(view, σ) work. Throws InputError when the view lacks what the method needs.
   virtual std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
                                                        const MethodParameters& parameters) const = 0;

@@ -122,6 +122,13 @@ class TextureFilterMethod final : public EnhancementMethod {
     return std::make_shared<LightnessTimes>(1.0);  // as usm2d: the detail carries the pixel's noise
   }
 
+  void check_scene(const Scene& scene, const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<TextureFilterParameters>(parameters);
+    if (p.mode != FilterMode::post && scene_textures(scene).empty())
+      throw InputError(name() + " in mode " + mode_name(p.mode) + " filters textures, and no object of " +
+                       scene.file.string() + " has one (mode post filters the image)");
+  }
+
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
                                                const MethodParameters& parameters) const override {
     const auto& p = parameters_as<TextureFilterParameters>(parameters);
@@ -154,10 +161,8 @@ class TextureFilterMethod final : public EnhancementMethod {
   std::unique_ptr<PreparedEnhancement> prepare_textures(const PrepareContext& context,
                                                         const TextureFilterParameters& p) const {
     require_scene(context, name());
+    check_scene(*context.view->scene, p);
     const auto textures = scene_textures(*context.view->scene);
-    if (textures.empty())
-      throw InputError(name() + " in mode " + mode_name(p.mode) + " filters textures, and no object of " +
-                       context.view->scene->file.string() + " has one (mode post filters the image)");
     const TextureMode mode = p.mode == FilterMode::mip ? TextureMode::mip : TextureMode::texture;
     std::vector<FilteredPyramid> pyramids;
     for (const auto& t : textures)

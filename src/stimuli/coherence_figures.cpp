@@ -28,6 +28,8 @@ void write_table(const std::filesystem::path& path, const Experiment& e, const s
   write_text_atomically(path, csv.str());
 }
 
+// One line per condition: a colour per method label, solid for its first σ and dashed for the
+// others; the plain render's reprojection error grey and dashed across the grid.
 void write_plot(const std::filesystem::path& path, const Experiment& e, const std::string& scene,
                 const std::vector<const ManifestEntry*>& entries) {
   LinePlot plot;
@@ -35,15 +37,19 @@ void write_plot(const std::filesystem::path& path, const Experiment& e, const st
                format_value(100 * *e.coherence_dolly) + " % dolly";
   plot.x_label = "lambda";
   plot.y_label = "RMS change of enhanced minus plain L*";
-  plot.width = 900;
-  std::map<std::string, size_t> index_of;
+  plot.width = 960;
+  std::map<std::string, size_t> index_of, label_colour, sigmas_of_label;
   for (const ManifestEntry* s : entries) {
     if (s->scene != scene) continue;
-    const std::string name = condition_of(e, *s);
-    auto [it, added] = index_of.emplace(name, plot.series.size());
-    if (added) plot.series.push_back({name, {}, {}, plot_color(plot.series.size()), s->is_reference()});
+    auto [it, added] = index_of.emplace(condition_of(e, *s), plot.series.size());
+    if (added) {
+      const bool plain = s->is_reference();
+      const size_t colour = label_colour.emplace(s->label, label_colour.size()).first->second;
+      const size_t sigma = plain ? 0 : sigmas_of_label[s->label]++;
+      plot.series.push_back({it->first, {}, {}, plain ? "#777777" : plot_color(colour), plain || sigma > 0});
+    }
     PlotSeries& series = plot.series[it->second];
-    if (s->is_reference()) {  // the floor: a dashed line across the grid
+    if (s->is_reference()) {
       series.x = {e.lambda.min, e.lambda.max};
       series.y = {coherence_of(*s), coherence_of(*s)};
     } else {
@@ -51,6 +57,7 @@ void write_plot(const std::filesystem::path& path, const Experiment& e, const st
       series.y.push_back(coherence_of(*s));
     }
   }
+  plot.height = std::max(400, 110 + 18 * int(plot.series.size()));  // the legend fits
   plot.write(path);
 }
 

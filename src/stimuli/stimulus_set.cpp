@@ -351,6 +351,9 @@ GenerateReport SetGenerator::run() {
   for (size_t s = 0; s < e_.scenes.size(); ++s) {
     auto scene = std::make_shared<Scene>(load_experiment_scene(e_, e_.scenes[s]));
     apply_request(*scene, scene_request(e_, s));
+    for (const ExperimentMethod& m : e_.methods)
+      if (m.applies_to(e_.scenes[s].name))
+        for (const auto& parameters : m.parameters) m.method->check_scene(*scene, *parameters);
     scenes_.push_back(std::move(scene));
   }
   const std::vector<SetUnit> units = shard_units();

@@ -9,6 +9,8 @@
 #include "core/file_bytes.h"
 #include "enhance/filtered_pyramid.h"
 #include "enhance/method.h"
+#include "stimuli/experiment.h"
+#include "stimuli/stimulus_set.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -116,6 +118,19 @@ TEST(TextureFilter, KeysOfAnotherFilterOrModeAreErrors) {
             "texture-filter: parameters.sigma_r: applies to filter bilateral only");
   EXPECT_EQ(testing::input_error_of([] { parse_method("texture-filter", {{"mode", "post"}, {"level_strengths", {1, 2}}}); }),
             "texture-filter: parameters.level_strengths: applies to mode mip only");
+  EXPECT_EQ(testing::input_error_of([] { parse_method("texture-filter", {{"filter", "bilateral"}, {"sigma", 20}}); }),
+            "texture-filter: parameters.sigma: must be at most 8 for filter bilateral (its cost grows with σ²)");
+}
+
+TEST(TextureFilter, AnUntexturedSceneIsRefusedBeforeAnythingRenders) {
+  testing::TempDir dir;
+  testing::write_file(dir / "ball.json", R"({"version": 1, "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 16, "height": 12},
+    "objects": [{"shape": {"type": "sphere"}}], "lights": [{"type": "directional", "direction": [0, 1, 1]}]})");
+  const auto file = testing::write_file(dir / "e.json", R"({"version": 1, "scenes": [{"name": "ball", "file": "ball.json"}],
+    "methods": [{"method": "texture-filter", "sigma": [1]}]})");
+  const std::string error = testing::input_error_of([&] { generate_stimulus_set(load_experiment(file), dir / "set", {}); });
+  EXPECT_NE(error.find("texture-filter in mode mip filters textures, and no object of"), std::string::npos) << error;
+  EXPECT_FALSE(std::filesystem::exists(dir / "set/ball"));
 }
 
 }  // namespace
