@@ -78,7 +78,7 @@ class PixelSampler {
       radiance = in_.shader.background(ray.direction);
     } else {
       SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
-      if (in_.scene.objects[hit->object].mesh.has_uvs())  // the footprint picks the texture's mip level
+      if (in_.shader.textured(hit->object))  // the footprint picks the texture's mip level
         set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
       radiance = in_.shader.radiance(sp, -ray.direction, true, sampler, counts);
       const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};

@@ -42,6 +42,11 @@ class Shader {
   glm::dvec3 background(const glm::dvec3& direction) const;
 
   glm::dvec3 albedo(const SurfacePoint& point) const;
+  // Whether `object`'s albedo may come from a texture (its material's, or the texture hook's), so
+  // that its lookups need a footprint.
+  bool textured(unsigned object) const {
+    return scene_.objects[object].mesh.has_uvs() && (texture_hook_ || scene_.objects[object].material.texture);
+  }
 
  private:
   struct Context;  // one shading point's inputs
