@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "cli/commands.h"
 #include "cli/method_options.h"
@@ -19,6 +20,7 @@
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "render/scene_animation.h"
 
 namespace countershade::cli {
 namespace {
@@ -40,6 +42,7 @@ struct RenderArgs {
   std::optional<double> exposure, noise;
   int bits = 8;
   std::string aux;
+  std::string frames;  // "A:B": frames of the scene's animation
 };
 
 // Writes the G-buffer and the sampling as EXR files a researcher can open: depth, normal, object
@@ -112,15 +115,10 @@ std::string render_summary(const std::string& output, const View& view, const No
   return out + ")";
 }
 
-void run(const RenderArgs& args, const CLI::App* cmd) {
-  const ResolvedMethod method = resolve_method(cmd, args.method);
-  const bool enhanced = method.method->enhances();
-  const std::string ext = check_output(args, enhanced);
-  std::shared_ptr<const Scene> scene = load_render_scene(args, method.request);
-  method.method->check_scene(*scene, *method.parameters);
-
+// Renders `scene` (enhanced as asked) to `output`; returns the summary line.
+std::string render_one(const RenderArgs& args, const ResolvedMethod& method, std::shared_ptr<const Scene> scene,
+                       const std::string& output, const std::string& ext, Progress& progress) {
   auto start = std::chrono::steady_clock::now();
-  Progress progress("render");
   ViewOptions vo;
   vo.bits = args.bits;
   vo.threads = args.threads.value_or(0);
@@ -134,19 +132,59 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
   std::string details;
   NoiseSummary noise = summarize_noise(view->render.noise);
   if (ext == ".exr") {
-    write_image(args.output, view->render.radiance);
+    write_image(output, view->render.radiance);
   } else {
     auto prepared = method.method->prepare(make_use_context(view, 0, vo.threads), *method.parameters);
     Composed stimulus = prepared->compose(args.method.lambda);
-    write_image(args.output, stimulus.display, {args.bits});
+    write_image(output, stimulus.display, {args.bits});
     noise = summarize_noise(stimulus_noise(*view, prepared->noise(args.method.lambda), stimulus.display));
     if (!args.aux.empty()) write_auxiliary(args.aux, *prepared);
-    if (enhanced)
+    if (method.method->enhances())
       details = ", " + method.method->name() + " λ=" + format_number(args.method.lambda) + ", " +
                 std::to_string(stimulus.clipped_pixels) + " clipped pixels, " + prepared->parameters().dump();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  progress.finish(render_summary(args.output, *view, noise, seconds) + details);
+  return render_summary(output, *view, noise, seconds) + details;
+}
+
+// "A:B" → the frames A … B of the scene's animation (InputError naming --frames).
+std::pair<int, int> frame_range(const std::string& text, const Scene& scene) {
+  if (!scene.animation) throw InputError("--frames: " + scene.file.string() + " has no animation");
+  const int count = scene.animation->frame_count();
+  int a = 0, b = 0;
+  char colon = 0;
+  std::istringstream in(text);
+  if (!(in >> a >> colon >> b) || colon != ':' || !(in >> std::ws).eof() || a < 0 || b < a || b >= count)
+    throw InputError("--frames: expected A:B with 0 ≤ A ≤ B < " + std::to_string(count) + " (the animation's frames), got '" +
+                     text + "'");
+  return {a, b};
+}
+
+// OUT.png → OUT-0007.png for frame 7.
+std::string frame_path(const std::string& output, int frame) {
+  const std::filesystem::path p(output);
+  char number[16];
+  std::snprintf(number, sizeof number, "-%04d", frame);
+  return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+
+void run(const RenderArgs& args, const CLI::App* cmd) {
+  const ResolvedMethod method = resolve_method(cmd, args.method);
+  const std::string ext = check_output(args, method.method->enhances());
+  std::shared_ptr<const Scene> scene = load_render_scene(args, method.request);
+  method.method->check_scene(*scene, *method.parameters);
+  if (args.frames.empty()) {
+    Progress progress("render");
+    progress.finish(render_one(args, method, scene, args.output, ext, progress));
+    return;
+  }
+  if (!args.aux.empty()) throw InputError("--aux: not with --frames (render one frame with its own --aux)");
+  const auto [first, last] = frame_range(args.frames, *scene);
+  for (int f = first; f <= last; ++f) {
+    Progress progress("render frame " + std::to_string(f));
+    auto posed = std::make_shared<const Scene>(scene_at(*scene, scene->animation->time_of(f)));
+    progress.finish(render_one(args, method, posed, frame_path(args.output, f), ext, progress));
+  }
 }
 
 }  // namespace
@@ -169,6 +207,8 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::Range(0ll, 1ll << 53));
   cmd->add_option("--exposure", args->exposure, "Override the exposure in stops")->check(CLI::Range(-30.0, 30.0));
   cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth")->check(CLI::IsMember({8, 16}))->capture_default_str();
+  cmd->add_option("--frames", args->frames,
+                  "Render frames A:B of the scene's animation, numbered into OUT (OUT-0000.png, ...)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->add_option("--aux", args->aux,
                   "Also write depth.exr, normal.exr, object_id.exr, spp.exr, noise.exr (L* per pixel) and the "

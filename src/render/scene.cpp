@@ -20,6 +20,7 @@
 #include "mesh/primitives.h"
 #include "mesh/refine.h"
 #include "render/procedural_texture.h"
+#include "render/scene_animation.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
@@ -50,8 +51,10 @@ class SceneLoader {
     if (root.has("display")) scene.display = display(root.object("display"));
     for (const auto& o : root.objects("objects")) scene.objects.push_back(object(o));
     if (scene.objects.empty()) root.fail("objects", "a scene needs at least one object");
+    std::vector<LightRef> light_refs;
     if (root.has("lights"))
-      for (const auto& l : root.objects("lights")) light(l, scene);
+      for (const auto& l : root.objects("lights")) light_refs.push_back(light(l, scene));
+    if (root.has("animation")) scene.animation = read_animation(root.object("animation"), scene, light_refs);
     if (root.has("description")) root.string("description");
     root.finish();
     return scene;
@@ -371,7 +374,17 @@ class SceneLoader {
     for (auto& p : mesh.positions) p = (p - glm::vec3(centre.x, box.lo.y, centre.z)) * s;
   }
 
-  void light(const JsonObject& o, Scene& scene) {
+  // Adds the light to the scene; returns where it went (for the animation's references).
+  LightRef light(const JsonObject& o, Scene& scene) {
+    add_light(o, scene);
+    if (!scene.directional_lights.empty() && o.value().value("type", "") == "directional")
+      return {LightRef::Kind::directional, scene.directional_lights.size() - 1};
+    if (!scene.point_lights.empty() && o.value().value("type", "") == "point")
+      return {LightRef::Kind::point, scene.point_lights.size() - 1};
+    return {};
+  }
+
+  void add_light(const JsonObject& o, Scene& scene) {
     std::string type = o.choice("type", "", {"directional", "point", "environment", "ambient"});
     if (type == "directional") {
       DirectionalLight l;

@@ -16,6 +16,7 @@
 #include "core/sampler.h"
 #include "mesh/surface_graph.h"
 #include "mesh/triangle_mesh.h"
+#include "render/animation.h"
 #include "render/camera.h"
 #include "render/environment.h"
 #include "render/texture.h"
@@ -116,6 +117,7 @@ struct Scene {
   AmbientLight ambient;
   Display display;
   RenderSettings settings;
+  std::optional<Animation> animation;  // moving stimuli: scene_at (render/scene_animation.h) poses it
 
   BoundingBox bounds() const;
 };

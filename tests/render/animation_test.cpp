@@ -1,0 +1,120 @@
+// Animation paths: keys are hit exactly, Catmull–Rom is C¹, bad paths are refused with the key
+// path, and a posed scene renders like the same scene written still.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "render/scene_animation.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+const std::vector<double> kTimes = {0.0, 0.3, 1.1, 1.5, 2.0};
+const std::vector<glm::dvec3> kValues = {{0, 0, 0}, {1, 2, -1}, {3, -1, 0.5}, {2, 2, 2}, {5, 0, 1}};
+
+TEST(Track, KeysAreHitExactly) {
+  for (Interpolation mode : {Interpolation::linear, Interpolation::catmull_rom}) {
+    const Track track(kTimes, kValues, mode);
+    for (size_t k = 0; k < kTimes.size(); ++k) EXPECT_EQ(track.at(kTimes[k]), kValues[k]) << k;
+    EXPECT_EQ(track.at(-1.0), kValues.front());  // held before the first key
+    EXPECT_EQ(track.at(9.0), kValues.back());    // and after the last
+  }
+  EXPECT_EQ(Track(kTimes, kValues, Interpolation::linear).at(0.15), glm::dvec3(0.5, 1, -0.5));
+}
+
+// The one-sided derivatives agree at every interior key (and the value is continuous there).
+TEST(Track, CatmullRomIsContinuouslyDifferentiable) {
+  const Track track(kTimes, kValues, Interpolation::catmull_rom);
+  const double h = 1e-6;
+  for (size_t k = 1; k + 1 < kTimes.size(); ++k) {
+    const double t = kTimes[k];
+    const glm::dvec3 left = (track.at(t) - track.at(t - h)) / h, right = (track.at(t + h) - track.at(t)) / h;
+    EXPECT_LT(glm::length(left - right), 1e-4 * (1 + glm::length(left))) << "key " << k;
+    EXPECT_LT(glm::length(track.at(t - h) - track.at(t)), 1e-4);
+  }
+  // A linear path has corners there: the test can tell.
+  const Track linear(kTimes, kValues, Interpolation::linear);
+  const double t = kTimes[1];
+  EXPECT_GT(glm::length((linear.at(t) - linear.at(t - h)) / h - (linear.at(t + h) - linear.at(t)) / h), 1.0);
+}
+
+TEST(Track, FewKeysOrTimesThatDoNotIncreaseAreRefused) {
+  EXPECT_THROW(Track({0.0}, {{1, 1, 1}}, Interpolation::linear), std::invalid_argument);
+  EXPECT_THROW(Track({0.0, 1.0, 1.0}, {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, Interpolation::linear), std::invalid_argument);
+  EXPECT_THROW(Track({0.0, 2.0, 1.0}, {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, Interpolation::linear), std::invalid_argument);
+}
+
+std::string scene_json(const std::string& eye, const std::string& animation) {
+  return R"({"version": 1,
+    "camera": {"eye": )" + eye + R"(, "target": [0, 0.3, 0], "fov": 35, "width": 48, "height": 36},
+    "render": {"spp": 2},
+    "objects": [{"name": "ground", "shape": {"type": "plane", "size": 6}},
+                {"name": "box", "shape": {"type": "box", "size": [0.6, 0.6, 0.6]}, "transform": {"translate": [0, 0.3, 0]}}],
+    "lights": [{"type": "directional", "direction": [0.4, 1, 0.3], "irradiance": 2.5}])" +
+         (animation.empty() ? "" : ", \"animation\": " + animation) + "}";
+}
+
+const char* kOrbit = R"({"duration": 1, "fps": 2,
+  "camera": {"eye": {"times": [0, 1], "values": [[0, 1, 4], [4, 1, 0]], "interpolation": "catmull-rom"}},
+  "lights": [{"light": 0, "direction": {"times": [0, 1], "values": [[0.4, 1, 0.3], [0, 2, 0]]}}],
+  "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]]}}]})";
+
+TEST(SceneAnimation, ThePosedSceneMovesCameraLightsAndObjects) {
+  testing::TempDir dir;
+  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
+  ASSERT_TRUE(base.animation);
+  EXPECT_EQ(base.animation->frame_count(), 3);
+  const Scene end = scene_at(base, 1.0);
+  EXPECT_EQ(end.camera.eye, glm::dvec3(4, 1, 0));
+  EXPECT_LT(glm::length(end.directional_lights[0].direction - glm::dvec3(0, 1, 0)), 1e-12);  // normalised
+  const glm::dvec3 moved = glm::dvec3(end.objects[1].mesh.positions[0]) - glm::dvec3(base.objects[1].mesh.positions[0]);
+  EXPECT_LT(glm::length(moved - glm::dvec3(1, 0, 0)), 1e-6);
+  EXPECT_EQ(end.objects[0].mesh.positions, base.objects[0].mesh.positions);  // the ground stays
+}
+
+TEST(SceneAnimation, BadPathsNameTheKey) {
+  testing::TempDir dir;
+  auto error = [&](const std::string& animation) {
+    return testing::input_error_of([&] { load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", animation))); });
+  };
+  EXPECT_NE(error(R"({"camera": {"eye": {"times": [0, 0.5, 0.5], "values": [[0,1,4], [1,1,4], [2,1,4]]}}})")
+                .find("animation.camera.eye.times: times must increase strictly (key 3)"), std::string::npos);
+  EXPECT_NE(error(R"({"camera": {"fov": {"times": [0], "values": [30]}}})")
+                .find("animation.camera.fov.times: a path needs at least two keys"), std::string::npos);
+  EXPECT_NE(error(R"({"objects": [{"name": "cube", "translate": {"times": [0, 1], "values": [[0,0,0], [1,0,0]]}}]})")
+                .find("animation.objects[0].name: no object of the scene is called 'cube'"), std::string::npos);
+  EXPECT_NE(error(R"({"lights": [{"light": 0, "position": {"times": [0, 1], "values": [[0,0,0], [1,0,0]]}}]})")
+                .find("animation.lights[0].position: applies to a point light only"), std::string::npos);
+  EXPECT_NE(error(R"({"duration": 1, "camera": {"eye": {"times": [0, 2], "values": [[0,1,4], [1,1,4]]}}})")
+                .find("animation.camera.eye.times: must lie in [0, duration]"), std::string::npos);
+  EXPECT_NE(error(R"({"camera": {"eye": {"times": [0, 1], "values": [[0,1,4], [1,1,4]], "ease": 1}}})")
+                .find("animation.camera.eye.ease: unknown key"), std::string::npos);
+}
+
+// Frame 2 of the orbit (t = 1) is the scene with every path at its last key, written still.
+TEST(SceneAnimation, RenderFramesWritesNumberedFramesLikeStillScenes) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
+  const auto r = testing::run_cli("render " + (dir / "orbit.json").string() + " -o " + (dir / "f.png").string() +
+                                  " --frames 1:2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f-0000.png"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "f-0001.png"));
+  std::string still = scene_json("[4, 1, 0]", "");
+  still.replace(still.find("\"direction\": [0.4, 1, 0.3]"), 26, "\"direction\": [0, 1, 0]");
+  still.replace(still.find("\"translate\": [0, 0.3, 0]"), 24, "\"translate\": [1, 0.3, 0]");
+  testing::write_file(dir / "still.json", still);
+  ASSERT_EQ(testing::run_cli("render " + (dir / "still.json").string() + " -o " + (dir / "still.png").string()).exit_code, 0);
+  EXPECT_EQ(testing::read_file(dir / "f-0002.png"), testing::read_file(dir / "still.png"));
+  EXPECT_NE(testing::read_file(dir / "f-0001.png"), testing::read_file(dir / "still.png"));
+  const auto bad = testing::run_cli("render " + (dir / "still.json").string() + " -o " + (dir / "x.png").string() + " --frames 0:0");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("--frames: " + (dir / "still.json").string() + " has no animation"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace countershade
