@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   countershade::cli::add_audit_command(app);
   countershade::cli::add_congruence_command(app);
   countershade::cli::add_image_filter_command(app);
+  countershade::cli::add_flicker_command(app);
   countershade::cli::reject_non_finite_numbers(app);
 
   // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.

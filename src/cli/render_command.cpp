@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 #include "cli/commands.h"
+#include "cli/frame_range.h"
 #include "cli/method_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -147,19 +147,6 @@ std::string render_one(const RenderArgs& args, const ResolvedMethod& method, std
   return render_summary(output, *view, noise, seconds) + details;
 }
 
-// "A:B" → the frames A … B of the scene's animation (InputError naming --frames).
-std::pair<int, int> frame_range(const std::string& text, const Scene& scene) {
-  if (!scene.animation) throw InputError("--frames: " + scene.file.string() + " has no animation");
-  const int count = scene.animation->frame_count();
-  int a = 0, b = 0;
-  char colon = 0;
-  std::istringstream in(text);
-  if (!(in >> a >> colon >> b) || colon != ':' || !(in >> std::ws).eof() || a < 0 || b < a || b >= count)
-    throw InputError("--frames: expected A:B with 0 ≤ A ≤ B < " + std::to_string(count) + " (the animation's frames), got '" +
-                     text + "'");
-  return {a, b};
-}
-
 // OUT.png → OUT-0007.png for frame 7.
 std::string frame_path(const std::string& output, int frame) {
   const std::filesystem::path p(output);
@@ -179,7 +166,7 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
     return;
   }
   if (!args.aux.empty()) throw InputError("--aux: not with --frames (render one frame with its own --aux)");
-  const auto [first, last] = frame_range(args.frames, *scene);
+  const auto [first, last] = frame_range(args.frames, *scene, 0);
   for (int f = first; f <= last; ++f) {
     Progress progress("render frame " + std::to_string(f));
     auto posed = std::make_shared<const Scene>(scene_at(*scene, scene->animation->time_of(f)));

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
@@ -114,6 +115,13 @@ void move_light(const LightPath& path, double t, Scene& scene) {
 }
 
 }  // namespace
+
+glm::dvec3 carry_point(const Scene& base, size_t object, double from, double to, const glm::dvec3& point) {
+  if (!base.animation) return point;
+  for (const ObjectPath& o : base.animation->objects)
+    if (o.object == object) return glm::dvec3(motion(o, to) * glm::inverse(motion(o, from)) * glm::dvec4(point, 1.0));
+  return point;
+}
 
 Scene scene_at(const Scene& base, double time) {
   Scene scene = base;

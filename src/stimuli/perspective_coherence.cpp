@@ -75,7 +75,7 @@ std::vector<float> enhancement_layer(const View& view, const Image& display) {
 }
 
 Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
-                              const std::vector<float>& moved_values) {
+                              const std::vector<float>& moved_values, const CarryPoint& carry) {
   const CameraRays a(first.scene->camera), b(moved.scene->camera);
   double sum = 0;
   size_t count = 0;
@@ -84,7 +84,8 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
       if (!interior(first, x, y)) continue;
       const size_t i = size_t(y) * size_t(first.width()) + size_t(x);
       const Ray ray = a.ray(x + 0.5, y + 0.5);
-      const glm::dvec3 p = ray.origin + ray.direction * (double(first.depth[i]) / glm::dot(ray.direction, a.forward()));
+      glm::dvec3 p = ray.origin + ray.direction * (double(first.depth[i]) / glm::dot(ray.direction, a.forward()));
+      if (carry) p = carry(p, first.render.gbuffer.object.empty() ? -1 : first.render.gbuffer.object[i]);
       double value;
       if (b.eye_depth(p) <= 0 || !lookup(moved, b.film_position(p), b.eye_depth(p), moved_values, value)) continue;
       const double d = double(first_values[i]) - value;

@@ -7,7 +7,10 @@
 // near the plain render's own reprojection error (the same RMS of plain L*).
 
 #include <cstddef>
+#include <functional>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "enhance/view.h"
@@ -32,7 +35,10 @@ struct Reprojection {
 // a surface) whose surface point lands at x′ in `moved` where the moved frame sees that same
 // point: its four nearest pixels are surface pixels whose bilinear 1/depth matches the point's
 // within 1 %. moved_values is interpolated bilinearly there.
+// `carry` maps a world point of object `object` in the first frame to where that surface point
+// is in the moved frame (default: it stays; moving objects: their motion between the frames).
+using CarryPoint = std::function<glm::dvec3(const glm::dvec3& point, int object)>;
 Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
-                              const std::vector<float>& moved_values);
+                              const std::vector<float>& moved_values, const CarryPoint& carry = {});
 
 }  // namespace countershade

@@ -7,7 +7,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "enhance/view.h"
+#include "render/camera.h"
 #include "render/scene_animation.h"
+#include "stimuli/perspective_coherence.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -114,6 +117,50 @@ TEST(SceneAnimation, RenderFramesWritesNumberedFramesLikeStillScenes) {
   const auto bad = testing::run_cli("render " + (dir / "still.json").string() + " -o " + (dir / "x.png").string() + " --frames 0:0");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("--frames: " + (dir / "still.json").string() + " has no animation"), std::string::npos) << bad.output;
+}
+
+// A pattern painted on the box (a function of its own x) as a per-pixel layer at time t.
+std::vector<float> painted_box(const View& v, double t) {
+  const CameraRays rays(v.scene->camera);
+  std::vector<float> out(v.depth.size(), 0.0f);
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (v.render.gbuffer.object[i] != 1) continue;
+    const Ray r = rays.ray(double(i % size_t(v.width())) + 0.5, double(i / size_t(v.width())) + 0.5);
+    const glm::dvec3 p = r.origin + r.direction * (double(v.depth[i]) / glm::dot(r.direction, rays.forward()));
+    out[i] = float(5 * std::sin(2 * 3.141592653589793 * (p.x - t) / 0.5));  // the box moves by (t, 0, 0)
+  }
+  return out;
+}
+
+// A box slides across a still camera: carried along its motion, a pattern painted on it
+// reprojects onto itself; left where it was, it does not.
+TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
+  testing::TempDir dir;
+  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", R"({"duration": 1, "fps": 10,
+    "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]]}}]})")));
+  const auto a = render_view(std::make_shared<Scene>(scene_at(base, 0.3)));
+  const auto b = render_view(std::make_shared<Scene>(scene_at(base, 0.4)));
+  const CarryPoint carry = [&](const glm::dvec3& p, int object) {
+    return object < 0 ? p : carry_point(base, size_t(object), 0.3, 0.4, p);
+  };
+  const auto pa = painted_box(*a, 0.3), pb = painted_box(*b, 0.4);
+  const Reprojection carried = reprojection_rms(*a, pa, *b, pb, carry), left = reprojection_rms(*a, pa, *b, pb);
+  EXPECT_LT(glm::length(carry_point(base, 1, 0.3, 0.4, {0, 0, 0}) - glm::dvec3(0.1, 0, 0)), 1e-12);
+  EXPECT_EQ(carry_point(base, 0, 0.3, 0.4, {2, 0, 1}), glm::dvec3(2, 0, 1));  // the ground has no path
+  EXPECT_LT(carried.rms, 0.2) << "left behind: " << left.rms;
+  EXPECT_GT(left.rms, 1.0) << "carried: " << carried.rms;
+}
+
+TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
+  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --csv " + (dir / "f.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 frame pairs, mean flicker 0.0000 L*"), std::string::npos) << r.output;
+  EXPECT_EQ(testing::count_lines(testing::read_file(dir / "f.csv")), 3);
+  const auto bad = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --frames 1:1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(testing::count_lines(bad.output), 1) << bad.output;
 }
 
 }  // namespace
