@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 
@@ -11,6 +12,8 @@
 #include "cli/method_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/false_colour.h"
+#include "core/image.h"
 #include "core/progress.h"
 #include "render/scene_animation.h"
 #include "stimuli/perspective_coherence.h"
@@ -19,7 +22,7 @@ namespace countershade::cli {
 namespace {
 
 struct FlickerArgs {
-  std::string scene, frames, csv;
+  std::string scene, frames, csv, maps;
   MethodArgs method;
   std::optional<int> spp, threads;
 };
@@ -44,19 +47,35 @@ Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const 
   return f;
 }
 
+// |ΔE| per pixel in false colour, 0 … 5 L* (NaN, where a pixel did not count: black).
+void write_map(const std::string& dir, int frame, const std::vector<float>& differences, const View& view) {
+  Image values(view.width(), view.height(), 1);
+  for (size_t i = 0; i < differences.size(); ++i) values.pixels[i] = differences[i] / 5.0f;
+  char name[32];
+  std::snprintf(name, sizeof name, "flicker-%04d.png", frame);
+  write_image(std::filesystem::path(dir) / name, false_colour_image(values));
+}
+
 // The pair (frame − 1, frame): surface points carried along their objects' motion.
-std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a, const Frame& b, int frame) {
+std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a, const Frame& b, int frame,
+                                              const std::string& maps) {
   const double from = base.animation->time_of(frame - 1), to = base.animation->time_of(frame);
   const CarryPoint carry = [&](const glm::dvec3& p, int object) {
     return object < 0 ? p : carry_point(base, size_t(object), from, to, p);
   };
-  return {reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry),
-          reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry)};
+  std::vector<float> differences;
+  const Reprojection layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, maps.empty() ? nullptr : &differences);
+  if (!maps.empty()) write_map(maps, frame, differences, *a.view);
+  return {layer, reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry)};
 }
 
 void run(const FlickerArgs& args, const CLI::App* cmd) {
   const ResolvedMethod m = resolve_method(cmd, args.method);
   if (!args.csv.empty()) check_output_file(args.csv, {".csv"}, ".csv");
+  if (!args.maps.empty()) {
+    check_output_folder(args.maps);
+    std::filesystem::create_directories(args.maps);
+  }
   Scene base = load_scene(args.scene);
   apply_request(base, m.request);
   if (args.spp) base.settings.spp = *args.spp;
@@ -69,7 +88,7 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   Frame previous = render_frame(base, first, m, args);
   for (int f = first + 1; f <= last; ++f) {
     Frame current = render_frame(base, f, m, args);
-    const auto [flicker, plain] = compare(base, previous, current, f);
+    const auto [flicker, plain] = compare(base, previous, current, f, args.maps);
     csv << f << ',' << flicker.rms << ',' << plain.rms << ',' << flicker.pixels << '\n';
     sum += flicker.rms;
     plain_sum += plain.rms;
@@ -93,6 +112,8 @@ void add_flicker_command(CLI::App& app) {
   add_method_options(cmd, args->method, "Enhancement method");
   cmd->add_option("--frames", args->frames, "Frames A:B (default: all)");
   cmd->add_option("--csv", args->csv, "Write frame, flicker, the plain render's reprojection error and pixels per pair");
+  cmd->add_option("--maps", args->maps,
+                  "Write |change| per pixel of each pair as DIR/flicker-NNNN.png (viridis over 0–5 L*; black: not counted)");
   cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")->check(CLI::Range(1, 65536));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->callback([cmd, args] { run(*args, cmd); });

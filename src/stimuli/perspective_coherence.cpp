@@ -1,6 +1,7 @@
 #include "stimuli/perspective_coherence.h"
 
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -75,7 +76,9 @@ std::vector<float> enhancement_layer(const View& view, const Image& display) {
 }
 
 Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
-                              const std::vector<float>& moved_values, const CarryPoint& carry) {
+                              const std::vector<float>& moved_values, const CarryPoint& carry,
+                              std::vector<float>* differences) {
+  if (differences) differences->assign(first_values.size(), std::numeric_limits<float>::quiet_NaN());
   const CameraRays a(first.scene->camera), b(moved.scene->camera);
   double sum = 0;
   size_t count = 0;
@@ -89,6 +92,7 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
       double value;
       if (b.eye_depth(p) <= 0 || !lookup(moved, b.film_position(p), b.eye_depth(p), moved_values, value)) continue;
       const double d = double(first_values[i]) - value;
+      if (differences) (*differences)[i] = float(std::abs(d));
       sum += d * d;
       ++count;
     }

@@ -38,7 +38,10 @@ struct Reprojection {
 // `carry` maps a world point of object `object` in the first frame to where that surface point
 // is in the moved frame (default: it stays; moving objects: their motion between the frames).
 using CarryPoint = std::function<glm::dvec3(const glm::dvec3& point, int object)>;
+// With `differences`, also |first_values(x) − moved_values(x′)| per pixel of the first frame
+// (NaN where x did not count).
 Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
-                              const std::vector<float>& moved_values, const CarryPoint& carry = {});
+                              const std::vector<float>& moved_values, const CarryPoint& carry = {},
+                              std::vector<float>* differences = nullptr);
 
 }  // namespace countershade

@@ -154,10 +154,13 @@ TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
 TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
-  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --csv " + (dir / "f.csv").string());
+  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --csv " + (dir / "f.csv").string() +
+                                  " --maps " + (dir / "maps").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 frame pairs, mean flicker 0.0000 L*"), std::string::npos) << r.output;
   EXPECT_EQ(testing::count_lines(testing::read_file(dir / "f.csv")), 3);
+  EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0001.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0002.png"));
   const auto bad = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --frames 1:1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(testing::count_lines(bad.output), 1) << bad.output;
