@@ -151,6 +151,21 @@ TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
   EXPECT_GT(left.rms, 1.0) << "carried: " << carried.rms;
 }
 
+// usm3d's vertex signal is tied to the surface: with a fixed sample count, a diffuse scene seen
+// from two cameras gives every vertex the same radiance, so a static point does not shimmer.
+TEST(SceneAnimation, TheVertexSignalOfAStaticDiffuseSceneDoesNotDependOnTheCamera) {
+  testing::TempDir dir;
+  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
+  Scene a = base, b = base;
+  a.animation.reset();
+  b.animation.reset();
+  b.camera.eye = {1.5, 1.2, 3.6};
+  const ViewPlan plan = plan_for("usm3d", {{"sigma", 0.1}}, 1.0);
+  const auto va = render_view(std::make_shared<Scene>(a), plan, {}), vb = render_view(std::make_shared<Scene>(b), plan, {});
+  ASSERT_EQ(va->render.vertices.front.size(), 2u);
+  for (size_t o = 0; o < 2; ++o) EXPECT_EQ(va->render.vertices.front[o], vb->render.vertices.front[o]) << "object " << o;
+}
+
 TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
