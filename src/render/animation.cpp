@@ -32,6 +32,6 @@ glm::dvec3 Track::at(double time) const {
          (s3 - s2) * h * tangent(k + 1);
 }
 
-int Animation::frame_count() const { return int(std::floor(duration * fps + 1e-9)) + 1; }
+int Animation::frame_count() const { return std::max(1, int(std::floor(duration * fps + 1e-9))); }
 
 }  // namespace countershade

@@ -58,7 +58,8 @@ struct Animation {
   std::vector<LightPath> lights;
   std::vector<ObjectPath> objects;
 
-  // Frames 0 … count − 1 at t = frame / fps: ⌊duration·fps⌋ + 1 of them (both ends included).
+  // Frames 0 … count − 1 at t = frame / fps, count = ⌊duration·fps⌋ (at least 1): the end is
+  // excluded, so a path that returns to its start loops without a repeated frame.
   int frame_count() const;
   double time_of(int frame) const { return frame / fps; }
 };

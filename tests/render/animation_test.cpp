@@ -61,7 +61,7 @@ std::string scene_json(const std::string& eye, const std::string& animation) {
          (animation.empty() ? "" : ", \"animation\": " + animation) + "}";
 }
 
-const char* kOrbit = R"({"duration": 1, "fps": 2,
+const char* kOrbit = R"({"duration": 1.5, "fps": 2,
   "camera": {"eye": {"times": [0, 1], "values": [[0, 1, 4], [4, 1, 0]], "interpolation": "catmull-rom"}},
   "lights": [{"light": 0, "direction": {"times": [0, 1], "values": [[0.4, 1, 0.3], [0, 2, 0]]}}],
   "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]]}}]})";
