@@ -33,7 +33,12 @@ std::string cache_key(const Texture& plain, TextureMode mode, const LightnessFil
 std::optional<std::vector<std::vector<float>>> read_cached(const fs::path& file, const FilteredPyramid& p, size_t levels) {
   std::error_code error;
   if (!fs::is_regular_file(file, error)) return std::nullopt;
-  const std::string bytes = read_file_bytes(file);
+  std::string bytes;
+  try {
+    bytes = read_file_bytes(file);
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable: recomputed like a damaged file
+  }
   const size_t magic = std::strlen(kCacheMagic);
   if (bytes.compare(0, magic, kCacheMagic) != 0) return std::nullopt;
   std::vector<std::vector<float>> detail(levels);
