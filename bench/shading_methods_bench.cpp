@@ -5,8 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include <chrono>
-
+#include "extra_lambda.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
 #include "render/scene.h"
@@ -23,25 +22,8 @@ std::shared_ptr<const Scene> mestres_scene() {
   return scene;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 void extra_lambda(benchmark::State& state, const std::string& method, const nlohmann::json& parameters) {
-  double render = 0, compose = 0;
-  const std::shared_ptr<const Scene> scene = mestres_scene();  // loaded before any timing
-  for (auto _ : state) {
-    auto t = std::chrono::steady_clock::now();
-    const auto view = render_view(scene);
-    render += seconds_since(t);
-    const auto prepared = prepare_method(method, view, parameters);
-    t = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(prepared->compose(1.0));
-    compose += seconds_since(t);
-  }
-  state.counters["render_s"] = render / double(state.iterations());
-  state.counters["compose_s"] = compose / double(state.iterations());
-  state.counters["vs_render"] = compose / render;
+  measure_extra_lambda(state, mestres_scene(), method, parameters);  // the scene is loaded before any timing
 }
 
 void BM_ShadingExtraLambdaLla(benchmark::State& s) { extra_lambda(s, "lla", {{"sigma", 0.06}}); }

@@ -12,9 +12,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <random>
 
+#include "extra_lambda.h"
 #include "enhance/filtered_pyramid.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
@@ -61,27 +61,10 @@ void BM_TextureLookupTrilinear(benchmark::State& s) { lookups(s, 2.83 / 2048); }
 BENCHMARK(BM_TextureLookupSingle);
 BENCHMARK(BM_TextureLookupTrilinear);
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 void BM_TextureFilterExtraLambda(benchmark::State& state) {
   const Experiment e = load_experiment(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/semmo2015/experiment.json");
   const auto scene = std::make_shared<const Scene>(load_experiment_scene(e, e.scenes[0]));
-  const nlohmann::json parameters{{"mode", "mip"}, {"filter", "unsharp"}, {"sigma", 1}};
-  double render = 0, compose = 0;
-  for (auto _ : state) {
-    auto t = std::chrono::steady_clock::now();
-    const auto view = render_view(scene);
-    render += seconds_since(t);
-    const auto prepared = prepare_method("texture-filter", view, parameters);
-    t = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(prepared->compose(1.0));
-    compose += seconds_since(t);
-  }
-  state.counters["render_s"] = render / double(state.iterations());
-  state.counters["compose_s"] = compose / double(state.iterations());
-  state.counters["vs_render"] = compose / render;
+  measure_extra_lambda(state, scene, "texture-filter", {{"mode", "mip"}, {"filter", "unsharp"}, {"sigma", 1}});
 }
 BENCHMARK(BM_TextureFilterExtraLambda)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 

@@ -15,6 +15,7 @@
 #include "core/false_colour.h"
 #include "core/image.h"
 #include "core/progress.h"
+#include "enhance/lightness.h"
 #include "render/scene_animation.h"
 #include "stimuli/perspective_coherence.h"
 
@@ -43,7 +44,7 @@ Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const 
   f.view = render_view(scene, plan, options);
   const auto prepared = m.method->prepare(make_use_context(f.view, 0, options.threads), *m.parameters);
   f.layer = enhancement_layer(*f.view, prepared->compose(args.method.lambda).display);
-  f.plain = plain_lightness(*f.view);
+  f.plain = view_lightness(*f.view);
   return f;
 }
 

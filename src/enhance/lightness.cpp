@@ -15,6 +15,12 @@
 
 namespace countershade {
 
+std::vector<float> view_lightness(const View& view) {
+  std::vector<float> L(view.lab.size());
+  for (size_t i = 0; i < L.size(); ++i) L[i] = float(view.lab[i].L);
+  return L;
+}
+
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding) {
   return linear_rgb_to_lab({encoding.decode(rgb[0]), encoding.decode(rgb[1]), encoding.decode(rgb[2])});
 }

@@ -22,6 +22,9 @@ namespace countershade {
 LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits = 0);
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
 
+// The L* plane of the view's own (plain) image.
+std::vector<float> view_lightness(const View& view);
+
 // Δ of one pixel for strength λ.
 struct LightnessChange {
   enum class Kind {

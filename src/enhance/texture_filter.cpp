@@ -147,10 +147,8 @@ class TextureFilterMethod final : public EnhancementMethod {
 
   std::unique_ptr<PreparedEnhancement> prepare_post(const PrepareContext& context, const TextureFilterParameters& p) const {
     const View& view = *context.view;
-    std::vector<float> lightness(view.lab.size());
-    for (size_t i = 0; i < lightness.size(); ++i) lightness[i] = float(view.lab[i].L);
     const std::vector<float> detail =
-        lightness_detail(lightness, view.width(), view.height(), p.filter, Borders::clamp, context.threads);
+        lightness_detail(view_lightness(view), view.width(), view.height(), p.filter, Borders::clamp, context.threads);
     LightnessChange change;
     change.amount.assign(detail.begin(), detail.end());
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), describe(p),

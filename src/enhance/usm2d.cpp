@@ -36,9 +36,8 @@ class Usm2dMethod final : public EnhancementMethod {
                                                const MethodParameters& parameters) const override {
     const View& view = *context.view;
     const double sigma = parameters_as<Usm2dParameters>(parameters).width.sigma_px_for(view.width(), view.height());
-    std::vector<float> lightness(view.lab.size());
+    const std::vector<float> lightness = view_lightness(view);
     Image blurred(view.width(), view.height(), 1, Image::Uninitialized{});
-    for (size_t i = 0; i < lightness.size(); ++i) lightness[i] = float(view.lab[i].L);
     gaussian_blur(lightness.data(), blurred.pixels.data(), view.width(), view.height(), sigma, context.threads);
     LightnessChange change;
     change.amount.resize(lightness.size());

@@ -376,11 +376,10 @@ class SceneLoader {
 
   // Adds the light to the scene; returns where it went (for the animation's references).
   LightRef light(const JsonObject& o, Scene& scene) {
+    const size_t directional = scene.directional_lights.size(), point = scene.point_lights.size();
     add_light(o, scene);
-    if (!scene.directional_lights.empty() && o.value().value("type", "") == "directional")
-      return {LightRef::Kind::directional, scene.directional_lights.size() - 1};
-    if (!scene.point_lights.empty() && o.value().value("type", "") == "point")
-      return {LightRef::Kind::point, scene.point_lights.size() - 1};
+    if (scene.directional_lights.size() > directional) return {LightRef::Kind::directional, directional};
+    if (scene.point_lights.size() > point) return {LightRef::Kind::point, point};
     return {};
   }
 

@@ -111,34 +111,24 @@ Texture Texture::from_levels(std::vector<TextureLevel> levels) {
   return t;
 }
 
-namespace {
-
-// The footprint's two sides in level-0 texels.
-void footprint_sides(const glm::dvec2& size, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy, double& longer,
-                     double& shorter) {
+Texture::Footprint Texture::footprint(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
+  const glm::dvec2 size(width(), height());
   const double x = glm::length(duv_dx * size), y = glm::length(duv_dy * size);
-  longer = std::max(x, y);
-  shorter = std::min(x, y);
-}
-
-}  // namespace
-
-int Texture::probes_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
-  double longer, shorter;
-  footprint_sides(glm::dvec2(width(), height()), duv_dx, duv_dy, longer, shorter);
-  if (!(longer > 1.0)) return 1;  // magnified, or no footprint (also NaN)
+  const double longer = std::max(x, y), shorter = std::min(x, y);
+  Footprint f;
+  f.axis = x >= y ? duv_dx : duv_dy;
+  if (!(longer > 1.0)) return f;  // magnified, or no footprint (also NaN): one probe at level 0
   const double ratio = shorter > 0 ? std::round(longer / shorter) : double(kMaxAnisotropy);
-  return int(std::clamp(ratio, 1.0, double(kMaxAnisotropy)));
+  f.probes = int(std::clamp(ratio, 1.0, double(kMaxAnisotropy)));
+  // Each probe covers the longer side's share, but never less than the shorter side.
+  const double width = std::max(shorter, longer / f.probes);
+  if (width > 1.0) f.level = std::min(std::log2(width), double(levels_.size() - 1));
+  return f;
 }
 
-double Texture::level_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
-  double longer, shorter;
-  footprint_sides(glm::dvec2(width(), height()), duv_dx, duv_dy, longer, shorter);
-  // Each probe covers the longer side's share, but never less than the shorter side.
-  const double width = std::max(shorter, longer / probes_of(duv_dx, duv_dy));
-  if (!(width > 1.0)) return 0.0;
-  return std::min(std::log2(width), double(levels_.size() - 1));
-}
+int Texture::probes_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const { return footprint(duv_dx, duv_dy).probes; }
+
+double Texture::level_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const { return footprint(duv_dx, duv_dy).level; }
 
 glm::dvec3 Texture::trilinear(const glm::dvec2& uv, double level) const {
   if (level <= 0.0) return sample(uv);  // bit for bit the lookup without a pyramid
@@ -149,14 +139,11 @@ glm::dvec3 Texture::trilinear(const glm::dvec2& uv, double level) const {
 }
 
 glm::dvec3 Texture::sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
-  const int probes = probes_of(duv_dx, duv_dy);
-  const double level = level_of(duv_dx, duv_dy);
-  if (probes == 1) return trilinear(uv, level);
-  const glm::dvec2 size(width(), height());
-  const glm::dvec2 axis = glm::length(duv_dx * size) >= glm::length(duv_dy * size) ? duv_dx : duv_dy;
+  const Footprint f = footprint(duv_dx, duv_dy);
+  if (f.probes == 1) return trilinear(uv, f.level);
   glm::dvec3 sum(0.0);
-  for (int i = 0; i < probes; ++i) sum += trilinear(uv + axis * ((i + 0.5) / probes - 0.5), level);
-  return sum / double(probes);
+  for (int i = 0; i < f.probes; ++i) sum += trilinear(uv + f.axis * ((i + 0.5) / f.probes - 0.5), f.level);
+  return sum / double(f.probes);
 }
 
 }  // namespace countershade

@@ -68,6 +68,13 @@ class Texture {
   static constexpr int kMaxAnisotropy = 8;
 
  private:
+  // The probes, their level and the axis they spread along, for one footprint.
+  struct Footprint {
+    int probes = 1;
+    double level = 0;
+    glm::dvec2 axis{0.0};
+  };
+  Footprint footprint(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
   glm::dvec3 trilinear(const glm::dvec2& uv, double level) const;
 
   std::vector<TextureLevel> levels_{TextureLevel{1, 1, {glm::vec3(0.0f)}}};

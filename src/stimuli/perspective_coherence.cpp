@@ -62,12 +62,6 @@ Camera dollied(const Camera& camera, double fraction) {
   return moved;
 }
 
-std::vector<float> plain_lightness(const View& view) {
-  std::vector<float> L(view.lab.size());
-  for (size_t i = 0; i < L.size(); ++i) L[i] = float(view.lab[i].L);
-  return L;
-}
-
 std::vector<float> enhancement_layer(const View& view, const Image& display) {
   const LabPixels enhanced = display_to_lab(display, view.encoding, view.bits);
   std::vector<float> layer(enhanced.size());

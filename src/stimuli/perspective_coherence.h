@@ -23,8 +23,6 @@ Camera dollied(const Camera& camera, double fraction);
 
 // L* of a stimulus minus L* of the view's own (plain) image, per pixel.
 std::vector<float> enhancement_layer(const View& view, const Image& display);
-// L* of the view's plain image, per pixel.
-std::vector<float> plain_lightness(const View& view);
 
 struct Reprojection {
   double rms = 0;     // L*

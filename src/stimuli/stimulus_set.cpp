@@ -21,6 +21,7 @@
 #include "stimuli/congruence.h"
 #include "stimuli/coherence_figures.h"
 #include "stimuli/congruence_figures.h"
+#include "enhance/lightness.h"
 #include "stimuli/perspective_coherence.h"
 #include "stimuli/contact_sheet.h"
 #include "stimuli/set_journal.h"
@@ -251,7 +252,7 @@ void SetGenerator::write_reference(size_t scene, const View& view, const View* m
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
   record_noise(entry, view, NoiseModel{}, view.display);
   if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits);
-  if (moved) record_coherence(entry, view, plain_lightness(view), *moved, plain_lightness(*moved));
+  if (moved) record_coherence(entry, view, view_lightness(view), *moved, view_lightness(*moved));
   entry = write_stimulus(dir_, std::move(entry), view.display, e_.bits);
   encode_seconds_.fetch_add(since(te));
   record(std::move(entry), true);

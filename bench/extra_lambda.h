@@ -1,0 +1,37 @@
+#pragma once
+// What one extra λ of a method costs against the plain render it starts from: each iteration
+// renders the scene's plain view, prepares the method, then composes λ = 1 once. Counters:
+// render_s, compose_s and vs_render (compose over render, in the same run).
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "enhance/method.h"
+#include "enhance/view.h"
+
+namespace countershade {
+
+inline void measure_extra_lambda(benchmark::State& state, const std::shared_ptr<const Scene>& scene,
+                                 const std::string& method, const nlohmann::json& parameters) {
+  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  double render = 0, compose = 0;
+  for (auto _ : state) {
+    auto t = std::chrono::steady_clock::now();
+    const auto view = render_view(scene);
+    render += seconds_since(t);
+    const auto prepared = prepare_method(method, view, parameters);
+    t = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(prepared->compose(1.0));
+    compose += seconds_since(t);
+  }
+  state.counters["render_s"] = render / double(state.iterations());
+  state.counters["compose_s"] = compose / double(state.iterations());
+  state.counters["vs_render"] = compose / render;
+}
+
+}  // namespace countershade
