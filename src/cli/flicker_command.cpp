@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "cli/frame_range.h"
+#include "render/frame_range.h"
 #include "cli/method_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -60,10 +60,7 @@ void write_map(const std::string& dir, int frame, const std::vector<float>& diff
 // The pair (frame − 1, frame): surface points carried along their objects' motion.
 std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a, const Frame& b, int frame,
                                               const std::string& maps) {
-  const double from = base.animation->time_of(frame - 1), to = base.animation->time_of(frame);
-  const CarryPoint carry = [&](const glm::dvec3& p, int object) {
-    return object < 0 ? p : carry_point(base, size_t(object), from, to, p);
-  };
+  const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
   std::vector<float> differences;
   const Reprojection layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, maps.empty() ? nullptr : &differences);
   if (!maps.empty()) write_map(maps, frame, differences, *a.view);
@@ -81,7 +78,7 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   apply_request(base, m.request);
   if (args.spp) base.settings.spp = *args.spp;
   m.method->check_scene(base, *m.parameters);
-  const auto [first, last] = frame_range(args.frames, base, 1);
+  const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
   std::ostringstream csv;
   csv << "frame,flicker_lstar,plain_reprojection_lstar,pixels\n";
   Progress progress("flicker");

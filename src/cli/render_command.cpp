@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "cli/commands.h"
-#include "cli/frame_range.h"
+#include "render/frame_range.h"
 #include "cli/method_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -166,7 +166,7 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
     return;
   }
   if (!args.aux.empty()) throw InputError("--aux: not with --frames (render one frame with its own --aux)");
-  const auto [first, last] = frame_range(args.frames, *scene, 0);
+  const auto [first, last] = frame_range(args.frames, *scene, 0, "--frames");
   for (int f = first; f <= last; ++f) {
     Progress progress("render frame " + std::to_string(f));
     auto posed = std::make_shared<const Scene>(scene_at(*scene, scene->animation->time_of(f)));

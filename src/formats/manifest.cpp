@@ -17,7 +17,7 @@ namespace {
 
 const std::set<std::string> kEntryKeys = {"file",   "scene",  "method",         "label",  "sigma",
                                           "sigma_kind", "lambda", "lambda_index", "clipped_pixels",
-                                          "width", "height", "size", "sha256"};
+                                          "width", "height", "size", "sha256", "frame", "fps"};
 
 class ManifestReader {
  public:
@@ -70,6 +70,10 @@ class ManifestReader {
     if (s.contains("lambda_index")) e.lambda_index = int(integer(s, where, "lambda_index", 0, 1 << 30));
     if (s.contains("clipped_pixels")) e.clipped_pixels = uint64_t(integer(s, where, "clipped_pixels", 0, INT64_MAX));
     if (s.contains("size")) e.size = uint64_t(integer(s, where, "size", 0, INT64_MAX));
+    if (s.contains("frame") || s.contains("fps")) {  // a sequence's frame has both
+      e.frame = ManifestEntry::Frame{int(integer(s, where, "frame", 0, 1 << 30)), number(s, where, "fps")};
+      if (!(e.frame->fps > 0)) fail(where + "fps", "must be positive");
+    }
     if (!e.is_reference()) {
       for (const char* key : {"sigma", "lambda", "lambda_index"})
         if (!s.contains(key)) fail(where + key, "missing (every enhanced stimulus has one)");
@@ -140,6 +144,10 @@ OrderedJson to_json(const ManifestEntry& e) {
   j["lambda"] = e.lambda;
   j["lambda_index"] = e.lambda_index;
   j["clipped_pixels"] = e.clipped_pixels;
+  if (e.frame) {
+    j["frame"] = e.frame->index;
+    j["fps"] = e.frame->fps;
+  }
   for (auto it = e.extra.begin(); it != e.extra.end(); ++it) j[it.key()] = it.value();
   j["width"] = e.width;
   j["height"] = e.height;

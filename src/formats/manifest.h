@@ -34,6 +34,13 @@ struct ManifestEntry {
   double lambda = 0;
   int lambda_index = 0;
   uint64_t clipped_pixels = 0;
+  // A frame of a sequence: its index in the scene's animation, and the sequence's frame rate. The
+  // sequence is the entry's folder; its frames are the entries there (absent for a still).
+  struct Frame {
+    int index = 0;
+    double fps = 0;
+  };
+  std::optional<Frame> frame;
   OrderedJson extra = OrderedJson::object();  // method details: parameters, operator, iterations, noise, ...
   int width = 0, height = 0;
   uint64_t size = 0;

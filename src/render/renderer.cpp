@@ -60,6 +60,11 @@ std::vector<bool> seen_from_behind(const GBuffer& g, size_t objects) {
 
 }  // namespace
 
+GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads) {
+  RayCounts rays;
+  return centre_pass(scene, tracer, threads, rays);
+}
+
 double display_luminance(const glm::dvec3& radiance, double exposure_scale) {
   glm::dvec3 c;
   for (int i = 0; i < 3; ++i) c[i] = std::clamp(radiance[i] * exposure_scale, 0.0, 1.0);

@@ -111,6 +111,10 @@ struct RenderOptions {
 
 RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options = {});
 
+// Pass 1 alone: the G-buffer of the pixel centres, exactly as `render` makes it (measures that
+// need a frame's geometry but not its pixels).
+GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads = 0);
+
 // The fixed barycentric coordinates (b0, b1, b2) of sample j of k on every triangle: stratified
 // over the triangle's area.
 glm::dvec3 triangle_sample_barycentrics(int j, int k);

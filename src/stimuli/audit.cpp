@@ -99,6 +99,30 @@ void compare_with_reference(const Decoded& d, const Decoded& reference, Stimulus
   out.delta_e_p99 = percentile99(std::move(differences), n);
 }
 
+// The render an entry belongs to: its scene and, in a sequence, its frame.
+std::pair<std::string, int> shot_of(const ManifestEntry& e) { return {e.scene, e.frame ? e.frame->index : -1}; }
+
+// Each stimulus's mean L* drift from its own reference.
+void set_drifts(AuditReport& report) {
+  std::map<std::pair<std::string, int>, double> reference_mean;
+  for (const auto& s : report.stimuli)
+    if (s.reference) reference_mean[{s.scene, s.frame}] = s.mean_lightness;
+  for (auto& s : report.stimuli) s.drift = s.mean_lightness - reference_mean.at({s.scene, s.frame});
+}
+
+// Every reference image, decoded, by (scene, frame); and each scene's display encoding.
+std::map<std::pair<std::string, int>, Decoded> decoded_references(const Manifest& manifest, const std::filesystem::path& dir,
+                                                                  std::map<std::string, DisplayEncoding>& encodings,
+                                                                  std::vector<std::string>& notes) {
+  std::map<std::pair<std::string, int>, Decoded> references;
+  for (const auto& e : manifest.stimuli)
+    if (e.is_reference()) {
+      encodings.emplace(e.scene, encoding_of(e, notes));
+      references.emplace(shot_of(e), decode(resolve_in_set(dir, e.file), encodings.at(e.scene)));
+    }
+  return references;
+}
+
 StimulusAudit describe(const ManifestEntry& e) {
   StimulusAudit s;
   s.file = e.file;
@@ -106,6 +130,7 @@ StimulusAudit describe(const ManifestEntry& e) {
   s.reference = e.is_reference();
   s.lambda = e.lambda;
   s.sigma = e.sigma.value_or(0.0);
+  if (e.frame) s.frame = e.frame->index;
   if (!s.reference) s.condition = e.condition_method() + " sigma " + format_value(s.sigma);
   if (const auto noise = image_noise(e)) {
     s.noise_rms = noise->rms;
@@ -158,13 +183,8 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
   report.set_name = manifest.experiment_name;
   if (manifest.experiment.contains("audit"))
     report.limits = read_audit_limits(JsonObject(manifest.experiment["audit"], manifest_path.string(), "experiment.audit"));
-  std::map<std::string, Decoded> references;
   std::map<std::string, DisplayEncoding> encodings;
-  for (const auto& e : manifest.stimuli)
-    if (e.is_reference()) {
-      encodings.emplace(e.scene, encoding_of(e, report.notes));
-      references.emplace(e.scene, decode(resolve_in_set(dir, e.file), encodings.at(e.scene)));
-    }
+  const auto references = decoded_references(manifest, dir, encodings, report.notes);
   report.stimuli.resize(manifest.stimuli.size());
   std::atomic<size_t> done{0};
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -172,8 +192,10 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
     tbb::parallel_for(size_t(0), manifest.stimuli.size(), [&](size_t i) {
       const ManifestEntry& e = manifest.stimuli[i];
       StimulusAudit s = describe(e);
-      const auto reference = references.find(e.scene);
-      if (reference == references.end()) throw_input_error(manifest_path.string(), "scene " + e.scene + " has no reference image");
+      const auto reference = references.find(shot_of(e));
+      if (reference == references.end())
+        throw_input_error(manifest_path.string(), "scene " + e.scene + " has no reference image" +
+                                                      (e.frame ? " for frame " + std::to_string(e.frame->index) : ""));
       Decoded own;
       if (!e.is_reference()) own = decode(resolve_in_set(dir, e.file), encodings.at(e.scene));
       const Decoded& d = e.is_reference() ? reference->second : own;
@@ -185,6 +207,7 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
       if (options.progress) options.progress(double(++done) / double(manifest.stimuli.size()));
     });
   });
+  set_drifts(report);
   add_audit_checks(report, manifest);
   return report;
 }

@@ -31,8 +31,10 @@ AuditLimits read_audit_limits(const JsonObject& o);
 struct StimulusAudit {
   std::string file, scene, condition;  // condition: "<label> sigma <σ>", empty for references
   double sigma = 0, lambda = 0;
+  int frame = -1;  // a sequence's frame; -1 for a still
   bool reference = false;
   double mean_lightness = 0, rms_contrast = 0, clipped_fraction = 0;
+  double drift = 0;  // mean L* minus its reference's (the same frame's, in a sequence)
   double delta_e_mean = 0, delta_e_p99 = 0, changed_fraction = 0;  // against the reference
   std::optional<double> noise_rms, noise_p99;
   std::optional<bool> noise_met;
@@ -61,7 +63,8 @@ struct AuditOptions {
   std::function<void(double)> progress;
 };
 
-// The stimuli of one condition (scene × method × σ) in λ order, with their scene's reference.
+// The stimuli of one condition (scene × method × σ) in λ order (then frame order), with their
+// scene's reference (a sequence's first reference frame).
 struct AuditCondition {
   std::string scene, name;
   std::vector<const StimulusAudit*> stimuli;

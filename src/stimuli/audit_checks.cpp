@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "core/number_format.h"
 #include "stimuli/audit.h"
@@ -13,15 +14,18 @@ namespace {
 
 std::string fixed(double v, int decimals) { return format_value(round_to(v, decimals)); }
 
+// Every λ = 0 image (each frame's, in a sequence) equals its reference; the worst one reported.
 AuditCheck lambda_zero_check(const AuditCondition& c) {
   AuditCheck check{"lambda 0 equals reference", c.scene, c.name, true, "no lambda = 0 image"};
+  const StimulusAudit* worst = nullptr;
   for (const auto* s : c.stimuli)
-    if (s->lambda == 0.0) {
-      check.passed = s->changed_fraction == 0.0;
-      check.detail = check.passed ? "identical pixels"
-                                  : fixed(100 * s->changed_fraction, 3) + " % of pixels differ (max dE " +
-                                        fixed(s->delta_e_p99, 2) + " at p99)";
-    }
+    if (s->lambda == 0.0 && (!worst || s->changed_fraction > worst->changed_fraction)) worst = s;
+  if (!worst) return check;
+  check.passed = worst->changed_fraction == 0.0;
+  check.detail = check.passed ? "identical pixels"
+                              : fixed(100 * worst->changed_fraction, 3) + " % of pixels differ (max dE " +
+                                    fixed(worst->delta_e_p99, 2) + " at p99)" +
+                                    (worst->frame >= 0 ? " in frame " + std::to_string(worst->frame) : "");
   return check;
 }
 
@@ -29,9 +33,8 @@ AuditCheck drift_check(const AuditCondition& c, double limit) {
   AuditCheck check{"mean L* drift", c.scene, c.name, true, ""};
   double worst = 0, at = 0;
   for (const auto* s : c.stimuli) {
-    const double drift = s->mean_lightness - c.reference->mean_lightness;
-    if (std::abs(drift) > std::abs(worst)) {
-      worst = drift;
+    if (std::abs(s->drift) > std::abs(worst)) {
+      worst = s->drift;
       at = s->lambda;
     }
   }
@@ -89,7 +92,7 @@ AuditCheck screen_check(const AuditLimits& limits, const Manifest& manifest) {
 std::vector<AuditCondition> audit_conditions(const AuditReport& report) {
   std::map<std::string, const StimulusAudit*> references;
   for (const auto& s : report.stimuli)
-    if (s.reference) references[s.scene] = &s;
+    if (s.reference) references.emplace(s.scene, &s);  // a sequence: its first frame
   std::vector<AuditCondition> out;
   std::map<std::pair<std::string, std::string>, size_t> index;
   for (const auto& s : report.stimuli) {
@@ -99,7 +102,8 @@ std::vector<AuditCondition> audit_conditions(const AuditReport& report) {
     out[it->second].stimuli.push_back(&s);
   }
   for (auto& c : out)
-    std::sort(c.stimuli.begin(), c.stimuli.end(), [](auto* a, auto* b) { return a->lambda < b->lambda; });
+    std::sort(c.stimuli.begin(), c.stimuli.end(),
+              [](auto* a, auto* b) { return std::tie(a->lambda, a->frame) < std::tie(b->lambda, b->frame); });
   return out;
 }
 

@@ -85,7 +85,8 @@ struct PlotLimit {
   bool two_sided = false;
 };
 
-// One measure of a condition against λ, with its limit where there is one.
+// One measure of a condition against λ, with its limit where there is one. A sequence plots its
+// worst frame at each λ (the value of largest magnitude).
 std::string measure_plot(const AuditCondition& c, const std::string& title, const std::string& unit,
                          double (*value)(const StimulusAudit&, const StimulusAudit&), std::optional<PlotLimit> limit) {
   LinePlot plot;
@@ -98,8 +99,13 @@ std::string measure_plot(const AuditCondition& c, const std::string& title, cons
   series.label = "";
   series.color = plot_color(0);
   for (const auto* s : c.stimuli) {
+    const double v = value(*s, *c.reference);
+    if (!series.x.empty() && series.x.back() == s->lambda) {  // another frame at this λ
+      if (std::abs(v) > std::abs(series.y.back())) series.y.back() = v;
+      continue;
+    }
     series.x.push_back(s->lambda);
-    series.y.push_back(value(*s, *c.reference));
+    series.y.push_back(v);
   }
   plot.series.push_back(series);
   if (limit)
@@ -114,7 +120,7 @@ std::string measure_plot(const AuditCondition& c, const std::string& title, cons
 std::string condition_plots(const AuditCondition& c, const AuditLimits& limits) {
   std::string out;
   out += measure_plot(c, "mean L* drift from the reference", "ΔL*",
-                      [](const StimulusAudit& s, const StimulusAudit& r) { return s.mean_lightness - r.mean_lightness; },
+                      [](const StimulusAudit& s, const StimulusAudit&) { return s.drift; },
                       PlotLimit{limits.max_drift, true});
   out += measure_plot(c, "RMS contrast (SD of L*)", "L*", [](const StimulusAudit& s, const StimulusAudit&) { return s.rms_contrast; },
                       std::nullopt);

@@ -79,31 +79,53 @@ std::string caption_of(const ManifestEntry& entry) {
 
 }  // namespace
 
+namespace {
+
+// `count` indices spread evenly over [0, n), the first and the last included.
+std::vector<int> evenly_spaced(int n, int count) {
+  count = std::min(count, n);
+  std::vector<int> picks;
+  for (int c = 0; c < count; ++c) picks.push_back(count == 1 ? 0 : int(std::lround(double(c) * (n - 1) / (count - 1))));
+  return picks;
+}
+
+// The frames a sheet shows of a scene: four spread over a sequence; -1 for a still.
+std::vector<int> sheet_frames(const ExperimentScene& scene) {
+  if (!scene.frames) return {-1};
+  std::vector<int> frames;
+  for (int k : evenly_spaced(scene.frames->second - scene.frames->first + 1, 4)) frames.push_back(scene.frames->first + k);
+  return frames;
+}
+
+}  // namespace
+
 void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
   std::map<std::string, std::string> captions;  // file → caption
   for (const auto& s : manifest.stimuli) captions[s.file] = caption_of(s);
-  const int count = e.lambda.count(), columns = std::min(e.contact_columns, count);
-  std::vector<int> picks;
-  for (int c = 0; c < columns; ++c)
-    picks.push_back(columns == 1 ? 0 : int(std::lround(double(c) * (count - 1) / (columns - 1))));
+  const std::vector<int> picks = evenly_spaced(e.lambda.count(), e.contact_columns);
   std::filesystem::create_directories(dir / "contact-sheets");
   for (size_t s = 0; s < e.scenes.size(); ++s)
     for (size_t m = 0; m < e.methods.size(); ++m) {
+      const std::vector<int> frames = sheet_frames(e.scenes[s]);
+      const size_t sigmas = e.methods[m].sigmas.size();
       if (!e.methods[m].applies_to(e.scenes[s].name)) continue;
-      if (count == 1 && e.methods[m].sigmas.size() == 1) continue;  // one image: nothing to compare
+      if (picks.size() == 1 && sigmas == 1 && frames.size() == 1) continue;  // one image: nothing to compare
       std::vector<std::string> rows, cols;
       std::vector<std::vector<ContactCell>> cells;
       for (int p : picks) cols.push_back("lambda = " + format_value(e.lambda.value(p)));  // ASCII: OIIO text
-      for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g) {
-        rows.push_back("sigma = " + format_value(e.methods[m].sigmas[g]));
-        cells.emplace_back();
-        for (int p : picks) {
-          std::string rel = stimulus_path(e, {s, int(m), g}, p);
-          const auto caption = captions.find(rel);
-          if (caption == captions.end()) return;  // incomplete (a shard): no sheets
-          cells.back().push_back({dir / rel, caption->second});
+      for (size_t g = 0; g < sigmas; ++g)
+        for (int f : frames) {
+          const std::string sigma = "sigma = " + format_value(e.methods[m].sigmas[g]);
+          const std::string frame = "frame " + std::to_string(f);
+          rows.push_back(f < 0 ? sigma : sigmas == 1 ? frame : sigma + ", " + frame);
+          cells.emplace_back();
+          for (int p : picks) {
+            std::string rel = stimulus_path(e, {s, int(m), g, f}, p);
+            const auto caption = captions.find(rel);
+            if (caption == captions.end()) return;  // incomplete (a shard): no sheets
+            cells.back().push_back({dir / rel, caption->second});
+          }
         }
-      }
       write_contact_sheet(dir / "contact-sheets" / (e.scenes[s].name + "-" + e.methods[m].label + ".png"),
                           e.scenes[s].name + " - " + e.methods[m].label, rows, cols, cells);
     }

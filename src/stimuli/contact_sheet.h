@@ -1,6 +1,7 @@
 #pragma once
-// Contact sheets: one PNG per scene and method, a labelled grid of thumbnails (σ rows × selected
-// λ columns), so a researcher sees a whole set at a glance.
+// Contact sheets: one PNG per scene and method, a labelled grid of thumbnails (σ rows, for a
+// sequence four of its frames per σ, × selected λ columns), so a researcher sees a whole set at a
+// glance.
 
 #include <filesystem>
 #include <string>

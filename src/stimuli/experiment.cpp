@@ -16,6 +16,7 @@
 #include "core/sha256.h"
 #include "enhance/registry.h"
 #include "render/camera.h"
+#include "render/frame_range.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -113,6 +114,11 @@ ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& ba
   if (s.has("width")) scene.width = int(s.integer_in("width", 0, 1, 16384));
   if (s.has("height")) scene.height = int(s.integer_in("height", 0, 1, 16384));
   if (s.has("spp")) scene.spp = int(s.integer_in("spp", 0, 1, 65536));
+  if (s.has("frames")) {  // the scene is read now, so a bad range fails before anything renders
+    const Scene animated = load_scene(scene.file);
+    scene.frames = frame_range(s.string("frames"), animated, 0, s.file() + ": " + s.key_path("frames"));
+    scene.fps = animated.animation->fps;
+  }
   return scene;
 }
 

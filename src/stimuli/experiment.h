@@ -30,6 +30,10 @@ struct ExperimentScene {
   std::filesystem::path file;
   std::optional<int> width, height, spp;
   std::optional<ViewLight> light;  // every directional light of the scene points this way
+  // A sequence: frames A … B of the scene's animation, each a stimulus of its own (unset: a still).
+  std::optional<std::pair<int, int>> frames;
+  double fps = 0;  // the animation's frame rate, for sequences
+  bool is_sequence() const { return frames.has_value(); }
 };
 
 struct ExperimentMethod {

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "enhance/lightness.h"
+#include "render/scene_animation.h"
 
 namespace countershade {
 namespace {
@@ -67,6 +68,13 @@ std::vector<float> enhancement_layer(const View& view, const Image& display) {
   std::vector<float> layer(enhanced.size());
   for (size_t i = 0; i < layer.size(); ++i) layer[i] = float(enhanced[i].L - view.lab[i].L);
   return layer;
+}
+
+CarryPoint carry_between_frames(const Scene& base, int from, int to) {
+  const double t0 = base.animation->time_of(from), t1 = base.animation->time_of(to);
+  return [&base, t0, t1](const glm::dvec3& p, int object) {
+    return object < 0 ? p : carry_point(base, size_t(object), t0, t1, p);
+  };
 }
 
 Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,

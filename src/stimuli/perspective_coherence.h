@@ -29,13 +29,17 @@ struct Reprojection {
   size_t pixels = 0;  // pixels of the first frame that entered the RMS
 };
 
-// RMS of first_values(x) − moved_values(x′) over the pixels x of `first` (with all 8 neighbours on
-// a surface) whose surface point lands at x′ in `moved` where the moved frame sees that same
-// point: its four nearest pixels are surface pixels whose bilinear 1/depth matches the point's
-// within 1 %. moved_values is interpolated bilinearly there.
 // `carry` maps a world point of object `object` in the first frame to where that surface point
 // is in the moved frame (default: it stays; moving objects: their motion between the frames).
 using CarryPoint = std::function<glm::dvec3(const glm::dvec3& point, int object)>;
+
+// The carry between frames `from` and `to` of `base`'s animation: each object's path.
+CarryPoint carry_between_frames(const Scene& base, int from, int to);
+
+// RMS of first_values(x) − moved_values(x′) over the pixels x of `first` (with all 8 neighbours on
+// a surface) whose surface point lands at x′ in `moved` where the moved frame sees that same
+// point: its four nearest pixels are surface pixels whose bilinear 1/depth matches the point's
+// within 1 %. moved_values is interpolated bicubically there; `carry` moves the point first.
 // With `differences`, also |first_values(x) − moved_values(x′)| per pixel of the first frame
 // (NaN where x did not count).
 Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,

@@ -21,11 +21,14 @@
 #include "stimuli/congruence.h"
 #include "stimuli/coherence_figures.h"
 #include "stimuli/congruence_figures.h"
+#include "stimuli/flicker_figures.h"
 #include "enhance/lightness.h"
 #include "stimuli/perspective_coherence.h"
 #include "stimuli/contact_sheet.h"
 #include "stimuli/set_journal.h"
+#include "stimuli/sequence_flicker.h"
 #include "stimuli/set_layout.h"
+#include "render/scene_animation.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
@@ -83,6 +86,7 @@ ManifestEntry stimulus_entry(const Experiment& e, const SetUnit& u, int l, const
   entry.lambda = e.lambda.value(l);
   entry.lambda_index = l;
   entry.clipped_pixels = c.clipped_pixels;
+  if (u.frame >= 0) entry.frame = ManifestEntry::Frame{u.frame, e.scenes[u.scene].fps};
   entry.extra["parameters"] = OrderedJson::parse(parameters.dump());
   // data-formats.md records these at the top level too, where a method has them.
   for (const char* key : {"operator", "iterations"})
@@ -161,6 +165,37 @@ std::shared_ptr<const View> moved_view(const Experiment& e, const Scene& scene, 
   return render_view(moved, plan, options);
 }
 
+// The units that share one render: a still scene's, or one frame's of a sequence.
+using Shot = std::vector<SetUnit>;
+
+// The units of `scene` grouped into shots, frame by frame.
+std::vector<Shot> shots_of(size_t scene, const std::vector<SetUnit>& units) {
+  std::map<int, Shot> by_frame;
+  for (const auto& u : units)
+    if (u.scene == scene) by_frame[u.frame].push_back(u);
+  std::vector<Shot> shots;
+  for (auto& [frame, shot] : by_frame) shots.push_back(std::move(shot));
+  return shots;
+}
+
+// The scene as the set renders it: the experiment's overrides, every method's request applied,
+// and checked by every method that applies to it.
+std::shared_ptr<Scene> set_scene(const Experiment& e, size_t s) {
+  auto scene = std::make_shared<Scene>(load_experiment_scene(e, e.scenes[s]));
+  apply_request(*scene, scene_request(e, s));
+  for (const ExperimentMethod& m : e.methods)
+    if (m.applies_to(e.scenes[s].name))
+      for (const auto& parameters : m.parameters) m.method->check_scene(*scene, *parameters);
+  return scene;
+}
+
+// Flicker for every sequence of a complete set, measured from its files (sequence_flicker.h).
+void measure_flicker(const Experiment& e, const fs::path& dir, std::vector<ManifestEntry>& entries,
+                     const std::function<std::shared_ptr<const Scene>(size_t)>& scene_of, int threads) {
+  for (size_t s = 0; s < e.scenes.size(); ++s)
+    if (e.scenes[s].is_sequence()) measure_sequence_flicker(e, dir, e.scenes[s], *scene_of(s), entries, threads);
+}
+
 class SetGenerator {
  public:
   SetGenerator(const Experiment& e, const fs::path& dir, const GenerateOptions& options)
@@ -171,10 +206,11 @@ class SetGenerator {
  private:
   void prepare_folder();
   std::vector<SetUnit> shard_units() const;
-  bool all_done(size_t scene, const std::vector<SetUnit>& units) const;
+  std::vector<std::string> files_of(const SetUnit& unit) const;
+  bool all_done(const Shot& shot) const;
   void record(ManifestEntry entry, bool is_new);
-  void make_scene(size_t scene, const std::vector<SetUnit>& units);
-  void write_reference(size_t scene, const View& view, const View* moved);
+  void make_shot(const Shot& shot, const ScenePlan& plan);
+  void write_reference(const SetUnit& unit, const View& view, const View* moved);
   void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view,
                        const std::shared_ptr<const View>& moved, size_t use);
   void finish();
@@ -187,12 +223,12 @@ class SetGenerator {
   std::string started_ = utc_timestamp(false);
   std::map<std::string, ManifestEntry> done_;
   std::unique_ptr<SetJournal> journal_;
-  std::vector<std::shared_ptr<Scene>> scenes_;
+  std::vector<std::shared_ptr<const Scene>> scenes_;
   std::vector<ManifestEntry> entries_;
   std::mutex entries_mutex_;
   size_t total_ = 0;
   std::atomic<size_t> finished_{0}, written_{0}, skipped_{0};
-  std::atomic<double> compose_seconds_{0}, encode_seconds_{0};
+  std::atomic<double> render_seconds_{0}, prepare_seconds_{0}, compose_seconds_{0}, encode_seconds_{0};
   GenerateReport report_;
 };
 
@@ -220,14 +256,16 @@ std::vector<SetUnit> SetGenerator::shard_units() const {
   return units;
 }
 
-bool SetGenerator::all_done(size_t scene, const std::vector<SetUnit>& units) const {
-  for (const auto& u : units) {
-    if (u.scene != scene) continue;
-    if (u.is_reference() && !done_.count(reference_path(e_, scene))) return false;
-    if (!u.is_reference())
-      for (int l = 0; l < e_.lambda.count(); ++l)
-        if (!done_.count(stimulus_path(e_, u, l))) return false;
-  }
+std::vector<std::string> SetGenerator::files_of(const SetUnit& u) const {
+  std::vector<std::string> files;
+  for (int l = 0; l < (u.is_reference() ? 1 : e_.lambda.count()); ++l) files.push_back(unit_path(e_, u, l));
+  return files;
+}
+
+bool SetGenerator::all_done(const Shot& shot) const {
+  for (const auto& u : shot)
+    for (const std::string& file : files_of(u))
+      if (!done_.count(file)) return false;
   return true;
 }
 
@@ -241,14 +279,15 @@ void SetGenerator::record(ManifestEntry entry, bool is_new) {
   progress_.update(double(++finished_) / double(std::max<size_t>(total_, 1)));
 }
 
-void SetGenerator::write_reference(size_t scene, const View& view, const View* moved) {
-  const std::string rel = reference_path(e_, scene);
-  if (done_.count(rel)) return record(done_[rel], false);
+void SetGenerator::write_reference(const SetUnit& u, const View& view, const View* moved) {
+  const std::string rel = reference_path(e_, u.scene, u.frame);
+  if (done_.count(rel)) return record(done_.at(rel), false);
   auto te = Clock::now();
   ManifestEntry entry;
   entry.file = rel;
-  entry.scene = e_.scenes[scene].name;
+  entry.scene = e_.scenes[u.scene].name;
   entry.method = kReferenceMethod;
+  if (u.frame >= 0) entry.frame = ManifestEntry::Frame{u.frame, e_.scenes[u.scene].fps};
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
   record_noise(entry, view, NoiseModel{}, view.display);
   if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits);
@@ -267,7 +306,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
     prepared = m.method->prepare(make_use_context(view, use, options_.jobs), *m.parameters[u.sigma]);
     if (moved) prepared_moved = m.method->prepare(make_use_context(moved, use, options_.jobs), *m.parameters[u.sigma]);
   });
-  report_.prepare_seconds += since(tp);
+  prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();
   run_with_threads(options_.jobs, [&] {
     tbb::parallel_for(0, e_.lambda.count(), [&](int l) {
@@ -290,38 +329,39 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
   });
 }
 
-void SetGenerator::make_scene(size_t scene, const std::vector<SetUnit>& units) {
-  if (all_done(scene, units)) {  // skip the render
-    for (const auto& u : units) {
-      if (u.scene != scene) continue;
-      if (u.is_reference()) record(done_.at(reference_path(e_, scene)), false);
-      else
-        for (int l = 0; l < e_.lambda.count(); ++l) record(done_.at(stimulus_path(e_, u, l)), false);
-    }
+void SetGenerator::make_shot(const Shot& shot, const ScenePlan& plan) {
+  if (all_done(shot)) {  // skip the render
+    for (const auto& u : shot)
+      for (const std::string& file : files_of(u)) record(done_.at(file), false);
     return;
   }
   auto t0 = Clock::now();
   ViewOptions vo;
   vo.bits = e_.bits;
   vo.threads = options_.jobs;
+  const SetUnit& first = shot.front();
+  const std::shared_ptr<const Scene> base = scenes_[first.scene];
+  const auto scene = first.frame < 0 ? base : std::make_shared<const Scene>(scene_at(*base, base->animation->time_of(first.frame)));
   std::shared_ptr<const View> view, moved;
-  const ScenePlan plan = scene_plan(e_, scene);
   run_with_threads(options_.jobs, [&] {
-    view = render_view(scenes_[scene], plan.plan, vo);
-    moved = moved_view(e_, *scenes_[scene], plan.plan, vo);
+    view = render_view(scene, plan.plan, vo);
+    moved = moved_view(e_, *scene, plan.plan, vo);
   });
-  report_.render_seconds += since(t0);
-  for (const auto& u : units) {
-    if (u.scene != scene) continue;
-    if (u.is_reference()) write_reference(scene, *view, moved.get());
+  render_seconds_.fetch_add(since(t0));
+  for (const auto& u : shot) {
+    if (u.is_reference()) write_reference(u, *view, moved.get());
     else write_condition(u, view, moved, plan.use_of.at({u.method, int(u.sigma)}));
   }
 }
 
 void SetGenerator::finish() {
   sort_entries(entries_);
+  if (options_.shards == 1)
+    measure_flicker(e_, dir_, entries_, [&](size_t s) { return scenes_[s]; }, options_.jobs);
   report_.images_written = written_;
   report_.images_skipped = skipped_;
+  report_.render_seconds = render_seconds_;
+  report_.prepare_seconds = prepare_seconds_;
   report_.compose_seconds = compose_seconds_;
   report_.encode_seconds = encode_seconds_;
   report_.total_seconds = since(start_);
@@ -341,6 +381,7 @@ void SetGenerator::finish() {
   if (options_.contact_sheets && options_.shards == 1) write_set_contact_sheets(e_, dir_, manifest);
   if (e_.congruence && options_.shards == 1) write_congruence_figures(e_, dir_, manifest, options_.contact_sheets);
   if (options_.shards == 1) write_coherence_figures(e_, dir_, manifest);
+  if (options_.shards == 1) write_flicker_figures(e_, dir_, manifest);
   report_.manifest = manifest_path_;
   progress_.finish("wrote " + manifest_path_.string() + " (" + std::to_string(entries_.size()) + " images, " +
                    format_seconds(report_.total_seconds) + ")");
@@ -349,19 +390,18 @@ void SetGenerator::finish() {
 GenerateReport SetGenerator::run() {
   prepare_folder();
   // Every scene is loaded (and so checked) before anything renders.
-  for (size_t s = 0; s < e_.scenes.size(); ++s) {
-    auto scene = std::make_shared<Scene>(load_experiment_scene(e_, e_.scenes[s]));
-    apply_request(*scene, scene_request(e_, s));
-    for (const ExperimentMethod& m : e_.methods)
-      if (m.applies_to(e_.scenes[s].name))
-        for (const auto& parameters : m.parameters) m.method->check_scene(*scene, *parameters);
-    scenes_.push_back(std::move(scene));
-  }
+  for (size_t s = 0; s < e_.scenes.size(); ++s) scenes_.push_back(set_scene(e_, s));
   const std::vector<SetUnit> units = shard_units();
-  for (const auto& u : units) total_ += u.is_reference() ? 1 : size_t(e_.lambda.count());
+  for (const auto& u : units) total_ += files_of(u).size();
   journal_ = std::make_unique<SetJournal>(journal_path_, e_.sha256);
-  for (size_t s = 0; s < e_.scenes.size(); ++s)
-    if (std::any_of(units.begin(), units.end(), [&](const SetUnit& u) { return u.scene == s; })) make_scene(s, units);
+  for (size_t s = 0; s < e_.scenes.size(); ++s) {
+    const std::vector<Shot> shots = shots_of(s, units);
+    if (shots.empty()) continue;
+    const ScenePlan plan = scene_plan(e_, s);
+    run_with_threads(options_.jobs, [&] {  // a sequence's frames in parallel
+      tbb::parallel_for(size_t(0), shots.size(), [&](size_t k) { make_shot(shots[k], plan); });
+    });
+  }
   finish();
   return report_;
 }
@@ -408,11 +448,13 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir) {
     finished = std::max(finished, m.run.value("finished_utc", finished));
   }
   sort_entries(manifest.stimuli);
+  measure_flicker(e, dir, manifest.stimuli, [&](size_t s) { return set_scene(e, s); }, 0);
   manifest.run = {{"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
   write_manifest(dir / "manifest.json", manifest);
   write_set_contact_sheets(e, dir, manifest);
   if (e.congruence) write_congruence_figures(e, dir, manifest, true);
   write_coherence_figures(e, dir, manifest);
+  write_flicker_figures(e, dir, manifest);
   return dir / "manifest.json";
 }
 

@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "enhance/lightness.h"
+#include "stimuli/set_test_util.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -51,30 +52,13 @@ fs::path write_experiment(const testing::TempDir& dir, int width = 96, int heigh
   })");
 }
 
-OrderedJson manifest_of(const fs::path& dir, const std::string& name = "manifest.json") {
-  std::ifstream in(dir / name);
-  return OrderedJson::parse(in);
-}
-
-// The manifest without the fields that differ between runs (timings, timestamps).
-OrderedJson reproducible_part(OrderedJson manifest) {
-  manifest.erase("run");
-  return manifest;
-}
-
-GenerateOptions jobs(int n) {
-  GenerateOptions o;
-  o.jobs = n;
-  return o;
-}
-
 TEST(StimulusSet, ReproducibleAcrossRunsAndThreadCounts) {
   testing::TempDir dir;
   Experiment e = load_experiment(write_experiment(dir));
-  generate_stimulus_set(e, dir / "a", jobs(1));
-  generate_stimulus_set(e, dir / "b", jobs(2));
-  OrderedJson a = manifest_of(dir / "a"), b = manifest_of(dir / "b");
-  EXPECT_EQ(reproducible_part(a), reproducible_part(b));
+  generate_stimulus_set(e, dir / "a", testing::with_jobs(1));
+  generate_stimulus_set(e, dir / "b", testing::with_jobs(2));
+  OrderedJson a = testing::manifest_json(dir / "a"), b = testing::manifest_json(dir / "b");
+  EXPECT_EQ(testing::without_run(a), testing::without_run(b));
   EXPECT_EQ(a["stimuli"].size(), 2u * (1 + 4 * 5));  // per scene: reference + 4 (method, σ) × 5 λ
   for (const auto& s : a["stimuli"])
     EXPECT_EQ(testing::read_file(dir / "a" / s["file"].get<std::string>()),
@@ -86,25 +70,21 @@ TEST(StimulusSet, ReproducibleAcrossRunsAndThreadCounts) {
 TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
   testing::TempDir dir;
   Experiment e = load_experiment(write_experiment(dir));
-  generate_stimulus_set(e, dir / "single", jobs(2));
-  for (int i = 1; i <= 3; ++i) {
-    GenerateOptions o;
-    o.shard = i;
-    o.shards = 3;
-    generate_stimulus_set(e, dir / "sharded", o);
-  }
+  generate_stimulus_set(e, dir / "single", testing::with_jobs(2));
+  testing::generate_in_shards(e, dir / "sharded", 3);
   EXPECT_FALSE(fs::exists(dir / "sharded/manifest.json"));
   merge_shard_manifests(e, dir / "sharded");
-  EXPECT_EQ(reproducible_part(manifest_of(dir / "single")), reproducible_part(manifest_of(dir / "sharded")));
+  EXPECT_EQ(testing::without_run(testing::manifest_json(dir / "single")),
+            testing::without_run(testing::manifest_json(dir / "sharded")));
   EXPECT_TRUE(verify_stimulus_set(dir / "sharded/manifest.json").empty());
 }
 
 TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
   testing::TempDir dir;
   Experiment e = load_experiment(write_experiment(dir));
-  generate_stimulus_set(e, dir / "set", jobs(2));
+  generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
-  const OrderedJson manifest = manifest_of(dir / "set");  // keep it alive while iterating
+  const OrderedJson manifest = testing::manifest_json(dir / "set");  // keep it alive while iterating
   for (const auto& s : manifest["stimuli"]) {
     std::string file = s["file"].get<std::string>();
     EXPECT_EQ(file.find(".."), std::string::npos);
@@ -124,8 +104,8 @@ TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
 TEST(StimulusSet, LambdaZeroEqualsTheReferenceAndUsm3dGrowsWithLambda) {
   testing::TempDir dir;
   Experiment e = load_experiment(write_experiment(dir, 128, 96, 0.25));
-  generate_stimulus_set(e, dir / "set", jobs(2));
-  OrderedJson m = manifest_of(dir / "set");
+  generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
+  OrderedJson m = testing::manifest_json(dir / "set");
   std::map<std::string, std::string> reference_sha;
   for (const auto& s : m["stimuli"])
     if (s["method"] == "none") reference_sha[s["scene"]] = s["sha256"];
@@ -162,7 +142,7 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   testing::TempDir dir;
   fs::path experiment = write_experiment(dir, 320, 240, 0.05);
   Experiment e = load_experiment(experiment);
-  generate_stimulus_set(e, dir / "whole", jobs(2));
+  generate_stimulus_set(e, dir / "whole", testing::with_jobs(2));
   pid_t child = ::fork();
   if (child == 0) {
     ::execl(COUNTERSHADE_BINARY, COUNTERSHADE_BINARY, "stimuli", experiment.c_str(), "-o", (dir / "cut").c_str(),
@@ -185,7 +165,7 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   testing::write_file(dir / "cut/cube/.lambda-9.tmp-1-0.png", "partial");
   auto again = testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "cut").string());
   EXPECT_EQ(again.exit_code, 2) << "an unfinished set must not be overwritten without --resume: " << again.output;
-  GenerateOptions resume = jobs(2);
+  GenerateOptions resume = testing::with_jobs(2);
   resume.resume = true;
   // Resuming with another experiment file is refused rather than mixing two designs.
   Experiment other = load_experiment(write_experiment(dir, 320, 240, 0.1));
@@ -193,7 +173,8 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   GenerateReport report = generate_stimulus_set(e, dir / "cut", resume);
   EXPECT_GT(report.images_skipped, 0u);
   EXPECT_GT(report.images_written, 0u);
-  EXPECT_EQ(reproducible_part(manifest_of(dir / "whole")), reproducible_part(manifest_of(dir / "cut")));
+  EXPECT_EQ(testing::without_run(testing::manifest_json(dir / "whole")),
+            testing::without_run(testing::manifest_json(dir / "cut")));
   auto problems = verify_stimulus_set(dir / "cut/manifest.json");
   EXPECT_TRUE(problems.empty()) << problems.front();
   EXPECT_FALSE(fs::exists(dir / "cut/cube/.lambda-9.tmp-1-0.png"));

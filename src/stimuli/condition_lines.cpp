@@ -1,0 +1,33 @@
+#include "stimuli/condition_lines.h"
+
+#include <algorithm>
+
+#include "core/number_format.h"
+
+namespace countershade {
+
+std::string condition_name(const Experiment& e, const ManifestEntry& s) {
+  if (s.is_reference()) return "plain";
+  for (const ExperimentMethod& m : e.methods)
+    if (m.label == s.label) return m.sigmas.size() > 1 ? m.label + " sigma " + format_value(*s.sigma) : m.label;
+  return s.label;
+}
+
+std::string condition_columns(const Experiment& e, const ManifestEntry& s) {
+  return s.scene + ',' + condition_name(e, s) + ',' + (s.is_reference() ? "" : format_value(s.lambda)) + ',';
+}
+
+PlotSeries& ConditionLines::line_of(const ManifestEntry& s) {
+  auto [it, added] = index_of_.emplace(condition_name(e_, s), plot_.series.size());
+  if (added) {
+    const bool plain = s.is_reference();
+    const size_t colour = label_colour_.emplace(s.label, label_colour_.size()).first->second;
+    const size_t sigma = plain ? 0 : sigmas_of_label_[s.label]++;
+    plot_.series.push_back({it->first, {}, {}, plain ? "#777777" : plot_color(colour), plain || sigma > 0});
+  }
+  return plot_.series[it->second];
+}
+
+void ConditionLines::fit_legend() { plot_.height = std::max(plot_.height, 110 + 18 * int(plot_.series.size())); }
+
+}  // namespace countershade

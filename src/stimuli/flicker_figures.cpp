@@ -1,0 +1,59 @@
+#include "stimuli/flicker_figures.h"
+
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/number_format.h"
+#include "core/svg_plot.h"
+#include "stimuli/condition_lines.h"
+
+namespace countershade {
+namespace {
+
+double flicker_of(const ManifestEntry& s) { return s.extra["flicker"].get<double>(); }
+
+void write_table(const std::filesystem::path& path, const Experiment& e, const std::vector<const ManifestEntry*>& entries) {
+  std::ostringstream csv;
+  csv << "scene,condition,lambda,frame,flicker_lstar,pixels\n";
+  for (const ManifestEntry* s : entries)
+    csv << condition_columns(e, *s) << s->frame->index << ',' << format_value(flicker_of(*s)) << ','
+        << s->extra.value("flicker_pixels", 0) << '\n';
+  write_text_atomically(path, csv.str());
+}
+
+// One line per condition at λ index `l` against frame, and the plain render's reprojection error.
+void write_plot(const std::filesystem::path& path, const Experiment& e, const std::string& scene, int l,
+                const std::vector<const ManifestEntry*>& entries) {
+  LinePlot plot;
+  plot.title = e.name + ", " + scene + ": flicker at lambda " + format_value(e.lambda.value(l));
+  plot.x_label = "frame";
+  plot.y_label = "RMS change of enhanced minus plain L* per frame";
+  plot.width = 960;
+  ConditionLines lines(e, plot);
+  for (const ManifestEntry* s : entries) {
+    if (s->scene != scene || (!s->is_reference() && s->lambda_index != l)) continue;
+    PlotSeries& series = lines.line_of(*s);
+    series.x.push_back(s->frame->index);
+    series.y.push_back(flicker_of(*s));
+  }
+  lines.fit_legend();
+  plot.write(path);
+}
+
+}  // namespace
+
+void write_flicker_figures(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
+  std::vector<const ManifestEntry*> entries;  // in file order: frames ascending within a sequence
+  for (const ManifestEntry& s : manifest.stimuli)
+    if (s.frame && s.extra.contains("flicker")) entries.push_back(&s);
+  if (entries.empty()) return;
+  write_table(dir / "flicker.csv", e, entries);
+  for (const ExperimentScene& scene : e.scenes) {
+    if (!scene.is_sequence()) continue;
+    for (int l = 0; l < e.lambda.count(); ++l)
+      if (e.lambda.value(l) != 0)
+        write_plot(dir / ("flicker-" + scene.name + "-lambda-" + format_value(e.lambda.value(l)) + ".svg"), e, scene.name, l, entries);
+  }
+}
+
+}  // namespace countershade

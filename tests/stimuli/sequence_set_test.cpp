@@ -1,0 +1,167 @@
+// Stimulus sets with sequences: a scene's animation frames as stimuli, the manifest's frame
+// records, reproducibility across thread counts and shards, resuming frame by frame, the flicker
+// recorded per frame (against the `flicker` command), and bad frame ranges.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/sha256.h"
+#include "stimuli/audit.h"
+#include "stimuli/set_journal.h"
+#include "stimuli/stimulus_set.h"
+#include "stimuli/set_test_util.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A box on a ground plane; the camera orbits while the box slides: 4 frames at 4 fps.
+std::string animated_scene(bool animated = true) {
+  return std::string(R"({"version": 1,
+    "camera": {"eye": [0, 1.2, 4], "target": [0, 0.3, 0], "fov": 35, "width": 64, "height": 48},
+    "render": {"spp": 2, "seed": 7},
+    "objects": [{"name": "ground", "shape": {"type": "plane", "size": 6, "subdivisions": 24}, "material": {"albedo": 0.6}},
+                {"name": "box", "shape": {"type": "box", "size": [0.6, 0.6, 0.6], "subdivisions": 6},
+                 "transform": {"translate": [0, 0.3, 0]}}],
+    "lights": [{"type": "directional", "direction": [0.4, 1, 0.3], "irradiance": 2.5}, {"type": "ambient", "radiance": 0.2}])") +
+         (animated ? R"(, "animation": {"duration": 1, "fps": 4,
+    "camera": {"eye": {"times": [0, 1], "values": [[0, 1.2, 4], [1.2, 1.2, 3.8]]}},
+    "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [0.4, 0, 0]]}}]})" : "") + "}";
+}
+
+fs::path write_experiment(const testing::TempDir& dir, const std::string& frames = "\"all\"") {
+  testing::write_file(dir / "orbit.json", animated_scene());
+  return testing::write_file(dir / "experiment.json", R"({
+    "version": 1, "name": "sequence", "seed": 7,
+    "lambda": {"min": 0, "max": 1, "step": 1},
+    "scenes": [{"name": "orbit", "file": "orbit.json", "frames": )" + frames + R"(}],
+    "methods": [{"method": "usm3d", "sigma": [0.1]}, {"method": "usm2d", "sigma_percent": [3]}]
+  })");
+}
+
+TEST(SequenceSet, EveryFrameIsAStimulusWithItsChecksumAndTheFrameRate) {
+  testing::TempDir dir;
+  generate_stimulus_set(load_experiment(write_experiment(dir)), dir / "set", testing::with_jobs(2));
+  const OrderedJson m = testing::manifest_json(dir / "set");
+  ASSERT_EQ(m["stimuli"].size(), 4u * (1 + 2 * 2));  // per frame: the reference and 2 methods × 2 λ
+  std::map<int, int> per_frame;
+  for (const auto& s : m["stimuli"]) {
+    ASSERT_TRUE(s.contains("frame")) << s["file"];
+    EXPECT_EQ(s["fps"], 4.0);
+    const int frame = s["frame"];
+    ++per_frame[frame];
+    char name[32];
+    std::snprintf(name, sizeof name, "frame-%04d.png", frame);
+    EXPECT_EQ(fs::path(s["file"].get<std::string>()).filename(), name);
+    EXPECT_EQ(s["sha256"], sha256_file(dir / "set" / s["file"].get<std::string>()));
+    EXPECT_EQ(s.contains("flicker"), frame > 0) << s["file"];  // a pair needs an earlier frame
+  }
+  EXPECT_EQ(per_frame, (std::map<int, int>{{0, 5}, {1, 5}, {2, 5}, {3, 5}}));
+  EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
+  EXPECT_TRUE(fs::exists(dir / "set/flicker.csv"));
+  EXPECT_TRUE(fs::exists(dir / "set/flicker-orbit-lambda-1.svg"));
+  EXPECT_TRUE(fs::exists(dir / "set/contact-sheets/orbit-usm3d.png"));
+  // Each frame's λ = 0 equals that frame's reference, and the audit pairs them so.
+  const AuditReport audit = audit_stimulus_set(dir / "set/manifest.json");
+  for (const auto& c : audit.checks)
+    if (c.check == "lambda 0 equals reference") EXPECT_TRUE(c.passed) << c.condition << ": " << c.detail;
+}
+
+TEST(SequenceSet, ReproducibleAcrossThreadCountsAndShards) {
+  testing::TempDir dir;
+  const Experiment e = load_experiment(write_experiment(dir, "\"1:3\""));
+  generate_stimulus_set(e, dir / "one", testing::with_jobs(1));
+  generate_stimulus_set(e, dir / "two", testing::with_jobs(2));
+  testing::generate_in_shards(e, dir / "sharded", 2);
+  merge_shard_manifests(e, dir / "sharded");
+  const OrderedJson one = testing::without_run(testing::manifest_json(dir / "one"));
+  EXPECT_EQ(one["stimuli"].size(), 3u * 5);
+  EXPECT_EQ(one, testing::without_run(testing::manifest_json(dir / "two")));
+  // Flicker included: measured from the files once the shards are merged.
+  EXPECT_EQ(one, testing::without_run(testing::manifest_json(dir / "sharded")));
+  EXPECT_EQ(one["stimuli"][0]["frame"], 1);
+}
+
+// An interrupted run, made by hand: the journal lists every image but frame 2's, whose files are
+// gone. Resuming renders frame 2 alone and ends with the uninterrupted set.
+TEST(SequenceSet, ResumesFrameByFrame) {
+  testing::TempDir dir;
+  const Experiment e = load_experiment(write_experiment(dir));
+  generate_stimulus_set(e, dir / "whole", testing::with_jobs(2));
+  fs::copy(dir / "whole", dir / "cut", fs::copy_options::recursive);
+  fs::remove(dir / "cut/manifest.json");
+  const Manifest whole = read_manifest(dir / "whole/manifest.json");
+  {
+    SetJournal journal(dir / "cut/.journal.shard-1-of-1.jsonl", e.sha256);
+    for (const ManifestEntry& s : whole.stimuli)
+      if (s.frame->index == 2) fs::remove(dir / "cut" / s.file);
+      else journal.append(s);
+  }
+  GenerateOptions resume = testing::with_jobs(2);
+  resume.resume = true;
+  const GenerateReport report = generate_stimulus_set(e, dir / "cut", resume);
+  EXPECT_EQ(report.images_written, 5u);
+  EXPECT_EQ(report.images_skipped, 15u);
+  EXPECT_EQ(testing::without_run(testing::manifest_json(dir / "whole")),
+            testing::without_run(testing::manifest_json(dir / "cut")));
+}
+
+// The set measures flicker from its files; the `flicker` command renders and measures in memory.
+// They agree frame by frame, for a method and for the plain render.
+TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
+  testing::TempDir dir;
+  generate_stimulus_set(load_experiment(write_experiment(dir)), dir / "set", testing::with_jobs(2));
+  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() +
+                                  " --method usm2d --sigma-percent 3 --lambda 1 --csv " + (dir / "f.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::map<int, std::pair<double, double>> command;  // frame → (flicker, plain)
+  std::istringstream csv(testing::read_file(dir / "f.csv"));
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    int frame;
+    double flicker, plain;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf", &frame, &flicker, &plain), 3) << line;
+    command[frame] = {flicker, plain};
+  }
+  ASSERT_EQ(command.size(), 3u);
+  int compared = 0;
+  const OrderedJson manifest = testing::manifest_json(dir / "set");  // alive while iterating
+  for (const auto& s : manifest["stimuli"]) {
+    if (!s.contains("flicker")) continue;
+    const int frame = s["frame"];
+    if (s["method"] == "none") EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).second, 1e-4);
+    if (s["method"] == "usm2d" && s["lambda"] == 1.0) EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).first, 1e-4);
+    if (s["lambda"] == 0.0 && s["method"] != "none") EXPECT_EQ(s["flicker"].get<double>(), 0.0);
+    compared += s["method"] == "none" || (s["method"] == "usm2d" && s["lambda"] == 1.0);
+  }
+  EXPECT_EQ(compared, 6);
+  EXPECT_GT(command.at(1).first, 0.05);  // usm2d does change: the comparison can tell
+}
+
+TEST(SequenceSet, FramesOfAStillSceneOrOutsideTheAnimationAreRefused) {
+  testing::TempDir dir;
+  write_experiment(dir);
+  EXPECT_THROW(load_experiment(write_experiment(dir, "\"2:9\"")), InputError);
+  EXPECT_THROW(load_experiment(write_experiment(dir, "\"3:1\"")), InputError);
+  testing::write_file(dir / "still.json", animated_scene(false));
+  std::string text = testing::read_file(dir / "experiment.json");
+  text.replace(text.find("orbit.json"), 10, "still.json");
+  testing::write_file(dir / "experiment.json", text);
+  try {
+    load_experiment(dir / "experiment.json");
+    FAIL() << "a still scene with frames was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("scenes[0].frames"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("has no animation"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace countershade

@@ -1,0 +1,41 @@
+#pragma once
+// Helpers of the stimulus-set tests: a set's manifest as JSON, without its run record, and
+// generation options with a thread count, a set made in shards.
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "formats/manifest.h"
+#include "stimuli/stimulus_set.h"
+
+namespace countershade::testing {
+
+inline OrderedJson manifest_json(const std::filesystem::path& dir, const std::string& name = "manifest.json") {
+  std::ifstream in(dir / name);
+  return OrderedJson::parse(in);
+}
+
+// The manifest without the fields that differ between runs (timings, timestamps).
+inline OrderedJson without_run(OrderedJson manifest) {
+  manifest.erase("run");
+  return manifest;
+}
+
+inline GenerateOptions with_jobs(int n) {
+  GenerateOptions o;
+  o.jobs = n;
+  return o;
+}
+
+// Generates the set in `count` shards, one after the other, without merging them.
+inline void generate_in_shards(const Experiment& e, const std::filesystem::path& dir, int count) {
+  for (int i = 1; i <= count; ++i) {
+    GenerateOptions o;
+    o.shard = i;
+    o.shards = count;
+    generate_stimulus_set(e, dir, o);
+  }
+}
+
+}  // namespace countershade::testing
