@@ -52,6 +52,19 @@ inline constexpr const char* kLitCubeScene = R"({
   "lights": [{"type": "directional", "direction": [0.35, -1, 0.6], "irradiance": 1.6}, {"type": "ambient", "radiance": 0.25}]
 })";
 
+// A box on a ground plane; the camera orbits while the box slides: 4 frames at 4 fps.
+inline constexpr const char* kOrbitingBoxScene = R"({"version": 1,
+  "camera": {"eye": [0, 1.2, 4], "target": [0, 0.3, 0], "fov": 35, "width": 64, "height": 48},
+  "render": {"spp": 2, "seed": 7},
+  "objects": [{"name": "ground", "shape": {"type": "plane", "size": 6, "subdivisions": 24}, "material": {"albedo": 0.6}},
+              {"name": "box", "shape": {"type": "box", "size": [0.6, 0.6, 0.6], "subdivisions": 6},
+               "transform": {"translate": [0, 0.3, 0]}}],
+  "lights": [{"type": "directional", "direction": [0.4, 1, 0.3], "irradiance": 2.5}, {"type": "ambient", "radiance": 0.2}],
+  "animation": {"duration": 1, "fps": 4,
+    "camera": {"eye": {"times": [0, 1], "values": [[0, 1.2, 4], [1.2, 1.2, 3.8]]}},
+    "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [0.4, 0, 0]]}}]}
+})";
+
 inline std::filesystem::path write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;

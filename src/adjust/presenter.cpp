@@ -317,7 +317,10 @@ void Presenter::pace() {
     next_deadline_ = t + period;
   }
   if (timer_pacing_) {
-    if (t < next_deadline_) std::this_thread::sleep_for(std::chrono::duration<double>(next_deadline_ - t));
+    // Sleep to just before the deadline, then spin: a sleep can overshoot by a millisecond or more.
+    constexpr double kSpin = 0.002;
+    if (t < next_deadline_ - kSpin) std::this_thread::sleep_for(std::chrono::duration<double>(next_deadline_ - kSpin - t));
+    while (glfwGetTime() < next_deadline_) std::this_thread::yield();
     next_deadline_ = std::max(next_deadline_ + period, glfwGetTime());
   }
   last_swap_ = glfwGetTime();

@@ -57,8 +57,11 @@ RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, c
   }
   const std::string file = csv.string();
   CsvTable table = parse_csv(text, file);
-  if (table.rows.empty() || table.rows[0] != response_columns())
+  const auto& all = response_columns();
+  const std::vector<std::string> without_sequence(all.begin(), all.end() - 1);
+  if (table.rows.empty() || (table.rows[0] != all && table.rows[0] != without_sequence))
     throw_input_error(file + ": line 1", "not a session file written by this app (unexpected header)");
+  out.columns = table.rows[0].size();
   auto column = [](const char* name) {
     const auto& cols = response_columns();
     return size_t(std::find(cols.begin(), cols.end(), name) - cols.begin());
@@ -69,9 +72,8 @@ RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, c
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const std::string where = file + ": line " + std::to_string(table.lines[r]);
-    if (row.size() != response_columns().size())
-      throw_input_error(where, "expected " + std::to_string(response_columns().size()) + " fields, found " +
-                                   std::to_string(row.size()));
+    if (row.size() != out.columns)
+      throw_input_error(where, "expected " + std::to_string(out.columns) + " fields, found " + std::to_string(row.size()));
     auto integer = [&](const char* name) {
       const std::string& v = row[column(name)];
       try {
@@ -193,6 +195,11 @@ SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& p
   save();
 }
 
+std::string SessionRecorder::answered_sequence(int condition, int lambda_index) const {
+  const int stimulus = study_.condition_images[size_t(condition)][size_t(1 + lambda_index)];
+  return study_.stimuli[size_t(stimulus)].sequence;
+}
+
 void SessionRecorder::record_answer(const Answer& a, double time_s) {
   const Trial& t = plan_[size_t(a.trial_index)];
   log_line(time_s, a.revision ? "answer-revised" : "answer", "enter", t.practice ? "practice" : std::to_string(t.number),
@@ -223,7 +230,9 @@ void SessionRecorder::record_answer(const Answer& a, double time_s) {
                                      std::to_string(a.revision),
                                      utc_timestamp(),
                                      study_.manifest_sha256,
-                                     kVersion};
+                                     kVersion,
+                                     answered_sequence(t.condition, a.lambda_index)};
+  if (recorded_.columns) fields.resize(recorded_.columns);  // a resumed file keeps its layout
   csv_.append(csv_line(fields));
   csv_.sync();
   keys_.sync();

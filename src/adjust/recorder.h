@@ -30,6 +30,9 @@ SessionFiles session_files(const std::filesystem::path& dir, const std::string& 
 struct RecordedAnswers {
   std::map<std::pair<int, int>, PastAnswer> answered;  // (plan index, question) → latest answer
   int rows = 0;
+  // The file's columns: all of response_columns(), or all but the last (`sequence`) for a session
+  // begun by a version without it; new rows keep the file's layout.
+  size_t columns = 0;
   std::string dropped_tail;  // a partial last line (from a power cut), moved aside, not parsed
 };
 
@@ -69,6 +72,9 @@ class SessionRecorder {
   void save();
 
  private:
+  // The folder of the sequence an answer chose (the `sequence` column); empty for a still.
+  std::string answered_sequence(int condition, int lambda_index) const;
+
   const Study& study_;
   const std::vector<Trial>& plan_;
   Identity who_;

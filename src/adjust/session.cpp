@@ -286,13 +286,15 @@ class SessionLoop {
     }
   }
 
-  // The images of the current question: (reference, enhanced) relative paths and textures.
-  std::pair<int, int> question_images() const {
-    const auto& images = study_.condition_images[size_t(procedure_.trial().condition)];
-    return {images[0], images[size_t(1 + procedure_.lambda_index())]};
+  // The images the current question shows `t` seconds into the session: (reference, enhanced),
+  // a sequence's frames both from the same clock.
+  std::pair<int, int> question_images(double t) const {
+    const auto& stimuli = study_.condition_images[size_t(procedure_.trial().condition)];
+    return {study_.stimuli[size_t(stimuli[0])].frame_at(t),
+            study_.stimuli[size_t(stimuli[size_t(1 + procedure_.lambda_index())])].frame_at(t)};
   }
 
-  FrameContent frame_content() const {
+  FrameContent frame_content(double t) const {
     FrameContent content;
     const Instructions& text = study_.config.text;
     switch (procedure_.phase()) {
@@ -303,7 +305,7 @@ class SessionLoop {
       case Procedure::Phase::quit: break;
       case Procedure::Phase::question: {
         const Trial& trial = procedure_.trial();
-        const auto [reference, enhanced] = question_images();
+        const auto [reference, enhanced] = question_images(t);
         content.left_texture = texture_[size_t(trial.side == Side::left ? enhanced : reference)];
         content.right_texture = texture_[size_t(trial.side == Side::left ? reference : enhanced)];
         content.image_width = study_.width(trial.condition);
@@ -320,11 +322,11 @@ class SessionLoop {
   }
 
   // The screenshot's sidecar: what was on screen and where.
-  void describe_screenshot(const fs::path& shot, const StimulusLayout& layout) const {
+  void describe_screenshot(const fs::path& shot, const StimulusLayout& layout, double t) const {
     OrderedJson info = {{"frame", frame_}, {"phase", int(procedure_.phase())}};
     if (procedure_.phase() == Procedure::Phase::question) {
       const Trial& trial = procedure_.trial();
-      const auto [reference, enhanced] = question_images();
+      const auto [reference, enhanced] = question_images(t);
       const std::string ref = study_.images[size_t(reference)].relative;
       const std::string enh = study_.images[size_t(enhanced)].relative;
       info["trial"] = trial.number;
@@ -343,23 +345,24 @@ class SessionLoop {
     fs::path shot;
     if (screenshot_due_ && o_.screenshot) shot = screenshot_path(*o_.screenshot, screenshots_);
     const double draw_start = presenter_.now();
-    const StimulusLayout layout = presenter_.draw(frame_content(), shot);
+    const StimulusLayout layout = presenter_.draw(frame_content(draw_start - t0_), shot);
     const double draw_seconds = presenter_.now() - draw_start;
     // The frame just swapped is the first to show these presses.
     for (double pressed : pending_presses_) times_.key_to_frame.push_back(float(presenter_.now() - t0_ - pressed));
     pending_presses_.clear();
     if (!shot.empty()) {
-      describe_screenshot(shot, layout);
+      describe_screenshot(shot, layout, draw_start - t0_);
       ++screenshots_;
       screenshot_due_ = false;
     }
     presenter_.pace();
-    record_interval(draw_seconds);
+    record_interval(draw_seconds, !shot.empty());
   }
 
-  void record_interval(double draw_seconds) {
+  // A frame that wrote a screenshot (a test's or a demo's, never a participant's) is not timed.
+  void record_interval(double draw_seconds, bool screenshot) {
     const double t = presenter_.now();
-    if (last_frame_ >= 0 && frame_ > 20) {  // the first frames calibrate the pacing
+    if (last_frame_ >= 0 && frame_ > 20 && !screenshot) {  // the first frames calibrate the pacing
       const double interval = t - last_frame_;
       times_.all.push_back(float(interval));
       times_.draw.push_back(float(draw_seconds));

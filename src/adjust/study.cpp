@@ -88,6 +88,11 @@ double Study::lambda(int index) const {
   return std::round((lambda_min + double(index) * lambda_step) * 1e9) / 1e9;
 }
 
+int Stimulus::frame_at(double seconds) const {
+  if (fps <= 0 || frames.size() == 1) return frames[0];
+  return frames[size_t(std::floor(std::max(0.0, seconds) * fps)) % frames.size()];
+}
+
 int Study::max_width() const {
   int w = 0;
   for (size_t c = 0; c < conditions.size(); ++c) w = std::max(w, width(int(c)));
@@ -132,12 +137,15 @@ void read_config(Study& study, const Manifest& manifest, const std::string& mfil
 
 using ConditionKey = std::tuple<std::string, std::string, double>;
 
+// The entries of one stimulus: a still's one, or a sequence's frames.
+using Entries = std::vector<size_t>;
+
 // The set's conditions in manifest order, each with its entries by λ index, and the reference
-// entry of each scene.
+// entries of each scene.
 struct SetIndex {
-  std::map<ConditionKey, std::map<int, size_t>> grids;
+  std::map<ConditionKey, std::map<int, Entries>> grids;
   std::vector<ConditionKey> order;
-  std::map<std::string, size_t> reference_of_scene;
+  std::map<std::string, Entries> reference_of_scene;
 };
 
 SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
@@ -148,15 +156,17 @@ SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
     const ManifestEntry& s = manifest.stimuli[i];
     const std::string where = "stimuli[" + std::to_string(i) + "]";
     if (s.is_reference()) {
-      index.reference_of_scene.emplace(s.scene, i);
+      index.reference_of_scene[s.scene].push_back(i);
       continue;
     }
     if (!s.sigma) fail(where + ".sigma", "missing");
     ConditionKey key{s.scene, s.condition_method(), *s.sigma};
     if (!index.grids.count(key)) index.order.push_back(key);
     if (s.lambda_index >= count) fail(where + ".lambda_index", "outside the λ grid (0.." + std::to_string(count - 1) + ")");
-    if (!index.grids[key].emplace(s.lambda_index, i).second)
+    Entries& entries = index.grids[key][s.lambda_index];
+    if (!entries.empty() && !s.frame)  // only a sequence has several entries per λ
       fail(where + ".lambda_index", "λ index " + std::to_string(s.lambda_index) + " listed twice");
+    entries.push_back(i);
   }
   return index;
 }
@@ -174,6 +184,23 @@ class StudyBuilder {
 
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
     throw_input_error(mfile_ + ": " + field, what);
+  }
+
+  // A stimulus from its entries (frames ordered by their index), once per first file.
+  int add_stimulus(Entries entries) {
+    const auto frame = [&](size_t e) { return manifest_.stimuli[e].frame ? manifest_.stimuli[e].frame->index : 0; };
+    std::sort(entries.begin(), entries.end(), [&](size_t a, size_t b) { return frame(a) < frame(b); });
+    const ManifestEntry& head = manifest_.stimuli[entries[0]];
+    auto [it, inserted] = stimulus_of_file_.emplace(head.file, study_.stimuli.size());
+    if (!inserted) return int(it->second);
+    Stimulus stimulus;
+    for (size_t e : entries) stimulus.frames.push_back(add_image(e));
+    if (head.frame) {
+      stimulus.fps = head.frame->fps;
+      stimulus.sequence = fs::path(head.file).parent_path().string();
+    }
+    study_.stimuli.push_back(std::move(stimulus));
+    return int(it->second);
   }
 
   int add_image(size_t entry) {
@@ -196,31 +223,35 @@ class StudyBuilder {
     std::vector<int> images;
     for (int i = 0; i < count; ++i) {
       auto it = entries.find(i);
-      if (it != entries.end()) images.push_back(add_image(it->second));
-      else if (i == 0 && study_.lambda(0) == 0) images.push_back(add_image(reference->second));
+      if (it != entries.end()) images.push_back(add_stimulus(it->second));
+      else if (i == 0 && study_.lambda(0) == 0) images.push_back(add_stimulus(reference->second));
       else
         fail("stimuli", "condition " + scene + " / " + method + " / sigma " + nlohmann::json(sigma).dump() +
                             " has no image for λ index " + std::to_string(i) + " (the adjustment needs the whole grid)");
     }
-    const int ref = add_image(reference->second);
-    for (int img : images) check_same_size(img, ref);
+    const int ref = add_stimulus(reference->second);
+    for (int img : images) check_same_shape(img, ref);
     images.insert(images.begin(), ref);
     study_.conditions.push_back({scene, method, sigma, count});
     study_.condition_images.push_back(std::move(images));
   }
 
  private:
-  void check_same_size(int img, int ref) const {
-    const auto& a = study_.images[size_t(img)];
-    const auto& b = study_.images[size_t(ref)];
+  void check_same_shape(int stimulus, int ref) const {
+    const auto& a = study_.image_of(stimulus);
+    const auto& b = study_.image_of(ref);
     if (a.width != b.width || a.height != b.height)
       fail("stimuli", "'" + a.relative + "' is not the size of its reference '" + b.relative + "'");
+    const size_t frames = study_.stimuli[size_t(stimulus)].frames.size(), expected = study_.stimuli[size_t(ref)].frames.size();
+    if (frames != expected)
+      fail("stimuli", "the sequence of '" + a.relative + "' has " + std::to_string(frames) + " frames, its reference " +
+                          std::to_string(expected) + " (the two sides play in step)");
   }
 
   Study& study_;
   const Manifest& manifest_;
   std::string mfile_;
-  std::map<std::string, size_t> image_of_file_;
+  std::map<std::string, size_t> image_of_file_, stimulus_of_file_;
 };
 
 }  // namespace

@@ -63,6 +63,17 @@ struct StimulusImage {
   int width = 0, height = 0;
 };
 
+// What one side shows: a still (one image), or a sequence's frames looped at its frame rate.
+struct Stimulus {
+  std::vector<int> frames;  // indices into Study::images, in frame order
+  double fps = 0;           // 0 for a still
+  std::string sequence;     // the sequence's folder in the set; empty for a still
+
+  // The frame shown `seconds` into the session: every stimulus loops on the same clock, so both
+  // sides stay in step and a λ step keeps the loop's phase.
+  int frame_at(double seconds) const;
+};
+
 struct Study {
   std::filesystem::path manifest_path;
   std::string manifest_sha256;   // identifies the stimulus set in the responses
@@ -70,9 +81,11 @@ struct Study {
   uint64_t manifest_seed = 1;
   double lambda_min = 0, lambda_step = 0.05;
   std::vector<Condition> conditions;
-  // Per condition: slot 0 is the reference (unenhanced) image, slot 1 + i the image of λ index i.
+  // Per condition: slot 0 is the reference (unenhanced) stimulus, slot 1 + i the stimulus of λ
+  // index i (indices into `stimuli`).
   std::vector<std::vector<int>> condition_images;
-  std::vector<StimulusImage> images;                // every image the study shows, once each
+  std::vector<Stimulus> stimuli;
+  std::vector<StimulusImage> images;                // every image (frame) the study shows, once each
   StudyConfig config;
   nlohmann::ordered_json config_source;            // where the configuration came from
 
@@ -80,8 +93,10 @@ struct Study {
   double lambda(int index) const;
   // The top of the grid an observer can reach in a condition (the responses' lambda_max).
   double lambda_max(int condition) const { return lambda(int(condition_images[size_t(condition)].size()) - 2); }
-  int width(int condition) const { return images[size_t(condition_images[size_t(condition)][0])].width; }
-  int height(int condition) const { return images[size_t(condition_images[size_t(condition)][0])].height; }
+  // The first image of a stimulus.
+  const StimulusImage& image_of(int stimulus) const { return images[size_t(stimuli[size_t(stimulus)].frames[0])]; }
+  int width(int condition) const { return image_of(condition_images[size_t(condition)][0]).width; }
+  int height(int condition) const { return image_of(condition_images[size_t(condition)][0]).height; }
   int max_width() const;
   int max_height() const;
 };

@@ -22,7 +22,7 @@ const std::vector<std::string>& response_columns() {
       "subject",     "scene",        "sigma",       "question",   "lambda",        "method",
       "lambda_step", "lambda_index", "lambda_max", "start_index", "repetition", "session",
       "trial",       "side",         "n_keypresses", "rt_ms",     "revision",      "timestamp_utc",
-      "stimulus_set", "app_version"};
+      "stimulus_set", "app_version",  "sequence"};
   return columns;
 }
 

@@ -30,10 +30,15 @@ void catmull_rom(double t, double w[4]) {
   w[3] = 0.5 * (t3 - t2);
 }
 
+// The object a pixel sees (-1 where the view has no object ids: every pixel counts as one surface).
+int object_at(const View& v, size_t i) { return v.render.gbuffer.object.empty() ? -1 : v.render.gbuffer.object[i]; }
+
 // The value of `values` at film position `film` of `v`, interpolated bicubically (Catmull–Rom, so
 // that detail near the pixel scale survives the resampling better than bilinearly), if the 4×4
-// pixels there are on a surface within 10 % of that depth and the four nearest see the point of eye depth `depth`.
-bool lookup(const View& v, const glm::dvec2& film, double depth, const std::vector<float>& values, double& out) {
+// pixels there all see `object` within 10 % of that depth (so no other surface mixes in, not even
+// one just behind a silhouette) and the four nearest see the point of eye depth `depth`.
+bool lookup(const View& v, const glm::dvec2& film, double depth, int object, const std::vector<float>& values,
+            double& out) {
   const double fx = film.x - 0.5, fy = film.y - 0.5;
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
   if (x0 < 1 || y0 < 1 || x0 + 2 >= v.width() || y0 + 2 >= v.height()) return false;
@@ -44,8 +49,8 @@ bool lookup(const View& v, const glm::dvec2& film, double depth, const std::vect
   for (int dy = -1; dy <= 2; ++dy)
     for (int dx = -1; dx <= 2; ++dx) {
       const size_t i = size_t(y0 + dy) * size_t(v.width()) + size_t(x0 + dx);
-      // Every sample on a surface near the point's depth, so no other surface mixes in.
-      if (!on_surface(v.depth, i) || std::abs(double(v.depth[i]) / depth - 1.0) > 0.1) return false;
+      if (!on_surface(v.depth, i) || object_at(v, i) != object || std::abs(double(v.depth[i]) / depth - 1.0) > 0.1)
+        return false;
       value += wx[dx + 1] * wy[dy + 1] * double(values[i]);
       if (dx >= 0 && dx <= 1 && dy >= 0 && dy <= 1)  // 1/depth is affine across a plane's image
         inverse_depth += (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) / double(v.depth[i]);
@@ -90,9 +95,10 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
       const size_t i = size_t(y) * size_t(first.width()) + size_t(x);
       const Ray ray = a.ray(x + 0.5, y + 0.5);
       glm::dvec3 p = ray.origin + ray.direction * (double(first.depth[i]) / glm::dot(ray.direction, a.forward()));
-      if (carry) p = carry(p, first.render.gbuffer.object.empty() ? -1 : first.render.gbuffer.object[i]);
+      const int object = object_at(first, i);
+      if (carry) p = carry(p, object);
       double value;
-      if (b.eye_depth(p) <= 0 || !lookup(moved, b.film_position(p), b.eye_depth(p), moved_values, value)) continue;
+      if (b.eye_depth(p) <= 0 || !lookup(moved, b.film_position(p), b.eye_depth(p), object, moved_values, value)) continue;
       const double d = double(first_values[i]) - value;
       if (differences) (*differences)[i] = float(std::abs(d));
       sum += d * d;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sstream>
 
 #include "analysis/responses.h"
 #include "tiny_set.h"
@@ -117,6 +118,33 @@ TEST(AdjustRecorder, ResumeReadsTheAnswersBackAndMarksTheKilledRun) {
   p.press(Key::enter, 0);
   EXPECT_EQ(p.trial_index(), 1);
   EXPECT_EQ(p.question(), Question::high);
+}
+
+// A session begun before responses had the `sequence` column (its last) goes on in that layout:
+// its rows stay readable and the new rows match them.
+TEST(AdjustRecorder, ASessionWithoutTheSequenceColumnResumesInItsOwnLayout) {
+  Fixture f;
+  record_session(f, 2);
+  const auto files = session_files(f.sessions(), "P07", 2);
+  std::string old;
+  std::istringstream lines(testing::read_file(files.csv));
+  for (std::string line; std::getline(lines, line);) old += line.substr(0, line.rfind(',')) + "\n";  // drop the last field
+  testing::write_file(files.csv, old);
+  {
+    SessionRecorder resumed(f.study, f.plan, f.who, f.sessions(), true);
+    EXPECT_EQ(resumed.recorded().rows, 2);
+    Procedure p(f.study.conditions, f.plan);
+    p.resume(resumed.recorded().answered);
+    p.press(Key::enter, 0);
+    while (p.lambda_index() < 3) p.press(Key::right, 1), p.release(Key::right, 1);
+    auto a = p.press(Key::enter, 3);
+    ASSERT_TRUE(a);
+    resumed.record_answer(*a, 3);
+  }
+  const auto table = parse_csv(testing::read_file(files.csv), files.csv.string());
+  ASSERT_EQ(table.rows.size(), 4u);
+  for (const auto& row : table.rows) EXPECT_EQ(row.size(), response_columns().size() - 1);
+  EXPECT_EQ(analysis::read_responses(files.csv).size(), 3u);
 }
 
 TEST(AdjustRecorder, APartialLastLineIsMovedAsideNotLost) {

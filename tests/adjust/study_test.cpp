@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "adjust/input_script.h"
+#include "stimuli/set_test_util.h"
 #include "tiny_set.h"
 
 namespace countershade::adjust {
@@ -25,11 +26,11 @@ TEST(AdjustStudy, ConditionsAreEverySceneMethodSigmaWithTheReferenceAtIndexZero)
     EXPECT_EQ(k.grid_size, 6);  // λ = 0, 0.4, ..., 2
     const auto& images = study.condition_images[c];
     ASSERT_EQ(images.size(), 7u);
-    EXPECT_EQ(study.images[size_t(images[0])].relative, k.scene + "/reference.png");
+    EXPECT_EQ(study.image_of(images[0]).relative, k.scene + "/reference.png");
     // λ = 0 is the identity: the set's λ = 0 image is the reference, byte for byte.
-    EXPECT_EQ(study.images[size_t(images[1])].relative, k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-0.png");
-    EXPECT_EQ(study.images[size_t(images[1])].sha256, study.images[size_t(images[0])].sha256);
-    EXPECT_EQ(study.images[size_t(images[6])].relative,
+    EXPECT_EQ(study.image_of(images[1]).relative, k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-0.png");
+    EXPECT_EQ(study.image_of(images[1]).sha256, study.image_of(images[0]).sha256);
+    EXPECT_EQ(study.image_of(images[6]).relative,
               k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-2.png");
   }
   EXPECT_EQ(names, (std::set<std::string>{"front/usm3d/0.03", "front/usm3d/0.08", "small/usm3d/0.03", "small/usm3d/0.08"}));
@@ -97,6 +98,38 @@ TEST(AdjustStudy, ChangedOrMissingImagesAreFoundBeforeTheSessionStarts) {
   fs::remove(changed);
   message = testing::input_error_of([&] { verify_study_images(study); });
   EXPECT_NE(message.find("lambda-1.2.png: missing image"), std::string::npos) << message;
+}
+
+TEST(AdjustStudy, ASequenceIsAStimulusOfFramesLoopedOnTheSessionClock) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_sequence_set(dir);
+  const Study study = load_study(manifest, std::nullopt);
+  ASSERT_EQ(study.conditions.size(), 1u);
+  const auto& slots = study.condition_images[0];
+  ASSERT_EQ(slots.size(), 3u);  // the reference and λ = 0, 1
+  EXPECT_EQ(study.images.size(), 3u * 4);
+  for (size_t slot = 0; slot < slots.size(); ++slot) {
+    const Stimulus& s = study.stimuli[size_t(slots[slot])];
+    ASSERT_EQ(s.frames.size(), 4u);
+    EXPECT_EQ(s.fps, 4.0);
+    EXPECT_EQ(s.sequence, slot == 0 ? "orbit/reference" : "orbit/usm2d/sigma-2/lambda-" + std::to_string(slot - 1));
+    for (int f = 0; f < 4; ++f)
+      EXPECT_EQ(study.images[size_t(s.frames[size_t(f)])].relative, s.sequence + "/frame-000" + std::to_string(f) + ".png");
+    // Frame k shows during [k/4, (k+1)/4) s of every second: the same on every side and every λ.
+    EXPECT_EQ(s.frame_at(0.0), s.frames[0]);
+    EXPECT_EQ(s.frame_at(0.26), s.frames[1]);
+    EXPECT_EQ(s.frame_at(0.99), s.frames[3]);
+    EXPECT_EQ(s.frame_at(1.0), s.frames[0]);  // it loops
+    EXPECT_EQ(s.frame_at(7.6), s.frames[2]);
+  }
+  // A sequence that lacks a frame cannot play in step with its reference.
+  OrderedJson m = testing::manifest_json(manifest.parent_path());
+  auto& stimuli = m["stimuli"];
+  for (size_t i = 0; i < stimuli.size(); ++i)
+    if (stimuli[i]["file"] == "orbit/usm2d/sigma-2/lambda-1/frame-0002.png") stimuli.erase(i);
+  testing::write_file(dir / "set/short.json", m.dump());
+  const std::string message = testing::input_error_of([&] { load_study(dir / "set/short.json", std::nullopt); });
+  EXPECT_NE(message.find("has 3 frames, its reference 4"), std::string::npos) << message;
 }
 
 TEST(AdjustStudy, SubjectIdsMustBePlainFileNames) {

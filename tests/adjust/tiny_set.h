@@ -1,6 +1,6 @@
 #pragma once
-// A small stimulus set for the adjustment tests: two views of the lit cube, usm3d at two σ, and
-// by default a six-value λ grid, so a full session is a few seconds.
+// Small stimulus sets for the adjustment tests: two views of the lit cube, usm3d at two σ, and
+// by default a six-value λ grid, so a full session is a few seconds; and a set of sequences.
 
 #include <filesystem>
 #include <string>
@@ -28,6 +28,24 @@ inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string
   GenerateOptions options;
   options.contact_sheets = false;
   generate_stimulus_set(load_experiment(experiment_file), dir / "set", options);
+  return dir / "set" / "manifest.json";
+}
+
+// A set of sequences for the playback tests: the orbiting box, all 4 frames at the given size,
+// usm2d at one σ over λ ∈ {0, 1}, so each condition is a reference and two sequences.
+inline std::filesystem::path make_sequence_set(const TempDir& dir, const std::string& adjust = "", int width = 64,
+                                               int height = 48) {
+  write_file(dir / "orbit.json", kOrbitingBoxScene);
+  const std::string text = R"({
+    "version": 1, "name": "sequences", "seed": 7,
+    "lambda": {"min": 0, "max": 1, "step": 1},
+    "scenes": [{"name": "orbit", "file": "orbit.json", "frames": "all", "spp": 1, "width": )" +
+                           std::to_string(width) + R"(, "height": )" + std::to_string(height) + R"(}],
+    "methods": [{"method": "usm2d", "sigma_percent": [2]}])" +
+                           (adjust.empty() ? std::string() : ",\n    \"adjust\": " + adjust) + "\n}";
+  GenerateOptions options;
+  options.contact_sheets = false;
+  generate_stimulus_set(load_experiment(write_file(dir / "experiment.json", text)), dir / "set", options);
   return dir / "set" / "manifest.json";
 }
 

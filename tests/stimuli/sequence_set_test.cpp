@@ -21,22 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A box on a ground plane; the camera orbits while the box slides: 4 frames at 4 fps.
-std::string animated_scene(bool animated = true) {
-  return std::string(R"({"version": 1,
-    "camera": {"eye": [0, 1.2, 4], "target": [0, 0.3, 0], "fov": 35, "width": 64, "height": 48},
-    "render": {"spp": 2, "seed": 7},
-    "objects": [{"name": "ground", "shape": {"type": "plane", "size": 6, "subdivisions": 24}, "material": {"albedo": 0.6}},
-                {"name": "box", "shape": {"type": "box", "size": [0.6, 0.6, 0.6], "subdivisions": 6},
-                 "transform": {"translate": [0, 0.3, 0]}}],
-    "lights": [{"type": "directional", "direction": [0.4, 1, 0.3], "irradiance": 2.5}, {"type": "ambient", "radiance": 0.2}])") +
-         (animated ? R"(, "animation": {"duration": 1, "fps": 4,
-    "camera": {"eye": {"times": [0, 1], "values": [[0, 1.2, 4], [1.2, 1.2, 3.8]]}},
-    "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [0.4, 0, 0]]}}]})" : "") + "}";
-}
-
 fs::path write_experiment(const testing::TempDir& dir, const std::string& frames = "\"all\"") {
-  testing::write_file(dir / "orbit.json", animated_scene());
+  testing::write_file(dir / "orbit.json", testing::kOrbitingBoxScene);
   return testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "sequence", "seed": 7,
     "lambda": {"min": 0, "max": 1, "step": 1},
@@ -150,7 +136,7 @@ TEST(SequenceSet, FramesOfAStillSceneOrOutsideTheAnimationAreRefused) {
   write_experiment(dir);
   EXPECT_THROW(load_experiment(write_experiment(dir, "\"2:9\"")), InputError);
   EXPECT_THROW(load_experiment(write_experiment(dir, "\"3:1\"")), InputError);
-  testing::write_file(dir / "still.json", animated_scene(false));
+  testing::write_file(dir / "still.json", testing::kLitCubeScene);
   std::string text = testing::read_file(dir / "experiment.json");
   text.replace(text.find("orbit.json"), 10, "still.json");
   testing::write_file(dir / "experiment.json", text);
