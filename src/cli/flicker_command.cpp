@@ -1,6 +1,8 @@
 // `countershade flicker`: how much an enhancement changes from frame to frame of an animated
 // scene at the surface points both frames see (docs/enhancement-methods.md, "Flicker").
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,7 +25,7 @@ namespace countershade::cli {
 namespace {
 
 struct FlickerArgs {
-  std::string scene, frames, csv, maps;
+  std::string scene, frames, csv, maps, object;
   MethodArgs method;
   std::optional<int> spp, threads;
 };
@@ -31,7 +33,20 @@ struct FlickerArgs {
 struct Frame {
   std::shared_ptr<const View> view;
   std::vector<float> layer, plain;  // enhanced − plain L*, and plain L*
+  std::array<std::vector<float>, 3> levels;  // enhanced − plain per channel, in code levels
 };
+
+// The enhancement layer of each channel in the output's code levels.
+std::array<std::vector<float>, 3> level_layers(const View& view, const Image& enhanced) {
+  const float scale = float((1 << view.bits) - 1);
+  std::array<std::vector<float>, 3> out;
+  for (int c = 0; c < 3; ++c) {
+    out[size_t(c)].resize(size_t(view.width()) * size_t(view.height()));
+    for (size_t i = 0; i < out[size_t(c)].size(); ++i)
+      out[size_t(c)][i] = scale * (enhanced.pixels[3 * i + size_t(c)] - view.display.pixels[3 * i + size_t(c)]);
+  }
+  return out;
+}
 
 Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const FlickerArgs& args) {
   auto scene = std::make_shared<const Scene>(scene_at(base, base.animation->time_of(frame)));
@@ -43,8 +58,10 @@ Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const 
   Frame f;
   f.view = render_view(scene, plan, options);
   const auto prepared = m.method->prepare(make_use_context(f.view, 0, options.threads), *m.parameters);
-  f.layer = enhancement_layer(*f.view, prepared->compose(args.method.lambda).display);
+  const Image enhanced = prepared->compose(args.method.lambda).display;
+  f.layer = enhancement_layer(*f.view, enhanced);
   f.plain = view_lightness(*f.view);
+  if (!args.object.empty()) f.levels = level_layers(*f.view, enhanced);
   return f;
 }
 
@@ -57,6 +74,34 @@ void write_map(const std::string& dir, int frame, const std::vector<float>& diff
   write_image(std::filesystem::path(dir) / name, false_colour_image(values));
 }
 
+// How much the enhancement of one object's pixels changes between two frames, in code levels:
+// per pixel the largest change over the three channels.
+struct ObjectChange {
+  double max = 0, p99 = 0;
+  size_t pixels = 0;
+};
+
+ObjectChange object_change(const Frame& a, const Frame& b, const CarryPoint& carry, int object) {
+  std::vector<float> largest(a.layer.size(), -1.0f);
+  for (size_t c = 0; c < 3; ++c) {
+    std::vector<float> differences;
+    reprojection_rms(*a.view, a.levels[c], *b.view, b.levels[c], carry, &differences);
+    for (size_t i = 0; i < differences.size(); ++i)
+      if (a.view->render.gbuffer.object[i] == object && !std::isnan(differences[i]))
+        largest[i] = std::max(largest[i], differences[i]);
+  }
+  std::vector<float> values;
+  for (float v : largest)
+    if (v >= 0) values.push_back(v);
+  ObjectChange out;
+  out.pixels = values.size();
+  if (values.empty()) return out;
+  std::sort(values.begin(), values.end());
+  out.max = values.back();
+  out.p99 = values[size_t(0.99 * double(values.size() - 1))];
+  return out;
+}
+
 // The pair (frame − 1, frame): surface points carried along their objects' motion.
 std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a, const Frame& b, int frame,
                                               const std::string& maps) {
@@ -65,6 +110,52 @@ std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a,
   const Reprojection layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, maps.empty() ? nullptr : &differences);
   if (!maps.empty()) write_map(maps, frame, differences, *a.view);
   return {layer, reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry)};
+}
+
+struct Totals {
+  double flicker = 0, plain = 0, object_max = 0, object_p99 = 0;
+  int pairs = 0;
+};
+
+// One frame pair's CSV row (with the object's change in code levels when one is named), added to
+// the totals.
+std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int frame, const FlickerArgs& args, int object,
+                     Totals& totals) {
+  const auto [flicker, plain] = compare(base, a, b, frame, args.maps);
+  std::ostringstream row;
+  row << frame << ',' << flicker.rms << ',' << plain.rms << ',' << flicker.pixels;
+  totals.flicker += flicker.rms;
+  totals.plain += plain.rms;
+  ++totals.pairs;
+  if (object >= 0) {
+    const ObjectChange change = object_change(a, b, carry_between_frames(base, frame - 1, frame), object);
+    row << ',' << change.max << ',' << change.p99 << ',' << change.pixels;
+    totals.object_max = std::max(totals.object_max, change.max);
+    totals.object_p99 = std::max(totals.object_p99, change.p99);
+  }
+  row << '\n';
+  return row.str();
+}
+
+// The index of the object --object names (-1 without one).
+int named_object(const Scene& scene, const std::string& name) {
+  if (name.empty()) return -1;
+  for (size_t k = 0; k < scene.objects.size(); ++k)
+    if (scene.objects[k].name == name) return int(k);
+  throw InputError("--object: " + scene.file.string() + " has no object called '" + name + "'");
+}
+
+std::string summary(const Totals& t, const std::string& object) {
+  char line[320];
+  std::snprintf(line, sizeof line, "%d frame pairs, mean flicker %.4f L* (the plain render's own reprojection %.4f L*)",
+                t.pairs, t.flicker / t.pairs, t.plain / t.pairs);
+  std::string out = line;
+  if (!object.empty()) {
+    std::snprintf(line, sizeof line, "; %s: largest change %.2f code levels (p99 %.2f, worst pair)", object.c_str(),
+                  t.object_max, t.object_p99);
+    out += line;
+  }
+  return out;
 }
 
 void run(const FlickerArgs& args, const CLI::App* cmd) {
@@ -79,25 +170,20 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   if (args.spp) base.settings.spp = *args.spp;
   m.method->check_scene(base, *m.parameters);
   const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
-  std::ostringstream csv;
-  csv << "frame,flicker_lstar,plain_reprojection_lstar,pixels\n";
+  const int object = named_object(base, args.object);
+  std::string csv = "frame,flicker_lstar,plain_reprojection_lstar,pixels";
+  csv += object >= 0 ? ",object_max_levels,object_p99_levels,object_pixels\n" : "\n";
   Progress progress("flicker");
-  double sum = 0, plain_sum = 0;
+  Totals totals;
   Frame previous = render_frame(base, first, m, args);
   for (int f = first + 1; f <= last; ++f) {
     Frame current = render_frame(base, f, m, args);
-    const auto [flicker, plain] = compare(base, previous, current, f, args.maps);
-    csv << f << ',' << flicker.rms << ',' << plain.rms << ',' << flicker.pixels << '\n';
-    sum += flicker.rms;
-    plain_sum += plain.rms;
+    csv += pair_row(base, previous, current, f, args, object, totals);
     previous = std::move(current);
     progress.update(double(f - first) / double(last - first));
   }
-  if (!args.csv.empty()) write_text_atomically(args.csv, csv.str());
-  char line[256];
-  std::snprintf(line, sizeof line, "%d frame pairs, mean flicker %.4f L* (the plain render's own reprojection %.4f L*)",
-                last - first, sum / (last - first), plain_sum / (last - first));
-  progress.finish(line);
+  if (!args.csv.empty()) write_text_atomically(args.csv, csv);
+  progress.finish(summary(totals, args.object));
 }
 
 }  // namespace
@@ -112,6 +198,9 @@ void add_flicker_command(CLI::App& app) {
   cmd->add_option("--csv", args->csv, "Write frame, flicker, the plain render's reprojection error and pixels per pair");
   cmd->add_option("--maps", args->maps,
                   "Write |change| per pixel of each pair as DIR/flicker-NNNN.png (viridis over 0–5 L*; black: not counted)");
+  cmd->add_option("--object", args->object,
+                  "Also report how much the enhancement of this object's pixels changes per pair, in code levels "
+                  "(largest and 99th percentile over its pixels seen in both frames; CSV columns object_*)");
   cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")->check(CLI::Range(1, 65536));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->callback([cmd, args] { run(*args, cmd); });

@@ -179,6 +179,27 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   const auto bad = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --frames 1:1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(testing::count_lines(bad.output), 1) << bad.output;
+  const auto unknown = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --object nothing");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.output.find("--object"), std::string::npos) << unknown.output;
+  EXPECT_EQ(testing::count_lines(unknown.output), 1) << unknown.output;
+}
+
+// An object's change in code levels: none without enhancement, some under usm2d (whose halo
+// around the box moves with the screen, not with the box).
+TEST(Flicker, AnObjectsChangeIsCountedInCodeLevels) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
+  const std::string base = "flicker " + (dir / "orbit.json").string() + " --object box --csv " + (dir / "f.csv").string();
+  const auto plain = testing::run_cli(base);
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("box: largest change 0.00 code levels"), std::string::npos) << plain.output;
+  EXPECT_NE(testing::read_file(dir / "f.csv").find("object_max_levels"), std::string::npos);
+  const auto usm2d = testing::run_cli(base + " --method usm2d --sigma-px 3 --lambda 3");
+  ASSERT_EQ(usm2d.exit_code, 0) << usm2d.output;
+  const auto at = usm2d.output.find("box: largest change ");
+  ASSERT_NE(at, std::string::npos) << usm2d.output;
+  EXPECT_GT(std::stod(usm2d.output.substr(at + 20)), 1.0) << usm2d.output;
 }
 
 }  // namespace
