@@ -101,8 +101,24 @@ class ManifestReader {
       out.shard = std::make_pair(int(integer(sh, "shard.", "index", 1, 1 << 20)), int(integer(sh, "shard.", "count", 1, 1 << 20)));
     }
     for (size_t i = 0; i < m["stimuli"].size(); ++i) out.stimuli.push_back(entry(m["stimuli"][i], i));
+    if (m.contains("videos")) out.videos = videos(m["videos"]);
     if (m.contains("run")) out.run = m["run"];
     return out;
+  }
+
+  OrderedJson videos(const OrderedJson& v) const {
+    if (!v.is_array()) fail("videos", "not an array");
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string where = "videos[" + std::to_string(i) + "].";
+      if (!v[i].is_object()) fail("videos[" + std::to_string(i) + "]", "not an object");
+      string(v[i], where, "sha256");
+      try {
+        resolve_in_set(path_.parent_path(), string(v[i], where, "file"));
+      } catch (const InputError& error) {
+        fail(where + "file", error.what());
+      }
+    }
+    return v;
   }
 
   LambdaGridInfo grid(const OrderedJson& g) const {
@@ -170,6 +186,7 @@ OrderedJson to_json(const Manifest& m) {
   if (m.shard) j["shard"] = {{"index", m.shard->first}, {"count", m.shard->second}};
   j["stimuli"] = OrderedJson::array();
   for (const auto& e : m.stimuli) j["stimuli"].push_back(to_json(e));
+  if (!m.videos.empty()) j["videos"] = m.videos;
   j["run"] = m.run;
   return j;
 }
@@ -222,6 +239,13 @@ std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
     if (s.size && fs::file_size(file) != s.size) problems.push_back(s.file + ": size differs from the manifest");
     if (sha256_file(file) != s.sha256) problems.push_back(s.file + ": sha256 differs from the manifest");
     check_congruence_map(dir, s, listed, problems);
+  }
+  for (const auto& video : manifest.videos) {
+    const std::string rel = video["file"].get<std::string>();
+    const fs::path file = resolve_in_set(dir, rel);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) problems.push_back(rel + ": missing");
+    else if (sha256_file(file) != video["sha256"]) problems.push_back(rel + ": sha256 differs from the manifest");
   }
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".png") continue;

@@ -74,6 +74,8 @@ struct Manifest {
   LambdaGridInfo lambda_grid;
   std::optional<std::pair<int, int>> shard;  // index, count
   std::vector<ManifestEntry> stimuli;
+  // Lossless videos of the sequences, for sharing: {file, sequence, frames, fps, size, sha256}.
+  OrderedJson videos = OrderedJson::array();
   OrderedJson run = OrderedJson::object();  // timings and timestamps: differ between runs
   std::string file_sha256;  // of the file it was read from (not written)
 };

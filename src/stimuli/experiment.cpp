@@ -177,6 +177,8 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
     c.finish();
   }
   e.congruence = root.boolean_or("congruence", false);
+  e.video = root.boolean_or("video", false);
+  if (e.video && e.bits != 8) root.fail("video", "the videos are 8-bit: use \"output\": {\"bits\": 8}");
   if (root.has("coherence")) {
     const JsonObject c = root.object("coherence");
     e.coherence_dolly = c.number_in("dolly", 0.02, 1e-4, 0.5);

@@ -69,6 +69,7 @@ struct Experiment {
   // Measure every stimulus's perspective coherence under a camera dolly of this fraction of the
   // eye–target distance (methods.md, "Perspective coherence metric").
   std::optional<double> coherence_dolly;
+  bool video = false;  // a lossless video of every sequence (stimuli/sequence_videos.h)
 };
 
 Experiment load_experiment(const std::filesystem::path& path);

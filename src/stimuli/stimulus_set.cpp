@@ -27,6 +27,7 @@
 #include "stimuli/contact_sheet.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/sequence_flicker.h"
+#include "stimuli/sequence_videos.h"
 #include "stimuli/set_layout.h"
 #include "render/scene_animation.h"
 
@@ -368,6 +369,7 @@ void SetGenerator::finish() {
   Manifest manifest = manifest_header(e_);
   if (options_.shards > 1) manifest.shard = std::make_pair(options_.shard, options_.shards);
   manifest.stimuli = entries_;
+  if (e_.video && options_.shards == 1) write_sequence_videos(dir_, manifest, options_.jobs);
   manifest.run = {{"started_utc", started_},
                   {"finished_utc", utc_timestamp(false)},
                   {"jobs", options_.jobs},
@@ -449,6 +451,7 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir) {
   }
   sort_entries(manifest.stimuli);
   measure_flicker(e, dir, manifest.stimuli, [&](size_t s) { return set_scene(e, s); }, 0);
+  if (e.video) write_sequence_videos(dir, manifest, 0);
   manifest.run = {{"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
   write_manifest(dir / "manifest.json", manifest);
   write_set_contact_sheets(e, dir, manifest);

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/sha256.h"
 #include "stimuli/audit.h"
+#include "stimuli/lossless_video.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/stimulus_set.h"
 #include "stimuli/set_test_util.h"
@@ -21,11 +22,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path write_experiment(const testing::TempDir& dir, const std::string& frames = "\"all\"") {
+// `extra`: more top-level keys, each followed by a comma.
+fs::path write_experiment(const testing::TempDir& dir, const std::string& frames = "\"all\"",
+                          const std::string& extra = "") {
   testing::write_file(dir / "orbit.json", testing::kOrbitingBoxScene);
   return testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "sequence", "seed": 7,
-    "lambda": {"min": 0, "max": 1, "step": 1},
+    "lambda": {"min": 0, "max": 1, "step": 1}, )" + extra + R"(
     "scenes": [{"name": "orbit", "file": "orbit.json", "frames": )" + frames + R"(}],
     "methods": [{"method": "usm3d", "sigma": [0.1]}, {"method": "usm2d", "sigma_percent": [3]}]
   })");
@@ -129,6 +132,37 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
   }
   EXPECT_EQ(compared, 6);
   EXPECT_GT(command.at(1).first, 0.05);  // usm2d does change: the comparison can tell
+}
+
+// "video": every sequence also as a lossless video that decodes to exactly its frames, the same
+// bytes at any thread count, listed and checked with the set.
+TEST(SequenceSet, VideosDecodeToTheirFramesAndAreReproducible) {
+  testing::TempDir dir;
+  const Experiment e = load_experiment(write_experiment(dir, "\"all\"", R"("video": true,)"));
+  generate_stimulus_set(e, dir / "one", testing::with_jobs(1));
+  generate_stimulus_set(e, dir / "two", testing::with_jobs(2));
+  const OrderedJson one = testing::without_run(testing::manifest_json(dir / "one"));
+  EXPECT_EQ(one, testing::without_run(testing::manifest_json(dir / "two")));
+  ASSERT_EQ(one["videos"].size(), 5u);  // the reference and 2 methods × 2 λ
+  for (const auto& v : one["videos"]) {
+    const std::string sequence = v["sequence"];
+    EXPECT_EQ(v["file"], sequence + ".mkv");
+    EXPECT_EQ(v["fps"], 4.0);
+    const std::vector<Image> frames = read_video_frames(dir / "one" / v["file"].get<std::string>());
+    ASSERT_EQ(frames.size(), 4u);
+    for (int f = 0; f < 4; ++f) {
+      const Image png = read_image(dir / "one" / sequence / ("frame-000" + std::to_string(f) + ".png"));
+      long differing = 0;
+      for (size_t i = 0; i < png.pixels.size(); ++i)
+        differing += std::lround(png.pixels[i] * 255) != std::lround(frames[size_t(f)].pixels[i] * 255);
+      EXPECT_EQ(differing, 0) << sequence << " frame " << f;
+    }
+  }
+  EXPECT_TRUE(verify_stimulus_set(dir / "one/manifest.json").empty());
+  testing::write_file(dir / "one/orbit/reference.mkv", "changed");
+  EXPECT_EQ(verify_stimulus_set(dir / "one/manifest.json").size(), 1u);
+  // 16-bit frames have no 8-bit video.
+  EXPECT_THROW(load_experiment(write_experiment(dir, "\"all\"", R"("video": true, "output": {"bits": 16},)")), InputError);
 }
 
 TEST(SequenceSet, FramesOfAStillSceneOrOutsideTheAnimationAreRefused) {
