@@ -190,6 +190,10 @@ class StudyBuilder {
   int add_stimulus(Entries entries) {
     const auto frame = [&](size_t e) { return manifest_.stimuli[e].frame ? manifest_.stimuli[e].frame->index : 0; };
     std::sort(entries.begin(), entries.end(), [&](size_t a, size_t b) { return frame(a) < frame(b); });
+    for (size_t k = 1; k < entries.size(); ++k)
+      if (frame(entries[k]) == frame(entries[k - 1]))
+        fail("stimuli[" + std::to_string(entries[k]) + "].frame", "frame " + std::to_string(frame(entries[k])) + " of '" +
+                                                                   manifest_.stimuli[entries[k]].file + "' is listed twice");
     const ManifestEntry& head = manifest_.stimuli[entries[0]];
     auto [it, inserted] = stimulus_of_file_.emplace(head.file, study_.stimuli.size());
     if (!inserted) return int(it->second);

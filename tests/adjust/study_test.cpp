@@ -130,6 +130,14 @@ TEST(AdjustStudy, ASequenceIsAStimulusOfFramesLoopedOnTheSessionClock) {
   testing::write_file(dir / "set/short.json", m.dump());
   const std::string message = testing::input_error_of([&] { load_study(dir / "set/short.json", std::nullopt); });
   EXPECT_NE(message.find("has 3 frames, its reference 4"), std::string::npos) << message;
+  // Nor one that lists a frame twice.
+  m = testing::manifest_json(manifest.parent_path());
+  for (auto& s : m["stimuli"])
+    if (s["file"] == "orbit/usm2d/sigma-2/lambda-1/frame-0002.png") s["frame"] = 1;
+  testing::write_file(dir / "set/twice.json", m.dump());
+  const std::string twice = testing::input_error_of([&] { load_study(dir / "set/twice.json", std::nullopt); });
+  EXPECT_NE(twice.find("frame 1 of"), std::string::npos) << twice;
+  EXPECT_NE(twice.find("listed twice"), std::string::npos) << twice;
 }
 
 TEST(AdjustStudy, SubjectIdsMustBePlainFileNames) {
