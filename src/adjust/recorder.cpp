@@ -44,65 +44,88 @@ SessionFiles session_files(const fs::path& dir, const std::string& subject, int 
 // ---------------------------------------------------------------------------------------------
 // Reading a session back
 
-RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, const std::vector<Trial>& plan) {
-  RecordedAnswers out;
+namespace {
+
+size_t column(const char* name) {
+  const auto& cols = response_columns();
+  return size_t(std::find(cols.begin(), cols.end(), name) - cols.begin());
+}
+
+// The session file's rows, its header checked (all columns, or all but the last `sequence` of an
+// older version's file). A line without its newline can only come from a write cut short by a
+// power loss (a killed process still completes its write): its bytes go to `dropped_tail`.
+CsvTable read_session_table(const fs::path& csv, RecordedAnswers& out) {
   std::string text = read_file_bytes(csv);
-  // A line without its newline can only come from a write cut short by a power loss (a killed
-  // process still completes its write). Keep those bytes aside and drop them from the file.
   size_t end = text.rfind('\n');
   size_t keep = end == std::string::npos ? 0 : end + 1;
   if (keep < text.size()) {
     out.dropped_tail = text.substr(keep);
     text.resize(keep);
   }
-  const std::string file = csv.string();
-  CsvTable table = parse_csv(text, file);
+  CsvTable table = parse_csv(text, csv.string());
   const auto& all = response_columns();
   const std::vector<std::string> without_sequence(all.begin(), all.end() - 1);
   if (table.rows.empty() || (table.rows[0] != all && table.rows[0] != without_sequence))
-    throw_input_error(file + ": line 1", "not a session file written by this app (unexpected header)");
+    throw_input_error(csv.string() + ": line 1", "not a session file written by this app (unexpected header)");
   out.columns = table.rows[0].size();
-  auto column = [](const char* name) {
-    const auto& cols = response_columns();
-    return size_t(std::find(cols.begin(), cols.end(), name) - cols.begin());
-  };
-  std::map<int, int> plan_index_of_number;
-  for (size_t i = 0; i < plan.size(); ++i)
-    if (!plan[i].practice) plan_index_of_number[plan[i].number] = int(i);
-  for (size_t r = 1; r < table.rows.size(); ++r) {
-    const auto& row = table.rows[r];
-    const std::string where = file + ": line " + std::to_string(table.lines[r]);
+  return table;
+}
+
+// One row checked against the plan (trial, scene, method, σ, λ) and recorded as an answer.
+class RowReader {
+ public:
+  RowReader(const Study& study, const std::vector<Trial>& plan) : study_(study), plan_(plan) {
+    for (size_t i = 0; i < plan.size(); ++i)
+      if (!plan[i].practice) plan_index_of_number_[plan[i].number] = int(i);
+  }
+
+  void read(const std::vector<std::string>& row, const std::string& where, RecordedAnswers& out) const {
     if (row.size() != out.columns)
       throw_input_error(where, "expected " + std::to_string(out.columns) + " fields, found " + std::to_string(row.size()));
-    auto integer = [&](const char* name) {
-      const std::string& v = row[column(name)];
-      try {
-        size_t used = 0;
-        int x = std::stoi(v, &used);
-        if (used == v.size()) return x;
-      } catch (const std::exception&) {
-      }
-      throw_input_error(where + " (" + name + ")", "'" + v + "' is not an integer");
-    };
-    const int number = integer("trial");
-    auto it = plan_index_of_number.find(number);
-    if (it == plan_index_of_number.end()) throw_input_error(where + " (trial)", "trial " + std::to_string(number) + " is not in the plan");
-    const Trial& trial = plan[size_t(it->second)];
-    const Condition& c = study.conditions[size_t(trial.condition)];
-    const auto parsed_question = question_from_name(row[column("question")]);
-    if (!parsed_question) throw_input_error(where + " (question)", "unknown question '" + row[column("question")] + "'");
-    const int question = int(*parsed_question);
-    const int lambda_index = integer("lambda_index");
+    const int number = integer(row, "trial", where);
+    auto it = plan_index_of_number_.find(number);
+    if (it == plan_index_of_number_.end())
+      throw_input_error(where + " (trial)", "trial " + std::to_string(number) + " is not in the plan");
+    const Condition& c = study_.conditions[size_t(plan_[size_t(it->second)].condition)];
+    const auto question = question_from_name(row[column("question")]);
+    if (!question) throw_input_error(where + " (question)", "unknown question '" + row[column("question")] + "'");
+    const int lambda_index = integer(row, "lambda_index", where);
     if (row[column("scene")] != c.scene || row[column("method")] != c.method ||
         row[column("sigma")] != format_value(c.sigma) || lambda_index < 0 || lambda_index >= c.grid_size ||
-        row[column("lambda")] != format_value(study.lambda(lambda_index)))
+        row[column("lambda")] != format_value(study_.lambda(lambda_index)))
       throw_input_error(where, "the row does not match trial " + std::to_string(number) +
                                    " of this session's plan (was the stimulus set or the configuration changed?)");
-    PastAnswer& past = out.answered[{it->second, question}];
-    const int revision = integer("revision");
+    PastAnswer& past = out.answered[{it->second, int(*question)}];
+    const int revision = integer(row, "revision", where);
     if (revision >= past.revision) past = PastAnswer{lambda_index, revision};
     ++out.rows;
   }
+
+ private:
+  static int integer(const std::vector<std::string>& row, const char* name, const std::string& where) {
+    const std::string& v = row[column(name)];
+    try {
+      size_t used = 0;
+      int x = std::stoi(v, &used);
+      if (used == v.size()) return x;
+    } catch (const std::exception&) {
+    }
+    throw_input_error(where + " (" + name + ")", "'" + v + "' is not an integer");
+  }
+
+  const Study& study_;
+  const std::vector<Trial>& plan_;
+  std::map<int, int> plan_index_of_number_;
+};
+
+}  // namespace
+
+RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, const std::vector<Trial>& plan) {
+  RecordedAnswers out;
+  const CsvTable table = read_session_table(csv, out);
+  const RowReader reader(study, plan);
+  for (size_t r = 1; r < table.rows.size(); ++r)
+    reader.read(table.rows[r], csv.string() + ": line " + std::to_string(table.lines[r]), out);
   return out;
 }
 
@@ -128,63 +151,8 @@ OrderedJson plan_to_json(const Study& study, const std::vector<Trial>& plan) {
 SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& plan, const Identity& who,
                                  const fs::path& dir, bool resume)
     : study_(study), plan_(plan), who_(who), files_(session_files(dir, who.subject, who.session)) {
-  std::error_code ec;
-  if (!resume) {
-    fs::create_directories(dir, ec);
-    if (!fs::is_directory(dir, ec)) throw_input_error(dir.string(), "cannot create the sessions folder");
-    for (const auto& p : {files_.sidecar, files_.keys})
-      if (fs::exists(p, ec))
-        throw_input_error(p.string(), "already exists; a session is never overwritten (use --resume to continue it, "
-                                      "or another --session number)");
-    std::string header;
-    for (size_t i = 0; i < response_columns().size(); ++i) header += (i ? "," : "") + response_columns()[i];
-    csv_ = AppendOnlyFile::create(files_.csv, header + "\n");
-    keys_ = AppendOnlyFile::create(files_.keys, "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n");
-    sidecar_ = {{"format_version", kSidecarFormatVersion},
-                {"subject", who.subject},
-                {"session", who.session},
-                {"app_version", kVersion},
-                {"manifest", fs::absolute(study.manifest_path).lexically_normal().string()},
-                {"stimulus_set", study.manifest_sha256},
-                {"set_name", study.set_name},
-                {"seed", who.seed},
-                {"config_source", study.config_source},
-                {"config", study.config.to_json()},
-                {"lambda_grid", {{"min", study.lambda_min}, {"step", study.lambda_step}}},
-                {"plan", plan_to_json(study, plan)},
-                {"runs", OrderedJson::array()}};
-  } else {
-    for (const auto& p : {files_.csv, files_.sidecar, files_.keys})
-      if (!fs::is_regular_file(p, ec))
-        throw_input_error(p.string(), "no such file: there is no session to resume (start it without --resume)");
-    try {
-      sidecar_ = OrderedJson::parse(read_file_bytes(files_.sidecar));
-    } catch (const std::exception&) {
-      throw_input_error(files_.sidecar.string(), "not valid JSON");
-    }
-    if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion || !sidecar_.contains("runs"))
-      throw_input_error(files_.sidecar.string(), "not a session sidecar written by this app");
-    if (sidecar_.value("stimulus_set", std::string()) != study.manifest_sha256)
-      throw_input_error(files_.sidecar.string() + ": stimulus_set",
-                        "the session was recorded with another stimulus set (manifest sha256 differs)");
-    if (sidecar_["plan"] != plan_to_json(study, plan) || sidecar_["seed"] != who.seed)
-      throw_input_error(files_.sidecar.string() + ": plan",
-                        "the trial plan differs from the one recorded (was the configuration or --seed changed?)");
-    recorded_ = read_recorded_answers(files_.csv, study, plan);
-    // Runs that never recorded their end were interrupted (killed, crashed, power lost).
-    for (auto& r : sidecar_["runs"])
-      if (r.value("end", std::string()) == "running") r["end"] = "interrupted";
-    if (!recorded_.dropped_tail.empty()) {
-      const fs::path aside = files_.csv.string() + ".partial-" + utc_timestamp();
-      write_text_atomically(aside, recorded_.dropped_tail);
-      fs::resize_file(files_.csv, fs::file_size(files_.csv) - recorded_.dropped_tail.size());
-      sidecar_["repairs"].push_back({{"at_utc", utc_timestamp()},
-                                     {"what", "a partial last line of the responses was moved aside"},
-                                     {"file", aside.filename().string()}});
-    }
-    csv_ = AppendOnlyFile::open_existing(files_.csv);
-    keys_ = AppendOnlyFile::open_existing(files_.keys);
-  }
+  if (resume) open_existing();
+  else create(dir);
   sidecar_["runs"].push_back({{"started_utc", utc_timestamp()},
                               {"end", "running"},
                               {"resumed", resume},
@@ -193,6 +161,69 @@ SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& p
                               {"pauses", OrderedJson::array()},
                               {"focus_losses", OrderedJson::array()}});
   save();
+}
+
+void SessionRecorder::create(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir, ec)) throw_input_error(dir.string(), "cannot create the sessions folder");
+  for (const auto& p : {files_.sidecar, files_.keys})
+    if (fs::exists(p, ec))
+      throw_input_error(p.string(), "already exists; a session is never overwritten (use --resume to continue it, "
+                                    "or another --session number)");
+  std::string header;
+  for (size_t i = 0; i < response_columns().size(); ++i) header += (i ? "," : "") + response_columns()[i];
+  csv_ = AppendOnlyFile::create(files_.csv, header + "\n");
+  keys_ = AppendOnlyFile::create(files_.keys, "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n");
+  sidecar_ = {{"format_version", kSidecarFormatVersion},
+              {"subject", who_.subject},
+              {"session", who_.session},
+              {"app_version", kVersion},
+              {"manifest", fs::absolute(study_.manifest_path).lexically_normal().string()},
+              {"stimulus_set", study_.manifest_sha256},
+              {"set_name", study_.set_name},
+              {"seed", who_.seed},
+              {"config_source", study_.config_source},
+              {"config", study_.config.to_json()},
+              {"lambda_grid", {{"min", study_.lambda_min}, {"step", study_.lambda_step}}},
+              {"plan", plan_to_json(study_, plan_)},
+              {"runs", OrderedJson::array()}};
+}
+
+void SessionRecorder::open_existing() {
+  std::error_code ec;
+  for (const auto& p : {files_.csv, files_.sidecar, files_.keys})
+    if (!fs::is_regular_file(p, ec))
+      throw_input_error(p.string(), "no such file: there is no session to resume (start it without --resume)");
+  try {
+    sidecar_ = OrderedJson::parse(read_file_bytes(files_.sidecar));
+  } catch (const std::exception&) {
+    throw_input_error(files_.sidecar.string(), "not valid JSON");
+  }
+  if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion || !sidecar_.contains("runs"))
+    throw_input_error(files_.sidecar.string(), "not a session sidecar written by this app");
+  if (sidecar_.value("stimulus_set", std::string()) != study_.manifest_sha256)
+    throw_input_error(files_.sidecar.string() + ": stimulus_set",
+                      "the session was recorded with another stimulus set (manifest sha256 differs)");
+  if (sidecar_["plan"] != plan_to_json(study_, plan_) || sidecar_["seed"] != who_.seed)
+    throw_input_error(files_.sidecar.string() + ": plan",
+                      "the trial plan differs from the one recorded (was the configuration or --seed changed?)");
+  recorded_ = read_recorded_answers(files_.csv, study_, plan_);
+  // Runs that never recorded their end were interrupted (killed, crashed, power lost).
+  for (auto& r : sidecar_["runs"])
+    if (r.value("end", std::string()) == "running") r["end"] = "interrupted";
+  if (!recorded_.dropped_tail.empty()) move_partial_line_aside();
+  csv_ = AppendOnlyFile::open_existing(files_.csv);
+  keys_ = AppendOnlyFile::open_existing(files_.keys);
+}
+
+void SessionRecorder::move_partial_line_aside() {
+  const fs::path aside = files_.csv.string() + ".partial-" + utc_timestamp();
+  write_text_atomically(aside, recorded_.dropped_tail);
+  fs::resize_file(files_.csv, fs::file_size(files_.csv) - recorded_.dropped_tail.size());
+  sidecar_["repairs"].push_back({{"at_utc", utc_timestamp()},
+                                 {"what", "a partial last line of the responses was moved aside"},
+                                 {"file", aside.filename().string()}});
 }
 
 std::string SessionRecorder::answered_sequence(int condition, int lambda_index) const {
