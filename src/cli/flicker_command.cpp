@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/false_colour.h"
+#include "core/gaussian.h"
 #include "core/image.h"
 #include "core/progress.h"
 #include "enhance/lightness.h"
@@ -28,13 +29,21 @@ struct FlickerArgs {
   std::string scene, frames, csv, maps, object;
   MethodArgs method;
   std::optional<int> spp, threads;
+  double scale_px = 0;  // > 0: also compare the layers blurred to this scale
 };
 
 struct Frame {
   std::shared_ptr<const View> view;
   std::vector<float> layer, plain;  // enhanced − plain L*, and plain L*
   std::array<std::vector<float>, 3> levels;  // enhanced − plain per channel, in code levels
+  std::vector<float> layer_at_scale, plain_at_scale;  // both blurred (--scale-px)
 };
+
+std::vector<float> blurred(const std::vector<float>& values, const View& view, double sigma) {
+  std::vector<float> out(values.size());
+  gaussian_blur(values.data(), out.data(), view.width(), view.height(), sigma);
+  return out;
+}
 
 // The enhancement layer of each channel in the output's code levels.
 std::array<std::vector<float>, 3> level_layers(const View& view, const Image& enhanced) {
@@ -62,6 +71,10 @@ Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const 
   f.layer = enhancement_layer(*f.view, enhanced);
   f.plain = view_lightness(*f.view);
   if (!args.object.empty()) f.levels = level_layers(*f.view, enhanced);
+  if (args.scale_px > 0) {
+    f.layer_at_scale = blurred(f.layer, *f.view, args.scale_px);
+    f.plain_at_scale = blurred(f.plain, *f.view, args.scale_px);
+  }
   return f;
 }
 
@@ -113,7 +126,7 @@ std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a,
 }
 
 struct Totals {
-  double flicker = 0, plain = 0, object_max = 0, object_p99 = 0;
+  double flicker = 0, plain = 0, object_max = 0, object_p99 = 0, at_scale = 0, plain_at_scale = 0;
   int pairs = 0;
 };
 
@@ -127,6 +140,14 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
   totals.flicker += flicker.rms;
   totals.plain += plain.rms;
   ++totals.pairs;
+  if (args.scale_px > 0) {
+    const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
+    const double layer = reprojection_rms(*a.view, a.layer_at_scale, *b.view, b.layer_at_scale, carry).rms;
+    const double own = reprojection_rms(*a.view, a.plain_at_scale, *b.view, b.plain_at_scale, carry).rms;
+    row << ',' << layer << ',' << own;
+    totals.at_scale += layer;
+    totals.plain_at_scale += own;
+  }
   if (object >= 0) {
     const ObjectChange change = object_change(a, b, carry_between_frames(base, frame - 1, frame), object);
     row << ',' << change.max << ',' << change.p99 << ',' << change.pixels;
@@ -145,11 +166,17 @@ int named_object(const Scene& scene, const std::string& name) {
   throw InputError("--object: " + scene.file.string() + " has no object called '" + name + "'");
 }
 
-std::string summary(const Totals& t, const std::string& object) {
+std::string summary(const Totals& t, const FlickerArgs& args) {
+  const std::string& object = args.object;
   char line[320];
   std::snprintf(line, sizeof line, "%d frame pairs, mean flicker %.4f L* (the plain render's own reprojection %.4f L*)",
                 t.pairs, t.flicker / t.pairs, t.plain / t.pairs);
   std::string out = line;
+  if (args.scale_px > 0) {
+    std::snprintf(line, sizeof line, "; at %g px: %.4f L* (plain %.4f L*)", args.scale_px, t.at_scale / t.pairs,
+                  t.plain_at_scale / t.pairs);
+    out += line;
+  }
   if (!object.empty()) {
     std::snprintf(line, sizeof line, "; %s: largest change %.2f code levels (p99 %.2f, worst pair)", object.c_str(),
                   t.object_max, t.object_p99);
@@ -172,6 +199,7 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
   const int object = named_object(base, args.object);
   std::string csv = "frame,flicker_lstar,plain_reprojection_lstar,pixels";
+  if (args.scale_px > 0) csv += ",flicker_at_scale_lstar,plain_at_scale_lstar";
   csv += object >= 0 ? ",object_max_levels,object_p99_levels,object_pixels\n" : "\n";
   Progress progress("flicker");
   Totals totals;
@@ -183,7 +211,7 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
     progress.update(double(f - first) / double(last - first));
   }
   if (!args.csv.empty()) write_text_atomically(args.csv, csv);
-  progress.finish(summary(totals, args.object));
+  progress.finish(summary(totals, args));
 }
 
 }  // namespace
@@ -201,6 +229,10 @@ void add_flicker_command(CLI::App& app) {
   cmd->add_option("--object", args->object,
                   "Also report how much the enhancement of this object's pixels changes per pair, in code levels "
                   "(largest and 99th percentile over its pixels seen in both frames; CSV columns object_*)");
+  cmd->add_option("--scale-px", args->scale_px,
+                  "Also compare the layers blurred with a Gaussian of this σ in pixels: the change at the "
+                  "enhancement's scale rather than the pixel's (CSV columns *_at_scale_lstar)")
+      ->check(CLI::Range(0.0, 256.0));
   cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")->check(CLI::Range(1, 65536));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->callback([cmd, args] { run(*args, cmd); });

@@ -185,6 +185,22 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   EXPECT_EQ(testing::count_lines(unknown.output), 1) << unknown.output;
 }
 
+// --scale-px compares the layers blurred: none without enhancement, and the plain render's own
+// error shrinks, since blurring takes out the pixel-scale detail the resampling cannot carry.
+TEST(Flicker, AtAScaleTheLayersAreComparedBlurred) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
+  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --scale-px 2 --csv " + (dir / "f.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("at 2 px: 0.0000 L*"), std::string::npos) << r.output;
+  EXPECT_NE(testing::read_file(dir / "f.csv").find("plain_at_scale_lstar"), std::string::npos);
+  double plain = 0, at_scale = 0;
+  ASSERT_EQ(std::sscanf(r.output.substr(r.output.find("own reprojection ")).c_str(), "own reprojection %lf", &plain), 1);
+  ASSERT_EQ(std::sscanf(r.output.substr(r.output.find("(plain ")).c_str(), "(plain %lf", &at_scale), 1);
+  EXPECT_GT(plain, 0.0);
+  EXPECT_LT(at_scale, plain) << r.output;
+}
+
 // An object's change in code levels: none without enhancement, some under usm2d (whose halo
 // around the box moves with the screen, not with the box).
 TEST(Flicker, AnObjectsChangeIsCountedInCodeLevels) {
