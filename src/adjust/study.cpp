@@ -201,7 +201,7 @@ class StudyBuilder {
     for (size_t e : entries) stimulus.frames.push_back(add_image(e));
     if (head.frame) {
       stimulus.fps = head.frame->fps;
-      stimulus.sequence = fs::path(head.file).parent_path().string();
+      stimulus.sequence = head.sequence();
     }
     study_.stimuli.push_back(std::move(stimulus));
     return int(it->second);

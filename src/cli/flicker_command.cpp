@@ -115,10 +115,9 @@ ObjectChange object_change(const Frame& a, const Frame& b, const CarryPoint& car
   return out;
 }
 
-// The pair (frame − 1, frame): surface points carried along their objects' motion.
-std::pair<Reprojection, Reprojection> compare(const Scene& base, const Frame& a, const Frame& b, int frame,
+// The pair (frame − 1, frame), surface points carried along their objects' motion by `carry`.
+std::pair<Reprojection, Reprojection> compare(const Frame& a, const Frame& b, const CarryPoint& carry, int frame,
                                               const std::string& maps) {
-  const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
   std::vector<float> differences;
   const Reprojection layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, maps.empty() ? nullptr : &differences);
   if (!maps.empty()) write_map(maps, frame, differences, *a.view);
@@ -134,14 +133,14 @@ struct Totals {
 // the totals.
 std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int frame, const FlickerArgs& args, int object,
                      Totals& totals) {
-  const auto [flicker, plain] = compare(base, a, b, frame, args.maps);
+  const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
+  const auto [flicker, plain] = compare(a, b, carry, frame, args.maps);
   std::ostringstream row;
   row << frame << ',' << flicker.rms << ',' << plain.rms << ',' << flicker.pixels;
   totals.flicker += flicker.rms;
   totals.plain += plain.rms;
   ++totals.pairs;
   if (args.scale_px > 0) {
-    const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
     const double layer = reprojection_rms(*a.view, a.layer_at_scale, *b.view, b.layer_at_scale, carry).rms;
     const double own = reprojection_rms(*a.view, a.plain_at_scale, *b.view, b.plain_at_scale, carry).rms;
     row << ',' << layer << ',' << own;
@@ -149,7 +148,7 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
     totals.plain_at_scale += own;
   }
   if (object >= 0) {
-    const ObjectChange change = object_change(a, b, carry_between_frames(base, frame - 1, frame), object);
+    const ObjectChange change = object_change(a, b, carry, object);
     row << ',' << change.max << ',' << change.p99 << ',' << change.pixels;
     totals.object_max = std::max(totals.object_max, change.max);
     totals.object_p99 = std::max(totals.object_p99, change.p99);

@@ -48,6 +48,8 @@ struct ManifestEntry {
 
   // The reference has no label; the method `none` in an experiment has one (a control condition).
   bool is_reference() const { return method == kReferenceMethod && label.empty(); }
+  // The folder of the sequence a frame belongs to (the folder of its file).
+  std::string sequence() const { return std::filesystem::path(file).parent_path().string(); }
   // The condition's name in studies: the label, or the method when there is none.
   const std::string& condition_method() const { return label.empty() ? method : label; }
 };

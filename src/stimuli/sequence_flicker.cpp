@@ -23,7 +23,7 @@ using Sequences = std::map<std::string, std::map<int, ManifestEntry*>>;
 Sequences sequences_of(const std::string& scene, std::vector<ManifestEntry>& entries) {
   Sequences out;
   for (ManifestEntry& s : entries)
-    if (s.scene == scene && s.frame) out[fs::path(s.file).parent_path().string()][s.frame->index] = &s;
+    if (s.scene == scene && s.frame) out[s.sequence()][s.frame->index] = &s;
   return out;
 }
 

@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 void write_sequence_videos(const fs::path& dir, Manifest& manifest, int threads) {
   std::map<std::string, std::vector<const ManifestEntry*>> sequences;  // folder → its frames
   for (const ManifestEntry& s : manifest.stimuli)
-    if (s.frame) sequences[fs::path(s.file).parent_path().string()].push_back(&s);
+    if (s.frame) sequences[s.sequence()].push_back(&s);
   std::vector<std::string> folders;
   for (auto& [folder, frames] : sequences) {
     std::sort(frames.begin(), frames.end(), [](auto* a, auto* b) { return a->frame->index < b->frame->index; });

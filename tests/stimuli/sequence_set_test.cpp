@@ -59,7 +59,9 @@ TEST(SequenceSet, EveryFrameIsAStimulusWithItsChecksumAndTheFrameRate) {
   // Each frame's λ = 0 equals that frame's reference, and the audit pairs them so.
   const AuditReport audit = audit_stimulus_set(dir / "set/manifest.json");
   for (const auto& c : audit.checks)
-    if (c.check == "lambda 0 equals reference") EXPECT_TRUE(c.passed) << c.condition << ": " << c.detail;
+    if (c.check == "lambda 0 equals reference") {
+      EXPECT_TRUE(c.passed) << c.condition << ": " << c.detail;
+    }
 }
 
 TEST(SequenceSet, ReproducibleAcrossThreadCountsAndShards) {
@@ -125,9 +127,15 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
   for (const auto& s : manifest["stimuli"]) {
     if (!s.contains("flicker")) continue;
     const int frame = s["frame"];
-    if (s["method"] == "none") EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).second, 1e-4);
-    if (s["method"] == "usm2d" && s["lambda"] == 1.0) EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).first, 1e-4);
-    if (s["lambda"] == 0.0 && s["method"] != "none") EXPECT_EQ(s["flicker"].get<double>(), 0.0);
+    if (s["method"] == "none") {
+      EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).second, 1e-4);
+    }
+    if (s["method"] == "usm2d" && s["lambda"] == 1.0) {
+      EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).first, 1e-4);
+    }
+    if (s["lambda"] == 0.0 && s["method"] != "none") {
+      EXPECT_EQ(s["flicker"].get<double>(), 0.0);
+    }
     compared += s["method"] == "none" || (s["method"] == "usm2d" && s["lambda"] == 1.0);
   }
   EXPECT_EQ(compared, 6);
