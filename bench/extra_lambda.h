@@ -1,6 +1,7 @@
 #pragma once
-// What one extra λ of a method costs against the plain render it starts from: each iteration
-// renders the scene's plain view, prepares the method, then composes λ = 1 once. Counters:
+// What one extra λ of a method costs against the render it starts from: each iteration renders
+// the scene's view for the method (as a stimulus set does: a method that renders again gets the
+// render's ray log), prepares the method, then composes λ = 1 once. Counters:
 // render_s, compose_s and vs_render (compose over render, in the same run).
 
 #include <benchmark/benchmark.h>
@@ -22,7 +23,7 @@ inline void measure_extra_lambda(benchmark::State& state, const std::shared_ptr<
   double render = 0, compose = 0;
   for (auto _ : state) {
     auto t = std::chrono::steady_clock::now();
-    const auto view = render_view(scene);
+    const auto view = render_view(scene, plan_for(method, parameters, 1.0), {});
     render += seconds_since(t);
     const auto prepared = prepare_method(method, view, parameters);
     t = std::chrono::steady_clock::now();

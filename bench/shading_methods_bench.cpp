@@ -1,13 +1,19 @@
 // What an extra λ costs for the methods that change shading, against the render they start from:
 // the mestres2021 scene (igea, Lambertian, 512×384, 4 spp, light at 45° elevation), both threads.
 //   build/bin/countershade_bench --benchmark_filter=ShadingExtraLambda
-// The counter `vs_render` is (time of one compose at λ = 1) / (time of the plain render).
+// The counter `vs_render` is (time of one compose at λ = 1) / (time of the render it starts from).
+// TraceLogRecording: the render of that scene keeping its ray log (what a set does for these
+// methods) against the same render without it; counter `vs_plain`.
 
 #include <benchmark/benchmark.h>
+
+#include <chrono>
 
 #include "extra_lambda.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "render/ray_tracer.h"
+#include "render/renderer.h"
 #include "render/scene.h"
 #include "stimuli/experiment.h"
 
@@ -34,6 +40,28 @@ BENCHMARK(BM_ShadingExtraLambdaLla)->Unit(benchmark::kSecond)->UseRealTime()->It
 BENCHMARK(BM_ShadingExtraLambdaEs)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_ShadingExtraLambdaLw)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_ShadingExtraLambdaRs)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+
+double seconds_to_render(const Scene& scene, const RayTracer& tracer, bool record) {
+  RenderOptions options;
+  options.record_trace = record;
+  const auto start = std::chrono::steady_clock::now();
+  benchmark::DoNotOptimize(render(scene, tracer, options));
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_TraceLogRecording(benchmark::State& state) {
+  const auto scene = mestres_scene();
+  const RayTracer tracer(*scene);
+  double plain = 0, recording = 0;
+  for (auto _ : state) {
+    plain += seconds_to_render(*scene, tracer, false);
+    recording += seconds_to_render(*scene, tracer, true);
+  }
+  state.counters["plain_s"] = plain / double(state.iterations());
+  state.counters["recording_s"] = recording / double(state.iterations());
+  state.counters["vs_plain"] = recording / plain;
+}
+BENCHMARK(BM_TraceLogRecording)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(5);
 
 }  // namespace
 }  // namespace countershade

@@ -18,9 +18,10 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
   PrepareContext context;
   context.threads = threads;
   if (view->scene) {
-    context.render_again = [scene = view->scene, tracer = view->tracer, bits = view->bits,
+    context.render_again = [scene = view->scene, tracer = view->tracer, bits = view->bits, trace = view->render.trace,
                             threads](const RenderRequest& request) {
       RenderOptions options;
+      options.replay_trace = trace;  // same scene and camera: the hooks re-shade, nothing is traced again
       options.threads = threads;
       options.vertex_radiance = request.vertex_radiance;
       options.ring_samples = request.ring_samples;

@@ -39,6 +39,7 @@ std::vector<ParameterDoc> normal_scales_docs() {
 RenderRequest shading_request() {
   RenderRequest r;
   r.scene = true;
+  r.renders_again = true;
   return r;
 }
 

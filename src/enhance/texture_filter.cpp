@@ -113,6 +113,7 @@ class TextureFilterMethod final : public EnhancementMethod {
   RenderRequest request(const MethodParameters& parameters) const override {
     RenderRequest r;
     r.scene = parameters_as<TextureFilterParameters>(parameters).mode != FilterMode::post;
+    r.renders_again = r.scene;  // every λ renders with its filtered textures
     return r;
   }
 

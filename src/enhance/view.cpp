@@ -130,6 +130,7 @@ std::shared_ptr<const View> render_view(std::shared_ptr<const Scene> scene, cons
   ro.vertex_needs = vertex_needs(*scene, plan);
   ro.shading_hook = request.shading_hook;
   ro.texture_hook = request.texture_hook;
+  ro.record_trace = request.renders_again;
   ro.progress = options.progress;
   Stages stages;
   ro.before_pixels = [&](const RenderResult& so_far) { return stages.build(*scene, plan, so_far, options.threads); };

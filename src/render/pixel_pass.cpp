@@ -50,14 +50,15 @@ void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dv
 
 class PixelSampler {
  public:
-  PixelSampler(const PixelPassInput& in, Sums& sums)
-      : in_(in), sums_(sums), rays_(in.scene.camera), width_(in.scene.camera.width),
+  PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record)
+      : in_(in), sums_(sums), record_(record), rays_(in.scene.camera), width_(in.scene.camera.width),
         exposure_(std::exp2(in.scene.display.exposure_stops)), fixed_spp_(in.scene.settings.spp.value_or(0)) {}
 
   // Takes samples [count, target) of a pixel.
   void sample(size_t pixel, uint32_t target, RayCounts& rays, std::vector<glm::dvec2>& lhs) {
     const RenderSettings& settings = in_.scene.settings;
     if (settings.sampling == SamplingMode::independent) latin_hypercube(settings.seed, pixel, fixed_spp_, lhs);
+    if (record_) record_->reserve(pixel, target);
     for (uint32_t s = sums_.count[pixel]; s < target; ++s) one_sample(pixel, s, rays, lhs);
     sums_.count[pixel] = target;
   }
@@ -71,8 +72,8 @@ class PixelSampler {
     else if (fixed_spp_ != 1) offset = sampler.next2d();
     const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
     const Ray ray = rays_.ray(x + offset.x, y + offset.y);
-    ++counts.primary;
-    const auto hit = in_.tracer.intersect(ray.origin, ray.direction);
+    ShadowAnswers answers;
+    const auto hit = camera_hit(pixel, s, ray, counts, answers);
     glm::dvec3 radiance;
     if (!hit) {
       radiance = in_.shader.background(ray.direction);
@@ -80,7 +81,7 @@ class PixelSampler {
       SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
       if (in_.shader.textured(hit->object))  // the footprint picks the texture's mip level
         set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
-      radiance = in_.shader.radiance(sp, -ray.direction, true, sampler, counts);
+      radiance = in_.shader.radiance(sp, -ray.direction, true, sampler, counts, tracing_answers(answers));
       const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
       auto& fields = sums_.field[Sampler::replicate(s)];
       for (size_t f = 0; f < fields.size(); ++f) fields[f][pixel] += in_.request.fields[f]->value(sample_hit);
@@ -95,8 +96,31 @@ class PixelSampler {
     }
   }
 
+  // The camera ray's hit: read back from the replayed log where it holds the sample (with its
+  // shadow answers), else traced (and recorded when the render keeps a log).
+  std::optional<Hit> camera_hit(size_t pixel, uint32_t s, const Ray& ray, RayCounts& counts, ShadowAnswers& answers) const {
+    if (in_.replay && in_.replay->has(pixel, s)) {
+      answers = in_.replay->answers(pixel, s);
+      return in_.replay->hit(pixel, s);
+    }
+    ++counts.primary;
+    auto hit = in_.tracer.intersect(ray.origin, ray.direction);
+    if (record_) {
+      record_->record_hit(pixel, s, hit);
+      answers.record = record_->answers_to_record(pixel);
+    }
+    return hit;
+  }
+
+  // The answers the shader records or replays; none on the plain path, which then asks only the
+  // shadow rays it uses.
+  static ShadowAnswers* tracing_answers(ShadowAnswers& answers) {
+    return answers.record || answers.replay ? &answers : nullptr;
+  }
+
   const PixelPassInput& in_;
   Sums& sums_;
+  TraceLog* record_;  // null: nothing recorded
   CameraRays rays_;
   int width_;
   double exposure_;
@@ -218,7 +242,8 @@ class AdaptiveSampling {
   double exposure() const { return std::exp2(in_.scene.display.exposure_stops); }
 
   void sample_round(const std::vector<uint32_t>& active, const std::vector<uint32_t>& target) {
-    PixelSampler sampler(in_, sums_);
+    keep_log_within_limit(target);
+    PixelSampler sampler(in_, sums_, in_.record && !in_.record->abandoned() ? in_.record : nullptr);
     std::mutex mutex;
     std::atomic<size_t> done{0};
     const int round = result_.sampling.rounds;
@@ -234,6 +259,15 @@ class AdaptiveSampling {
           if (in_.progress) in_.progress(progress(round, double(done) / double(active.size())));
         },
         64);
+  }
+
+  // Gives the log up (the render goes on without it) before a round that would take it past its
+  // memory limit. The decision depends only on the sample counts, like the image.
+  void keep_log_within_limit(const std::vector<uint32_t>& target) {
+    if (!in_.record || in_.record->abandoned()) return;
+    uint64_t planned = 0;
+    for (uint32_t t : target) planned += t;
+    if (in_.record->projected_bytes(planned) > in_.record->byte_limit()) in_.record->abandon();
   }
 
   // A rough share of the work done: the first round is most of it when few pixels need more.

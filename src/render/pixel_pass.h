@@ -14,6 +14,7 @@
 
 #include "render/renderer.h"
 #include "render/shading.h"
+#include "render/trace_log.h"
 
 namespace countershade {
 
@@ -24,6 +25,8 @@ struct PixelPassInput {
   const PixelRequest& request;
   int threads = 0;
   std::function<void(double)> progress;
+  TraceLog* record = nullptr;        // keeps every sample's ray answers (render/trace_log.h)
+  const TraceLog* replay = nullptr;  // reads back those it holds instead of tracing them
 };
 
 // Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.

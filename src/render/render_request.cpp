@@ -10,6 +10,7 @@ void RenderRequest::merge(const RenderRequest& other, const std::string& who) {
   scene |= other.scene;
   depth |= other.depth;
   vertex_radiance |= other.vertex_radiance;
+  renders_again |= other.renders_again;
   ring_samples = std::max(ring_samples, other.ring_samples);
   if (other.refine_edge_length) {
     if (refine_edge_length && *refine_edge_length != *other.refine_edge_length)

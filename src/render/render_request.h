@@ -16,6 +16,9 @@ struct RenderRequest {
   bool vertex_radiance = false;  // the outgoing radiance at every mesh vertex
   int ring_samples = 0;          // per-vertex anti-aliasing: samples per incident triangle
   std::optional<double> refine_edge_length;  // split longer mesh edges before rendering
+  // Renders the scene again with hooks (per λ): the base render keeps its rays' answers so that
+  // those renders re-shade instead of tracing (render/trace_log.h).
+  bool renders_again = false;
   // Hooks for renders the method asks for itself (PrepareContext::render_again); the base view of
   // a stimulus set is always rendered without them.
   std::shared_ptr<const ShadingHook> shading_hook;

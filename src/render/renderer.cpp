@@ -12,6 +12,7 @@
 #include "render/camera.h"
 #include "render/pixel_pass.h"
 #include "render/shading.h"
+#include "render/trace_log.h"
 #include "render/vertex_pass.h"
 
 namespace countershade {
@@ -58,6 +59,12 @@ std::vector<bool> seen_from_behind(const GBuffer& g, size_t objects) {
   return back;
 }
 
+// The log to replay, if it is one of this camera's size and was kept whole.
+const TraceLog* replayable(const TraceLog* log, const Scene& scene) {
+  if (!log || log->abandoned()) return nullptr;
+  return log->pixel_count() == size_t(scene.camera.width) * size_t(scene.camera.height) ? log : nullptr;
+}
+
 }  // namespace
 
 GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads) {
@@ -82,7 +89,8 @@ glm::dvec3 triangle_sample_barycentrics(int j, int k) {
 RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options) {
   const Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
   RenderResult result;
-  result.gbuffer = centre_pass(scene, tracer, options.threads, result.rays);
+  const TraceLog* replay = replayable(options.replay_trace.get(), scene);
+  result.gbuffer = replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;
     needs.resize(scene.objects.size(), VertexNeed{scene.settings.noise.target, 1});
@@ -92,7 +100,13 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   }
   PixelRequest request;
   if (options.before_pixels) request = options.before_pixels(result);
-  pixel_pass({scene, tracer, shader, request, options.threads, options.progress}, result);
+  std::shared_ptr<TraceLog> record;
+  if (options.record_trace) record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit);
+  pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(), replay}, result);
+  if (record && !record->abandoned()) {
+    record->gbuffer = result.gbuffer;
+    result.trace = std::move(record);
+  }
   return result;
 }
 

@@ -25,6 +25,8 @@
 
 namespace countershade {
 
+class TraceLog;
+
 // Per-pixel data from the ray through each pixel centre. Background pixels have object = -1,
 // depth = +inf and a zero normal.
 struct GBuffer {
@@ -85,7 +87,8 @@ struct RenderResult {
   std::vector<ChangeNoise> change_noise;  // per requested change
   std::vector<uint32_t> spp;     // per pixel
   SamplingReport sampling;
-  RayCounts rays;
+  RayCounts rays;  // traced (a replayed render traces only what its log lacks)
+  std::shared_ptr<const TraceLog> trace;  // with RenderOptions::record_trace, if it fit its limit
 };
 
 // What the methods need of one object's vertex signal: the L* standard error its relevant
@@ -104,6 +107,12 @@ struct RenderOptions {
   std::vector<VertexNeed> vertex_needs;
   std::shared_ptr<const ShadingHook> shading_hook;  // optional (render/hooks.h)
   std::shared_ptr<const TextureHook> texture_hook;
+  // Keep the tracer's answers of passes 1 and 3 (render/trace_log.h) for renders with hooks.
+  bool record_trace = false;
+  // Read back the answers of an earlier render of the same scene and camera instead of tracing
+  // them (its log, with hooks of this render only: the image is the one tracing would give).
+  std::shared_ptr<const TraceLog> replay_trace;
+  uint64_t trace_byte_limit = uint64_t(1) << 30;  // a log that would outgrow it is given up
   // Called between passes 2 and 3 with what is rendered so far.
   std::function<PixelRequest(const RenderResult&)> before_pixels;
   std::function<void(double)> progress;  // called with the finished fraction, from any thread

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -119,27 +120,36 @@ glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm
   return cos_i > 0 ? brdf(s, wi) * incident * cos_i : glm::dvec3(0.0);
 }
 
-bool Shader::visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::dvec3& wi,
-                     double distance, RayCounts& counts) const {
-  ++counts.shadow;
-  double eps = tracer_.epsilon();
-  // Leave the surface on the side the ray travels to, so the surface does not shadow itself.
-  glm::dvec3 o = origin + ng * (glm::dot(ng, wi) >= 0 ? eps : -eps);
-  return !tracer_.occluded(o, wi, eps, distance - 2 * eps);
-}
-
 struct Shader::Context {
   ShadingInputs inputs;
-  glm::dvec3 ng;  // geometric normal on the viewed side
+  glm::dvec3 ng;                    // geometric normal on the viewed side
+  ShadowAnswers* answers = nullptr;  // recorded or replayed shadow answers
 };
+
+bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const {
+  ShadowAnswers* answers = c.answers;
+  if (answers && answers->replay) {
+    if (answers->replay == answers->replay_end) throw std::logic_error("Shader: a replayed sample asks more shadow rays than it recorded");
+    return *answers->replay++ != 0;
+  }
+  ++counts.shadow;
+  const double eps = tracer_.epsilon();
+  // Leave the surface on the side the ray travels to, so the surface does not shadow itself.
+  const glm::dvec3 o = c.inputs.point.position + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
+  const bool open = !tracer_.occluded(o, wi, eps, distance - 2 * eps);
+  if (answers && answers->record) answers->record->push_back(open);
+  return open;
+}
 
 glm::dvec3 Shader::light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
                                 double distance, RayCounts& counts) const {
   // Light from behind the surface never arrives: by the shading normal on the plain path; by the
   // geometry when a hook may shade with another direction.
-  const double cos_i = glm::dot(c.inputs.normal, wi);
-  const double facing = shading_hook_ ? glm::dot(c.ng, wi) : cos_i;
-  if (facing <= 0 || (distance > 0 && !visible(c.inputs.point.position, c.ng, wi, distance, counts))) return glm::dvec3(0.0);
+  const double cos_i = glm::dot(c.inputs.normal, wi), towards = glm::dot(c.ng, wi);
+  const double facing = shading_hook_ ? towards : cos_i;
+  // Recording or replaying, ask the shadow ray whenever either rule could use it (ShadowAnswers).
+  const bool asked = c.answers ? (towards > 0 || cos_i > 0) : facing > 0;
+  if (!asked || (distance > 0 && !visible(c, wi, distance, counts)) || facing <= 0) return glm::dvec3(0.0);
   if (shading_hook_) return shading_hook_->reflect(c.inputs, wi, radiance / divisor);
   return brdf(c.inputs, wi) * radiance * (cos_i / divisor);
 }
@@ -216,7 +226,7 @@ void Shader::ambient(const Context& c, Sampler& random, RayCounts& counts, glm::
     for (int s = 0; s < ambient.samples; ++s) {
       const glm::dvec2 u = random.next2d();
       glm::dvec3 wi = sample_cosine_hemisphere(c.inputs.normal, u.x, u.y);
-      if (visible(c.inputs.point.position, c.ng, wi, ambient.distance, counts)) ++unoccluded;
+      if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
     }
     open = double(unoccluded) / ambient.samples;
   }
@@ -224,13 +234,13 @@ void Shader::ambient(const Context& c, Sampler& random, RayCounts& counts, glm::
 }
 
 glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
-                            Sampler& random, RayCounts& counts) const {
+                            Sampler& random, RayCounts& counts, ShadowAnswers* answers) const {
   glm::dvec3 ng = point.geometric_normal, n = point.shading_normal;
   if (two_sided && glm::dot(ng, wo) < 0) {
     ng = -ng;
     n = -n;
   }
-  const Context c{{point, scene_.objects[point.object].material, n, wo, albedo(point)}, ng};
+  const Context c{{point, scene_.objects[point.object].material, n, wo, albedo(point)}, ng, answers};
   glm::dvec3 L(0.0);
   directional(c, random, counts, L);
   point_lights(c, random, counts, L);

@@ -2,6 +2,9 @@
 // The one shading function. Pixels and mesh vertices both go through Shader::radiance, so the
 // per-vertex signal of 3D unsharp masking is lit exactly like the image.
 
+#include <cstdint>
+#include <vector>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -26,6 +29,16 @@ struct SurfacePoint {
 SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1,
                            double b2);
 
+// One sample's shadow-ray answers, in the order the shader asks for them: appended while a render
+// records its rays, read back while a render with hooks replays them (render/trace_log.h). With
+// either, the shader asks a shadow ray whenever the plain path or a hook could use it, so both
+// renders ask the same rays in the same order.
+struct ShadowAnswers {
+  std::vector<uint8_t>* record = nullptr;
+  const uint8_t* replay = nullptr;
+  const uint8_t* replay_end = nullptr;
+};
+
 class Shader {
  public:
   // Hooks may be null (the plain path).
@@ -35,8 +48,9 @@ class Shader {
 
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
   // from behind its front face is shaded as the back face (open meshes, planes from below).
+  // `answers` (optional) records the shadow rays' answers or replays them instead of tracing.
   glm::dvec3 radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
-                      Sampler& random, RayCounts& counts) const;
+                      Sampler& random, RayCounts& counts, ShadowAnswers* answers = nullptr) const;
 
   // What a camera ray that hits nothing sees.
   glm::dvec3 background(const glm::dvec3& direction) const;
@@ -59,8 +73,7 @@ class Shader {
   // `distance` away: its visibility and its reflection (through the shading hook if there is one).
   glm::dvec3 light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
                           double distance, RayCounts& counts) const;
-  bool visible(const glm::dvec3& origin, const glm::dvec3& ng, const glm::dvec3& wi, double distance,
-               RayCounts& counts) const;
+  bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;

@@ -1,0 +1,164 @@
+// Replaying a render's rays: a render that records its ray answers gives the plain image, and a
+// render with hooks that reads them back gives, bit for bit, the image it gives by tracing, with
+// (almost) no rays traced. The scene uses every kind of light, soft shadows, ambient occlusion, a
+// texture, a glossy material and adaptive sampling, so that every shadow-ray path is exercised.
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "enhance/method.h"
+#include "enhance/view.h"
+#include "render/hooks.h"
+#include "render/trace_log.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+const char* kRichScene = R"({
+  "version": 1,
+  "camera": {"eye": [2.2, 1.8, 3.0], "target": [0, 0.4, 0], "fov": 40, "width": 48, "height": 36},
+  "render": {"seed": 3, "noise": {"target": 1.0, "min_spp": 4, "max_spp": 64}},
+  "objects": [
+    {"name": "floor", "shape": {"type": "plane", "size": 4, "subdivisions": 4},
+     "material": {"albedo": 0.6, "texture": {"size": 64, "squares": 8}, "texture_repeat": 2}},
+    {"name": "ball", "shape": {"type": "sphere", "radius": 0.5, "subdivisions": 3}, "transform": {"translate": [-0.4, 0.5, 0]},
+     "material": {"albedo": [0.7, 0.5, 0.4], "specular": {"model": "blinn-phong", "color": 0.2, "shininess": 40}}},
+    {"name": "box", "shape": {"type": "box", "size": [0.6, 0.9, 0.6]}, "transform": {"translate": [0.6, 0.45, -0.3]}}
+  ],
+  "lights": [
+    {"type": "directional", "direction": [0.5, 0.8, 0.3], "irradiance": 1.5, "angular_radius": 4, "samples": 2},
+    {"type": "point", "position": [-1.5, 2.0, 1.5], "intensity": 3, "radius": 0.3, "samples": 2},
+    {"type": "environment", "sky": {}, "samples": 2, "scale": 0.4},
+    {"type": "ambient", "radiance": 0.05, "occlusion_distance": 0.6, "samples": 2}
+  ]
+})";
+
+// Shades every light sample as if it came from a direction tilted towards the viewer: it uses
+// shadow answers the plain path never asks (light from behind the shading normal) and the
+// specular lobe.
+class TiltHook final : public ShadingHook {
+ public:
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
+    return 0.8 * reflect_plain(s, glm::normalize(wi + 0.6 * s.wo + 0.3 * s.normal), incident);
+  }
+};
+
+class HalfTexture final : public TextureHook {
+ public:
+  const Texture* texture(unsigned, const Material& material) const override {
+    if (!material.texture) return nullptr;
+    if (!half_) {
+      TextureLevel level = material.texture->levels().front();
+      for (auto& texel : level.texels) texel *= 0.5f;
+      half_ = std::make_unique<Texture>(level);
+    }
+    return half_.get();
+  }
+
+ private:
+  mutable std::unique_ptr<Texture> half_;  // made on the first (single-threaded) call below
+};
+
+std::shared_ptr<const Scene> rich_scene(const testing::TempDir& dir) {
+  return std::make_shared<const Scene>(load_scene(testing::write_file(dir / "rich.json", kRichScene)));
+}
+
+RenderResult render_with(const Scene& scene, const RayTracer& tracer, std::shared_ptr<const ShadingHook> hook,
+                         std::shared_ptr<const TraceLog> replay = nullptr, bool record = false) {
+  RenderOptions options;
+  options.threads = 2;
+  options.shading_hook = std::move(hook);
+  options.replay_trace = std::move(replay);
+  options.record_trace = record;
+  return render(scene, tracer, options);
+}
+
+void expect_same_pixels(const RenderResult& a, const RenderResult& b) {
+  ASSERT_EQ(a.radiance.pixels.size(), b.radiance.pixels.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.radiance.pixels.size(); ++i) differing += a.radiance.pixels[i] != b.radiance.pixels[i];
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(a.spp, b.spp);
+}
+
+TEST(TraceLog, RecordingTheRaysLeavesThePlainImageUnchanged) {
+  testing::TempDir dir;
+  auto scene = rich_scene(dir);
+  const RayTracer tracer(*scene);
+  const RenderResult plain = render_with(*scene, tracer, nullptr);
+  const RenderResult recorded = render_with(*scene, tracer, nullptr, nullptr, true);
+  expect_same_pixels(plain, recorded);
+  EXPECT_EQ(plain.trace, nullptr);
+  ASSERT_NE(recorded.trace, nullptr);
+  EXPECT_GT(recorded.sampling.rounds, 1);  // adaptive: the log spans several rounds
+  // Recording asks the shadow rays a hook could use as well: never fewer than the plain path.
+  EXPECT_GE(recorded.rays.shadow, plain.rays.shadow);
+}
+
+TEST(TraceLog, AReplayedRenderWithAShadingHookEqualsTracingIt) {
+  testing::TempDir dir;
+  auto scene = rich_scene(dir);
+  const RayTracer tracer(*scene);
+  const RenderResult base = render_with(*scene, tracer, nullptr, nullptr, true);
+  const auto hook = std::make_shared<TiltHook>();
+  const RenderResult traced = render_with(*scene, tracer, hook);
+  const RenderResult replayed = render_with(*scene, tracer, hook, base.trace);
+  expect_same_pixels(traced, replayed);
+  EXPECT_EQ(replayed.gbuffer.object, traced.gbuffer.object);
+  // Only samples beyond the base render's are traced.
+  uint64_t beyond = 0;
+  for (size_t p = 0; p < base.spp.size(); ++p) beyond += replayed.spp[p] > base.spp[p] ? replayed.spp[p] - base.spp[p] : 0;
+  EXPECT_EQ(replayed.rays.primary, beyond);
+  EXPECT_LT(replayed.rays.primary, traced.rays.primary / 4);
+  EXPECT_NE(traced.radiance.pixels, base.radiance.pixels);  // the hook does change the image
+}
+
+TEST(TraceLog, AReplayedRenderWithATextureHookEqualsTracingIt) {
+  testing::TempDir dir;
+  auto scene = rich_scene(dir);
+  const RayTracer tracer(*scene);
+  const RenderResult base = render_with(*scene, tracer, nullptr, nullptr, true);
+  auto texture = std::make_shared<HalfTexture>();
+  texture->texture(0, scene->objects[0].material);
+  RenderOptions options;
+  options.threads = 2;
+  options.texture_hook = texture;
+  const RenderResult traced = render(*scene, tracer, options);
+  options.replay_trace = base.trace;
+  const RenderResult replayed = render(*scene, tracer, options);
+  expect_same_pixels(traced, replayed);
+  EXPECT_LT(replayed.rays.primary, traced.rays.primary / 4);
+}
+
+TEST(TraceLog, ALogOverItsLimitIsGivenUpAndTheImageStaysTheSame) {
+  testing::TempDir dir;
+  auto scene = rich_scene(dir);
+  const RayTracer tracer(*scene);
+  RenderOptions options;
+  options.threads = 2;
+  options.record_trace = true;
+  options.trace_byte_limit = 48 * 36 * 8 * sizeof(TracedHit);  // fits the first round, not the second
+  const RenderResult limited = render(*scene, tracer, options);
+  EXPECT_EQ(limited.trace, nullptr);
+  expect_same_pixels(render_with(*scene, tracer, nullptr), limited);
+}
+
+// Through the method interface: an extra λ of a shading method reads the base view's log and
+// composes what it composes without one.
+TEST(TraceLog, AShadingMethodsExtraLambdaIsTheSameWithAndWithoutTheLog) {
+  testing::TempDir dir;
+  auto scene = rich_scene(dir);
+  const ViewPlan plan = plan_for("exaggerated-shading", {{"sigma", 0.1}}, 1.0);
+  const auto view = render_view(scene, plan, {8, 2, {}});
+  ASSERT_NE(view->render.trace, nullptr);
+  auto untraced = std::make_shared<View>(*view);
+  untraced->render.trace = nullptr;
+  const auto with_log = prepare_method("exaggerated-shading", view, {{"sigma", 0.1}}, 2);
+  const auto without = prepare_method("exaggerated-shading", untraced, {{"sigma", 0.1}}, 2);
+  for (double lambda : {0.5, 1.0}) EXPECT_EQ(with_log->compose(lambda).display.pixels, without->compose(lambda).display.pixels) << lambda;
+}
+
+}  // namespace
+}  // namespace countershade
