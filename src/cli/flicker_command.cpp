@@ -29,7 +29,9 @@ struct FlickerArgs {
   std::string scene, frames, csv, maps, object;
   MethodArgs method;
   std::optional<int> spp, threads;
+  int bits = 8;  // the stimuli's output bit depth
   double scale_px = 0;  // > 0: also compare the layers blurred to this scale
+  double stable = 0;    // > 0: also the flicker where the plain L* reprojects within this
 };
 
 struct Frame {
@@ -64,6 +66,7 @@ Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const 
   plan.max_abs_lambda = std::abs(args.method.lambda);
   ViewOptions options;
   options.threads = args.threads.value_or(0);
+  options.bits = args.bits;
   Frame f;
   f.view = render_view(scene, plan, options);
   const auto prepared = m.method->prepare(make_use_context(f.view, 0, options.threads), *m.parameters);
@@ -124,8 +127,16 @@ std::pair<Reprojection, Reprojection> compare(const Frame& a, const Frame& b, co
   return {layer, reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry)};
 }
 
+// The flicker over the pixels where the plain L* itself reprojects within `tolerance`.
+Reprojection stable_rms(const Frame& a, const Frame& b, const CarryPoint& carry, double tolerance) {
+  std::vector<float> layer, plain;
+  reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, &layer);
+  reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry, &plain);
+  return rms_where_stable(layer, plain, tolerance);
+}
+
 struct Totals {
-  double flicker = 0, plain = 0, object_max = 0, object_p99 = 0, at_scale = 0, plain_at_scale = 0;
+  double flicker = 0, plain = 0, object_max = 0, object_p99 = 0, at_scale = 0, plain_at_scale = 0, stable = 0, stable_share = 0;
   int pairs = 0;
 };
 
@@ -146,6 +157,12 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
     row << ',' << layer << ',' << own;
     totals.at_scale += layer;
     totals.plain_at_scale += own;
+  }
+  if (args.stable > 0) {
+    const Reprojection stable = stable_rms(a, b, carry, args.stable);
+    row << ',' << stable.rms << ',' << stable.pixels;
+    totals.stable += stable.rms;
+    totals.stable_share += flicker.pixels ? double(stable.pixels) / double(flicker.pixels) : 0.0;
   }
   if (object >= 0) {
     const ObjectChange change = object_change(a, b, carry, object);
@@ -176,6 +193,11 @@ std::string summary(const Totals& t, const FlickerArgs& args) {
                   t.plain_at_scale / t.pairs);
     out += line;
   }
+  if (args.stable > 0) {
+    std::snprintf(line, sizeof line, "; where the plain L* reprojects within %g: %.4f L* (%.0f %% of the pixels)",
+                  args.stable, t.stable / t.pairs, 100.0 * t.stable_share / t.pairs);
+    out += line;
+  }
   if (!object.empty()) {
     std::snprintf(line, sizeof line, "; %s: largest change %.2f code levels (p99 %.2f, worst pair)", object.c_str(),
                   t.object_max, t.object_p99);
@@ -199,6 +221,7 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   const int object = named_object(base, args.object);
   std::string csv = "frame,flicker_lstar,plain_reprojection_lstar,pixels";
   if (args.scale_px > 0) csv += ",flicker_at_scale_lstar,plain_at_scale_lstar";
+  if (args.stable > 0) csv += ",flicker_stable_lstar,stable_pixels";
   csv += object >= 0 ? ",object_max_levels,object_p99_levels,object_pixels\n" : "\n";
   Progress progress("flicker");
   Totals totals;
@@ -232,6 +255,14 @@ void add_flicker_command(CLI::App& app) {
                   "Also compare the layers blurred with a Gaussian of this σ in pixels: the change at the "
                   "enhancement's scale rather than the pixel's (CSV columns *_at_scale_lstar)")
       ->check(CLI::Range(0.0, 256.0));
+  cmd->add_option("--stable", args->stable,
+                  "Also the flicker over the pixels where the plain L* reprojects within this many L*: surface that "
+                  "neither a change of the scene (a moving shadow) nor the resampling disturbs (CSV columns "
+                  "flicker_stable_lstar, stable_pixels)")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--bits", args->bits, "The stimuli's bit depth (8 or 16), as a set's \"bits\"")
+      ->check(CLI::IsMember({8, 16}))
+      ->capture_default_str();
   cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")->check(CLI::Range(1, 65536));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->callback([cmd, args] { run(*args, cmd); });

@@ -107,4 +107,17 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
   return {count ? std::sqrt(sum / double(count)) : 0.0, count};
 }
 
+Reprojection rms_where_stable(const std::vector<float>& differences, const std::vector<float>& plain_differences,
+                              double tolerance) {
+  double sum = 0;
+  Reprojection out;
+  for (size_t i = 0; i < differences.size(); ++i)
+    if (!std::isnan(differences[i]) && plain_differences[i] <= tolerance) {
+      sum += double(differences[i]) * differences[i];
+      ++out.pixels;
+    }
+  out.rms = out.pixels ? std::sqrt(sum / double(out.pixels)) : 0.0;
+  return out;
+}
+
 }  // namespace countershade

@@ -46,4 +46,11 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
                               const std::vector<float>& moved_values, const CarryPoint& carry = {},
                               std::vector<float>* differences = nullptr);
 
+// The RMS of `differences` (per pixel, NaN where a pixel did not count, as reprojection_rms writes
+// them) over the pixels whose `plain_differences` are at most `tolerance`: where the plain render
+// itself reprojects well, so that neither a change of the scene (a moving shadow) nor what the
+// resampling cannot carry enters. 0 over no pixels.
+Reprojection rms_where_stable(const std::vector<float>& differences, const std::vector<float>& plain_differences,
+                              double tolerance);
+
 }  // namespace countershade

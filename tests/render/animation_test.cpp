@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -216,6 +218,39 @@ TEST(Flicker, AnObjectsChangeIsCountedInCodeLevels) {
   const auto at = usm2d.output.find("box: largest change ");
   ASSERT_NE(at, std::string::npos) << usm2d.output;
   EXPECT_GT(std::stod(usm2d.output.substr(at + 20)), 1.0) << usm2d.output;
+}
+
+// The stable flicker counts only pixels whose plain L* reprojects within the tolerance (and that
+// counted at all): the RMS of 1 and 3 here; none at all gives 0, not NaN.
+TEST(Flicker, TheStableRmsLeavesOutPixelsWhosePlainRenderChanges) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> layer = {1.0f, 2.0f, nan, 3.0f}, plain = {0.0f, 0.5f, 0.0f, 0.05f};
+  const Reprojection stable = rms_where_stable(layer, plain, 0.1);
+  EXPECT_EQ(stable.pixels, 2u);
+  EXPECT_NEAR(stable.rms, std::sqrt(5.0), 1e-12);
+  EXPECT_EQ(rms_where_stable(layer, plain, -1.0).rms, 0.0);
+  EXPECT_NEAR(rms_where_stable(layer, plain, 1.0).rms, std::sqrt(14.0 / 3.0), 1e-12);
+}
+
+// Through the command: a tolerance above every change counts every pixel (the full flicker), and
+// --bits 16 measures stimuli without the 8-bit steps, whose rounding differs from frame to frame.
+TEST(Flicker, TheStableFlickerWithALooseToleranceIsTheFullOne) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
+  const std::string base = "flicker " + (dir / "orbit.json").string() + " --method usm2d --sigma-px 3 --lambda 2";
+  const auto loose = testing::run_cli(base + " --stable 100 --csv " + (dir / "f.csv").string());
+  ASSERT_EQ(loose.exit_code, 0) << loose.output;
+  double full = 0, stable = 0;
+  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("mean flicker ")).c_str(), "mean flicker %lf", &full), 1);
+  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("within 100: ")).c_str(), "within 100: %lf", &stable), 1);
+  EXPECT_GT(full, 0.1);
+  EXPECT_DOUBLE_EQ(stable, full);
+  EXPECT_NE(testing::read_file(dir / "f.csv").find("flicker_stable_lstar"), std::string::npos);
+  const auto tight = testing::run_cli(base + " --stable 0.2 --bits 16");
+  ASSERT_EQ(tight.exit_code, 0) << tight.output;
+  ASSERT_EQ(std::sscanf(tight.output.substr(tight.output.find("within 0.2: ")).c_str(), "within 0.2: %lf", &stable), 1);
+  EXPECT_LT(stable, full) << tight.output;
+  EXPECT_EQ(testing::run_cli(base + " --bits 12").exit_code, 2);
 }
 
 }  // namespace
