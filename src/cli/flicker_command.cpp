@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -47,9 +48,10 @@ std::vector<float> blurred(const std::vector<float>& values, const View& view, d
   return out;
 }
 
-// The enhancement layer of each channel in the output's code levels.
+// The enhancement layer of each channel in levels of 8-bit output (whatever the bit depth: the
+// unit the occluder bound is stated in).
 std::array<std::vector<float>, 3> level_layers(const View& view, const Image& enhanced) {
-  const float scale = float((1 << view.bits) - 1);
+  const float scale = 255.0f;
   std::array<std::vector<float>, 3> out;
   for (int c = 0; c < 3; ++c) {
     out[size_t(c)].resize(size_t(view.width()) * size_t(view.height()));
@@ -90,20 +92,38 @@ void write_map(const std::string& dir, int frame, const std::vector<float>& diff
   write_image(std::filesystem::path(dir) / name, false_colour_image(values));
 }
 
-// How much the enhancement of one object's pixels changes between two frames, in code levels:
-// per pixel the largest change over the three channels.
+// How much the enhancement of one object's pixels changes between two frames, in levels of 8-bit
+// output (at any bit depth): per pixel the largest change over the three channels.
 struct ObjectChange {
   double max = 0, p99 = 0;
   size_t pixels = 0;
 };
 
-ObjectChange object_change(const Frame& a, const Frame& b, const CarryPoint& carry, int object) {
+// One frame pair's per-pixel changes (NaN where a pixel did not count): of the layer and of the
+// plain L*, with their RMS.
+struct PairChanges {
+  Reprojection layer, plain;
+  std::vector<float> layer_differences, plain_differences;
+};
+
+PairChanges pair_changes(const Frame& a, const Frame& b, const CarryPoint& carry) {
+  PairChanges out;
+  out.layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, &out.layer_differences);
+  out.plain = reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry, &out.plain_differences);
+  return out;
+}
+
+// The object's change over its pixels seen in both frames; with `stable`, only over those whose
+// plain L* changes by at most that much.
+ObjectChange object_change(const Frame& a, const Frame& b, const CarryPoint& carry, int object,
+                           const std::vector<float>& plain_differences, std::optional<double> stable) {
   std::vector<float> largest(a.layer.size(), -1.0f);
   for (size_t c = 0; c < 3; ++c) {
     std::vector<float> differences;
     reprojection_rms(*a.view, a.levels[c], *b.view, b.levels[c], carry, &differences);
     for (size_t i = 0; i < differences.size(); ++i)
-      if (a.view->render.gbuffer.object[i] == object && !std::isnan(differences[i]))
+      if (a.view->render.gbuffer.object[i] == object && !std::isnan(differences[i]) &&
+          (!stable || plain_differences[i] <= *stable))
         largest[i] = std::max(largest[i], differences[i]);
   }
   std::vector<float> values;
@@ -118,39 +138,21 @@ ObjectChange object_change(const Frame& a, const Frame& b, const CarryPoint& car
   return out;
 }
 
-// The pair (frame − 1, frame), surface points carried along their objects' motion by `carry`.
-std::pair<Reprojection, Reprojection> compare(const Frame& a, const Frame& b, const CarryPoint& carry, int frame,
-                                              const std::string& maps) {
-  std::vector<float> differences;
-  const Reprojection layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, maps.empty() ? nullptr : &differences);
-  if (!maps.empty()) write_map(maps, frame, differences, *a.view);
-  return {layer, reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry)};
-}
-
-// The flicker over the pixels where the plain L* itself reprojects within `tolerance`.
-Reprojection stable_rms(const Frame& a, const Frame& b, const CarryPoint& carry, double tolerance) {
-  std::vector<float> layer, plain;
-  reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, &layer);
-  reprojection_rms(*a.view, a.plain, *b.view, b.plain, carry, &plain);
-  return rms_where_stable(layer, plain, tolerance);
-}
-
 struct Totals {
-  double flicker = 0, plain = 0, object_max = 0, object_p99 = 0, at_scale = 0, plain_at_scale = 0, stable = 0, stable_share = 0;
+  double flicker = 0, plain = 0, at_scale = 0, plain_at_scale = 0, stable = 0, stable_share = 0;
+  ObjectChange object, object_stable;  // the worst pair's
   int pairs = 0;
 };
 
-// One frame pair's CSV row (with the object's change in code levels when one is named), added to
-// the totals.
-std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int frame, const FlickerArgs& args, int object,
-                     Totals& totals) {
-  const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
-  const auto [flicker, plain] = compare(a, b, carry, frame, args.maps);
-  std::ostringstream row;
-  row << frame << ',' << flicker.rms << ',' << plain.rms << ',' << flicker.pixels;
-  totals.flicker += flicker.rms;
-  totals.plain += plain.rms;
-  ++totals.pairs;
+void add_object_change(const ObjectChange& change, std::ostringstream& row, ObjectChange& worst) {
+  row << ',' << change.max << ',' << change.p99 << ',' << change.pixels;
+  worst.max = std::max(worst.max, change.max);
+  worst.p99 = std::max(worst.p99, change.p99);
+}
+
+// The optional measures of a pair: at a scale, over stable pixels, of one object.
+void add_options(const Frame& a, const Frame& b, const CarryPoint& carry, const PairChanges& changes,
+                 const FlickerArgs& args, int object, std::ostringstream& row, Totals& totals) {
   if (args.scale_px > 0) {
     const double layer = reprojection_rms(*a.view, a.layer_at_scale, *b.view, b.layer_at_scale, carry).rms;
     const double own = reprojection_rms(*a.view, a.plain_at_scale, *b.view, b.plain_at_scale, carry).rms;
@@ -159,17 +161,29 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
     totals.plain_at_scale += own;
   }
   if (args.stable > 0) {
-    const Reprojection stable = stable_rms(a, b, carry, args.stable);
+    const Reprojection stable = rms_where_stable(changes.layer_differences, changes.plain_differences, args.stable);
     row << ',' << stable.rms << ',' << stable.pixels;
     totals.stable += stable.rms;
-    totals.stable_share += flicker.pixels ? double(stable.pixels) / double(flicker.pixels) : 0.0;
+    totals.stable_share += changes.layer.pixels ? double(stable.pixels) / double(changes.layer.pixels) : 0.0;
   }
-  if (object >= 0) {
-    const ObjectChange change = object_change(a, b, carry, object);
-    row << ',' << change.max << ',' << change.p99 << ',' << change.pixels;
-    totals.object_max = std::max(totals.object_max, change.max);
-    totals.object_p99 = std::max(totals.object_p99, change.p99);
-  }
+  if (object < 0) return;
+  add_object_change(object_change(a, b, carry, object, changes.plain_differences, std::nullopt), row, totals.object);
+  if (args.stable > 0)
+    add_object_change(object_change(a, b, carry, object, changes.plain_differences, args.stable), row, totals.object_stable);
+}
+
+// One frame pair's CSV row, added to the totals.
+std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int frame, const FlickerArgs& args, int object,
+                     Totals& totals) {
+  const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
+  const PairChanges changes = pair_changes(a, b, carry);
+  if (!args.maps.empty()) write_map(args.maps, frame, changes.layer_differences, *a.view);
+  std::ostringstream row;
+  row << frame << ',' << changes.layer.rms << ',' << changes.plain.rms << ',' << changes.layer.pixels;
+  totals.flicker += changes.layer.rms;
+  totals.plain += changes.plain.rms;
+  ++totals.pairs;
+  add_options(a, b, carry, changes, args, object, row, totals);
   row << '\n';
   return row.str();
 }
@@ -200,8 +214,12 @@ std::string summary(const Totals& t, const FlickerArgs& args) {
   }
   if (!object.empty()) {
     std::snprintf(line, sizeof line, "; %s: largest change %.2f code levels (p99 %.2f, worst pair)", object.c_str(),
-                  t.object_max, t.object_p99);
+                  t.object.max, t.object.p99);
     out += line;
+    if (args.stable > 0) {
+      std::snprintf(line, sizeof line, ", where stable %.2f (p99 %.2f)", t.object_stable.max, t.object_stable.p99);
+      out += line;
+    }
   }
   return out;
 }
@@ -222,7 +240,9 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   std::string csv = "frame,flicker_lstar,plain_reprojection_lstar,pixels";
   if (args.scale_px > 0) csv += ",flicker_at_scale_lstar,plain_at_scale_lstar";
   if (args.stable > 0) csv += ",flicker_stable_lstar,stable_pixels";
-  csv += object >= 0 ? ",object_max_levels,object_p99_levels,object_pixels\n" : "\n";
+  if (object >= 0) csv += ",object_max_levels,object_p99_levels,object_pixels";
+  if (object >= 0 && args.stable > 0) csv += ",object_stable_max_levels,object_stable_p99_levels,object_stable_pixels";
+  csv += '\n';
   Progress progress("flicker");
   Totals totals;
   Frame previous = render_frame(base, first, m, args);
@@ -249,8 +269,9 @@ void add_flicker_command(CLI::App& app) {
   cmd->add_option("--maps", args->maps,
                   "Write |change| per pixel of each pair as DIR/flicker-NNNN.png (viridis over 0–5 L*; black: not counted)");
   cmd->add_option("--object", args->object,
-                  "Also report how much the enhancement of this object's pixels changes per pair, in code levels "
-                  "(largest and 99th percentile over its pixels seen in both frames; CSV columns object_*)");
+                  "Also report how much the enhancement of this object's pixels changes per pair "
+                  "(largest and 99th percentile over its pixels seen in both frames, in levels of 8-bit output; CSV "
+                  "columns object_*, and object_stable_* over its stable pixels with --stable)");
   cmd->add_option("--scale-px", args->scale_px,
                   "Also compare the layers blurred with a Gaussian of this σ in pixels: the change at the "
                   "enhancement's scale rather than the pixel's (CSV columns *_at_scale_lstar)")

@@ -238,7 +238,7 @@ TEST(Flicker, TheStableFlickerWithALooseToleranceIsTheFullOne) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
   const std::string base = "flicker " + (dir / "orbit.json").string() + " --method usm2d --sigma-px 3 --lambda 2";
-  const auto loose = testing::run_cli(base + " --stable 100 --csv " + (dir / "f.csv").string());
+  const auto loose = testing::run_cli(base + " --stable 100 --object box --csv " + (dir / "f.csv").string());
   ASSERT_EQ(loose.exit_code, 0) << loose.output;
   double full = 0, stable = 0;
   ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("mean flicker ")).c_str(), "mean flicker %lf", &full), 1);
@@ -246,6 +246,16 @@ TEST(Flicker, TheStableFlickerWithALooseToleranceIsTheFullOne) {
   EXPECT_GT(full, 0.1);
   EXPECT_DOUBLE_EQ(stable, full);
   EXPECT_NE(testing::read_file(dir / "f.csv").find("flicker_stable_lstar"), std::string::npos);
+  EXPECT_NE(testing::read_file(dir / "f.csv").find("object_stable_p99_levels"), std::string::npos);
+  double object_max = 0, object_p99 = 0, stable_max = 0, stable_p99 = 0;
+  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("box: largest change ")).c_str(),
+                        "box: largest change %lf code levels (p99 %lf, worst pair), where stable %lf (p99 %lf)", &object_max,
+                        &object_p99, &stable_max, &stable_p99),
+            4)
+      << loose.output;
+  EXPECT_GT(object_max, 1.0);
+  EXPECT_EQ(stable_max, object_max);
+  EXPECT_EQ(stable_p99, object_p99);
   const auto tight = testing::run_cli(base + " --stable 0.2 --bits 16");
   ASSERT_EQ(tight.exit_code, 0) << tight.output;
   ASSERT_EQ(std::sscanf(tight.output.substr(tight.output.find("within 0.2: ")).c_str(), "within 0.2: %lf", &stable), 1);
