@@ -53,6 +53,7 @@ class FlickerMeter {
  private:
   std::vector<float> lightness(const ManifestEntry& entry) const;
   FrameLayers layers_at(const Sequences& sequences, int frame) const;
+  void measure_pair(Sequences& sequences, const FrameLayers& previous, const FrameLayers& current, int frame) const;
 
   const Experiment& e_;
   fs::path dir_;
@@ -92,6 +93,34 @@ FrameLayers FlickerMeter::layers_at(const Sequences& sequences, int frame) const
   return out;
 }
 
+// One frame pair of every sequence that has both frames. The reference's own per-pixel change
+// comes first: it picks the stable pixels of every condition.
+void FlickerMeter::measure_pair(Sequences& sequences, const FrameLayers& previous, const FrameLayers& current,
+                                int frame) const {
+  const CarryPoint carry = carry_between_frames(base_, frame - 1, frame);
+  std::vector<float> plain;
+  if (previous.layers.count(reference_) && current.layers.count(reference_))
+    reprojection_rms(*previous.geometry, previous.layers.at(reference_), *current.geometry, current.layers.at(reference_),
+                     carry, &plain);
+  std::vector<std::pair<std::string, const std::vector<float>*>> pairs;
+  for (const auto& [folder, layer] : current.layers)
+    if (previous.layers.count(folder)) pairs.emplace_back(folder, &layer);
+  parallel_ranges(pairs.size(), threads_, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      std::vector<float> differences;
+      const Reprojection r = reprojection_rms(*previous.geometry, previous.layers.at(pairs[k].first), *current.geometry,
+                                              *pairs[k].second, carry, &differences);
+      ManifestEntry& entry = *sequences.at(pairs[k].first).at(frame);
+      entry.extra["flicker"] = round_to(r.rms, 4);
+      entry.extra["flicker_pixels"] = r.pixels;
+      if (plain.empty() || pairs[k].first == reference_) continue;
+      const Reprojection stable = rms_where_stable(differences, plain, kStableFlickerTolerance);
+      entry.extra["flicker_stable"] = round_to(stable.rms, 4);
+      entry.extra["flicker_stable_pixels"] = stable.pixels;
+    }
+  });
+}
+
 void FlickerMeter::measure(Sequences& sequences) const {
   int first = 1 << 30, last = -1;
   for (const auto& [folder, frames] : sequences) {
@@ -101,19 +130,7 @@ void FlickerMeter::measure(Sequences& sequences) const {
   FrameLayers previous = layers_at(sequences, first);
   for (int f = first + 1; f <= last; ++f) {
     FrameLayers current = layers_at(sequences, f);
-    const CarryPoint carry = carry_between_frames(base_, f - 1, f);
-    std::vector<std::pair<std::string, const std::vector<float>*>> pairs;
-    for (const auto& [folder, layer] : current.layers)
-      if (previous.layers.count(folder)) pairs.emplace_back(folder, &layer);
-    parallel_ranges(pairs.size(), threads_, [&](size_t begin, size_t end) {
-      for (size_t k = begin; k < end; ++k) {
-        const Reprojection r = reprojection_rms(*previous.geometry, previous.layers.at(pairs[k].first),
-                                                *current.geometry, *pairs[k].second, carry);
-        ManifestEntry& entry = *sequences.at(pairs[k].first).at(f);
-        entry.extra["flicker"] = round_to(r.rms, 4);
-        entry.extra["flicker_pixels"] = r.pixels;
-      }
-    });
+    measure_pair(sequences, previous, current, f);
     previous = std::move(current);
   }
 }

@@ -109,17 +109,20 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
   testing::TempDir dir;
   generate_stimulus_set(load_experiment(write_experiment(dir)), dir / "set", testing::with_jobs(2));
   const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() +
-                                  " --method usm2d --sigma-percent 3 --lambda 1 --csv " + (dir / "f.csv").string());
+                                  " --method usm2d --sigma-percent 3 --lambda 1 --stable 0.1 --csv " + (dir / "f.csv").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::map<int, std::pair<double, double>> command;  // frame → (flicker, plain)
+  std::map<int, double> stable;                      // frame → flicker where the plain L* is stable
   std::istringstream csv(testing::read_file(dir / "f.csv"));
   std::string line;
   std::getline(csv, line);
   while (std::getline(csv, line)) {
     int frame;
-    double flicker, plain;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf", &frame, &flicker, &plain), 3) << line;
+    double flicker, plain, stable_flicker;
+    size_t pixels;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%zu,%lf", &frame, &flicker, &plain, &pixels, &stable_flicker), 5) << line;
     command[frame] = {flicker, plain};
+    stable[frame] = stable_flicker;
   }
   ASSERT_EQ(command.size(), 3u);
   int compared = 0;
@@ -130,8 +133,11 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
     if (s["method"] == "none") {
       EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).second, 1e-4);
     }
+    EXPECT_EQ(s.contains("flicker_stable"), s["method"] != "none") << s["file"];
     if (s["method"] == "usm2d" && s["lambda"] == 1.0) {
       EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).first, 1e-4);
+      EXPECT_NEAR(s["flicker_stable"].get<double>(), stable.at(frame), 1e-4);
+      EXPECT_GT(s["flicker_stable_pixels"].get<size_t>(), 100u);
     }
     if (s["lambda"] == 0.0 && s["method"] != "none") {
       EXPECT_EQ(s["flicker"].get<double>(), 0.0);
