@@ -103,6 +103,26 @@ TEST(SequenceSet, ResumesFrameByFrame) {
             testing::without_run(testing::manifest_json(dir / "cut")));
 }
 
+// One frame's figures from the flicker command's CSV (written with --stable).
+struct CommandFlicker {
+  double flicker = 0, plain = 0, stable = 0;
+};
+
+std::map<int, CommandFlicker> read_flicker_csv(const std::filesystem::path& path) {
+  std::map<int, CommandFlicker> out;
+  std::istringstream csv(testing::read_file(path));
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    int frame = 0;
+    size_t pixels = 0;
+    CommandFlicker f;
+    EXPECT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%zu,%lf", &frame, &f.flicker, &f.plain, &pixels, &f.stable), 5) << line;
+    out[frame] = f;
+  }
+  return out;
+}
+
 // The set measures flicker from its files; the `flicker` command renders and measures in memory.
 // They agree frame by frame, for a method and for the plain render.
 TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
@@ -111,19 +131,7 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
   const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() +
                                   " --method usm2d --sigma-percent 3 --lambda 1 --stable 0.1 --csv " + (dir / "f.csv").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::map<int, std::pair<double, double>> command;  // frame → (flicker, plain)
-  std::map<int, double> stable;                      // frame → flicker where the plain L* is stable
-  std::istringstream csv(testing::read_file(dir / "f.csv"));
-  std::string line;
-  std::getline(csv, line);
-  while (std::getline(csv, line)) {
-    int frame;
-    double flicker, plain, stable_flicker;
-    size_t pixels;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%zu,%lf", &frame, &flicker, &plain, &pixels, &stable_flicker), 5) << line;
-    command[frame] = {flicker, plain};
-    stable[frame] = stable_flicker;
-  }
+  const std::map<int, CommandFlicker> command = read_flicker_csv(dir / "f.csv");
   ASSERT_EQ(command.size(), 3u);
   int compared = 0;
   const OrderedJson manifest = testing::manifest_json(dir / "set");  // alive while iterating
@@ -131,12 +139,12 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
     if (!s.contains("flicker")) continue;
     const int frame = s["frame"];
     if (s["method"] == "none") {
-      EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).second, 1e-4);
+      EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).plain, 1e-4);
     }
     EXPECT_EQ(s.contains("flicker_stable"), s["method"] != "none") << s["file"];
     if (s["method"] == "usm2d" && s["lambda"] == 1.0) {
-      EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).first, 1e-4);
-      EXPECT_NEAR(s["flicker_stable"].get<double>(), stable.at(frame), 1e-4);
+      EXPECT_NEAR(s["flicker"].get<double>(), command.at(frame).flicker, 1e-4);
+      EXPECT_NEAR(s["flicker_stable"].get<double>(), command.at(frame).stable, 1e-4);
       EXPECT_GT(s["flicker_stable_pixels"].get<size_t>(), 100u);
     }
     if (s["lambda"] == 0.0 && s["method"] != "none") {
@@ -145,7 +153,7 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
     compared += s["method"] == "none" || (s["method"] == "usm2d" && s["lambda"] == 1.0);
   }
   EXPECT_EQ(compared, 6);
-  EXPECT_GT(command.at(1).first, 0.05);  // usm2d does change: the comparison can tell
+  EXPECT_GT(command.at(1).flicker, 0.05);  // usm2d does change: the comparison can tell
 }
 
 // "video": every sequence also as a lossless video that decodes to exactly its frames, the same
