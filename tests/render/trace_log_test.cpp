@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <glm/geometric.hpp>
 
 #include "enhance/method.h"
@@ -145,19 +147,31 @@ TEST(TraceLog, ALogOverItsLimitIsGivenUpAndTheImageStaysTheSame) {
   expect_same_pixels(render_with(*scene, tracer, nullptr), limited);
 }
 
-// Through the method interface: an extra λ of a shading method reads the base view's log and
-// composes what it composes without one.
-TEST(TraceLog, AShadingMethodsExtraLambdaIsTheSameWithAndWithoutTheLog) {
+// Through the method interface: an extra λ of every method that renders again reads the base
+// view's log and composes what it composes without one.
+TEST(TraceLog, EveryMethodThatRendersAgainComposesTheSameWithAndWithoutTheLog) {
   testing::TempDir dir;
+  ::setenv("COUNTERSHADE_CACHE", (dir / "cache").c_str(), 1);  // texture-filter's pyramids
   auto scene = rich_scene(dir);
-  const ViewPlan plan = plan_for("exaggerated-shading", {{"sigma", 0.1}}, 1.0);
-  const auto view = render_view(scene, plan, {8, 2, {}});
-  ASSERT_NE(view->render.trace, nullptr);
-  auto untraced = std::make_shared<View>(*view);
-  untraced->render.trace = nullptr;
-  const auto with_log = prepare_method("exaggerated-shading", view, {{"sigma", 0.1}}, 2);
-  const auto without = prepare_method("exaggerated-shading", untraced, {{"sigma", 0.1}}, 2);
-  for (double lambda : {0.5, 1.0}) EXPECT_EQ(with_log->compose(lambda).display.pixels, without->compose(lambda).display.pixels) << lambda;
+  const std::vector<std::pair<std::string, nlohmann::json>> methods = {
+      {"exaggerated-shading", {{"sigma", 0.1}}},
+      {"lla", {{"sigma", 0.1}}},
+      {"light-warping", nlohmann::json::object()},
+      {"radiance-scaling", nlohmann::json::object()},
+      {"texture-filter", {{"mode", "mip"}, {"filter", "unsharp"}, {"sigma", 1}}}};
+  for (const auto& [method, parameters] : methods) {
+    const auto view = render_view(scene, plan_for(method, parameters, 1.0), {8, 2, {}});
+    ASSERT_NE(view->render.trace, nullptr) << method;
+    auto untraced = std::make_shared<View>(*view);
+    untraced->render.trace = nullptr;
+    const auto with_log = prepare_method(method, view, parameters, 2);
+    const auto without = prepare_method(method, untraced, parameters, 2);
+    for (double lambda : {0.5, 1.0}) {
+      const Image image = with_log->compose(lambda).display;
+      EXPECT_EQ(image.pixels, without->compose(lambda).display.pixels) << method << " at " << lambda;
+      EXPECT_NE(image.pixels, view->display.pixels) << method << " at " << lambda;  // the method does change it
+    }
+  }
 }
 
 }  // namespace
