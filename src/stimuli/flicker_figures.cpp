@@ -6,6 +6,7 @@
 #include "core/number_format.h"
 #include "core/svg_plot.h"
 #include "stimuli/condition_lines.h"
+#include "stimuli/sequence_flicker.h"
 
 namespace countershade {
 namespace {
@@ -27,20 +28,33 @@ void write_table(const std::filesystem::path& path, const Experiment& e, const s
   write_text_atomically(path, csv.str());
 }
 
-// One line per condition at λ index `l` against frame, and the plain render's reprojection error.
+// Which figure a plot shows: the flicker (with the plain render's own reprojection error), or the
+// stable flicker (enhanced frames only).
+struct FlickerFigure {
+  const char* key;
+  std::string title, y_label;
+};
+
+FlickerFigure flicker_figure(bool stable) {
+  if (!stable) return {"flicker", "flicker", "RMS change of enhanced minus plain L* per frame"};
+  return {"flicker_stable", "stable flicker",
+          "the same RMS where the plain L* reprojects within " + format_value(kStableFlickerTolerance) + " L*"};
+}
+
+// One line per condition at λ index `l` against frame.
 void write_plot(const std::filesystem::path& path, const Experiment& e, const std::string& scene, int l,
-                const std::vector<const ManifestEntry*>& entries) {
+                const std::vector<const ManifestEntry*>& entries, const FlickerFigure& figure) {
   LinePlot plot;
-  plot.title = e.name + ", " + scene + ": flicker at lambda " + format_value(e.lambda.value(l));
+  plot.title = e.name + ", " + scene + ": " + figure.title + " at lambda " + format_value(e.lambda.value(l));
   plot.x_label = "frame";
-  plot.y_label = "RMS change of enhanced minus plain L* per frame";
+  plot.y_label = figure.y_label;
   plot.width = 960;
   ConditionLines lines(e, plot);
   for (const ManifestEntry* s : entries) {
-    if (s->scene != scene || (!s->is_reference() && s->lambda_index != l)) continue;
+    if (s->scene != scene || (!s->is_reference() && s->lambda_index != l) || !s->extra.contains(figure.key)) continue;
     PlotSeries& series = lines.line_of(*s);
     series.x.push_back(s->frame->index);
-    series.y.push_back(flicker_of(*s));
+    series.y.push_back(s->extra[figure.key].get<double>());
   }
   lines.fit_legend();
   plot.write(path);
@@ -58,7 +72,11 @@ void write_flicker_figures(const Experiment& e, const std::filesystem::path& dir
     if (!scene.is_sequence()) continue;
     for (int l = 0; l < e.lambda.count(); ++l)
       if (e.lambda.value(l) != 0)
-        write_plot(dir / ("flicker-" + scene.name + "-lambda-" + format_value(e.lambda.value(l)) + ".svg"), e, scene.name, l, entries);
+        for (bool stable : {false, true}) {
+          const std::string name = std::string(stable ? "flicker-stable-" : "flicker-") + scene.name + "-lambda-" +
+                                   format_value(e.lambda.value(l)) + ".svg";
+          write_plot(dir / name, e, scene.name, l, entries, flicker_figure(stable));
+        }
   }
 }
 

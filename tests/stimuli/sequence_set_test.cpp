@@ -55,6 +55,9 @@ TEST(SequenceSet, EveryFrameIsAStimulusWithItsChecksumAndTheFrameRate) {
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
   EXPECT_TRUE(fs::exists(dir / "set/flicker.csv"));
   EXPECT_TRUE(fs::exists(dir / "set/flicker-orbit-lambda-1.svg"));
+  const std::string stable = testing::read_file(dir / "set/flicker-stable-orbit-lambda-1.svg");
+  EXPECT_NE(stable.find("stable flicker at lambda 1"), std::string::npos);
+  EXPECT_NE(stable.find("usm3d"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "set/contact-sheets/orbit-usm3d.png"));
   // Each frame's λ = 0 equals that frame's reference, and the audit pairs them so.
   const AuditReport audit = audit_stimulus_set(dir / "set/manifest.json");
