@@ -6,7 +6,7 @@
 #include "core/number_format.h"
 #include "core/svg_plot.h"
 #include "stimuli/condition_lines.h"
-#include "stimuli/sequence_flicker.h"
+#include "stimuli/perspective_coherence.h"
 
 namespace countershade {
 namespace {
@@ -38,7 +38,7 @@ struct FlickerFigure {
 FlickerFigure flicker_figure(bool stable) {
   if (!stable) return {"flicker", "flicker", "RMS change of enhanced minus plain L* per frame"};
   return {"flicker_stable", "stable flicker",
-          "the same RMS where the plain L* reprojects within " + format_value(kStableFlickerTolerance) + " L*"};
+          "the same RMS where the plain L* reprojects within " + format_value(kStableTolerance) + " L*"};
 }
 
 // One line per condition at λ index `l` against frame.

@@ -46,6 +46,10 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
                               const std::vector<float>& moved_values, const CarryPoint& carry = {},
                               std::vector<float>* differences = nullptr);
 
+// The tolerance of a set's stable figures (flicker and coherence): the pixels whose plain L*
+// reprojects within it count.
+inline constexpr double kStableTolerance = 0.1;
+
 // The RMS of `differences` (per pixel, NaN where a pixel did not count, as reprojection_rms writes
 // them) over the pixels whose `plain_differences` are at most `tolerance`: where the plain render
 // itself reprojects well, so that neither a change of the scene (a moving shadow) nor what the

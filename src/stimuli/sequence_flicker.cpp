@@ -114,7 +114,7 @@ void FlickerMeter::measure_pair(Sequences& sequences, const FrameLayers& previou
       entry.extra["flicker"] = round_to(r.rms, 4);
       entry.extra["flicker_pixels"] = r.pixels;
       if (plain.empty() || pairs[k].first == reference_) continue;
-      const Reprojection stable = rms_where_stable(differences, plain, kStableFlickerTolerance);
+      const Reprojection stable = rms_where_stable(differences, plain, kStableTolerance);
       entry.extra["flicker_stable"] = round_to(stable.rms, 4);
       entry.extra["flicker_stable_pixels"] = stable.pixels;
     }

@@ -16,13 +16,10 @@
 
 namespace countershade {
 
-// The tolerance of a set's stable flicker: pixels whose plain L* reprojects within it count.
-inline constexpr double kStableFlickerTolerance = 0.1;
-
 // Adds "flicker" (L*) and "flicker_pixels" to the entries of `scene`'s sequences (`base`: the
 // scene as the set rendered it), and to enhanced frames "flicker_stable" and
 // "flicker_stable_pixels": the same over the pixels whose plain L* reprojects within
-// kStableFlickerTolerance (stimuli/perspective_coherence.h, rms_where_stable). Frames without an
+// kStableTolerance (stimuli/perspective_coherence.h, rms_where_stable). Frames without an
 // earlier frame in the entries get none.
 void measure_sequence_flicker(const Experiment& e, const std::filesystem::path& dir, const ExperimentScene& scene,
                               const Scene& base, std::vector<ManifestEntry>& entries, int threads);

@@ -149,12 +149,25 @@ void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Imag
 }
 
 // The stimulus's perspective coherence (for the reference: the plain render's own reprojection
-// error), in L*, with the number of pixels it covers.
-void record_coherence(ManifestEntry& entry, const View& view, const std::vector<float>& first,
-                      const View& moved, const std::vector<float>& second) {
-  const Reprojection r = reprojection_rms(view, first, moved, second);
+// error), in L*, with the number of pixels it covers; given the plain render's own change per
+// pixel, also over the pixels where it stays within kStableTolerance.
+void record_coherence(ManifestEntry& entry, const View& view, const std::vector<float>& first, const View& moved,
+                      const std::vector<float>& second, const std::vector<float>* plain_differences = nullptr) {
+  std::vector<float> differences;
+  const Reprojection r = reprojection_rms(view, first, moved, second, {}, &differences);
   entry.extra["coherence"] = round_to(r.rms, 4);
   entry.extra["coherence_pixels"] = r.pixels;
+  if (!plain_differences) return;
+  const Reprojection stable = rms_where_stable(differences, *plain_differences, kStableTolerance);
+  entry.extra["coherence_stable"] = round_to(stable.rms, 4);
+  entry.extra["coherence_stable_pixels"] = stable.pixels;
+}
+
+// The plain render's own change per pixel under the dolly (empty without one).
+std::vector<float> plain_differences(const View& view, const View* moved) {
+  std::vector<float> differences;
+  if (moved) reprojection_rms(view, view_lightness(view), *moved, view_lightness(*moved), {}, &differences);
+  return differences;
 }
 
 // The view again with its camera dollied, for the coherence metric (null without one).
@@ -309,6 +322,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
   });
   prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();
+  const std::vector<float> plain = plain_differences(*view, moved.get());
   run_with_threads(options_.jobs, [&] {
     tbb::parallel_for(0, e_.lambda.count(), [&](int l) {
       const std::string rel = stimulus_path(e_, u, l);
@@ -322,7 +336,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits);
       if (moved)
         record_coherence(entry, *view, enhancement_layer(*view, c.display), *moved,
-                         enhancement_layer(*moved, prepared_moved->compose(e_.lambda.value(l)).display));
+                         enhancement_layer(*moved, prepared_moved->compose(e_.lambda.value(l)).display), &plain);
       entry = write_stimulus(dir_, std::move(entry), c.display, e_.bits);
       encode_seconds_.fetch_add(since(te));
       record(std::move(entry), true);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <cmath>
 #include <numbers>
 
@@ -11,6 +13,7 @@
 #include "stimuli/experiment.h"
 #include "stimuli/perspective_coherence.h"
 #include "stimuli/stimulus_set.h"
+#include "stimuli/set_test_util.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -97,6 +100,21 @@ TEST(PerspectiveCoherence, ASetRecordsEveryStimulusAndPlotsIt) {
   EXPECT_TRUE(fs::exists(dir / "set/coherence-ground.svg"));
   const std::string manifest = testing::read_file(dir / "set/manifest.json");
   EXPECT_NE(manifest.find("\"coherence_pixels\""), std::string::npos);
+  // Every enhanced stimulus also over the pixels where the plain render is stable, a subset; there
+  // texture mode, on the surface, changes less than post mode, on the screen.
+  std::map<std::string, double> stable;  // "mode λ" → coherence_stable
+  const OrderedJson m = testing::manifest_json(dir / "set");  // alive while iterating
+  for (const auto& s : m["stimuli"]) {
+    if (s["method"] == "none") continue;
+    ASSERT_TRUE(s.contains("coherence_stable")) << s["file"];
+    const size_t all = s["coherence_pixels"], within = s["coherence_stable_pixels"];
+    EXPECT_GT(within, all / 10);
+    EXPECT_LE(within, all);
+    stable[s["parameters"]["mode"].get<std::string>() + " " + std::to_string(s["lambda"].get<double>())] = s["coherence_stable"];
+  }
+  ASSERT_EQ(stable.size(), 4u);
+  EXPECT_LT(stable.at("texture 1.000000"), stable.at("post 1.000000"));
+  EXPECT_NE(csv.find("coherence_stable_lstar"), std::string::npos);
 }
 
 TEST(PerspectiveCoherence, ADollyOutOfRangeIsAnError) {
