@@ -113,22 +113,27 @@ PairChanges pair_changes(const Frame& a, const Frame& b, const CarryPoint& carry
   return out;
 }
 
-// The object's change over its pixels seen in both frames; with `stable`, only over those whose
-// plain L* changes by at most that much.
-ObjectChange object_change(const Frame& a, const Frame& b, const CarryPoint& carry, int object,
-                           const std::vector<float>& plain_differences, std::optional<double> stable) {
+// Per pixel of the object seen in both frames, the largest change over the three channels (−1
+// elsewhere).
+std::vector<float> object_largest_change(const Frame& a, const Frame& b, const CarryPoint& carry, int object) {
   std::vector<float> largest(a.layer.size(), -1.0f);
   for (size_t c = 0; c < 3; ++c) {
     std::vector<float> differences;
     reprojection_rms(*a.view, a.levels[c], *b.view, b.levels[c], carry, &differences);
     for (size_t i = 0; i < differences.size(); ++i)
-      if (a.view->render.gbuffer.object[i] == object && !std::isnan(differences[i]) &&
-          (!stable || plain_differences[i] <= *stable))
+      if (a.view->render.gbuffer.object[i] == object && !std::isnan(differences[i]))
         largest[i] = std::max(largest[i], differences[i]);
   }
+  return largest;
+}
+
+// The largest change and its 99th percentile over the object's pixels; with `stable`, only over
+// those whose plain L* changes by at most that much.
+ObjectChange object_change(const std::vector<float>& largest, const std::vector<float>& plain_differences,
+                           std::optional<double> stable) {
   std::vector<float> values;
-  for (float v : largest)
-    if (v >= 0) values.push_back(v);
+  for (size_t i = 0; i < largest.size(); ++i)
+    if (largest[i] >= 0 && (!stable || plain_differences[i] <= *stable)) values.push_back(largest[i]);
   ObjectChange out;
   out.pixels = values.size();
   if (values.empty()) return out;
@@ -167,9 +172,10 @@ void add_options(const Frame& a, const Frame& b, const CarryPoint& carry, const 
     totals.stable_share += changes.layer.pixels ? double(stable.pixels) / double(changes.layer.pixels) : 0.0;
   }
   if (object < 0) return;
-  add_object_change(object_change(a, b, carry, object, changes.plain_differences, std::nullopt), row, totals.object);
+  const std::vector<float> largest = object_largest_change(a, b, carry, object);
+  add_object_change(object_change(largest, changes.plain_differences, std::nullopt), row, totals.object);
   if (args.stable > 0)
-    add_object_change(object_change(a, b, carry, object, changes.plain_differences, args.stable), row, totals.object_stable);
+    add_object_change(object_change(largest, changes.plain_differences, args.stable), row, totals.object_stable);
 }
 
 // One frame pair's CSV row, added to the totals.

@@ -15,14 +15,9 @@ double coherence_of(const ManifestEntry& s) { return s.extra["coherence"].get<do
 void write_table(const std::filesystem::path& path, const Experiment& e, const std::vector<const ManifestEntry*>& entries) {
   std::ostringstream csv;
   csv << "scene,condition,lambda,coherence_rms_lstar,pixels,coherence_stable_lstar,stable_pixels\n";
-  for (const ManifestEntry* s : entries) {
-    csv << condition_columns(e, *s) << format_value(coherence_of(*s)) << ',' << s->extra.value("coherence_pixels", 0) << ',';
-    if (s->extra.contains("coherence_stable"))
-      csv << format_value(s->extra["coherence_stable"].get<double>()) << ',' << s->extra.value("coherence_stable_pixels", 0);
-    else
-      csv << ',';
-    csv << '\n';
-  }
+  for (const ManifestEntry* s : entries)
+    csv << condition_columns(e, *s) << format_value(coherence_of(*s)) << ',' << s->extra.value("coherence_pixels", 0) << ','
+        << optional_figure_columns(*s, "coherence_stable") << '\n';
   write_text_atomically(path, csv.str());
 }
 

@@ -17,6 +17,11 @@ std::string condition_columns(const Experiment& e, const ManifestEntry& s) {
   return s.scene + ',' + condition_name(e, s) + ',' + (s.is_reference() ? "" : format_value(s.lambda)) + ',';
 }
 
+std::string optional_figure_columns(const ManifestEntry& s, const std::string& key) {
+  if (!s.extra.contains(key)) return ",";
+  return format_value(s.extra[key].get<double>()) + ',' + std::to_string(s.extra.value(key + "_pixels", size_t(0)));
+}
+
 PlotSeries& ConditionLines::line_of(const ManifestEntry& s) {
   auto [it, added] = index_of_.emplace(condition_name(e_, s), plot_.series.size());
   if (added) {

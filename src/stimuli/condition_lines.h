@@ -17,6 +17,10 @@ std::string condition_name(const Experiment& experiment, const ManifestEntry& en
 // "scene,condition,lambda," (λ empty for the reference): the first columns of a table's row.
 std::string condition_columns(const Experiment& experiment, const ManifestEntry& entry);
 
+// "value,pixels" of a figure the entry may lack (`key` and `key`_pixels in its extra fields), or ","
+// without it: the last columns of a table's row for the stable figures.
+std::string optional_figure_columns(const ManifestEntry& entry, const std::string& key);
+
 // The lines of a plot with one line per condition: a colour per method label, solid for its first
 // σ and dashed for the others; the plain render grey and dashed.
 class ConditionLines {

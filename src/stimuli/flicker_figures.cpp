@@ -13,18 +13,12 @@ namespace {
 
 double flicker_of(const ManifestEntry& s) { return s.extra["flicker"].get<double>(); }
 
-// The stable flicker and its pixels; empty for reference frames, which have none.
-std::string stable_columns(const ManifestEntry& s) {
-  if (!s.extra.contains("flicker_stable")) return ",";
-  return format_value(s.extra["flicker_stable"].get<double>()) + ',' + std::to_string(s.extra.value("flicker_stable_pixels", 0));
-}
-
 void write_table(const std::filesystem::path& path, const Experiment& e, const std::vector<const ManifestEntry*>& entries) {
   std::ostringstream csv;
   csv << "scene,condition,lambda,frame,flicker_lstar,pixels,flicker_stable_lstar,stable_pixels\n";
   for (const ManifestEntry* s : entries)
     csv << condition_columns(e, *s) << s->frame->index << ',' << format_value(flicker_of(*s)) << ','
-        << s->extra.value("flicker_pixels", 0) << ',' << stable_columns(*s) << '\n';
+        << s->extra.value("flicker_pixels", 0) << ',' << optional_figure_columns(*s, "flicker_stable") << '\n';
   write_text_atomically(path, csv.str());
 }
 

@@ -98,25 +98,29 @@ FrameLayers FlickerMeter::layers_at(const Sequences& sequences, int frame) const
 void FlickerMeter::measure_pair(Sequences& sequences, const FrameLayers& previous, const FrameLayers& current,
                                 int frame) const {
   const CarryPoint carry = carry_between_frames(base_, frame - 1, frame);
+  auto record = [&](const std::string& folder, std::vector<float>& differences) {
+    const Reprojection r = reprojection_rms(*previous.geometry, previous.layers.at(folder), *current.geometry,
+                                            current.layers.at(folder), carry, &differences);
+    ManifestEntry& entry = *sequences.at(folder).at(frame);
+    entry.extra["flicker"] = round_to(r.rms, 4);
+    entry.extra["flicker_pixels"] = r.pixels;
+    return &entry;
+  };
   std::vector<float> plain;
-  if (previous.layers.count(reference_) && current.layers.count(reference_))
-    reprojection_rms(*previous.geometry, previous.layers.at(reference_), *current.geometry, current.layers.at(reference_),
-                     carry, &plain);
-  std::vector<std::pair<std::string, const std::vector<float>*>> pairs;
-  for (const auto& [folder, layer] : current.layers)
-    if (previous.layers.count(folder)) pairs.emplace_back(folder, &layer);
-  parallel_ranges(pairs.size(), threads_, [&](size_t begin, size_t end) {
+  std::vector<std::string> folders;
+  for (const auto& [folder, layer] : current.layers) {
+    if (!previous.layers.count(folder)) continue;
+    if (folder == reference_) record(folder, plain);  // before the others: it picks their stable pixels
+    else folders.push_back(folder);
+  }
+  parallel_ranges(folders.size(), threads_, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       std::vector<float> differences;
-      const Reprojection r = reprojection_rms(*previous.geometry, previous.layers.at(pairs[k].first), *current.geometry,
-                                              *pairs[k].second, carry, &differences);
-      ManifestEntry& entry = *sequences.at(pairs[k].first).at(frame);
-      entry.extra["flicker"] = round_to(r.rms, 4);
-      entry.extra["flicker_pixels"] = r.pixels;
-      if (plain.empty() || pairs[k].first == reference_) continue;
+      ManifestEntry* entry = record(folders[k], differences);
+      if (plain.empty()) continue;
       const Reprojection stable = rms_where_stable(differences, plain, kStableTolerance);
-      entry.extra["flicker_stable"] = round_to(stable.rms, 4);
-      entry.extra["flicker_stable_pixels"] = stable.pixels;
+      entry->extra["flicker_stable"] = round_to(stable.rms, 4);
+      entry->extra["flicker_stable_pixels"] = stable.pixels;
     }
   });
 }

@@ -225,8 +225,9 @@ class SetGenerator {
   void record(ManifestEntry entry, bool is_new);
   void make_shot(const Shot& shot, const ScenePlan& plan);
   void write_reference(const SetUnit& unit, const View& view, const View* moved);
+  // `plain`: the plain render's own change per pixel under the dolly (with `moved`).
   void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view,
-                       const std::shared_ptr<const View>& moved, size_t use);
+                       const std::shared_ptr<const View>& moved, const std::vector<float>& plain, size_t use);
   void finish();
 
   const Experiment& e_;
@@ -312,7 +313,7 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
 }
 
 void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view,
-                                   const std::shared_ptr<const View>& moved, size_t use) {
+                                   const std::shared_ptr<const View>& moved, const std::vector<float>& plain, size_t use) {
   const ExperimentMethod& m = e_.methods[size_t(u.method)];
   auto tp = Clock::now();
   std::unique_ptr<PreparedEnhancement> prepared, prepared_moved;
@@ -322,7 +323,6 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
   });
   prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();
-  const std::vector<float> plain = plain_differences(*view, moved.get());
   run_with_threads(options_.jobs, [&] {
     tbb::parallel_for(0, e_.lambda.count(), [&](int l) {
       const std::string rel = stimulus_path(e_, u, l);
@@ -363,9 +363,10 @@ void SetGenerator::make_shot(const Shot& shot, const ScenePlan& plan) {
     moved = moved_view(e_, *scene, plan.plan, vo);
   });
   render_seconds_.fetch_add(since(t0));
+  const std::vector<float> plain = plain_differences(*view, moved.get());  // once for every condition
   for (const auto& u : shot) {
     if (u.is_reference()) write_reference(u, *view, moved.get());
-    else write_condition(u, view, moved, plan.use_of.at({u.method, int(u.sigma)}));
+    else write_condition(u, view, moved, plain, plan.use_of.at({u.method, int(u.sigma)}));
   }
 }
 
