@@ -131,6 +131,15 @@ void BM_Usm2dEndToEnd(benchmark::State& state) {
 }
 BENCHMARK(BM_Usm2dEndToEnd)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The once-per-σ preparation of 2D unsharp masking alone (L*, its blur and the detail).
+void BM_Usm2dPrepare(benchmark::State& state) {
+  for (auto _ : state) {
+    auto prepared = prepare_method("usm2d", test_view(), {{"sigma_percent", 1.0}});
+    benchmark::DoNotOptimize(prepared.get());
+  }
+}
+BENCHMARK(BM_Usm2dPrepare)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The CIELAB conversion of a display image alone.
 void BM_DisplayToLab(benchmark::State& state) {
   const View& view = *test_view();

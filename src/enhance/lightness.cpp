@@ -17,7 +17,12 @@ namespace countershade {
 
 std::vector<float> view_lightness(const View& view) {
   std::vector<float> L(view.lab.size());
-  for (size_t i = 0; i < L.size(); ++i) L[i] = float(view.lab[i].L);
+  parallel_ranges(
+      L.size(), 0,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) L[i] = float(view.lab[i].L);
+      },
+      1 << 16);
   return L;
 }
 
@@ -82,19 +87,25 @@ struct Rgb4 {
 [[gnu::always_inline]] inline v4d clamp_unit4(v4d c) { return c < 0.0 ? 0.0 : (c > 1.0 ? 1.0 : c); }
 
 // The code values of four pixels through the quantizer's table, as values in [0,1]: one lookup
-// per lane and channel.
+// per lane and channel. The clamped values and their buckets go through memory, which is cheaper
+// here than moving each lane out of a vector register.
 [[gnu::always_inline]] inline void quantize_rgb4(const Rgb4& rgb, const CodeQuantizer::Table& table, float levels,
                                                  float* out) {
-  uint32_t codes[12];  // RGBRGBRGBRGB
+  alignas(32) double x[3][4];
+  alignas(32) int64_t bucket[3][4];
   const v4d channels[3] = {rgb.r, rgb.g, rgb.b};
   for (int ch = 0; ch < 3; ++ch) {
-    const v4d x = clamp_unit4(channels[ch]);
-    const v4l bucket = bucket4(x, table);
-    for (int lane = 0; lane < 4; ++lane) {
-      const CodeQuantizer::Bucket& b = table.bucket[bucket[lane]];
-      codes[3 * lane + ch] = b.below + uint32_t(x[lane] >= b.threshold);
-    }
+    const v4d clamped = clamp_unit4(channels[ch]);
+    std::memcpy(x[ch], &clamped, sizeof clamped);
+    const v4l b = bucket4(clamped, table);
+    std::memcpy(bucket[ch], &b, sizeof b);
   }
+  uint32_t codes[12];  // RGBRGBRGBRGB
+  for (int lane = 0; lane < 4; ++lane)
+    for (int ch = 0; ch < 3; ++ch) {
+      const CodeQuantizer::Bucket& b = table.bucket[bucket[ch][lane]];
+      codes[3 * lane + ch] = b.below + uint32_t(x[ch][lane] >= b.threshold);
+    }
   for (int i = 0; i < 12; ++i) out[i] = float(codes[i]) / levels;
 }
 
@@ -196,6 +207,20 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
   for (size_t k = count / 4 * 4; k < count; ++k) out[k] = linear_rgb_to_lab({r[k], g[k], b[k]});
 }
 
+// The codes of n values (code / levels), and whether every value is exactly its code's value.
+// Branch-free, so that it vectorises.
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+bool exact_codes(const float* values, size_t n, float levels, int32_t* code) {
+  int exact = 1;
+  for (size_t i = 0; i < n; ++i) {
+    const float v = values[i];
+    const float unit = v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f;  // NaN: 0, not exact below
+    code[i] = int32_t(unit * levels + 0.5f);
+    exact &= float(code[i]) / levels == v;
+  }
+  return exact;
+}
+
 // Linear values of a channel's code values: a table when they are exact codes of `bits`.
 class LinearDecoder {
  public:
@@ -203,25 +228,33 @@ class LinearDecoder {
     if (bits <= 0 || bits > 16) return;
     levels_ = float((1u << bits) - 1u);
     table_.resize(size_t(levels_) + 1);
-    code_value_.resize(table_.size());
-    for (size_t k = 0; k < table_.size(); ++k) {
-      code_value_[k] = float(k) / levels_;
-      table_[k] = encoding.decode(double(code_value_[k]));
-    }
+    for (size_t k = 0; k < table_.size(); ++k) table_[k] = encoding.decode(double(code_value(uint32_t(k))));
   }
   double operator()(float v) const {
     if (!table_.empty() && v >= 0.0f && v <= 1.0f) {
       const uint32_t k = uint32_t(v * levels_ + 0.5f);
-      if (code_value_[k] == v) return table_[k];
+      if (code_value(k) == v) return table_[k];
     }
     return encoding_.decode(v);
   }
 
+  // The linear values of `count` RGB pixels, one plane per channel. When every value is an exact
+  // code (the usual case) the codes are found in one loop that vectorises and read from the table.
+  void decode_rgb(const float* rgb, size_t count, double* r, double* g, double* b) const {
+    double* planes[3] = {r, g, b};
+    int32_t code[3 * kBlock];
+    const bool exact = !table_.empty() && count <= kBlock && exact_codes(rgb, 3 * count, levels_, code);
+    for (size_t k = 0; k < count; ++k)
+      for (int c = 0; c < 3; ++c)
+        planes[c][k] = exact ? table_[size_t(code[3 * k + c])] : (*this)(rgb[3 * k + c]);
+  }
+
  private:
+  float code_value(uint32_t k) const { return float(k) / levels_; }  // the float a quantised pixel holds
+
   const DisplayEncoding& encoding_;
   float levels_ = 0;
-  std::vector<double> table_;      // [code]: its linear value
-  std::vector<float> code_value_;  // [code]: code / levels, the float a quantised pixel holds
+  std::vector<double> table_;  // [code]: its linear value
 };
 
 }  // namespace
@@ -235,8 +268,7 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
         alignas(64) double linear[3][kBlock];
         for (size_t first = begin; first < end; first += kBlock) {
           const size_t count = std::min(kBlock, end - first);
-          for (size_t k = 0; k < count; ++k)
-            for (int c = 0; c < 3; ++c) linear[c][k] = decode(display.pixels[3 * (first + k) + c]);
+          decode.decode_rgb(display.pixels.data() + 3 * first, count, linear[0], linear[1], linear[2]);
           linear_to_lab_block(linear[0], linear[1], linear[2], count, lab.data() + first);
         }
       },

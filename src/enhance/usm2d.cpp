@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/gaussian.h"
+#include "core/parallel.h"
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
 
@@ -41,10 +42,16 @@ class Usm2dMethod final : public EnhancementMethod {
     gaussian_blur(lightness.data(), blurred.pixels.data(), view.width(), view.height(), sigma, context.threads);
     LightnessChange change;
     change.amount.resize(lightness.size());
-    for (size_t i = 0; i < lightness.size(); ++i) change.amount[i] = double(lightness[i]) - double(blurred.pixels[i]);
+    parallel_ranges(
+        lightness.size(), context.threads,
+        [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) change.amount[i] = double(lightness[i]) - double(blurred.pixels[i]);
+        },
+        1 << 16);
+    std::vector<std::pair<std::string, Image>> auxiliary;
+    auxiliary.emplace_back("lightness_blurred", std::move(blurred));
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), nlohmann::json{{"sigma_px", sigma}},
-                                               std::vector<std::pair<std::string, Image>>{{"lightness_blurred", blurred}},
-                                               context.threads, plain_noise(context));
+                                               std::move(auxiliary), context.threads, plain_noise(context));
   }
 
   // The detail L − G*L passes the pixel's noise (the blurred image's is negligible).

@@ -11,7 +11,7 @@ namespace countershade {
 namespace {
 
 // The vectorised conversion (decoding table, cube root) gives the scalar function's values bit
-// for bit, for exact codes of 8 and 16 bits and for values that are not codes.
+// for bit, for exact codes of 8 and 16 bits and for values that are not codes or out of range.
 TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
   std::mt19937 random(3);
   for (int bits : {8, 16}) {
@@ -19,7 +19,10 @@ TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
     Image image(131, 7, 3);  // an odd size: the vector blocks and their remainders
     std::uniform_int_distribution<int> code(0, int(levels));
     for (float& v : image.pixels) v = float(code(random)) / levels;
-    image.pixels[5] = 0.123456f;  // not a code: decoded directly
+    image.pixels[5] = 0.123456f;  // not a code: its block is decoded directly
+    image.pixels[400] = -0.0f;    // the code 0
+    image.pixels[1000] = 1.5f;    // out of range: decoded directly
+    image.pixels[2000] = -0.25f;
     for (const auto& encoding : {DisplayEncoding::srgb(), DisplayEncoding::gamma(2.2)}) {
       LabPixels lab = display_to_lab(image, encoding, bits);
       for (size_t i = 0; i < lab.size(); ++i) {
