@@ -12,6 +12,10 @@
 
 namespace countershade {
 
+// code / levels as a float, computed as a product in double: for every code of up to 16 bits the
+// same float as the division float(code) / levels (tested for all), and cheaper in vector loops.
+inline float code_fraction(uint32_t code, double inverse_levels) { return float(double(int32_t(code)) * inverse_levels); }
+
 class CodeQuantizer {
  public:
   CodeQuantizer(const DisplayEncoding& encoding, int bits);

@@ -106,7 +106,8 @@ struct Rgb4 {
       const CodeQuantizer::Bucket& b = table.bucket[bucket[ch][lane]];
       codes[3 * lane + ch] = b.below + uint32_t(x[ch][lane] >= b.threshold);
     }
-  for (int i = 0; i < 12; ++i) out[i] = float(codes[i]) / levels;
+  const double inverse = 1.0 / double(levels);
+  for (int i = 0; i < 12; ++i) out[i] = code_fraction(codes[i], inverse);
 }
 
 // One block of pixels, four at a time: the lightness-only change and the code values. Pixels

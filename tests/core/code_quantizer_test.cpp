@@ -40,6 +40,16 @@ TEST(CodeQuantizer, MatchesTheReferenceQuantisationForEveryEncoding) {
   expect_exact(DisplayEncoding::srgb(), 16, false);  // 16 bits: a binary search, no table
 }
 
+// The product in double gives the division's float for every code of every depth up to 16 bits.
+TEST(CodeQuantizer, CodeFractionEqualsTheDivisionForEveryCode) {
+  for (int bits = 1; bits <= 16; ++bits) {
+    const uint32_t max_code = (1u << bits) - 1u;
+    const float levels = float(max_code);
+    const double inverse = 1.0 / double(levels);
+    for (uint32_t k = 0; k <= max_code; ++k) ASSERT_EQ(code_fraction(k, inverse), float(k) / levels) << bits << " " << k;
+  }
+}
+
 TEST(CodeQuantizer, IsSharedPerEncodingAndBitDepth) {
   const CodeQuantizer& a = CodeQuantizer::shared(DisplayEncoding::srgb(), 8);
   EXPECT_EQ(&a, &CodeQuantizer::shared(DisplayEncoding::srgb(), 8));
