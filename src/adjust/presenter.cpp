@@ -67,6 +67,12 @@ void Presenter::required_size(const DisplayOptions& o, int* width, int* height) 
 }
 
 Presenter::Presenter(const DisplayOptions& options) : options_(options) {
+  create_window(open_monitor());
+  start_imgui();
+  text_rgb_ = options.surround >= 128 ? 0.08f : 0.92f;
+}
+
+GLFWmonitor* Presenter::open_monitor() {
   glfwSetErrorCallback(record_glfw_error);
   if (!glfwInit())
     throw std::runtime_error("cannot open a window: " + glfw_error +
@@ -77,29 +83,31 @@ Presenter::Presenter(const DisplayOptions& options) : options_(options) {
     glfwTerminate();
     throw std::runtime_error("cannot open a window: no monitor found");
   }
-  if (options.monitor < 0 || options.monitor >= count) {
+  const DisplayOptions& o = options_;
+  if (o.monitor < 0 || o.monitor >= count) {
     glfwTerminate();
-    throw_input_error("--monitor", std::to_string(options.monitor) + " is not a monitor (found " + std::to_string(count) +
+    throw_input_error("--monitor", std::to_string(o.monitor) + " is not a monitor (found " + std::to_string(count) +
                                        ", numbered from 0)");
   }
-  GLFWmonitor* monitor = monitors[options.monitor];
+  GLFWmonitor* monitor = monitors[o.monitor];
   const GLFWvidmode* mode = glfwGetVideoMode(monitor);
   screen_w_ = mode->width;
   screen_h_ = mode->height;
   if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
-
   int need_w = 0, need_h = 0;
-  required_size(options, &need_w, &need_h);
+  required_size(o, &need_w, &need_h);
   if (need_w > screen_w_ || need_h > screen_h_) {
     glfwTerminate();
-    throw_input_error("display", "two " + std::to_string(options.stimulus_width) + "x" +
-                                     std::to_string(options.stimulus_height) + " stimuli with the question text need " +
-                                     std::to_string(need_w) + "x" + std::to_string(need_h) +
-                                     " pixels at 1:1 scale, but monitor " + std::to_string(options.monitor) + " is " +
-                                     std::to_string(screen_w_) + "x" + std::to_string(screen_h_) +
-                                     " (use a larger screen or a set with smaller images)");
+    throw_input_error("display", "two " + std::to_string(o.stimulus_width) + "x" + std::to_string(o.stimulus_height) +
+                                     " stimuli with the question text need " + std::to_string(need_w) + "x" +
+                                     std::to_string(need_h) + " pixels at 1:1 scale, but monitor " +
+                                     std::to_string(o.monitor) + " is " + std::to_string(screen_w_) + "x" +
+                                     std::to_string(screen_h_) + " (use a larger screen or a set with smaller images)");
   }
+  return monitor;
+}
 
+void Presenter::create_window(GLFWmonitor* monitor) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -108,16 +116,15 @@ Presenter::Presenter(const DisplayOptions& options) : options_(options) {
   glfwWindowHint(GLFW_SAMPLES, 0);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_FALSE);
-  int win_w = need_w, win_h = need_h;
-  if (options.fullscreen) {
-    glfwWindowHint(GLFW_REFRESH_RATE, mode->refreshRate);
+  int need_w = 0, need_h = 0;
+  required_size(options_, &need_w, &need_h);
+  int win_w = std::max(need_w, std::min(1280, screen_w_)), win_h = std::max(need_h, std::min(800, screen_h_));
+  if (options_.fullscreen) {
+    glfwWindowHint(GLFW_REFRESH_RATE, glfwGetVideoMode(monitor)->refreshRate);
     win_w = screen_w_;
     win_h = screen_h_;
-  } else {
-    win_w = std::max(need_w, std::min(1280, screen_w_));
-    win_h = std::max(need_h, std::min(800, screen_h_));
   }
-  window_ = glfwCreateWindow(win_w, win_h, options.title.c_str(), options.fullscreen ? monitor : nullptr, nullptr);
+  window_ = glfwCreateWindow(win_w, win_h, options_.title.c_str(), options_.fullscreen ? monitor : nullptr, nullptr);
   if (!window_) {
     glfwTerminate();
     throw std::runtime_error("cannot open an OpenGL 3.3 core window: " + glfw_error);
@@ -126,10 +133,12 @@ Presenter::Presenter(const DisplayOptions& options) : options_(options) {
   glfwSetKeyCallback(window_, key_callback);
   glfwSetWindowFocusCallback(window_, focus_callback);
   glfwSetWindowCloseCallback(window_, close_callback);
-  if (options.fullscreen) glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+  if (options_.fullscreen) glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(1);
+}
 
+void Presenter::start_imgui() {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -137,14 +146,13 @@ Presenter::Presenter(const DisplayOptions& options) : options_(options) {
   io.LogFilename = nullptr;
   ImFontConfig font_config;
   font_config.OversampleH = 2;
-  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options.font_px), &font_config)) {
+  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options_.font_px), &font_config)) {
     ImFontConfig fallback;
-    fallback.SizePixels = float(options.font_px);
+    fallback.SizePixels = float(options_.font_px);
     io.Fonts->AddFontDefault(&fallback);
   }
   ImGui_ImplGlfw_InitForOpenGL(window_, false);  // the app handles keys itself
   ImGui_ImplOpenGL3_Init("#version 330 core");
-  text_rgb_ = options.surround >= 128 ? 0.08f : 0.92f;
 }
 
 Presenter::~Presenter() {
@@ -227,13 +235,83 @@ std::vector<WindowEvent> Presenter::poll_events() {
 
 double Presenter::now() const { return glfwGetTime(); }
 
-StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::path& screenshot) {
+namespace {
+
+// One frame's drawing surface: sizes (ImGui works in window coordinates, stimuli are placed in
+// framebuffer pixels), text metrics and ImGui's draw lists.
+struct Canvas {
   int fw = 0, fh = 0, ww = 0, wh = 0;
-  glfwGetFramebufferSize(window_, &fw, &fh);
-  glfwGetWindowSize(window_, &ww, &wh);
-  // ImGui works in window coordinates; stimuli are placed in framebuffer pixels.
-  const float scale = ww > 0 ? float(fw) / float(ww) : 1.0f;
-  glViewport(0, 0, fw, fh);
+  float scale = 1, wrap = 0, line = 0;
+  ImU32 text = 0;
+  ImDrawList *back = nullptr, *front = nullptr;
+};
+
+// The two stimuli side by side at 1:1 (or a request to enlarge the window), the header and
+// question above them, the hint below.
+StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, const Canvas& k) {
+  const Margins m = margins_for(o);
+  StimulusLayout layout;
+  layout.width = c.image_width;
+  layout.height = c.image_height;
+  const int pair = 2 * c.image_width + o.gap_px;
+  layout.fits = pair + 2 * m.side <= k.fw && c.image_height + m.top + m.bottom <= k.fh;
+  layout.left_x = (k.fw - pair) / 2;
+  layout.right_x = layout.left_x + c.image_width + o.gap_px;
+  layout.y = m.top + std::max(0, (k.fh - m.top - m.bottom - c.image_height) / 2);
+  const float centre = float(k.ww) / 2;
+  if (layout.fits) {
+    auto quad = [&](unsigned tex, int x) {
+      k.back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(tex)), ImVec2(float(x) / k.scale, float(layout.y) / k.scale),
+                       ImVec2(float(x + c.image_width) / k.scale, float(layout.y + c.image_height) / k.scale));
+    };
+    quad(c.left_texture, layout.left_x);
+    quad(c.right_texture, layout.right_x);
+  } else {
+    centred_text(k.front, "The window is too small to show the images at 1:1 scale. Please enlarge it.", centre,
+                 float(k.wh) / 2, k.wrap, k.text);
+  }
+  const float top = float(layout.y) / k.scale, bottom = float(layout.y + c.image_height) / k.scale;
+  if (!c.header.empty()) centred_text(k.front, c.header.c_str(), centre, top - 3.2f * k.line, k.wrap, k.text);
+  if (!c.question.empty()) centred_text(k.front, c.question.c_str(), centre, top - 1.9f * k.line, k.wrap, k.text);
+  if (!c.hint.empty()) centred_text(k.front, c.hint.c_str(), centre, bottom + 0.8f * k.line, k.wrap, k.text);
+  return layout;
+}
+
+// A centred message over the surround, with an optional progress bar under it.
+void draw_message(const FrameContent& c, const Canvas& k) {
+  const float wrap = std::min(k.wrap, 900.0f);
+  const float h = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, wrap, c.message.c_str()).y;
+  const float top = float(k.wh) / 2 - h / 2 - k.line;
+  const float used = centred_text(k.front, c.message.c_str(), float(k.ww) / 2, top, wrap, k.text);
+  if (c.progress < 0) return;
+  const float bw = std::min(600.0f, float(k.ww) * 0.6f), bh = k.line * 0.6f;
+  const ImVec2 p0(float(k.ww) / 2 - bw / 2, top + used + k.line), p1(p0.x + bw, p0.y + bh);
+  k.front->AddRect(p0, p1, k.text, 0, 0, 1.5f);
+  k.front->AddRectFilled(p0, ImVec2(p0.x + bw * float(std::clamp(c.progress, 0.0, 1.0)), p1.y), k.text);
+}
+
+// The back buffer as drawn, to a PNG (OpenGL rows run bottom-up).
+void write_screenshot(const std::filesystem::path& file, int fw, int fh) {
+  glFinish();
+  std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  Image shot(fw, fh, 3);
+  for (int y = 0; y < fh; ++y)
+    for (int x = 0; x < fw * 3; ++x)
+      shot.pixels[size_t(y) * size_t(fw) * 3 + size_t(x)] = float(rgb[size_t(fh - 1 - y) * size_t(fw) * 3 + size_t(x)]) / 255.0f;
+  write_image(file, shot);
+}
+
+}  // namespace
+
+StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::path& screenshot) {
+  Canvas k;
+  glfwGetFramebufferSize(window_, &k.fw, &k.fh);
+  glfwGetWindowSize(window_, &k.ww, &k.wh);
+  k.scale = k.ww > 0 ? float(k.fw) / float(k.ww) : 1.0f;
+  glViewport(0, 0, k.fw, k.fh);
   const float grey = float(options_.surround) / 255.0f;
   glDisable(GL_FRAMEBUFFER_SRGB);
   glClearColor(grey, grey, grey, 1.0f);
@@ -242,65 +320,18 @@ StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::pat
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
-  ImDrawList* back = ImGui::GetBackgroundDrawList();
-  ImDrawList* front = ImGui::GetForegroundDrawList();
-  const ImU32 text = ImGui::ColorConvertFloat4ToU32(ImVec4(text_rgb_, text_rgb_, text_rgb_, 1));
-  const Margins m = margins_for(options_);
-  const float wrap = float(ww) * 0.8f;
-  const float line = ImGui::GetFontSize() * 1.35f;
+  k.back = ImGui::GetBackgroundDrawList();
+  k.front = ImGui::GetForegroundDrawList();
+  k.text = ImGui::ColorConvertFloat4ToU32(ImVec4(text_rgb_, text_rgb_, text_rgb_, 1));
+  k.wrap = float(k.ww) * 0.8f;
+  k.line = ImGui::GetFontSize() * 1.35f;
 
   StimulusLayout layout;
-  if (c.left_texture && c.right_texture) {
-    layout.width = c.image_width;
-    layout.height = c.image_height;
-    const int pair = 2 * c.image_width + options_.gap_px;
-    layout.fits = pair + 2 * m.side <= fw && c.image_height + m.top + m.bottom <= fh;
-    layout.left_x = (fw - pair) / 2;
-    layout.right_x = layout.left_x + c.image_width + options_.gap_px;
-    layout.y = m.top + std::max(0, (fh - m.top - m.bottom - c.image_height) / 2);
-    if (layout.fits) {
-      auto quad = [&](unsigned tex, int x) {
-        back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(tex)), ImVec2(float(x) / scale, float(layout.y) / scale),
-                       ImVec2(float(x + c.image_width) / scale, float(layout.y + c.image_height) / scale));
-      };
-      quad(c.left_texture, layout.left_x);
-      quad(c.right_texture, layout.right_x);
-    } else {
-      centred_text(front, "The window is too small to show the images at 1:1 scale. Please enlarge it.",
-                   float(ww) / 2, float(wh) / 2, wrap, text);
-    }
-    const float top = float(layout.y) / scale;
-    if (!c.header.empty()) centred_text(front, c.header.c_str(), float(ww) / 2, top - 3.2f * line, wrap, text);
-    if (!c.question.empty()) centred_text(front, c.question.c_str(), float(ww) / 2, top - 1.9f * line, wrap, text);
-    if (!c.hint.empty())
-      centred_text(front, c.hint.c_str(), float(ww) / 2, float(layout.y + c.image_height) / scale + 0.8f * line, wrap, text);
-  }
-  if (!c.message.empty()) {
-    float h = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, std::min(wrap, 900.0f), c.message.c_str()).y;
-    float top = float(wh) / 2 - h / 2 - line;
-    float used = centred_text(front, c.message.c_str(), float(ww) / 2, top, std::min(wrap, 900.0f), text);
-    if (c.progress >= 0) {
-      const float bw = std::min(600.0f, float(ww) * 0.6f), bh = line * 0.6f;
-      ImVec2 p0(float(ww) / 2 - bw / 2, top + used + line), p1(p0.x + bw, p0.y + bh);
-      front->AddRect(p0, p1, text, 0, 0, 1.5f);
-      front->AddRectFilled(p0, ImVec2(p0.x + bw * float(std::clamp(c.progress, 0.0, 1.0)), p1.y), text);
-    }
-  }
+  if (c.left_texture && c.right_texture) layout = draw_stimuli(c, options_, k);
+  if (!c.message.empty()) draw_message(c, k);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
-  if (!screenshot.empty()) {
-    glFinish();
-    std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-    Image shot(fw, fh, 3);
-    for (int y = 0; y < fh; ++y)  // OpenGL rows run bottom-up
-      for (int x = 0; x < fw * 3; ++x)
-        shot.pixels[size_t(y) * size_t(fw) * 3 + size_t(x)] = float(rgb[size_t(fh - 1 - y) * size_t(fw) * 3 + size_t(x)]) / 255.0f;
-    write_image(screenshot, shot);
-  }
+  if (!screenshot.empty()) write_screenshot(screenshot, k.fw, k.fh);
   glfwSwapBuffers(window_);
   return layout;
 }

@@ -15,6 +15,7 @@
 #include "adjust/procedure.h"
 
 struct GLFWwindow;
+struct GLFWmonitor;
 
 namespace countershade::adjust {
 
@@ -97,6 +98,12 @@ class Presenter {
   bool timer_pacing_ = false;
   long repeats_ignored_ = 0;
   float text_rgb_ = 0;
+
+  // The constructor's steps: GLFW and the monitor (its size checked against the stimuli), the
+  // window with its OpenGL context, Dear ImGui.
+  GLFWmonitor* open_monitor();
+  void create_window(GLFWmonitor* monitor);
+  void start_imgui();
 
   static void key_callback(GLFWwindow* w, int key, int scancode, int action, int mods);
   static void focus_callback(GLFWwindow* w, int focused);
