@@ -40,48 +40,54 @@ const char* side_name(Side side) {
   return "?";
 }
 
-std::vector<Trial> plan_trials(const std::vector<Condition>& conditions, const PlanSettings& s) {
-  if (conditions.empty()) throw std::invalid_argument("a study needs at least one condition");
-  if (s.repetitions < 1) throw std::invalid_argument("repetitions must be at least 1");
-  const size_t n = conditions.size();
+namespace {
 
-  // First side of each condition: alternating left/right over the conditions, then shuffled, so
-  // the two sides differ in count by at most one.
+// Every condition × repetition, in a seeded random order. Counterbalanced, the first side of each
+// condition alternates left/right over the conditions, then is shuffled (the two sides differ in
+// count by at most one), and it flips with every repetition.
+std::vector<Trial> real_trials(size_t n, const PlanSettings& s) {
   std::vector<Side> first_side(n);
   for (size_t c = 0; c < n; ++c) first_side[c] = c % 2 == 0 ? Side::left : Side::right;
   seeded_shuffle(first_side, s.seed, kStreamSide);
-
   std::vector<Trial> real;
   for (int r = 1; r <= s.repetitions; ++r)
     for (size_t c = 0; c < n; ++c) {
       Trial t;
       t.condition = int(c);
       t.repetition = r;
-      if (s.side == Side::counterbalanced) {
-        bool flip = (r - 1) % 2 == 1;
-        t.side = (first_side[c] == Side::left) != flip ? Side::left : Side::right;
-      } else {
-        t.side = s.side;
-      }
+      const bool flip = (r - 1) % 2 == 1;
+      t.side = s.side != Side::counterbalanced ? s.side : ((first_side[c] == Side::left) != flip ? Side::left : Side::right);
       real.push_back(t);
     }
   seeded_shuffle(real, s.seed, kStreamOrder);
+  return real;
+}
 
-  std::vector<Trial> plan;
-  if (s.practice_trials > 0) {
-    std::vector<int> pick(n);
-    std::iota(pick.begin(), pick.end(), 0);
-    seeded_shuffle(pick, s.seed, kStreamPractice);
-    for (int p = 0; p < s.practice_trials; ++p) {
-      Trial t;
-      t.practice = true;
-      t.condition = pick[size_t(p) % n];
-      t.side = s.side == Side::counterbalanced ? (p % 2 == 0 ? Side::left : Side::right) : s.side;
-      for (int q = 0; q < kQuestionCount; ++q)
-        t.start_index[q] = draw_start(conditions[size_t(t.condition)], s, (1ull << 40) + uint64_t(p), q);
-      plan.push_back(t);
-    }
+// The practice trials: conditions in a seeded order, sides alternating when counterbalanced.
+std::vector<Trial> practice_trials(const std::vector<Condition>& conditions, const PlanSettings& s) {
+  std::vector<int> pick(conditions.size());
+  std::iota(pick.begin(), pick.end(), 0);
+  seeded_shuffle(pick, s.seed, kStreamPractice);
+  std::vector<Trial> practice;
+  for (int p = 0; p < s.practice_trials; ++p) {
+    Trial t;
+    t.practice = true;
+    t.condition = pick[size_t(p) % conditions.size()];
+    t.side = s.side == Side::counterbalanced ? (p % 2 == 0 ? Side::left : Side::right) : s.side;
+    for (int q = 0; q < kQuestionCount; ++q)
+      t.start_index[q] = draw_start(conditions[size_t(t.condition)], s, (1ull << 40) + uint64_t(p), q);
+    practice.push_back(t);
   }
+  return practice;
+}
+
+}  // namespace
+
+std::vector<Trial> plan_trials(const std::vector<Condition>& conditions, const PlanSettings& s) {
+  if (conditions.empty()) throw std::invalid_argument("a study needs at least one condition");
+  if (s.repetitions < 1) throw std::invalid_argument("repetitions must be at least 1");
+  const std::vector<Trial> real = real_trials(conditions.size(), s);
+  std::vector<Trial> plan = practice_trials(conditions, s);
   for (size_t i = 0; i < real.size(); ++i) {
     Trial t = real[i];
     t.number = int(i) + 1;
@@ -163,7 +169,7 @@ void Procedure::advance(double time_s) {
   enter_question(next, 0, time_s);
 }
 
-std::optional<Answer> Procedure::press(Key key, double time_s) {
+void Procedure::press_between_questions(Key key, double time_s) {
   switch (phase_) {
     case Phase::instructions:
     case Phase::practice_done:
@@ -172,7 +178,7 @@ std::optional<Answer> Procedure::press(Key key, double time_s) {
         paused_from_ = phase_;
         phase_ = Phase::paused;
       }
-      return std::nullopt;
+      return;
     case Phase::paused:
       if (key == Key::enter || key == Key::escape) {
         phase_ = paused_from_;
@@ -181,12 +187,34 @@ std::optional<Answer> Procedure::press(Key key, double time_s) {
       } else if (key == Key::quit) {
         phase_ = Phase::quit;
       }
-      return std::nullopt;
+      return;
     case Phase::finished:
     case Phase::quit:
-      return std::nullopt;
     case Phase::question:
-      break;
+      return;
+  }
+}
+
+Answer Procedure::confirm(double time_s) {
+  Answer a;
+  a.trial_index = trial_;
+  a.question = Question(question_);
+  a.lambda_index = index_;
+  a.start_index = trial().start_index[question_];
+  a.n_keypresses = keypresses_;
+  a.rt_s = time_s - shown_at_;
+  auto& past = trial().practice ? practice_answers_ : answered_;
+  auto it = past.find({trial_, question_});
+  a.revision = it == past.end() ? 0 : it->second.revision + 1;
+  past[{trial_, question_}] = PastAnswer{index_, a.revision};
+  advance(time_s);
+  return a;
+}
+
+std::optional<Answer> Procedure::press(Key key, double time_s) {
+  if (phase_ != Phase::question) {
+    press_between_questions(key, time_s);
+    return std::nullopt;
   }
   switch (key) {
     case Key::up:
@@ -198,21 +226,8 @@ std::optional<Answer> Procedure::press(Key key, double time_s) {
       held_ = key;
       next_repeat_ = time_s + timing_.repeat_delay_s;
       return std::nullopt;
-    case Key::enter: {
-      Answer a;
-      a.trial_index = trial_;
-      a.question = Question(question_);
-      a.lambda_index = index_;
-      a.start_index = trial().start_index[question_];
-      a.n_keypresses = keypresses_;
-      a.rt_s = time_s - shown_at_;
-      auto& past = trial().practice ? practice_answers_ : answered_;
-      auto it = past.find({trial_, question_});
-      a.revision = it == past.end() ? 0 : it->second.revision + 1;
-      past[{trial_, question_}] = PastAnswer{index_, a.revision};
-      advance(time_s);
-      return a;
-    }
+    case Key::enter:
+      return confirm(time_s);
     case Key::backspace:
       if (question_ > 0) enter_question(trial_, question_ - 1, time_s);
       return std::nullopt;

@@ -118,6 +118,8 @@ class Procedure {
 
  private:
   void enter_question(int trial, int question, double time_s);
+  void press_between_questions(Key key, double time_s);  // instructions, pause, end
+  Answer confirm(double time_s);                          // Enter on a question: its answer
   void step(int direction);
   void advance(double time_s);
   bool is_answered(int trial, int question) const;
