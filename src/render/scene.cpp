@@ -384,63 +384,79 @@ class SceneLoader {
   }
 
   void add_light(const JsonObject& o, Scene& scene) {
-    std::string type = o.choice("type", "", {"directional", "point", "environment", "ambient"});
-    if (type == "directional") {
-      DirectionalLight l;
-      l.direction = unit_vector(o, "direction");
-      l.irradiance = non_negative_color(o, "irradiance", l.irradiance);
-      l.angular_radius_deg = o.number_in("angular_radius", 0.0, 0.0, 45.0);
-      l.samples = int(o.integer_in("samples", l.angular_radius_deg > 0 ? 4 : 1, 1, 4096));
-      l.shadows = o.boolean_or("shadows", true);
-      scene.directional_lights.push_back(l);
-    } else if (type == "point") {
-      PointLight l;
-      l.position = o.vec3("position");
-      l.intensity = non_negative_color(o, "intensity", l.intensity);
-      l.radius = o.number_in("radius", 0.0, 0.0, 1e9);
-      l.samples = int(o.integer_in("samples", l.radius > 0 ? 4 : 1, 1, 4096));
-      scene.point_lights.push_back(l);
-    } else if (type == "environment") {
-      if (scene.environment) o.fail("type", "a scene can have only one environment light");
-      EnvironmentLight l;
-      int sources = int(o.has("file")) + int(o.has("sky")) + int(o.has("constant"));
-      if (sources != 1) o.fail("", "an environment needs exactly one of 'file', 'sky' or 'constant'");
-      if (o.has("file")) {
-        fs::path file = resolve(o, "file");
-        Image image;
-        try {
-          image = read_image(file);
-          check_finite(file, image);
-        } catch (const InputError& e) {
-          o.fail("file", e.what());
-        }
-        std::string ext = lower_extension(file);
-        if (ext == ".png" || ext == ".jpg" || ext == ".jpeg")  // display-encoded formats
-          for (float& v : image.pixels) v = float(srgb_decode(v));
-        l.map = std::make_shared<EnvironmentMap>(image);
-      } else if (o.has("sky")) {
-        JsonObject s = o.object("sky");
-        SkyParameters sky;
-        sky.zenith = non_negative_color(s, "zenith", sky.zenith);
-        sky.horizon = non_negative_color(s, "horizon", sky.horizon);
-        sky.ground = non_negative_color(s, "ground", sky.ground);
-        s.finish();
-        l.map = std::make_shared<EnvironmentMap>(EnvironmentMap::sky(sky));
-      } else {
-        l.map = std::make_shared<EnvironmentMap>(
-            EnvironmentMap::constant(non_negative_color(o, "constant", glm::dvec3(1.0))));
-      }
-      l.scale = o.number_in("scale", 1.0, 0.0, 1e9);
-      l.importance_sampling = o.choice("sampling", "importance", {"importance", "cosine"}) == "importance";
-      l.samples = int(o.integer_in("samples", 4, 1, 4096));
-      l.visible_to_camera = o.boolean_or("visible", true);
-      scene.environment = l;
-    } else {
-      scene.ambient.radiance = non_negative_color(o, "radiance", glm::dvec3(0.1));
-      scene.ambient.distance = o.number_in("occlusion_distance", 0.0, 0.0, 1e9);
-      scene.ambient.samples = int(o.integer_in("samples", 4, 1, 4096));
-    }
+    const std::string type = o.choice("type", "", {"directional", "point", "environment", "ambient"});
+    if (type == "directional") add_directional(o, scene);
+    else if (type == "point") add_point(o, scene);
+    else if (type == "environment") add_environment(o, scene);
+    else add_ambient(o, scene);
     o.finish();
+  }
+
+  static void add_directional(const JsonObject& o, Scene& scene) {
+    DirectionalLight l;
+    l.direction = unit_vector(o, "direction");
+    l.irradiance = non_negative_color(o, "irradiance", l.irradiance);
+    l.angular_radius_deg = o.number_in("angular_radius", 0.0, 0.0, 45.0);
+    l.samples = int(o.integer_in("samples", l.angular_radius_deg > 0 ? 4 : 1, 1, 4096));
+    l.shadows = o.boolean_or("shadows", true);
+    scene.directional_lights.push_back(l);
+  }
+
+  static void add_point(const JsonObject& o, Scene& scene) {
+    PointLight l;
+    l.position = o.vec3("position");
+    l.intensity = non_negative_color(o, "intensity", l.intensity);
+    l.radius = o.number_in("radius", 0.0, 0.0, 1e9);
+    l.samples = int(o.integer_in("samples", l.radius > 0 ? 4 : 1, 1, 4096));
+    scene.point_lights.push_back(l);
+  }
+
+  void add_environment(const JsonObject& o, Scene& scene) const {
+    if (scene.environment) o.fail("type", "a scene can have only one environment light");
+    EnvironmentLight l;
+    const int sources = int(o.has("file")) + int(o.has("sky")) + int(o.has("constant"));
+    if (sources != 1) o.fail("", "an environment needs exactly one of 'file', 'sky' or 'constant'");
+    l.map = environment_map(o);
+    l.scale = o.number_in("scale", 1.0, 0.0, 1e9);
+    l.importance_sampling = o.choice("sampling", "importance", {"importance", "cosine"}) == "importance";
+    l.samples = int(o.integer_in("samples", 4, 1, 4096));
+    l.visible_to_camera = o.boolean_or("visible", true);
+    scene.environment = l;
+  }
+
+  // The environment's radiance: an image file (display-encoded formats decoded to linear), the
+  // procedural sky, or a constant.
+  std::shared_ptr<EnvironmentMap> environment_map(const JsonObject& o) const {
+    if (o.has("file")) {
+      const fs::path file = resolve(o, "file");
+      Image image;
+      try {
+        image = read_image(file);
+        check_finite(file, image);
+      } catch (const InputError& e) {
+        o.fail("file", e.what());
+      }
+      const std::string ext = lower_extension(file);
+      if (ext == ".png" || ext == ".jpg" || ext == ".jpeg")
+        for (float& v : image.pixels) v = float(srgb_decode(v));
+      return std::make_shared<EnvironmentMap>(image);
+    }
+    if (o.has("sky")) {
+      JsonObject s = o.object("sky");
+      SkyParameters sky;
+      sky.zenith = non_negative_color(s, "zenith", sky.zenith);
+      sky.horizon = non_negative_color(s, "horizon", sky.horizon);
+      sky.ground = non_negative_color(s, "ground", sky.ground);
+      s.finish();
+      return std::make_shared<EnvironmentMap>(EnvironmentMap::sky(sky));
+    }
+    return std::make_shared<EnvironmentMap>(EnvironmentMap::constant(non_negative_color(o, "constant", glm::dvec3(1.0))));
+  }
+
+  static void add_ambient(const JsonObject& o, Scene& scene) {
+    scene.ambient.radiance = non_negative_color(o, "radiance", glm::dvec3(0.1));
+    scene.ambient.distance = o.number_in("occlusion_distance", 0.0, 0.0, 1e9);
+    scene.ambient.samples = int(o.integer_in("samples", 4, 1, 4096));
   }
 
   fs::path path_, base_;
