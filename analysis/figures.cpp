@@ -29,65 +29,91 @@ const char* kQuestionColours[] = {"#56B4E9", "#D55E00", "#009E73"};  // low, hig
 
 }  // namespace
 
-std::string figure_questions_by_scene(const BlockResults& r) {
-  const int width = 720, height = 380, left = 60, right = 120, top = 40, bottom = 50;
-  const double pw = width - left - right, ph = height - top - bottom;
-  const size_t ns = r.scenes.size(), n = r.subjects.size();
-  // Per scene and question: mean and SEM over subjects of their σ-mean JND.
-  std::vector<std::array<Summary, 3>> stats(ns);
-  double top_value = 0;
-  for (size_t s = 0; s < ns; ++s)
+namespace {
+
+// Per scene and question: mean and SEM over subjects of their σ-mean JND.
+std::vector<std::array<Summary, 3>> scene_question_summaries(const BlockResults& r) {
+  std::vector<std::array<Summary, 3>> stats(r.scenes.size());
+  for (size_t s = 0; s < r.scenes.size(); ++s)
     for (int q = 0; q < 3; ++q) {
       std::vector<double> v;
-      for (size_t i = 0; i < n; ++i) {
+      for (size_t i = 0; i < r.subjects.size(); ++i) {
         double m = 0;
         for (size_t g = 0; g < r.sigmas.size(); ++g) m += r.jnd.at(i, s, g, Question(q)) / double(r.sigmas.size());
         v.push_back(m);
       }
-      stats[s][q] = summarize(v);
-      top_value = std::max(top_value, stats[s][q].mean + stats[s][q].sem);
+      stats[s][size_t(q)] = summarize(v);
     }
-  double ymax = nice_max(top_value * 1.05);
-  auto py = [&](double v) { return top + ph * (1.0 - v / ymax); };
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-      << "\" font-family=\"sans-serif\" font-size=\"12\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">Chosen λ in JND per scene (mean ± SEM, n = "
-      << n << ")</text>\n";
+  return stats;
+}
+
+// The bar chart's frame: plot area, value axis from 0 to ymax, in SVG coordinates.
+struct BarFrame {
+  int width = 720, height = 380, left = 60, right = 120, top = 40, bottom = 50;
+  double pw = width - left - right, ph = height - top - bottom, ymax = 1;
+  double py(double v) const { return top + ph * (1.0 - v / ymax); }
+};
+
+// Gridlines with their values, and the dashed 1 JND reference.
+void bar_grid(std::ostringstream& svg, const BarFrame& f) {
   for (int t = 0; t <= 5; ++t) {
-    double v = ymax * t / 5;
-    svg << "<line x1=\"" << left << "\" x2=\"" << left + pw << "\" y1=\"" << py(v) << "\" y2=\"" << py(v)
-        << "\" stroke=\"#e5e5e5\"/><text x=\"" << left - 6 << "\" y=\"" << py(v) + 4 << "\" text-anchor=\"end\">"
+    double v = f.ymax * t / 5;
+    svg << "<line x1=\"" << f.left << "\" x2=\"" << f.left + f.pw << "\" y1=\"" << f.py(v) << "\" y2=\"" << f.py(v)
+        << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.left - 6 << "\" y=\"" << f.py(v) + 4 << "\" text-anchor=\"end\">"
         << number(v) << "</text>\n";
   }
-  // The 1 JND reference line.
-  svg << "<line x1=\"" << left << "\" x2=\"" << left + pw << "\" y1=\"" << py(1) << "\" y2=\"" << py(1)
+  svg << "<line x1=\"" << f.left << "\" x2=\"" << f.left + f.pw << "\" y1=\"" << f.py(1) << "\" y2=\"" << f.py(1)
       << "\" stroke=\"#888\" stroke-dasharray=\"4,3\"/>\n";
-  const double group = pw / double(ns), bar = group * 0.22;
-  const int order[3] = {int(Question::low), int(Question::best), int(Question::high)};
-  for (size_t s = 0; s < ns; ++s) {
-    double x0 = left + group * double(s) + group * 0.17;
-    for (int k = 0; k < 3; ++k) {
-      int q = order[k];
-      const Summary& st = stats[s][size_t(q)];
-      double x = x0 + bar * k;
-      svg << "<rect x=\"" << x << "\" y=\"" << py(st.mean) << "\" width=\"" << bar - 2 << "\" height=\""
-          << py(0) - py(st.mean) << "\" fill=\"" << kQuestionColours[q] << "\"/>\n";
-      double cx = x + (bar - 2) / 2;
-      svg << "<path d=\"M" << cx << "," << py(st.mean - st.sem) << "V" << py(st.mean + st.sem) << "M" << cx - 4 << ","
-          << py(st.mean + st.sem) << "h8M" << cx - 4 << "," << py(st.mean - st.sem) << "h8\" stroke=\"black\"/>\n";
-    }
-    svg << "<text x=\"" << left + group * (double(s) + 0.5) << "\" y=\"" << top + ph + 18
-        << "\" text-anchor=\"middle\">" << xml_escape(r.scenes[s]) << "</text>\n";
-  }
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
-      << "\" fill=\"none\" stroke=\"#444\"/>\n<text transform=\"translate(16," << top + ph / 2
+}
+
+// One bar with its ±SEM whisker.
+void bar_with_error(std::ostringstream& svg, const BarFrame& f, double x, double width, const Summary& st, const char* colour) {
+  svg << "<rect x=\"" << x << "\" y=\"" << f.py(st.mean) << "\" width=\"" << width << "\" height=\""
+      << f.py(0) - f.py(st.mean) << "\" fill=\"" << colour << "\"/>\n";
+  const double cx = x + width / 2;
+  svg << "<path d=\"M" << cx << "," << f.py(st.mean - st.sem) << "V" << f.py(st.mean + st.sem) << "M" << cx - 4 << ","
+      << f.py(st.mean + st.sem) << "h8M" << cx - 4 << "," << f.py(st.mean - st.sem) << "h8\" stroke=\"black\"/>\n";
+}
+
+constexpr int kBarOrder[3] = {int(Question::low), int(Question::best), int(Question::high)};
+
+// The plot area's outline, the value axis label and the legend of the three questions.
+void bar_frame_and_legend(std::ostringstream& svg, const BarFrame& f) {
+  svg << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.pw << "\" height=\"" << f.ph
+      << "\" fill=\"none\" stroke=\"#444\"/>\n<text transform=\"translate(16," << f.top + f.ph / 2
       << ") rotate(-90)\" text-anchor=\"middle\">λ (JND)</text>\n";
   const char* names[3] = {"λ_Low", "λ_Best", "λ_High"};
   for (int k = 0; k < 3; ++k)
-    svg << "<rect x=\"" << left + pw + 14 << "\" y=\"" << top + 10 + 20 * k << "\" width=\"14\" height=\"12\" fill=\""
-        << kQuestionColours[order[k]] << "\"/><text x=\"" << left + pw + 34 << "\" y=\"" << top + 21 + 20 * k << "\">"
+    svg << "<rect x=\"" << f.left + f.pw + 14 << "\" y=\"" << f.top + 10 + 20 * k << "\" width=\"14\" height=\"12\" fill=\""
+        << kQuestionColours[kBarOrder[k]] << "\"/><text x=\"" << f.left + f.pw + 34 << "\" y=\"" << f.top + 21 + 20 * k << "\">"
         << names[k] << "</text>\n";
+}
+
+}  // namespace
+
+std::string figure_questions_by_scene(const BlockResults& r) {
+  const size_t ns = r.scenes.size();
+  const std::vector<std::array<Summary, 3>> stats = scene_question_summaries(r);
+  double top_value = 0;
+  for (const auto& scene : stats)
+    for (const Summary& st : scene) top_value = std::max(top_value, st.mean + st.sem);
+  BarFrame f;
+  f.ymax = nice_max(top_value * 1.05);
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f.width << "\" height=\"" << f.height
+      << "\" font-family=\"sans-serif\" font-size=\"12\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << f.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">Chosen λ in JND per scene (mean ± SEM, n = "
+      << r.subjects.size() << ")</text>\n";
+  bar_grid(svg, f);
+  const double group = f.pw / double(ns), bar = group * 0.22;
+  for (size_t s = 0; s < ns; ++s) {
+    const double x0 = f.left + group * double(s) + group * 0.17;
+    for (int k = 0; k < 3; ++k)
+      bar_with_error(svg, f, x0 + bar * k, bar - 2, stats[s][size_t(kBarOrder[k])], kQuestionColours[kBarOrder[k]]);
+    svg << "<text x=\"" << f.left + group * (double(s) + 0.5) << "\" y=\"" << f.top + f.ph + 18
+        << "\" text-anchor=\"middle\">" << xml_escape(r.scenes[s]) << "</text>\n";
+  }
+  bar_frame_and_legend(svg, f);
   svg << "</svg>\n";
   return svg.str();
 }
