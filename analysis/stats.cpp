@@ -107,62 +107,68 @@ EffectSS sums_of_squares(const Eigen::MatrixXd& data, const Eigen::MatrixXd& tra
   return s;
 }
 
+// Effects in R's order: by interaction order, then lexicographically by factor index.
+std::vector<std::vector<bool>> effects_in_r_order(size_t nf) {
+  std::vector<std::vector<bool>> effects;
+  for (size_t order = 1; order <= nf; ++order) {
+    std::vector<bool> select(nf, false);
+    std::fill(select.begin(), select.begin() + long(order), true);
+    do effects.push_back(select);
+    while (std::prev_permutation(select.begin(), select.end()));
+  }
+  return effects;
+}
+
+// Mauchly's test, Greenhouse–Geisser and Huynh–Feldt for an effect with p > 1 contrasts, from the
+// covariance S of its transformed scores (n subjects, `cells` within-subject cells).
+void add_sphericity(AnovaRow& row, const Eigen::MatrixXd& S, double n, double cells) {
+  const double p = double(S.rows());
+  row.has_sphericity = true;
+  // Mauchly's test as afex reports it (car's Anova.mlm): its second-order correction term uses
+  // the number of within-subject cells where R's mauchly.test uses p; kept for agreement.
+  const double df = n - 1, trace = S.trace();
+  const double log_w = std::log(S.determinant()) - p * std::log(trace / p);
+  const double rho = 1.0 - (2 * p * p + p + 2) / (6 * p * df);
+  const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * cells + 2) /
+                    (288.0 * std::pow(df * p * rho, 2));
+  const double z = -df * rho * log_w, f = p * (p + 1) / 2 - 1;
+  const double pr1 = chi2_upper(z, f), pr2 = chi2_upper(z, f + 4);
+  row.mauchly_W = std::exp(log_w);
+  row.mauchly_p = pr1 + w2 * (pr2 - pr1);
+  // Greenhouse–Geisser and Huynh–Feldt (car's formula, capped at 1).
+  row.gg_epsilon = trace * trace / (p * (S * S).trace());
+  const double hf = (n * p * row.gg_epsilon - 2) / (p * (n - 1 - p * row.gg_epsilon));
+  row.hf_epsilon = std::min(1.0, hf);
+  row.p_gg = f_upper(row.F, row.df1 * row.gg_epsilon, row.df2 * row.gg_epsilon);
+  row.p_hf = f_upper(row.F, row.df1 * row.hf_epsilon, row.df2 * row.hf_epsilon);
+}
+
 }  // namespace
 
 std::vector<AnovaRow> rm_anova(const Eigen::MatrixXd& data, const std::vector<WithinFactor>& factors) {
   const size_t nf = factors.size();
   const double n = double(data.rows());
-  // Effects in R's order: by interaction order, then lexicographically by factor index.
-  std::vector<std::vector<bool>> effects;
-  for (size_t order = 1; order <= nf; ++order) {
-    std::vector<bool> select(nf, false);
-    std::fill(select.begin(), select.begin() + long(order), true);
-    std::vector<std::vector<bool>> same_order;
-    do same_order.push_back(select);
-    while (std::prev_permutation(select.begin(), select.end()));
-    effects.insert(effects.end(), same_order.begin(), same_order.end());
-  }
+  const std::vector<std::vector<bool>> effects = effects_in_r_order(nf);
   // Between-subject variation (the intercept's error term) enters generalised η².
-  EffectSS subjects = sums_of_squares(data, effect_transform(factors, std::vector<bool>(nf, false)));
+  const EffectSS subjects = sums_of_squares(data, effect_transform(factors, std::vector<bool>(nf, false)));
   std::vector<EffectSS> ss;
   double total_error = subjects.ss_error;
   for (const auto& e : effects) {
     ss.push_back(sums_of_squares(data, effect_transform(factors, e)));
     total_error += ss.back().ss_error;
   }
-
   std::vector<AnovaRow> rows;
   for (size_t k = 0; k < effects.size(); ++k) {
     AnovaRow row;
     for (size_t f = 0; f < nf; ++f)
       if (effects[k][f]) row.effect += (row.effect.empty() ? "" : ":") + factors[f].name;
-    const Eigen::MatrixXd& S = ss[k].covariance;
-    const double p = double(S.rows());
+    const double p = double(ss[k].covariance.rows());
     row.df1 = p;
     row.df2 = p * (n - 1);
     row.F = (ss[k].ss_effect / row.df1) / (ss[k].ss_error / row.df2);
     row.p = f_upper(row.F, row.df1, row.df2);
     row.ges = ss[k].ss_effect / (ss[k].ss_effect + total_error);
-    if (p > 1) {
-      row.has_sphericity = true;
-      // Mauchly's test as afex reports it (car's Anova.mlm): its second-order correction term
-      // uses the number of within-subject cells where R's mauchly.test uses p; kept for agreement.
-      const double df = n - 1, trace = S.trace(), cells = double(data.cols());
-      const double log_w = std::log(S.determinant()) - p * std::log(trace / p);
-      const double rho = 1.0 - (2 * p * p + p + 2) / (6 * p * df);
-      const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * cells + 2) /
-                        (288.0 * std::pow(df * p * rho, 2));
-      const double z = -df * rho * log_w, f = p * (p + 1) / 2 - 1;
-      const double pr1 = chi2_upper(z, f), pr2 = chi2_upper(z, f + 4);
-      row.mauchly_W = std::exp(log_w);
-      row.mauchly_p = pr1 + w2 * (pr2 - pr1);
-      // Greenhouse–Geisser and Huynh–Feldt (car's formula, capped at 1).
-      row.gg_epsilon = trace * trace / (p * (S * S).trace());
-      double hf = (n * p * row.gg_epsilon - 2) / (p * (n - 1 - p * row.gg_epsilon));
-      row.hf_epsilon = std::min(1.0, hf);
-      row.p_gg = f_upper(row.F, row.df1 * row.gg_epsilon, row.df2 * row.gg_epsilon);
-      row.p_hf = f_upper(row.F, row.df1 * row.hf_epsilon, row.df2 * row.hf_epsilon);
-    }
+    if (p > 1) add_sphericity(row, ss[k].covariance, n, double(data.cols()));
     rows.push_back(row);
   }
   return rows;
