@@ -31,59 +31,81 @@ const std::string& plot_color(size_t index) {
   return palette[index % palette.size()];
 }
 
-std::string LinePlot::to_svg() const {
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-  for (const auto& s : series)
-    for (size_t i = 0; i < s.x.size(); ++i) {
-      x0 = std::min(x0, s.x[i]);
-      x1 = std::max(x1, s.x[i]);
-      y0 = std::min(y0, s.y[i]);
-      y1 = std::max(y1, s.y[i]);
-    }
-  if (x0 > x1) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-  double pad = 0.05 * (y1 - y0 > 0 ? y1 - y0 : 1.0);
-  y0 -= pad;
-  y1 += pad;
-  if (x1 == x0) x1 = x0 + 1;
-  size_t longest = 0;  // the legend's widest label sets the right margin (about 7 px a character)
-  for (const auto& s : series) longest = std::max(longest, s.label.size());
-  const double left = 70, right = std::max(150.0, 48.0 + 7.0 * double(longest)), top = 40, bottom = 55;
-  const double pw = width - left - right, ph = height - top - bottom;
-  auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
-  auto py = [&](double y) { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; };
+namespace {
 
+// Where a LinePlot draws: the data ranges (y padded by 5 %) and the plot area inside the margins.
+struct PlotFrame {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  double left = 70, right = 150, top = 40, bottom = 55, pw = 0, ph = 0;
+  double px(double x) const { return left + (x - x0) / (x1 - x0) * pw; }
+  double py(double y) const { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; }
+};
+
+PlotFrame plot_frame(const LinePlot& plot) {
+  PlotFrame f;
+  for (const auto& s : plot.series)
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      f.x0 = std::min(f.x0, s.x[i]);
+      f.x1 = std::max(f.x1, s.x[i]);
+      f.y0 = std::min(f.y0, s.y[i]);
+      f.y1 = std::max(f.y1, s.y[i]);
+    }
+  if (f.x0 > f.x1) f.x0 = 0, f.x1 = 1, f.y0 = 0, f.y1 = 1;
+  const double pad = 0.05 * (f.y1 - f.y0 > 0 ? f.y1 - f.y0 : 1.0);
+  f.y0 -= pad;
+  f.y1 += pad;
+  if (f.x1 == f.x0) f.x1 = f.x0 + 1;
+  size_t longest = 0;  // the legend's widest label sets the right margin (about 7 px a character)
+  for (const auto& s : plot.series) longest = std::max(longest, s.label.size());
+  f.right = std::max(150.0, 48.0 + 7.0 * double(longest));
+  f.pw = plot.width - f.left - f.right;
+  f.ph = plot.height - f.top - f.bottom;
+  return f;
+}
+
+// Gridlines with tick values, the plot area's outline and the axis labels.
+void plot_axes(std::ostringstream& svg, const LinePlot& plot, const PlotFrame& f) {
+  for (double t : nice_ticks(f.x0, f.x1))
+    svg << "<line x1=\"" << f.px(t) << "\" y1=\"" << f.top << "\" x2=\"" << f.px(t) << "\" y2=\"" << f.top + f.ph
+        << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.px(t) << "\" y=\"" << f.top + f.ph + 16
+        << "\" text-anchor=\"middle\">" << t << "</text>\n";
+  for (double t : nice_ticks(f.y0, f.y1))
+    svg << "<line x1=\"" << f.left << "\" y1=\"" << f.py(t) << "\" x2=\"" << f.left + f.pw << "\" y2=\"" << f.py(t)
+        << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.left - 6 << "\" y=\"" << f.py(t) + 4
+        << "\" text-anchor=\"end\">" << t << "</text>\n";
+  svg << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.pw << "\" height=\"" << f.ph
+      << "\" fill=\"none\" stroke=\"#444\"/>\n"
+      << "<text x=\"" << f.left + f.pw / 2 << "\" y=\"" << plot.height - 12 << "\" text-anchor=\"middle\">"
+      << xml_escape(plot.x_label) << "</text>\n"
+      << "<text transform=\"translate(16," << f.top + f.ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
+      << xml_escape(plot.y_label) << "</text>\n";
+}
+
+// One series as a polyline, and its legend entry (row k) when it has a label.
+void plot_series(std::ostringstream& svg, const PlotSeries& s, size_t k, const PlotFrame& f) {
+  svg << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1.8\""
+      << (s.dashed ? " stroke-dasharray=\"5,3\"" : "") << " points=\"";
+  for (size_t i = 0; i < s.x.size(); ++i) svg << f.px(s.x[i]) << "," << f.py(s.y[i]) << " ";
+  svg << "\"/>\n";
+  if (s.label.empty()) return;
+  const double ly = f.top + 14 + 18 * double(k);
+  svg << "<line x1=\"" << f.left + f.pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << f.left + f.pw + 32 << "\" y2=\"" << ly
+      << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"5,3\"" : "")
+      << "/><text x=\"" << f.left + f.pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
+}
+
+}  // namespace
+
+std::string LinePlot::to_svg() const {
+  const PlotFrame f = plot_frame(*this);
   std::ostringstream svg;
   svg.precision(6);
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << xml_escape(title) << "</text>\n";
-  for (double t : nice_ticks(x0, x1))
-    svg << "<line x1=\"" << px(t) << "\" y1=\"" << top << "\" x2=\"" << px(t) << "\" y2=\"" << top + ph
-        << "\" stroke=\"#e5e5e5\"/><text x=\"" << px(t) << "\" y=\"" << top + ph + 16
-        << "\" text-anchor=\"middle\">" << t << "</text>\n";
-  for (double t : nice_ticks(y0, y1))
-    svg << "<line x1=\"" << left << "\" y1=\"" << py(t) << "\" x2=\"" << left + pw << "\" y2=\"" << py(t)
-        << "\" stroke=\"#e5e5e5\"/><text x=\"" << left - 6 << "\" y=\"" << py(t) + 4
-        << "\" text-anchor=\"end\">" << t << "</text>\n";
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
-      << "\" fill=\"none\" stroke=\"#444\"/>\n"
-      << "<text x=\"" << left + pw / 2 << "\" y=\"" << height - 12 << "\" text-anchor=\"middle\">" << xml_escape(x_label)
-      << "</text>\n"
-      << "<text transform=\"translate(16," << top + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-      << xml_escape(y_label) << "</text>\n";
-  for (size_t k = 0; k < series.size(); ++k) {
-    const auto& s = series[k];
-    svg << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1.8\""
-        << (s.dashed ? " stroke-dasharray=\"5,3\"" : "") << " points=\"";
-    for (size_t i = 0; i < s.x.size(); ++i) svg << px(s.x[i]) << "," << py(s.y[i]) << " ";
-    svg << "\"/>\n";
-    if (s.label.empty()) continue;  // no legend entry
-    double ly = top + 14 + 18 * double(k);
-    svg << "<line x1=\"" << left + pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << left + pw + 32 << "\" y2=\"" << ly
-        << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"5,3\"" : "")
-        << "/><text x=\"" << left + pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
-  }
+  plot_axes(svg, *this, f);
+  for (size_t k = 0; k < series.size(); ++k) plot_series(svg, series[k], k, f);
   svg << "</svg>\n";
   return svg.str();
 }
