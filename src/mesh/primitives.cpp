@@ -78,59 +78,74 @@ TriangleMesh make_plane(double size, int subdivisions) {
   return mesh;
 }
 
-TriangleMesh make_box(const glm::dvec3& size, EdgeProfile profile, double radius, int edge_segments,
-                      int subdivisions) {
-  glm::dvec3 h = size * 0.5;
-  double r = profile == EdgeProfile::sharp ? 0.0 : std::min(radius, 0.999 * std::min({h.x, h.y, h.z}));
-  int edge = std::max(1, edge_segments);
-  double spacing = 2.0 * (std::max({h.x, h.y, h.z}) - r) / std::max(1, subdivisions);
-  std::vector<double> axes[3];
-  for (int a = 0; a < 3; ++a) axes[a] = axis_coordinates(h[a], r, edge, spacing);
-  glm::dvec3 inner = h - glm::dvec3(r);
+namespace {
 
-  // Surface point for a lattice point on the box: project the cut-back bands onto the profile.
-  auto place = [&](const glm::dvec3& p) {
-    glm::dvec3 q = glm::clamp(p, -inner, inner);
-    glm::dvec3 d = p - q;
+// The lattice of a box with rounded or bevelled edges: coordinates per axis, and where a lattice
+// point lands on the surface (the cut-back bands projected onto the edge profile).
+struct BoxLattice {
+  glm::dvec3 h, inner;
+  double r = 0;
+  EdgeProfile profile = EdgeProfile::sharp;
+  std::vector<double> axes[3];
+
+  glm::vec3 place(const glm::dvec3& p) const {
+    const glm::dvec3 q = glm::clamp(p, -inner, inner);
+    const glm::dvec3 d = p - q;
     if (r <= 0 || (d.x == 0 && d.y == 0 && d.z == 0)) return glm::vec3(p);
     if (profile == EdgeProfile::bevel) return glm::vec3(q + r * glm::normalize(d));
-    double l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    const double l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
     return glm::vec3(q + d * (r / l1));
-  };
+  }
+};
 
-  TriangleMesh mesh;
-  Welder<std::tuple<int, int, int>> welder(mesh);
-  // Each face: fixed axis `a` at side s (0 or last index), walking axes u and v.
-  for (int a = 0; a < 3; ++a) {
-    int u = (a + 1) % 3, v = (a + 2) % 3;
-    for (int side = 0; side < 2; ++side) {
-      int fixed = side == 0 ? 0 : int(axes[a].size()) - 1;
-      int nu = int(axes[u].size()), nv = int(axes[v].size());
-      auto vertex = [&](int i, int j) {
-        int idx[3];
-        idx[a] = fixed;
-        idx[u] = i;
-        idx[v] = j;
-        glm::dvec3 p(axes[0][idx[0]], axes[1][idx[1]], axes[2][idx[2]]);
-        return welder.vertex({idx[0], idx[1], idx[2]}, place(p));
-      };
-      for (int j = 0; j + 1 < nv; ++j)
-        for (int i = 0; i + 1 < nu; ++i) {
-          unsigned a0 = vertex(i, j), a1 = vertex(i + 1, j), a2 = vertex(i + 1, j + 1), a3 = vertex(i, j + 1);
-          size_t first = mesh.triangles.size();
-          // (u, v, a) is right-handed, so u->v is counter-clockwise seen from +a.
-          if (side == 1)
-            add_quad(mesh, a0, a1, a2, a3);
-          else
-            add_quad(mesh, a0, a3, a2, a1);
-          for (size_t t = first; t < mesh.triangles.size(); ++t)
-            for (int c = 0; c < 3; ++c) {
-              const auto& p = mesh.positions[mesh.triangles[t][c]];
-              mesh.corner_uvs.emplace_back((p[u] + h[u]) / (2 * h[u]), (p[v] + h[v]) / (2 * h[v]));
-            }
+// One face of the box: axis `a` fixed at its first (side 0) or last lattice index, walking the
+// other two axes u and v; corner uvs span the face.
+void add_box_face(TriangleMesh& mesh, Welder<std::tuple<int, int, int>>& welder, const BoxLattice& box, int a, int side) {
+  const int u = (a + 1) % 3, v = (a + 2) % 3;
+  const int fixed = side == 0 ? 0 : int(box.axes[a].size()) - 1;
+  const int nu = int(box.axes[u].size()), nv = int(box.axes[v].size());
+  auto vertex = [&](int i, int j) {
+    int idx[3];
+    idx[a] = fixed;
+    idx[u] = i;
+    idx[v] = j;
+    const glm::dvec3 p(box.axes[0][idx[0]], box.axes[1][idx[1]], box.axes[2][idx[2]]);
+    return welder.vertex({idx[0], idx[1], idx[2]}, box.place(p));
+  };
+  const glm::dvec3& h = box.h;
+  for (int j = 0; j + 1 < nv; ++j)
+    for (int i = 0; i + 1 < nu; ++i) {
+      const unsigned a0 = vertex(i, j), a1 = vertex(i + 1, j), a2 = vertex(i + 1, j + 1), a3 = vertex(i, j + 1);
+      const size_t first = mesh.triangles.size();
+      // (u, v, a) is right-handed, so u->v is counter-clockwise seen from +a.
+      if (side == 1)
+        add_quad(mesh, a0, a1, a2, a3);
+      else
+        add_quad(mesh, a0, a3, a2, a1);
+      for (size_t t = first; t < mesh.triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+          const auto& p = mesh.positions[mesh.triangles[t][c]];
+          mesh.corner_uvs.emplace_back((p[u] + h[u]) / (2 * h[u]), (p[v] + h[v]) / (2 * h[v]));
         }
     }
-  }
+}
+
+}  // namespace
+
+TriangleMesh make_box(const glm::dvec3& size, EdgeProfile profile, double radius, int edge_segments,
+                      int subdivisions) {
+  BoxLattice box;
+  box.h = size * 0.5;
+  box.profile = profile;
+  box.r = profile == EdgeProfile::sharp ? 0.0 : std::min(radius, 0.999 * std::min({box.h.x, box.h.y, box.h.z}));
+  const int edge = std::max(1, edge_segments);
+  const double spacing = 2.0 * (std::max({box.h.x, box.h.y, box.h.z}) - box.r) / std::max(1, subdivisions);
+  for (int a = 0; a < 3; ++a) box.axes[a] = axis_coordinates(box.h[a], box.r, edge, spacing);
+  box.inner = box.h - glm::dvec3(box.r);
+  TriangleMesh mesh;
+  Welder<std::tuple<int, int, int>> welder(mesh);
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) add_box_face(mesh, welder, box, a, side);
   return mesh;
 }
 
@@ -165,52 +180,60 @@ TriangleMesh make_sphere(double radius, int subdivisions) {
   return mesh;
 }
 
+namespace {
+
+double turn_angle(int i, int n) { return 2.0 * std::numbers::pi * (i % n) / n; }
+
+// A cylinder's cap at height y: concentric rings inwards from the side's outer ring `outer`, then a
+// centre vertex; facing down for cap 0, up for cap 1.
+void add_cylinder_cap(TriangleMesh& mesh, std::vector<unsigned> outer, double radius, int rings, double y, int cap) {
+  const int n = int(outer.size());
+  for (int k = rings - 1; k > 0; --k) {
+    std::vector<unsigned> ring(n);
+    for (int i = 0; i < n; ++i) {
+      ring[i] = unsigned(mesh.positions.size());
+      const double rr = radius * k / rings;
+      mesh.positions.emplace_back(rr * std::cos(turn_angle(i, n)), y, -rr * std::sin(turn_angle(i, n)));
+    }
+    for (int i = 0; i < n; ++i) {
+      if (cap == 1)
+        add_quad(mesh, outer[i], outer[(i + 1) % n], ring[(i + 1) % n], ring[i]);
+      else
+        add_quad(mesh, outer[(i + 1) % n], outer[i], ring[i], ring[(i + 1) % n]);
+    }
+    outer = ring;
+  }
+  const unsigned centre = unsigned(mesh.positions.size());
+  mesh.positions.emplace_back(0.0, y, 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (cap == 1)
+      mesh.triangles.push_back({outer[i], outer[(i + 1) % n], centre});
+    else
+      mesh.triangles.push_back({outer[(i + 1) % n], outer[i], centre});
+  }
+}
+
+}  // namespace
+
 TriangleMesh make_cylinder(double radius, double height, int segments) {
   TriangleMesh mesh;
-  int n = std::max(3, segments);
-  double width = 2.0 * std::numbers::pi * radius / n;
-  int rows = std::max(1, int(std::lround(height / width)));
-  int rings = std::max(1, int(std::lround(radius / width)));
-  auto angle = [n](int i) { return 2.0 * std::numbers::pi * (i % n) / n; };
+  const int n = std::max(3, segments);
+  const double width = 2.0 * std::numbers::pi * radius / n;
+  const int rows = std::max(1, int(std::lround(height / width)));
+  const int rings = std::max(1, int(std::lround(radius / width)));
   // Side grid: rows+1 rings of n vertices.
   for (int j = 0; j <= rows; ++j)
     for (int i = 0; i < n; ++i)
-      mesh.positions.emplace_back(radius * std::cos(angle(i)), -height / 2 + height * j / rows,
-                                  -radius * std::sin(angle(i)));
+      mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)), -height / 2 + height * j / rows,
+                                  -radius * std::sin(turn_angle(i, n)));
   auto side = [n](int i, int j) { return unsigned(j * n + (i % n)); };
   for (int j = 0; j < rows; ++j)
     for (int i = 0; i < n; ++i) add_quad(mesh, side(i, j), side(i + 1, j), side(i + 1, j + 1), side(i, j + 1));
-  // Caps: concentric rings sharing the outer ring with the side, then a centre vertex.
+  // Caps share the side's outer rings.
   for (int cap = 0; cap < 2; ++cap) {
-    double y = cap == 0 ? -height / 2 : height / 2;
     std::vector<unsigned> outer(n);
     for (int i = 0; i < n; ++i) outer[i] = side(i, cap == 0 ? 0 : rows);
-    for (int k = rings - 1; k >= 0; --k) {
-      std::vector<unsigned> ring(n);
-      if (k > 0) {
-        for (int i = 0; i < n; ++i) {
-          ring[i] = unsigned(mesh.positions.size());
-          double rr = radius * k / rings;
-          mesh.positions.emplace_back(rr * std::cos(angle(i)), y, -rr * std::sin(angle(i)));
-        }
-        for (int i = 0; i < n; ++i) {
-          if (cap == 1)
-            add_quad(mesh, outer[i], outer[(i + 1) % n], ring[(i + 1) % n], ring[i]);
-          else
-            add_quad(mesh, outer[(i + 1) % n], outer[i], ring[i], ring[(i + 1) % n]);
-        }
-        outer = ring;
-      } else {
-        unsigned centre = unsigned(mesh.positions.size());
-        mesh.positions.emplace_back(0.0, y, 0.0);
-        for (int i = 0; i < n; ++i) {
-          if (cap == 1)
-            mesh.triangles.push_back({outer[i], outer[(i + 1) % n], centre});
-          else
-            mesh.triangles.push_back({outer[(i + 1) % n], outer[i], centre});
-        }
-      }
-    }
+    add_cylinder_cap(mesh, outer, radius, rings, cap == 0 ? -height / 2 : height / 2, cap);
   }
   return mesh;
 }
