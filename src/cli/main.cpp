@@ -12,40 +12,47 @@
 #include "core/error.h"
 #include "core/version.h"
 
+namespace {
+
+void add_commands(CLI::App& app) {
+  using namespace countershade::cli;
+  add_render_command(app);
+  add_mesh_usm_command(app);
+  add_image_usm_command(app);
+  add_analyze_command(app);
+  add_simulate_command(app);
+  add_stimuli_command(app);
+  add_adjust_command(app);
+  add_methods_command(app);
+  add_audit_command(app);
+  add_congruence_command(app);
+  add_image_filter_command(app);
+  add_flicker_command(app);
+  reject_non_finite_numbers(app);
+}
+
+// CLI11 reports a mistyped command as "a subcommand is required"; this names it instead. False
+// when `name` is not a command (the line is printed).
+bool known_command(const CLI::App& app, const char* name) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == name) return true;
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  std::fprintf(stderr, "countershade: error: unknown command '%s' (commands: %s)\n", name, names.c_str());
+  return false;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   countershade::keep_freed_buffers_for_reuse();
   CLI::App app{"countershade: renders contrast-enhanced stimuli, runs adjustment studies and "
                "analyses them."};
   app.set_version_flag("--version", countershade::kVersion);
   app.require_subcommand(1);
-  countershade::cli::add_render_command(app);
-  countershade::cli::add_mesh_usm_command(app);
-  countershade::cli::add_image_usm_command(app);
-  countershade::cli::add_analyze_command(app);
-  countershade::cli::add_simulate_command(app);
-  countershade::cli::add_stimuli_command(app);
-  countershade::cli::add_adjust_command(app);
-  countershade::cli::add_methods_command(app);
-  countershade::cli::add_audit_command(app);
-  countershade::cli::add_congruence_command(app);
-  countershade::cli::add_image_filter_command(app);
-  countershade::cli::add_flicker_command(app);
-  countershade::cli::reject_non_finite_numbers(app);
-
-  // CLI11 reports a mistyped command as "a subcommand is required"; name it instead.
-  if (argc > 1 && argv[1][0] != '-') {
-    bool known = false;
-    std::string names;
-    for (const CLI::App* sub : app.get_subcommands({})) {
-      known |= sub->get_name() == argv[1];
-      names += (names.empty() ? "" : ", ") + sub->get_name();
-    }
-    if (!known) {
-      std::fprintf(stderr, "countershade: error: unknown command '%s' (commands: %s)\n", argv[1], names.c_str());
-      return 2;
-    }
-  }
-
+  add_commands(app);
+  if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
