@@ -406,6 +406,26 @@ std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& stu
   }
 }
 
+// Runs the session's loop with the signal handlers installed; records the frame statistics, or
+// the error that ended it (then rethrown).
+std::string run_loop(const SessionOptions& o, const Study& study, Procedure& procedure, SessionRecorder& recorder,
+                     Presenter& presenter, CheckedInputs inputs) {
+  SignalGuard signals;
+  SessionLoop loop(o, study, procedure, recorder, presenter, std::move(inputs));
+  std::string end;
+  try {
+    end = loop.run();
+  } catch (const std::exception& e) {
+    recorder.run()["end"] = std::string("error: ") + e.what();
+    recorder.run()["ended_utc"] = utc_timestamp();
+    recorder.save();
+    throw;
+  }
+  recorder.run()["frames"] = loop.frame_statistics();
+  recorder.run()["system_key_repeats_ignored"] = presenter.system_repeats_ignored();
+  return end;
+}
+
 }  // namespace
 
 int run_session(const SessionOptions& o) {
@@ -431,22 +451,7 @@ int run_session(const SessionOptions& o) {
   }
   std::unique_ptr<Presenter> presenter = open_window(o, study, recorder);
   recorder.run()["display"] = presenter->display_info();
-
-  std::string end;
-  {
-    SignalGuard signals;
-    SessionLoop loop(o, study, procedure, recorder, *presenter, std::move(inputs));
-    try {
-      end = loop.run();
-    } catch (const std::exception& e) {
-      recorder.run()["end"] = std::string("error: ") + e.what();
-      recorder.run()["ended_utc"] = utc_timestamp();
-      recorder.save();
-      throw;
-    }
-    recorder.run()["frames"] = loop.frame_statistics();
-    recorder.run()["system_key_repeats_ignored"] = presenter->system_repeats_ignored();
-  }
+  const std::string end = run_loop(o, study, procedure, recorder, *presenter, std::move(inputs));
   recorder.run()["end"] = end;
   recorder.run()["ended_utc"] = utc_timestamp();
   recorder.save();
