@@ -44,6 +44,51 @@ std::optional<Key> key_from_name(const std::string& name) {
   return std::nullopt;
 }
 
+namespace {
+
+// A line's delay in milliseconds, between 0 and an hour.
+double parse_delay_ms(const std::string& text, const std::string& where) {
+  double delay_ms = 0;
+  try {
+    size_t used = 0;
+    delay_ms = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw_input_error(where, "'" + text + "' is not a delay in milliseconds");
+  }
+  if (!(delay_ms >= 0) || !(delay_ms <= kMaxScriptDelayMs))
+    throw_input_error(where, "the delay must be between 0 and 3600000 milliseconds (an hour; a longer pause is a typo)");
+  return delay_ms;
+}
+
+// The events of one action at time_s: a screenshot or close, a held key, or a tapped key.
+void add_action(const std::string& action, std::istringstream& words, double time_s, const std::string& where,
+                std::vector<InputEvent>& events) {
+  if (action == "screenshot" || action == "close") {
+    events.push_back({time_s, action == "close" ? InputEvent::Kind::close : InputEvent::Kind::screenshot, Key::enter});
+    return;
+  }
+  if (action == "hold") {
+    std::string key_text;
+    double hold_ms = -1;
+    if (!(words >> key_text >> hold_ms) || !(hold_ms >= 0)) throw_input_error(where, "expected 'hold KEY MILLISECONDS'");
+    if (!(hold_ms <= kMaxScriptDelayMs)) throw_input_error(where, "a key is held for at most 3600000 milliseconds (an hour)");
+    const auto key = key_from_name(key_text);
+    if (!key) throw_input_error(where, "unknown key '" + key_text + "'");
+    events.push_back({time_s, InputEvent::Kind::press, *key});
+    events.push_back({time_s + hold_ms / 1000, InputEvent::Kind::release, *key});
+    return;
+  }
+  const auto key = key_from_name(action);
+  if (!key)
+    throw_input_error(where, "unknown action '" + action +
+                                 "' (expected up, down, left, right, enter, backspace, escape, q, hold, screenshot or close)");
+  events.push_back({time_s, InputEvent::Kind::press, *key});
+  events.push_back({time_s + kTapSeconds, InputEvent::Kind::release, *key});
+}
+
+}  // namespace
+
 std::vector<InputEvent> parse_key_script_text(const std::string& text, const std::string& file) {
   std::vector<InputEvent> events;
   std::istringstream lines(text);
@@ -55,38 +100,10 @@ std::vector<InputEvent> parse_key_script_text(const std::string& text, const std
     std::string delay_text, action;
     if (!(words >> delay_text)) continue;
     const std::string where = file + ": line " + std::to_string(number);
-    double delay_ms = 0;
-    try {
-      size_t used = 0;
-      delay_ms = std::stod(delay_text, &used);
-      if (used != delay_text.size()) throw std::invalid_argument("");
-    } catch (const std::exception&) {
-      throw_input_error(where, "'" + delay_text + "' is not a delay in milliseconds");
-    }
-    if (!(delay_ms >= 0) || !(delay_ms <= kMaxScriptDelayMs))
-      throw_input_error(where, "the delay must be between 0 and 3600000 milliseconds (an hour; a longer pause is a typo)");
+    const double delay_ms = parse_delay_ms(delay_text, where);
     if (!(words >> action)) throw_input_error(where, "missing action after the delay");
     time_s += delay_ms / 1000;
-    if (action == "screenshot" || action == "close") {
-      events.push_back({time_s, action == "close" ? InputEvent::Kind::close : InputEvent::Kind::screenshot, Key::enter});
-    } else if (action == "hold") {
-      std::string key_text;
-      double hold_ms = -1;
-      if (!(words >> key_text >> hold_ms) || !(hold_ms >= 0))
-        throw_input_error(where, "expected 'hold KEY MILLISECONDS'");
-      if (!(hold_ms <= kMaxScriptDelayMs)) throw_input_error(where, "a key is held for at most 3600000 milliseconds (an hour)");
-      auto key = key_from_name(key_text);
-      if (!key) throw_input_error(where, "unknown key '" + key_text + "'");
-      events.push_back({time_s, InputEvent::Kind::press, *key});
-      events.push_back({time_s + hold_ms / 1000, InputEvent::Kind::release, *key});
-    } else {
-      auto key = key_from_name(action);
-      if (!key)
-        throw_input_error(where, "unknown action '" + action +
-                                     "' (expected up, down, left, right, enter, backspace, escape, q, hold, screenshot or close)");
-      events.push_back({time_s, InputEvent::Kind::press, *key});
-      events.push_back({time_s + kTapSeconds, InputEvent::Kind::release, *key});
-    }
+    add_action(action, words, time_s, where, events);
     std::string extra;
     if (words >> extra) throw_input_error(where, "unexpected '" + extra + "' at the end of the line");
   }
