@@ -4,8 +4,42 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <tuple>
 
 namespace countershade::analysis {
+
+namespace {
+
+// The closest pair of active clusters (the first in row order on ties), and its distance².
+std::tuple<int, int, double> closest_pair(const Eigen::MatrixXd& d2, const std::vector<bool>& active) {
+  const int n = int(d2.rows());
+  int bi = -1, bj = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    if (!active[i]) continue;
+    for (int j = i + 1; j < n; ++j)
+      if (active[j] && d2(i, j) < best) best = d2(i, j), bi = i, bj = j;
+  }
+  return {bi, bj, best};
+}
+
+// Leaf order: depth-first through the merges, left before right.
+std::vector<int> leaf_order(const Dendrogram& tree, int n) {
+  if (n == 1) return {0};
+  std::vector<int> order;
+  std::function<void(int)> visit = [&](int node) {
+    if (node < 0) {
+      order.push_back(-node - 1);
+      return;
+    }
+    visit(tree.merges[size_t(node)].first);
+    visit(tree.merges[size_t(node)].second);
+  };
+  visit(n - 2);
+  return order;
+}
+
+}  // namespace
 
 Dendrogram ward_d2(const Eigen::MatrixXd& points) {
   const int n = int(points.rows());
@@ -17,40 +51,20 @@ Dendrogram ward_d2(const Eigen::MatrixXd& points) {
   for (int i = 0; i < n; ++i) id[i] = -(i + 1);
   std::vector<bool> active(n, true);
   Dendrogram tree;
-  std::vector<std::vector<int>> members(n);
-  for (int i = 0; i < n; ++i) members[i] = {i};
   for (int step = 0; step + 1 < n; ++step) {
-    int bi = -1, bj = -1;
-    double best = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < n; ++i) {
-      if (!active[i]) continue;
-      for (int j = i + 1; j < n; ++j)
-        if (active[j] && d2(i, j) < best) best = d2(i, j), bi = i, bj = j;
-    }
+    const auto [bi, bj, best] = closest_pair(d2, active);
     for (int k = 0; k < n; ++k) {
       if (!active[k] || k == bi || k == bj) continue;
-      double ni = size[bi], nj = size[bj], nk = size[k];
-      double v = ((ni + nk) * d2(bi, k) + (nj + nk) * d2(bj, k) - nk * d2(bi, bj)) / (ni + nj + nk);
-      d2(bi, k) = d2(k, bi) = v;
+      const double ni = size[bi], nj = size[bj], nk = size[k];
+      d2(bi, k) = d2(k, bi) = ((ni + nk) * d2(bi, k) + (nj + nk) * d2(bj, k) - nk * d2(bi, bj)) / (ni + nj + nk);
     }
     tree.merges.emplace_back(id[bi], id[bj]);
     tree.heights.push_back(std::sqrt(best));
     size[bi] += size[bj];
     active[bj] = false;
     id[bi] = step;
-    members[bi].insert(members[bi].end(), members[bj].begin(), members[bj].end());
   }
-  // Leaf order: depth-first through the merges, left before right.
-  std::function<void(int)> visit = [&](int node) {
-    if (node < 0) {
-      tree.order.push_back(-node - 1);
-      return;
-    }
-    visit(tree.merges[size_t(node)].first);
-    visit(tree.merges[size_t(node)].second);
-  };
-  if (n == 1) tree.order = {0};
-  else visit(n - 2);
+  tree.order = leaf_order(tree, n);
   return tree;
 }
 
