@@ -31,7 +31,7 @@ struct MeshUsmArgs {
   bool no_adapt = false;
 };
 
-void run(const MeshUsmArgs& args) {
+void check_arguments(const MeshUsmArgs& args) {
   if (!std::isfinite(args.lambda)) throw InputError("--lambda: must be a finite number");
   if (args.sigma.has_value() == args.iterations.has_value())
     throw InputError("mesh-usm: give exactly one of --sigma or --iterations");
@@ -39,9 +39,31 @@ void run(const MeshUsmArgs& args) {
     throw InputError("--sigma: must be a positive, finite world-space length");
   if (args.iterations && (*args.iterations < 1 || *args.iterations > kMaxSmoothingIterations))
     throw InputError("--iterations: must be between 1 and 1000000 (a million 1-ring steps take minutes already)");
-  const fs::path output(args.output);
-  check_output_file(output, {".ply"}, "a .ply file (it carries vertex colours)");
+  check_output_file(fs::path(args.output), {".ply"}, "a .ply file (it carries vertex colours)");
+}
 
+// Applies Δ = λ·gain·(L − smoothed L) to each vertex's lightness (hue and saturation kept);
+// vertices with Δ = 0 keep their stored colour exactly. Returns the number of clipped vertices.
+size_t apply_contrast(std::vector<glm::dvec3>& colors, const std::vector<Lab>& lab, const SurfaceContrast& sc,
+                      double lambda) {
+  size_t clipped = 0;
+  for (size_t v = 0; v < colors.size(); ++v) {
+    const double delta = lambda * sc.gain_factor[v] * (sc.lightness[v] - sc.smooth_lightness[v]);
+    if (delta == 0.0) continue;
+    const double target = lab[v].L + delta;
+    const glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(lab[v], target));
+    bool clip = target < 0 || target > 100;
+    for (int c = 0; c < 3; ++c) {
+      clip |= rgb[c] < -1e-9 || rgb[c] > 1 + 1e-9;
+      colors[v][c] = srgb_encode(std::clamp(rgb[c], 0.0, 1.0));
+    }
+    clipped += clip;
+  }
+  return clipped;
+}
+
+void run(const MeshUsmArgs& args) {
+  check_arguments(args);
   ColoredMeshFile mesh = ColoredMeshFile::read(args.input);
   std::vector<glm::dvec3> colors = mesh.colors();
   std::vector<Lab> lab(colors.size());
@@ -53,26 +75,12 @@ void run(const MeshUsmArgs& args) {
   const SmoothingWidth width{args.sigma, args.iterations, !args.no_adapt};
   // The 1-ring of the triangulated mesh, as rendering sees it, with vertices welded at seams.
   const std::vector<glm::vec3> positions = mesh.positions();
-  SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), positions,
-                                        lightness, {}, width);
-
-  size_t clipped = 0;
-  for (size_t v = 0; v < colors.size(); ++v) {
-    double delta = args.lambda * sc.gain_factor[v] * (sc.lightness[v] - sc.smooth_lightness[v]);
-    if (delta == 0.0) continue;  // keep the stored colour exactly
-    double target = lab[v].L + delta;
-    glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(lab[v], target));
-    bool clip = target < 0 || target > 100;
-    for (int c = 0; c < 3; ++c) {
-      clip |= rgb[c] < -1e-9 || rgb[c] > 1 + 1e-9;
-      colors[v][c] = srgb_encode(std::clamp(rgb[c], 0.0, 1.0));
-    }
-    clipped += clip;
-  }
+  const SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), positions,
+                                              lightness, {}, width);
+  const size_t clipped = apply_contrast(colors, lab, sc, args.lambda);
   mesh.set_colors(colors);
-  mesh.write(output);
-
-  int most = *std::max_element(sc.iterations.begin(), sc.iterations.end());
+  mesh.write(fs::path(args.output));
+  const int most = *std::max_element(sc.iterations.begin(), sc.iterations.end());
   std::fprintf(stderr, "mesh-usm: wrote %s (%zu vertices, %u components, up to %d iterations, %zu clipped vertices)\n",
                args.output.c_str(), colors.size(), sc.components.count, most, clipped);
 }
