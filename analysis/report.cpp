@@ -86,10 +86,9 @@ std::string html_table(const json& rows, const std::vector<std::string>& keys) {
   return out.str();
 }
 
-std::string report_html(const BlockResults& b, const std::string& fig12, const std::string& fig13,
-                        const std::string& fits, const std::string& dendrogram) {
+// The page head, title line and any warnings.
+void report_head(std::ostringstream& h, const BlockResults& b) {
   const json& r = b.json;
-  std::ostringstream h;
   h << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>countershade analysis"
     << (b.method.empty() ? "" : " — " + xml_escape(b.method)) << "</title><style>"
     << "body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}table{border-collapse:collapse;"
@@ -103,13 +102,15 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
     for (const auto& w : b.warnings) h << "<li class=\"warn\">" << xml_escape(w) << "</li>";
     h << "</ul>\n";
   }
-  h << "<h2>Chosen λ per scene</h2>\n" << fig12 << "\n" << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
-  h << "<h2>Repeated-measures ANOVA: question × scene × σ (JND)</h2>\n<ul>";
-  for (const auto& row : r["anova"]) h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row)) << "</li>";
-  h << "</ul>\n" << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
-  h << "<h2>Does σ change λ_Best? scene × σ on λ_Best (JND)</h2>\n" << fig13 << "\n<ul>";
-  for (const auto& row : r["anova_best_sigma"]) h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row)) << "</li>";
-  h << "</ul>\n";
+}
+
+// The ANOVA statements as a list (closed by the caller).
+void anova_list(std::ostringstream& h, const json& rows) {
+  for (const auto& row : rows) h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row)) << "</li>";
+}
+
+// The t-tests: pairwise between questions, then λ_Best against 1 JND per scene.
+void t_test_sections(std::ostringstream& h, const json& r) {
   h << "<h2>Pairwise comparisons (paired t-tests, Holm-corrected)</h2>\n<ul>";
   for (const auto& row : r["pairwise"])
     h << "<li>λ_" << xml_escape(row["a"]) << " − λ_" << xml_escape(row["b"]) << " = " << fixed(row["mean_diff"], 2)
@@ -118,6 +119,21 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
   for (const auto& row : r["best_vs_threshold"])
     h << "<li>" << xml_escape(row["scene"]) << ": λ_Best = " << fixed(row["mean"], 2) << " JND, t(" << df_text(row["df"])
       << ") = " << fixed(row["t"], 2) << ", " << xml_escape(apa_p(row["p_holm"])) << "</li>";
+}
+
+std::string report_html(const BlockResults& b, const std::string& fig12, const std::string& fig13,
+                        const std::string& fits, const std::string& dendrogram) {
+  const json& r = b.json;
+  std::ostringstream h;
+  report_head(h, b);
+  h << "<h2>Chosen λ per scene</h2>\n" << fig12 << "\n" << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
+  h << "<h2>Repeated-measures ANOVA: question × scene × σ (JND)</h2>\n<ul>";
+  anova_list(h, r["anova"]);
+  h << "</ul>\n" << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
+  h << "<h2>Does σ change λ_Best? scene × σ on λ_Best (JND)</h2>\n" << fig13 << "\n<ul>";
+  anova_list(h, r["anova_best_sigma"]);
+  h << "</ul>\n";
+  t_test_sections(h, r);
   h << "</ul>\n<h2>Preference clusters (Ward)</h2>\n" << dendrogram << "\n<ul>";
   const json& c = r["clusters"];
   for (size_t k = 0; k < c["sizes"].size(); ++k)
