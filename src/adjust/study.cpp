@@ -41,12 +41,37 @@ nlohmann::ordered_json StudyConfig::to_json() const {
   return j;
 }
 
+namespace {
+
+// The texts a study may override; the rest keep their defaults.
+void read_instructions(const JsonObject& t, Instructions& x) {
+  x.welcome = t.string_or("welcome", x.welcome);
+  x.resume = t.string_or("resume", x.resume);
+  x.practice = t.string_or("practice", x.practice);
+  x.practice_done = t.string_or("practice_done", x.practice_done);
+  x.questions[0] = t.string_or("low", x.questions[0]);
+  x.questions[1] = t.string_or("high", x.questions[1]);
+  x.questions[2] = t.string_or("best", x.questions[2]);
+  x.keys_hint = t.string_or("keys", x.keys_hint);
+  x.paused = t.string_or("paused", x.paused);
+  x.finished = t.string_or("finished", x.finished);
+  t.finish();
+}
+
+void read_repeat(const JsonObject& r, RepeatTiming& timing) {
+  timing.repeat_delay_s = r.number_in("delay_ms", 400, 50, 5000) / 1000;
+  timing.repeat_interval_s = r.number_in("interval_ms", 100, 16, 2000) / 1000;
+  r.finish();
+}
+
+}  // namespace
+
 StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file, const std::string& path) {
   StudyConfig c;
   JsonObject o(value, file, path);
   if (o.has("seed")) c.seed = uint64_t(o.integer_in("seed", 1, 0, 1ll << 53));
   c.plan.repetitions = int(o.integer_in("repetitions", 1, 1, 100));
-  std::string side = o.choice("side", "counterbalanced", {"counterbalanced", "left", "right"});
+  const std::string side = o.choice("side", "counterbalanced", {"counterbalanced", "left", "right"});
   c.plan.side = side == "left" ? Side::left : side == "right" ? Side::right : Side::counterbalanced;
   c.plan.start = o.choice("start", "random", {"random", "zero"}) == "zero" ? StartMode::zero : StartMode::random;
   c.plan.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
@@ -56,30 +81,11 @@ StudyConfig parse_study_config(const nlohmann::json& value, const std::string& f
       s.finish();
       c.conditions.push_back(sel);
     }
-  if (o.has("repeat")) {
-    JsonObject r = o.object("repeat");
-    c.timing.repeat_delay_s = r.number_in("delay_ms", 400, 50, 5000) / 1000;
-    c.timing.repeat_interval_s = r.number_in("interval_ms", 100, 16, 2000) / 1000;
-    r.finish();
-  }
+  if (o.has("repeat")) read_repeat(o.object("repeat"), c.timing);
   c.surround = int(o.integer_in("surround", 128, 0, 255));
   c.gap_px = int(o.integer_in("gap_px", 48, 0, 4096));
   c.font_px = o.number_in("font_px", 22, 8, 96);
-  if (o.has("instructions")) {
-    JsonObject t = o.object("instructions");
-    auto& x = c.text;
-    x.welcome = t.string_or("welcome", x.welcome);
-    x.resume = t.string_or("resume", x.resume);
-    x.practice = t.string_or("practice", x.practice);
-    x.practice_done = t.string_or("practice_done", x.practice_done);
-    x.questions[0] = t.string_or("low", x.questions[0]);
-    x.questions[1] = t.string_or("high", x.questions[1]);
-    x.questions[2] = t.string_or("best", x.questions[2]);
-    x.keys_hint = t.string_or("keys", x.keys_hint);
-    x.paused = t.string_or("paused", x.paused);
-    x.finished = t.string_or("finished", x.finished);
-    t.finish();
-  }
+  if (o.has("instructions")) read_instructions(o.object("instructions"), c.text);
   o.finish();
   return c;
 }
