@@ -67,12 +67,14 @@ void Presenter::required_size(const DisplayOptions& o, int* width, int* height) 
 }
 
 Presenter::Presenter(const DisplayOptions& options) : options_(options) {
-  create_window(open_monitor());
+  int need_w = 0, need_h = 0;
+  required_size(options, &need_w, &need_h);
+  create_window(open_monitor(need_w, need_h), need_w, need_h);
   start_imgui();
   text_rgb_ = options.surround >= 128 ? 0.08f : 0.92f;
 }
 
-GLFWmonitor* Presenter::open_monitor() {
+GLFWmonitor* Presenter::open_monitor(int need_w, int need_h) {
   glfwSetErrorCallback(record_glfw_error);
   if (!glfwInit())
     throw std::runtime_error("cannot open a window: " + glfw_error +
@@ -94,8 +96,6 @@ GLFWmonitor* Presenter::open_monitor() {
   screen_w_ = mode->width;
   screen_h_ = mode->height;
   if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
-  int need_w = 0, need_h = 0;
-  required_size(o, &need_w, &need_h);
   if (need_w > screen_w_ || need_h > screen_h_) {
     glfwTerminate();
     throw_input_error("display", "two " + std::to_string(o.stimulus_width) + "x" + std::to_string(o.stimulus_height) +
@@ -107,7 +107,7 @@ GLFWmonitor* Presenter::open_monitor() {
   return monitor;
 }
 
-void Presenter::create_window(GLFWmonitor* monitor) {
+void Presenter::create_window(GLFWmonitor* monitor, int need_w, int need_h) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -116,8 +116,6 @@ void Presenter::create_window(GLFWmonitor* monitor) {
   glfwWindowHint(GLFW_SAMPLES, 0);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_FALSE);
-  int need_w = 0, need_h = 0;
-  required_size(options_, &need_w, &need_h);
   int win_w = std::max(need_w, std::min(1280, screen_w_)), win_h = std::max(need_h, std::min(800, screen_h_));
   if (options_.fullscreen) {
     glfwWindowHint(GLFW_REFRESH_RATE, glfwGetVideoMode(monitor)->refreshRate);

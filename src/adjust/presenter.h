@@ -99,10 +99,10 @@ class Presenter {
   long repeats_ignored_ = 0;
   float text_rgb_ = 0;
 
-  // The constructor's steps: GLFW and the monitor (its size checked against the stimuli), the
-  // window with its OpenGL context, Dear ImGui.
-  GLFWmonitor* open_monitor();
-  void create_window(GLFWmonitor* monitor);
+  // The constructor's steps: GLFW and the monitor (its size checked against the need_w × need_h
+  // pixels the stimuli need), the window with its OpenGL context, Dear ImGui.
+  GLFWmonitor* open_monitor(int need_w, int need_h);
+  void create_window(GLFWmonitor* monitor, int need_w, int need_h);
   void start_imgui();
 
   static void key_callback(GLFWwindow* w, int key, int scancode, int action, int mods);

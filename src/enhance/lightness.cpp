@@ -90,8 +90,8 @@ struct Rgb4 {
 // per lane and channel. Written with small arrays for the clamped values and their buckets: about
 // 4 % faster than reading the lanes of the vectors directly (A/B, docs/performance.md), although
 // GCC keeps both in registers.
-[[gnu::always_inline]] inline void quantize_rgb4(const Rgb4& rgb, const CodeQuantizer::Table& table, float levels,
-                                                 float* out) {
+[[gnu::always_inline]] inline void quantize_rgb4(const Rgb4& rgb, const CodeQuantizer::Table& table,
+                                                 double inverse_levels, float* out) {
   alignas(32) double x[3][4];
   alignas(32) int64_t bucket[3][4];
   const v4d channels[3] = {rgb.r, rgb.g, rgb.b};
@@ -107,17 +107,16 @@ struct Rgb4 {
       const CodeQuantizer::Bucket& b = table.bucket[bucket[ch][lane]];
       codes[3 * lane + ch] = b.below + uint32_t(x[ch][lane] >= b.threshold);
     }
-  const double inverse = 1.0 / double(levels);
-  for (int i = 0; i < 12; ++i) out[i] = code_fraction(codes[i], inverse);
+  for (int i = 0; i < 12; ++i) out[i] = code_fraction(codes[i], inverse_levels);
 }
 
 // One block of pixels, four at a time: the lightness-only change and the code values. Pixels
 // with Δ = 0 keep the view's code values. Returns the number of clipped pixels. The same code is
 // compiled for AVX2 and for any x86-64 (chosen at run time); with no fused multiply-adds both
 // give the same bits. (AVX2 and AVX-512 gathers were tried for the table lookups: slower here.)
-template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, float, float*)>
+template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, double, float*)>
 [[gnu::always_inline]] inline size_t compose_block(const Lab* lab, const float* in, const double* delta, size_t count,
-                                                   const CodeQuantizer::Table& table, float levels, float* out) {
+                                                   const CodeQuantizer::Table& table, double inverse_levels, float* out) {
   size_t clipped = 0;
   for (size_t k = 0; k + 4 <= count; k += 4) {
     float* o = out + 3 * k;
@@ -135,7 +134,7 @@ template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, float, floa
     const v4d a = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 1, 4, 7, 7), v2, 0, 1, 2, 6);
     const v4d b = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 2, 5, 5, 5), v2, 0, 1, 4, 7);
     const Rgb4 rgb = lightness_to_rgb4(L, a, b, L + d);
-    Quantize(rgb, table, levels, o);
+    Quantize(rgb, table, inverse_levels, o);
     for (int lane = 0; lane < 4; ++lane) {
       if (d[lane] == 0.0) std::copy(in + 3 * (k + lane), in + 3 * (k + lane) + 3, o + 3 * lane);
       else clipped += rgb.clipped[lane] != 0;
@@ -146,8 +145,8 @@ template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, float, floa
 
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 size_t compose_block_fast(const Lab* lab, const float* in, const double* delta, size_t count,
-                          const CodeQuantizer::Table& table, float levels, float* out) {
-  return compose_block<quantize_rgb4>(lab, in, delta, count, table, levels, out);
+                          const CodeQuantizer::Table& table, double inverse_levels, float* out) {
+  return compose_block<quantize_rgb4>(lab, in, delta, count, table, inverse_levels, out);
 }
 
 // The same for quantizers without a table (16-bit output): one exact lookup per channel.
@@ -247,8 +246,7 @@ class LinearDecoder {
     int32_t code[3 * kBlock];
     const bool exact = !table_.empty() && count <= kBlock && exact_codes(rgb, 3 * count, levels_, code);
     for (size_t k = 0; k < count; ++k)
-      for (int c = 0; c < 3; ++c)
-        planes[c][k] = exact ? table_[size_t(code[3 * k + c])] : (*this)(rgb[3 * k + c]);
+      for (int c = 0; c < 3; ++c) planes[c][k] = exact ? table_[size_t(code[3 * k + c])] : (*this)(rgb[3 * k + c]);
   }
 
  private:
@@ -282,7 +280,7 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
   const CodeQuantizer& quantizer = CodeQuantizer::shared(view.encoding, view.bits);
   const std::optional<CodeQuantizer::Table> table =
       quantizer.uses_table() ? std::optional(quantizer.table()) : std::nullopt;
-  const float levels = float((1u << view.bits) - 1u);
+  const double inverse_levels = 1.0 / double(float((1u << view.bits) - 1u));  // see code_fraction
   Composed out;
   out.display = Image(view.width(), view.height(), 3, Image::Uninitialized{});  // every pixel is written below
   std::atomic<size_t> clipped{0};
@@ -299,7 +297,7 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
           // Four pixels at a time through the table; the rest (and tableless quantizers) one by one.
           const size_t fast = table ? count / 4 * 4 : 0;
           if (fast)
-            local += compose_block_fast(view.lab.data() + first, in + 3 * first, delta, fast, *table, levels,
+            local += compose_block_fast(view.lab.data() + first, in + 3 * first, delta, fast, *table, inverse_levels,
                                         result + 3 * first);
           local += compose_block_slow(view.lab.data() + first + fast, in + 3 * (first + fast), delta + fast, count - fast,
                                       quantizer, result + 3 * (first + fast));
