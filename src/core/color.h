@@ -62,26 +62,30 @@ inline constexpr double k1_116 = 1.0 / 116.0, k1_500 = 1.0 / 500.0, k1_200 = 1.0
 inline double lab_f_inverse(double t) { return t > 0.2068966 ? t * t * t : (t - 16.0 / 116.0) * k1_7787; }
 
 // The cube root for t in [2^-300, 2^300], within a few ulp, from +, −, ×, ÷ and the exponent bits
-// only, so that a vectorised loop can compute exactly the same values (see display_to_lab):
-// t = m·2^e with m in [1,2); e = 3q + r; cbrt(t) = cbrt(m·2^r)·2^q.
-inline double cube_root(double t) {
-  const uint64_t bits = std::bit_cast<uint64_t>(t);
-  const int64_t e = std::clamp(int64_t(bits >> 52) - 1023, int64_t(-300), int64_t(300));
-  const double m = std::bit_cast<double>((bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull);
-  const int64_t q = (((e + 300) * 21846) >> 16) - 100;  // floor(e / 3) for |e| ≤ 300
-  const int64_t r = e - 3 * q;
+// only: t = m·2^e with m in [1,2); e = 3q + r; cbrt(t) = cbrt(m·2^r)·2^q. Written once for scalars
+// (D = double, I = int64_t) and for GCC vectors of doubles with their int64 lanes, so that the
+// vectorised conversion (display_to_lab) computes exactly the scalar values.
+template <typename D, typename I>
+[[gnu::always_inline]] inline D cube_root_lanes(D t) {
+  const I bits = __builtin_bit_cast(I, t);
+  I e = (bits >> 52) - 1023;
+  e = e < -300 ? -300 : (e > 300 ? 300 : e);
+  const D m = __builtin_bit_cast(D, (bits & 0x000FFFFFFFFFFFFFll) | 0x3FF0000000000000ll);
+  const I q = (((e + 300) * 21846) >> 16) - 100;  // floor(e / 3) for |e| ≤ 300
+  const I r = e - 3 * q;
   // cbrt on [1, 2) to 2e-7 (a least-squares polynomial), times cbrt(2^r); one Halley step then
   // brings it to within a few ulp.
-  double y = 0.4476214805743782 +
-             m * (0.9480536967987485 +
-                  m * (-0.6625905808117523 +
-                       m * (0.3820491194094191 + m * (-0.14276857566904744 + m * (0.03044327453163275 + m * -0.0028082221513328876)))));
-  const double x = m * (r == 0 ? 1.0 : (r == 1 ? 2.0 : 4.0));
+  D y = 0.4476214805743782 +
+        m * (0.9480536967987485 +
+             m * (-0.6625905808117523 +
+                  m * (0.3820491194094191 + m * (-0.14276857566904744 + m * (0.03044327453163275 + m * -0.0028082221513328876)))));
+  const D x = m * (r == 0 ? 1.0 : (r == 1 ? 2.0 : 4.0));
   y *= r == 0 ? 1.0 : (r == 1 ? 1.2599210498948732 : 1.5874010519681994);
-  const double y3 = y * y * y;
+  const D y3 = y * y * y;
   y = y * (y3 + 2.0 * x) / (2.0 * y3 + x);
-  return y * std::bit_cast<double>(uint64_t(q + 1023) << 52);
+  return y * __builtin_bit_cast(D, (q + 1023) << 52);
 }
+inline double cube_root(double t) { return cube_root_lanes<double, int64_t>(t); }
 
 }  // namespace color_constants
 

@@ -28,6 +28,7 @@ struct DefaultInitAllocator : std::allocator<T> {
 };
 
 using PixelVector = std::vector<float, DefaultInitAllocator<float>>;
+using PixelDoubles = std::vector<double, DefaultInitAllocator<double>>;
 
 // Memory for a buffer of `bytes`, in huge pages where it is large; release with release_large,
 // which keeps a few large buffers for reuse by the next allocation of the same size.

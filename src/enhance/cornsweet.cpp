@@ -29,8 +29,8 @@ struct CornsweetParameters final : MethodParameters {
 };
 
 // Signed exp(−|d|/w) per pixel, the edge between the two middle columns.
-std::vector<double> image_profile(int w, int h, double width) {
-  std::vector<double> profile(size_t(w) * h);
+PixelDoubles image_profile(int w, int h, double width) {
+  PixelDoubles profile(size_t(w) * h);
   const double centre = 0.5 * w;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -74,9 +74,9 @@ class SurfaceProfileStage final : public SurfaceStage {
 // all samples (background 0), a ΔL* of λ·A on the surface changes the pixel's L* by
 // λ·A·p̄·(dY/dL* at the surface's L*) / (dY/dL* at the pixel's L*), and dY/dL* ∝ (L* + 16)².
 // A pixel wholly on the surface gets λ·A·p̄; background pixels get nothing.
-std::vector<double> surface_profile(const View& view, const std::vector<float>& profile) {
+PixelDoubles surface_profile(const View& view, const std::vector<float>& profile) {
   const RenderResult& r = view.render;
-  std::vector<double> amount(profile.size(), 0.0);
+  PixelDoubles amount(profile.size(), 0.0);
   for (size_t i = 0; i < amount.size(); ++i) {
     if (!(r.coverage[i] > 0)) continue;
     const double surface = cielab_lightness(double(r.surface_luminance[i]) / double(r.coverage[i])) + 16.0;

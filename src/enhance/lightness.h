@@ -33,7 +33,7 @@ struct LightnessChange {
   };
   Kind kind = Kind::scaled;
   double factor = 1.0;         // scaled: a constant factor (e.g. ΔL* per unit of λ)
-  std::vector<double> amount;  // per pixel
+  PixelDoubles amount;  // per pixel (not zero-filled on resize: every method writes it)
   std::vector<double> gain;    // scaled: an optional per-pixel gain (empty: 1)
   std::vector<float> weight;   // blended: per pixel
 

@@ -226,7 +226,8 @@ class Usm3dChange final : public ChangePerLambda {
 };
 
 struct CoverageContrast {
-  std::vector<double> contrast, gain;
+  PixelDoubles contrast;
+  std::vector<double> gain;
   std::vector<float> smooth_noise;  // per unit λ: |g|·coverage·(the smoothed signal's L* error)
 };
 

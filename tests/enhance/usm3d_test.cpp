@@ -159,8 +159,8 @@ TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
   Rendered b = render_test_view(dir_b, wall_scene(-0.4), {with_sigma(sigma)});
   auto prepared_a = prepare_method("usm3d", a.view, with_sigma(sigma));
   auto prepared_b = prepare_method("usm3d", b.view, with_sigma(sigma));
-  const std::vector<double>& contrast_a = change_of(*prepared_a).amount;
-  const std::vector<double>& contrast_b = change_of(*prepared_b).amount;
+  const PixelDoubles& contrast_a = change_of(*prepared_a).amount;
+  const PixelDoubles& contrast_b = change_of(*prepared_b).amount;
   Composed ea = prepared_a->compose(lambda);
   Composed eb = prepared_b->compose(lambda);
   const GBuffer& ga = a.view->render.gbuffer;
