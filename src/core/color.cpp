@@ -8,7 +8,7 @@ namespace {
 
 using color_constants::kWhite;
 
-double lab_f(double t) { return t > 0.008856 ? color_constants::cube_root(t) : 7.787 * t + 16.0 / 116.0; }
+double lab_f(double t) { return color_constants::lab_f_lanes<double, int64_t>(t); }
 
 }  // namespace
 

@@ -87,6 +87,12 @@ template <typename D, typename I>
 }
 inline double cube_root(double t) { return cube_root_lanes<double, int64_t>(t); }
 
+// CIELAB's f(t): the cube root above 0.008856, the linear segment below; for scalars and lanes alike.
+template <typename D, typename I>
+[[gnu::always_inline]] inline D lab_f_lanes(D t) {
+  return t > 0.008856 ? cube_root_lanes<D, I>(t) : 7.787 * t + 16.0 / 116.0;
+}
+
 }  // namespace color_constants
 
 // The conversions towards linear RGB are inline: the lightness composition runs them for

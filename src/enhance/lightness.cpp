@@ -170,22 +170,16 @@ size_t compose_block_slow(const Lab* lab, const float* in, const double* delta, 
   return clipped;
 }
 
-// linear_rgb_to_lab on eight pixels at once: lane by lane the operations of the scalar code in
-// core/color.
 using v8d = double __attribute__((vector_size(64)));
 using v8l = int64_t __attribute__((vector_size(64)));
 
-template <typename D, typename I>
-[[gnu::always_inline]] inline D lab_f_lanes(D t) {
-  return t > 0.008856 ? color_constants::cube_root_lanes<D, I>(t) : 7.787 * t + 16.0 / 116.0;
-}
-
-// Eight lanes: on AVX-512 one register each, elsewhere the compiler splits them (same bits).
+// linear_rgb_to_lab on eight pixels at once, lane by lane the operations of the scalar code in
+// core/color: one AVX-512 register per vector where there is one, split by the compiler elsewhere.
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out) {
   using namespace color_constants;
-  constexpr int N = 8;
   using D = v8d;
+  constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
     D R, G, B;
     std::memcpy(&R, r + k, sizeof R);
@@ -195,7 +189,7 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
     const D Y = kRgbToXyz[1][0] * R + kRgbToXyz[1][1] * G + kRgbToXyz[1][2] * B;
     const D Z = kRgbToXyz[2][0] * R + kRgbToXyz[2][1] * G + kRgbToXyz[2][2] * B;
     const D fx = lab_f_lanes<D, v8l>(X * kInverseWhite[0]), fy = lab_f_lanes<D, v8l>(Y * kInverseWhite[1]),
-                 fz = lab_f_lanes<D, v8l>(Z * kInverseWhite[2]);
+            fz = lab_f_lanes<D, v8l>(Z * kInverseWhite[2]);
     const D L = 116.0 * fy - 16.0, a = 500.0 * (fx - fy), bb = 200.0 * (fy - fz);
     for (int lane = 0; lane < N; ++lane) out[k + lane] = {L[lane], a[lane], bb[lane]};
   }

@@ -33,7 +33,7 @@ struct LightnessChange {
   };
   Kind kind = Kind::scaled;
   double factor = 1.0;         // scaled: a constant factor (e.g. ΔL* per unit of λ)
-  PixelDoubles amount;  // per pixel (not zero-filled on resize: every method writes it)
+  PixelDoubles amount;         // per pixel; not zero-filled on resize, since every method writes it all
   std::vector<double> gain;    // scaled: an optional per-pixel gain (empty: 1)
   std::vector<float> weight;   // blended: per pixel
 
