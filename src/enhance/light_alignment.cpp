@@ -21,13 +21,17 @@ glm::dvec3 rotate(const glm::dvec3& v, const glm::dvec3& k, double theta) {
 
 }  // namespace
 
-double alignment_weight(double x, double gamma) {
+AlignmentWeight::AlignmentWeight(double gamma) : damping_(std::exp(-gamma)) {}
+
+double AlignmentWeight::operator()(double x) const {
   x = std::clamp(x, 0.0, 1.0);
-  return x / (std::exp(-gamma) * (1 - x) + x);
+  return x / (damping_ * (1 - x) + x);
 }
 
+double alignment_weight(double x, double gamma) { return AlignmentWeight(gamma)(x); }
+
 glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, const glm::dvec3& coarse, double strength,
-                           double gamma) {
+                           const AlignmentWeight& weight) {
   if (strength <= 0) return light;
   // Frame: z the coarser vector, x the finer one's part across it (its length is λ2).
   const glm::dvec3 z = coarse;
@@ -48,7 +52,7 @@ glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, cons
   const double across_length = glm::length(light_across);
   if (across_length < kDegenerate) return light;  // light along the coarser normal: no side to choose
   const double lambda1 = 1 - 2 * angle_between(light_across / across_length, bright ? x : -x) / std::numbers::pi;
-  const double theta = std::min(strength, 1.0) * alignment_weight(lambda1 * lambda2, gamma) * angle;
+  const double theta = std::min(strength, 1.0) * weight(lambda1 * lambda2) * angle;
   const glm::dvec3 axis = glm::cross(light, guide);
   const double axis_length = glm::length(axis);
   if (theta <= 0 || axis_length < kDegenerate) return light;
@@ -56,10 +60,10 @@ glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, cons
 }
 
 glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vectors, std::span<const double> strengths,
-                       double gamma) {
+                       const AlignmentWeight& weight) {
   glm::dvec3 l = light;
   for (size_t i = vectors.size() - 1; i-- > 0;)
-    l = align_one_scale(l, vectors[i], vectors[i + 1], i < strengths.size() ? strengths[i] : 0.0, gamma);
+    l = align_one_scale(l, vectors[i], vectors[i + 1], i < strengths.size() ? strengths[i] : 0.0, weight);
   return l;
 }
 

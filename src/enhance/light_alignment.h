@@ -13,16 +13,27 @@ namespace countershade {
 // the identity. It keeps the rotation small near the places where the guide switches sides.
 double alignment_weight(double x, double gamma);
 
+// W_γ with e^{−γ} computed once: it is evaluated for every scale of every light sample. Made
+// implicitly from γ.
+class AlignmentWeight {
+ public:
+  AlignmentWeight(double gamma);  // NOLINT(google-explicit-constructor)
+  double operator()(double x) const;
+
+ private:
+  double damping_;  // e^{−γ}
+};
+
 // One step of eq. 1: `light` (unit, towards the light) rotated towards the guide of the finer
 // vector `fine` (n_i, or a reflected view vector r_i) in the frame of the coarser `coarse`
 // (n_{i+1}), by the fraction strength·W_γ(λ1·λ2) of the angle between them. Returns `light`
 // itself when the rotation is zero (strength 0, no feature, or the light on the guide).
 glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, const glm::dvec3& coarse, double strength,
-                           double gamma);
+                           const AlignmentWeight& weight);
 
 // The whole cascade: l_S = light, then l_i = align_one_scale(l_{i+1}, v_i, v_{i+1}, s_i) for
 // i = S−1 … 1. `vectors` holds v_1 (finest) … v_S (coarsest), all unit; `strengths` s_1 … s_{S−1}.
 glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vectors, std::span<const double> strengths,
-                       double gamma);
+                       const AlignmentWeight& weight);
 
 }  // namespace countershade

@@ -31,23 +31,24 @@ struct LlaParameters final : MethodParameters {
 class AlignmentHook final : public ShadingHook {
  public:
   AlignmentHook(std::shared_ptr<const NormalScaleField> normals, std::vector<double> strengths, double gamma)
-      : normals_(std::move(normals)), strengths_(std::move(strengths)), gamma_(gamma) {}
+      : normals_(std::move(normals)), strengths_(std::move(strengths)), weight_(gamma) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
     glm::dvec3 n[kMaxNormalScales], r[kMaxNormalScales];
-    const int scales = normals_->scales();
+    const size_t scales = size_t(normals_->scales());
     normals_->at_shading_point(s, n);
-    for (int k = 0; k < scales; ++k) r[k] = 2 * glm::dot(n[k], s.wo) * n[k] - s.wo;
-    const std::span<const glm::dvec3> normal_scales(n, size_t(scales)), view_scales(r, size_t(scales));
-    const glm::dvec3 diffuse_light = align_light(wi, normal_scales, strengths_, gamma_);
-    const glm::dvec3 specular_light = align_light(wi, view_scales, strengths_, gamma_);
-    return reflect_diffuse(s, diffuse_light, incident) + reflect_specular(s, specular_light, incident);
+    const glm::dvec3 diffuse = reflect_diffuse(s, align_light(wi, {n, scales}, strengths_, weight_), incident);
+    // A material without a specular lobe reflects none at any direction: skip its alignment
+    // (adding the zero keeps the sum's bits those of the full expression).
+    if (s.material.specular == SpecularModel::none) return diffuse + glm::dvec3(0.0);
+    for (size_t k = 0; k < scales; ++k) r[k] = 2 * glm::dot(n[k], s.wo) * n[k] - s.wo;
+    return diffuse + reflect_specular(s, align_light(wi, {r, scales}, strengths_, weight_), incident);
   }
 
  private:
   std::shared_ptr<const NormalScaleField> normals_;
   std::vector<double> strengths_;
-  double gamma_;
+  AlignmentWeight weight_;
 };
 
 class LlaMethod final : public EnhancementMethod {

@@ -27,7 +27,7 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
       options.ring_samples = request.ring_samples;
       options.shading_hook = request.shading_hook;
       options.texture_hook = request.texture_hook;
-      return make_view(scene, tracer, render(*scene, *tracer, options), bits);
+      return make_view(scene, tracer, render(*scene, *tracer, options), bits, false);
     };
   }
   context.view = std::move(view);

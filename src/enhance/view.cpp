@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/code_quantizer.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 
@@ -14,14 +15,26 @@ void quantize_in_place(Image& image, int bits) {
   for (float& v : image.pixels) v = float(quantize(v, bits)) / levels;
 }
 
+namespace {
+
+// encode_for_display and then quantize_in_place, in one pass without a pow() per channel.
+Image quantized_display(const Image& radiance, double exposure_stops, const DisplayEncoding& encoding, int bits) {
+  const CodeQuantizer& quantizer = CodeQuantizer::shared(encoding, bits);
+  const double scale = std::exp2(exposure_stops);
+  Image out(radiance.width, radiance.height, radiance.channels, Image::Uninitialized{});
+  for (size_t i = 0; i < radiance.pixels.size(); ++i) out.pixels[i] = quantizer.value(double(radiance.pixels[i]) * scale);
+  return out;
+}
+
+}  // namespace
+
 std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::shared_ptr<const RayTracer> tracer,
-                                      RenderResult render, int bits) {
+                                      RenderResult render, int bits, bool lab) {
   auto view = std::make_shared<View>();
   view->encoding = scene->display.encoding;
   view->bits = bits;
-  view->display = encode_for_display(render.radiance, scene->display.exposure_stops, view->encoding);
-  quantize_in_place(view->display, bits);
-  view->lab = display_to_lab(view->display, view->encoding, bits);
+  view->display = quantized_display(render.radiance, scene->display.exposure_stops, view->encoding, bits);
+  if (lab) view->lab = display_to_lab(view->display, view->encoding, bits);
   view->depth = render.gbuffer.depth;
   view->render = std::move(render);
   view->scene = std::move(scene);

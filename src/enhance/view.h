@@ -65,9 +65,10 @@ struct View {
 void quantize_in_place(Image& image, int bits);
 
 // The View of a render: exposure and display encoding, quantised to the output bit depth (8 or
-// 16) so every method starts from exactly the pixels of the reference image, then CIELAB.
+// 16) so every method starts from exactly the pixels of the reference image, then CIELAB (left
+// empty with `lab` false: the renders a method asks for itself, of which it keeps the display).
 std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::shared_ptr<const RayTracer> tracer,
-                                      RenderResult render, int bits = 8);
+                                      RenderResult render, int bits = 8, bool lab = true);
 
 // The View of an external image (display-encoded code values, 3 channels) with an optional
 // depth map of the same size.

@@ -50,21 +50,22 @@ void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dv
 
 class PixelSampler {
  public:
-  PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record)
-      : in_(in), sums_(sums), record_(record), rays_(in.scene.camera), width_(in.scene.camera.width),
+  PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record, const GBuffer& gbuffer)
+      : in_(in), sums_(sums), record_(record), gbuffer_(gbuffer), rays_(in.scene.camera), width_(in.scene.camera.width),
         exposure_(std::exp2(in.scene.display.exposure_stops)), fixed_spp_(in.scene.settings.spp.value_or(0)) {}
 
   // Takes samples [count, target) of a pixel.
   void sample(size_t pixel, uint32_t target, RayCounts& rays, std::vector<glm::dvec2>& lhs) {
     const RenderSettings& settings = in_.scene.settings;
     if (settings.sampling == SamplingMode::independent) latin_hypercube(settings.seed, pixel, fixed_spp_, lhs);
-    if (record_) record_->reserve(pixel, target);
+    if (record_) record_->reserve(pixel, target, expected_hits(pixel, target));
     for (uint32_t s = sums_.count[pixel]; s < target; ++s) one_sample(pixel, s, rays, lhs);
     sums_.count[pixel] = target;
   }
 
  private:
   void one_sample(size_t pixel, uint32_t s, RayCounts& counts, const std::vector<glm::dvec2>& lhs) {
+    if (in_.replay && in_.replay->has_shading(pixel, s)) return replay_shading(pixel, s);
     const RenderSettings& settings = in_.scene.settings;
     Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
     glm::dvec2 offset(0.5);
@@ -74,19 +75,50 @@ class PixelSampler {
     const Ray ray = rays_.ray(x + offset.x, y + offset.y);
     ShadowAnswers answers;
     const auto hit = camera_hit(pixel, s, ray, counts, answers);
-    glm::dvec3 radiance;
     if (!hit) {
-      radiance = in_.shader.background(ray.direction);
-    } else {
-      SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
-      if (in_.shader.textured(hit->object))  // the footprint picks the texture's mip level
-        set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
-      radiance = in_.shader.radiance(sp, -ray.direction, true, sampler, counts, tracing_answers(answers));
-      const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
-      auto& fields = sums_.field[Sampler::replicate(s)];
-      for (size_t f = 0; f < fields.size(); ++f) fields[f][pixel] += in_.request.fields[f]->value(sample_hit);
+      const glm::dvec3 radiance = in_.shader.background(ray.direction);
+      if (answers.record) record_->record_background(pixel, radiance);
+      return accumulate(pixel, s, radiance, nullptr);
     }
+    SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
+    if (in_.shader.textured(hit->object))  // the footprint picks the texture's mip level
+      set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
+    const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
+    auto [record, lights] = answers.record ? record_->shading_to_record(pixel) : std::pair<ShadingRecord*, LightSampleRecord*>{};
+    if (!record)
+      return accumulate(pixel, s, in_.shader.radiance(sp, -ray.direction, true, sampler, counts, tracing_answers(answers)),
+                        &sample_hit);
+    in_.shader.gather(sp, -ray.direction, true, sampler, counts, &answers, *record, lights);
+    accumulate(pixel, s, in_.shader.evaluate(sp, *record, lights, record->albedo), &sample_hit);
+  }
+
+  // How many of a pixel's first `target` samples will likely hit a surface: as many as so far, in
+  // proportion, or all of them where its centre does (the log's records are reserved for them).
+  uint32_t expected_hits(size_t pixel, uint32_t target) const {
+    const uint32_t count = sums_.count[pixel];
+    if (count == 0) return gbuffer_.object[pixel] >= 0 ? target : 0;
+    const double hits = sums_.hits[0][pixel] + sums_.hits[1][pixel];
+    return uint32_t(std::ceil(double(target) * hits / double(count)));
+  }
+
+  // A sample whose shading the replayed log kept: evaluated again with this render's hooks.
+  void replay_shading(size_t pixel, uint32_t s) {
+    const auto hit = in_.replay->hit(pixel, s);
+    if (!hit) return accumulate(pixel, s, in_.replay->background(pixel, s), nullptr);
+    const ShadingRecord& record = *in_.replay->shading(pixel, s);
+    const SurfacePoint sp = record.restore(surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2));
+    // The camera ray's direction is −wo, so the side it saw is that of dot(n_g, −wo).
+    const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, -record.wo) > 0};
+    accumulate(pixel, s, in_.shader.replay(sp, record, in_.replay->light_samples(pixel, s)), &sample_hit);
+  }
+
+  // Adds one sample's radiance (and, for a hit, its fields) to the pixel's sums.
+  void accumulate(size_t pixel, uint32_t s, const glm::dvec3& radiance, const SampleHit* hit) {
     const int r = Sampler::replicate(s);
+    if (hit) {
+      auto& fields = sums_.field[r];
+      for (size_t f = 0; f < fields.size(); ++f) fields[f][pixel] += in_.request.fields[f]->value(*hit);
+    }
     for (int c = 0; c < 3; ++c) sums_.rgb[r][c][pixel] += radiance[c];
     const double y_display = display_luminance(radiance, exposure_);
     sums_.y_all[r][pixel] += y_display;
@@ -121,6 +153,7 @@ class PixelSampler {
   const PixelPassInput& in_;
   Sums& sums_;
   TraceLog* record_;  // null: nothing recorded
+  const GBuffer& gbuffer_;
   CameraRays rays_;
   int width_;
   double exposure_;
@@ -145,53 +178,60 @@ struct ReplicateSpread {
   std::vector<std::vector<double>> LC, CC;  // [change][pixel]
 };
 
-ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request, double exposure) {
+// The products of one pixel's replicate differences into `out` (pixel p).
+void pixel_spread(const Sums& sums, const PixelRequest& request, double exposure, size_t p, std::vector<double>* fields,
+                  ReplicateSpread& out) {
+  PixelMeans means[2];
+  for (int r = 0; r < 2; ++r) {
+    const double k = sums.samples(r, p);
+    const glm::dvec3 mean(sums.rgb[r][0][p] / k, sums.rgb[r][1][p] / k, sums.rgb[r][2][p] / k);
+    for (size_t f = 0; f < fields[r].size(); ++f) fields[r][f] = sums.field[r][f][p] / k;
+    means[r] = {cielab_lightness(display_luminance(mean, exposure)), sums.y_all[r][p] / k, sums.y_surface[r][p] / k,
+                sums.hits[r][p] / k, fields[r].data()};
+  }
+  const double dL = means[0].lightness - means[1].lightness;
+  out.LL[p] = 0.25 * dL * dL;
+  for (size_t c = 0; c < request.changes.size(); ++c) {
+    const PixelRequest::Change& change = request.changes[c];
+    double value[2];
+    for (int r = 0; r < 2; ++r) {
+      PixelMeans own = means[r];
+      own.fields = fields[r].data() + change.first_field;
+      value[r] = change.change->value(own);
+    }
+    const double dc = value[0] - value[1];
+    out.LC[c][p] = 0.25 * dL * dc;
+    out.CC[c][p] = 0.25 * dc * dc;
+  }
+}
+
+ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request, double exposure, int threads) {
   const size_t n = sums.count.size(), changes = request.changes.size();
   ReplicateSpread out{std::vector<double>(n, 0.0), std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0)),
                       std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0))};
-  std::vector<double> fields[2] = {std::vector<double>(request.fields.size()), std::vector<double>(request.fields.size())};
-  for (size_t p = 0; p < n; ++p) {
-    if (sums.count[p] < 2) continue;
-    PixelMeans means[2];
-    for (int r = 0; r < 2; ++r) {
-      const double k = sums.samples(r, p);
-      const glm::dvec3 mean(sums.rgb[r][0][p] / k, sums.rgb[r][1][p] / k, sums.rgb[r][2][p] / k);
-      for (size_t f = 0; f < fields[r].size(); ++f) fields[r][f] = sums.field[r][f][p] / k;
-      means[r] = {cielab_lightness(display_luminance(mean, exposure)), sums.y_all[r][p] / k, sums.y_surface[r][p] / k,
-                  sums.hits[r][p] / k, fields[r].data()};
-    }
-    const double dL = means[0].lightness - means[1].lightness;
-    out.LL[p] = 0.25 * dL * dL;
-    for (size_t c = 0; c < changes; ++c) {
-      const PixelRequest::Change& change = request.changes[c];
-      double value[2];
-      for (int r = 0; r < 2; ++r) {
-        PixelMeans own = means[r];
-        own.fields = fields[r].data() + change.first_field;
-        value[r] = change.change->value(own);
-      }
-      const double dc = value[0] - value[1];
-      out.LC[c][p] = 0.25 * dL * dc;
-      out.CC[c][p] = 0.25 * dc * dc;
-    }
-  }
+  parallel_ranges(n, threads, [&](size_t begin, size_t end) {
+    std::vector<double> fields[2] = {std::vector<double>(request.fields.size()), std::vector<double>(request.fields.size())};
+    for (size_t p = begin; p < end; ++p)
+      if (sums.count[p] >= 2) pixel_spread(sums, request, exposure, p, fields, out);
+  }, 4096);
   return out;
 }
 
-// A 3×3 mean or maximum, clamped at the borders.
-std::vector<double> filter3x3(const std::vector<double>& in, int width, int height, bool maximum) {
+// A 3×3 mean, clamped at the borders.
+std::vector<double> mean3x3(const std::vector<double>& in, int width, int height, int threads) {
   std::vector<double> out(in.size());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      double acc = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = std::clamp(x + dx, 0, width - 1), yy = std::clamp(y + dy, 0, height - 1);
-          const double value = in[size_t(yy) * width + xx];
-          acc = maximum ? std::max(acc, value) : acc + value;
-        }
-      out[size_t(y) * width + x] = maximum ? acc : acc / 9.0;
-    }
+  parallel_ranges(size_t(height), threads, [&](size_t begin, size_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < width; ++x) {
+        double acc = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = std::clamp(x + dx, 0, width - 1), yy = std::clamp(y + dy, 0, height - 1);
+            acc += in[size_t(yy) * width + xx];
+          }
+        out[size_t(y) * width + x] = acc / 9.0;
+      }
+  }, 16);
   return out;
 }
 
@@ -243,7 +283,7 @@ class AdaptiveSampling {
 
   void sample_round(const std::vector<uint32_t>& active, const std::vector<uint32_t>& target) {
     keep_log_within_limit(target);
-    PixelSampler sampler(in_, sums_, in_.record && !in_.record->abandoned() ? in_.record : nullptr);
+    PixelSampler sampler(in_, sums_, in_.record && !in_.record->abandoned() ? in_.record : nullptr, result_.gbuffer);
     std::mutex mutex;
     std::atomic<size_t> done{0};
     const int round = result_.sampling.rounds;
@@ -261,13 +301,17 @@ class AdaptiveSampling {
         64);
   }
 
-  // Gives the log up (the render goes on without it) before a round that would take it past its
-  // memory limit. The decision depends only on the sample counts, like the image.
+  // Gives the log's shading records up before a round that would take the log past half its
+  // memory limit (recording them costs time too: a render that would drop them later should not
+  // record them at all), then the whole log (the render goes on without it) before a round that
+  // would take it past its limit. The decisions depend only on the sample counts, like the image.
   void keep_log_within_limit(const std::vector<uint32_t>& target) {
-    if (!in_.record || in_.record->abandoned()) return;
+    TraceLog* log = in_.record;
+    if (!log || log->abandoned()) return;
     uint64_t planned = 0;
     for (uint32_t t : target) planned += t;
-    if (in_.record->projected_bytes(planned) > in_.record->byte_limit()) in_.record->abandon();
+    if (log->keeps_shading() && log->projected_bytes(planned, true) > log->byte_limit() / 2) log->drop_shading();
+    if (log->projected_bytes(planned, false) > log->byte_limit()) log->abandon();
   }
 
   // A rough share of the work done: the first round is most of it when few pixels need more.
@@ -280,15 +324,16 @@ class AdaptiveSampling {
   // largest variance decides: an estimate from one pixel's two replicates is too rough to stop on
   // (it stops pixels that were merely lucky and wastes samples on unlucky ones).
   void estimate() {
-    ReplicateSpread spread = replicate_spread(sums_, in_.request, exposure());
-    pooled_.LL = filter3x3(spread.LL, width_, height_, false);
+    const int threads = in_.threads;
+    ReplicateSpread spread = replicate_spread(sums_, in_.request, exposure(), threads);
+    pooled_.LL = mean3x3(spread.LL, width_, height_, threads);
     pooled_.LC.resize(spread.LC.size());
     pooled_.CC.resize(spread.CC.size());
     for (size_t c = 0; c < spread.LC.size(); ++c) {
-      pooled_.LC[c] = filter3x3(spread.LC[c], width_, height_, false);
-      pooled_.CC[c] = filter3x3(spread.CC[c], width_, height_, false);
+      pooled_.LC[c] = mean3x3(spread.LC[c], width_, height_, threads);
+      pooled_.CC[c] = mean3x3(spread.CC[c], width_, height_, threads);
     }
-    decision_ = filter3x3(largest_variance(pooled_, in_.request.max_abs_lambda), width_, height_, false);
+    decision_ = mean3x3(largest_variance(pooled_, in_.request.max_abs_lambda), width_, height_, threads);
   }
 
   // The active pixels that still miss their target, with their next sample counts.

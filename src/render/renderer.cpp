@@ -101,7 +101,7 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   PixelRequest request;
   if (options.before_pixels) request = options.before_pixels(result);
   std::shared_ptr<TraceLog> record;
-  if (options.record_trace) record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit);
+  if (options.record_trace) record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit, shader.light_samples());
   pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(), replay}, result);
   if (record && !record->abandoned()) {
     record->gbuffer = result.gbuffer;

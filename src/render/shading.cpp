@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -121,10 +122,19 @@ glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm
 }
 
 struct Shader::Context {
-  ShadingInputs inputs;
-  glm::dvec3 ng;                    // geometric normal on the viewed side
+  const SurfacePoint& point;
+  glm::dvec3 normal, ng;             // shading and geometric normal on the viewed side
   ShadowAnswers* answers = nullptr;  // recorded or replayed shadow answers
+  LightSampleRecord* lights;         // the next light sample to draw
 };
+
+size_t Shader::count_light_samples(const Scene& scene) {
+  size_t n = 0;
+  for (const auto& light : scene.directional_lights) n += light.angular_radius_deg > 0 ? size_t(light.samples) : 1;
+  for (const auto& light : scene.point_lights) n += light.radius > 0 ? size_t(light.samples) : 1;
+  if (scene.environment) n += size_t(scene.environment->samples);
+  return n;
+}
 
 bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const {
   ShadowAnswers* answers = c.answers;
@@ -135,44 +145,48 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, Ra
   ++counts.shadow;
   const double eps = tracer_.epsilon();
   // Leave the surface on the side the ray travels to, so the surface does not shadow itself.
-  const glm::dvec3 o = c.inputs.point.position + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
+  const glm::dvec3 o = c.point.position + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
   const bool open = !tracer_.occluded(o, wi, eps, distance - 2 * eps);
   if (answers && answers->record) answers->record->push_back(open);
   return open;
 }
 
-glm::dvec3 Shader::light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
-                                double distance, RayCounts& counts) const {
+void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
+                  RayCounts& counts) const {
   // Light from behind the surface never arrives: by the shading normal on the plain path; by the
-  // geometry when a hook may shade with another direction.
-  const double cos_i = glm::dot(c.inputs.normal, wi), towards = glm::dot(c.ng, wi);
+  // geometry when a hook may shade with another direction (reflect() applies the same rule).
+  const double cos_i = glm::dot(c.normal, wi), towards = glm::dot(c.ng, wi);
   const double facing = shading_hook_ ? towards : cos_i;
   // Recording or replaying, ask the shadow ray whenever either rule could use it (ShadowAnswers).
   const bool asked = c.answers ? (towards > 0 || cos_i > 0) : facing > 0;
-  if (!asked || (distance > 0 && !visible(c, wi, distance, counts)) || facing <= 0) return glm::dvec3(0.0);
-  if (shading_hook_) return shading_hook_->reflect(c.inputs, wi, radiance / divisor);
-  return brdf(c.inputs, wi) * radiance * (cos_i / divisor);
+  LightSampleRecord& light = *c.lights++;
+  light = {wi, radiance, divisor, asked && (distance <= 0 || visible(c, wi, distance, counts))};
 }
 
-void Shader::directional(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
+glm::dvec3 Shader::reflect(const ShadingInputs& s, const glm::dvec3& ng, const LightSampleRecord& light) const {
+  const double cos_i = glm::dot(s.normal, light.wi);
+  const double facing = shading_hook_ ? glm::dot(ng, light.wi) : cos_i;
+  if (facing <= 0) return glm::dvec3(0.0);
+  if (shading_hook_) return shading_hook_->reflect(s, light.wi, light.radiance / light.divisor);
+  return brdf(s, light.wi) * light.radiance * (cos_i / light.divisor);
+}
+
+void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
   for (const auto& light : scene_.directional_lights) {
     double cos_max = std::cos(glm::radians(light.angular_radius_deg));
     int samples = light.angular_radius_deg > 0 ? light.samples : 1;
-    glm::dvec3 sum(0.0);
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
       glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u.x, u.y) : light.direction;
       // Without shadows the light reaches every point that faces it (distance 0: no shadow ray).
-      sum += light_sample(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
+      draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
     }
-    L += sum / double(samples);
   }
 }
 
-void Shader::point_lights(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
+void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const {
   for (const auto& light : scene_.point_lights) {
     int samples = light.radius > 0 ? light.samples : 1;
-    glm::dvec3 sum(0.0);
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
       glm::dvec3 target = light.position;
@@ -181,21 +195,22 @@ void Shader::point_lights(const Context& c, Sampler& random, RayCounts& counts, 
         sincos_turns(u.y, sin_phi, cos_phi);
         target += light.radius * glm::dvec3(r * cos_phi, r * sin_phi, z);
       }
-      glm::dvec3 to_light = target - c.inputs.point.position;
+      glm::dvec3 to_light = target - c.point.position;
       double d2 = glm::dot(to_light, to_light);
-      if (d2 <= 0) continue;
+      if (d2 <= 0) {
+        *c.lights++ = LightSampleRecord{};  // inside the light: nothing arrives
+        continue;
+      }
       double d = std::sqrt(d2);
-      sum += light_sample(c, to_light / d, light.intensity, d2, d, counts);
+      draw(c, to_light / d, light.intensity, d2, d, counts);
     }
-    L += sum / double(samples);
   }
 }
 
-void Shader::environment(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
+void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   if (!scene_.environment) return;
   const EnvironmentLight& env = *scene_.environment;
-  const glm::dvec3& n = c.inputs.normal;
-  glm::dvec3 sum(0.0);
+  const glm::dvec3& n = c.normal;
   for (int s = 0; s < env.samples; ++s) {
     const glm::dvec2 u = random.next2d();
     const double u1 = u.x, u2 = u.y;
@@ -211,42 +226,72 @@ void Shader::environment(const Context& c, Sampler& random, RayCounts& counts, g
       pdf = std::max(glm::dot(n, wi), 0.0) / kPi;
       if (pdf > 0) Le = env.map->radiance(wi);
     }
-    if (pdf <= 0) continue;
-    sum += light_sample(c, wi, Le, pdf, 1e30, counts);
+    if (pdf <= 0) {
+      *c.lights++ = LightSampleRecord{};
+      continue;
+    }
+    draw(c, wi, Le, pdf, 1e30, counts);
   }
-  L += env.scale * sum / double(env.samples);
 }
 
-void Shader::ambient(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const {
+double Shader::ambient_open(const Context& c, Sampler& random, RayCounts& counts) const {
   const AmbientLight& ambient = scene_.ambient;
-  if (ambient.radiance == glm::dvec3(0.0)) return;
-  double open = 1.0;
-  if (ambient.distance > 0) {
-    int unoccluded = 0;
-    for (int s = 0; s < ambient.samples; ++s) {
-      const glm::dvec2 u = random.next2d();
-      glm::dvec3 wi = sample_cosine_hemisphere(c.inputs.normal, u.x, u.y);
-      if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
-    }
-    open = double(unoccluded) / ambient.samples;
+  if (ambient.radiance == glm::dvec3(0.0) || ambient.distance <= 0) return 1.0;
+  int unoccluded = 0;
+  for (int s = 0; s < ambient.samples; ++s) {
+    const glm::dvec2 u = random.next2d();
+    glm::dvec3 wi = sample_cosine_hemisphere(c.normal, u.x, u.y);
+    if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
   }
-  L += c.inputs.albedo * ambient.radiance * open;
+  return double(unoccluded) / ambient.samples;
+}
+
+void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided, Sampler& random,
+                    RayCounts& counts, ShadowAnswers* answers, ShadingRecord& record, LightSampleRecord* lights) const {
+  record.duv_dx = point.duv_dx;
+  record.duv_dy = point.duv_dy;
+  record.wo = wo;
+  record.back = two_sided && glm::dot(point.geometric_normal, wo) < 0;
+  record.albedo = albedo(point);
+  Context c{point, record.shading_normal(point), record.geometric_normal(point), answers, lights};
+  directional(c, random, counts);
+  point_lights(c, random, counts);
+  environment(c, random, counts);
+  record.ambient_open = ambient_open(c, random, counts);
+}
+
+glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r, const LightSampleRecord* lights,
+                            const glm::dvec3& albedo) const {
+  const ShadingInputs s{point, scene_.objects[point.object].material, r.shading_normal(point), r.wo, albedo};
+  const glm::dvec3 ng = r.geometric_normal(point);
+  // Sums per light, in the order the samples were drawn; a sample that does not arrive adds nothing.
+  auto sum_of = [&](int samples) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < samples; ++k, ++lights)
+      if (lights->arrives) sum += reflect(s, ng, *lights);
+    return sum;
+  };
+  glm::dvec3 L(0.0);
+  for (const auto& light : scene_.directional_lights) {
+    const int samples = light.angular_radius_deg > 0 ? light.samples : 1;
+    L += sum_of(samples) / double(samples);
+  }
+  for (const auto& light : scene_.point_lights) {
+    const int samples = light.radius > 0 ? light.samples : 1;
+    L += sum_of(samples) / double(samples);
+  }
+  if (const auto& env = scene_.environment) L += env->scale * sum_of(env->samples) / double(env->samples);
+  if (scene_.ambient.radiance != glm::dvec3(0.0)) L += albedo * scene_.ambient.radiance * r.ambient_open;
+  return L;
 }
 
 glm::dvec3 Shader::radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
                             Sampler& random, RayCounts& counts, ShadowAnswers* answers) const {
-  glm::dvec3 ng = point.geometric_normal, n = point.shading_normal;
-  if (two_sided && glm::dot(ng, wo) < 0) {
-    ng = -ng;
-    n = -n;
-  }
-  const Context c{{point, scene_.objects[point.object].material, n, wo, albedo(point)}, ng, answers};
-  glm::dvec3 L(0.0);
-  directional(c, random, counts, L);
-  point_lights(c, random, counts, L);
-  environment(c, random, counts, L);
-  ambient(c, random, counts, L);
-  return L;
+  thread_local std::vector<LightSampleRecord> lights;
+  lights.resize(light_samples_);
+  ShadingRecord record;
+  gather(point, wo, two_sided, random, counts, answers, record, lights.data());
+  return evaluate(point, record, lights.data(), record.albedo);
 }
 
 }  // namespace countershade

@@ -39,18 +39,63 @@ struct ShadowAnswers {
   const uint8_t* replay_end = nullptr;
 };
 
+// One light sample as the shader drew it, enough to reflect it again with other hooks: the
+// direction towards the light, its radiance and the divisor (its pdf, or r²), and whether it
+// arrives (drawn, and its shadow ray, where one was asked, reached the light).
+struct LightSampleRecord {
+  glm::dvec3 wi{0.0}, radiance{0.0};
+  double divisor = 1.0;
+  bool arrives = false;
+};
+
+// What one shading point drew besides its light samples and its surface point (which the ray
+// log's hit gives again): the UV footprint, the direction towards the viewer and the side it
+// sees, the albedo and the share of ambient occlusion rays that escaped. Shader::evaluate turns
+// it, the point and its light samples into radiance; a render with other hooks can evaluate it
+// again instead of drawing it (render/trace_log.h).
+struct ShadingRecord {
+  glm::dvec2 duv_dx{0.0}, duv_dy{0.0};
+  glm::dvec3 wo{0.0}, albedo{0.0};
+  double ambient_open = 1.0;
+  bool back = false;  // shaded as the back face (two-sided, seen from behind)
+  // The recorded hit's point as gathered: surface_point() with the footprint.
+  SurfacePoint restore(SurfacePoint p) const {
+    p.duv_dx = duv_dx;
+    p.duv_dy = duv_dy;
+    return p;
+  }
+  // The point's normals on the viewed side.
+  glm::dvec3 shading_normal(const SurfacePoint& p) const { return back ? -p.shading_normal : p.shading_normal; }
+  glm::dvec3 geometric_normal(const SurfacePoint& p) const { return back ? -p.geometric_normal : p.geometric_normal; }
+};
+
 class Shader {
  public:
   // Hooks may be null (the plain path).
   Shader(const Scene& scene, const RayTracer& tracer, const ShadingHook* shading_hook = nullptr,
          const TextureHook* texture_hook = nullptr)
-      : scene_(scene), tracer_(tracer), shading_hook_(shading_hook), texture_hook_(texture_hook) {}
+      : scene_(scene), tracer_(tracer), shading_hook_(shading_hook), texture_hook_(texture_hook),
+        light_samples_(count_light_samples(scene)) {}
 
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
   // from behind its front face is shaded as the back face (open meshes, planes from below).
   // `answers` (optional) records the shadow rays' answers or replays them instead of tracing.
   glm::dvec3 radiance(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
                       Sampler& random, RayCounts& counts, ShadowAnswers* answers = nullptr) const;
+
+  // Shading in two steps, which radiance() chains: gather draws the light samples (tracing or
+  // replaying their shadow rays) into `lights` (light_samples() entries); evaluate reflects them
+  // with this shader's hooks. `replay` evaluates a record gathered by another render of the same
+  // scene (its texture lookups again if this shader has a texture hook).
+  size_t light_samples() const { return light_samples_; }
+  void gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided, Sampler& random, RayCounts& counts,
+              ShadowAnswers* answers, ShadingRecord& record, LightSampleRecord* lights) const;
+  glm::dvec3 evaluate(const SurfacePoint& point, const ShadingRecord& record, const LightSampleRecord* lights,
+                      const glm::dvec3& albedo) const;
+  // `point`: the recorded hit's surface_point() with the record's footprint (ShadingRecord::restore).
+  glm::dvec3 replay(const SurfacePoint& point, const ShadingRecord& record, const LightSampleRecord* lights) const {
+    return evaluate(point, record, lights, texture_hook_ ? albedo(point) : record.albedo);
+  }
 
   // What a camera ray that hits nothing sees.
   glm::dvec3 background(const glm::dvec3& direction) const;
@@ -63,22 +108,26 @@ class Shader {
   }
 
  private:
-  struct Context;  // one shading point's inputs
-  // Each light type adds its reflected radiance to L.
-  void directional(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
-  void point_lights(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
-  void environment(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
-  void ambient(const Context& c, Sampler& random, RayCounts& counts, glm::dvec3& L) const;
+  struct Context;  // one shading point being gathered
+  static size_t count_light_samples(const Scene& scene);
+  // Each light type draws its samples into c.lights, in the order evaluate reads them.
+  void directional(Context& c, Sampler& random, RayCounts& counts) const;
+  void point_lights(Context& c, Sampler& random, RayCounts& counts) const;
+  void environment(Context& c, Sampler& random, RayCounts& counts) const;
+  double ambient_open(const Context& c, Sampler& random, RayCounts& counts) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
-  // `distance` away: its visibility and its reflection (through the shading hook if there is one).
-  glm::dvec3 light_sample(const Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
-                          double distance, RayCounts& counts) const;
+  // `distance` away (0: no shadow ray): whether it arrives.
+  void draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
+            RayCounts& counts) const;
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
+  // The reflection of one light sample (through the shading hook if there is one).
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& ng, const LightSampleRecord& light) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;
   const ShadingHook* shading_hook_;
   const TextureHook* texture_hook_;
+  size_t light_samples_;
 };
 
 // Unit vector in the cone of half-angle `max_angle` around `axis`, uniform over the cap.

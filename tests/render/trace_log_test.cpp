@@ -1,6 +1,6 @@
-// Replaying a render's rays: a render that records its ray answers gives the plain image, and a
-// render with hooks that reads them back gives, bit for bit, the image it gives by tracing, with
-// (almost) no rays traced. The scene uses every kind of light, soft shadows, ambient occlusion, a
+// Replaying a render's rays: a render that records its ray answers (and its shading records) gives
+// the plain image, and a render with hooks that reads them back gives, bit for bit, the image it
+// gives by tracing, with (almost) no rays traced. The scene uses every kind of light, soft shadows, ambient occlusion, a
 // texture, a glossy material and adaptive sampling, so that every shadow-ray path is exercised.
 
 #include <gtest/gtest.h>
@@ -106,6 +106,7 @@ TEST(TraceLog, AReplayedRenderWithAShadingHookEqualsTracingIt) {
   const RenderResult base = render_with(*scene, tracer, nullptr, nullptr, true);
   const auto hook = std::make_shared<TiltHook>();
   const RenderResult traced = render_with(*scene, tracer, hook);
+  ASSERT_TRUE(base.trace->keeps_shading());  // replayed from the shading records, not the rays
   const RenderResult replayed = render_with(*scene, tracer, hook, base.trace);
   expect_same_pixels(traced, replayed);
   EXPECT_EQ(replayed.gbuffer.object, traced.gbuffer.object);
@@ -138,13 +139,43 @@ TEST(TraceLog, ALogOverItsLimitIsGivenUpAndTheImageStaysTheSame) {
   testing::TempDir dir;
   auto scene = rich_scene(dir);
   const RayTracer tracer(*scene);
+  const RenderResult whole = render_with(*scene, tracer, nullptr, nullptr, true);
+  uint64_t samples = 0;
+  for (uint32_t n : whole.spp) samples += n;
+  const uint64_t first_round = whole.trace->projected_bytes(48 * 36 * 4, false);  // min_spp 4
+  const uint64_t all_rounds = whole.trace->projected_bytes(samples, false);
+  ASSERT_GT(all_rounds, 2 * first_round);
   RenderOptions options;
   options.threads = 2;
   options.record_trace = true;
-  options.trace_byte_limit = 48 * 36 * 8 * sizeof(TracedHit);  // fits the first round, not the second
+  options.trace_byte_limit = (first_round + all_rounds) / 2;  // fits the first round, not the last
   const RenderResult limited = render(*scene, tracer, options);
   EXPECT_EQ(limited.trace, nullptr);
-  expect_same_pixels(render_with(*scene, tracer, nullptr), limited);
+  expect_same_pixels(whole, limited);
+}
+
+TEST(TraceLog, ALogWhoseShadingRecordsDoNotFitKeepsItsRaysAndReplaysThem) {
+  testing::TempDir dir;
+  auto scene = rich_scene(dir);
+  const RayTracer tracer(*scene);
+  const RenderResult whole = render_with(*scene, tracer, nullptr, nullptr, true);
+  ASSERT_TRUE(whole.trace->keeps_shading());
+  uint64_t samples = 0;
+  for (uint32_t n : whole.spp) samples += n;
+  const uint64_t rays = whole.trace->projected_bytes(samples, false), shading = whole.trace->projected_bytes(samples, true);
+  ASSERT_LT(4 * rays, shading);  // the records are the bulk of the log
+  RenderOptions options;
+  options.threads = 2;
+  options.record_trace = true;
+  options.trace_byte_limit = 2 * rays;
+  const RenderResult limited = render(*scene, tracer, options);
+  expect_same_pixels(whole, limited);
+  ASSERT_NE(limited.trace, nullptr);
+  EXPECT_FALSE(limited.trace->keeps_shading());
+  const auto hook = std::make_shared<TiltHook>();
+  const RenderResult replayed = render_with(*scene, tracer, hook, limited.trace);
+  expect_same_pixels(render_with(*scene, tracer, hook), replayed);
+  EXPECT_LT(replayed.rays.primary, whole.rays.primary / 4);
 }
 
 // Through the method interface: an extra λ of every method that renders again reads the base
