@@ -27,6 +27,7 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
       options.ring_samples = request.ring_samples;
       options.shading_hook = request.shading_hook;
       options.texture_hook = request.texture_hook;
+      options.estimate_noise = false;  // the method keeps the display only
       return make_view(scene, tracer, render(*scene, *tracer, options), bits, false);
     };
   }

@@ -261,6 +261,7 @@ class AdaptiveSampling {
       const auto round_start = std::chrono::steady_clock::now();
       sample_round(active, target);
       ++result_.sampling.rounds;
+      if (settings.spp && !in_.estimate_noise) break;  // a fixed count without its noise
       estimate();
       if (settings.spp) break;  // a fixed count: one round
       active = unconverged(active, target);
@@ -379,7 +380,7 @@ class AdaptiveSampling {
       result_.luminance[p] = both(sums_.y_all);
       result_.surface_luminance[p] = both(sums_.y_surface);
       result_.coverage[p] = both(sums_.hits);
-      result_.noise[p] = float(std::sqrt(pooled_.LL[p]));
+      result_.noise[p] = pooled_.LL.empty() ? 0.0f : float(std::sqrt(pooled_.LL[p]));
     }
     result_.change_noise.resize(pooled_.LC.size());
     for (size_t c = 0; c < pooled_.LC.size(); ++c) {

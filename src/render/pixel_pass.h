@@ -27,6 +27,7 @@ struct PixelPassInput {
   std::function<void(double)> progress;
   TraceLog* record = nullptr;        // keeps every sample's ray answers (render/trace_log.h)
   const TraceLog* replay = nullptr;  // reads back those it holds instead of tracing them
+  bool estimate_noise = true;        // false: a fixed count skips the noise estimate (noise stays 0)
 };
 
 // Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.

@@ -102,7 +102,9 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   if (options.before_pixels) request = options.before_pixels(result);
   std::shared_ptr<TraceLog> record;
   if (options.record_trace) record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit, shader.light_samples());
-  pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(), replay}, result);
+  pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(), replay,
+              options.estimate_noise},
+             result);
   if (record && !record->abandoned()) {
     record->gbuffer = result.gbuffer;
     result.trace = std::move(record);

@@ -113,6 +113,9 @@ struct RenderOptions {
   // them (its log, with hooks of this render only: the image is the one tracing would give).
   std::shared_ptr<const TraceLog> replay_trace;
   uint64_t trace_byte_limit = uint64_t(1) << 30;  // a log that would outgrow it is given up
+  // false: a render with a fixed sample count skips its noise estimate, leaving `noise` at 0 and
+  // `change_noise` empty (renders whose display is all that is kept).
+  bool estimate_noise = true;
   // Called between passes 2 and 3 with what is rendered so far.
   std::function<PixelRequest(const RenderResult&)> before_pixels;
   std::function<void(double)> progress;  // called with the finished fraction, from any thread

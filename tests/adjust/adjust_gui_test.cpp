@@ -288,13 +288,18 @@ json play_for_ten_seconds(const fs::path& manifest, const fs::path& dir, const s
 // Two 512×384 sequences side by side for 10 s: both sides always show the same frame, the frames
 // advance, a λ step keeps playing, and no frame is dropped at the display's rate. Run alone (ctest
 // RUN_SERIAL), so other tests do not take the cores it needs. A shared virtual machine can still
-// stall the process (or the X server) now and then, so one of two runs must be free of drops.
+// stall the process (or the X server) now and then (CI saw runs with 1 or 2 frames of 22 ms among
+// 600), so one of three runs must be free of drops.
 TEST(AdjustPlayback, TwoSequencesPlayInStepForTenSecondsWithoutDroppedFrames) {
   testing::TempDir dir;
   const auto manifest = testing::make_sequence_set(dir, R"({"start": "zero"})", 512, 384);
   json run = play_for_ten_seconds(manifest, dir.path(), "P09");
-  const json first = run["frames"];
-  if (first["all"]["dropped"] != 0) run = play_for_ten_seconds(manifest, dir.path(), "P10");
+  std::string earlier;
+  for (const char* subject : {"P10", "P11"}) {
+    if (run["frames"]["all"]["dropped"] == 0) break;
+    earlier += "\nearlier run: " + run["frames"].dump();
+    run = play_for_ten_seconds(manifest, dir.path(), subject);
+  }
   auto frame_of = [](const std::string& file) { return fs::path(file).filename().string(); };
   std::vector<std::pair<std::string, std::string>> shots;
   for (const char* name : {"shot.png", "shot-2.png", "shot-3.png"}) shots.push_back(shown_files(dir / name, dir / "set"));
@@ -307,7 +312,7 @@ TEST(AdjustPlayback, TwoSequencesPlayInStepForTenSecondsWithoutDroppedFrames) {
   const auto& frames = run["frames"];
   EXPECT_NEAR(frames["period_ms"].get<double>(), 1000.0 / 60, 0.5);
   EXPECT_GT(frames["all"]["count"].get<int>(), 9 * 60);
-  EXPECT_EQ(frames["all"]["dropped"], 0) << "first run: " << first.dump() << "\nsecond run: " << frames.dump();
+  EXPECT_EQ(frames["all"]["dropped"], 0) << "last run: " << frames.dump() << earlier;
 }
 
 TEST(AdjustGui, SimulatedObserverSessionsFeedTheAnalysis) {

@@ -182,6 +182,29 @@ TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
   EXPECT_NE(png_bytes(2, "other.png"), one) << "a different seed should change the noise";
 }
 
+TEST(Renderer, AFixedCountRenderWithoutItsNoiseEstimateGivesTheSamePixels) {
+  testing::TempDir dir;
+  Scene scene = scene_from(dir, R"({
+    "version": 1,
+    "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], "width": 40, "height": 30},
+    "render": {"spp": 4, "seed": 5},
+    "objects": [{"shape": {"type": "sphere", "radius": 0.5}}],
+    "lights": [{"type": "point", "position": [1, 3, 1], "intensity": 8, "radius": 0.2, "samples": 2}]
+  })");
+  RayTracer tracer(scene);
+  RenderOptions options;
+  options.threads = 2;
+  const RenderResult with = render(scene, tracer, options);
+  options.estimate_noise = false;
+  const RenderResult without = render(scene, tracer, options);
+  EXPECT_EQ(with.radiance.pixels, without.radiance.pixels);
+  EXPECT_EQ(with.spp, without.spp);
+  double noise = 0;
+  for (float n : with.noise) noise += n;
+  EXPECT_GT(noise, 0.0);  // the soft shadow and the sphere's edge are noisy at 4 spp
+  for (float n : without.noise) ASSERT_EQ(n, 0.0f);
+}
+
 // Adaptive sampling decides per pixel and per vertex how many samples to take; those decisions,
 // like the samples, must not depend on how the work is split over threads.
 TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
