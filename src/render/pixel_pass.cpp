@@ -105,7 +105,7 @@ class PixelSampler {
   void replay_shading(size_t pixel, uint32_t s) {
     const auto hit = in_.replay->hit(pixel, s);
     if (!hit) return accumulate(pixel, s, in_.replay->background(pixel, s), nullptr);
-    const ShadingRecord& record = *in_.replay->shading(pixel, s);
+    const ShadingRecord& record = in_.replay->shading(pixel, s);
     const SurfacePoint sp = record.restore(surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2));
     // The camera ray's direction is −wo, so the side it saw is that of dot(n_g, −wo).
     const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, -record.wo) > 0};

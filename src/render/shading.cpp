@@ -25,6 +25,10 @@ void orthonormal_basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
   b = {c, sign + n.y * n.y * a, -n.y};
 }
 
+// Light samples per shading point: a delta light needs one, an area light its `samples`.
+int samples_per_point(const DirectionalLight& light) { return light.angular_radius_deg > 0 ? light.samples : 1; }
+int samples_per_point(const PointLight& light) { return light.radius > 0 ? light.samples : 1; }
+
 }  // namespace
 
 glm::dvec3 sample_cone(const glm::dvec3& axis, double cos_max, double u1, double u2) {
@@ -130,8 +134,8 @@ struct Shader::Context {
 
 size_t Shader::count_light_samples(const Scene& scene) {
   size_t n = 0;
-  for (const auto& light : scene.directional_lights) n += light.angular_radius_deg > 0 ? size_t(light.samples) : 1;
-  for (const auto& light : scene.point_lights) n += light.radius > 0 ? size_t(light.samples) : 1;
+  for (const auto& light : scene.directional_lights) n += size_t(samples_per_point(light));
+  for (const auto& light : scene.point_lights) n += size_t(samples_per_point(light));
   if (scene.environment) n += size_t(scene.environment->samples);
   return n;
 }
@@ -174,7 +178,7 @@ glm::dvec3 Shader::reflect(const ShadingInputs& s, const glm::dvec3& ng, const L
 void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
   for (const auto& light : scene_.directional_lights) {
     double cos_max = std::cos(glm::radians(light.angular_radius_deg));
-    int samples = light.angular_radius_deg > 0 ? light.samples : 1;
+    const int samples = samples_per_point(light);
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
       glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u.x, u.y) : light.direction;
@@ -186,7 +190,7 @@ void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
 
 void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const {
   for (const auto& light : scene_.point_lights) {
-    int samples = light.radius > 0 ? light.samples : 1;
+    const int samples = samples_per_point(light);
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
       glm::dvec3 target = light.position;
@@ -272,14 +276,9 @@ glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r, c
     return sum;
   };
   glm::dvec3 L(0.0);
-  for (const auto& light : scene_.directional_lights) {
-    const int samples = light.angular_radius_deg > 0 ? light.samples : 1;
-    L += sum_of(samples) / double(samples);
-  }
-  for (const auto& light : scene_.point_lights) {
-    const int samples = light.radius > 0 ? light.samples : 1;
-    L += sum_of(samples) / double(samples);
-  }
+  auto add_mean = [&](int samples) { L += sum_of(samples) / double(samples); };
+  for (const auto& light : scene_.directional_lights) add_mean(samples_per_point(light));
+  for (const auto& light : scene_.point_lights) add_mean(samples_per_point(light));
   if (const auto& env = scene_.environment) L += env->scale * sum_of(env->samples) / double(env->samples);
   if (scene_.ambient.radiance != glm::dvec3(0.0)) L += albedo * scene_.ambient.radiance * r.ambient_open;
   return L;

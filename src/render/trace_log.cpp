@@ -76,9 +76,8 @@ void TraceLog::abandon() {
   std::vector<Pixel>().swap(pixels_);
 }
 
-const ShadingRecord* TraceLog::shading(size_t pixel, uint32_t sample) const {
-  const TracedHit& traced = pixels_[pixel].hits[sample];
-  return traced.object < 0 ? nullptr : &pixels_[pixel].records[traced.shaded];
+const ShadingRecord& TraceLog::shading(size_t pixel, uint32_t sample) const {
+  return pixels_[pixel].records[pixels_[pixel].hits[sample].shaded];
 }
 
 const LightSampleRecord* TraceLog::light_samples(size_t pixel, uint32_t sample) const {

@@ -8,11 +8,12 @@
 // image it would give by tracing, bit for bit. That makes an extra λ of a method that renders
 // again (shading and texture hooks) cost its shading, not its rays.
 //
-// While it fits, the log also keeps every sample's shading record (render/shading.h: the point,
-// its albedo and its light samples with their visibility) or, for a ray that hit nothing, the
-// background it saw. A render with hooks then only evaluates each record again with its hooks:
-// no sampling, no camera ray, no light sampling. The records take some 300 bytes a sample, so they
-// are given up first, when the log would outgrow half its limit; the hits and answers stay.
+// While it fits, the log also keeps every sample's shading record (render/shading.h: its albedo,
+// its UV footprint and its light samples with their visibility; the point comes again from the
+// hit) or, for a ray that hit nothing, the background it saw. A render with hooks then only
+// evaluates each record again with its hooks: no sampling, no camera ray, no light sampling. The
+// records take about 100 bytes a hit plus 64 a light sample, so they are given up first, when the
+// log would outgrow half its limit; the hits and answers stay.
 
 #include <cstdint>
 #include <optional>
@@ -65,10 +66,10 @@ class TraceLog {
   bool has(size_t pixel, uint32_t sample) const { return !abandoned_ && sample < pixels_[pixel].hits.size(); }
   std::optional<Hit> hit(size_t pixel, uint32_t sample) const;
   ShadowAnswers answers(size_t pixel, uint32_t sample) const;
-  // Whether the sample's shading was kept; its record (null for a miss) and light samples, or the
-  // background a miss saw.
+  // Whether the sample's shading was kept; a hit's record and light samples, or the background a
+  // miss saw.
   bool has_shading(size_t pixel, uint32_t sample) const { return keeps_shading_ && has(pixel, sample); }
-  const ShadingRecord* shading(size_t pixel, uint32_t sample) const;
+  const ShadingRecord& shading(size_t pixel, uint32_t sample) const;
   const LightSampleRecord* light_samples(size_t pixel, uint32_t sample) const;
   glm::dvec3 background(size_t pixel, uint32_t sample) const;
 
