@@ -4,7 +4,10 @@
 //
 // - A shading hook changes how one light sample is reflected: it may shade with another light
 //   (or guide) direction per shading component, or scale or replace the result. Visibility
-//   (shadow rays, environment occlusion) is always traced for the original direction.
+//   (shadow rays, environment occlusion) is always traced for the original direction, and light
+//   from behind the shading normal never arrives. Within a band of the original light's
+//   terminator the hook's change fades out (terminator_fade), so a hooked shading meets the plain
+//   one continuously along the smooth terminator instead of stepping at the mesh's facets.
 // - A texture hook replaces the texture a material samples (e.g. a filtered mip pyramid).
 
 #include <memory>
@@ -36,6 +39,11 @@ glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm
 // The diffuse and specular parts of that reflection separately (they add up to reflect_plain).
 glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
 glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
+
+// How much of a hook's change a light sample keeps, by its cosine with the shading normal:
+// smoothstep from 0 at the terminator to 1 at cos = kTerminatorBand (about 76° from the normal).
+inline constexpr double kTerminatorBand = 0.25;
+double terminator_fade(double cos_i);
 
 class ShadingHook {
  public:

@@ -125,9 +125,25 @@ glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm
   return cos_i > 0 ? brdf(s, wi) * incident * cos_i : glm::dvec3(0.0);
 }
 
+glm::dvec3 shadow_origin(const Scene& scene, const SurfacePoint& p, bool back) {
+  const TriangleMesh& mesh = scene.objects[p.object].mesh;
+  const glm::uvec3& tri = mesh.triangles[p.triangle];
+  const size_t c = 3 * size_t(p.triangle);
+  const double b[3] = {1.0 - p.b1 - p.b2, p.b1, p.b2};
+  const unsigned v[3] = {tri.x, tri.y, tri.z};
+  glm::dvec3 lift(0.0);
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 n = back ? -glm::dvec3(mesh.corner_normals[c + k]) : glm::dvec3(mesh.corner_normals[c + k]);
+    const double below = glm::dot(p.position - glm::dvec3(mesh.positions[v[k]]), n);
+    if (below < 0) lift -= b[k] * below * n;
+  }
+  return p.position + lift;
+}
+
 struct Shader::Context {
   const SurfacePoint& point;
   glm::dvec3 normal, ng;             // shading and geometric normal on the viewed side
+  glm::dvec3 origin;                 // where its shadow rays start (shadow_origin)
   ShadowAnswers* answers = nullptr;  // recorded or replayed shadow answers
   LightSampleRecord* lights;         // the next light sample to draw
 };
@@ -149,7 +165,7 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, Ra
   ++counts.shadow;
   const double eps = tracer_.epsilon();
   // Leave the surface on the side the ray travels to, so the surface does not shadow itself.
-  const glm::dvec3 o = c.point.position + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
+  const glm::dvec3 o = c.origin + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
   const bool open = !tracer_.occluded(o, wi, eps, distance - 2 * eps);
   if (answers && answers->record) answers->record->push_back(open);
   return open;
@@ -157,22 +173,29 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, Ra
 
 void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
                   RayCounts& counts) const {
-  // Light from behind the surface never arrives: by the shading normal on the plain path; by the
-  // geometry when a hook may shade with another direction (reflect() applies the same rule).
-  const double cos_i = glm::dot(c.normal, wi), towards = glm::dot(c.ng, wi);
-  const double facing = shading_hook_ ? towards : cos_i;
-  // Recording or replaying, ask the shadow ray whenever either rule could use it (ShadowAnswers).
-  const bool asked = c.answers ? (towards > 0 || cos_i > 0) : facing > 0;
+  // Light from behind the shading normal never arrives, with or without hooks (reflect()).
   LightSampleRecord& light = *c.lights++;
-  light = {wi, radiance, divisor, asked && (distance <= 0 || visible(c, wi, distance, counts))};
+  const bool facing = glm::dot(c.normal, wi) > 0;
+  light = {wi, radiance, divisor, facing && (distance <= 0 || visible(c, wi, distance, counts))};
 }
 
-glm::dvec3 Shader::reflect(const ShadingInputs& s, const glm::dvec3& ng, const LightSampleRecord& light) const {
+double terminator_fade(double cos_i) {
+  if (cos_i >= kTerminatorBand) return 1.0;
+  const double x = std::max(cos_i, 0.0) / kTerminatorBand;
+  return x * x * (3 - 2 * x);
+}
+
+glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& light) const {
   const double cos_i = glm::dot(s.normal, light.wi);
-  const double facing = shading_hook_ ? glm::dot(ng, light.wi) : cos_i;
-  if (facing <= 0) return glm::dvec3(0.0);
-  if (shading_hook_) return shading_hook_->reflect(s, light.wi, light.radiance / light.divisor);
-  return brdf(s, light.wi) * light.radiance * (cos_i / light.divisor);
+  if (!shading_hook_) return brdf(s, light.wi) * light.radiance * (cos_i / light.divisor);
+  const glm::dvec3 incident = light.radiance / light.divisor;
+  const glm::dvec3 hooked = shading_hook_->reflect(s, light.wi, incident);
+  const double fade = terminator_fade(cos_i);
+  if (fade >= 1) return hooked;
+  // Near the original light's terminator the hook's change fades out, so the hooked shading meets
+  // the plain one (zero at the terminator) continuously along the smooth shading normal.
+  const glm::dvec3 plain = reflect_plain(s, light.wi, incident);
+  return plain + fade * (hooked - plain);
 }
 
 void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
@@ -257,7 +280,8 @@ void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_si
   record.wo = wo;
   record.back = two_sided && glm::dot(point.geometric_normal, wo) < 0;
   record.albedo = albedo(point);
-  Context c{point, record.shading_normal(point), record.geometric_normal(point), answers, lights};
+  Context c{point, record.shading_normal(point), record.geometric_normal(point), shadow_origin(scene_, point, record.back),
+            answers, lights};
   directional(c, random, counts);
   point_lights(c, random, counts);
   environment(c, random, counts);
@@ -267,12 +291,11 @@ void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_si
 glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r, const LightSampleRecord* lights,
                             const glm::dvec3& albedo) const {
   const ShadingInputs s{point, scene_.objects[point.object].material, r.shading_normal(point), r.wo, albedo};
-  const glm::dvec3 ng = r.geometric_normal(point);
   // Sums per light, in the order the samples were drawn; a sample that does not arrive adds nothing.
   auto sum_of = [&](int samples) {
     glm::dvec3 sum(0.0);
     for (int k = 0; k < samples; ++k, ++lights)
-      if (lights->arrives) sum += reflect(s, ng, *lights);
+      if (lights->arrives) sum += reflect(s, *lights);
     return sum;
   };
   glm::dvec3 L(0.0);

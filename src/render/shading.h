@@ -29,10 +29,16 @@ struct SurfacePoint {
 SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1,
                            double b2);
 
+// Where the shadow rays of a point start: the point lifted onto the smooth surface its corner
+// normals describe (Hanika 2021), wherever it lies below a corner's tangent plane. From the flat
+// facet itself, a ray towards a light that the smooth shading normal faces but the facet does not
+// would hit the neighbouring facets, and the terminator would show the mesh's facets as steps.
+glm::dvec3 shadow_origin(const Scene& scene, const SurfacePoint& p, bool back);
+
 // One sample's shadow-ray answers, in the order the shader asks for them: appended while a render
-// records its rays, read back while a render with hooks replays them (render/trace_log.h). With
-// either, the shader asks a shadow ray whenever the plain path or a hook could use it, so both
-// renders ask the same rays in the same order.
+// records its rays, read back while a render with hooks replays them (render/trace_log.h). Hooks
+// never change which light samples face the surface, so both renders ask the same rays in the
+// same order.
 struct ShadowAnswers {
   std::vector<uint8_t>* record = nullptr;
   const uint8_t* replay = nullptr;
@@ -41,7 +47,7 @@ struct ShadowAnswers {
 
 // One light sample as the shader drew it, enough to reflect it again with other hooks: the
 // direction towards the light, its radiance and the divisor (its pdf, or r²), and whether it
-// arrives (drawn, and its shadow ray, where one was asked, reached the light).
+// arrives (it faces the shading normal and its shadow ray, where one was asked, reached the light).
 struct LightSampleRecord {
   glm::dvec3 wi{0.0}, radiance{0.0};
   double divisor = 1.0;
@@ -120,8 +126,8 @@ class Shader {
   void draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
             RayCounts& counts) const;
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
-  // The reflection of one light sample (through the shading hook if there is one).
-  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& ng, const LightSampleRecord& light) const;
+  // The reflection of one arriving light sample (through the shading hook if there is one).
+  glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;

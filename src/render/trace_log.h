@@ -3,8 +3,7 @@
 //
 // Hooks change how a point is shaded or textured, never which rays are traced: a render with
 // hooks takes the same camera samples, hits the same points and asks the same shadow rays as the
-// render without them (the shader asks a shadow ray whenever either path could use it, see
-// ShadowAnswers). So such a render can read every answer back instead of tracing it, and gives the
+// render without them (see ShadowAnswers). So such a render can read every answer back instead of tracing it, and gives the
 // image it would give by tracing, bit for bit. That makes an extra λ of a method that renders
 // again (shading and texture hooks) cost its shading, not its rays.
 //

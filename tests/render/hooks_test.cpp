@@ -89,6 +89,42 @@ TEST(Hooks, AShadingHookChangesShadingButNotShadows) {
   EXPECT_GT(lit, 500);
 }
 
+TEST(Hooks, TheTerminatorFadeRisesSmoothlyFromZeroToOne) {
+  EXPECT_EQ(terminator_fade(-0.5), 0.0);
+  EXPECT_EQ(terminator_fade(0.0), 0.0);
+  EXPECT_EQ(terminator_fade(kTerminatorBand), 1.0);
+  EXPECT_EQ(terminator_fade(0.9), 1.0);
+  EXPECT_DOUBLE_EQ(terminator_fade(0.5 * kTerminatorBand), 0.5);
+  const double h = 1e-6;  // flat at both ends: no kink where the fade starts or ends
+  EXPECT_LT(terminator_fade(h) / h, 1e-4);
+  EXPECT_LT((1 - terminator_fade(kTerminatorBand - h)) / h, 1e-4);
+  for (double c = 0; c < kTerminatorBand; c += 0.01) EXPECT_LT(terminator_fade(c), terminator_fade(c + 0.01));
+}
+
+// Light grazing the floor at cos 0.1, inside the terminator band: the hook's change is faded in
+// by terminator_fade(0.1), so the floor lies between the plain and the head-on shading.
+TEST(Hooks, AHookChangesLightNearTheTerminatorOnlyInPart) {
+  testing::TempDir dir;
+  std::string scene = kShadowScene;
+  const double cos_i = 0.1, sin_i = std::sqrt(1 - cos_i * cos_i);
+  scene.replace(scene.find("[1, 0.6, 0]"), 11, "[" + std::to_string(sin_i) + ", " + std::to_string(cos_i) + ", 0]");
+  auto view = base_view(dir, scene);
+  RenderRequest request;
+  request.shading_hook = std::make_shared<HeadOnHook>();
+  auto hooked = make_context(view).render_again(request);
+  const GBuffer& g = view->render.gbuffer;
+  const double plain = 0.6 / M_PI * 2.0 * cos_i, head_on = 0.6 / M_PI * 2.0;
+  const double expected = plain + terminator_fade(cos_i) * (head_on - plain);
+  int lit = 0;
+  for (size_t i = 0; i < g.object.size(); ++i) {
+    if (g.object[i] != 0 || view->render.radiance.pixels[3 * i] == 0.0f) continue;
+    EXPECT_NEAR(view->render.radiance.pixels[3 * i], plain, 1e-5);
+    EXPECT_NEAR(hooked->render.radiance.pixels[3 * i], expected, 1e-5) << i;
+    ++lit;
+  }
+  EXPECT_GT(lit, 500);
+}
+
 TEST(Hooks, ATextureHookReplacesWhatTheMaterialSamples) {
   testing::TempDir dir;
   std::string scene = kShadowScene;
