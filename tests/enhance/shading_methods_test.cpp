@@ -35,10 +35,13 @@ std::shared_ptr<const View> render_ball(const testing::TempDir& dir, const std::
   return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "ball.json", faceted_ball(eye)))));
 }
 
-// The same ball with smooth normals (every edge below the crease angle).
-std::shared_ptr<const View> render_smooth_ball(const testing::TempDir& dir) {
+// The same ball with smooth normals (every edge below the crease angle), its key light with or
+// without shadows.
+std::shared_ptr<const View> render_smooth_ball(const testing::TempDir& dir, bool shadows = true) {
   std::string smooth = faceted_ball("[0, 0.5, 5]");
   smooth.replace(smooth.find("\"crease_angle\": 0"), 17, "\"crease_angle\": 90");
+  const std::string key_light = "\"irradiance\": 2";
+  if (!shadows) smooth.replace(smooth.find(key_light), key_light.size(), key_light + ", \"shadows\": false");
   return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "smooth.json", smooth))));
 }
 
@@ -96,6 +99,12 @@ double largest_step(const Image& display, const View& view) {
                                                lightness_at(display, view, size_t(ny) * w + size_t(nx))));
     }
   return largest;
+}
+
+// The four shading methods at full strength on the smooth ball.
+std::vector<std::pair<std::string, nlohmann::json>> shading_methods_on_the_smooth_ball() {
+  return {{"exaggerated-shading", {{"sigma", 0.15}}}, {"lla", {{"sigma", 0.15}}},
+          {"light-warping", {{"tau", 10.0}}}, {"radiance-scaling", {{"tau", 10.0}}}};
 }
 
 // The method prepared on the ball seen from the front, after checking that λ = 0 is the plain render.
@@ -235,19 +244,20 @@ TEST(ExaggeratedShading, LambdaZeroIsPlainAndFullStrengthFlattensTheLitSide) {
 }
 
 // The light's terminator on a smooth ball is a smooth curve: neither the plain render nor a hook
-// may draw it as the mesh's facets or as a line. Shadow rays leaving the flat facets, and hooks
-// keeping their light up to a per-facet terminator, left steps of 11.9 L* (plain), 29 (ES), 15.5
-// (LLA) and 31 (LW) between neighbouring pixels here; smooth terminators leave 5.9, 13.7, 9.6 and
-// 13.3 (ES and LW turn steeper, as their light ramps down over a narrower band).
+// may draw it as the mesh's facets or as a line, whether the light casts shadows or not (its
+// attached shadow stays). Shadow rays leaving the flat facets, and hooks keeping their light up to a
+// per-facet terminator, left steps of 11.9 L* (plain), 29 (ES), 15.5 (LLA) and 31 (LW) between
+// neighbouring pixels here; smooth terminators leave 5.9, 13.7, 9.6 and 13.3 (ES and LW turn
+// steeper, as their light ramps down over a narrower band).
 TEST(ShadingMethods, NoMethodDrawsTheTerminatorAsAnEdge) {
-  testing::TempDir dir;
-  const auto view = render_smooth_ball(dir);
-  EXPECT_LT(largest_step(view->display, *view), 7.0);
-  for (const auto& [method, parameters] : std::vector<std::pair<std::string, nlohmann::json>>{
-           {"exaggerated-shading", {{"sigma", 0.15}}}, {"lla", {{"sigma", 0.15}}},
-           {"light-warping", {{"tau", 10.0}}}, {"radiance-scaling", {{"tau", 10.0}}}}) {
-    const auto prepared = prepare_method(method, view, parameters);
-    EXPECT_LT(largest_step(prepared->compose(1.0).display, *view), 16.0) << method;
+  for (bool shadows : {true, false}) {
+    testing::TempDir dir;
+    const auto view = render_smooth_ball(dir, shadows);
+    EXPECT_LT(largest_step(view->display, *view), 7.0) << "shadows " << shadows;
+    for (const auto& [method, parameters] : shading_methods_on_the_smooth_ball()) {
+      const auto prepared = prepare_method(method, view, parameters);
+      EXPECT_LT(largest_step(prepared->compose(1.0).display, *view), 16.0) << method << ", shadows " << shadows;
+    }
   }
 }
 
