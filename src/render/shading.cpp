@@ -173,7 +173,8 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, Ra
 
 void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
                   RayCounts& counts) const {
-  // Light from behind the shading normal never arrives, with or without hooks (reflect()).
+  // Light from behind the shading normal never arrives, with or without hooks, so a render with
+  // hooks asks exactly the shadow rays of the render without them.
   LightSampleRecord& light = *c.lights++;
   const bool facing = glm::dot(c.normal, wi) > 0;
   light = {wi, radiance, divisor, facing && (distance <= 0 || visible(c, wi, distance, counts))};

@@ -31,6 +31,8 @@ std::string faceted_ball(const std::string& eye) {
 })";
 }
 
+const glm::dvec3 kKeyLight = glm::normalize(glm::dvec3(-0.5, 0.8, 0.6));  // the direction in faceted_ball
+
 std::shared_ptr<const View> render_ball(const testing::TempDir& dir, const std::string& eye) {
   return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "ball.json", faceted_ball(eye)))));
 }
@@ -68,11 +70,10 @@ double facet_contrast(const Image& display, const View& view) {
 // Standard deviation of L* over the object's pixels that the key light reaches at more than
 // `min_cos` (the pixel's shading normal against the light): the lit side's range.
 double lightness_spread(const Image& display, const View& view, double min_cos = -1) {
-  const glm::vec3 light = glm::normalize(glm::vec3(-0.5, 0.8, 0.6));  // faceted_ball's key light
   double sum = 0, sum2 = 0;
   size_t n = 0;
   for (size_t i = 0; i < view.depth.size(); ++i) {
-    if (!on_object(view, i) || glm::dot(view.render.gbuffer.normal[i], light) < min_cos) continue;
+    if (!on_object(view, i) || glm::dot(glm::dvec3(view.render.gbuffer.normal[i]), kKeyLight) < min_cos) continue;
     const double l = lightness_at(display, view, i);
     sum += l, sum2 += l * l, ++n;
   }
@@ -92,9 +93,10 @@ double largest_step(const Image& display, const View& view) {
   double largest = 0;
   for (int y = 2; y + 1 < display.height; ++y)
     for (int x = 2; x + 1 < w; ++x) {
+      if (!inside(x, y)) continue;
       const size_t i = size_t(y) * w + x;
       for (const auto& [nx, ny] : {std::pair{x - 1, y}, std::pair{x, y - 1}})
-        if (inside(x, y) && inside(nx, ny))
+        if (inside(nx, ny))
           largest = std::max(largest, std::abs(lightness_at(display, view, i) -
                                                lightness_at(display, view, size_t(ny) * w + size_t(nx))));
     }
@@ -158,7 +160,7 @@ double largest_rotation_change(const std::string& mode) {
   scales.sigma = parameters["sigma"], scales.image = mode == "image";
   const auto n1 = scene_normals(c1, scales, "lla"), n2 = scene_normals(c2, scales, "lla");
   const Object& ball = first->scene->objects[0];
-  const glm::dvec3 light = glm::normalize(glm::dvec3(-0.5, 0.8, 0.6));
+  const glm::dvec3& light = kKeyLight;
   const double strengths[2] = {1.0, 1.0};
   double largest = 0;
   for (unsigned triangle = 0; triangle < ball.mesh.triangles.size(); ++triangle) {
