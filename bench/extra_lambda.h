@@ -1,8 +1,8 @@
 #pragma once
 // What one extra λ of a method costs against the render it starts from: each iteration renders
 // the scene's view for the method (as a stimulus set does: a method that renders again gets the
-// render's ray log), prepares the method, then composes λ = 1 once. Counters:
-// render_s, compose_s and vs_render (compose over render, in the same run).
+// render's ray log), prepares the method, then composes λ = 1 once, after one untimed round.
+// Counters: render_s, compose_s and vs_render (compose over render, in the same run).
 
 #include <benchmark/benchmark.h>
 
@@ -20,6 +20,10 @@ inline void measure_extra_lambda(benchmark::State& state, const std::shared_ptr<
   auto seconds_since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
+  // One untimed round first: the process's first render pays one-time costs (thread pools, the
+  // allocator's first pages) that would count against the render alone.
+  benchmark::DoNotOptimize(
+      prepare_method(method, render_view(scene, plan_for(method, parameters, 1.0), {}), parameters)->compose(1.0));
   double render = 0, compose = 0;
   for (auto _ : state) {
     auto t = std::chrono::steady_clock::now();

@@ -28,6 +28,7 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
       options.shading_hook = request.shading_hook;
       options.texture_hook = request.texture_hook;
       options.estimate_noise = false;  // the method keeps the display only
+      options.radiance_only = true;
       return make_view(scene, tracer, render(*scene, *tracer, options), bits, false);
     };
   }

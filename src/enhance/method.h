@@ -91,7 +91,8 @@ struct PrepareContext {
   const ChangeNoise* change_noise = nullptr;      // the render's noise estimate of its change per λ
   int threads = 0;  // 0 = all cores
   // The view's scene rendered again for `request` (its hooks) with the same camera, samples and
-  // seed (its View has no CIELAB image). Null for external images.
+  // seed. Its View holds the display and the radiance only (no CIELAB image, G-buffer or noise).
+  // Null for external images.
   std::function<std::shared_ptr<const View>(const RenderRequest&)> render_again;
 };
 

@@ -13,6 +13,7 @@
 #include "core/random.h"
 #include "render/camera.h"
 #include "render/ray_differentials.h"
+#include "render/record_replay.h"
 
 namespace countershade {
 namespace {
@@ -103,13 +104,10 @@ class PixelSampler {
 
   // A sample whose shading the replayed log kept: evaluated again with this render's hooks.
   void replay_shading(size_t pixel, uint32_t s) {
-    const auto hit = in_.replay->hit(pixel, s);
-    if (!hit) return accumulate(pixel, s, in_.replay->background(pixel, s), nullptr);
-    const ShadingRecord& record = in_.replay->shading(pixel, s);
-    const SurfacePoint sp = record.restore(surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2));
-    // The camera ray's direction is −wo, so the side it saw is that of dot(n_g, −wo).
-    const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, -record.wo) > 0};
-    accumulate(pixel, s, in_.shader.replay(sp, record, in_.replay->light_samples(pixel, s)), &sample_hit);
+    const ReplayedSample replayed = replay_sample(in_.scene, in_.shader, *in_.replay, pixel, s);
+    if (!replayed.point) return accumulate(pixel, s, replayed.radiance, nullptr);
+    const SampleHit sample_hit{*replayed.point, replayed.back};
+    accumulate(pixel, s, replayed.radiance, &sample_hit);
   }
 
   // Adds one sample's radiance (and, for a hit, its fields) to the pixel's sums.

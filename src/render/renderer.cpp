@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "render/camera.h"
 #include "render/pixel_pass.h"
+#include "render/record_replay.h"
 #include "render/shading.h"
 #include "render/trace_log.h"
 #include "render/vertex_pass.h"
@@ -90,6 +91,12 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   const Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
   RenderResult result;
   const TraceLog* replay = replayable(options.replay_trace.get(), scene);
+  if (replay && options.radiance_only && !options.vertex_radiance && !options.record_trace)
+    if (auto radiance = replay_radiance(scene, shader, *replay, options.threads)) {
+      result.radiance = std::move(*radiance);
+      result.spp.assign(result.radiance.pixels.size() / 3, uint32_t(*scene.settings.spp));
+      return result;
+    }
   result.gbuffer = replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;

@@ -116,6 +116,10 @@ struct RenderOptions {
   // false: a render with a fixed sample count skips its noise estimate, leaving `noise` at 0 and
   // `change_noise` empty (renders whose display is all that is kept).
   bool estimate_noise = true;
+  // true: only the radiance image is kept. A render at a fixed sample count that replays a log
+  // holding every sample's shading record then evaluates the records and nothing else: its result
+  // has the radiance and spp alone (render/record_replay.h).
+  bool radiance_only = false;
   // Called between passes 2 and 3 with what is rendered so far.
   std::function<PixelRequest(const RenderResult&)> before_pixels;
   std::function<void(double)> progress;  // called with the finished fraction, from any thread

@@ -76,24 +76,6 @@ void TraceLog::abandon() {
   std::vector<Pixel>().swap(pixels_);
 }
 
-const ShadingRecord& TraceLog::shading(size_t pixel, uint32_t sample) const {
-  return pixels_[pixel].records[pixels_[pixel].hits[sample].shaded];
-}
-
-const LightSampleRecord* TraceLog::light_samples(size_t pixel, uint32_t sample) const {
-  return pixels_[pixel].lights.data() + size_t(pixels_[pixel].hits[sample].shaded) * light_samples_;
-}
-
-glm::dvec3 TraceLog::background(size_t pixel, uint32_t sample) const {
-  return pixels_[pixel].backgrounds[pixels_[pixel].hits[sample].shaded];
-}
-
-std::optional<Hit> TraceLog::hit(size_t pixel, uint32_t sample) const {
-  const TracedHit& traced = pixels_[pixel].hits[sample];
-  if (traced.object < 0) return std::nullopt;
-  return Hit{unsigned(traced.object), traced.triangle, traced.b1, traced.b2, 0.0};
-}
-
 ShadowAnswers TraceLog::answers(size_t pixel, uint32_t sample) const {
   const Pixel& p = pixels_[pixel];
   const size_t end = sample + 1 < p.hits.size() ? p.hits[sample + 1].first_answer : p.answers.size();

@@ -63,14 +63,25 @@ class TraceLog {
 
   // Replaying: whether sample `sample` of `pixel` was recorded; its hit and its answers.
   bool has(size_t pixel, uint32_t sample) const { return !abandoned_ && sample < pixels_[pixel].hits.size(); }
-  std::optional<Hit> hit(size_t pixel, uint32_t sample) const;
+  std::optional<Hit> hit(size_t pixel, uint32_t sample) const {
+    const TracedHit& traced = pixels_[pixel].hits[sample];
+    if (traced.object < 0) return std::nullopt;
+    return Hit{unsigned(traced.object), traced.triangle, traced.b1, traced.b2, 0.0};
+  }
   ShadowAnswers answers(size_t pixel, uint32_t sample) const;
   // Whether the sample's shading was kept; a hit's record and light samples, or the background a
   // miss saw.
+  // (Defined here: a replay calls them for every sample.)
   bool has_shading(size_t pixel, uint32_t sample) const { return keeps_shading_ && has(pixel, sample); }
-  const ShadingRecord& shading(size_t pixel, uint32_t sample) const;
-  const LightSampleRecord* light_samples(size_t pixel, uint32_t sample) const;
-  glm::dvec3 background(size_t pixel, uint32_t sample) const;
+  const ShadingRecord& shading(size_t pixel, uint32_t sample) const {
+    return pixels_[pixel].records[pixels_[pixel].hits[sample].shaded];
+  }
+  const LightSampleRecord* light_samples(size_t pixel, uint32_t sample) const {
+    return pixels_[pixel].lights.data() + size_t(pixels_[pixel].hits[sample].shaded) * light_samples_;
+  }
+  glm::dvec3 background(size_t pixel, uint32_t sample) const {
+    return pixels_[pixel].backgrounds[pixels_[pixel].hits[sample].shaded];
+  }
 
   size_t pixel_count() const { return pixels_.size(); }
   GBuffer gbuffer;  // the render's pass 1, which hooks do not change either

@@ -67,13 +67,24 @@ std::shared_ptr<const Scene> rich_scene(const testing::TempDir& dir) {
   return std::make_shared<const Scene>(load_scene(testing::write_file(dir / "rich.json", kRichScene)));
 }
 
+// The same scene at a fixed count of 6 samples per pixel instead of the noise budget.
+std::shared_ptr<const Scene> fixed_count_scene(const testing::TempDir& dir) {
+  std::string json = kRichScene;
+  const std::string budget = R"("noise": {"target": 1.0, "min_spp": 4, "max_spp": 64})";
+  json.replace(json.find(budget), budget.size(), R"("spp": 6)");
+  return std::make_shared<const Scene>(load_scene(testing::write_file(dir / "fixed.json", json)));
+}
+
+// `radiance_only`: as a method's render of one λ, which keeps nothing else.
 RenderResult render_with(const Scene& scene, const RayTracer& tracer, std::shared_ptr<const ShadingHook> hook,
-                         std::shared_ptr<const TraceLog> replay = nullptr, bool record = false) {
+                         std::shared_ptr<const TraceLog> replay = nullptr, bool record = false,
+                         bool radiance_only = false) {
   RenderOptions options;
   options.threads = 2;
   options.shading_hook = std::move(hook);
   options.replay_trace = std::move(replay);
   options.record_trace = record;
+  options.radiance_only = radiance_only;
   return render(scene, tracer, options);
 }
 
@@ -154,36 +165,71 @@ TEST(TraceLog, ALogOverItsLimitIsGivenUpAndTheImageStaysTheSame) {
   expect_same_pixels(whole, limited);
 }
 
+// A render that records its rays under a limit that fits them but not the shading records; the
+// same image as the render that keeps its records (`whole`).
+RenderResult render_without_records(const Scene& scene, const RayTracer& tracer, const RenderResult& whole) {
+  uint64_t samples = 0;
+  for (uint32_t n : whole.spp) samples += n;
+  const uint64_t rays = whole.trace->projected_bytes(samples, false), shading = whole.trace->projected_bytes(samples, true);
+  EXPECT_LT(4 * rays, shading);  // the records are the bulk of the log
+  RenderOptions options;
+  options.threads = 2;
+  options.record_trace = true;
+  options.trace_byte_limit = 2 * rays;
+  RenderResult limited = render(scene, tracer, options);
+  expect_same_pixels(whole, limited);
+  EXPECT_NE(limited.trace, nullptr);
+  EXPECT_FALSE(limited.trace && limited.trace->keeps_shading());
+  return limited;
+}
+
 TEST(TraceLog, ALogWhoseShadingRecordsDoNotFitKeepsItsRaysAndReplaysThem) {
   testing::TempDir dir;
   auto scene = rich_scene(dir);
   const RayTracer tracer(*scene);
   const RenderResult whole = render_with(*scene, tracer, nullptr, nullptr, true);
   ASSERT_TRUE(whole.trace->keeps_shading());
-  uint64_t samples = 0;
-  for (uint32_t n : whole.spp) samples += n;
-  const uint64_t rays = whole.trace->projected_bytes(samples, false), shading = whole.trace->projected_bytes(samples, true);
-  ASSERT_LT(4 * rays, shading);  // the records are the bulk of the log
-  RenderOptions options;
-  options.threads = 2;
-  options.record_trace = true;
-  options.trace_byte_limit = 2 * rays;
-  const RenderResult limited = render(*scene, tracer, options);
-  expect_same_pixels(whole, limited);
+  const RenderResult limited = render_without_records(*scene, tracer, whole);
   ASSERT_NE(limited.trace, nullptr);
-  EXPECT_FALSE(limited.trace->keeps_shading());
   const auto hook = std::make_shared<TiltHook>();
   const RenderResult replayed = render_with(*scene, tracer, hook, limited.trace);
   expect_same_pixels(render_with(*scene, tracer, hook), replayed);
   EXPECT_LT(replayed.rays.primary, whole.rays.primary / 4);
 }
 
+// A render that keeps its radiance only, at a fixed count, evaluates the log's records and does
+// nothing else: the same pixels as tracing, no G-buffer, no ray.
+TEST(TraceLog, ARadianceOnlyReplayAtAFixedCountEqualsTracingIt) {
+  testing::TempDir dir;
+  auto scene = fixed_count_scene(dir);
+  const RayTracer tracer(*scene);
+  const RenderResult base = render_with(*scene, tracer, nullptr, nullptr, true);
+  ASSERT_TRUE(base.trace->keeps_shading());
+  const auto hook = std::make_shared<TiltHook>();
+  const RenderResult traced = render_with(*scene, tracer, hook);
+  const RenderResult replayed = render_with(*scene, tracer, hook, base.trace, false, true);
+  expect_same_pixels(traced, replayed);
+  EXPECT_TRUE(replayed.gbuffer.object.empty());  // the records alone: no pass 1 either
+  EXPECT_EQ(replayed.rays.primary + replayed.rays.shadow, 0u);
+  EXPECT_NE(traced.radiance.pixels, base.radiance.pixels);
+}
+
+// Where the log cannot give every sample's record, a radiance-only render is a whole one.
+TEST(TraceLog, ARadianceOnlyReplayWithoutRecordsRendersInFull) {
+  testing::TempDir dir;
+  auto scene = fixed_count_scene(dir);
+  const RayTracer tracer(*scene);
+  const RenderResult base = render_without_records(*scene, tracer, render_with(*scene, tracer, nullptr, nullptr, true));
+  ASSERT_NE(base.trace, nullptr);
+  const auto hook = std::make_shared<TiltHook>();
+  const RenderResult replayed = render_with(*scene, tracer, hook, base.trace, false, true);
+  expect_same_pixels(render_with(*scene, tracer, hook), replayed);
+  EXPECT_FALSE(replayed.gbuffer.object.empty());
+}
+
 // Through the method interface: an extra λ of every method that renders again reads the base
 // view's log and composes what it composes without one.
-TEST(TraceLog, EveryMethodThatRendersAgainComposesTheSameWithAndWithoutTheLog) {
-  testing::TempDir dir;
-  ::setenv("COUNTERSHADE_CACHE", (dir / "cache").c_str(), 1);  // texture-filter's pyramids
-  auto scene = rich_scene(dir);
+void every_method_composes_the_same(const std::shared_ptr<const Scene>& scene) {
   const std::vector<std::pair<std::string, nlohmann::json>> methods = {
       {"exaggerated-shading", {{"sigma", 0.1}}},
       {"lla", {{"sigma", 0.1}}},
@@ -203,6 +249,13 @@ TEST(TraceLog, EveryMethodThatRendersAgainComposesTheSameWithAndWithoutTheLog) {
       EXPECT_NE(image.pixels, view->display.pixels) << method << " at " << lambda;  // the method does change it
     }
   }
+}
+
+TEST(TraceLog, EveryMethodThatRendersAgainComposesTheSameWithAndWithoutTheLog) {
+  testing::TempDir dir;
+  ::setenv("COUNTERSHADE_CACHE", (dir / "cache").c_str(), 1);  // texture-filter's pyramids
+  // Adaptive sampling (the whole pixel pass replays) and a fixed count (the records alone).
+  for (const auto& scene : {rich_scene(dir), fixed_count_scene(dir)}) every_method_composes_the_same(scene);
 }
 
 }  // namespace
