@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -66,6 +67,20 @@ const TraceLog* replayable(const TraceLog* log, const Scene& scene) {
   return log->pixel_count() == size_t(scene.camera.width) * size_t(scene.camera.height) ? log : nullptr;
 }
 
+// A render that keeps its radiance only, when the replayed log's records give it alone.
+std::optional<RenderResult> from_records_alone(const Scene& scene, const Shader& shader, const TraceLog* replay,
+                                               const RenderOptions& options) {
+  if (!replay || !options.radiance_only || options.vertex_radiance || options.record_trace) return std::nullopt;
+  auto radiance = replay_radiance(scene, shader, *replay, options.threads);
+  if (!radiance) return std::nullopt;
+  const uint32_t spp = uint32_t(*scene.settings.spp);
+  RenderResult result;
+  result.radiance = std::move(*radiance);
+  result.spp.assign(result.radiance.pixels.size() / 3, spp);
+  result.sampling.pixels = {spp, spp, double(spp)};
+  return result;
+}
+
 }  // namespace
 
 GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads) {
@@ -91,12 +106,7 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   const Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
   RenderResult result;
   const TraceLog* replay = replayable(options.replay_trace.get(), scene);
-  if (replay && options.radiance_only && !options.vertex_radiance && !options.record_trace)
-    if (auto radiance = replay_radiance(scene, shader, *replay, options.threads)) {
-      result.radiance = std::move(*radiance);
-      result.spp.assign(result.radiance.pixels.size() / 3, uint32_t(*scene.settings.spp));
-      return result;
-    }
+  if (auto replayed = from_records_alone(scene, shader, replay, options)) return std::move(*replayed);
   result.gbuffer = replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;
