@@ -70,8 +70,7 @@ class TraceLog {
   }
   ShadowAnswers answers(size_t pixel, uint32_t sample) const;
   // Whether the sample's shading was kept; a hit's record and light samples, or the background a
-  // miss saw.
-  // (Defined here: a replay calls them for every sample.)
+  // miss saw. (Defined here, as `hit` is: a replay calls them for every sample.)
   bool has_shading(size_t pixel, uint32_t sample) const { return keeps_shading_ && has(pixel, sample); }
   const ShadingRecord& shading(size_t pixel, uint32_t sample) const {
     return pixels_[pixel].records[pixels_[pixel].hits[sample].shaded];
