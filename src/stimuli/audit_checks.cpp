@@ -29,6 +29,18 @@ AuditCheck lambda_zero_check(const AuditCondition& c) {
   return check;
 }
 
+// The smallest λ whose measure passes the limit, as a clause for a failed check: a reader can tell
+// whether the λ range a study cares about (around the first visible difference) is affected.
+// The stimuli are in λ order.
+std::string first_past(const AuditCondition& c, double limit, double (*measure)(const StimulusAudit&)) {
+  for (const auto* s : c.stimuli)
+    if (measure(*s) > limit) return "; past it from lambda " + format_value(s->lambda);
+  return "";
+}
+
+double absolute_drift(const StimulusAudit& s) { return std::abs(s.drift); }
+double clipped_share(const StimulusAudit& s) { return s.clipped_fraction; }
+
 AuditCheck drift_check(const AuditCondition& c, double limit) {
   AuditCheck check{"mean L* drift", c.scene, c.name, true, ""};
   double worst = 0, at = 0;
@@ -40,7 +52,7 @@ AuditCheck drift_check(const AuditCondition& c, double limit) {
   }
   check.passed = std::abs(worst) <= limit;
   check.detail = (worst >= 0 ? "+" : "") + fixed(worst, 2) + " L* at lambda " + format_value(at) + " (limit " +
-                 format_value(limit) + ")";
+                 format_value(limit) + first_past(c, limit, absolute_drift) + ")";
   return check;
 }
 
@@ -53,7 +65,8 @@ AuditCheck clipping_check(const AuditCondition& c, double limit) {
       at = s->lambda;
     }
   check.passed = worst <= limit;
-  check.detail = fixed(100 * worst, 2) + " % at lambda " + format_value(at) + " (limit " + format_value(100 * limit) + " %)";
+  check.detail = fixed(100 * worst, 2) + " % at lambda " + format_value(at) + " (limit " + format_value(100 * limit) +
+                 " %" + first_past(c, limit, clipped_share) + ")";
   return check;
 }
 

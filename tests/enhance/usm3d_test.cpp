@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -330,6 +331,45 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
     }
     EXPECT_GT(pixels, 200);
   }
+}
+
+// The image's mean L* minus the view's.
+double mean_lightness_change(const View& view, const Composed& composed) {
+  const LabPixels lab = display_to_lab(composed.display, view.encoding, view.bits);
+  double sum = 0;
+  for (size_t p = 0; p < lab.size(); ++p) sum += lab[p].L - view.lab[p].L;
+  return sum / double(lab.size());
+}
+
+// The contrast is taken over the whole surface, seen or not, and the image weighs the surface by
+// its projected area (docs/enhancement-methods.md, usm3d, "Known behaviour"): a sphere lit from
+// above brightens when its lit cap faces the camera and darkens when its unlit one does. The
+// same as experiments/drift at a smaller size.
+TEST(Usm3d, MeanLightnessDriftFollowsWhatTheCameraSees) {
+  auto sphere_seen_from = [](const std::string& eye) {
+    return R"({
+      "version": 1,
+      "camera": {"eye": [)" + eye + R"(], "target": [0, 0, 0], "fov": 30, "width": 96, "height": 72},
+      "render": {"spp": 4},
+      "display": {"background": [0.18, 0.18, 0.18]},
+      "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 5}, "material": {"albedo": 0.5}}],
+      "lights": [{"type": "directional", "direction": [0, 1, 0], "irradiance": 1.6}, {"type": "ambient", "radiance": 0.1}]
+    })";
+  };
+  std::map<std::string, double> drift;
+  for (const auto& [view, eye] : std::map<std::string, std::string>{{"top", "0, 4.6, 2"}, {"side", "0, 0, 5"},
+                                                                     {"bottom", "0, -4.6, 2"}}) {
+    testing::TempDir dir;
+    const Rendered r = render_test_view(dir, sphere_seen_from(eye), {with_sigma(0.6)});
+    const auto usm = prepare_method("usm3d", r.view, with_sigma(0.6));
+    drift[view] = mean_lightness_change(*r.view, usm->compose(1.0));
+    // In proportion to λ (no clipping here): λ = 2 doubles it within the rounding to code values.
+    EXPECT_NEAR(mean_lightness_change(*r.view, usm->compose(2.0)), 2 * drift[view], 0.05) << view;
+  }
+  EXPECT_GT(drift["top"], 1.0);
+  EXPECT_LT(drift["bottom"], -0.2);
+  EXPECT_LT(drift["side"], 0.0);  // the terminator's darkened band across the disc
+  EXPECT_GT(drift["top"] - drift["side"], 1.0);
 }
 
 TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {

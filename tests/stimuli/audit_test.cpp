@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "../adjust/tiny_set.h"
 #include "core/color.h"
@@ -116,6 +117,34 @@ TEST(Audit, LimitsComeFromTheExperimentAndTheScreenMustHoldTwoImages) {
   r.limits.screen_width = 1072;
   add_audit_checks(r, m);
   EXPECT_TRUE(r.checks[0].passed) << r.checks[0].detail;
+}
+
+// A failed drift or clipping check names the largest value and the smallest λ past the limit:
+// whether the λ range around the first visible difference is affected.
+TEST(Audit, AFailedCheckSaysFromWhichLambdaTheLimitIsPassed) {
+  AuditReport r;
+  const double drifts[] = {0, 0.4, -1.2, 0.9, 2.5}, clipped[] = {0, 0, 0.004, 0.02, 0.03};
+  for (int k = 0; k < 5; ++k) {
+    StimulusAudit s;
+    s.scene = "scan";
+    s.condition = "usm3d sigma 0.12";
+    s.lambda = 0.5 * k;
+    s.drift = drifts[k];
+    s.clipped_fraction = clipped[k];
+    r.stimuli.push_back(s);
+  }
+  std::swap(r.stimuli[1], r.stimuli[4]);  // the checks must not depend on the manifest's order
+  add_audit_checks(r, Manifest{});
+  std::map<std::string, AuditCheck> by_check;
+  for (const auto& c : r.checks) by_check[c.check] = c;
+  EXPECT_FALSE(by_check["mean L* drift"].passed);
+  EXPECT_EQ(by_check["mean L* drift"].detail, "+2.5 L* at lambda 2 (limit 1; past it from lambda 1)");
+  EXPECT_FALSE(by_check["clipped pixels"].passed);
+  EXPECT_EQ(by_check["clipped pixels"].detail, "3 % at lambda 2 (limit 1 %; past it from lambda 1.5)");
+  r.limits.max_drift = 3;
+  r.checks.clear();
+  add_audit_checks(r, Manifest{});
+  EXPECT_EQ(r.checks[1].detail, "+2.5 L* at lambda 2 (limit 3)");  // passed: no clause
 }
 
 // The failing checks of one kind, as "scene/condition".
