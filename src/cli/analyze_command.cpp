@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/one_line.h"
 
 namespace countershade::cli {
 namespace {
@@ -45,8 +46,8 @@ void run(const AnalyzeArgs& args) {
   if (ec || !fs::is_directory(args.output)) throw_input_error(args.output, "cannot create the output folder");
   for (const auto& block : results)
     for (const auto& w : block.warnings)
-      std::fprintf(stderr, "analyze: warning%s: %s\n", block.method.empty() ? "" : (" (" + block.method + ")").c_str(),
-                   w.c_str());
+      std::fprintf(stderr, "analyze: warning%s\n",
+                   one_line((block.method.empty() ? "" : " (" + block.method + ")") + ": " + w).c_str());
   analysis::write_outputs(results, args.output, !args.no_figures);
   std::fprintf(stderr, "analyze: wrote %s/results.json (%zu method block%s)\n", args.output.c_str(), results.size(),
                results.size() == 1 ? "" : "s");

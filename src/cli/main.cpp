@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/allocator.h"
 #include "core/error.h"
+#include "core/one_line.h"
 #include "core/version.h"
 
 namespace {
@@ -39,7 +40,8 @@ bool known_command(const CLI::App& app, const char* name) {
     if (sub->get_name() == name) return true;
     names += (names.empty() ? "" : ", ") + sub->get_name();
   }
-  std::fprintf(stderr, "countershade: error: unknown command '%s' (commands: %s)\n", name, names.c_str());
+  std::fprintf(stderr, "countershade: error: unknown command '%s' (commands: %s)\n", countershade::one_line(name).c_str(),
+               names.c_str());
   return false;
 }
 
@@ -57,16 +59,16 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    std::fprintf(stderr, "countershade: error: %s (see --help)\n", e.what());
+    std::fprintf(stderr, "countershade: error: %s (see --help)\n", countershade::one_line(e.what()).c_str());
     return 2;
   } catch (const countershade::cli::CommandFailed& e) {
-    std::fprintf(stderr, "countershade: %s\n", e.what());
+    std::fprintf(stderr, "countershade: %s\n", countershade::one_line(e.what()).c_str());
     return e.status;
   } catch (const countershade::InputError& e) {
-    std::fprintf(stderr, "countershade: error: %s\n", e.what());
+    std::fprintf(stderr, "countershade: error: %s\n", countershade::one_line(e.what()).c_str());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "countershade: failure: %s\n", e.what());
+    std::fprintf(stderr, "countershade: failure: %s\n", countershade::one_line(e.what()).c_str());
     return 1;
   }
   return 0;

@@ -186,5 +186,15 @@ TEST(BadInput, ScenesNameTheKeyOfAnOutOfRangeSeed) {
   expect_refused({"render " + scene + " -o " + (dir / "o.png").string(), "18446744073709551615"});
 }
 
+// A message quotes what it found; a binary file or a file name with a newline must still give one
+// readable line.
+TEST(BadInput, MessagesQuotingBinaryBytesOrNewlinesStayOneReadableLine) {
+  testing::TempDir dir;
+  const std::string png = testing::write_file(dir / "not-a-manifest.json", png_header_only(4, 4)).string();
+  expect_refused({"audit " + png + " -o " + (dir / "report").string(), "\\x89"});
+  expect_refused({"render '" + (dir / "two\nlines.json").string() + "' -o " + (dir / "o.png").string(),
+                  "two\\x0alines.json"});
+}
+
 }  // namespace
 }  // namespace countershade
