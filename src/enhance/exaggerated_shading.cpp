@@ -63,7 +63,7 @@ class EsMethod final : public EnhancementMethod {
   std::string name() const override { return "exaggerated-shading"; }
   std::string summary() const override { return "exaggerated shading: half-Lambertian multi-scale shading (shading)"; }
   MethodAxes axes() const override {
-    return {"blend from the plain render (0) to exaggerated shading (1)",
+    return {"blend from the plain render (0) to exaggerated shading (1), clamped to [0, 1]",
             {normal_scales_axis()}};
   }
   std::vector<ParameterDoc> parameter_docs() const override {

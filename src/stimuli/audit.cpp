@@ -126,6 +126,7 @@ std::map<std::pair<std::string, int>, Decoded> decoded_references(const Manifest
 StimulusAudit describe(const ManifestEntry& e) {
   StimulusAudit s;
   s.file = e.file;
+  s.sha256 = e.sha256;
   s.scene = e.scene;
   s.reference = e.is_reference();
   s.lambda = e.lambda;

@@ -4,7 +4,8 @@
 // against the scene's reference (mean and 99th percentile), the share of pixels changed and the
 // sampling noise the manifest estimates; per condition (scene × method × σ), checks with limits
 // from the experiment's "audit" block: λ = 0 equals the reference, mean L* does not drift, little
-// is clipped, the noise meets its budget, and the images fit the declared screen 1:1.
+// is clipped, the noise meets its budget, every λ step changes the image, and the images fit the
+// declared screen 1:1.
 
 #include <cstdint>
 #include <filesystem>
@@ -30,6 +31,7 @@ AuditLimits read_audit_limits(const JsonObject& o);
 
 struct StimulusAudit {
   std::string file, scene, condition;  // condition: "<label> sigma <σ>", empty for references
+  std::string sha256;                   // the manifest's checksum, verified before measuring
   double sigma = 0, lambda = 0;
   int frame = -1;  // a sequence's frame; -1 for a still
   bool reference = false;

@@ -84,6 +84,37 @@ AuditCheck noise_check(const AuditCondition& c) {
   return check;
 }
 
+// Every step along the λ grid changes a visibly enhanced image. A method whose strength saturates
+// (lla and radiance scaling clamp theirs at λ = 1) writes the same image for the rest of the grid:
+// an observer would step through identical pictures and could never find the objectionable end.
+// Images equal to the reference (a control scene, λ = 0) are left out: there nothing is enhanced.
+// The longest run of one image is reported, per frame in a sequence.
+AuditCheck lambda_steps_check(const AuditCondition& c) {
+  AuditCheck check{"every lambda step changes the image", c.scene, c.name, true, "no two lambdas share an image"};
+  std::map<int, const StimulusAudit*> run_start, previous;  // by frame
+  size_t longest = 1;
+  for (const auto* s : c.stimuli) {  // in λ order
+    const StimulusAudit* before = previous[s->frame];
+    previous[s->frame] = s;
+    const bool repeats = before && before->lambda != s->lambda && s->changed_fraction > 0 && s->sha256 == before->sha256;
+    if (!repeats) {
+      run_start[s->frame] = s;
+      continue;
+    }
+    const StimulusAudit* first = run_start[s->frame];
+    const auto count = size_t(std::count_if(c.stimuli.begin(), c.stimuli.end(), [&](const StimulusAudit* t) {
+      return t->frame == s->frame && t->lambda >= first->lambda && t->lambda <= s->lambda;
+    }));
+    if (count <= longest) continue;
+    longest = count;
+    check.passed = false;
+    check.detail = "the same image from lambda " + format_value(first->lambda) + " to " + format_value(s->lambda) + " (" +
+                   std::to_string(count) + " grid values" + (s->frame >= 0 ? ", frame " + std::to_string(s->frame) : "") +
+                   "): the enhancement stops changing";
+  }
+  return check;
+}
+
 // Two images side by side, 1:1, with the app's gap: they must fit the declared screen.
 AuditCheck screen_check(const AuditLimits& limits, const Manifest& manifest) {
   AuditCheck check{"fits the screen 1:1", "", "", true, ""};
@@ -126,6 +157,7 @@ void add_audit_checks(AuditReport& report, const Manifest& manifest) {
     report.checks.push_back(drift_check(c, report.limits.max_drift));
     report.checks.push_back(clipping_check(c, report.limits.max_clipped));
     report.checks.push_back(noise_check(c));
+    report.checks.push_back(lambda_steps_check(c));
   }
   if (report.limits.screen_width) report.checks.push_back(screen_check(report.limits, manifest));
 }

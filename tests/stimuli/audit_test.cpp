@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
+#include <tuple>
 
 #include "../adjust/tiny_set.h"
 #include "core/color.h"
@@ -147,6 +149,52 @@ TEST(Audit, AFailedCheckSaysFromWhichLambdaTheLimitIsPassed) {
   EXPECT_EQ(r.checks[1].detail, "+2.5 L* at lambda 2 (limit 3)");  // passed: no clause
 }
 
+// One condition's stimuli from (λ, frame, checksum, share of pixels changed against the reference).
+AuditReport condition_of_images(const std::vector<std::tuple<double, int, std::string, double>>& images) {
+  AuditReport r;
+  for (const auto& [lambda, frame, sha, changed] : images) {
+    StimulusAudit s;
+    s.scene = "ball";
+    s.condition = "lla sigma 0.1";
+    s.lambda = lambda;
+    s.frame = frame;
+    s.sha256 = sha;
+    s.changed_fraction = changed;
+    r.stimuli.push_back(s);
+  }
+  add_audit_checks(r, Manifest{});
+  return r;
+}
+
+std::optional<AuditCheck> check_named(const AuditReport& r, const std::string& name) {
+  for (const auto& c : r.checks)
+    if (c.check == name) return c;
+  return std::nullopt;
+}
+
+TEST(Audit, AnEnhancementThatStopsChangingAlongTheGridIsFlagged) {
+  const std::string steps = "every lambda step changes the image";
+  // Saturation from λ = 1 on (the manifest's order does not matter).
+  auto saturated = check_named(condition_of_images({{2, -1, "c", 0.3}, {0, -1, "r", 0}, {0.5, -1, "b", 0.2},
+                                                    {1, -1, "c", 0.3}, {1.5, -1, "c", 0.3}}),
+                               steps);
+  ASSERT_TRUE(saturated);
+  EXPECT_FALSE(saturated->passed);
+  EXPECT_EQ(saturated->detail, "the same image from lambda 1 to 2 (3 grid values): the enhancement stops changing");
+  // A control scene: every image is the reference's, nothing is enhanced, nothing to flag.
+  EXPECT_TRUE(check_named(condition_of_images({{0, -1, "r", 0}, {1, -1, "r", 0}, {2, -1, "r", 0}}), steps)->passed);
+  // A sequence: frames are compared with the same frame at the next λ, not with each other.
+  auto frames = check_named(condition_of_images({{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3},
+                                                 {2, 1, "f0", 0.2}}),
+                            steps);
+  EXPECT_FALSE(frames->passed);
+  EXPECT_EQ(frames->detail, "the same image from lambda 1 to 2 (2 grid values, frame 1): the enhancement stops changing");
+  EXPECT_TRUE(check_named(condition_of_images({{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3},
+                                               {2, 1, "g1", 0.3}}),
+                          steps)
+                  ->passed);
+}
+
 // The failing checks of one kind, as "scene/condition".
 std::set<std::string> failing(const AuditReport& r, const std::string& check) {
   std::set<std::string> out;
@@ -218,6 +266,22 @@ TEST(Audit, ABrokenSetIsCaught) {
   const auto refused = testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report2").string());
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_EQ(testing::count_lines(refused.output), 1) << refused.output;
+}
+
+// Through a real set: radiance scaling clamps its strength at λ = 1, so a grid up to 2 repeats
+// one image; usm3d on the same scene keeps changing.
+TEST(Audit, ARealSetWhoseMethodSaturatesIsFlagged) {
+  testing::TempDir dir;
+  const fs::path scene = testing::source_dir() / "experiments/drift/scenes/top.json";
+  const fs::path experiment = testing::write_file(dir / "experiment.json", R"({
+    "version": 1, "name": "saturation", "seed": 1,
+    "lambda": {"min": 0, "max": 2, "step": 0.5},
+    "scenes": [{"name": "ball", "file": ")" + scene.string() + R"(", "width": 64, "height": 48, "spp": 4}],
+    "methods": [{"method": "radiance-scaling"}, {"method": "usm3d", "sigma": [0.6]}]
+  })");
+  ASSERT_EQ(testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "set").string()).exit_code, 0);
+  const AuditReport r = audit_stimulus_set(dir / "set/manifest.json");
+  EXPECT_EQ(failing(r, "every lambda step changes the image"), std::set<std::string>{"ball/radiance-scaling sigma 0"});
 }
 
 }  // namespace
