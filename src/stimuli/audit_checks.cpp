@@ -84,19 +84,25 @@ AuditCheck noise_check(const AuditCondition& c) {
   return check;
 }
 
-// Every step along the λ grid changes a visibly enhanced image. A method whose strength saturates
-// (lla and radiance scaling clamp theirs at λ = 1) writes the same image for the rest of the grid:
-// an observer would step through identical pictures and could never find the objectionable end.
-// Images equal to the reference (a control scene, λ = 0) are left out: there nothing is enhanced.
+// Every step along the λ grid changes the image. A method whose strength saturates (lla, ES and
+// radiance scaling clamp theirs to [0, 1]) writes the same image for the rest of the grid: an
+// observer would step through identical pictures and could never find the objectionable end. A
+// control condition, whose every image is the reference, is left out: there nothing is enhanced.
 // The longest run of one image is reported, per frame in a sequence.
 AuditCheck lambda_steps_check(const AuditCondition& c) {
   AuditCheck check{"every lambda step changes the image", c.scene, c.name, true, "no two lambdas share an image"};
+  const bool control =
+      std::all_of(c.stimuli.begin(), c.stimuli.end(), [](const StimulusAudit* s) { return s->changed_fraction == 0; });
+  if (control) {
+    check.detail = "every image equals the reference (a control)";
+    return check;
+  }
   std::map<int, const StimulusAudit*> run_start, previous;  // by frame
   size_t longest = 1;
   for (const auto* s : c.stimuli) {  // in λ order
     const StimulusAudit* before = previous[s->frame];
     previous[s->frame] = s;
-    const bool repeats = before && before->lambda != s->lambda && s->changed_fraction > 0 && s->sha256 == before->sha256;
+    const bool repeats = before && before->lambda != s->lambda && s->sha256 == before->sha256;
     if (!repeats) {
       run_start[s->frame] = s;
       continue;

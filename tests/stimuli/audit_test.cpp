@@ -183,6 +183,11 @@ TEST(Audit, AnEnhancementThatStopsChangingAlongTheGridIsFlagged) {
   EXPECT_EQ(saturated->detail, "the same image from lambda 1 to 2 (3 grid values): the enhancement stops changing");
   // A control scene: every image is the reference's, nothing is enhanced, nothing to flag.
   EXPECT_TRUE(check_named(condition_of_images({{0, -1, "r", 0}, {1, -1, "r", 0}, {2, -1, "r", 0}}), steps)->passed);
+  // Clamped at 0 below: negative λ repeat the reference while positive ones enhance.
+  auto below = check_named(condition_of_images({{-1, -1, "r", 0}, {-0.5, -1, "r", 0}, {0, -1, "r", 0}, {0.5, -1, "b", 0.2}}),
+                           steps);
+  EXPECT_FALSE(below->passed);
+  EXPECT_EQ(below->detail, "the same image from lambda -1 to 0 (3 grid values): the enhancement stops changing");
   // A sequence: frames are compared with the same frame at the next λ, not with each other.
   auto frames = check_named(condition_of_images({{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3},
                                                  {2, 1, "f0", 0.2}}),
