@@ -165,6 +165,16 @@ size_t AuditReport::failed() const {
 std::string AuditReport::summary() const {
   std::ostringstream s;
   s << stimuli.size() << " images, " << checks.size() << " checks, " << failed() << " failed";
+  // How many of each kind, in the order the checks are made, when more than one kind failed.
+  std::vector<std::pair<std::string, size_t>> kinds;
+  for (const auto& c : checks) {
+    if (c.passed) continue;
+    auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == c.check; });
+    if (it == kinds.end()) kinds.emplace_back(c.check, 1);
+    else ++it->second;
+  }
+  for (size_t k = 0; kinds.size() > 1 && k < kinds.size(); ++k)
+    s << (k == 0 ? " (" : ", ") << kinds[k].second << " " << kinds[k].first << (k + 1 == kinds.size() ? ")" : "");
   size_t shown = 0;
   for (const auto& c : checks)
     if (!c.passed && shown++ < 3) s << (shown == 1 ? ": " : "; ") << c.scene << " " << c.condition << " " << c.detail;

@@ -143,6 +143,9 @@ TEST(Audit, AFailedCheckSaysFromWhichLambdaTheLimitIsPassed) {
   EXPECT_EQ(by_check["mean L* drift"].detail, "+2.5 L* at lambda 2 (limit 1; past it from lambda 1)");
   EXPECT_FALSE(by_check["clipped pixels"].passed);
   EXPECT_EQ(by_check["clipped pixels"].detail, "3 % at lambda 2 (limit 1 %; past it from lambda 1.5)");
+  // The summary line counts the failures of each kind.
+  EXPECT_EQ(r.summary().rfind("5 images, 5 checks, 2 failed (1 mean L* drift, 1 clipped pixels): scan usm3d", 0), 0u)
+      << r.summary();
   r.limits.max_drift = 3;
   r.checks.clear();
   add_audit_checks(r, Manifest{});
