@@ -32,6 +32,11 @@ void add_commands(CLI::App& app) {
   reject_non_finite_numbers(app);
 }
 
+// One line on stderr, whatever the message quotes from the user's files.
+void print_error(const char* kind, const std::string& message, const char* suffix = "") {
+  std::fprintf(stderr, "countershade: %s%s%s\n", kind, countershade::one_line(message).c_str(), suffix);
+}
+
 // CLI11 reports a mistyped command as "a subcommand is required"; this names it instead. False
 // when `name` is not a command (the line is printed).
 bool known_command(const CLI::App& app, const char* name) {
@@ -40,8 +45,7 @@ bool known_command(const CLI::App& app, const char* name) {
     if (sub->get_name() == name) return true;
     names += (names.empty() ? "" : ", ") + sub->get_name();
   }
-  std::fprintf(stderr, "countershade: error: unknown command '%s' (commands: %s)\n", countershade::one_line(name).c_str(),
-               names.c_str());
+  print_error("error: ", "unknown command '" + std::string(name) + "' (commands: " + names + ")");
   return false;
 }
 
@@ -59,16 +63,16 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    std::fprintf(stderr, "countershade: error: %s (see --help)\n", countershade::one_line(e.what()).c_str());
+    print_error("error: ", e.what(), " (see --help)");
     return 2;
   } catch (const countershade::cli::CommandFailed& e) {
-    std::fprintf(stderr, "countershade: %s\n", countershade::one_line(e.what()).c_str());
+    print_error("", e.what());
     return e.status;
   } catch (const countershade::InputError& e) {
-    std::fprintf(stderr, "countershade: error: %s\n", countershade::one_line(e.what()).c_str());
+    print_error("error: ", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "countershade: failure: %s\n", countershade::one_line(e.what()).c_str());
+    print_error("failure: ", e.what());
     return 1;
   }
   return 0;

@@ -97,26 +97,23 @@ AuditCheck lambda_steps_check(const AuditCondition& c) {
     check.detail = "every image equals the reference (a control)";
     return check;
   }
-  std::map<int, const StimulusAudit*> run_start, previous;  // by frame
+  // Per frame: the run of one image so far, its first stimulus and its length.
+  struct Run {
+    const StimulusAudit *first = nullptr, *last = nullptr;
+    size_t length = 0;
+  };
+  std::map<int, Run> runs;
   size_t longest = 1;
   for (const auto* s : c.stimuli) {  // in λ order
-    const StimulusAudit* before = previous[s->frame];
-    previous[s->frame] = s;
-    const bool repeats = before && before->lambda != s->lambda && s->sha256 == before->sha256;
-    if (!repeats) {
-      run_start[s->frame] = s;
-      continue;
-    }
-    const StimulusAudit* first = run_start[s->frame];
-    const auto count = size_t(std::count_if(c.stimuli.begin(), c.stimuli.end(), [&](const StimulusAudit* t) {
-      return t->frame == s->frame && t->lambda >= first->lambda && t->lambda <= s->lambda;
-    }));
-    if (count <= longest) continue;
-    longest = count;
+    Run& run = runs[s->frame];
+    const bool repeats = run.last && run.last->lambda != s->lambda && s->sha256 == run.last->sha256;
+    run = repeats ? Run{run.first, s, run.length + 1} : Run{s, s, 1};
+    if (run.length <= longest) continue;
+    longest = run.length;
     check.passed = false;
-    check.detail = "the same image from lambda " + format_value(first->lambda) + " to " + format_value(s->lambda) + " (" +
-                   std::to_string(count) + " grid values" + (s->frame >= 0 ? ", frame " + std::to_string(s->frame) : "") +
-                   "): the enhancement stops changing";
+    check.detail = "the same image from lambda " + format_value(run.first->lambda) + " to " + format_value(s->lambda) +
+                   " (" + std::to_string(run.length) + " grid values" +
+                   (s->frame >= 0 ? ", frame " + std::to_string(s->frame) : "") + "): the enhancement stops changing";
   }
   return check;
 }

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
 #include <optional>
 #include <tuple>
 
@@ -121,6 +120,12 @@ TEST(Audit, LimitsComeFromTheExperimentAndTheScreenMustHoldTwoImages) {
   EXPECT_TRUE(r.checks[0].passed) << r.checks[0].detail;
 }
 
+std::optional<AuditCheck> check_named(const AuditReport& r, const std::string& name) {
+  for (const auto& c : r.checks)
+    if (c.check == name) return c;
+  return std::nullopt;
+}
+
 // A failed drift or clipping check names the largest value and the smallest λ past the limit:
 // whether the λ range around the first visible difference is affected.
 TEST(Audit, AFailedCheckSaysFromWhichLambdaTheLimitIsPassed) {
@@ -137,19 +142,19 @@ TEST(Audit, AFailedCheckSaysFromWhichLambdaTheLimitIsPassed) {
   }
   std::swap(r.stimuli[1], r.stimuli[4]);  // the checks must not depend on the manifest's order
   add_audit_checks(r, Manifest{});
-  std::map<std::string, AuditCheck> by_check;
-  for (const auto& c : r.checks) by_check[c.check] = c;
-  EXPECT_FALSE(by_check["mean L* drift"].passed);
-  EXPECT_EQ(by_check["mean L* drift"].detail, "+2.5 L* at lambda 2 (limit 1; past it from lambda 1)");
-  EXPECT_FALSE(by_check["clipped pixels"].passed);
-  EXPECT_EQ(by_check["clipped pixels"].detail, "3 % at lambda 2 (limit 1 %; past it from lambda 1.5)");
+  const auto drift = check_named(r, "mean L* drift"), clipping = check_named(r, "clipped pixels");
+  ASSERT_TRUE(drift && clipping);
+  EXPECT_FALSE(drift->passed);
+  EXPECT_EQ(drift->detail, "+2.5 L* at lambda 2 (limit 1; past it from lambda 1)");
+  EXPECT_FALSE(clipping->passed);
+  EXPECT_EQ(clipping->detail, "3 % at lambda 2 (limit 1 %; past it from lambda 1.5)");
   // The summary line counts the failures of each kind.
   EXPECT_EQ(r.summary().rfind("5 images, 5 checks, 2 failed (1 mean L* drift, 1 clipped pixels): scan usm3d", 0), 0u)
       << r.summary();
   r.limits.max_drift = 3;
   r.checks.clear();
   add_audit_checks(r, Manifest{});
-  EXPECT_EQ(r.checks[1].detail, "+2.5 L* at lambda 2 (limit 3)");  // passed: no clause
+  EXPECT_EQ(check_named(r, "mean L* drift")->detail, "+2.5 L* at lambda 2 (limit 3)");  // passed: no clause
 }
 
 // One condition's stimuli from (λ, frame, checksum, share of pixels changed against the reference).
@@ -167,12 +172,6 @@ AuditReport condition_of_images(const std::vector<std::tuple<double, int, std::s
   }
   add_audit_checks(r, Manifest{});
   return r;
-}
-
-std::optional<AuditCheck> check_named(const AuditReport& r, const std::string& name) {
-  for (const auto& c : r.checks)
-    if (c.check == name) return c;
-  return std::nullopt;
 }
 
 TEST(Audit, AnEnhancementThatStopsChangingAlongTheGridIsFlagged) {
