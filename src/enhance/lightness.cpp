@@ -172,13 +172,22 @@ size_t compose_block_slow(const Lab* lab, const float* in, const double* delta, 
 
 using v8d = double __attribute__((vector_size(64)));
 using v8l = int64_t __attribute__((vector_size(64)));
+#if defined(__clang__)
+// clang refuses 512-bit vectors as arguments (even of always-inline helpers) in the clones
+// without AVX-512, so the fuzz build converts four pixels at a time; the lanes are the same.
+using LabLanes = v4d;
+using LabLaneBits = v4l;
+#else
+using LabLanes = v8d;
+using LabLaneBits = v8l;
+#endif
 
 // linear_rgb_to_lab on eight pixels at once, lane by lane the operations of the scalar code in
 // core/color: one AVX-512 register per vector where there is one, split by the compiler elsewhere.
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out) {
   using namespace color_constants;
-  using D = v8d;
+  using D = LabLanes;
   constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
     D R, G, B;
@@ -188,8 +197,8 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
     const D X = kRgbToXyz[0][0] * R + kRgbToXyz[0][1] * G + kRgbToXyz[0][2] * B;
     const D Y = kRgbToXyz[1][0] * R + kRgbToXyz[1][1] * G + kRgbToXyz[1][2] * B;
     const D Z = kRgbToXyz[2][0] * R + kRgbToXyz[2][1] * G + kRgbToXyz[2][2] * B;
-    const D fx = lab_f_lanes<D, v8l>(X * kInverseWhite[0]), fy = lab_f_lanes<D, v8l>(Y * kInverseWhite[1]),
-            fz = lab_f_lanes<D, v8l>(Z * kInverseWhite[2]);
+    const D fx = lab_f_lanes<D, LabLaneBits>(X * kInverseWhite[0]), fy = lab_f_lanes<D, LabLaneBits>(Y * kInverseWhite[1]),
+            fz = lab_f_lanes<D, LabLaneBits>(Z * kInverseWhite[2]);
     const D L = 116.0 * fy - 16.0, a = 500.0 * (fx - fy), bb = 200.0 * (fy - fz);
     for (int lane = 0; lane < N; ++lane) out[k + lane] = {L[lane], a[lane], bb[lane]};
   }
