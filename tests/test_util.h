@@ -12,6 +12,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -108,6 +109,33 @@ inline std::string input_error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "(no error)";
+}
+
+// One fenced code block of a Markdown document: its language (```json: "json"), the line number
+// of its first line, and its lines.
+struct CodeBlock {
+  std::string language;
+  int first_line = 0;
+  std::vector<std::string> lines;
+};
+
+// The fenced code blocks of a Markdown file, indented ones (in lists) included.
+inline std::vector<CodeBlock> markdown_code_blocks(const std::filesystem::path& path) {
+  std::istringstream in(read_file(path));
+  std::vector<CodeBlock> blocks;
+  bool inside = false;
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    const size_t start = line.find_first_not_of(' ');
+    if (start != std::string::npos && line.compare(start, 3, "```") == 0) {
+      inside = !inside;
+      if (inside) blocks.push_back({line.substr(start + 3), number + 1, {}});
+    } else if (inside) {
+      blocks.back().lines.push_back(line);
+    }
+  }
+  return blocks;
 }
 
 inline int count_lines(const std::string& text) {

@@ -50,24 +50,19 @@ std::vector<std::string> command_words(const std::vector<std::string>& words) {
 }
 
 void collect_commands(const std::filesystem::path& file, std::vector<DocumentedCommand>& out) {
-  std::istringstream in(read_file(file));
-  bool in_code = false;
-  std::string joined;
-  int line_number = 0, first_line = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_number;
-    if (line.find("```") != std::string::npos) {
-      in_code = !in_code;
-      continue;
+  for (const testing::CodeBlock& block : testing::markdown_code_blocks(file)) {
+    std::string joined;
+    int first_line = 0;
+    for (size_t i = 0; i < block.lines.size(); ++i) {
+      const std::string& line = block.lines[i];
+      if (joined.empty()) first_line = block.first_line + int(i);
+      const bool continues = !line.empty() && line.back() == '\\';
+      joined += (continues ? line.substr(0, line.size() - 1) : line) + " ";
+      if (continues) continue;
+      std::vector<std::string> words = command_words(split_words(joined));
+      joined.clear();
+      if (words.size() >= 2) out.push_back({file.filename().string() + ":" + std::to_string(first_line), std::move(words)});
     }
-    if (!in_code) continue;
-    if (joined.empty()) first_line = line_number;
-    const bool continues = !line.empty() && line.back() == '\\';
-    joined += (continues ? line.substr(0, line.size() - 1) : line) + " ";
-    if (continues) continue;
-    std::vector<std::string> words = command_words(split_words(joined));
-    joined.clear();
-    if (words.size() >= 2) out.push_back({file.filename().string() + ":" + std::to_string(first_line), std::move(words)});
   }
 }
 

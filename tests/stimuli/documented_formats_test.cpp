@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -26,16 +25,11 @@ using testing::write_file;
 
 // The ```json blocks of a document, in order.
 std::vector<std::string> json_blocks(const fs::path& doc) {
-  std::istringstream in(read_file(doc));
   std::vector<std::string> blocks;
-  bool inside = false;
-  for (std::string line; std::getline(in, line);) {
-    if (line.starts_with("```")) {
-      inside = !inside && line == "```json";
-      if (inside) blocks.emplace_back();
-    } else if (inside) {
-      blocks.back() += line + "\n";
-    }
+  for (const testing::CodeBlock& block : testing::markdown_code_blocks(doc)) {
+    if (block.language != "json") continue;
+    blocks.emplace_back();
+    for (const std::string& line : block.lines) blocks.back() += line + "\n";
   }
   return blocks;
 }
