@@ -60,6 +60,28 @@ Image image_from_level(const TextureLevel& level) {
   return image;
 }
 
+namespace {
+
+// The four texels of a bilinear lookup at `level` (as TextureLevel::bilinear reads them), each
+// with `weight` times its bilinear weight.
+void bilinear_taps(const TextureLevel& t, uint32_t level, const glm::dvec2& uv, double weight, std::vector<TextureTap>& out) {
+  const double fx = (uv.x - std::floor(uv.x)) * t.width - 0.5;
+  const double fy = (1.0 - (uv.y - std::floor(uv.y))) * t.height - 0.5;
+  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+  const double tx = fx - x0, ty = fy - y0;
+  auto tap = [&](int x, int y, double w) {
+    x = ((x % t.width) + t.width) % t.width;
+    y = ((y % t.height) + t.height) % t.height;
+    out.push_back({level, uint32_t(y) * uint32_t(t.width) + uint32_t(x), weight * w});
+  };
+  tap(x0, y0, (1 - ty) * (1 - tx));
+  tap(x0 + 1, y0, (1 - ty) * tx);
+  tap(x0, y0 + 1, ty * (1 - tx));
+  tap(x0 + 1, y0 + 1, ty * tx);
+}
+
+}  // namespace
+
 glm::dvec3 TextureLevel::bilinear(const glm::dvec2& uv) const {
   const double fx = (uv.x - std::floor(uv.x)) * width - 0.5;
   const double fy = (1.0 - (uv.y - std::floor(uv.y))) * height - 0.5;
@@ -136,6 +158,22 @@ glm::dvec3 Texture::trilinear(const glm::dvec2& uv, double level) const {
   if (fine + 1 >= levels_.size()) return levels_.back().bilinear(uv);
   const double t = level - double(fine);
   return (1.0 - t) * levels_[fine].bilinear(uv) + t * levels_[fine + 1].bilinear(uv);
+}
+
+void Texture::trilinear_taps(const glm::dvec2& uv, double level, double weight, std::vector<TextureTap>& out) const {
+  if (level <= 0.0) return bilinear_taps(levels_.front(), 0, uv, weight, out);
+  const size_t fine = size_t(level);
+  if (fine + 1 >= levels_.size()) return bilinear_taps(levels_.back(), uint32_t(levels_.size() - 1), uv, weight, out);
+  const double t = level - double(fine);
+  bilinear_taps(levels_[fine], uint32_t(fine), uv, weight * (1.0 - t), out);
+  bilinear_taps(levels_[fine + 1], uint32_t(fine + 1), uv, weight * t, out);
+}
+
+void Texture::taps(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy,
+                   std::vector<TextureTap>& out) const {
+  const Footprint f = footprint(duv_dx, duv_dy);
+  for (int i = 0; i < f.probes; ++i)
+    trilinear_taps(f.probes == 1 ? uv : uv + f.axis * ((i + 0.5) / f.probes - 0.5), f.level, 1.0 / f.probes, out);
 }
 
 glm::dvec3 Texture::sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {

@@ -9,6 +9,7 @@
 // elongated. Where a texture is magnified the level is 0 and one probe, so the plain render
 // changes only where textures are minified.
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -26,6 +27,12 @@ struct TextureLevel {
   const glm::vec3& at(int x, int y) const { return texels[size_t(y) * size_t(width) + size_t(x)]; }
   // Bilinear lookup with wrap-around; v = 0 is the bottom row.
   glm::dvec3 bilinear(const glm::dvec2& uv) const;
+};
+
+// One texel a lookup reads, and its weight in the result.
+struct TextureTap {
+  uint32_t level = 0, texel = 0;  // texel: y·width + x in that level
+  double weight = 0;
 };
 
 // A level from an image's first three channels (one channel: grey), decoded from sRGB or taken as
@@ -57,6 +64,9 @@ class Texture {
   // whose texels match the footprint's width per probe (GPU-style anisotropic filtering, so that
   // textures seen at grazing angles are not blurred along their shorter axis too).
   glm::dvec3 sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
+  // The texels that lookup reads, appended to `out` with weights summing to 1: sample() is
+  // Σ weight·texel up to rounding (a texel may appear more than once).
+  void taps(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy, std::vector<TextureTap>& out) const;
   // The (fractional) level of that lookup: log2 of the width each probe covers in level-0 texels
   // (the longer side over the number of probes, at least the shorter side), clamped to
   // [0, levels − 1].
@@ -76,6 +86,7 @@ class Texture {
   };
   Footprint footprint(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
   glm::dvec3 trilinear(const glm::dvec2& uv, double level) const;
+  void trilinear_taps(const glm::dvec2& uv, double level, double weight, std::vector<TextureTap>& out) const;
 
   std::vector<TextureLevel> levels_{TextureLevel{1, 1, {glm::vec3(0.0f)}}};
 };

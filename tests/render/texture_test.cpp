@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -69,6 +70,31 @@ TEST(Texture, AnElongatedFootprintIsFilteredAnisotropically) {
   for (int i = 0; i < 4; ++i) mean += texture.levels()[1].bilinear(uv + dx * ((i + 0.5) / 4 - 0.5)) / 4.0;
   const glm::dvec3 got = texture.sample(uv, dx, {0, 2.0 / 64});
   EXPECT_NEAR(got.x, mean.x, 1e-12);
+}
+
+// The taps are what a lookup reads: Σ weight·texel is the lookup, for magnified, trilinear,
+// anisotropic and coarsest-level footprints, with weights summing to 1.
+TEST(Texture, TapsReproduceEveryKindOfLookup) {
+  const Texture texture(pattern(37, 24, [](int x, int y) { return float((x * 13 + y * 7) % 11) / 10.0f; }));
+  const std::vector<std::array<glm::dvec2, 3>> lookups = {
+      {glm::dvec2(0.3, 0.7), glm::dvec2(0.0), glm::dvec2(0.0)},                // no footprint
+      {glm::dvec2(0.99, 0.01), glm::dvec2(0.5 / 37, 0), glm::dvec2(0, 0.5 / 24)},  // magnified, at the wrap
+      {glm::dvec2(0.41, 0.28), glm::dvec2(2.7 / 37, 0.4 / 24), glm::dvec2(-0.3 / 37, 3.1 / 24)},  // trilinear
+      {glm::dvec2(0.12, 0.83), glm::dvec2(20.0 / 37, 0), glm::dvec2(0, 3.0 / 24)},  // anisotropic
+      {glm::dvec2(0.5, 0.5), glm::dvec2(200.0 / 37, 0), glm::dvec2(0, 150.0 / 24)}};  // past the coarsest level
+  for (const auto& [uv, dx, dy] : lookups) {
+    std::vector<TextureTap> taps;
+    texture.taps(uv, dx, dy, taps);
+    double value = 0, weights = 0;
+    for (const TextureTap& t : taps) {
+      ASSERT_LT(t.level, texture.levels().size());
+      ASSERT_LT(t.texel, texture.levels()[t.level].texels.size());
+      value += t.weight * texture.levels()[t.level].texels[t.texel].x;
+      weights += t.weight;
+    }
+    EXPECT_NEAR(value, texture.sample(uv, dx, dy).x, 1e-12) << uv.x << " " << dx.x;
+    EXPECT_NEAR(weights, 1.0, 1e-12);
+  }
 }
 
 TEST(ProceduralTexture, CheckerNoiseAlternatesSquaresStaysInRangeAndFollowsItsSeed) {
