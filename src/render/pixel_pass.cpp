@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <stdexcept>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -51,9 +53,11 @@ void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dv
 
 class PixelSampler {
  public:
-  PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record, const GBuffer& gbuffer)
-      : in_(in), sums_(sums), record_(record), gbuffer_(gbuffer), rays_(in.scene.camera), width_(in.scene.camera.width),
-        exposure_(std::exp2(in.scene.display.exposure_stops)), fixed_spp_(in.scene.settings.spp.value_or(0)) {}
+  PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record, const GBuffer& gbuffer,
+               SampleObserver* observer = nullptr)
+      : in_(in), sums_(sums), record_(record), gbuffer_(gbuffer), observer_(observer), rays_(in.scene.camera),
+        width_(in.scene.camera.width), exposure_(std::exp2(in.scene.display.exposure_stops)),
+        fixed_spp_(in.scene.settings.spp.value_or(0)) {}
 
   // Takes samples [count, target) of a pixel.
   void sample(size_t pixel, uint32_t target, RayCounts& rays, std::vector<glm::dvec2>& lhs) {
@@ -62,6 +66,7 @@ class PixelSampler {
     if (record_) record_->reserve(pixel, target, expected_hits(pixel, target));
     for (uint32_t s = sums_.count[pixel]; s < target; ++s) one_sample(pixel, s, rays, lhs);
     sums_.count[pixel] = target;
+    if (observer_) observer_->pixel_done(pixel, target);
   }
 
  private:
@@ -86,11 +91,18 @@ class PixelSampler {
       set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
     const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
     auto [record, lights] = answers.record ? record_->shading_to_record(pixel) : std::pair<ShadingRecord*, LightSampleRecord*>{};
-    if (!record)
+    if (!record && !observer_)
       return accumulate(pixel, s, in_.shader.radiance(sp, -ray.direction, true, sampler, counts, tracing_answers(answers)),
                         &sample_hit);
-    in_.shader.gather(sp, -ray.direction, true, sampler, counts, &answers, *record, lights);
+    thread_local ShadingRecord observed;  // an observed sample's shading, where the log keeps none
+    thread_local std::vector<LightSampleRecord> observed_lights;
+    if (!record) {
+      observed_lights.resize(in_.shader.light_samples());
+      std::tie(record, lights) = std::pair{&observed, observed_lights.data()};
+    }
+    in_.shader.gather(sp, -ray.direction, true, sampler, counts, tracing_answers(answers), *record, lights);
     accumulate(pixel, s, in_.shader.evaluate(sp, *record, lights, record->albedo), &sample_hit);
+    if (observer_) observer_->surface(pixel, in_.shader, sp, *record, lights);
   }
 
   // How many of a pixel's first `target` samples will likely hit a surface: as many as so far, in
@@ -108,6 +120,8 @@ class PixelSampler {
     if (!replayed.point) return accumulate(pixel, s, replayed.radiance, nullptr);
     const SampleHit sample_hit{*replayed.point, replayed.back};
     accumulate(pixel, s, replayed.radiance, &sample_hit);
+    if (observer_)
+      observer_->surface(pixel, in_.shader, *replayed.point, in_.replay->shading(pixel, s), in_.replay->light_samples(pixel, s));
   }
 
   // Adds one sample's radiance (and, for a hit, its fields) to the pixel's sums.
@@ -152,6 +166,7 @@ class PixelSampler {
   Sums& sums_;
   TraceLog* record_;  // null: nothing recorded
   const GBuffer& gbuffer_;
+  SampleObserver* observer_;  // null: nobody watches
   CameraRays rays_;
   int width_;
   double exposure_;
@@ -403,5 +418,24 @@ class AdaptiveSampling {
 }  // namespace
 
 void pixel_pass(const PixelPassInput& input, RenderResult& result) { AdaptiveSampling(input, result).run(); }
+
+void observe_samples(const Scene& scene, const RayTracer& tracer, const std::vector<uint32_t>& counts,
+                     const TraceLog* replay, SampleObserver& observer, int threads) {
+  const int width = scene.camera.width, height = scene.camera.height;
+  if (counts.size() != size_t(width) * size_t(height)) throw std::logic_error("observe_samples: one count per pixel");
+  if (replay && replay->pixel_count() != counts.size()) replay = nullptr;
+  const Shader shader(scene, tracer);
+  const PixelRequest request;
+  const PixelPassInput in{scene, tracer, shader, request, threads, {}, nullptr, replay, false};
+  Sums sums(counts.size(), 0);
+  const GBuffer none;  // expected_hits reads it only while a log records
+  PixelSampler sampler(in, sums, nullptr, none, &observer);
+  const std::vector<uint32_t> order = tile_order(width, height);
+  parallel_ranges(order.size(), threads, [&](size_t begin, size_t end) {
+    RayCounts rays;
+    std::vector<glm::dvec2> lhs;
+    for (size_t i = begin; i < end; ++i) sampler.sample(order[i], counts[order[i]], rays, lhs);
+  }, 64);
+}
 
 }  // namespace countershade

@@ -26,6 +26,10 @@
 namespace countershade {
 
 class TraceLog;
+class Shader;
+struct SurfacePoint;
+struct ShadingRecord;
+struct LightSampleRecord;
 
 // Per-pixel data from the ray through each pixel centre. Background pixels have object = -1,
 // depth = +inf and a zero normal.
@@ -126,6 +130,25 @@ struct RenderOptions {
 };
 
 RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options = {});
+
+// Sees the samples of a render as they are shaded (observe_samples).
+class SampleObserver {
+ public:
+  virtual ~SampleObserver() = default;
+  // One sample that hit a surface: its point (with its UV footprint), its shading record and light
+  // samples, which `shader` can evaluate again (e.g. with another albedo).
+  virtual void surface(size_t pixel, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
+                       const LightSampleRecord* lights) = 0;
+  // The pixel's `samples` samples have all been seen (from the thread that took them).
+  virtual void pixel_done(size_t pixel, uint32_t samples) = 0;
+};
+
+// Takes the samples of an earlier render of this scene and camera again, `counts[p]` of pixel p
+// (its RenderResult::spp), shaded without hooks, and shows each to `observer`: one thread per
+// pixel at a time, a pixel's samples in order. `replay`, when given, is read back instead of
+// tracing what it holds.
+void observe_samples(const Scene& scene, const RayTracer& tracer, const std::vector<uint32_t>& counts,
+                     const TraceLog* replay, SampleObserver& observer, int threads = 0);
 
 // Pass 1 alone: the G-buffer of the pixel centres, exactly as `render` makes it (measures that
 // need a frame's geometry but not its pixels).
