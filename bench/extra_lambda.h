@@ -22,19 +22,27 @@ inline void measure_extra_lambda(benchmark::State& state, const std::shared_ptr<
   };
   // One untimed round first: the process's first render pays one-time costs (thread pools, the
   // allocator's first pages) that would count against the render alone.
-  benchmark::DoNotOptimize(
-      prepare_method(method, render_view(scene, plan_for(method, parameters, 1.0), {}), parameters)->compose(1.0));
-  double render = 0, compose = 0;
+  const MethodUse use = parse_method(method, parameters);
+  auto prepare = [&](const std::shared_ptr<const View>& view) {
+    PrepareContext context = make_use_context(view, 0);
+    context.compose_from_samples = true;
+    return use.method->prepare(context, *use.parameters);
+  };
+  benchmark::DoNotOptimize(prepare(render_view(scene, plan_for(method, parameters, 1.0), {}))->compose(1.0));
+  double render = 0, prepared_in = 0, compose = 0;
   for (auto _ : state) {
     auto t = std::chrono::steady_clock::now();
     const auto view = render_view(scene, plan_for(method, parameters, 1.0), {});
     render += seconds_since(t);
-    const auto prepared = prepare_method(method, view, parameters);
+    t = std::chrono::steady_clock::now();
+    const auto prepared = prepare(view);
+    prepared_in += seconds_since(t);
     t = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(prepared->compose(1.0));
     compose += seconds_since(t);
   }
   state.counters["render_s"] = render / double(state.iterations());
+  state.counters["prepare_s"] = prepared_in / double(state.iterations());
   state.counters["compose_s"] = compose / double(state.iterations());
   state.counters["vs_render"] = compose / render;
 }

@@ -74,16 +74,35 @@ std::vector<float> level_lightness(const TextureLevel& level) {
   return L;
 }
 
+glm::vec3 texel_with_detail(const glm::vec3& plain, double change) {
+  if (change == 0.0) return plain;
+  const Lab lab = linear_rgb_to_lab(glm::dvec3(plain));
+  const glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(lab, lab.L + change));
+  return glm::vec3(glm::clamp(rgb, glm::dvec3(0.0), glm::dvec3(1.0)));
+}
+
 TextureLevel with_detail(const TextureLevel& plain, const std::vector<float>& detail, double strength) {
   TextureLevel out = plain;
-  for (size_t i = 0; i < out.texels.size(); ++i) {
-    const double change = strength * double(detail[i]);
-    if (change == 0.0) continue;
-    const Lab lab = linear_rgb_to_lab(glm::dvec3(plain.texels[i]));
-    const glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(lab, lab.L + change));
-    out.texels[i] = glm::vec3(glm::clamp(rgb, glm::dvec3(0.0), glm::dvec3(1.0)));
-  }
+  for (size_t i = 0; i < out.texels.size(); ++i) out.texels[i] = texel_with_detail(plain.texels[i], strength * double(detail[i]));
   return out;
+}
+
+Texture FilteredPyramid::relative_detail() const {
+  std::vector<TextureLevel> levels;
+  for (size_t k = 0; k < detail.size(); ++k) {
+    const TextureLevel& level = plain->levels()[k];
+    const std::vector<float> L = level_lightness(level);
+    TextureLevel relative{level.width, level.height, std::vector<glm::vec3>(L.size())};
+    const double strength = mode == TextureMode::mip ? strength_of_level(k) : 1.0;
+    for (size_t i = 0; i < L.size(); ++i) relative.texels[i] = glm::vec3(float(strength * detail[k][i] / (L[i] + 16.0)));
+    levels.push_back(std::move(relative));
+  }
+  if (mode == TextureMode::texture) return Texture(std::move(levels.front()));
+  return Texture::from_levels(std::move(levels));
+}
+
+glm::vec3 FilteredPyramid::mip_texel_at(double lambda, size_t level, size_t index) const {
+  return texel_with_detail(plain->levels()[level].texels[index], lambda * strength_of_level(level) * double(detail[level][index]));
 }
 
 double FilteredPyramid::strength_of_level(size_t level) const {

@@ -26,6 +26,8 @@ std::vector<float> level_lightness(const TextureLevel& level);
 // lightness method composes), clamped to reflectances in [0,1]. A texel whose change is 0 keeps
 // its value bit for bit.
 TextureLevel with_detail(const TextureLevel& plain, const std::vector<float>& detail, double strength);
+// One texel of it: `plain` with its L* changed by `change`.
+glm::vec3 texel_with_detail(const glm::vec3& plain, double change);
 
 struct FilteredPyramid {
   std::shared_ptr<const Texture> plain;
@@ -36,6 +38,12 @@ struct FilteredPyramid {
   double strength_of_level(size_t level) const;
   // The filtered texture at strength λ (λ = 0: the plain pyramid's texels).
   Texture at(double lambda) const;
+  // A grey pyramid of the change of L* per unit λ over (the texel's L* + 16): a texel's change d
+  // moves the L* of the light it reflects by about d·(L* + 16)/(L*_texel + 16) (the pixel pass's
+  // change per λ for the noise budget). Texture mode: level 0's, box filtered.
+  Texture relative_detail() const;
+  // The texel of `at(lambda)` at (level, index), in mip mode (each level on its own).
+  glm::vec3 mip_texel_at(double lambda, size_t level, size_t index) const;
 };
 
 // Where filtered pyramids are cached: $COUNTERSHADE_CACHE, else $XDG_CACHE_HOME/countershade,

@@ -90,6 +90,11 @@ struct PrepareContext {
   std::vector<const std::vector<float>*> fields;  // the stage's fields, averaged per pixel
   const ChangeNoise* change_noise = nullptr;      // the render's noise estimate of its change per λ
   int threads = 0;  // 0 = all cores
+  // The caller composes many λ (a stimulus set): a method that would render every λ again may
+  // instead compose each from the view's own samples (exact up to rounding, and far cheaper),
+  // once the view was sampled for the largest λ. False (`render`): it renders its one λ again,
+  // sampled to the noise budget on its own.
+  bool compose_from_samples = false;
   // The view's scene rendered again for `request` (its hooks) with the same camera, samples and
   // seed. Its View holds the display and the radiance only (no CIELAB image, G-buffer or noise).
   // Null for external images.

@@ -5,12 +5,16 @@
 // enhance/filtered_pyramid.h.
 
 #include <map>
+#include <optional>
 
 #include "core/error.h"
 #include "enhance/filtered_pyramid.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/shading_method.h"
+#include "enhance/texel_weights.h"
+#include "render/shading.h"
+#include "core/parallel.h"
 
 namespace countershade {
 namespace {
@@ -40,14 +44,65 @@ class PyramidHook final : public TextureHook {
   std::map<const Texture*, Texture> textures_;
 };
 
+// Per sample, the change of L* per unit λ that the filtered texture makes to the light it
+// reflects, over that light's L* + 16 (FilteredPyramid::relative_detail), looked up with the
+// sample's footprint; 0 on objects without a filtered texture.
+class RelativeDetailField final : public SampleField {
+ public:
+  RelativeDetailField(const Scene& scene, const std::vector<FilteredPyramid>& pyramids) {
+    for (const FilteredPyramid& p : pyramids) details_.push_back(p.relative_detail());
+    for (const Object& o : scene.objects) {
+      size_t k = 0;
+      while (k < pyramids.size() && pyramids[k].plain != o.material.texture) ++k;
+      detail_of_.push_back(o.mesh.has_uvs() && k < pyramids.size() ? int(k) : -1);
+      repeat_.push_back(o.material.texture_repeat);
+    }
+  }
+  double value(const SampleHit& hit) const override {
+    const SurfacePoint& p = hit.point;
+    const int k = detail_of_[p.object];
+    if (k < 0) return 0.0;
+    const double r = repeat_[p.object];
+    return details_[size_t(k)].sample(p.uv * r, p.duv_dx * r, p.duv_dy * r).x;
+  }
+
+ private:
+  std::vector<Texture> details_;
+  std::vector<int> detail_of_;  // per object: its texture's pyramid, or -1
+  std::vector<double> repeat_;
+};
+
+// A pixel's change of L* per unit λ: the samples' relative change times the pixel's L* + 16.
+class TexelDetailChange final : public ChangePerLambda {
+ public:
+  double value(const PixelMeans& means) const override { return means.fields[0] * (means.lightness + 16.0); }
+};
+
+// The filtered pyramids of a view's textures (made before its pixels are sampled, so that the
+// sampling knows the change they make) and the field of that change.
+class FilteredTextureStage final : public SurfaceStage {
+ public:
+  FilteredTextureStage(const Scene& scene, std::vector<FilteredPyramid> pyramids)
+      : pyramids_(std::move(pyramids)), field_(std::make_shared<RelativeDetailField>(scene, pyramids_)) {}
+  SampleFields fields() const override { return {field_}; }
+  const std::vector<FilteredPyramid>& pyramids() const { return pyramids_; }
+
+ private:
+  std::vector<FilteredPyramid> pyramids_;
+  std::shared_ptr<const RelativeDetailField> field_;
+};
+
 class FilteredTextures final : public PreparedEnhancement {
  public:
-  FilteredTextures(const PrepareContext& context, std::vector<FilteredPyramid> pyramids, nlohmann::json parameters)
-      : view_(context.view), render_again_(context.render_again), pyramids_(std::move(pyramids)),
-        parameters_(std::move(parameters)) {}
+  FilteredTextures(const PrepareContext& context, std::vector<FilteredPyramid> pyramids,
+                   std::shared_ptr<const TexelWeights> weights, nlohmann::json parameters)
+      : view_(context.view), render_again_(context.render_again), threads_(context.threads),
+        pyramids_(std::move(pyramids)), weights_(std::move(weights)), parameters_(std::move(parameters)),
+        noise_(plain_noise(context)) {}
 
   Composed compose(double lambda) const override {
     if (lambda == 0) return {view_->display, 0};
+    if (weights_) return {from_weights(lambda), 0};
     auto hook = std::make_shared<PyramidHook>();
     for (const FilteredPyramid& p : pyramids_) hook->add(p.plain.get(), p.at(lambda));
     RenderRequest request;
@@ -56,12 +111,37 @@ class FilteredTextures final : public PreparedEnhancement {
     return {render_again_(request)->display, 0};
   }
   nlohmann::json parameters() const override { return parameters_; }
+  NoiseModel noise(double lambda) const override { return noise_(lambda); }
 
  private:
+  // The view's radiance with every texel its samples read changed to its value at λ.
+  Image from_weights(double lambda) const {
+    std::vector<std::optional<Texture>> whole(pyramids_.size());  // texture mode: every level changes
+    for (size_t k = 0; k < pyramids_.size(); ++k)
+      if (pyramids_[k].mode == TextureMode::texture) whole[k] = pyramids_[k].at(lambda);
+    const auto& texels = weights_->texels();
+    std::vector<glm::dvec3> change(texels.size());
+    parallel_ranges(texels.size(), threads_, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const TexelWeights::Texel& t = texels[i];
+        const FilteredPyramid& p = pyramids_[t.texture];
+        const glm::vec3 at = whole[t.texture] ? whole[t.texture]->levels()[t.level].texels[t.index]
+                                              : p.mip_texel_at(lambda, t.level, t.index);
+        change[i] = glm::dvec3(at) - glm::dvec3(p.plain->levels()[t.level].texels[t.index]);
+      }
+    }, 4096);
+    RenderResult result;
+    result.radiance = weights_->radiance_with(view_->render.radiance, change, threads_);
+    return make_view(view_->scene, view_->tracer, std::move(result), view_->bits, false)->display;
+  }
+
   std::shared_ptr<const View> view_;
   std::function<std::shared_ptr<const View>(const RenderRequest&)> render_again_;
+  int threads_;
   std::vector<FilteredPyramid> pyramids_;
+  std::shared_ptr<const TexelWeights> weights_;  // null: every λ renders again
   nlohmann::json parameters_;
+  NoiseFunction noise_;
 };
 
 // Every distinct texture of the scene's materials.
@@ -113,14 +193,23 @@ class TextureFilterMethod final : public EnhancementMethod {
   RenderRequest request(const MethodParameters& parameters) const override {
     RenderRequest r;
     r.scene = parameters_as<TextureFilterParameters>(parameters).mode != FilterMode::post;
-    r.renders_again = r.scene;  // every λ renders with its filtered textures
+    r.renders_again = r.scene;  // `render` renders its λ with the filtered textures; a set takes the samples again
     return r;
   }
 
   std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters& parameters) const override {
     const auto& p = parameters_as<TextureFilterParameters>(parameters);
-    if (p.mode != FilterMode::post || p.filter.kind != FilterKind::unsharp) return nullptr;
+    if (p.mode != FilterMode::post) return std::make_shared<TexelDetailChange>();
+    if (p.filter.kind != FilterKind::unsharp) return nullptr;
     return std::make_shared<LightnessTimes>(1.0);  // as usm2d: the detail carries the pixel's noise
+  }
+
+  std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext& context,
+                                                    const MethodParameters& parameters) const override {
+    const auto& p = parameters_as<TextureFilterParameters>(parameters);
+    if (p.mode == FilterMode::post) return nullptr;
+    check_scene(context.scene, p);
+    return std::make_shared<FilteredTextureStage>(context.scene, filter_textures(context.scene, p, context.threads));
   }
 
   void check_scene(const Scene& scene, const MethodParameters& parameters) const override {
@@ -138,6 +227,14 @@ class TextureFilterMethod final : public EnhancementMethod {
   }
 
  private:
+  static std::vector<FilteredPyramid> filter_textures(const Scene& scene, const TextureFilterParameters& p, int threads) {
+    const TextureMode mode = p.mode == FilterMode::mip ? TextureMode::mip : TextureMode::texture;
+    std::vector<FilteredPyramid> pyramids;
+    for (const auto& t : scene_textures(scene))
+      pyramids.push_back(filter_pyramid(t, mode, p.filter, p.level_strengths, pyramid_cache_folder(), threads));
+    return pyramids;
+  }
+
   nlohmann::json describe(const TextureFilterParameters& p) const {
     nlohmann::json out{{"mode", mode_name(p.mode)}, {"filter", filter_name(p.filter.kind)}, {"sigma", p.filter.sigma}};
     if (p.filter.kind == FilterKind::bilateral) out["sigma_r"] = p.filter.sigma_r;
@@ -162,13 +259,19 @@ class TextureFilterMethod final : public EnhancementMethod {
     require_scene(context, name());
     check_scene(*context.view->scene, p);
     const auto textures = scene_textures(*context.view->scene);
-    const TextureMode mode = p.mode == FilterMode::mip ? TextureMode::mip : TextureMode::texture;
-    std::vector<FilteredPyramid> pyramids;
-    for (const auto& t : textures)
-      pyramids.push_back(filter_pyramid(t, mode, p.filter, p.level_strengths, pyramid_cache_folder(), context.threads));
+    const auto* stage = dynamic_cast<const FilteredTextureStage*>(context.stage.get());
+    std::vector<FilteredPyramid> pyramids =
+        stage ? stage->pyramids() : filter_textures(*context.view->scene, p, context.threads);
     nlohmann::json parameters = describe(p);
     parameters["textures"] = textures.size();
-    return std::make_unique<FilteredTextures>(context, std::move(pyramids), std::move(parameters));
+    std::shared_ptr<const TexelWeights> weights;
+    if (context.compose_from_samples) {
+      std::vector<const Texture*> plain;
+      for (const auto& t : textures) plain.push_back(t.get());
+      const View& view = *context.view;
+      weights = view.memo.get<TexelWeights>("texel-weights", [&] { return TexelWeights::of_view(view, plain, context.threads); });
+    }
+    return std::make_unique<FilteredTextures>(context, std::move(pyramids), std::move(weights), std::move(parameters));
   }
 };
 

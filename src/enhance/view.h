@@ -3,7 +3,11 @@
 // what is read from an image and depth file. Every method of a stimulus set starts from the same
 // view; prepared methods share it (std::shared_ptr<const View>) and keep it alive.
 
+#include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -41,6 +45,26 @@ struct ViewPlan {
   ViewPlan& add(const std::string& method, const nlohmann::json& parameters);
 };
 
+// What methods derive from a view alone and share between their preparations, made once per key.
+// A copy of a view starts without them (it may be changed after copying).
+class ViewMemo {
+ public:
+  ViewMemo() = default;
+  ViewMemo(const ViewMemo&) {}
+  ViewMemo& operator=(const ViewMemo&) { return *this; }
+  template <class T>
+  std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& value = values_[key];
+    if (!value) value = make();
+    return std::static_pointer_cast<const T>(value);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  mutable std::map<std::string, std::shared_ptr<const void>> values_;
+};
+
 struct View {
   std::shared_ptr<const Scene> scene;       // null for external images
   std::shared_ptr<const RayTracer> tracer;  // the scene's BVH, for renders with hooks
@@ -56,6 +80,7 @@ struct View {
   std::vector<std::shared_ptr<const SurfaceStage>> stages;
   std::vector<std::vector<size_t>> stage_fields;
   std::vector<int> change_noise;  // index into render.change_noise, or -1
+  ViewMemo memo;
 
   int width() const { return display.width; }
   int height() const { return display.height; }

@@ -317,9 +317,14 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
   const ExperimentMethod& m = e_.methods[size_t(u.method)];
   auto tp = Clock::now();
   std::unique_ptr<PreparedEnhancement> prepared, prepared_moved;
+  auto context = [&](const std::shared_ptr<const View>& v) {
+    PrepareContext c = make_use_context(v, use, options_.jobs);
+    c.compose_from_samples = true;  // a grid of λ
+    return c;
+  };
   run_with_threads(options_.jobs, [&] {
-    prepared = m.method->prepare(make_use_context(view, use, options_.jobs), *m.parameters[u.sigma]);
-    if (moved) prepared_moved = m.method->prepare(make_use_context(moved, use, options_.jobs), *m.parameters[u.sigma]);
+    prepared = m.method->prepare(context(view), *m.parameters[u.sigma]);
+    if (moved) prepared_moved = m.method->prepare(context(moved), *m.parameters[u.sigma]);
   });
   prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();

@@ -13,29 +13,14 @@
 #include "enhance/view.h"
 #include "render/hooks.h"
 #include "render/trace_log.h"
+#include "render/rich_scene.h"
 #include "test_util.h"
 
 namespace countershade {
 namespace {
 
-const char* kRichScene = R"({
-  "version": 1,
-  "camera": {"eye": [2.2, 1.8, 3.0], "target": [0, 0.4, 0], "fov": 40, "width": 48, "height": 36},
-  "render": {"seed": 3, "noise": {"target": 1.0, "min_spp": 4, "max_spp": 64}},
-  "objects": [
-    {"name": "floor", "shape": {"type": "plane", "size": 4, "subdivisions": 4},
-     "material": {"albedo": 0.6, "texture": {"size": 64, "squares": 8}, "texture_repeat": 2}},
-    {"name": "ball", "shape": {"type": "sphere", "radius": 0.5, "subdivisions": 3}, "transform": {"translate": [-0.4, 0.5, 0]},
-     "material": {"albedo": [0.7, 0.5, 0.4], "specular": {"model": "blinn-phong", "color": 0.2, "shininess": 40}}},
-    {"name": "box", "shape": {"type": "box", "size": [0.6, 0.9, 0.6]}, "transform": {"translate": [0.6, 0.45, -0.3]}}
-  ],
-  "lights": [
-    {"type": "directional", "direction": [0.5, 0.8, 0.3], "irradiance": 1.5, "angular_radius": 4, "samples": 2},
-    {"type": "point", "position": [-1.5, 2.0, 1.5], "intensity": 3, "radius": 0.3, "samples": 2},
-    {"type": "environment", "sky": {}, "samples": 2, "scale": 0.4},
-    {"type": "ambient", "radiance": 0.05, "occlusion_distance": 0.6, "samples": 2}
-  ]
-})";
+using testing::fixed_count_scene;
+using testing::rich_scene;
 
 // Shades every light sample as if it came from a direction tilted towards the viewer: it uses
 // shadow answers the plain path never asks (light from behind the shading normal) and the
@@ -62,18 +47,6 @@ class HalfTexture final : public TextureHook {
  private:
   mutable std::unique_ptr<Texture> half_;  // made on the first (single-threaded) call below
 };
-
-std::shared_ptr<const Scene> rich_scene(const testing::TempDir& dir) {
-  return std::make_shared<const Scene>(load_scene(testing::write_file(dir / "rich.json", kRichScene)));
-}
-
-// The same scene at a fixed count of 6 samples per pixel instead of the noise budget.
-std::shared_ptr<const Scene> fixed_count_scene(const testing::TempDir& dir) {
-  std::string json = kRichScene;
-  const std::string budget = R"("noise": {"target": 1.0, "min_spp": 4, "max_spp": 64})";
-  json.replace(json.find(budget), budget.size(), R"("spp": 6)");
-  return std::make_shared<const Scene>(load_scene(testing::write_file(dir / "fixed.json", json)));
-}
 
 // `radiance_only`: as a method's render of one λ, which keeps nothing else.
 RenderResult render_with(const Scene& scene, const RayTracer& tracer, std::shared_ptr<const ShadingHook> hook,
