@@ -9,10 +9,10 @@ namespace countershade {
 namespace {
 
 // One texel's weight in a pixel: the texel's id over every texture's levels, and the diffuse light
-// that reaches the pixel through it.
-struct Pending {
+// that reaches the pixel through it (single precision, as kept: 16 bytes).
+struct Weighed {
   uint32_t id = 0;
-  glm::dvec3 weight{0.0};
+  float weight[3] = {0, 0, 0};
 };
 
 // The weights of the pixel being seen, summed per texel id (open addressing; one per thread, as a
@@ -30,15 +30,16 @@ class PixelSums {
     sums_[at] += weight;
   }
   // The sums over `samples`, sorted by id; the table is left empty.
-  std::vector<Pending> take(uint32_t samples) {
-    std::vector<Pending> out;
+  std::vector<Weighed> take(uint32_t samples) {
+    std::vector<Weighed> out;
     out.reserve(used_.size());
     for (uint32_t at : used_) {
-      out.push_back({keys_[at], sums_[at] / double(samples)});
+      const glm::dvec3 w = sums_[at] / double(samples);
+      out.push_back({keys_[at], {float(w.x), float(w.y), float(w.z)}});
       keys_[at] = kEmpty;
     }
     used_.clear();
-    std::sort(out.begin(), out.end(), [](const Pending& a, const Pending& b) { return a.id < b.id; });
+    std::sort(out.begin(), out.end(), [](const Weighed& a, const Weighed& b) { return a.id < b.id; });
     return out;
   }
 
@@ -109,7 +110,7 @@ class TexelWeights::Observer final : public SampleObserver {
   void finish(TexelWeights& out, int threads) {
     std::vector<int32_t> slot(ids_, -1);
     for (const auto& pixel : merged_)
-      for (const Pending& p : pixel) slot[p.id] = 0;
+      for (const Weighed& w : pixel) slot[w.id] = 0;
     for (uint32_t id = 0; id < ids_; ++id)
       if (slot[id] == 0) {
         slot[id] = int32_t(out.texels_.size());
@@ -121,9 +122,8 @@ class TexelWeights::Observer final : public SampleObserver {
     parallel_ranges(merged_.size(), threads, [&](size_t begin, size_t end) {
       for (size_t p = begin; p < end; ++p) {
         Entry* entry = out.entries_.data() + out.first_[p];
-        for (const Pending& m : merged_[p])
-          *entry++ = {uint32_t(slot[m.id]), {float(m.weight.x), float(m.weight.y), float(m.weight.z)}};
-        std::vector<Pending>().swap(merged_[p]);
+        for (const Weighed& w : merged_[p]) *entry++ = {uint32_t(slot[w.id]), {w.weight[0], w.weight[1], w.weight[2]}};
+        std::vector<Weighed>().swap(merged_[p]);
       }
     }, 1024);
   }
@@ -141,7 +141,7 @@ class TexelWeights::Observer final : public SampleObserver {
   std::vector<double> repeat_;
   std::vector<std::vector<uint32_t>> first_id_;  // [texture][level]
   uint32_t ids_ = 0;
-  std::vector<std::vector<Pending>> merged_;  // per pixel
+  std::vector<std::vector<Weighed>> merged_;  // per pixel
 };
 
 std::shared_ptr<const TexelWeights> TexelWeights::of_view(const View& view, const std::vector<const Texture*>& textures,
