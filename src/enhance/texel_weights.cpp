@@ -1,6 +1,7 @@
 #include "enhance/texel_weights.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "core/parallel.h"
 #include "render/shading.h"
@@ -74,8 +75,8 @@ thread_local PixelSums pixel_sums;
 
 class TexelWeights::Observer final : public SampleObserver {
  public:
-  Observer(const Scene& scene, const std::vector<const Texture*>& textures, size_t pixels)
-      : textures_(textures), merged_(pixels) {
+  Observer(const Scene& scene, const std::vector<const Texture*>& textures, size_t pixels, uint64_t entry_limit)
+      : textures_(textures), merged_(pixels), entry_limit_(entry_limit) {
     for (const Object& o : scene.objects) {
       const auto found = std::find(textures.begin(), textures.end(), o.material.texture.get());
       texture_of_.push_back(o.mesh.has_uvs() && found != textures.end() ? int(found - textures.begin()) : -1);
@@ -93,7 +94,7 @@ class TexelWeights::Observer final : public SampleObserver {
   void surface(size_t pixel, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
                const LightSampleRecord* lights) override {
     const int k = texture_of_[point.object];
-    if (k < 0) return;
+    if (k < 0 || over_limit()) return;
     // Radiance is linear in the albedo, per channel: this is the light each unit of albedo reflects.
     const glm::dvec3 light =
         shader.evaluate(point, record, lights, glm::dvec3(1.0)) - shader.evaluate(point, record, lights, glm::dvec3(0.0));
@@ -104,7 +105,18 @@ class TexelWeights::Observer final : public SampleObserver {
     for (const TextureTap& tap : taps) pixel_sums.add(first_id_[size_t(k)][tap.level] + tap.texel, light * tap.weight);
   }
 
-  void pixel_done(size_t pixel, uint32_t samples) override { merged_[pixel] = pixel_sums.take(std::max(samples, 1u)); }
+  // Past the limit the weights are given up. The running total only grows, so whether that happens
+  // depends on the samples alone, not on the order the threads finish their pixels.
+  void pixel_done(size_t pixel, uint32_t samples) override {
+    std::vector<Weighed> weights = pixel_sums.take(std::max(samples, 1u));
+    if (over_limit()) return;
+    if ((entries_ += weights.size()) > entry_limit_) {
+      over_ = true;
+      return;
+    }
+    merged_[pixel] = std::move(weights);
+  }
+  bool over_limit() const { return over_.load(std::memory_order_relaxed); }
 
   // The weights, with every id read given a slot (in id order).
   void finish(TexelWeights& out, int threads) {
@@ -142,13 +154,17 @@ class TexelWeights::Observer final : public SampleObserver {
   std::vector<std::vector<uint32_t>> first_id_;  // [texture][level]
   uint32_t ids_ = 0;
   std::vector<std::vector<Weighed>> merged_;  // per pixel
+  uint64_t entry_limit_;
+  std::atomic<uint64_t> entries_{0};
+  std::atomic<bool> over_{false};
 };
 
 std::shared_ptr<const TexelWeights> TexelWeights::of_view(const View& view, const std::vector<const Texture*>& textures,
-                                                          int threads) {
+                                                          int threads, uint64_t byte_limit) {
   const Scene& scene = *view.scene;
-  Observer observer(scene, textures, view.render.spp.size());
+  Observer observer(scene, textures, view.render.spp.size(), byte_limit / sizeof(Entry));
   observe_samples(scene, *view.tracer, view.render.spp, view.render.trace.get(), observer, threads);
+  if (observer.over_limit()) return nullptr;
   auto out = std::make_shared<TexelWeights>();
   observer.finish(*out, threads);
   return out;

@@ -29,9 +29,11 @@ class TexelWeights {
   };
 
   // The weights of every sample the view's render took (taken again, from its log where it kept
-  // one), for the texels of `textures`; lookups of other textures count as constant light.
+  // one), for the texels of `textures`; lookups of other textures count as constant light. Null
+  // when they would outgrow `byte_limit` (16 bytes per texel per pixel that reads it).
   static std::shared_ptr<const TexelWeights> of_view(const View& view, const std::vector<const Texture*>& textures,
-                                                     int threads = 0);
+                                                     int threads = 0, uint64_t byte_limit = kDefaultByteLimit);
+  static constexpr uint64_t kDefaultByteLimit = uint64_t(1) << 30;
 
   // Every texel some pixel reads: the slots of `radiance_with`'s changes.
   const std::vector<Texel>& texels() const { return texels_; }

@@ -55,9 +55,9 @@ class ViewMemo {
   template <class T>
   std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make) const {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto& value = values_[key];
-    if (!value) value = make();
-    return std::static_pointer_cast<const T>(value);
+    auto [value, first] = values_.try_emplace(key);
+    if (first) value->second = make();  // null is kept too: made once, whatever it gives
+    return std::static_pointer_cast<const T>(value->second);
   }
 
  private:

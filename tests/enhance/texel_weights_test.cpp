@@ -69,6 +69,9 @@ TEST(TexelWeights, ChangedTexelsGiveWhatRenderingWithThemGives) {
     untraced->render.trace = nullptr;
     EXPECT_EQ(TexelWeights::of_view(*untraced, {&plain}, 2)->radiance_with(view->render.radiance, change, 2).pixels,
               composed.pixels);
+    // Weights that would outgrow their limit are given up.
+    EXPECT_EQ(TexelWeights::of_view(*view, {&plain}, 2, 16 * (weights->entries() - 1)), nullptr);
+    EXPECT_NE(TexelWeights::of_view(*view, {&plain}, 2, 16 * weights->entries()), nullptr);
     // No change: the view's radiance, bit for bit.
     EXPECT_EQ(weights->radiance_with(view->render.radiance, std::vector<glm::dvec3>(change.size()), 2).pixels,
               view->render.radiance.pixels);
