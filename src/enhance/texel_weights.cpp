@@ -76,12 +76,9 @@ thread_local PixelSums pixel_sums;
 class TexelWeights::Observer final : public SampleObserver {
  public:
   Observer(const Scene& scene, const std::vector<const Texture*>& textures, size_t pixels, uint64_t entry_limit)
-      : textures_(textures), merged_(pixels), entry_limit_(entry_limit) {
-    for (const Object& o : scene.objects) {
-      const auto found = std::find(textures.begin(), textures.end(), o.material.texture.get());
-      texture_of_.push_back(o.mesh.has_uvs() && found != textures.end() ? int(found - textures.begin()) : -1);
-      repeat_.push_back(o.material.texture_repeat);
-    }
+      : textures_(textures), texture_of_(texture_of_objects(scene, textures)), merged_(pixels),
+        entry_limit_(entry_limit) {
+    for (const Object& o : scene.objects) repeat_.push_back(o.material.texture_repeat);
     for (const Texture* t : textures) {
       first_id_.emplace_back();
       for (const TextureLevel& level : t->levels()) {
@@ -158,6 +155,15 @@ class TexelWeights::Observer final : public SampleObserver {
   std::atomic<uint64_t> entries_{0};
   std::atomic<bool> over_{false};
 };
+
+std::vector<int> texture_of_objects(const Scene& scene, const std::vector<const Texture*>& textures) {
+  std::vector<int> out;
+  for (const Object& o : scene.objects) {
+    const auto found = std::find(textures.begin(), textures.end(), o.material.texture.get());
+    out.push_back(o.mesh.has_uvs() && found != textures.end() ? int(found - textures.begin()) : -1);
+  }
+  return out;
+}
 
 std::shared_ptr<const TexelWeights> TexelWeights::of_view(const View& view, const std::vector<const Texture*>& textures,
                                                           int threads, uint64_t byte_limit) {

@@ -21,6 +21,10 @@
 
 namespace countershade {
 
+// Per object of `scene`, the index in `textures` of the texture its material samples through its
+// UVs, or -1 (no UVs, or a texture not listed).
+std::vector<int> texture_of_objects(const Scene& scene, const std::vector<const Texture*>& textures);
+
 class TexelWeights {
  public:
   // One texel that some pixel reads.

@@ -8,13 +8,13 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "enhance/filtered_pyramid.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/shading_method.h"
 #include "enhance/texel_weights.h"
 #include "render/shading.h"
-#include "core/parallel.h"
 
 namespace countershade {
 namespace {
@@ -50,13 +50,13 @@ class PyramidHook final : public TextureHook {
 class RelativeDetailField final : public SampleField {
  public:
   RelativeDetailField(const Scene& scene, const std::vector<FilteredPyramid>& pyramids) {
-    for (const FilteredPyramid& p : pyramids) details_.push_back(p.relative_detail());
-    for (const Object& o : scene.objects) {
-      size_t k = 0;
-      while (k < pyramids.size() && pyramids[k].plain != o.material.texture) ++k;
-      detail_of_.push_back(o.mesh.has_uvs() && k < pyramids.size() ? int(k) : -1);
-      repeat_.push_back(o.material.texture_repeat);
+    std::vector<const Texture*> plain;
+    for (const FilteredPyramid& p : pyramids) {
+      details_.push_back(p.relative_detail());
+      plain.push_back(p.plain.get());
     }
+    detail_of_ = texture_of_objects(scene, plain);
+    for (const Object& o : scene.objects) repeat_.push_back(o.material.texture_repeat);
   }
   double value(const SampleHit& hit) const override {
     const SurfacePoint& p = hit.point;
@@ -82,19 +82,19 @@ class TexelDetailChange final : public ChangePerLambda {
 // sampling knows the change they make) and the field of that change.
 class FilteredTextureStage final : public SurfaceStage {
  public:
-  FilteredTextureStage(const Scene& scene, std::vector<FilteredPyramid> pyramids)
-      : pyramids_(std::move(pyramids)), field_(std::make_shared<RelativeDetailField>(scene, pyramids_)) {}
+  FilteredTextureStage(const Scene& scene, std::shared_ptr<const std::vector<FilteredPyramid>> pyramids)
+      : pyramids_(std::move(pyramids)), field_(std::make_shared<RelativeDetailField>(scene, *pyramids_)) {}
   SampleFields fields() const override { return {field_}; }
-  const std::vector<FilteredPyramid>& pyramids() const { return pyramids_; }
+  const std::shared_ptr<const std::vector<FilteredPyramid>>& pyramids() const { return pyramids_; }
 
  private:
-  std::vector<FilteredPyramid> pyramids_;
+  std::shared_ptr<const std::vector<FilteredPyramid>> pyramids_;
   std::shared_ptr<const RelativeDetailField> field_;
 };
 
 class FilteredTextures final : public PreparedEnhancement {
  public:
-  FilteredTextures(const PrepareContext& context, std::vector<FilteredPyramid> pyramids,
+  FilteredTextures(const PrepareContext& context, std::shared_ptr<const std::vector<FilteredPyramid>> pyramids,
                    std::shared_ptr<const TexelWeights> weights, nlohmann::json parameters)
       : view_(context.view), render_again_(context.render_again), threads_(context.threads),
         pyramids_(std::move(pyramids)), weights_(std::move(weights)), parameters_(std::move(parameters)),
@@ -104,7 +104,7 @@ class FilteredTextures final : public PreparedEnhancement {
     if (lambda == 0) return {view_->display, 0};
     if (weights_) return {from_weights(lambda), 0};
     auto hook = std::make_shared<PyramidHook>();
-    for (const FilteredPyramid& p : pyramids_) hook->add(p.plain.get(), p.at(lambda));
+    for (const FilteredPyramid& p : *pyramids_) hook->add(p.plain.get(), p.at(lambda));
     RenderRequest request;
     request.scene = true;
     request.texture_hook = std::move(hook);
@@ -116,15 +116,16 @@ class FilteredTextures final : public PreparedEnhancement {
  private:
   // The view's radiance with every texel its samples read changed to its value at λ.
   Image from_weights(double lambda) const {
-    std::vector<std::optional<Texture>> whole(pyramids_.size());  // texture mode: every level changes
-    for (size_t k = 0; k < pyramids_.size(); ++k)
-      if (pyramids_[k].mode == TextureMode::texture) whole[k] = pyramids_[k].at(lambda);
+    const std::vector<FilteredPyramid>& pyramids = *pyramids_;
+    std::vector<std::optional<Texture>> whole(pyramids.size());  // texture mode: every level changes
+    for (size_t k = 0; k < pyramids.size(); ++k)
+      if (pyramids[k].mode == TextureMode::texture) whole[k] = pyramids[k].at(lambda);
     const auto& texels = weights_->texels();
     std::vector<glm::dvec3> change(texels.size());
     parallel_ranges(texels.size(), threads_, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         const TexelWeights::Texel& t = texels[i];
-        const FilteredPyramid& p = pyramids_[t.texture];
+        const FilteredPyramid& p = pyramids[t.texture];
         const glm::vec3 at = whole[t.texture] ? whole[t.texture]->levels()[t.level].texels[t.index]
                                               : p.mip_texel_at(lambda, t.level, t.index);
         change[i] = glm::dvec3(at) - glm::dvec3(p.plain->levels()[t.level].texels[t.index]);
@@ -138,7 +139,7 @@ class FilteredTextures final : public PreparedEnhancement {
   std::shared_ptr<const View> view_;
   std::function<std::shared_ptr<const View>(const RenderRequest&)> render_again_;
   int threads_;
-  std::vector<FilteredPyramid> pyramids_;
+  std::shared_ptr<const std::vector<FilteredPyramid>> pyramids_;
   std::shared_ptr<const TexelWeights> weights_;  // null: every λ renders again
   nlohmann::json parameters_;
   NoiseFunction noise_;
@@ -227,11 +228,13 @@ class TextureFilterMethod final : public EnhancementMethod {
   }
 
  private:
-  static std::vector<FilteredPyramid> filter_textures(const Scene& scene, const TextureFilterParameters& p, int threads) {
+  static std::shared_ptr<const std::vector<FilteredPyramid>> filter_textures(const Scene& scene,
+                                                                             const TextureFilterParameters& p,
+                                                                             int threads) {
     const TextureMode mode = p.mode == FilterMode::mip ? TextureMode::mip : TextureMode::texture;
-    std::vector<FilteredPyramid> pyramids;
+    auto pyramids = std::make_shared<std::vector<FilteredPyramid>>();
     for (const auto& t : scene_textures(scene))
-      pyramids.push_back(filter_pyramid(t, mode, p.filter, p.level_strengths, pyramid_cache_folder(), threads));
+      pyramids->push_back(filter_pyramid(t, mode, p.filter, p.level_strengths, pyramid_cache_folder(), threads));
     return pyramids;
   }
 
@@ -260,8 +263,7 @@ class TextureFilterMethod final : public EnhancementMethod {
     check_scene(*context.view->scene, p);
     const auto textures = scene_textures(*context.view->scene);
     const auto* stage = dynamic_cast<const FilteredTextureStage*>(context.stage.get());
-    std::vector<FilteredPyramid> pyramids =
-        stage ? stage->pyramids() : filter_textures(*context.view->scene, p, context.threads);
+    auto pyramids = stage ? stage->pyramids() : filter_textures(*context.view->scene, p, context.threads);
     nlohmann::json parameters = describe(p);
     parameters["textures"] = textures.size();
     std::shared_ptr<const TexelWeights> weights;
