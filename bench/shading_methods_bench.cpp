@@ -4,12 +4,20 @@
 // The counter `vs_render` is (time of one compose at λ = 1) / (time of the render it starts from).
 // TraceLogRecording: the render of that scene keeping its ray log (what a set does for these
 // methods) against the same render without it; counter `vs_plain`.
+// AlignLight: local light alignment (3 scales) of 64k random points one at a time (align_light)
+// and in blocks of vector lanes (align_light_block), in one run; counter `block_vs_one` is the
+// ratio of their times.
 
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "extra_lambda.h"
+#include "enhance/light_alignment.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
 #include "render/ray_tracer.h"
@@ -62,6 +70,56 @@ void BM_TraceLogRecording(benchmark::State& state) {
   state.counters["vs_plain"] = recording / plain;
 }
 BENCHMARK(BM_TraceLogRecording)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(5);
+
+struct AlignmentPoints {
+  std::vector<glm::dvec3> light, normals;  // normals: three per point, finest first
+};
+
+AlignmentPoints random_alignment_points(size_t count) {
+  std::mt19937 random(3);
+  std::normal_distribution<double> gauss;
+  auto unit = [&](const glm::dvec3& around, double spread) {
+    return glm::normalize(around + spread * glm::dvec3(gauss(random), gauss(random), gauss(random)));
+  };
+  AlignmentPoints p;
+  for (size_t k = 0; k < count; ++k) {
+    const glm::dvec3 coarse = unit(glm::dvec3(0, 0, 1), 0.5), middle = unit(coarse, 0.3), fine = unit(middle, 0.3);
+    p.normals.insert(p.normals.end(), {fine, middle, coarse});
+    p.light.push_back(unit(glm::dvec3(0.3, 0.2, 1), 0.5));
+  }
+  return p;
+}
+
+void BM_AlignLight(benchmark::State& state) {
+  const size_t count = 65536;
+  const AlignmentPoints p = random_alignment_points(count);
+  const std::vector<double> strengths = {1.0, 1.0};
+  const AlignmentWeight weight(3.0);
+  AlignmentBlock block;
+  double one = 0, blocks = 0, sum = 0;
+  for (auto _ : state) {
+    auto t = std::chrono::steady_clock::now();
+    for (size_t k = 0; k < count; ++k) sum += align_light(p.light[k], {&p.normals[3 * k], 3}, strengths, weight).x;
+    one += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    t = std::chrono::steady_clock::now();
+    for (size_t first = 0; first < count; first += kAlignmentBlock) {
+      for (size_t j = 0; j < kAlignmentBlock; ++j)
+        for (int c = 0; c < 3; ++c) {
+          block.light[c][j] = p.light[first + j][c];
+          for (int k = 0; k < 3; ++k) block.vectors[k][c][j] = p.normals[3 * (first + j) + size_t(k)][c];
+        }
+      align_light_block(block, kAlignmentBlock, 3, strengths, weight.damping());
+      sum += block.aligned[0][0];
+    }
+    blocks += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  }
+  benchmark::DoNotOptimize(sum);
+  const double n = double(state.iterations()) * double(count);
+  state.counters["one_ns"] = 1e9 * one / n;
+  state.counters["block_ns"] = 1e9 * blocks / n;
+  state.counters["block_vs_one"] = blocks / one;
+}
+BENCHMARK(BM_AlignLight)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(20);
 
 }  // namespace
 }  // namespace countershade

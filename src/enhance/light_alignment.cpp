@@ -2,21 +2,110 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
-#include <glm/geometric.hpp>
+#include "core/lane_math.h"
 
 namespace countershade {
 namespace {
 
 constexpr double kDegenerate = 1e-12;
 
-double angle_between(const glm::dvec3& a, const glm::dvec3& b) { return std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)); }
+// A 3-vector of lanes: one direction per lane.
+template <typename D>
+struct Vec3Lanes {
+  D x, y, z;
+};
 
-// Rodrigues' rotation of v about the unit axis k by θ.
-glm::dvec3 rotate(const glm::dvec3& v, const glm::dvec3& k, double theta) {
-  const double c = std::cos(theta), s = std::sin(theta);
-  return v * c + glm::cross(k, v) * s + k * (glm::dot(k, v) * (1 - c));
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> operator+(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> operator-(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> operator*(const Vec3Lanes<D>& a, const D& s) { return {a.x * s, a.y * s, a.z * s}; }
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> operator/(const Vec3Lanes<D>& a, const D& s) { return {a.x / s, a.y / s, a.z / s}; }
+template <typename D>
+[[gnu::always_inline]] inline D dot(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> cross(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <typename D, typename M>
+[[gnu::always_inline]] inline Vec3Lanes<D> select(const M& mask, const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) {
+  return {mask ? a.x : b.x, mask ? a.y : b.y, mask ? a.z : b.z};
+}
+template <typename D>
+[[gnu::always_inline]] inline D angle_between(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return acos_lanes(clamp_lanes(dot(a, b), -1.0, 1.0)); }
+
+// Rodrigues' rotation of v about the unit axis k by θ in [0, π], normalised.
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> rotate(const Vec3Lanes<D>& v, const Vec3Lanes<D>& k, const D& theta) {
+  D s, c;
+  sincos_lanes(theta, s, c);
+  const Vec3Lanes<D> r = v * c + cross(k, v) * s + k * (dot(k, v) * (1.0 - c));
+  return r * (1.0 / sqrt_lanes(dot(r, r)));
+}
+
+// One step of eq. 1 (light_alignment.h) for every lane; `strength` > 0. Each lane where the
+// rotation is zero (no feature at this scale, the light along the coarser vector or on the guide)
+// keeps `light` itself.
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> align_lanes(const Vec3Lanes<D>& light, const Vec3Lanes<D>& fine,
+                                                       const Vec3Lanes<D>& z, double strength, double damping) {
+  // Frame: z the coarser vector, x the finer one's part across it (its length is λ2).
+  const Vec3Lanes<D> across = fine - z * dot(fine, z);
+  const D lambda2 = sqrt_lanes(dot(across, across));
+  const Vec3Lanes<D> x = across / lambda2;
+  // The guide: the finer vector when the light lies on its side of the frame, else the tangent
+  // to it in the (x, z) plane on the light's side (so that the light is turned to graze it).
+  const auto bright = dot(light, x) >= 0.0;
+  const Vec3Lanes<D> guide = select(bright, fine, z * dot(fine, x) - x * dot(fine, z));
+  const D angle = angle_between(light, guide);
+  // λ1 measures how far the light is from the switching point dot(l, x) = 0, by the angle between
+  // the light and the guide projected across z (the guide's projection is ±x): 1 when the light
+  // lies along it, 0 at the switch, so the rotation fades out on both sides and the shading has
+  // no jump there. (The 3D angle would leave a jump of up to 0.7 in n·l.)
+  const Vec3Lanes<D> light_across = light - z * dot(light, z);
+  const D across_length = sqrt_lanes(dot(light_across, light_across));
+  const D side = bright ? 1.0 : -1.0;
+  const D lambda1 = 1.0 - 2.0 * angle_between(light_across / across_length, x * side) / std::numbers::pi;
+  // W_γ(λ1·λ2), with e^{−γ} = damping.
+  const D w = clamp_lanes(lambda1 * lambda2, 0.0, 1.0);
+  const D theta = std::min(strength, 1.0) * (w / (damping * (1.0 - w) + w)) * angle;
+  const Vec3Lanes<D> axis = cross(light, guide);
+  const D axis_length = sqrt_lanes(dot(axis, axis));
+  const auto turns = (lambda2 >= kDegenerate) & (across_length >= kDegenerate) & (theta > 0.0) &
+                     (axis_length >= kDegenerate);
+  return select(turns, rotate(light, axis / axis_length, theta), light);
+}
+
+// The cascade of align_light for every lane; vectors[k] holds v_{k+1}.
+template <typename D>
+[[gnu::always_inline]] inline Vec3Lanes<D> cascade_lanes(Vec3Lanes<D> l, const Vec3Lanes<D>* vectors, size_t count,
+                                                         std::span<const double> strengths, double damping) {
+  for (size_t i = count - 1; i-- > 0;)
+    if (i < strengths.size() && strengths[i] > 0) l = align_lanes(l, vectors[i], vectors[i + 1], strengths[i], damping);
+  return l;
+}
+
+Vec3Lanes<double> lanes_of(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+glm::dvec3 vector_of(const Vec3Lanes<double>& v) { return {v.x, v.y, v.z}; }
+
+#if defined(__clang__)
+using AlignmentLanes = double __attribute__((vector_size(32)));  // see LabLanes in enhance/lightness.cpp
+#else
+using AlignmentLanes = double __attribute__((vector_size(64)));
+#endif
+constexpr size_t kLanes = sizeof(AlignmentLanes) / sizeof(double);
+
+[[gnu::always_inline]] inline Vec3Lanes<AlignmentLanes> load(const double (&planes)[3][kAlignmentBlock], size_t first) {
+  Vec3Lanes<AlignmentLanes> v;
+  std::memcpy(&v.x, planes[0] + first, sizeof v.x);
+  std::memcpy(&v.y, planes[1] + first, sizeof v.y);
+  std::memcpy(&v.z, planes[2] + first, sizeof v.z);
+  return v;
 }
 
 }  // namespace
@@ -32,39 +121,35 @@ double alignment_weight(double x, double gamma) { return AlignmentWeight(gamma)(
 
 glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, const glm::dvec3& coarse, double strength,
                            const AlignmentWeight& weight) {
-  if (strength <= 0) return light;
-  // Frame: z the coarser vector, x the finer one's part across it (its length is λ2).
-  const glm::dvec3 z = coarse;
-  const glm::dvec3 across = fine - z * glm::dot(fine, z);
-  const double lambda2 = glm::length(across);
-  if (lambda2 < kDegenerate) return light;  // no feature at this scale
-  const glm::dvec3 x = across / lambda2;
-  // The guide: the finer vector when the light lies on its side of the frame, else the tangent
-  // to it in the (x, z) plane on the light's side (so that the light is turned to graze it).
-  const bool bright = glm::dot(light, x) >= 0;
-  const glm::dvec3 guide = bright ? fine : z * glm::dot(fine, x) - x * glm::dot(fine, z);
-  const double angle = angle_between(light, guide);
-  // λ1 measures how far the light is from the switching point dot(l, x) = 0, by the angle between
-  // the light and the guide projected across z (the guide's projection is ±x): 1 when the light
-  // lies along it, 0 at the switch, so the rotation fades out on both sides and the shading has
-  // no jump there. (The 3D angle would leave a jump of up to 0.7 in n·l.)
-  const glm::dvec3 light_across = light - z * glm::dot(light, z);
-  const double across_length = glm::length(light_across);
-  if (across_length < kDegenerate) return light;  // light along the coarser normal: no side to choose
-  const double lambda1 = 1 - 2 * angle_between(light_across / across_length, bright ? x : -x) / std::numbers::pi;
-  const double theta = std::min(strength, 1.0) * weight(lambda1 * lambda2) * angle;
-  const glm::dvec3 axis = glm::cross(light, guide);
-  const double axis_length = glm::length(axis);
-  if (theta <= 0 || axis_length < kDegenerate) return light;
-  return glm::normalize(rotate(light, axis / axis_length, theta));
+  if (!(strength > 0)) return light;
+  return vector_of(align_lanes(lanes_of(light), lanes_of(fine), lanes_of(coarse), strength, weight.damping()));
 }
 
 glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vectors, std::span<const double> strengths,
                        const AlignmentWeight& weight) {
-  glm::dvec3 l = light;
-  for (size_t i = vectors.size() - 1; i-- > 0;)
-    l = align_one_scale(l, vectors[i], vectors[i + 1], i < strengths.size() ? strengths[i] : 0.0, weight);
-  return l;
+  Vec3Lanes<double> v[kMaxAlignmentScales];
+  const size_t count = std::min(vectors.size(), kMaxAlignmentScales);
+  for (size_t k = 0; k < count; ++k) v[k] = lanes_of(vectors[k]);
+  if (count < 2) return light;
+  return vector_of(cascade_lanes(lanes_of(light), v, count, strengths, weight.damping()));
+}
+
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void align_light_block(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
+                       double damping) {
+  scales = std::min(scales, kMaxAlignmentScales);
+  for (size_t first = 0; first < count; first += kLanes) {
+    if (scales < 2) {
+      for (int c = 0; c < 3; ++c) std::copy_n(block.light[c] + first, kLanes, block.aligned[c] + first);
+      continue;
+    }
+    Vec3Lanes<AlignmentLanes> v[kMaxAlignmentScales];
+    for (size_t k = 0; k < scales; ++k) v[k] = load(block.vectors[k], first);
+    const Vec3Lanes<AlignmentLanes> l = cascade_lanes(load(block.light, first), v, scales, strengths, damping);
+    std::memcpy(block.aligned[0] + first, &l.x, sizeof l.x);
+    std::memcpy(block.aligned[1] + first, &l.y, sizeof l.y);
+    std::memcpy(block.aligned[2] + first, &l.z, sizeof l.z);
+  }
 }
 
 }  // namespace countershade

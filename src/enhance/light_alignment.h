@@ -3,6 +3,7 @@
 // rotated per shading point, from the coarsest scale to the finest, towards a guide built from two
 // successive scales of the normal field, so that each feature gets one fully lit and one unlit side.
 
+#include <cstddef>
 #include <span>
 
 #include <glm/vec3.hpp>
@@ -19,6 +20,7 @@ class AlignmentWeight {
  public:
   AlignmentWeight(double gamma);  // NOLINT(google-explicit-constructor)
   double operator()(double x) const;
+  double damping() const { return damping_; }
 
  private:
   double damping_;  // e^{−γ}
@@ -35,5 +37,21 @@ glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, cons
 // i = S−1 … 1. `vectors` holds v_1 (finest) … v_S (coarsest), all unit; `strengths` s_1 … s_{S−1}.
 glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vectors, std::span<const double> strengths,
                        const AlignmentWeight& weight);
+
+// The cascade for many shading points at once, vectorised, each with the same result as align_light
+// bit for bit (both evaluate one lane-generic code; core/lane_math.h). Planes hold one coordinate
+// of one vector per point: `light` the direction to the light, vectors[k] v_{k+1} (finest first).
+inline constexpr size_t kMaxAlignmentScales = 8;
+inline constexpr size_t kAlignmentBlock = 64;
+struct AlignmentBlock {
+  double light[3][kAlignmentBlock] = {};
+  double vectors[kMaxAlignmentScales][3][kAlignmentBlock] = {};
+  double aligned[3][kAlignmentBlock] = {};  // the result
+};
+// Aligns points 0 … count−1 (count ≤ kAlignmentBlock) over `scales` vectors with strengths s_1 …
+// s_{S−1} and W_γ's e^{−γ} = `damping` (AlignmentWeight::damping). Points past `count` are
+// computed from whatever their planes hold and may be ignored.
+void align_light_block(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
+                       double damping);
 
 }  // namespace countershade

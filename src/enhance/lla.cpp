@@ -41,11 +41,58 @@ class AlignmentHook final : public ShadingHook {
     // A material without a specular lobe reflects none at any direction: skip its alignment
     // (adding the zero keeps the sum's bits those of the full expression).
     if (s.material.specular == SpecularModel::none) return diffuse + glm::dvec3(0.0);
-    for (size_t k = 0; k < scales; ++k) r[k] = 2 * glm::dot(n[k], s.wo) * n[k] - s.wo;
+    for (size_t k = 0; k < scales; ++k) r[k] = reflected(n[k], s.wo);
     return diffuse + reflect_specular(s, align_light(wi, {r, scales}, strengths_, weight_), incident);
   }
 
+  // The same, a block of light samples aligned at once in vector lanes (align_light_block).
+  void reflect_many(std::span<const HookSample> samples, glm::dvec3* out) const override {
+    thread_local AlignmentBlock block;
+    for (size_t first = 0; first < samples.size(); first += kAlignmentBlock)
+      reflect_block(samples.subspan(first, std::min(kAlignmentBlock, samples.size() - first)), block, out + first);
+  }
+
  private:
+  static glm::dvec3 reflected(const glm::dvec3& n, const glm::dvec3& wo) { return 2 * glm::dot(n, wo) * n - wo; }
+  static glm::dvec3 aligned(const AlignmentBlock& block, size_t j) {
+    return {block.aligned[0][j], block.aligned[1][j], block.aligned[2][j]};
+  }
+
+  // Diffuse: the light aligned to the normals; then, if any sample's material has a specular
+  // lobe, specular: the light aligned to the reflected view vectors, as reflect() does per sample.
+  void reflect_block(std::span<const HookSample> samples, AlignmentBlock& block, glm::dvec3* out) const {
+    const size_t scales = size_t(normals_->scales());
+    bool specular = false;
+    for (size_t j = 0; j < samples.size(); ++j) {
+      glm::dvec3 n[kMaxNormalScales];
+      normals_->at_shading_point(*samples[j].inputs, n);
+      for (int c = 0; c < 3; ++c) {
+        block.light[c][j] = samples[j].wi[c];
+        for (size_t k = 0; k < scales; ++k) block.vectors[k][c][j] = n[k][c];
+      }
+      specular |= samples[j].inputs->material.specular != SpecularModel::none;
+    }
+    align_light_block(block, samples.size(), scales, strengths_, weight_.damping());
+    for (size_t j = 0; j < samples.size(); ++j)
+      out[j] = reflect_diffuse(*samples[j].inputs, aligned(block, j), samples[j].incident);
+    if (!specular) {
+      for (size_t j = 0; j < samples.size(); ++j) out[j] += glm::dvec3(0.0);
+      return;
+    }
+    for (size_t j = 0; j < samples.size(); ++j)
+      for (size_t k = 0; k < scales; ++k) {
+        const glm::dvec3 r = reflected({block.vectors[k][0][j], block.vectors[k][1][j], block.vectors[k][2][j]},
+                                       samples[j].inputs->wo);
+        for (int c = 0; c < 3; ++c) block.vectors[k][c][j] = r[c];
+      }
+    align_light_block(block, samples.size(), scales, strengths_, weight_.damping());
+    for (size_t j = 0; j < samples.size(); ++j) {
+      const ShadingInputs& s = *samples[j].inputs;
+      out[j] += s.material.specular == SpecularModel::none ? glm::dvec3(0.0)
+                                                           : reflect_specular(s, aligned(block, j), samples[j].incident);
+    }
+  }
+
   std::shared_ptr<const NormalScaleField> normals_;
   std::vector<double> strengths_;
   AlignmentWeight weight_;

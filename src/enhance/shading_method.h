@@ -6,12 +6,13 @@
 #include <memory>
 
 #include "core/parameters.h"
+#include "enhance/light_alignment.h"
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
 
 namespace countershade {
 
-inline constexpr int kMaxNormalScales = 8;
+inline constexpr int kMaxNormalScales = int(kMaxAlignmentScales);
 
 // σ_1 (the finest smoothing width: world units in `surface` mode, pixels in `image` mode), the
 // number of scales S, the mode, and image mode's depth tolerance.

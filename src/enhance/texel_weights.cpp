@@ -88,7 +88,7 @@ class TexelWeights::Observer final : public SampleObserver {
     }
   }
 
-  void surface(size_t pixel, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
+  void surface(size_t /*pixel*/, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
                const LightSampleRecord* lights) override {
     const int k = texture_of_[point.object];
     if (k < 0 || over_limit()) return;

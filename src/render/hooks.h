@@ -10,7 +10,9 @@
 //   one continuously along the smooth terminator instead of stepping at the mesh's facets.
 // - A texture hook replaces the texture a material samples (e.g. a filtered mip pyramid).
 
+#include <cstddef>
 #include <memory>
+#include <span>
 
 #include <glm/vec3.hpp>
 
@@ -45,11 +47,23 @@ glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const 
 inline constexpr double kTerminatorBand = 0.25;
 double terminator_fade(double cos_i);
 
+// One light sample for ShadingHook::reflect_many.
+struct HookSample {
+  const ShadingInputs* inputs;
+  glm::dvec3 wi, incident;
+};
+
 class ShadingHook {
  public:
   virtual ~ShadingHook() = default;
   // The radiance reflected towards s.wo from one visible light sample from direction `wi`.
   virtual glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const = 0;
+  // reflect() for many light samples at once (a replay asks for every sample of a block of pixels
+  // together), so that a hook may vectorise its work. Each out[k] must equal reflect() of
+  // samples[k] bit for bit: the same stimulus comes out of a render and of a replay.
+  virtual void reflect_many(std::span<const HookSample> samples, glm::dvec3* out) const {
+    for (size_t k = 0; k < samples.size(); ++k) out[k] = reflect(*samples[k].inputs, samples[k].wi, samples[k].incident);
+  }
 };
 
 class TextureHook {

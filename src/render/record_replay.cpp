@@ -1,5 +1,8 @@
 #include "render/record_replay.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <glm/geometric.hpp>
 
 #include "core/parallel.h"
@@ -32,6 +35,45 @@ bool holds_every_record(const TraceLog& log, uint32_t samples) {
   return true;
 }
 
+// Pixels replayed together, so that the shading hook sees all their samples in one call.
+constexpr size_t kReplayPixels = 16;
+
+// The radiance of pixels [first, end) into `radiance`: each sample is its background or its record
+// evaluated again, summed per replicate in sample order (as the pixel pass sums them).
+void replay_pixels(const Scene& scene, const Shader& shader, const TraceLog& log, uint32_t samples, size_t first,
+                   size_t end, Image& radiance) {
+  thread_local std::vector<SurfacePoint> points;
+  thread_local std::vector<ReplayInput> inputs;
+  thread_local std::vector<size_t> slots;  // each input's place in `values`
+  thread_local std::vector<glm::dvec3> values, replayed;
+  const size_t count = (end - first) * samples;
+  points.clear();
+  points.reserve(count);  // `inputs` points into it: no reallocation below
+  inputs.clear();
+  slots.clear();
+  values.resize(count);
+  for (size_t p = first, slot = 0; p < end; ++p)
+    for (uint32_t s = 0; s < samples; ++s, ++slot) {
+      const auto hit = log.hit(p, s);
+      if (!hit) {
+        values[slot] = log.background(p, s);
+        continue;
+      }
+      const ShadingRecord& record = log.shading(p, s);
+      points.push_back(record.restore(surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2)));
+      inputs.push_back({&points.back(), &record, log.light_samples(p, s)});
+      slots.push_back(slot);
+    }
+  replayed.resize(inputs.size());
+  shader.replay_many(inputs, replayed.data());
+  for (size_t j = 0; j < inputs.size(); ++j) values[slots[j]] = replayed[j];
+  for (size_t p = first, slot = 0; p < end; ++p) {
+    glm::dvec3 sums[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (uint32_t s = 0; s < samples; ++s, ++slot) sums[Sampler::replicate(s)] += values[slot];
+    for (int c = 0; c < 3; ++c) radiance.pixels[3 * p + size_t(c)] = float((sums[0][c] + sums[1][c]) / double(samples));
+  }
+}
+
 }  // namespace
 
 std::optional<Image> replay_radiance(const Scene& scene, const Shader& shader, const TraceLog& log, int threads) {
@@ -42,11 +84,8 @@ std::optional<Image> replay_radiance(const Scene& scene, const Shader& shader, c
   if (!holds_every_record(log, samples)) return std::nullopt;
   Image radiance(width, height, 3, Image::Uninitialized{});
   parallel_ranges(log.pixel_count(), threads, [&](size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p) {
-      glm::dvec3 sums[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
-      for (uint32_t s = 0; s < samples; ++s) sums[Sampler::replicate(s)] += replay_sample(scene, shader, log, p, s).radiance;
-      for (int c = 0; c < 3; ++c) radiance.pixels[3 * p + size_t(c)] = float((sums[0][c] + sums[1][c]) / double(samples));
-    }
+    for (size_t first = begin; first < end; first += kReplayPixels)
+      replay_pixels(scene, shader, log, samples, first, std::min(end, first + kReplayPixels), radiance);
   }, 256);
   return radiance;
 }

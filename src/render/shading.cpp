@@ -186,11 +186,11 @@ double terminator_fade(double cos_i) {
   return x * x * (3 - 2 * x);
 }
 
-glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& light) const {
+glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& light, const glm::dvec3*& given) const {
   const double cos_i = glm::dot(s.normal, light.wi);
   if (!shading_hook_) return brdf(s, light.wi) * light.radiance * (cos_i / light.divisor);
   const glm::dvec3 incident = light.radiance / light.divisor;
-  const glm::dvec3 hooked = shading_hook_->reflect(s, light.wi, incident);
+  const glm::dvec3 hooked = given ? *given++ : shading_hook_->reflect(s, light.wi, incident);
   const double fade = terminator_fade(cos_i);
   if (fade >= 1) return hooked;
   // Near the original light's terminator the hook's change fades out, so the hooked shading meets
@@ -291,12 +291,37 @@ void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_si
 
 glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r, const LightSampleRecord* lights,
                             const glm::dvec3& albedo) const {
-  const ShadingInputs s{point, scene_.objects[point.object].material, r.shading_normal(point), r.wo, albedo};
+  const glm::dvec3* hooked = nullptr;
+  return evaluate_inputs(inputs(point, r, albedo), r, lights, hooked);
+}
+
+void Shader::replay_many(std::span<const ReplayInput> records, glm::dvec3* radiance) const {
+  thread_local std::vector<ShadingInputs> points;
+  thread_local std::vector<HookSample> samples;
+  thread_local std::vector<glm::dvec3> hooked;
+  points.clear();
+  points.reserve(records.size());  // `samples` points into it: no reallocation below
+  samples.clear();
+  for (const ReplayInput& in : records) {
+    points.push_back(inputs(*in.point, *in.record, texture_hook_ ? albedo(*in.point) : in.record->albedo));
+    for (size_t k = 0; shading_hook_ && k < light_samples_; ++k)
+      if (in.lights[k].arrives)
+        samples.push_back({&points.back(), in.lights[k].wi, in.lights[k].radiance / in.lights[k].divisor});
+  }
+  hooked.resize(samples.size());
+  if (shading_hook_) shading_hook_->reflect_many(samples, hooked.data());
+  const glm::dvec3* next = shading_hook_ ? hooked.data() : nullptr;
+  for (size_t j = 0; j < records.size(); ++j) radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next);
+}
+
+glm::dvec3 Shader::evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
+                                   const glm::dvec3*& hooked) const {
+  const glm::dvec3& albedo = s.albedo;
   // Sums per light, in the order the samples were drawn; a sample that does not arrive adds nothing.
   auto sum_of = [&](int samples) {
     glm::dvec3 sum(0.0);
     for (int k = 0; k < samples; ++k, ++lights)
-      if (lights->arrives) sum += reflect(s, *lights);
+      if (lights->arrives) sum += reflect(s, *lights, hooked);
     return sum;
   };
   glm::dvec3 L(0.0);

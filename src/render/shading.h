@@ -3,6 +3,7 @@
 // per-vertex signal of 3D unsharp masking is lit exactly like the image.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -75,6 +76,13 @@ struct ShadingRecord {
   glm::dvec3 geometric_normal(const SurfacePoint& p) const { return back ? -p.geometric_normal : p.geometric_normal; }
 };
 
+// One kept record to evaluate again (Shader::replay_many).
+struct ReplayInput {
+  const SurfacePoint* point;  // the recorded hit's surface_point() with the record's footprint
+  const ShadingRecord* record;
+  const LightSampleRecord* lights;
+};
+
 class Shader {
  public:
   // Hooks may be null (the plain path).
@@ -102,6 +110,9 @@ class Shader {
   glm::dvec3 replay(const SurfacePoint& point, const ShadingRecord& record, const LightSampleRecord* lights) const {
     return evaluate(point, record, lights, texture_hook_ ? albedo(point) : record.albedo);
   }
+  // replay() of many records, radiance[k] for records[k]: the shading hook reflects all their
+  // light samples in one ShadingHook::reflect_many call. The same bits as replay() one by one.
+  void replay_many(std::span<const ReplayInput> records, glm::dvec3* radiance) const;
 
   // What a camera ray that hits nothing sees.
   glm::dvec3 background(const glm::dvec3& direction) const;
@@ -126,8 +137,16 @@ class Shader {
   void draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
             RayCounts& counts) const;
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
-  // The reflection of one arriving light sample (through the shading hook if there is one).
-  glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light) const;
+  ShadingInputs inputs(const SurfacePoint& point, const ShadingRecord& r, const glm::dvec3& albedo) const {
+    return {point, scene_.objects[point.object].material, r.shading_normal(point), r.wo, albedo};
+  }
+  // evaluate() for given inputs. `hooked` (optional): the hook's reflections of the arriving light
+  // samples in order, read and advanced instead of asking the hook one sample at a time.
+  glm::dvec3 evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
+                             const glm::dvec3*& hooked) const;
+  // The reflection of one arriving light sample (through the shading hook if there is one; its
+  // value taken from `hooked` when that is not null).
+  glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light, const glm::dvec3*& hooked) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;

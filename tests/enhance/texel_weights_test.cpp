@@ -60,8 +60,9 @@ TEST(TexelWeights, ChangedTexelsGiveWhatRenderingWithThemGives) {
       const double expected = rendered.radiance.pixels[i];
       changed += std::abs(expected - view->render.radiance.pixels[i]) > 1e-3;
       // Where the replay sampled further (adaptive), the pixels differ by their sampling noise.
-      if (rendered.spp[i / 3] == view->render.spp[i / 3])
+      if (rendered.spp[i / 3] == view->render.spp[i / 3]) {
         ASSERT_NEAR(composed.pixels[i], expected, 1e-5 * std::max(1.0, expected)) << i;
+      }
     }
     EXPECT_GT(changed, composed.pixels.size() / 4);  // the floor covers much of the image
     // Without the log the samples are traced again: the same weights.
