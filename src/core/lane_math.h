@@ -75,4 +75,28 @@ template <typename D>
   cos_out = k == 0.0 ? c : (k == 1.0 ? -s : -c);
 }
 
+// e^x within 2 ulp for x in [−700, 700]; x is clamped there (NaN gives e^−700). x = n·ln 2 + r
+// with |r| ≤ ln 2 / 2, e^r by its Taylor polynomial to r^13 (the next term is below 5e-18), times
+// 2^n made from the exponent bits. I: int64_t, or the GCC vector of int64 lanes matching D.
+template <typename D, typename I>
+[[gnu::always_inline]] inline D exp_lanes(D x) {
+  constexpr double kTaylor[] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0,
+                                1.0 / 362880.0,     1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,
+                                1.0 / 120.0,        1.0 / 24.0,        1.0 / 6.0,        0.5,
+                                1.0,                1.0};
+  constexpr double kLog2e = 1.4426950408889634, kRound = 6755399441055744.0;
+  // ln 2 in two parts; the first has 32 significant bits, so n·high is exact for |n| < 2^21.
+  constexpr double kLn2High = 6.93147180369123816490e-01, kLn2Low = 1.90821492927058770002e-10;
+  x = x > -700.0 ? (x < 700.0 ? x : 700.0) : -700.0;
+  const D n = (x * kLog2e + kRound) - kRound;
+  const D r = (x - n * kLn2High) - n * kLn2Low;
+  I k;
+  if constexpr (std::is_same_v<D, double>) {
+    k = I(n);
+  } else {
+    k = __builtin_convertvector(n, I);
+  }
+  return horner_lanes(r, kTaylor) * __builtin_bit_cast(D, (k + 1023) << 52);
+}
+
 }  // namespace countershade

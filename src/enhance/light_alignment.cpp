@@ -6,36 +6,13 @@
 #include <numbers>
 
 #include "core/lane_math.h"
+#include "core/lane_vec3.h"
 
 namespace countershade {
 namespace {
 
 constexpr double kDegenerate = 1e-12;
 
-// A 3-vector of lanes: one direction per lane.
-template <typename D>
-struct Vec3Lanes {
-  D x, y, z;
-};
-
-template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> operator+(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> operator-(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> operator*(const Vec3Lanes<D>& a, const D& s) { return {a.x * s, a.y * s, a.z * s}; }
-template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> operator/(const Vec3Lanes<D>& a, const D& s) { return {a.x / s, a.y / s, a.z / s}; }
-template <typename D>
-[[gnu::always_inline]] inline D dot(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> cross(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-template <typename D, typename M>
-[[gnu::always_inline]] inline Vec3Lanes<D> select(const M& mask, const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) {
-  return {mask ? a.x : b.x, mask ? a.y : b.y, mask ? a.z : b.z};
-}
 template <typename D>
 [[gnu::always_inline]] inline D angle_between(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return acos_lanes(clamp_lanes(dot(a, b), -1.0, 1.0)); }
 
@@ -61,7 +38,7 @@ template <typename D>
   // The guide: the finer vector when the light lies on its side of the frame, else the tangent
   // to it in the (x, z) plane on the light's side (so that the light is turned to graze it).
   const auto bright = dot(light, x) >= 0.0;
-  const Vec3Lanes<D> guide = select(bright, fine, z * dot(fine, x) - x * dot(fine, z));
+  const Vec3Lanes<D> guide = select_lanes(bright, fine, z * dot(fine, x) - x * dot(fine, z));
   const D angle = angle_between(light, guide);
   // λ1 measures how far the light is from the switching point dot(l, x) = 0, by the angle between
   // the light and the guide projected across z (the guide's projection is ±x): 1 when the light
@@ -78,7 +55,7 @@ template <typename D>
   const D axis_length = sqrt_lanes(dot(axis, axis));
   const auto turns = (lambda2 >= kDegenerate) & (across_length >= kDegenerate) & (theta > 0.0) &
                      (axis_length >= kDegenerate);
-  return select(turns, rotate(light, axis / axis_length, theta), light);
+  return select_lanes(turns, rotate(light, axis / axis_length, theta), light);
 }
 
 // The cascade of align_light for every lane; vectors[k] holds v_{k+1}.
@@ -99,14 +76,6 @@ using AlignmentLanes = double __attribute__((vector_size(32)));  // see LabLanes
 using AlignmentLanes = double __attribute__((vector_size(64)));
 #endif
 constexpr size_t kLanes = sizeof(AlignmentLanes) / sizeof(double);
-
-[[gnu::always_inline]] inline Vec3Lanes<AlignmentLanes> load(const double (&planes)[3][kAlignmentBlock], size_t first) {
-  Vec3Lanes<AlignmentLanes> v;
-  std::memcpy(&v.x, planes[0] + first, sizeof v.x);
-  std::memcpy(&v.y, planes[1] + first, sizeof v.y);
-  std::memcpy(&v.z, planes[2] + first, sizeof v.z);
-  return v;
-}
 
 }  // namespace
 
@@ -144,11 +113,9 @@ void align_light_block(AlignmentBlock& block, size_t count, size_t scales, std::
       continue;
     }
     Vec3Lanes<AlignmentLanes> v[kMaxAlignmentScales];
-    for (size_t k = 0; k < scales; ++k) v[k] = load(block.vectors[k], first);
-    const Vec3Lanes<AlignmentLanes> l = cascade_lanes(load(block.light, first), v, scales, strengths, damping);
-    std::memcpy(block.aligned[0] + first, &l.x, sizeof l.x);
-    std::memcpy(block.aligned[1] + first, &l.y, sizeof l.y);
-    std::memcpy(block.aligned[2] + first, &l.z, sizeof l.z);
+    for (size_t k = 0; k < scales; ++k) v[k] = load_lanes<AlignmentLanes>(block.vectors[k], first);
+    const auto l = cascade_lanes(load_lanes<AlignmentLanes>(block.light, first), v, scales, strengths, damping);
+    store_lanes(l, block.aligned, first);
   }
 }
 

@@ -5,9 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numbers>
+#include <span>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "core/lane_math.h"
+#include "core/lane_vec3.h"
 #include "enhance/light_warping.h"
 #include "enhance/method.h"
 #include "enhance/shading_method.h"
@@ -16,15 +23,75 @@
 
 namespace countershade {
 
+namespace {
+
+// The warp of light_warping.h for every lane (core/lane_math.h), so that the hook's blocks and
+// one sample at a time give the same bits.
+template <typename D, typename I>
+[[gnu::always_inline]] inline Vec3Lanes<D> warp_lanes(const Vec3Lanes<D>& wi, const Vec3Lanes<D>& r, const D& kappa,
+                                                      double lambda) {
+  const D cos_angle = clamp_lanes(dot(wi, r), -1.0, 1.0);
+  const Vec3Lanes<D> across = wi - r * cos_angle;  // wi's part perpendicular to r
+  const D across_length = sqrt_lanes(dot(across, across));
+  const D angle = acos_lanes(cos_angle);
+  const D e = exp_lanes<D, I>(-lambda * kappa);
+  const D warped = angle * e / (1.0 + (e - 1.0) * angle / std::numbers::pi);  // in [0, π]
+  D sin_warped, cos_warped;
+  sincos_lanes(warped, sin_warped, cos_warped);
+  // Along r or opposite it the warp keeps the light.
+  return select_lanes(across_length < 1e-12, wi, r * cos_warped + (across / across_length) * sin_warped);
+}
+
+#if defined(__clang__)
+using WarpLanes = double __attribute__((vector_size(32)));  // see LabLanes in enhance/lightness.cpp
+using WarpLaneBits = int64_t __attribute__((vector_size(32)));
+#else
+using WarpLanes = double __attribute__((vector_size(64)));
+using WarpLaneBits = int64_t __attribute__((vector_size(64)));
+#endif
+constexpr size_t kWarpLanes = sizeof(WarpLanes) / sizeof(double);
+constexpr size_t kWarpBlock = 64;
+
+// Planes of one coordinate per light sample.
+struct WarpBlock {
+  double wi[3][kWarpBlock] = {}, r[3][kWarpBlock] = {}, kappa[kWarpBlock] = {};
+  double warped[3][kWarpBlock] = {};
+};
+
+// Warps samples 0 … count−1 of the block (those past `count` are computed and ignored).
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+void warp_light_block(WarpBlock& block, size_t count, double lambda) {
+  for (size_t first = 0; first < count; first += kWarpLanes) {
+    WarpLanes kappa;
+    std::memcpy(&kappa, block.kappa + first, sizeof kappa);
+    const auto w = warp_lanes<WarpLanes, WarpLaneBits>(load_lanes<WarpLanes>(block.wi, first),
+                                                       load_lanes<WarpLanes>(block.r, first), kappa, lambda);
+    store_lanes(w, block.warped, first);
+  }
+}
+
+}  // namespace
+
 glm::dvec3 warp_light(const glm::dvec3& wi, const glm::dvec3& r, double kappa, double lambda) {
-  const double cos_angle = std::clamp(glm::dot(wi, r), -1.0, 1.0);
-  const glm::dvec3 across = wi - cos_angle * r;  // wi's part perpendicular to r
-  const double across_length = glm::length(across);
-  if (across_length < 1e-12) return wi;  // along r or opposite it: the warp keeps both
-  const double angle = std::acos(cos_angle);
-  const double e = std::exp(-lambda * kappa);
-  const double warped = angle * e / (1 + (e - 1) * angle / M_PI);
-  return std::cos(warped) * r + std::sin(warped) * (across / across_length);
+  const Vec3Lanes<double> w = warp_lanes<double, int64_t>({wi.x, wi.y, wi.z}, {r.x, r.y, r.z}, kappa, lambda);
+  return {w.x, w.y, w.z};
+}
+
+void warp_lights(std::span<const glm::dvec3> wi, std::span<const glm::dvec3> r, std::span<const double> kappa,
+                 double lambda, glm::dvec3* out) {
+  WarpBlock block;
+  for (size_t first = 0; first < wi.size(); first += kWarpBlock) {
+    const size_t count = std::min(kWarpBlock, wi.size() - first);
+    for (size_t j = 0; j < count; ++j) {
+      block.kappa[j] = kappa[first + j];
+      for (int c = 0; c < 3; ++c) {
+        block.wi[c][j] = wi[first + j][c];
+        block.r[c][j] = r[first + j][c];
+      }
+    }
+    warp_light_block(block, count, lambda);
+    for (size_t j = 0; j < count; ++j) out[first + j] = {block.warped[0][j], block.warped[1][j], block.warped[2][j]};
+  }
 }
 
 namespace {
@@ -38,12 +105,29 @@ class LwHook final : public ShadingHook {
   LwHook(std::shared_ptr<const ViewCurvature> kappa, double lambda) : kappa_(std::move(kappa)), lambda_(lambda) {}
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
-    const double kappa = kappa_->at(s.point.position);
-    const glm::dvec3 r = 2 * glm::dot(s.normal, s.wo) * s.normal - s.wo;
-    return reflect_plain(s, warp_light(wi, r, kappa, lambda_), incident);
+    return reflect_plain(s, warp_light(wi, reflected_view(s), kappa_->at(s.point.position), lambda_), incident);
+  }
+
+  // The same, the warps computed in vector lanes (warp_lights).
+  void reflect_many(std::span<const HookSample> samples, glm::dvec3* out) const override {
+    thread_local std::vector<glm::dvec3> wi, r, warped;
+    thread_local std::vector<double> kappa;
+    wi.clear();
+    r.clear();
+    kappa.clear();
+    for (const HookSample& sample : samples) {
+      wi.push_back(sample.wi);
+      r.push_back(reflected_view(*sample.inputs));
+      kappa.push_back(kappa_->at(sample.inputs->point.position));
+    }
+    warped.resize(samples.size());
+    warp_lights(wi, r, kappa, lambda_, warped.data());
+    for (size_t k = 0; k < samples.size(); ++k) out[k] = reflect_plain(*samples[k].inputs, warped[k], samples[k].incident);
   }
 
  private:
+  static glm::dvec3 reflected_view(const ShadingInputs& s) { return 2 * glm::dot(s.normal, s.wo) * s.normal - s.wo; }
+
   std::shared_ptr<const ViewCurvature> kappa_;
   double lambda_;
 };

@@ -60,7 +60,9 @@ class ShadingHook {
   virtual glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const = 0;
   // reflect() for many light samples at once (a replay asks for every sample of a block of pixels
   // together), so that a hook may vectorise its work. Each out[k] must equal reflect() of
-  // samples[k] bit for bit: the same stimulus comes out of a render and of a replay.
+  // samples[k] bit for bit: the same stimulus comes out of a render and of a replay. It runs
+  // inside the replay's parallel loop, between uses of per-thread buffers: like reflect(), it
+  // must not start parallel work of its own (a waiting thread could take another block).
   virtual void reflect_many(std::span<const HookSample> samples, glm::dvec3* out) const {
     for (size_t k = 0; k < samples.size(); ++k) out[k] = reflect(*samples[k].inputs, samples[k].wi, samples[k].incident);
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 
@@ -10,6 +11,7 @@ namespace countershade {
 namespace {
 
 using Lanes = double __attribute__((vector_size(32)));
+using LaneBits = int64_t __attribute__((vector_size(32)));
 
 TEST(LaneMath, AcosMatchesTheLibraryOverItsWholeDomain) {
   double worst = 0;
@@ -57,6 +59,24 @@ TEST(LaneMath, LanesEqualTheScalarBitForBit) {
   }
 }
 
+double exp_of(double x) { return exp_lanes<double, int64_t>(x); }
+
+TEST(LaneMath, ExpMatchesTheLibraryWithinTwoUlp) {
+  double worst = 0;
+  for (int k = -400000; k <= 400000; ++k) {
+    const double x = k / 1000.0;
+    worst = std::max(worst, std::abs(exp_of(x) / std::exp(x) - 1.0));
+  }
+  EXPECT_LT(worst, 4.5e-16);
+  EXPECT_EQ(exp_of(0.0), 1.0);
+  EXPECT_NEAR(exp_of(-700.0) / std::exp(-700.0), 1.0, 1e-15);
+  EXPECT_NEAR(exp_of(700.0) / std::exp(700.0), 1.0, 1e-15);
+  EXPECT_EQ(exp_of(1000.0), exp_of(700.0));  // clamped
+  const Lanes x = {-3.25, 0.0, 1e-9, 12.5};
+  const Lanes e = exp_lanes<Lanes, LaneBits>(x);
+  for (int lane = 0; lane < 4; ++lane) EXPECT_EQ(e[lane], exp_of(x[lane]));
+}
+
 TEST(LaneMath, UnusedLanesMayHoldNonFiniteValues) {
   const Lanes x = {NAN, INFINITY, -INFINITY, 0.5};
   const Lanes a = acos_lanes(x);
@@ -65,6 +85,8 @@ TEST(LaneMath, UnusedLanesMayHoldNonFiniteValues) {
   EXPECT_DOUBLE_EQ(a[3], std::acos(0.5));
   EXPECT_DOUBLE_EQ(s[3], std::sin(0.5));
   EXPECT_TRUE(std::isnan(s[0]));
+  const Lanes clamped = exp_lanes<Lanes, LaneBits>(x);
+  EXPECT_EQ(clamped[0], exp_of(-700.0));  // NaN: clamped, no trap
 }
 
 }  // namespace

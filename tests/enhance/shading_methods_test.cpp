@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "core/error.h"
 #include "enhance/light_warping.h"
@@ -331,6 +334,39 @@ TEST(LightWarping, TheWarpTurnsTheLightTowardsOrAwayFromTheReflectedViewAndStays
         previous = angle_between(convex, r);
       }
     }
+}
+
+// The warp as light_warping.h defines it, with the C library's functions.
+glm::dvec3 reference_warp(const glm::dvec3& wi, const glm::dvec3& r, double kappa, double lambda) {
+  const double cos_angle = std::clamp(glm::dot(wi, r), -1.0, 1.0);
+  const glm::dvec3 across = wi - cos_angle * r;
+  if (glm::length(across) < 1e-12) return wi;
+  const double angle = std::acos(cos_angle), e = std::exp(-lambda * kappa);
+  const double warped = angle * e / (1 + (e - 1) * angle / std::acos(-1.0));
+  return std::cos(warped) * r + std::sin(warped) * glm::normalize(across);
+}
+
+// Many warps at once (vector lanes) give warp_light's bits, and both follow the definition.
+TEST(LightWarping, ManyAtOnceEqualOneAtATimeAndFollowTheDefinition) {
+  std::mt19937 random(5);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  auto unit = [&] { return glm::normalize(glm::dvec3(gauss(random), gauss(random), gauss(random))); };
+  std::vector<glm::dvec3> wi, r, out(150);
+  std::vector<double> kappa;
+  for (size_t k = 0; k < out.size(); ++k) {
+    r.push_back(unit());
+    wi.push_back(k % 11 == 3 ? r.back() : (k % 11 == 7 ? -r.back() : unit()));  // along r, opposite it
+    kappa.push_back(uniform(random));
+  }
+  warp_lights(wi, r, kappa, 2.5, out.data());
+  double worst = 0;
+  for (size_t k = 0; k < out.size(); ++k) {
+    const glm::dvec3 one = warp_light(wi[k], r[k], kappa[k], 2.5);
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(out[k][c], one[c]) << k;
+    worst = std::max(worst, glm::length(one - reference_warp(wi[k], r[k], kappa[k], 2.5)));
+  }
+  EXPECT_LT(worst, 1e-12);
 }
 
 TEST(LightWarping, LambdaZeroIsPlainAndAWarpChangesTheConvexBall) {
