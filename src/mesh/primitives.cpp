@@ -80,6 +80,39 @@ TriangleMesh make_plane(double size, int subdivisions) {
 
 namespace {
 
+double gaussian_bump(double u, double v, double cu, double cv, double sigma) {
+  return std::exp(-((u - cu) * (u - cu) + (v - cv) * (v - cv)) / (2.0 * sigma * sigma));
+}
+
+}  // namespace
+
+double relief_coarse(double u, double v) {
+  // {u, v, amplitude}: hills (+) and valleys (−) of σ = 0.14.
+  static constexpr double kHills[6][3] = {{0.25, 0.30, 1.0},  {0.70, 0.25, -0.7}, {0.55, 0.60, 0.8},
+                                          {0.20, 0.75, -0.6}, {0.80, 0.75, 0.9},  {0.45, 0.95, 0.5}};
+  double h = 0;
+  for (const auto& [cu, cv, a] : kHills) h += a * gaussian_bump(u, v, cu, cv, 0.14);
+  return h;
+}
+
+double relief_fine(double u, double v) {
+  // Ridges concentric around a point outside the square: they never cross, and their orientation
+  // turns by about 55° across it.
+  constexpr double kCentreU = -0.35, kCentreV = 1.25, kWavelength = 1.0 / 14.0;
+  return std::sin(2.0 * std::numbers::pi * std::hypot(u - kCentreU, v - kCentreV) / kWavelength);
+}
+
+TriangleMesh make_relief(double size, int subdivisions, double coarse, double fine) {
+  TriangleMesh mesh = make_plane(size, subdivisions);
+  for (glm::vec3& p : mesh.positions) {
+    const double u = double(p.x) / size + 0.5, v = double(p.z) / size + 0.5;
+    p.y = float(coarse * relief_coarse(u, v) + fine * relief_fine(u, v));
+  }
+  return mesh;
+}
+
+namespace {
+
 // The lattice of a box with rounded or bevelled edges: coordinates per axis, and where a lattice
 // point lands on the surface (the cut-back bands projected onto the edge profile).
 struct BoxLattice {

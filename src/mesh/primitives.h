@@ -9,6 +9,17 @@ namespace countershade {
 // Square in the xz-plane (normal +y), side `size`, `subdivisions` quads per side. UVs in [0,1]².
 TriangleMesh make_plane(double size, int subdivisions);
 
+// The plane above displaced along +y by a procedural height field with coarse and fine relief:
+// y = coarse·relief_coarse(u, v) + fine·relief_fine(u, v), u = x/size + 0.5, v = z/size + 0.5.
+// The triangles are the flat plane's, so its tessellation stays even.
+TriangleMesh make_relief(double size, int subdivisions, double coarse, double fine);
+
+// The two parts of the relief's height field over the unit square, both smooth and of height
+// about 1: six broad hills and valleys (Gaussians of σ = 0.14), and fine ridges of wavelength 1/14,
+// circles around (u, v) = (−0.35, 1.25), whose orientation turns across the square.
+double relief_coarse(double u, double v);
+double relief_fine(double u, double v);
+
 enum class EdgeProfile { sharp, bevel, chamfer };
 
 // Axis-aligned box with extents `size`. With a bevel (rounded) or chamfer (flat 45°) profile,

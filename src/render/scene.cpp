@@ -207,13 +207,22 @@ class SceneLoader {
                                  std::to_string(std::llround(kMaxPrimitiveTriangles)) + ")");
   }
 
+  // A plane, or a relief: the plane displaced by coarse and fine relief whose heights are
+  // fractions of its size.
+  static TriangleMesh plane(const JsonObject& o, bool relief) {
+    const int subdivisions = int(o.integer_in("subdivisions", relief ? 256 : 32, 1, 4096));
+    check_triangles(o, 2.0 * subdivisions * subdivisions);
+    const double size = positive(o, "size", 1.0);
+    if (!relief) return make_plane(size, subdivisions);
+    const double coarse = o.number_in("coarse", 0.1, -1.0, 1.0), fine = o.number_in("fine", 0.004, -1.0, 1.0);
+    return make_relief(size, subdivisions, coarse * size, fine * size);
+  }
+
   TriangleMesh shape(const JsonObject& o) {
-    std::string type = o.choice("type", "", {"plane", "box", "sphere", "cylinder"});
+    std::string type = o.choice("type", "", {"plane", "relief", "box", "sphere", "cylinder"});
     TriangleMesh mesh;
-    if (type == "plane") {
-      const int subdivisions = int(o.integer_in("subdivisions", 32, 1, 4096));
-      check_triangles(o, 2.0 * subdivisions * subdivisions);
-      mesh = make_plane(positive(o, "size", 1.0), subdivisions);
+    if (type == "plane" || type == "relief") {
+      mesh = plane(o, type == "relief");
     } else if (type == "box") {
       glm::dvec3 size = o.vec3_or("size", glm::dvec3(1.0));
       if (size.x <= 0 || size.y <= 0 || size.z <= 0) o.fail("size", "must be positive");

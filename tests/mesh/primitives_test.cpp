@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -70,6 +71,46 @@ TEST(Primitives, PlaneFacesUpWithUnitUvs) {
     EXPECT_GE(uv.x, 0.0f);
     EXPECT_LE(uv.y, 1.0f);
   }
+}
+
+// The relief is the plane with each vertex raised by the height field; its two parts have the
+// sizes and wavelength the docs give, and both vary smoothly from vertex to vertex.
+TEST(Primitives, ReliefRaisesThePlaneByItsHeightField) {
+  const TriangleMesh plane = make_plane(2.0, 64), relief = make_relief(2.0, 64, 0.1, 0.02);
+  ASSERT_EQ(relief.positions.size(), plane.positions.size());
+  EXPECT_EQ(relief.triangles, plane.triangles);
+  double lowest = 0, highest = 0;
+  for (size_t i = 0; i < relief.positions.size(); ++i) {
+    const glm::vec3 p = plane.positions[i], q = relief.positions[i];
+    EXPECT_EQ(q.x, p.x);
+    EXPECT_EQ(q.z, p.z);
+    const double u = p.x / 2.0 + 0.5, v = p.z / 2.0 + 0.5;
+    EXPECT_NEAR(q.y, 0.1 * relief_coarse(u, v) + 0.02 * relief_fine(u, v), 1e-6);
+    lowest = std::min(lowest, double(q.y)), highest = std::max(highest, double(q.y));
+  }
+  EXPECT_GT(highest, 0.08);  // the highest hill, 1.0 × 0.1 at its centre
+  EXPECT_LT(lowest, -0.05);  // the deepest valley, −0.7 × 0.1
+  EXPECT_NEAR(relief_coarse(0.25, 0.30), 1.0, 0.05);
+  // The ridges: circles around (−0.35, 1.25), of wavelength 1/14 along every radius.
+  for (double angle : {-1.2, -0.9, -0.5}) {
+    const double du = std::cos(angle), dv = std::sin(angle);
+    for (double r : {0.5, 0.8, 1.1}) {
+      const double f = relief_fine(-0.35 + r * du, 1.25 + r * dv);
+      EXPECT_NEAR(relief_fine(-0.35 + (r + 1.0 / 14.0) * du, 1.25 + (r + 1.0 / 14.0) * dv), f, 1e-9);
+      EXPECT_NEAR(relief_fine(-0.35 + (r + 0.5 / 14.0) * du, 1.25 + (r + 0.5 / 14.0) * dv), -f, 1e-9);
+      EXPECT_NEAR(relief_fine(-0.35 + r * std::cos(angle + 0.1), 1.25 + r * std::sin(angle + 0.1)), f, 1e-9);
+    }
+  }
+  // Smooth: on a fine lattice no step is larger than the steepest slope allows.
+  const double h = 1e-3, steepest = 2 * std::numbers::pi * 14.0 * 1.01;
+  for (int j = 0; j < 200; ++j)
+    for (int i = 0; i < 200; ++i) {
+      const double u = i / 200.0, v = j / 200.0;
+      EXPECT_LT(std::abs(relief_fine(u + h, v) - relief_fine(u, v)), steepest * h);
+      EXPECT_LT(std::abs(relief_coarse(u, v + h) - relief_coarse(u, v)), 20.0 * h);
+    }
+  // No relief: the plane itself.
+  EXPECT_EQ(make_relief(2.0, 64, 0.0, 0.0).positions, plane.positions);
 }
 
 TEST(Primitives, CreaseAngleSplitsBoxNormalsButKeepsVerticesShared) {
