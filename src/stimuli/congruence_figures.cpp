@@ -58,21 +58,40 @@ void write_table(const std::filesystem::path& path, const Experiment& e, const s
   write_text_atomically(path, csv.str());
 }
 
-void write_plot(const std::filesystem::path& path, const Experiment& e, const std::vector<Condition>& conditions) {
+// The scores of the scenes `scenes` (indices in the experiment's order) against their position
+// in that list, one line per condition.
+void write_plot(const std::filesystem::path& path, const std::string& title, bool swept, const std::vector<size_t>& scenes,
+                const std::vector<Condition>& conditions) {
   LinePlot plot;
-  plot.title = e.name + ": congruence per scene at lambda " + format_value(e.lambda.max);
-  const bool swept = std::all_of(e.scenes.begin(), e.scenes.end(), [](const ExperimentScene& s) { return s.light.has_value(); });
+  plot.title = title;
   plot.x_label = swept ? "light direction: by elevation, then azimuth (names in congruence.csv)"
                        : "scene (in the experiment's order; names in congruence.csv)";
   plot.y_label = "congruence";
   plot.width = 900;
   for (size_t k = 0; k < conditions.size(); ++k) {
     PlotSeries series{conditions[k].name, {}, {}, plot_color(k), k == 0};
-    for (size_t i = 0; i < conditions[k].per_scene.size(); ++i)
-      if (const ManifestEntry* s = conditions[k].per_scene[i]) series.x.push_back(double(i + 1)), series.y.push_back(score_of(*s));
+    for (size_t i = 0; i < scenes.size(); ++i)
+      if (const ManifestEntry* s = conditions[k].per_scene[scenes[i]]) series.x.push_back(double(i + 1)), series.y.push_back(score_of(*s));
     plot.series.push_back(series);
   }
   plot.write(path);
+}
+
+// congruence.svg over every scene; where several scene entries each sweep the light, also one
+// figure per entry, its directions numbered from 1 (congruence-NAME.svg).
+void write_plots(const std::filesystem::path& dir, const Experiment& e, const std::vector<Condition>& conditions) {
+  const std::string at = " at lambda " + format_value(e.lambda.max);
+  std::vector<size_t> all(e.scenes.size());
+  std::map<std::string, std::vector<size_t>> swept;
+  for (size_t i = 0; i < e.scenes.size(); ++i) {
+    all[i] = i;
+    if (e.scenes[i].light) swept[e.scenes[i].light->scene].push_back(i);
+  }
+  const bool all_swept = std::all_of(e.scenes.begin(), e.scenes.end(), [](const ExperimentScene& s) { return s.light.has_value(); });
+  write_plot(dir / "congruence.svg", e.name + ": congruence per scene" + at, all_swept, all, conditions);
+  if (swept.size() < 2) return;
+  for (const auto& [name, scenes] : swept)
+    write_plot(dir / ("congruence-" + name + ".svg"), e.name + ": congruence of " + name + at, true, scenes, conditions);
 }
 
 // One sheet per condition: each scene's stimulus beside its score map.
@@ -99,7 +118,7 @@ void write_congruence_figures(const Experiment& e, const std::filesystem::path& 
   const std::vector<Condition> conditions = scored_conditions(e, manifest);
   if (conditions.empty()) return;
   write_table(dir / "congruence.csv", e, conditions);
-  write_plot(dir / "congruence.svg", e, conditions);
+  write_plots(dir, e, conditions);
   if (!sheets) return;
   std::filesystem::create_directories(dir / "contact-sheets");
   for (const Condition& c : conditions) write_sheet(dir, e, c);

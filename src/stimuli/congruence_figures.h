@@ -10,7 +10,9 @@
 
 namespace countershade {
 
-// DIR/congruence.csv and DIR/congruence.svg; with `sheets`, DIR/contact-sheets/congruence-LABEL.png.
+// DIR/congruence.csv and DIR/congruence.svg, and DIR/congruence-SCENE.svg per scene entry whose
+// light directions are swept when there are several; with `sheets`,
+// DIR/contact-sheets/congruence-LABEL.png.
 // Nothing when the manifest lacks a score (an experiment without "congruence", or a shard).
 void write_congruence_figures(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest,
                               bool sheets);

@@ -23,6 +23,7 @@ inline constexpr int kExperimentFormatVersion = 1;
 // the direction towards the viewer (positive to the viewer's right), both in degrees.
 struct ViewLight {
   double elevation = 0, azimuth = 0;
+  std::string scene;  // the name of the scene entry whose light directions it is one of
 };
 
 struct ExperimentScene {

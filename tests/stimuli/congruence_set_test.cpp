@@ -41,9 +41,9 @@ TEST(CongruenceSet, LightDirectionsAreRelativeToTheView) {
   Camera camera;
   camera.eye = {0, 1, 5}, camera.target = {0, 0, 0};
   const CameraRays rays(camera);
-  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0}) + rays.forward()), 1e-12);  // towards the viewer
-  EXPECT_LT(glm::length(view_light_direction(camera, {0, 90}) - rays.right()), 1e-12);
-  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0, ""}) + rays.forward()), 1e-12);  // towards the viewer
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 90, ""}) - rays.right()), 1e-12);
+  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200, ""}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
 }
 
 TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
@@ -88,6 +88,45 @@ TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   const auto problems = verify_stimulus_set(dir / "set/manifest.json");
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_NE(problems[0].find(map + ": sha256 differs"), std::string::npos);
+}
+
+// Two scene entries that each sweep the light: besides the plot over all scenes, one plot per
+// entry whose x axis numbers its own directions from 1.
+TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
+  testing::TempDir dir;
+  write_ball_experiment(dir, "{}");
+  testing::write_file(dir / "two.json", R"({
+    "version": 1, "name": "two", "seed": 3, "congruence": true,
+    "lambda": {"min": 1, "max": 1, "step": 1},
+    "scenes": [{"name": "near", "file": "ball.json", "light_directions": {"elevations": [30], "azimuths": 3}},
+               {"name": "far", "file": "ball.json", "light_directions": {"elevations": [30, 60], "azimuths": 2}}],
+    "methods": [{"method": "none"}]
+  })");
+  const Experiment e = load_experiment(dir / "two.json");
+  ASSERT_EQ(e.scenes.size(), 7u);
+  EXPECT_EQ(e.scenes[4].light->scene, "far");
+  GenerateOptions options;
+  options.jobs = 2;
+  options.contact_sheets = false;
+  generate_stimulus_set(e, dir / "set", options);
+  auto points_in = [](const fs::path& svg) {  // the vertices of every line's polyline
+    std::ifstream in(svg);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    size_t count = 0;
+    for (size_t at = text.find("points=\""); at != std::string::npos; at = text.find("points=\"", at + 1)) {
+      const size_t begin = at + 8, end = text.find('"', begin);
+      count += size_t(std::count(text.begin() + long(begin), text.begin() + long(end), ',')) ;
+    }
+    return count;
+  };
+  const size_t all = points_in(dir / "set/congruence.svg");
+  EXPECT_EQ(all, 7u * 2u);  // two conditions: plain and none
+  EXPECT_EQ(points_in(dir / "set/congruence-near.svg"), 3u * 2u);
+  EXPECT_EQ(points_in(dir / "set/congruence-far.svg"), 4u * 2u);
+  // One swept entry: no figure of its own besides congruence.svg.
+  generate_stimulus_set(load_experiment(write_ball_experiment(dir, R"({"elevations": [0], "azimuths": 2})")), dir / "one", options);
+  EXPECT_TRUE(fs::is_regular_file(dir / "one/congruence.svg"));
+  EXPECT_FALSE(fs::exists(dir / "one/congruence-ball.svg"));
 }
 
 TEST(CongruenceSet, BadLightDirectionsAreOneLine) {
