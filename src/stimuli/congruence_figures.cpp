@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -82,11 +83,10 @@ void write_plot(const std::filesystem::path& path, const std::string& title, boo
 void write_plots(const std::filesystem::path& dir, const Experiment& e, const std::vector<Condition>& conditions) {
   const std::string at = " at lambda " + format_value(e.lambda.max);
   std::vector<size_t> all(e.scenes.size());
+  std::iota(all.begin(), all.end(), size_t(0));
   std::map<std::string, std::vector<size_t>> swept;
-  for (size_t i = 0; i < e.scenes.size(); ++i) {
-    all[i] = i;
-    if (e.scenes[i].light) swept[e.scenes[i].light->scene].push_back(i);
-  }
+  for (size_t i : all)
+    if (e.scenes[i].light) swept[e.scenes[i].swept_from].push_back(i);
   const bool all_swept = std::all_of(e.scenes.begin(), e.scenes.end(), [](const ExperimentScene& s) { return s.light.has_value(); });
   write_plot(dir / "congruence.svg", e.name + ": congruence per scene" + at, all_swept, all, conditions);
   if (swept.size() < 2) return;

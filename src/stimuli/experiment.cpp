@@ -145,7 +145,8 @@ std::vector<ExperimentScene> light_variants(const ExperimentScene& scene, const 
     if (!(elevation > -90 && elevation < 90)) d.fail("elevations", "each elevation must lie in (-90, 90) degrees");
     for (int k = 0; k < azimuths; ++k) {
       ExperimentScene variant = scene;
-      variant.light = ViewLight{elevation, 360.0 * k / azimuths, scene.name};
+      variant.light = ViewLight{elevation, 360.0 * k / azimuths};
+      variant.swept_from = scene.name;
       variant.name += "-e" + degrees_name(elevation) + "-a" + degrees_name(variant.light->azimuth);
       out.push_back(variant);
     }

@@ -23,7 +23,6 @@ inline constexpr int kExperimentFormatVersion = 1;
 // the direction towards the viewer (positive to the viewer's right), both in degrees.
 struct ViewLight {
   double elevation = 0, azimuth = 0;
-  std::string scene;  // the name of the scene entry whose light directions it is one of
 };
 
 struct ExperimentScene {
@@ -31,6 +30,7 @@ struct ExperimentScene {
   std::filesystem::path file;
   std::optional<int> width, height, spp;
   std::optional<ViewLight> light;  // every directional light of the scene points this way
+  std::string swept_from;           // with `light`: the name of the scene entry it is one direction of
   // A sequence: frames A … B of the scene's animation, each a stimulus of its own (unset: a still).
   std::optional<std::pair<int, int>> frames;
   double fps = 0;  // the animation's frame rate, for sequences

@@ -50,20 +50,17 @@ double reference_derivative(const Field& f, int x, int y, int dx, int dy) {
 
 // The Gaussian of σ = 2 over ±8 pixels as one 2D window, clamp-to-edge.
 Plane reference_blur(const Plane& in, int w, int h) {
-  const double sigma = 2.0;
-  const int r = 8;
-  double total = 0;
+  constexpr int r = 8, side = 2 * r + 1;
+  double window[side][side], total = 0;
   for (int j = -r; j <= r; ++j)
-    for (int i = -r; i <= r; ++i) total += std::exp(-(i * i + j * j) / (2 * sigma * sigma));
+    for (int i = -r; i <= r; ++i) total += window[j + r][i + r] = std::exp(-(i * i + j * j) / (2 * 2.0 * 2.0));
   Plane out(in.size());
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       double sum = 0;
       for (int j = -r; j <= r; ++j)
-        for (int i = -r; i <= r; ++i) {
-          const int sx = std::clamp(x + i, 0, w - 1), sy = std::clamp(y + j, 0, h - 1);
-          sum += std::exp(-(i * i + j * j) / (2 * sigma * sigma)) * in[size_t(sy) * w + sx];
-        }
+        for (int i = -r; i <= r; ++i)
+          sum += window[j + r][i + r] * in[size_t(std::clamp(y + j, 0, h - 1)) * w + std::clamp(x + i, 0, w - 1)];
       out[size_t(y) * w + x] = sum / total;
     }
   return out;

@@ -41,9 +41,9 @@ TEST(CongruenceSet, LightDirectionsAreRelativeToTheView) {
   Camera camera;
   camera.eye = {0, 1, 5}, camera.target = {0, 0, 0};
   const CameraRays rays(camera);
-  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0, ""}) + rays.forward()), 1e-12);  // towards the viewer
-  EXPECT_LT(glm::length(view_light_direction(camera, {0, 90, ""}) - rays.right()), 1e-12);
-  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200, ""}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0}) + rays.forward()), 1e-12);  // towards the viewer
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 90}) - rays.right()), 1e-12);
+  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
 }
 
 TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
@@ -104,7 +104,7 @@ TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
   })");
   const Experiment e = load_experiment(dir / "two.json");
   ASSERT_EQ(e.scenes.size(), 7u);
-  EXPECT_EQ(e.scenes[4].light->scene, "far");
+  EXPECT_EQ(e.scenes[4].swept_from, "far");
   GenerateOptions options;
   options.jobs = 2;
   options.contact_sheets = false;
