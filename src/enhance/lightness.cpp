@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstring>
 #include <bit>
+#include <cmath>
 #include <optional>
 
 #include <tbb/blocked_range.h>
@@ -23,6 +24,23 @@ std::vector<float> view_lightness(const View& view) {
         for (size_t i = begin; i < end; ++i) L[i] = float(view.lab[i].L);
       },
       1 << 16);
+  return L;
+}
+
+std::vector<float> view_signal_lightness(const View& view) {
+  const Image& radiance = view.render.radiance;
+  if (!view.scene || radiance.channels != 3 || radiance.pixels.size() != 3 * view.lab.size()) return view_lightness(view);
+  const double exposure = std::exp2(view.scene->display.exposure_stops);
+  std::vector<float> L(view.lab.size());
+  parallel_ranges(
+      L.size(), 0,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const float* c = &radiance.pixels[3 * i];
+          L[i] = float(cielab_lightness(display_luminance({c[0], c[1], c[2]}, exposure)));
+        }
+      },
+      1 << 14);
   return L;
 }
 

@@ -25,6 +25,12 @@ Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
 // The L* plane of the view's own (plain) image.
 std::vector<float> view_lightness(const View& view);
 
+// The L* plane of the view's image before its quantisation to code values: from the rendered
+// radiance (exposed and clamped as for display) where the view has it, else view_lightness.
+// Image-space filters take their detail from this plane, so that a gain multiplies the image's
+// detail and not the steps of its 8-bit quantisation (which it would turn into contour lines).
+std::vector<float> view_signal_lightness(const View& view);
+
 // Δ of one pixel for strength λ.
 struct LightnessChange {
   enum class Kind {

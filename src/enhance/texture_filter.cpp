@@ -249,7 +249,7 @@ class TextureFilterMethod final : public EnhancementMethod {
   std::unique_ptr<PreparedEnhancement> prepare_post(const PrepareContext& context, const TextureFilterParameters& p) const {
     const View& view = *context.view;
     const std::vector<float> detail =
-        lightness_detail(view_lightness(view), view.width(), view.height(), p.filter, Borders::clamp, context.threads);
+        lightness_detail(view_signal_lightness(view), view.width(), view.height(), p.filter, Borders::clamp, context.threads);
     LightnessChange change;
     change.amount.assign(detail.begin(), detail.end());
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), describe(p),

@@ -25,8 +25,20 @@ const char* kScene = R"({
   "lights": [{"type": "directional", "direction": [1, 2, 1], "irradiance": 2}, {"type": "ambient", "radiance": 0.2}]
 })";
 
+// The largest difference of two 8-bit images' code values.
+int largest_code_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const Image first = read_image(a), second = read_image(b);
+  EXPECT_EQ(first.pixels.size(), second.pixels.size());
+  int largest = 0;
+  for (size_t i = 0; i < std::min(first.pixels.size(), second.pixels.size()); ++i)
+    largest = std::max(largest, int(std::lround(std::abs(first.pixels[i] - second.pixels[i]) * 255.0f)));
+  return largest;
+}
+
 // A photograph-style input built from a render: the PNG plus its depth written by --aux, re-read
-// by image-usm, must give exactly what the in-renderer path gives.
+// by image-usm, must give exactly what the in-renderer path gives for depth-usm. usm2d takes its
+// detail from the render before quantisation where it has one, and a PNG has only the codes: the
+// two differ by λ times at most half a step, so by at most one code.
 TEST(ImageUsmCli, ImagePlusDepthRoundTripEqualsTheRendererPath) {
   testing::TempDir dir;
   auto scene = testing::write_file(dir / "s.json", kScene);
@@ -34,11 +46,12 @@ TEST(ImageUsmCli, ImagePlusDepthRoundTripEqualsTheRendererPath) {
                     (dir / "aux").string()).exit_code, 0);
   struct Case {
     std::string options;
+    bool exact = true;
   } cases[] = {{"--method depth-usm --operator darken --lambda 0.8 --kernel 5%"},
                {"--method depth-usm --operator color --lambda 1.5 --kernel 3 --space rgb"},
                {"--method depth-usm --operator contrast --contrast equalize --lambda 2 --sigma-px 4 --space lab"},
                {"--method depth-usm --operator add --lambda -0.5 --kernel 4% --depth-mapping zbuffer"},
-               {"--method usm2d --lambda 1.2 --sigma-percent 1"}};
+               {"--method usm2d --lambda 1.2 --sigma-percent 1", false}};
   int k = 0;
   for (const auto& c : cases) {
     std::string a = (dir / ("a" + std::to_string(k) + ".png")).string(), b = (dir / ("b" + std::to_string(k) + ".png")).string();
@@ -48,7 +61,8 @@ TEST(ImageUsmCli, ImagePlusDepthRoundTripEqualsTheRendererPath) {
     auto r2 = run_cli("image-usm " + (dir / "photo.png").string() + " --depth " + (dir / "aux/depth.exr").string() +
                       " -o " + b + " " + c.options);
     ASSERT_EQ(r2.exit_code, 0) << r2.output;
-    EXPECT_EQ(testing::read_file(a), testing::read_file(b)) << c.options;
+    if (c.exact) EXPECT_EQ(testing::read_file(a), testing::read_file(b)) << c.options;
+    else EXPECT_LE(largest_code_difference(a, b), 1) << c.options;
     EXPECT_NE(testing::read_file(a), testing::read_file(dir / "photo.png")) << c.options;
   }
 }
