@@ -17,6 +17,7 @@
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
+#include "enhance/view.h"
 
 namespace countershade {
 namespace {
@@ -84,6 +85,26 @@ void BM_SpatialImportance(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SpatialImportance)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The outline sampling of a rendered view (4×4 primary rays over every pixel at a depth edge,
+// enhance/depth_coverage.h) against the per-pixel rule on the same pixels and depth: the clutter
+// scene at 1920×1080, K = 5 %. Arg 0: the rendered view; 1: its image and depth as an image view.
+void BM_SpatialImportanceOutlines(benchmark::State& state) {
+  static const std::shared_ptr<const View> rendered = [] {
+    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/clutter.json"));
+    scene->camera.width = kWidth;
+    scene->camera.height = kHeight;
+    scene->settings.spp = 1;
+    return render_view(scene);
+  }();
+  static const std::shared_ptr<const View> image = make_image_view(rendered->display, rendered->depth, rendered->encoding, 8);
+  const View& view = state.range(0) == 0 ? *rendered : *image;
+  for (auto _ : state) {
+    SpatialImportance si = spatial_importance(view, {}, kernel_sigma_px(5));
+    benchmark::DoNotOptimize(si.darker.pixels.data());
+  }
+}
+BENCHMARK(BM_SpatialImportanceOutlines)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The recursive Gaussian alone on a 1920×1080 float plane (σ in px).
 void BM_GaussianBlur(benchmark::State& state) {

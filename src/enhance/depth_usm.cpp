@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/gaussian.h"
 #include "core/parallel.h"
+#include "enhance/depth_coverage.h"
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
 #include "enhance/stimulus_noise.h"
@@ -75,18 +76,20 @@ void parallel_chunks(size_t n, const Body& body) {
                     [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
 }
 
-// out = clamp(in + a·min(ΔD, 0) + b·max(ΔD, 0)) for `n` RGB pixels; returns how many clipped.
+// out = clamp(in + a·min(ΔD, 0) + b·max(ΔD, 0)) for `n` RGB pixels, the two terms given per pixel;
+// returns how many clipped.
 // Runs in float over blocks (first the per-pixel offsets, then the channels) so that both loops
 // vectorise; compiled for AVX2/FMA machines and for the x86-64 baseline, chosen at load time.
 __attribute__((target_clones("arch=x86-64-v3", "default")))
-unsigned offset_and_clip(const float* in, const float* dd, float* out, size_t n, const float c[6]) {
+unsigned offset_and_clip(const float* in, const float* darker, const float* lighter, float* out, size_t n,
+                         const float c[6]) {
   constexpr size_t kBlock = 1024;
   float off0[kBlock], off1[kBlock], off2[kBlock];
   unsigned clipped = 0;
   for (size_t first = 0; first < n; first += kBlock) {
     const size_t m = std::min(kBlock, n - first);
     for (size_t k = 0; k < m; ++k) {
-      const float d = dd[first + k], neg = std::min(d, 0.0f), pos = std::max(d, 0.0f);
+      const float neg = darker[first + k], pos = lighter[first + k];
       off0[k] = c[0] * neg + c[3] * pos;
       off1[k] = c[1] * neg + c[4] * pos;
       off2[k] = c[2] * neg + c[5] * pos;
@@ -189,25 +192,27 @@ class DepthUsmRgb final : public PreparedEnhancement {
   size_t apply_linear(Image& result, const glm::dvec3& a, const glm::dvec3& b) const {
     std::atomic<size_t> clipped{0};
     const float* in = view_->display.pixels.data();
-    const float* dd = si_.importance.pixels.data();
+    const float *darker = si_.darker.pixels.data(), *lighter = si_.lighter.pixels.data();
     float* out = result.pixels.data();
     const float coefficients[6] = {float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)};
     parallel_chunks(view_->lab.size(), [&](size_t begin, size_t end) {
-      clipped += offset_and_clip(in + 3 * begin, dd + begin, out + 3 * begin, end - begin, coefficients);
+      clipped += offset_and_clip(in + 3 * begin, darker + begin, lighter + begin, out + 3 * begin, end - begin,
+                                 coefficients);
     });
     return clipped;
   }
 
   // C(I)·α + I·(1−α), α = clamp(λ|ΔD|, 0, 1), clipped to [0,1]; returns the clipped pixel count.
+  // |ΔD| is max(ΔD, 0) − min(ΔD, 0), so at depth edges its mean over the pixel's area.
   size_t apply_contrast(Image& result, double lambda) const {
     std::atomic<size_t> clipped{0};
     const float* in = view_->display.pixels.data();
-    const float* dd = si_.importance.pixels.data();
+    const float *darker = si_.darker.pixels.data(), *lighter = si_.lighter.pixels.data();
     float* out = result.pixels.data();
     parallel_chunks(view_->lab.size(), [&](size_t begin, size_t end) {
       size_t local = 0;
       for (size_t i = begin; i < end; ++i) {
-        const double alpha = std::clamp(lambda * std::abs(double(dd[i])), 0.0, 1.0);
+        const double alpha = std::clamp(lambda * double(lighter[i] - darker[i]), 0.0, 1.0);
         bool clip = false;
         for (int c = 0; c < 3; ++c) {
           const double v = double(enhanced_[3 * i + c]) * alpha + double(in[3 * i + c]) * (1.0 - alpha);
@@ -233,20 +238,21 @@ class DepthUsmRgb final : public PreparedEnhancement {
 LightnessChange lab_change(const View& view, const DepthUsmParameters& p, const SpatialImportance& si,
                            const std::vector<float>& enhanced) {
   const size_t n = view.lab.size();
-  const float* dd = si.importance.pixels.data();
+  const float *darker = si.darker.pixels.data(), *lighter = si.lighter.pixels.data();
   LightnessChange change;
   change.amount.resize(n);
   if (p.op == Operator::contrast) {
     change.kind = LightnessChange::Kind::blended;
     change.weight.resize(n);
     for (size_t i = 0; i < n; ++i) {
-      change.weight[i] = std::abs(dd[i]);
+      change.weight[i] = lighter[i] - darker[i];  // |ΔD|
       change.amount[i] = double(enhanced[i]) - view.lab[i].L;
     }
     return change;
   }
   change.factor = 100.0;  // ΔD is in [−1, 1]; L* spans 100
-  for (size_t i = 0; i < n; ++i) change.amount[i] = p.op == Operator::add ? double(dd[i]) : std::min(double(dd[i]), 0.0);
+  // add: ΔD = min(ΔD, 0) + max(ΔD, 0); darken: min(ΔD, 0).
+  for (size_t i = 0; i < n; ++i) change.amount[i] = p.op == Operator::add ? double(darker[i] + lighter[i]) : double(darker[i]);
   return change;
 }
 
@@ -345,38 +351,54 @@ class DepthUsmMethod final : public EnhancementMethod {
   }
 };
 
-// D normalised to [0,1] over the valid pixels, background and invalid pixels 1 (far).
-Image normalized_depth(const View& view, const DepthMapping& mapping) {
-  const int w = view.width(), h = view.height();
-  const size_t n = size_t(w) * h;
+// How one linear eye depth becomes D in [0,1]: the view's valid range, mapped linearly or as a
+// perspective z-buffer; invalid depths (background) are 1 (far).
+struct DepthNormaliser {
+  bool any = false, zbuffer = false;  // any: some depth is valid
+  double lo = 0, scale = 0;           // linear: (d − lo)·scale
+  double near = 1, far = 2, mlo = 0, mhi = 0;
+  double mapped(double d) const { return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far); }
+  float operator()(float d) const {
+    if (!any || !valid_depth(d)) return 1.0f;
+    if (!zbuffer) return float((double(d) - lo) * scale);
+    return mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
+  }
+};
+
+DepthNormaliser depth_normaliser(const View& view, const DepthMapping& mapping) {
   float lo = INFINITY, hi = -INFINITY;
   std::mutex range_mutex;
-  parallel_chunks(n, [&](size_t begin, size_t end) {
+  parallel_chunks(view.depth.size(), [&](size_t begin, size_t end) {
     float l, hh;
     valid_depth_range(view.depth.data() + begin, end - begin, &l, &hh);
     std::lock_guard<std::mutex> lock(range_mutex);
     lo = std::min(lo, l);
     hi = std::max(hi, hh);
   });
-  const bool linear_fills_all = !mapping.zbuffer && lo <= hi;
-  Image depth = linear_fills_all ? Image(w, h, 1, Image::Uninitialized{}) : Image(w, h, 1, 1.0f);
-  if (!(lo <= hi)) return depth;
-  if (!mapping.zbuffer) {
-    const double scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
-    parallel_chunks(n, [&](size_t begin, size_t end) {
-      normalize_linear_depth(view.depth.data() + begin, depth.pixels.data() + begin, end - begin, lo, scale);
-    });
-    return depth;
-  }
-  const double near = mapping.z_near.value_or(lo), far = mapping.z_far.value_or(hi);
-  auto mapped = [&](double d) { return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far); };  // perspective z-buffer
-  const double mlo = mapped(lo), mhi = mapped(hi);
+  DepthNormaliser n;
+  n.any = lo <= hi;
+  n.zbuffer = mapping.zbuffer;
+  if (!n.any) return n;
+  n.lo = lo;
+  n.scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
+  n.near = mapping.z_near.value_or(lo);
+  n.far = mapping.z_far.value_or(hi);
+  n.mlo = n.mapped(lo);
+  n.mhi = n.mapped(hi);
+  return n;
+}
+
+// D of every pixel, background and invalid pixels 1 (far).
+Image normalized_depth(const View& view, const DepthNormaliser& normalise) {
+  const int w = view.width(), h = view.height();
+  const size_t n = size_t(w) * h;
+  Image depth(w, h, 1, Image::Uninitialized{});  // every pixel is written below
   parallel_chunks(n, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      float d = view.depth[i];
-      if (!valid_depth(d)) continue;  // background stays at 1 (far)
-      depth.pixels[i] = mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
-    }
+    if (normalise.any && !normalise.zbuffer)  // the common case, in a loop that vectorises
+      normalize_linear_depth(view.depth.data() + begin, depth.pixels.data() + begin, end - begin, normalise.lo,
+                             normalise.scale);
+    else
+      for (size_t i = begin; i < end; ++i) depth.pixels[i] = normalise(view.depth[i]);
   });
   return depth;
 }
@@ -388,14 +410,23 @@ SpatialImportance spatial_importance(const View& view, const DepthMapping& mappi
   const size_t n = size_t(w) * h;
   if (view.depth.size() != n) throw InputError("depth-usm: the view has no depth map of the image's size");
   SpatialImportance si;
-  si.depth = normalized_depth(view, mapping);
+  const DepthNormaliser normalise = depth_normaliser(view, mapping);
+  si.depth = normalized_depth(view, normalise);
   si.sigma_px = sigma_px;
   si.blurred = Image(w, h, 1, Image::Uninitialized{});  // the blur writes every pixel
   gaussian_blur(si.depth.pixels.data(), si.blurred.pixels.data(), w, h, sigma_px, threads);
   si.importance = Image(w, h, 1, Image::Uninitialized{});
+  si.darker = Image(w, h, 1, Image::Uninitialized{});
+  si.lighter = Image(w, h, 1, Image::Uninitialized{});
   parallel_chunks(n, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) si.importance.pixels[i] = si.blurred.pixels[i] - si.depth.pixels[i];
+    for (size_t i = begin; i < end; ++i) {
+      const float dd = si.blurred.pixels[i] - si.depth.pixels[i];
+      si.importance.pixels[i] = dd;
+      si.darker.pixels[i] = std::min(dd, 0.0f);
+      si.lighter.pixels[i] = std::max(dd, 0.0f);
+    }
   });
+  sample_outlines(view, si.blurred, normalise, si.darker, si.lighter, threads);
   return si;
 }
 

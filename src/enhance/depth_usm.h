@@ -20,6 +20,9 @@ struct SpatialImportance {
   Image depth;       // D, normalised to [0,1] over valid pixels, 1 for background
   Image blurred;     // G*D
   Image importance;  // ΔD
+  // The operators' terms per pixel: the means of min(ΔD, 0) and max(ΔD, 0) over the pixel's area,
+  // which differ from those of the pixel's own ΔD only at depth edges (enhance/depth_coverage.h).
+  Image darker, lighter;
   double sigma_px = 0;
 };
 

@@ -180,6 +180,48 @@ TEST(DepthUsm, FigureFourDarkenSeparatesEveryRectangleContrastCannotSeparateWhit
   EXPECT_GT(changed_dark_edge, 50) << "the dark rectangle's edge has colour contrast to amplify";
 }
 
+// A dark card turned by 25° in front of a lit wall, flat-shaded: its outline runs across the
+// pixels at every phase, so its anti-aliased pixels cover every share of wall.
+const char* kTurnedCard = R"({
+  "version": 1,
+  "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "projection": "orthographic", "height_world": 6,
+             "width": 160, "height": 120},
+  "render": {"spp": 64, "seed": 5},
+  "objects": [
+    {"name": "wall", "shape": {"type": "plane", "size": 20, "subdivisions": 2}, "transform": {"rotate": [90, 0, 0]},
+     "material": {"albedo": 0.6}},
+    {"name": "card", "shape": {"type": "box", "size": [3, 2, 0.1]}, "transform": {"rotate": [0, 0, 25], "translate": [0, 0, 2]},
+     "material": {"albedo": 0.15}}
+  ],
+  "lights": [{"type": "ambient", "radiance": 1.0}]
+})";
+
+// Darkening falls on the wall behind the card. A pixel of the outline is part card and part wall,
+// and only its wall part may be darkened: its change must be the wall's share of what a pixel of
+// wall there would get. With one depth per pixel it got all of it or none, and the anti-aliased
+// outline became a staircase.
+TEST(DepthUsm, DarkeningFollowsTheWallsShareOfAnOutlinePixel) {
+  testing::TempDir dir;
+  const auto view = render_test_view(dir, kTurnedCard).view;
+  const double lambda = 0.5, sigma = 4.0;
+  const Composed out = prepare_method("depth-usm", view, {{"operator", "darken"}, {"sigma_px", sigma}})->compose(lambda);
+  const SpatialImportance si = spatial_importance(*view, {}, sigma);
+  const int w = view->width();
+  auto linear = [&](size_t p) { return view->encoding.decode(view->display.pixels[3 * p]); };
+  const size_t wall = 0, card = size_t(60) * w + 80;  // a corner and the centre
+  const double wall_linear = linear(wall), card_linear = linear(card), wall_depth = si.depth.pixels[wall];
+  int outline_pixels = 0;
+  for (size_t p = 0; p < si.depth.pixels.size(); ++p) {
+    const double share = (linear(p) - card_linear) / (wall_linear - card_linear);  // of the pixel's area
+    const double full = lambda * std::min(double(si.blurred.pixels[p]) - wall_depth, 0.0);
+    if (share < 0.2 || share > 0.8 || full > -0.05) continue;
+    ++outline_pixels;
+    const double change = double(out.display.pixels[3 * p]) - double(view->display.pixels[3 * p]);
+    EXPECT_NEAR(change, share * full, 0.25 * -full + 2.0 / 255.0) << "pixel " << p % w << "," << p / w << " wall share " << share;
+  }
+  EXPECT_GT(outline_pixels, 100);
+}
+
 TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
   auto view = make_image_view(Image(4, 1, 3, 0.5f), {0.0f, 2.0f, 4.0f, INFINITY}, DisplayEncoding::srgb(), 8);
   SpatialImportance si = spatial_importance(*view, DepthMapping{}, 1.0);
