@@ -14,8 +14,6 @@ namespace {
 
 constexpr int kGrid = 4;  // sub-samples per pixel side
 
-bool valid(float d) { return std::isfinite(d) && d > 0.0f; }
-
 // Object ids per pixel, when the view has them (renders do).
 const std::vector<int32_t>* object_ids(const View& view) {
   const auto& ids = view.render.gbuffer.object;
@@ -54,8 +52,8 @@ bool depth_edge_at(const View& view, int x, int y) {
       const size_t q = size_t(ny) * w + nx;
       const float e = view.depth[q];
       if (ids && (*ids)[q] != (*ids)[p]) return true;
-      if (valid(d) != valid(e)) return true;
-      if (valid(d) && std::abs(d - e) > 0.05f * std::min(d, e)) return true;
+      if (valid_eye_depth(d) != valid_eye_depth(e)) return true;
+      if (valid_eye_depth(d) && std::abs(d - e) > 0.05f * std::min(d, e)) return true;
     }
   return false;
 }

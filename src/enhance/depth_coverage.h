@@ -6,6 +6,7 @@
 // are averaged over those samples, each against its own depth: the outline keeps its
 // anti-aliasing. Elsewhere the pixel's own ΔD is used, as before.
 
+#include <cmath>
 #include <functional>
 
 #include "core/image.h"
@@ -21,6 +22,9 @@ struct View;
 // as they are.
 void sample_outlines(const View& view, const Image& blurred, const std::function<float(float)>& normalise,
                      Image& darker, Image& lighter, int threads = 0);
+
+// Whether a linear eye depth belongs to a surface: finite and positive (background is infinite).
+inline bool valid_eye_depth(float d) { return std::isfinite(d) && d > 0.0f; }
 
 // Whether pixel (x, y) has a depth edge in its 3×3 neighbourhood: another object, background
 // against surface, or eye depths that differ by more than 5 %.

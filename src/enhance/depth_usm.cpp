@@ -53,8 +53,6 @@ double GlobalContrast::operator()(double v) const {
 
 namespace {
 
-bool valid_depth(float d) { return std::isfinite(d) && d > 0.0f; }
-
 enum class Operator { add, contrast, darken, color };
 enum class ContrastKind { stretch, equalize, local };
 
@@ -359,7 +357,7 @@ struct DepthNormaliser {
   double near = 1, far = 2, mlo = 0, mhi = 0;
   double mapped(double d) const { return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far); }
   float operator()(float d) const {
-    if (!any || !valid_depth(d)) return 1.0f;
+    if (!any || !valid_eye_depth(d)) return 1.0f;
     if (!zbuffer) return float((double(d) - lo) * scale);
     return mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
   }

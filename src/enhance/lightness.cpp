@@ -27,17 +27,21 @@ std::vector<float> view_lightness(const View& view) {
   return L;
 }
 
+double display_lightness(const glm::dvec3& radiance, const Display& display) {
+  return cielab_lightness(display_luminance(radiance, std::exp2(display.exposure_stops)));
+}
+
 std::vector<float> view_signal_lightness(const View& view) {
   const Image& radiance = view.render.radiance;
   if (!view.scene || radiance.channels != 3 || radiance.pixels.size() != 3 * view.lab.size()) return view_lightness(view);
-  const double exposure = std::exp2(view.scene->display.exposure_stops);
+  const Display& display = view.scene->display;
   std::vector<float> L(view.lab.size());
   parallel_ranges(
       L.size(), 0,
       [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
           const float* c = &radiance.pixels[3 * i];
-          L[i] = float(cielab_lightness(display_luminance({c[0], c[1], c[2]}, exposure)));
+          L[i] = float(display_lightness({c[0], c[1], c[2]}, display));
         }
       },
       1 << 14);

@@ -14,10 +14,6 @@
 
 namespace countershade {
 
-double display_lightness(const glm::dvec3& radiance, const Display& display) {
-  return cielab_lightness(display_luminance(radiance, std::exp2(display.exposure_stops)));
-}
-
 namespace {
 
 // The smoothing iterations of every connected component.

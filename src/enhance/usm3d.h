@@ -30,9 +30,6 @@ struct SurfaceContrast {
   Components components;                 // of the surface's points
 };
 
-// CIELAB L* of a linear radiance as the display shows it: exposed, clamped per channel.
-double display_lightness(const glm::dvec3& radiance, const Display& display);
-
 // Steps 3 and 5 of the method on any per-vertex lightness: smoothing over the welded surface per
 // connected component, and the gain factor w·√(1+Var) (importance may be empty: w = 1). Vertices
 // at one point of the surface (a seam) share its values.
