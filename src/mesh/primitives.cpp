@@ -271,4 +271,17 @@ TriangleMesh make_cylinder(double radius, double height, int segments) {
   return mesh;
 }
 
+TriangleMesh make_disc(double radius, int segments) {
+  TriangleMesh mesh;
+  const int n = std::max(3, segments);
+  const int rings = std::max(1, int(std::lround(radius / (2.0 * std::numbers::pi * radius / n))));
+  std::vector<unsigned> outer(n);
+  for (int i = 0; i < n; ++i) {
+    outer[i] = unsigned(mesh.positions.size());
+    mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)), 0.0, -radius * std::sin(turn_angle(i, n)));
+  }
+  add_cylinder_cap(mesh, outer, radius, rings, 0.0, 1);
+  return mesh;
+}
+
 }  // namespace countershade

@@ -35,4 +35,9 @@ TriangleMesh make_sphere(double radius, int subdivisions);
 // the segment width, and concentric rings on the caps.
 TriangleMesh make_cylinder(double radius, double height, int segments);
 
+// Flat disc in the xz-plane facing +y, `segments` around and concentric rings of about the
+// segment width: a cylinder's cap on its own. An open surface, so that a decal (a die's pip, a
+// painted mark) has no hidden side whose light would enter its 3D unsharp masking signal.
+TriangleMesh make_disc(double radius, int segments);
+
 }  // namespace countershade

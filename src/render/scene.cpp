@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include <glm/ext/matrix_transform.hpp>
@@ -201,9 +202,9 @@ class SceneLoader {
 #else
   static constexpr double kMaxPrimitiveTriangles = 5e7;
 #endif
-  static void check_triangles(const JsonObject& o, double triangles) {
+  static void check_triangles(const JsonObject& o, double triangles, const std::string& key = "subdivisions") {
     if (triangles > kMaxPrimitiveTriangles)
-      o.fail("subdivisions", "would make about " + std::to_string(std::llround(triangles)) + " triangles (the limit is " +
+      o.fail(key, "would make about " + std::to_string(std::llround(triangles)) + " triangles (the limit is " +
                                  std::to_string(std::llround(kMaxPrimitiveTriangles)) + ")");
   }
 
@@ -218,8 +219,23 @@ class SceneLoader {
     return make_relief(size, subdivisions, coarse * size, fine * size);
   }
 
+  // A cylinder, or a disc (a cylinder's cap on its own). Both have rings about one segment wide
+  // (n/2π of them) and the cylinder rows of that width, which bounds the triangles.
+  static TriangleMesh round_shape(const JsonObject& o, bool disc) {
+    const double radius = positive(o, "radius", 0.5), height = disc ? 0.0 : positive(o, "height", 1.0);
+    const int segments = int(o.integer_in("segments", 64, 3, 65536));
+    auto triangles = [&](double n) {
+      const double rings = std::max(1.0, std::round(n / (2.0 * std::numbers::pi)));
+      const double rows = std::max(1.0, std::round(height * n / (2.0 * std::numbers::pi * radius)));
+      return 2.0 * n * (disc ? rings : 2.0 * rings + rows);
+    };
+    // The height (for its radius) is to blame when even the fewest segments are too many.
+    check_triangles(o, triangles(segments), disc || triangles(3) <= kMaxPrimitiveTriangles ? "segments" : "height");
+    return disc ? make_disc(radius, segments) : make_cylinder(radius, height, segments);
+  }
+
   TriangleMesh shape(const JsonObject& o) {
-    std::string type = o.choice("type", "", {"plane", "relief", "box", "sphere", "cylinder"});
+    std::string type = o.choice("type", "", {"plane", "relief", "box", "sphere", "cylinder", "disc"});
     TriangleMesh mesh;
     if (type == "plane" || type == "relief") {
       mesh = plane(o, type == "relief");
@@ -243,8 +259,7 @@ class SceneLoader {
     } else if (type == "sphere") {
       mesh = make_sphere(positive(o, "radius", 1.0), int(o.integer_in("subdivisions", 4, 0, 8)));
     } else {
-      mesh = make_cylinder(positive(o, "radius", 0.5), positive(o, "height", 1.0),
-                           int(o.integer_in("segments", 64, 3, 65536)));
+      mesh = round_shape(o, type == "disc");
     }
     o.finish();
     return mesh;

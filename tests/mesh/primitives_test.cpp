@@ -73,6 +73,40 @@ TEST(Primitives, PlaneFacesUpWithUnitUvs) {
   }
 }
 
+// A disc is flat, faces up, covers πr² (up to its polygon's area) and has one boundary: its rim,
+// every vertex of which lies at the radius.
+TEST(Primitives, DiscIsAFlatOpenCapFacingUp) {
+  const double r = 0.045;
+  const int n = 48;
+  TriangleMesh disc = make_disc(r, n);
+  double area = 0;
+  for (const auto& t : disc.triangles) {
+    const glm::dvec3 a(disc.positions[t.x]), b(disc.positions[t.y]), c(disc.positions[t.z]);
+    const glm::dvec3 normal = glm::cross(b - a, c - a);
+    EXPECT_GT(normal.y, 0.0);  // counter-clockwise seen from +y
+    area += 0.5 * glm::length(normal);
+  }
+  EXPECT_NEAR(area, 0.5 * n * r * r * std::sin(2 * std::numbers::pi / n), 1e-9);
+  for (const auto& p : disc.positions) {
+    EXPECT_EQ(p.y, 0.0f);
+    EXPECT_LE(glm::length(p), r * (1 + 1e-6));
+  }
+  std::map<std::pair<unsigned, unsigned>, int> edges;
+  for (const auto& t : disc.triangles)
+    for (int c = 0; c < 3; ++c) ++edges[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}];
+  int rim = 0;
+  for (const auto& [e, count] : edges) {
+    EXPECT_LE(count, 2);
+    if (count == 1) {
+      ++rim;
+      EXPECT_NEAR(glm::length(disc.positions[e.first]), r, 1e-7);
+      EXPECT_NEAR(glm::length(disc.positions[e.second]), r, 1e-7);
+    }
+  }
+  EXPECT_EQ(rim, n);
+  EXPECT_EQ(disc.triangle_count(), size_t(n) * (2 * 8 - 1));  // round(48/2π) = 8 rings
+}
+
 // The relief is the plane with each vertex raised by the height field; its two parts have the
 // sizes and wavelength the docs give, and both vary smoothly from vertex to vertex.
 TEST(Primitives, ReliefRaisesThePlaneByItsHeightField) {
