@@ -28,21 +28,27 @@ TEST(LightAlignment, WeightIsMonotoneFromZeroToOneAndTheIdentityForGammaZero) {
   EXPECT_GT(alignment_weight(0.2, 3.0), alignment_weight(0.2, 1.0));  // larger γ, faster transition
 }
 
-// A ridge on a flat base (z up): two facets tilted by 30° towards +x and −x, lit slightly from +x.
-// Without enhancement the facets differ little; at s = 1 the facet facing the light turns fully lit
-// and the other nearly unlit.
+// A ridge on a flat base (z up): two facets tilted by 30° towards +x and −x, lit from above, tilted
+// towards +x by 0.1 and by 0.001 (so that the light has a side: straight along z it has none, and
+// eq. 1 turns neither facet's light). Without enhancement the facets differ by about the tilt; at
+// s = 1 the facet facing the light turns fully lit and the other nearly unlit, however small the tilt.
 TEST(LightAlignment, ARidgeGetsOneLitAndOneUnlitSide) {
   const double a = 30.0 * std::acos(-1.0) / 180.0;
   const glm::dvec3 up(0, 0, 1), plus(std::sin(a), 0, std::cos(a)), minus(-std::sin(a), 0, std::cos(a));
-  const glm::dvec3 light = glm::normalize(glm::dvec3(0.1, 0, 1));
-  const double plain = glm::dot(plus, light) - glm::dot(minus, light);
-  const glm::dvec3 lit = align_one_scale(light, plus, up, 1.0, 3.0);
-  const glm::dvec3 unlit = align_one_scale(light, minus, up, 1.0, 3.0);
-  EXPECT_LT(plain, 0.11);
-  EXPECT_GT(glm::dot(plus, lit), 0.99);
-  EXPECT_LT(glm::dot(minus, unlit), 0.2);
-  EXPECT_GT(glm::dot(plus, lit) - glm::dot(minus, unlit), 0.5);  // at least half the range [0, 1]
-  EXPECT_NEAR(glm::length(lit), 1.0, 1e-12);
+  for (double tilt : {0.1, 0.001}) {
+    const glm::dvec3 light = glm::normalize(glm::dvec3(tilt, 0, 1));
+    const double plain = glm::dot(plus, light) - glm::dot(minus, light);
+    const glm::dvec3 lit = align_one_scale(light, plus, up, 1.0, 3.0);
+    const glm::dvec3 unlit = align_one_scale(light, minus, up, 1.0, 3.0);
+    EXPECT_LT(plain, 1.1 * tilt);
+    EXPECT_GT(glm::dot(plus, lit), 0.99) << tilt;
+    EXPECT_LT(glm::dot(minus, unlit), 0.2) << tilt;
+    EXPECT_GT(glm::dot(plus, lit) - glm::dot(minus, unlit), 0.5) << tilt;  // at least half the range [0, 1]
+    EXPECT_NEAR(glm::length(lit), 1.0, 1e-12);
+  }
+  const glm::dvec3 above(0, 0, 1);  // no side: left as it is
+  EXPECT_EQ(align_one_scale(above, plus, up, 1.0, 3.0), above);
+  EXPECT_EQ(align_one_scale(above, minus, up, 1.0, 3.0), above);
 }
 
 TEST(LightAlignment, ZeroStrengthOrNoFeatureLeavesTheLightExactlyAsItWas) {
