@@ -372,6 +372,48 @@ TEST(Usm3d, MeanLightnessDriftFollowsWhatTheCameraSees) {
   EXPECT_GT(drift["top"] - drift["side"], 1.0);
 }
 
+// A dark decal (a die's pip) on a lit face. As a flattened sphere sunk into the face, its hidden
+// part lies in the dark, the pip's smoothed signal is darker than its visible cap, and usm3d
+// lightens the whole pip; as a flat disc just above the face it has no hidden part and keeps its
+// lightness away from its rim, where it shares pixels with the face's bright border (docs/
+// enhancement-methods.md, usm3d, "Known behaviour"; the dice scene's pips).
+TEST(Usm3d, ADecalWithoutAHiddenSideKeepsItsLightness) {
+  auto scene = [](const std::string& pip) {
+    return R"({
+      "version": 1,
+      "camera": {"eye": [0, 3, 0.6], "target": [0, 0.5, 0], "fov": 20, "width": 128, "height": 96},
+      "render": {"spp": 4},
+      "objects": [
+        {"name": "die", "shape": {"type": "box", "size": [1, 1, 1], "subdivisions": 24}, "transform": {"translate": [0, 0, 0]},
+         "material": {"albedo": 0.8}},
+        {"name": "pip", )" + pip + R"(, "material": {"albedo": 0.04}}
+      ],
+      "lights": [{"type": "directional", "direction": [0.3, 1, 0.2], "irradiance": 2}, {"type": "ambient", "radiance": 0.1}]
+    })";
+  };
+  const std::string sunk = R"("shape": {"type": "sphere", "radius": 1, "subdivisions": 3},
+      "transform": {"matrix": [0.12, 0, 0, 0, 0, 0.04, 0, 0.47, 0, 0, 0.12, 0, 0, 0, 0, 1]})";
+  const std::string disc = R"("shape": {"type": "disc", "radius": 0.075, "segments": 48}, "transform": {"translate": [0, 0.502, 0]})";
+  std::map<std::string, double> change;  // mean L* change over the pip's pixels at λ = 1
+  for (const auto& [name, pip] : std::map<std::string, std::string>{{"sunk", sunk}, {"disc", disc}}) {
+    testing::TempDir dir;
+    const Rendered r = render_test_view(dir, scene(pip), {with_sigma(0.1)});
+    const Composed out = prepare_method("usm3d", r.view, with_sigma(0.1))->compose(1.0);
+    const LabPixels lab = display_to_lab(out.display, r.view->encoding, r.view->bits);
+    const GBuffer& g = r.view->render.gbuffer;
+    double sum = 0;
+    int pixels = 0;
+    const int w = r.view->width();
+    for (size_t i = 0; i < g.object.size(); ++i)  // the pip's pixels away from its rim
+      if (g.object[i] == 1 && g.object[i - 1] == 1 && g.object[i + 1] == 1 && g.object[i - w] == 1 && g.object[i + w] == 1)
+        sum += lab[i].L - r.view->lab[i].L, ++pixels;
+    ASSERT_GT(pixels, 100) << name;
+    change[name] = sum / pixels;
+  }
+  EXPECT_GT(change["sunk"], 4.0);  // 11.5 L*
+  EXPECT_LT(std::abs(change["disc"]), 0.5) << change["disc"];  // 0: the disc's signal is its own mean
+}
+
 TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   testing::TempDir d1, d2;
   std::string base = textured_cow();
