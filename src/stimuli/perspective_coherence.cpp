@@ -13,11 +13,23 @@ namespace {
 
 bool on_surface(const std::vector<float>& depth, size_t i) { return std::isfinite(depth[i]) && depth[i] > 0; }
 
+// The object a pixel sees (-1 where the view has no object ids: every pixel counts as one surface).
+int object_at(const View& v, size_t i) { return v.render.gbuffer.object.empty() ? -1 : v.render.gbuffer.object[i]; }
+
+// Whether pixel (x, y) and its 3×3 neighbourhood all see one object within 10 % of the pixel's
+// depth, as `lookup` asks of the moved frame: a pixel beside another object, the background or a
+// fold of its own object shares its area with it, so its value is not that of one surface point.
 bool interior(const View& v, int x, int y) {
   if (x < 1 || y < 1 || x + 1 >= v.width() || y + 1 >= v.height()) return false;
+  const size_t centre = size_t(y) * size_t(v.width()) + size_t(x);
+  const int object = object_at(v, centre);
+  const double depth = v.depth[centre];
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx)
-      if (!on_surface(v.depth, size_t(y + dy) * size_t(v.width()) + size_t(x + dx))) return false;
+    for (int dx = -1; dx <= 1; ++dx) {
+      const size_t i = size_t(y + dy) * size_t(v.width()) + size_t(x + dx);
+      if (!on_surface(v.depth, i) || object_at(v, i) != object || std::abs(double(v.depth[i]) / depth - 1.0) > 0.1)
+        return false;
+    }
   return true;
 }
 
@@ -29,9 +41,6 @@ void catmull_rom(double t, double w[4]) {
   w[2] = 0.5 * (-3 * t3 + 4 * t2 + t);
   w[3] = 0.5 * (t3 - t2);
 }
-
-// The object a pixel sees (-1 where the view has no object ids: every pixel counts as one surface).
-int object_at(const View& v, size_t i) { return v.render.gbuffer.object.empty() ? -1 : v.render.gbuffer.object[i]; }
 
 // The value of `values` at film position `film` of `v`, interpolated bicubically (Catmull–Rom, so
 // that detail near the pixel scale survives the resampling better than bilinearly), if the 4×4
