@@ -22,11 +22,19 @@ std::string optional_figure_columns(const ManifestEntry& s, const std::string& k
   return format_value(s.extra[key].get<double>()) + ',' + std::to_string(s.extra.value(key + "_pixels", size_t(0)));
 }
 
+// The method's place in the experiment, so that a method keeps its colour in every plot of a set
+// whatever lines a plot holds (after the known methods: the order of first use).
+size_t ConditionLines::method_index(const std::string& label) const {
+  for (size_t m = 0; m < e_.methods.size(); ++m)
+    if (e_.methods[m].label == label) return m;
+  return e_.methods.size() + label_colour_.size();
+}
+
 PlotSeries& ConditionLines::line_of(const ManifestEntry& s) {
   auto [it, added] = index_of_.emplace(condition_name(e_, s), plot_.series.size());
   if (added) {
     const bool plain = s.is_reference();
-    const size_t colour = label_colour_.emplace(s.label, label_colour_.size()).first->second;
+    const size_t colour = label_colour_.emplace(s.label, method_index(s.label)).first->second;
     const size_t sigma = plain ? 0 : sigmas_of_label_[s.label]++;
     plot_.series.push_back({it->first, {}, {}, plain ? "#777777" : plot_color(colour), plain || sigma > 0});
   }

@@ -21,8 +21,9 @@ std::string condition_columns(const Experiment& experiment, const ManifestEntry&
 // without it: the last columns of a table's row for the stable figures.
 std::string optional_figure_columns(const ManifestEntry& entry, const std::string& key);
 
-// The lines of a plot with one line per condition: a colour per method label, solid for its first
-// σ and dashed for the others; the plain render grey and dashed.
+// The lines of a plot with one line per condition: a colour per method (by its place in the
+// experiment, the same in every plot), solid for its first σ and dashed for the others; the plain
+// render grey and dashed.
 class ConditionLines {
  public:
   ConditionLines(const Experiment& experiment, LinePlot& plot) : e_(experiment), plot_(plot) {}
@@ -30,6 +31,8 @@ class ConditionLines {
   void fit_legend();  // makes the plot tall enough for its legend
 
  private:
+  size_t method_index(const std::string& label) const;
+
   const Experiment& e_;
   LinePlot& plot_;
   std::map<std::string, size_t> index_of_, label_colour_, sigmas_of_label_;
