@@ -261,6 +261,14 @@ Operator parse_operator(const std::string& name) {
   return Operator::darken;
 }
 
+// `depth_range` NEAR,FAR: two eye depths with 0 ≤ NEAR < FAR, or none.
+std::optional<std::pair<double, double>> read_depth_range(const ParameterBag& bag) {
+  if (!bag.has("depth_range")) return std::nullopt;
+  const std::vector<double> r = bag.numbers("depth_range", {});
+  if (r.size() != 2 || !(r[0] >= 0) || !(r[1] > r[0])) bag.fail("depth_range", "expected NEAR,FAR with 0 <= NEAR < FAR");
+  return std::make_pair(r[0], r[1]);
+}
+
 class DepthUsmMethod final : public EnhancementMethod {
  public:
   std::string name() const override { return "depth-usm"; }
@@ -274,6 +282,7 @@ class DepthUsmMethod final : public EnhancementMethod {
                              {"depth_mapping", "linear", "linear eye depth | zbuffer (non-linear, near/far)"},
                              {"z_near", "", "zbuffer near plane (default: the nearest depth)"},
                              {"z_far", "", "zbuffer far plane (default: the farthest depth)"},
+                             {"depth_range", "", "NEAR,FAR: eye depths D maps to 0 and 1, clamped (default: each image's own range; fix it for sequences)"},
                              {"cold", "-0.1,-0.05,0.15", "color: the cold colour R,G,B"},
                              {"warm", "0.15,0.1,-0.1", "color: the warm colour R,G,B"}});
     return docs;
@@ -303,6 +312,7 @@ class DepthUsmMethod final : public EnhancementMethod {
       p->mapping.z_near = bag.optional_number("z_near");
       p->mapping.z_far = bag.optional_number("z_far");
     }
+    p->mapping.range = read_depth_range(bag);
     bag.finish(name());
     check_image_width(p->width, bag, name());
     if (p->mapping.z_near && !(*p->mapping.z_near > 0)) bag.fail("z_near", "need 0 < near < far");
@@ -338,6 +348,7 @@ class DepthUsmMethod final : public EnhancementMethod {
     nlohmann::json record = {{"operator", p.op_name}, {"sigma_px", sigma}, {"space", p.lab ? "lab" : "rgb"},
                              {"depth_mapping", p.mapping.zbuffer ? "zbuffer" : "linear"},
                              {"contrast", p.contrast_name}};
+    if (p.mapping.range) record["depth_range"] = {p.mapping.range->first, p.mapping.range->second};
     if (!p.lab)
       return std::make_unique<DepthUsmRgb>(context.view, p, std::move(si), std::move(record), std::move(enhanced),
                                            context.change_noise);
@@ -356,10 +367,11 @@ struct DepthNormaliser {
   double lo = 0, scale = 0;           // linear: (d − lo)·scale
   double near = 1, far = 2, mlo = 0, mhi = 0;
   double mapped(double d) const { return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far); }
+  bool clamp = false;                 // a fixed range: depths outside it map to 0 or 1
   float operator()(float d) const {
     if (!any || !valid_eye_depth(d)) return 1.0f;
-    if (!zbuffer) return float((double(d) - lo) * scale);
-    return mhi > mlo ? float((mapped(d) - mlo) / (mhi - mlo)) : 0.0f;
+    const double D = !zbuffer ? (double(d) - lo) * scale : mhi > mlo ? (mapped(d) - mlo) / (mhi - mlo) : 0.0;
+    return float(clamp ? std::clamp(D, 0.0, 1.0) : D);
   }
 };
 
@@ -377,6 +389,10 @@ DepthNormaliser depth_normaliser(const View& view, const DepthMapping& mapping) 
   n.any = lo <= hi;
   n.zbuffer = mapping.zbuffer;
   if (!n.any) return n;
+  if (mapping.range) {
+    lo = float(mapping.range->first), hi = float(mapping.range->second);
+    n.clamp = true;
+  }
   n.lo = lo;
   n.scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
   n.near = mapping.z_near.value_or(lo);
@@ -392,7 +408,7 @@ Image normalized_depth(const View& view, const DepthNormaliser& normalise) {
   const size_t n = size_t(w) * h;
   Image depth(w, h, 1, Image::Uninitialized{});  // every pixel is written below
   parallel_chunks(n, [&](size_t begin, size_t end) {
-    if (normalise.any && !normalise.zbuffer)  // the common case, in a loop that vectorises
+    if (normalise.any && !normalise.zbuffer && !normalise.clamp)  // the common case, in a loop that vectorises
       normalize_linear_depth(view.depth.data() + begin, depth.pixels.data() + begin, end - begin, normalise.lo,
                              normalise.scale);
     else

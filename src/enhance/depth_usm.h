@@ -11,6 +11,7 @@
 // The method lives in depth_usm.cpp; this is its spatial importance, which tests use too.
 
 #include <optional>
+#include <utility>
 
 #include "enhance/method.h"
 
@@ -29,6 +30,10 @@ struct SpatialImportance {
 struct DepthMapping {
   bool zbuffer = false;                  // the perspective z-buffer value instead of linear depth
   std::optional<double> z_near, z_far;   // its planes (default: the valid depth range)
+  // The eye depths D maps to 0 and 1, clamped (default: the image's own valid range). Held fixed,
+  // D of a surface point does not change when something else in the scene moves: in a sequence a
+  // per-frame range would let every frame's whole ΔD swell and shrink with the nearest object.
+  std::optional<std::pair<double, double>> range;
 };
 
 // D, G*D and ΔD of a view's depth map with Gaussian σ in pixels.

@@ -235,6 +235,24 @@ TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
   EXPECT_FLOAT_EQ(si.depth.pixels[2], 1.0f);
 }
 
+// A fixed depth range: D of a point no longer depends on what else the image holds (in a sequence,
+// a moving object that comes nearer than everything else would change every pixel's D), and depths
+// outside the range are clamped.
+TEST(DepthUsm, AFixedDepthRangeMakesDIndependentOfTheRestOfTheImage) {
+  DepthMapping fixed;
+  fixed.range = std::make_pair(1.0, 9.0);
+  const std::vector<float> without = {5.0f, 3.0f, 7.0f, INFINITY}, with_near_object = {5.0f, 3.0f, 0.5f, INFINITY};
+  const auto a = make_image_view(Image(4, 1, 3, 0.5f), without, DisplayEncoding::srgb(), 8);
+  const auto b = make_image_view(Image(4, 1, 3, 0.5f), with_near_object, DisplayEncoding::srgb(), 8);
+  EXPECT_NE(spatial_importance(*a, DepthMapping{}, 1.0).depth.pixels[0], spatial_importance(*b, DepthMapping{}, 1.0).depth.pixels[0]);
+  const SpatialImportance sa = spatial_importance(*a, fixed, 1.0), sb = spatial_importance(*b, fixed, 1.0);
+  EXPECT_EQ(sa.depth.pixels[0], 0.5f);
+  EXPECT_EQ(sb.depth.pixels[0], 0.5f);
+  EXPECT_EQ(sa.depth.pixels[1], 0.25f);
+  EXPECT_EQ(sb.depth.pixels[2], 0.0f);  // nearer than the range: clamped
+  EXPECT_EQ(sb.depth.pixels[3], 1.0f);  // background
+}
+
 std::shared_ptr<const MethodParameters> parse(const nlohmann::json& j) {
   return method_named("depth-usm", "test").parse(ParameterBag::from_json(j, "exp.json", "methods[1]"));
 }
@@ -250,6 +268,15 @@ TEST(DepthUsm, ValidatesItsOptions) {
   cold["cold"] = {0, 0, 1};
   std::string message = testing::input_error_of([&] { parse(cold); });
   EXPECT_NE(message.find("methods[1].cold: depth-usm has no parameter 'cold'"), std::string::npos) << message;
+  for (const nlohmann::json& range : {nlohmann::json::array({9, 1}), nlohmann::json::array({-1, 2}), nlohmann::json::array({3})}) {
+    nlohmann::json j = op("darken");
+    j["depth_range"] = range;
+    message = testing::input_error_of([&] { parse(j); });
+    EXPECT_NE(message.find("methods[1].depth_range: expected NEAR,FAR with 0 <= NEAR < FAR"), std::string::npos) << message;
+  }
+  nlohmann::json ok = op("darken");
+  ok["depth_range"] = {2, 12};
+  EXPECT_NO_THROW(parse(ok));
 }
 
 // The color operator's point is a hue shift (cold behind, warm in front); the lightness-only lab
