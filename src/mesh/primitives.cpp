@@ -274,7 +274,7 @@ TriangleMesh make_cylinder(double radius, double height, int segments) {
 TriangleMesh make_disc(double radius, int segments) {
   TriangleMesh mesh;
   const int n = std::max(3, segments);
-  const int rings = std::max(1, int(std::lround(radius / (2.0 * std::numbers::pi * radius / n))));
+  const int rings = std::max(1, int(std::lround(n / (2.0 * std::numbers::pi))));  // about one segment wide
   std::vector<unsigned> outer(n);
   for (int i = 0; i < n; ++i) {
     outer[i] = unsigned(mesh.positions.size());
