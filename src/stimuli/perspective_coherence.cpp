@@ -16,20 +16,22 @@ bool on_surface(const std::vector<float>& depth, size_t i) { return std::isfinit
 // The object a pixel sees (-1 where the view has no object ids: every pixel counts as one surface).
 int object_at(const View& v, size_t i) { return v.render.gbuffer.object.empty() ? -1 : v.render.gbuffer.object[i]; }
 
+// Whether pixel i sees `object` within 10 % of eye depth `depth`: the test every pixel of a
+// neighbourhood must pass, in the first frame (interior) as in the moved one (lookup).
+bool sees(const View& v, size_t i, int object, double depth) {
+  return on_surface(v.depth, i) && object_at(v, i) == object && std::abs(double(v.depth[i]) / depth - 1.0) <= 0.1;
+}
+
 // Whether pixel (x, y) and its 3×3 neighbourhood all see one object within 10 % of the pixel's
 // depth, as `lookup` asks of the moved frame: a pixel beside another object, the background or a
 // fold of its own object shares its area with it, so its value is not that of one surface point.
 bool interior(const View& v, int x, int y) {
   if (x < 1 || y < 1 || x + 1 >= v.width() || y + 1 >= v.height()) return false;
   const size_t centre = size_t(y) * size_t(v.width()) + size_t(x);
-  const int object = object_at(v, centre);
-  const double depth = v.depth[centre];
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      const size_t i = size_t(y + dy) * size_t(v.width()) + size_t(x + dx);
-      if (!on_surface(v.depth, i) || object_at(v, i) != object || std::abs(double(v.depth[i]) / depth - 1.0) > 0.1)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), object_at(v, centre), v.depth[centre]))
         return false;
-    }
   return true;
 }
 
@@ -58,8 +60,7 @@ bool lookup(const View& v, const glm::dvec2& film, double depth, int object, con
   for (int dy = -1; dy <= 2; ++dy)
     for (int dx = -1; dx <= 2; ++dx) {
       const size_t i = size_t(y0 + dy) * size_t(v.width()) + size_t(x0 + dx);
-      if (!on_surface(v.depth, i) || object_at(v, i) != object || std::abs(double(v.depth[i]) / depth - 1.0) > 0.1)
-        return false;
+      if (!sees(v, i, object, depth)) return false;
       value += wx[dx + 1] * wy[dy + 1] * double(values[i]);
       if (dx >= 0 && dx <= 1 && dy >= 0 && dy <= 1)  // 1/depth is affine across a plane's image
         inverse_depth += (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) / double(v.depth[i]);
