@@ -17,6 +17,17 @@ constexpr int kLowestExponent = 30;
 
 double clamp_unit(double x) { return std::isnan(x) ? 0.0 : std::clamp(x, 0.0, 1.0); }
 
+std::vector<uint64_t> pack_buckets(const std::vector<CodeQuantizer::Bucket>& buckets, int shift) {
+  std::vector<uint64_t> packed(buckets.size());
+  const uint64_t low = (uint64_t(1) << shift) - 1;
+  for (size_t b = 0; b < buckets.size(); ++b) {
+    const double t = buckets[b].threshold;
+    const uint64_t threshold = std::isinf(t) ? CodeQuantizer::kNoThreshold : std::bit_cast<uint64_t>(t) & low;
+    packed[b] = uint64_t(buckets[b].below) << 48 | threshold;
+  }
+  return packed;
+}
+
 }  // namespace
 
 uint32_t CodeQuantizer::exact_code(double linear) const {
@@ -60,6 +71,7 @@ bool CodeQuantizer::build_table(int m) {
   }
   table[buckets] = {std::numeric_limits<double>::infinity(), exact_code(1.0)};  // x = 1
   buckets_ = std::move(table);
+  packed_ = pack_buckets(buckets_, 52 - m);
   return true;
 }
 
@@ -69,6 +81,7 @@ CodeQuantizer::Table CodeQuantizer::table() const {
   t.offset = int64_t(1023 - kLowestExponent) << mantissa_bits_;
   t.last = int64_t(buckets_.size()) - 1;
   t.bucket = buckets_.data();
+  t.packed = packed_.data();
   return t;
 }
 

@@ -45,7 +45,14 @@ class CodeQuantizer {
     int shift = 0;
     int64_t offset = 0, last = 0;
     const Bucket* bucket = nullptr;
+    // The same buckets in one word each, for vector gathers: the code at the bucket's start in
+    // the top 16 bits, and the threshold's bits below `shift` (all of x's bits above them are the
+    // bucket's), or kNoThreshold. For a bucket b reached without clamping:
+    //   code = (packed[b] >> 48) + ((bits(x) & (2^shift − 1)) ≥ (packed[b] & kLowBits)).
+    const uint64_t* packed = nullptr;
   };
+  static constexpr uint64_t kLowBits = (uint64_t(1) << 48) - 1;
+  static constexpr uint64_t kNoThreshold = uint64_t(1) << 47;  // above the low bits of any x
   Table table() const;
 
  private:
@@ -59,6 +66,7 @@ class CodeQuantizer {
   uint32_t code_at_zero_ = 0, code_at_one_ = 0;
   int mantissa_bits_ = 0;           // 0: no table, binary search
   std::vector<Bucket> buckets_;  // then one bucket for x = 1
+  std::vector<uint64_t> packed_;  // the buckets as Table::packed words
 };
 
 }  // namespace countershade
