@@ -29,21 +29,23 @@ std::vector<float> view_lightness(const View& view) {
   return L;
 }
 
-double display_lightness(const glm::dvec3& radiance, const Display& display) {
-  return cielab_lightness(display_luminance(radiance, std::exp2(display.exposure_stops)));
+double exposure_scale(const Display& display) { return std::exp2(display.exposure_stops); }
+
+double display_lightness(const glm::dvec3& radiance, double exposure) {
+  return cielab_lightness(display_luminance(radiance, exposure));
 }
 
 std::vector<float> view_signal_lightness(const View& view) {
   const Image& radiance = view.render.radiance;
   if (!view.scene || radiance.channels != 3 || radiance.pixels.size() != 3 * view.lab.size()) return view_lightness(view);
-  const Display& display = view.scene->display;
+  const double exposure = exposure_scale(view.scene->display);
   std::vector<float> L(view.lab.size());
   parallel_ranges(
       L.size(), 0,
       [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
           const float* c = &radiance.pixels[3 * i];
-          L[i] = float(display_lightness({c[0], c[1], c[2]}, display));
+          L[i] = float(display_lightness({c[0], c[1], c[2]}, exposure));
         }
       },
       1 << 14);
