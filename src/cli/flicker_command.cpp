@@ -121,7 +121,7 @@ std::vector<float> object_largest_change(const Frame& a, const Frame& b, const C
     std::vector<float> differences;
     reprojection_rms(*a.view, a.levels[c], *b.view, b.levels[c], carry, &differences);
     for (size_t i = 0; i < differences.size(); ++i)
-      if (a.view->render.gbuffer.object[i] == object && !std::isnan(differences[i]))
+      if (a.view->object_at(i) == object && !std::isnan(differences[i]))
         largest[i] = std::max(largest[i], differences[i]);
   }
   return largest;

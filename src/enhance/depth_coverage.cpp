@@ -14,12 +14,6 @@ namespace {
 
 constexpr int kGrid = 4;  // sub-samples per pixel side
 
-// Object ids per pixel, when the view has them (renders do).
-const std::vector<int32_t>* object_ids(const View& view) {
-  const auto& ids = view.render.gbuffer.object;
-  return ids.size() == view.depth.size() ? &ids : nullptr;
-}
-
 // The means of min(ΔD_s, 0) and max(ΔD_s, 0) over the sub-samples s of pixel (x, y).
 std::pair<float, float> sampled_terms(const View& view, const CameraRays& camera, int x, int y, float blurred,
                                       const std::function<float(float)>& normalise) {
@@ -42,7 +36,6 @@ std::pair<float, float> sampled_terms(const View& view, const CameraRays& camera
 
 bool depth_edge_at(const View& view, int x, int y) {
   const int w = view.width(), h = view.height();
-  const std::vector<int32_t>* ids = object_ids(view);
   const size_t p = size_t(y) * w + x;
   const float d = view.depth[p];
   for (int dy = -1; dy <= 1; ++dy)
@@ -51,7 +44,7 @@ bool depth_edge_at(const View& view, int x, int y) {
       if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
       const size_t q = size_t(ny) * w + nx;
       const float e = view.depth[q];
-      if (ids && (*ids)[q] != (*ids)[p]) return true;
+      if (view.object_at(q) != view.object_at(p)) return true;
       if (valid_eye_depth(d) != valid_eye_depth(e)) return true;
       if (valid_eye_depth(d) && std::abs(d - e) > 0.05f * std::min(d, e)) return true;
     }

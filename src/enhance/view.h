@@ -84,6 +84,11 @@ struct View {
 
   int width() const { return display.width; }
   int height() const { return display.height; }
+  // The object pixel i sees, or -1 where the view has no object ids (external images): then
+  // every pixel counts as one surface.
+  int object_at(size_t i) const {
+    return render.gbuffer.object.size() == depth.size() ? render.gbuffer.object[i] : -1;
+  }
 };
 
 // Rounds code values to the nearest n-bit level (kept as floats).

@@ -13,13 +13,10 @@ namespace {
 
 bool on_surface(const std::vector<float>& depth, size_t i) { return std::isfinite(depth[i]) && depth[i] > 0; }
 
-// The object a pixel sees (-1 where the view has no object ids: every pixel counts as one surface).
-int object_at(const View& v, size_t i) { return v.render.gbuffer.object.empty() ? -1 : v.render.gbuffer.object[i]; }
-
 // Whether pixel i sees `object` within 10 % of eye depth `depth`: the test every pixel of a
 // neighbourhood must pass, in the first frame (interior) as in the moved one (lookup).
 bool sees(const View& v, size_t i, int object, double depth) {
-  return on_surface(v.depth, i) && object_at(v, i) == object && std::abs(double(v.depth[i]) / depth - 1.0) <= 0.1;
+  return on_surface(v.depth, i) && v.object_at(i) == object && std::abs(double(v.depth[i]) / depth - 1.0) <= 0.1;
 }
 
 // Whether pixel (x, y) and its 3×3 neighbourhood all see one object within 10 % of the pixel's
@@ -30,7 +27,7 @@ bool interior(const View& v, int x, int y) {
   const size_t centre = size_t(y) * size_t(v.width()) + size_t(x);
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx)
-      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), object_at(v, centre), v.depth[centre]))
+      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), v.object_at(centre), v.depth[centre]))
         return false;
   return true;
 }
@@ -105,7 +102,7 @@ Reprojection reprojection_rms(const View& first, const std::vector<float>& first
       const size_t i = size_t(y) * size_t(first.width()) + size_t(x);
       const Ray ray = a.ray(x + 0.5, y + 0.5);
       glm::dvec3 p = ray.origin + ray.direction * (double(first.depth[i]) / glm::dot(ray.direction, a.forward()));
-      const int object = object_at(first, i);
+      const int object = first.object_at(i);
       if (carry) p = carry(p, object);
       double value;
       if (b.eye_depth(p) <= 0 || !lookup(moved, b.film_position(p), b.eye_depth(p), object, moved_values, value)) continue;
