@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 
 #include "core/image.h"
 
@@ -17,12 +18,16 @@ constexpr int kLowestExponent = 30;
 
 double clamp_unit(double x) { return std::isnan(x) ? 0.0 : std::clamp(x, 0.0, 1.0); }
 
+// The buckets as CodeQuantizer::Table::packed words (codes of up to 16 bits, at least 6 mantissa
+// bits per bucket, so the threshold's low bits stay below kNoThreshold).
 std::vector<uint64_t> pack_buckets(const std::vector<CodeQuantizer::Bucket>& buckets, int shift) {
+  if (shift > 46) throw std::logic_error("CodeQuantizer: buckets too wide to pack");
   std::vector<uint64_t> packed(buckets.size());
   const uint64_t low = (uint64_t(1) << shift) - 1;
   for (size_t b = 0; b < buckets.size(); ++b) {
     const double t = buckets[b].threshold;
     const uint64_t threshold = std::isinf(t) ? CodeQuantizer::kNoThreshold : std::bit_cast<uint64_t>(t) & low;
+    if (buckets[b].below > 0xFFFFu) throw std::logic_error("CodeQuantizer: a code too large to pack");
     packed[b] = uint64_t(buckets[b].below) << 48 | threshold;
   }
   return packed;
