@@ -248,12 +248,16 @@ void add_cylinder_cap(TriangleMesh& mesh, std::vector<unsigned> outer, double ra
 
 }  // namespace
 
-TriangleMesh make_cylinder(double radius, double height, int segments) {
-  TriangleMesh mesh;
+RoundGrid round_grid(double radius, double height, int segments) {
   const int n = std::max(3, segments);
   const double width = 2.0 * std::numbers::pi * radius / n;
-  const int rows = std::max(1, int(std::lround(height / width)));
-  const int rings = std::max(1, int(std::lround(radius / width)));
+  return {n, std::max(1.0, std::round(height / width)), std::max(1.0, std::round(radius / width))};
+}
+
+TriangleMesh make_cylinder(double radius, double height, int segments) {
+  TriangleMesh mesh;
+  const RoundGrid grid = round_grid(radius, height, segments);
+  const int n = grid.segments, rows = int(grid.rows), rings = int(grid.rings);
   // Side grid: rows+1 rings of n vertices.
   for (int j = 0; j <= rows; ++j)
     for (int i = 0; i < n; ++i)
@@ -273,14 +277,14 @@ TriangleMesh make_cylinder(double radius, double height, int segments) {
 
 TriangleMesh make_disc(double radius, int segments) {
   TriangleMesh mesh;
-  const int n = std::max(3, segments);
-  const int rings = std::max(1, int(std::lround(n / (2.0 * std::numbers::pi))));  // about one segment wide
+  const RoundGrid grid = round_grid(radius, 0.0, segments);
+  const int n = grid.segments;
   std::vector<unsigned> outer(n);
   for (int i = 0; i < n; ++i) {
     outer[i] = unsigned(mesh.positions.size());
     mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)), 0.0, -radius * std::sin(turn_angle(i, n)));
   }
-  add_cylinder_cap(mesh, outer, radius, rings, 0.0, 1);
+  add_cylinder_cap(mesh, outer, radius, int(grid.rings), 0.0, 1);
   return mesh;
 }
 

@@ -35,6 +35,17 @@ TriangleMesh make_sphere(double radius, int subdivisions);
 // the segment width, and concentric rings on the caps.
 TriangleMesh make_cylinder(double radius, double height, int segments);
 
+// How make_cylinder and make_disc grid a round shape of `segments` around (at least 3): side rows
+// and cap rings about one segment wide. In double, so that a caller can check the size first.
+struct RoundGrid {
+  int segments;
+  double rows, rings;
+  // At most this many triangles: the side's rows and both caps (or one cap for a disc), each ring
+  // of the caps counted as a full row.
+  double triangle_bound(bool disc) const { return 2.0 * segments * (disc ? rings : 2.0 * rings + rows); }
+};
+RoundGrid round_grid(double radius, double height, int segments);
+
 // Flat disc in the xz-plane facing +y, `segments` around and concentric rings of about the
 // segment width: a cylinder's cap on its own. An open surface, so that a decal (a die's pip, a
 // painted mark) has no hidden side whose light would enter its 3D unsharp masking signal.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 
 #include <glm/ext/matrix_transform.hpp>
@@ -219,18 +218,15 @@ class SceneLoader {
     return make_relief(size, subdivisions, coarse * size, fine * size);
   }
 
-  // A cylinder, or a disc (a cylinder's cap on its own). Both have rings about one segment wide
-  // (n/2π of them) and the cylinder rows of that width, which bounds the triangles.
+  // A cylinder, or a disc (a cylinder's cap on its own), refused before it is built when it would
+  // have too many triangles.
   static TriangleMesh round_shape(const JsonObject& o, bool disc) {
     const double radius = positive(o, "radius", 0.5), height = disc ? 0.0 : positive(o, "height", 1.0);
     const int segments = int(o.integer_in("segments", 64, 3, 65536));
-    auto triangles = [&](double n) {
-      const double rings = std::max(1.0, std::round(n / (2.0 * std::numbers::pi)));
-      const double rows = std::max(1.0, std::round(height * n / (2.0 * std::numbers::pi * radius)));
-      return 2.0 * n * (disc ? rings : 2.0 * rings + rows);
-    };
+    const double triangles = round_grid(radius, height, segments).triangle_bound(disc);
     // The height (for its radius) is to blame when even the fewest segments are too many.
-    check_triangles(o, triangles(segments), disc || triangles(3) <= kMaxPrimitiveTriangles ? "segments" : "height");
+    const bool height_to_blame = !disc && round_grid(radius, height, 3).triangle_bound(disc) > kMaxPrimitiveTriangles;
+    check_triangles(o, triangles, height_to_blame ? "height" : "segments");
     return disc ? make_disc(radius, segments) : make_cylinder(radius, height, segments);
   }
 
