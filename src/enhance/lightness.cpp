@@ -436,12 +436,42 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
   return lab;
 }
 
+namespace {
+
+// The quantisation of one composition and the widest path the processor allows.
+struct BlockComposer {
+  const CodeQuantizer& quantizer;
+  std::optional<CodeQuantizer::Table> table;
+  double inverse_levels;
+  bool eight;
+
+  // `count` ≤ kBlock pixels with their Δ: eight at a time where AVX-512 allows, then four at a time
+  // through the table, then the rest (and every pixel of a tableless quantizer) one by one.
+  // Returns the number of clipped pixels.
+  size_t compose(const Lab* lab, const float* source, const double* delta, size_t count, float* target) const {
+    size_t clipped = 0, done = 0;
+    if (table && eight) {  // never called elsewhere: its code needs AVX-512 from its first instruction
+      done = count / 8 * 8;
+      clipped += compose_block_avx512(lab, source, delta, done, *table, inverse_levels, target);
+    }
+    if (table) {
+      const size_t four = (count - done) / 4 * 4;
+      clipped += compose_block_fast(lab + done, source + 3 * done, delta + done, four, *table, inverse_levels,
+                                    target + 3 * done);
+      done += four;
+    }
+    return clipped + compose_block_slow(lab + done, source + 3 * done, delta + done, count - done, quantizer,
+                                        target + 3 * done);
+  }
+};
+
+}  // namespace
+
 Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads) {
   const CodeQuantizer& quantizer = CodeQuantizer::shared(view.encoding, view.bits);
-  const std::optional<CodeQuantizer::Table> table =
-      quantizer.uses_table() ? std::optional(quantizer.table()) : std::nullopt;
-  const double inverse_levels = 1.0 / double(float((1u << view.bits) - 1u));  // see code_fraction
-  const bool eight = has_avx512() && wide_composition_allowed;
+  const BlockComposer composer{quantizer, quantizer.uses_table() ? std::optional(quantizer.table()) : std::nullopt,
+                               1.0 / double(float((1u << view.bits) - 1u)),  // see code_fraction
+                               has_avx512() && wide_composition_allowed};
   Composed out;
   out.display = Image(view.width(), view.height(), 3, Image::Uninitialized{});  // every pixel is written below
   std::atomic<size_t> clipped{0};
@@ -455,18 +485,7 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
         for (size_t first = begin; first < end; first += kBlock) {
           const size_t count = std::min(kBlock, end - first);
           block_delta(change, first, count, lambda, delta);
-          // Four pixels at a time through the table; the rest (and tableless quantizers) one by one.
-          const size_t wide = table && eight ? count / 8 * 8 : 0;
-          if (wide)
-            local += compose_block_avx512(view.lab.data() + first, in + 3 * first, delta, wide, *table, inverse_levels,
-                                          result + 3 * first);
-          const size_t fast = table ? (count - wide) / 4 * 4 : 0;
-          if (fast)
-            local += compose_block_fast(view.lab.data() + first + wide, in + 3 * (first + wide), delta + wide, fast,
-                                        *table, inverse_levels, result + 3 * (first + wide));
-          const size_t done = wide + fast;
-          local += compose_block_slow(view.lab.data() + first + done, in + 3 * (first + done), delta + done, count - done,
-                                      quantizer, result + 3 * (first + done));
+          local += composer.compose(view.lab.data() + first, in + 3 * first, delta, count, result + 3 * first);
         }
         clipped += local;
       },
