@@ -25,10 +25,10 @@ bool sees(const View& v, size_t i, int object, double depth) {
 bool interior(const View& v, int x, int y) {
   if (x < 1 || y < 1 || x + 1 >= v.width() || y + 1 >= v.height()) return false;
   const size_t centre = size_t(y) * size_t(v.width()) + size_t(x);
+  const int object = v.object_at(centre);
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx)
-      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), v.object_at(centre), v.depth[centre]))
-        return false;
+      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), object, v.depth[centre])) return false;
   return true;
 }
 
