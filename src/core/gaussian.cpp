@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/image.h"
 #include "core/parallel.h"
 
 namespace countershade {
@@ -68,9 +70,9 @@ struct Deriche {
 // double). All columns of a row are independent, so the inner loops run over x without branches
 // and vectorise; rows outside the image are the edge rows (clamp-to-edge) with the recursions at
 // their steady state there.
-template <typename T>
+template <typename T, typename Scratch>
 [[gnu::always_inline]] inline void deriche_columns(const float* in, float* out, int width, int height, int x0, int x1,
-                                                   const Deriche& f, std::vector<T>& scratch) {
+                                                   const Deriche& f, Scratch& scratch) {
   const size_t w = size_t(x1 - x0);
   // Causal sums for every row; the state of each section (its last two outputs) stays in cache.
   scratch.resize(size_t(height) * w);
@@ -126,32 +128,71 @@ template <typename T>
   }
 }
 
-// Scratch for the causal sums, in the recursion's precision.
+// Scratch for the causal sums, in the recursion's precision (not zero-filled: every value is
+// written before it is read).
 struct ColumnScratch {
-  std::vector<float> single;
-  std::vector<double> twice;
+  PixelVector single;
+  PixelDoubles twice;
 };
 
 // The column filter compiled twice: for AVX2 machines and for the x86-64 baseline, chosen at load
 // time (no FMA either way: -ffp-contract=off keeps the bytes the same on every processor).
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void filter_columns(const float* in, float* out, int width, int height, int x0, int x1, const Deriche& f,
                     ColumnScratch& scratch) {
   if (f.in_double)
-    deriche_columns(in, out, width, height, x0, x1, f, scratch.twice);
+    deriche_columns<double>(in, out, width, height, x0, x1, f, scratch.twice);
   else
-    deriche_columns(in, out, width, height, x0, x1, f, scratch.single);
+    deriche_columns<float>(in, out, width, height, x0, x1, f, scratch.single);
+}
+
+using v8f = float __attribute__((vector_size(32)));
+
+// out[x·out_stride + y] = in[y·in_stride + x] for one 8×8 tile, in registers: three rounds of
+// two-source shuffles (neighbouring values, then pairs, then halves). Element by element, the
+// strided stores of a transpose cost more than the recursion itself.
+[[gnu::always_inline]] inline void transpose_tile8(const float* in, size_t in_stride, float* out, size_t out_stride) {
+  v8f r[8], a[8], b[8];
+  for (int i = 0; i < 8; ++i) std::memcpy(&r[i], in + size_t(i) * in_stride, sizeof(v8f));
+  for (int i = 0; i < 8; i += 2) {
+    a[i] = __builtin_shufflevector(r[i], r[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+    a[i + 1] = __builtin_shufflevector(r[i], r[i + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+  }
+  for (int i = 0; i < 8; i += 4)
+    for (int j = 0; j < 2; ++j) {
+      b[i + 2 * j] = __builtin_shufflevector(a[i + j], a[i + j + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      b[i + 2 * j + 1] = __builtin_shufflevector(a[i + j], a[i + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+  for (int j = 0; j < 4; ++j) {
+    const v8f low = __builtin_shufflevector(b[j], b[j + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    const v8f high = __builtin_shufflevector(b[j], b[j + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+    std::memcpy(out + size_t(j) * out_stride, &low, sizeof low);
+    std::memcpy(out + size_t(j + 4) * out_stride, &high, sizeof high);
+  }
+}
+
+// out[x·out_stride + y] = in[y·in_stride + x] for y < rows, x < columns: 8×8 tiles, then the
+// right and bottom edges value by value.
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+void transpose_plane(const float* in, size_t in_stride, float* out, size_t out_stride, int rows, int columns) {
+  const int rows8 = rows / 8 * 8, columns8 = columns / 8 * 8;
+  for (int y = 0; y < rows8; y += 8)
+    for (int x = 0; x < columns8; x += 8)
+      transpose_tile8(in + size_t(y) * in_stride + size_t(x), in_stride, out + size_t(x) * out_stride + size_t(y),
+                      out_stride);
+  for (int y = 0; y < rows; ++y)
+    for (int x = y < rows8 ? columns8 : 0; x < columns; ++x) out[size_t(x) * out_stride + size_t(y)] = in[size_t(y) * in_stride + size_t(x)];
 }
 
 void transpose(const float* in, float* out, int width, int height, tbb::task_arena& arena) {
   constexpr int kBlock = 32;
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, (height + kBlock - 1) / kBlock), [&](const tbb::blocked_range<int>& r) {
-      for (int by = r.begin(); by != r.end(); ++by)
-        for (int bx = 0; bx < width; bx += kBlock)
-          for (int y = by * kBlock; y < std::min(height, (by + 1) * kBlock); ++y)
-            for (int x = bx; x < std::min(width, bx + kBlock); ++x)
-              out[size_t(x) * height + y] = in[size_t(y) * width + x];
+      for (int by = r.begin(); by != r.end(); ++by) {
+        const int y0 = by * kBlock;
+        transpose_plane(in + size_t(y0) * width, size_t(width), out + y0, size_t(height), std::min(kBlock, height - y0),
+                        width);
+      }
     });
   });
 }
@@ -169,21 +210,20 @@ void recursive_vertical(const float* in, float* out, int width, int height, cons
   });
 }
 
-// Filters every row along x, in place: blocks of 16 rows are transposed into a small buffer that
-// stays in cache, filtered as columns, and transposed back.
+// Filters every row along x, in place: blocks of 32 rows are transposed (in 8×8 tiles) into a
+// small buffer that stays in cache, filtered as columns, and transposed back.
 void recursive_horizontal(float* image, int width, int height, const Deriche& f, tbb::task_arena& arena) {
   constexpr int kRows = 32;
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, (height + kRows - 1) / kRows), [&](const tbb::blocked_range<int>& r) {
-      std::vector<float> block(size_t(width) * kRows), filtered(block.size());
+      PixelVector block(size_t(width) * kRows), filtered(block.size());  // written before read
       ColumnScratch scratch;
       for (int b = r.begin(); b != r.end(); ++b) {
         int y0 = b * kRows, rows = std::min(kRows, height - y0);
-        for (int k = 0; k < rows; ++k)
-          for (int x = 0; x < width; ++x) block[size_t(x) * rows + k] = image[size_t(y0 + k) * width + x];
+        float* rows_start = image + size_t(y0) * width;
+        transpose_plane(rows_start, size_t(width), block.data(), size_t(rows), rows, width);
         filter_columns(block.data(), filtered.data(), rows, width, 0, rows, f, scratch);
-        for (int k = 0; k < rows; ++k)
-          for (int x = 0; x < width; ++x) image[size_t(y0 + k) * width + x] = filtered[size_t(x) * rows + k];
+        transpose_plane(filtered.data(), size_t(rows), rows_start, size_t(width), width, rows);
       }
     });
   });
