@@ -19,6 +19,7 @@
 namespace countershade {
 
 std::vector<float> view_lightness(const View& view) {
+  if (view.lightness.size() == view.lab.size()) return {view.lightness.begin(), view.lightness.end()};
   std::vector<float> L(view.lab.size());
   parallel_ranges(
       L.size(), 0,
@@ -35,9 +36,10 @@ double display_lightness(const glm::dvec3& radiance, double exposure) {
   return cielab_lightness(display_luminance(radiance, exposure));
 }
 
-std::vector<float> view_signal_lightness(const View& view) {
+namespace {
+
+std::vector<float> radiance_lightness(const View& view) {
   const Image& radiance = view.render.radiance;
-  if (!view.scene || radiance.channels != 3 || radiance.pixels.size() != 3 * view.lab.size()) return view_lightness(view);
   const double exposure = exposure_scale(view.scene->display);
   std::vector<float> L(view.lab.size());
   parallel_ranges(
@@ -50,6 +52,17 @@ std::vector<float> view_signal_lightness(const View& view) {
       },
       1 << 14);
   return L;
+}
+
+}  // namespace
+
+std::span<const float> view_signal_lightness(const View& view) {
+  using Plane = std::vector<float>;
+  const Image& radiance = view.render.radiance;
+  if (view.scene && radiance.channels == 3 && radiance.pixels.size() == 3 * view.lab.size())
+    return *view.memo.get<Plane>("signal_lightness", [&] { return std::make_shared<const Plane>(radiance_lightness(view)); });
+  if (view.lightness.size() == view.lab.size()) return view.lightness;
+  return *view.memo.get<Plane>("lightness", [&] { return std::make_shared<const Plane>(view_lightness(view)); });
 }
 
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding) {
@@ -345,10 +358,28 @@ using LabLanes = v8d;
 using LabLaneBits = v8l;
 #endif
 
+// Lanes of L*, a* and b* stored as consecutive Lab pixels: two two-source shuffles per output
+// vector (one permute each with AVX-512), rather than one extraction per value.
+template <typename D>
+[[gnu::always_inline]] inline void store_lab_lanes(const D& L, const D& a, const D& b, Lab* out) {
+  D v[3];
+  if constexpr (sizeof(D) == 64) {
+    v[0] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 8, 0, 1, 9, 0, 2, 10), b, 0, 1, 8, 3, 4, 9, 6, 7);
+    v[1] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 3, 11, 0, 4, 12, 0, 5), b, 10, 1, 2, 11, 4, 5, 12, 7);
+    v[2] = __builtin_shufflevector(__builtin_shufflevector(L, a, 13, 0, 6, 14, 0, 7, 15, 0), b, 0, 13, 2, 3, 14, 5, 6, 15);
+  } else {
+    v[0] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 4, 0, 1), b, 0, 1, 4, 3);
+    v[1] = __builtin_shufflevector(__builtin_shufflevector(L, a, 5, 0, 2, 6), b, 0, 5, 2, 3);
+    v[2] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 3, 7, 0), b, 6, 1, 2, 7);
+  }
+  static_assert(sizeof(Lab) == 3 * sizeof(double));
+  std::memcpy(static_cast<void*>(out), v, sizeof v);
+}
+
 // linear_rgb_to_lab on eight pixels at once, lane by lane the operations of the scalar code in
 // core/color: one AVX-512 register per vector where there is one, split by the compiler elsewhere.
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out) {
+void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
   using namespace color_constants;
   using D = LabLanes;
   constexpr int N = sizeof(D) / sizeof(double);
@@ -363,9 +394,16 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
     const D fx = lab_f_lanes<D, LabLaneBits>(X * kInverseWhite[0]), fy = lab_f_lanes<D, LabLaneBits>(Y * kInverseWhite[1]),
             fz = lab_f_lanes<D, LabLaneBits>(Z * kInverseWhite[2]);
     const D L = 116.0 * fy - 16.0, a = 500.0 * (fx - fy), bb = 200.0 * (fy - fz);
-    for (int lane = 0; lane < N; ++lane) out[k + lane] = {L[lane], a[lane], bb[lane]};
+    store_lab_lanes(L, a, bb, out + k);
+    if (lightness) {
+      const auto single = __builtin_convertvector(L, float __attribute__((vector_size(sizeof(D) / 2))));
+      std::memcpy(lightness + k, &single, sizeof single);
+    }
   }
-  for (size_t k = count / N * N; k < count; ++k) out[k] = linear_rgb_to_lab({r[k], g[k], b[k]});
+  for (size_t k = count / N * N; k < count; ++k) {
+    out[k] = linear_rgb_to_lab({r[k], g[k], b[k]});
+    if (lightness) lightness[k] = float(out[k].L);
+  }
 }
 
 // The codes of n values (code / levels), and whether every value is exactly its code's value.
@@ -419,9 +457,11 @@ class LinearDecoder {
 
 }  // namespace
 
-LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits) {
+LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits, PixelVector* lightness) {
   const LinearDecoder decode(encoding, bits);
   LabPixels lab(size_t(display.width) * display.height);  // every element is written below
+  if (lightness) lightness->resize(lab.size());
+  float* plane = lightness ? lightness->data() : nullptr;
   parallel_ranges(
       lab.size(), 0,
       [&](size_t begin, size_t end) {
@@ -429,7 +469,7 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
         for (size_t first = begin; first < end; first += kBlock) {
           const size_t count = std::min(kBlock, end - first);
           decode.decode_rgb(display.pixels.data() + 3 * first, count, linear[0], linear[1], linear[2]);
-          linear_to_lab_block(linear[0], linear[1], linear[2], count, lab.data() + first);
+          linear_to_lab_block(linear[0], linear[1], linear[2], count, lab.data() + first, plane ? plane + first : nullptr);
         }
       },
       4096);

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/color.h"
@@ -19,7 +20,9 @@ namespace countershade {
 // CIELAB of every pixel of a display-encoded image (code values in [0,1]), decoded with the
 // display's own encoding. With `bits`, values that are exact codes of that depth are decoded
 // through a table (the same values as DisplayEncoding::decode, without a pow per channel).
-LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits = 0);
+// With `lightness`, also L* as floats in one plane (View::lightness).
+LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits = 0,
+                         PixelVector* lightness = nullptr);
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
 
 // The display's exposure as a factor on radiance, 2^exposure_stops: computed once per image, not
@@ -37,7 +40,8 @@ std::vector<float> view_lightness(const View& view);
 // radiance (exposed and clamped as for display) where the view has it, else view_lightness.
 // Image-space filters take their detail from this plane, so that a gain multiplies the image's
 // detail and not the steps of its 8-bit quantisation (which it would turn into contour lines).
-std::vector<float> view_signal_lightness(const View& view);
+// Made once per view (the view keeps it), so every σ and method of a view shares it.
+std::span<const float> view_signal_lightness(const View& view);
 
 // Δ of one pixel for strength λ.
 struct LightnessChange {

@@ -37,7 +37,7 @@ void gaussian_pass(const std::vector<double>& in, std::vector<double>& out, int 
   });
 }
 
-double bilateral_at(const std::vector<float>& L, int width, int height, int x, int y, const LightnessFilter& f,
+double bilateral_at(std::span<const float> L, int width, int height, int x, int y, const LightnessFilter& f,
                     const std::vector<double>& spatial, int radius, Borders borders) {
   const double centre = L[size_t(y) * size_t(width) + size_t(x)], range = -0.5 / (f.sigma_r * f.sigma_r);
   double sum = 0, weight = 0;
@@ -53,7 +53,7 @@ double bilateral_at(const std::vector<float>& L, int width, int height, int x, i
   return sum / weight;
 }
 
-std::vector<float> bilateral_detail(const std::vector<float>& L, int width, int height, const LightnessFilter& f,
+std::vector<float> bilateral_detail(std::span<const float> L, int width, int height, const LightnessFilter& f,
                                     Borders borders, int threads) {
   const int radius = int(std::ceil(3 * f.sigma));
   std::vector<double> spatial(size_t(2 * radius + 1));
@@ -98,7 +98,7 @@ LightnessFilter read_lightness_filter(const ParameterBag& bag) {
   return f;
 }
 
-std::vector<double> gaussian_filter(const std::vector<float>& plane, int width, int height, double sigma,
+std::vector<double> gaussian_filter(std::span<const float> plane, int width, int height, double sigma,
                                     Borders borders, int threads) {
   std::vector<double> a(plane.begin(), plane.end()), b(a.size());
   gaussian_pass(a, b, width, height, 1, size_t(width), sigma, borders, threads);
@@ -106,7 +106,7 @@ std::vector<double> gaussian_filter(const std::vector<float>& plane, int width, 
   return a;
 }
 
-std::vector<float> lightness_detail(const std::vector<float>& L, int width, int height, const LightnessFilter& f,
+std::vector<float> lightness_detail(std::span<const float> L, int width, int height, const LightnessFilter& f,
                                     Borders borders, int threads) {
   if (f.kind == FilterKind::bilateral) return bilateral_detail(L, width, height, f, borders, threads);
   const std::vector<double> fine = gaussian_filter(L, width, height, f.sigma, borders, threads);

@@ -8,6 +8,7 @@
 //              (dark edge lines multiplied into the lightness with strength λ)
 // Textures wrap at their borders; rendered images are clamped.
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,11 +35,11 @@ std::string filter_name(FilterKind kind);
 LightnessFilter read_lightness_filter(const ParameterBag& bag);
 
 // d per sample for a width×height plane of L*, row-major.
-std::vector<float> lightness_detail(const std::vector<float>& lightness, int width, int height,
+std::vector<float> lightness_detail(std::span<const float> lightness, int width, int height,
                                     const LightnessFilter& filter, Borders borders, int threads = 0);
 
 // A separable Gaussian in double precision over ±⌈4σ⌉ samples, normalised, with the given borders.
-std::vector<double> gaussian_filter(const std::vector<float>& plane, int width, int height, double sigma,
+std::vector<double> gaussian_filter(std::span<const float> plane, int width, int height, double sigma,
                                     Borders borders, int threads = 0);
 
 }  // namespace countershade

@@ -37,7 +37,7 @@ class Usm2dMethod final : public EnhancementMethod {
                                                const MethodParameters& parameters) const override {
     const View& view = *context.view;
     const double sigma = parameters_as<Usm2dParameters>(parameters).width.sigma_px_for(view.width(), view.height());
-    const std::vector<float> lightness = view_signal_lightness(view);
+    const std::span<const float> lightness = view_signal_lightness(view);
     Image blurred(view.width(), view.height(), 1, Image::Uninitialized{});
     gaussian_blur(lightness.data(), blurred.pixels.data(), view.width(), view.height(), sigma, context.threads);
     LightnessChange change;

@@ -34,7 +34,7 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
   view->encoding = scene->display.encoding;
   view->bits = bits;
   view->display = quantized_display(render.radiance, scene->display.exposure_stops, view->encoding, bits);
-  if (lab) view->lab = display_to_lab(view->display, view->encoding, bits);
+  if (lab) view->lab = display_to_lab(view->display, view->encoding, bits, &view->lightness);
   view->depth = render.gbuffer.depth;
   view->render = std::move(render);
   view->scene = std::move(scene);
@@ -49,7 +49,7 @@ std::shared_ptr<const View> make_image_view(Image display, std::vector<float> de
   view->bits = bits;
   view->display = std::move(display);
   quantize_in_place(view->display, bits);
-  view->lab = display_to_lab(view->display, encoding, bits);
+  view->lab = display_to_lab(view->display, encoding, bits, &view->lightness);
   view->depth = std::move(depth);
   return view;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <tbb/task_arena.h>
 
 #include "core/color.h"
 #include "core/display.h"
@@ -56,7 +57,9 @@ class ViewMemo {
   std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make) const {
     std::lock_guard<std::mutex> lock(mutex_);
     auto [value, first] = values_.try_emplace(key);
-    if (first) value->second = make();  // null is kept too: made once, whatever it gives
+    // Null is kept too: made once, whatever it gives. Isolated, so that a parallel loop inside
+    // `make` cannot pick up outer work that asks this memo again while the lock is held.
+    if (first) tbb::this_task_arena::isolate([&] { value->second = make(); });
     return std::static_pointer_cast<const T>(value->second);
   }
 
@@ -73,6 +76,7 @@ struct View {
   std::vector<float> depth;   // linear eye depth per pixel; 0, inf or NaN = background/invalid
   Image display;              // the unenhanced stimulus: code values in [0,1], quantised to `bits`
   LabPixels lab;              // CIELAB of `display`, per pixel
+  PixelVector lightness;      // L* of `lab` as floats, made with it (the plane image filters read)
   int bits = 8;
   // Per use of the plan the view was rendered for: its surface stage (or null) and the indices of
   // the stage's fields in render.fields.

@@ -11,7 +11,8 @@ namespace countershade {
 namespace {
 
 // The vectorised conversion (decoding table, cube root) gives the scalar function's values bit
-// for bit, for exact codes of 8 and 16 bits and for values that are not codes or out of range.
+// for bit, for exact codes of 8 and 16 bits and for values that are not codes or out of range;
+// so does its plane of L* as floats.
 TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
   std::mt19937 random(3);
   for (int bits : {8, 16}) {
@@ -24,9 +25,12 @@ TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
     image.pixels[1000] = 1.5f;    // out of range: decoded directly
     image.pixels[2000] = -0.25f;
     for (const auto& encoding : {DisplayEncoding::srgb(), DisplayEncoding::gamma(2.2)}) {
-      LabPixels lab = display_to_lab(image, encoding, bits);
+      PixelVector lightness;
+      LabPixels lab = display_to_lab(image, encoding, bits, &lightness);
+      ASSERT_EQ(lightness.size(), lab.size());
       for (size_t i = 0; i < lab.size(); ++i) {
         const Lab expected = display_pixel_to_lab(&image.pixels[3 * i], encoding);
+        ASSERT_EQ(lightness[i], float(expected.L)) << i;
         ASSERT_EQ(lab[i].L, expected.L) << i;
         ASSERT_EQ(lab[i].a, expected.a) << i;
         ASSERT_EQ(lab[i].b, expected.b) << i;
