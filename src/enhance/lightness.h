@@ -43,24 +43,22 @@ std::vector<float> view_lightness(const View& view);
 // Made once per view (the view keeps it), so every σ and method of a view shares it.
 std::span<const float> view_signal_lightness(const View& view);
 
-// Δ of one pixel for strength λ.
+// Δ of every pixel for strength λ, in one of three forms (compose_lightness evaluates them).
 struct LightnessChange {
   enum class Kind {
     scaled,   // Δ = (λ·factor·gain)·amount
     blended,  // Δ = clamp(λ·weight, 0, 1)·amount
+    // Δ = (λ·factor)·(S − smooth), S the view's signal lightness (view_signal_lightness): an
+    // image's detail, read from its two planes rather than stored as a third (16 MB at
+    // 1920×1080). LightnessPrepared lists `smooth` among its auxiliary images.
+    detail,
   };
   Kind kind = Kind::scaled;
-  double factor = 1.0;         // scaled: a constant factor (e.g. ΔL* per unit of λ)
-  PixelDoubles amount;         // per pixel; not zero-filled on resize, since every method writes it all
+  double factor = 1.0;         // scaled, detail: a constant factor (e.g. ΔL* per unit of λ)
+  PixelDoubles amount;         // scaled, blended: per pixel; not zero-filled on resize, since every method writes it all
   std::vector<double> gain;    // scaled: an optional per-pixel gain (empty: 1)
   std::vector<float> weight;   // blended: per pixel
-
-  double delta(size_t i, double lambda) const {
-    if (kind == Kind::scaled) return (gain.empty() ? lambda * factor : lambda * gain[i]) * amount[i];
-    double alpha = lambda * double(weight[i]);
-    alpha = alpha < 0.0 ? 0.0 : (alpha > 1.0 ? 1.0 : alpha);
-    return alpha * amount[i];
-  }
+  PixelVector smooth;          // detail: per pixel
 };
 
 // Applies the change at strength λ to the view's stimulus. Pixels whose Δ is 0 keep their code
@@ -88,7 +86,7 @@ class LightnessPrepared final : public PreparedEnhancement {
 
   Composed compose(double lambda) const override { return compose_lightness(*view_, change_, lambda, threads_); }
   nlohmann::json parameters() const override { return parameters_; }
-  std::vector<std::pair<std::string, Image>> auxiliary() const override { return auxiliary_; }
+  std::vector<std::pair<std::string, Image>> auxiliary() const override;
   NoiseModel noise(double lambda) const override { return noise_ ? noise_(lambda) : NoiseModel{}; }
   const LightnessChange& change() const { return change_; }
 

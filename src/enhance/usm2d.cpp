@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "core/gaussian.h"
-#include "core/parallel.h"
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
 
@@ -38,20 +37,13 @@ class Usm2dMethod final : public EnhancementMethod {
     const View& view = *context.view;
     const double sigma = parameters_as<Usm2dParameters>(parameters).width.sigma_px_for(view.width(), view.height());
     const std::span<const float> lightness = view_signal_lightness(view);
-    Image blurred(view.width(), view.height(), 1, Image::Uninitialized{});
-    gaussian_blur(lightness.data(), blurred.pixels.data(), view.width(), view.height(), sigma, context.threads);
     LightnessChange change;
-    change.amount.resize(lightness.size());
-    parallel_ranges(
-        lightness.size(), context.threads,
-        [&](size_t begin, size_t end) {
-          for (size_t i = begin; i < end; ++i) change.amount[i] = double(lightness[i]) - double(blurred.pixels[i]);
-        },
-        1 << 16);
-    std::vector<std::pair<std::string, Image>> auxiliary;
-    auxiliary.emplace_back("lightness_blurred", std::move(blurred));
+    change.kind = LightnessChange::Kind::detail;  // Δ = λ·(L* − G_σ*L*)
+    change.smooth.resize(lightness.size());
+    gaussian_blur(lightness.data(), change.smooth.data(), view.width(), view.height(), sigma, context.threads);
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), nlohmann::json{{"sigma_px", sigma}},
-                                               std::move(auxiliary), context.threads, plain_noise(context));
+                                               std::vector<std::pair<std::string, Image>>{}, context.threads,
+                                               plain_noise(context));
   }
 
   // The detail L − G*L passes the pixel's noise (the blurred image's is negligible).

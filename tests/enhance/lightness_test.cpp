@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -92,6 +93,35 @@ TEST(Lightness, ComposeEqualsTheScalarDefinition) {
     ~FourAtATime() { allow_wide_composition(true); }
   } four;
   expect_compose_equals_the_scalar_definition();
+}
+
+// A detail change gives the bits of the scaled change whose amount is the stored difference
+// S − smooth (S: the view's signal lightness), and lists its smooth plane as an auxiliary image.
+TEST(Lightness, DetailChangeEqualsTheStoredDifference) {
+  std::mt19937 random(6);
+  Image display(53, 9, 3);
+  std::uniform_int_distribution<int> code(0, 255);
+  for (float& v : display.pixels) v = float(code(random)) / 255.0f;
+  auto view = make_image_view(display, {}, DisplayEncoding::srgb(), 8);
+  const std::span<const float> signal = view_signal_lightness(*view);
+  LightnessChange detail, stored;
+  detail.kind = LightnessChange::Kind::detail;
+  detail.factor = stored.factor = 1.7;
+  std::uniform_real_distribution<float> smooth(0.0f, 100.0f);
+  for (size_t i = 0; i < signal.size(); ++i) {
+    detail.smooth.push_back(i % 5 == 0 ? signal[i] : smooth(random));  // Δ = 0 on every fifth pixel
+    stored.amount.push_back(double(signal[i]) - double(detail.smooth[i]));
+  }
+  for (double lambda : {0.0, 0.5, 2.0}) {
+    const Composed a = compose_lightness(*view, detail, lambda), b = compose_lightness(*view, stored, lambda);
+    ASSERT_EQ(a.display.pixels, b.display.pixels) << lambda;
+    EXPECT_EQ(a.clipped_pixels, b.clipped_pixels) << lambda;
+  }
+  const LightnessPrepared prepared(view, detail, {});
+  const auto auxiliary = prepared.auxiliary();
+  ASSERT_EQ(auxiliary.size(), 1u);
+  EXPECT_EQ(auxiliary[0].first, "lightness_blurred");
+  EXPECT_TRUE(std::equal(detail.smooth.begin(), detail.smooth.end(), auxiliary[0].second.pixels.begin()));
 }
 
 }  // namespace
