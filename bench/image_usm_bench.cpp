@@ -24,6 +24,18 @@ namespace {
 
 constexpr int kWidth = 1920, kHeight = 1080;
 
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// Seconds since `start`, appended to `times`; returns now.
+std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point start, std::vector<double>& times) {
+  const auto now = std::chrono::steady_clock::now();
+  times.push_back(std::chrono::duration<double>(now - start).count());
+  return now;
+}
+
 // A synthetic stimulus: textured noise and overlapping discs at different depths on a far wall.
 const std::shared_ptr<const View>& test_view() {
   static std::shared_ptr<const View> view = [] {
@@ -129,10 +141,6 @@ void BM_DepthUsmKernelRatio(benchmark::State& state) {
       times->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
   state.counters["median_K1_ms"] = 1e3 * median(t1);
   state.counters["median_K5_ms"] = 1e3 * median(t5);
   state.counters["K5/K1"] = median(t5) / median(t1);
@@ -140,17 +148,26 @@ void BM_DepthUsmKernelRatio(benchmark::State& state) {
 BENCHMARK(BM_DepthUsmKernelRatio)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(15);
 
 // 2D unsharp masking end to end at σ = 1% of the diagonal, from the display image: its CIELAB
-// conversion, the blur of L*, and one composition.
+// conversion, the blur of L*, and one composition; the counters give each step's median.
 void BM_Usm2dEndToEnd(benchmark::State& state) {
   const View& view = *test_view();
+  std::vector<double> convert, prepare, compose;
   for (auto _ : state) {
+    auto t = std::chrono::steady_clock::now();
     // Included: a view's CIELAB and L* plane, which the method reads, are part of its cost.
     PixelVector lightness;
     LabPixels lab = display_to_lab(view.display, view.encoding, view.bits, &lightness);
     benchmark::DoNotOptimize(lab.data());
-    Composed out = prepare_method("usm2d", test_view(), {{"sigma_percent", 1.0}})->compose(1.0);
+    t = lap(t, convert);
+    auto prepared = prepare_method("usm2d", test_view(), {{"sigma_percent", 1.0}});
+    t = lap(t, prepare);
+    Composed out = prepared->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
+    lap(t, compose);
   }
+  state.counters["convert_ms"] = 1e3 * median(convert);
+  state.counters["prepare_ms"] = 1e3 * median(prepare);
+  state.counters["compose_ms"] = 1e3 * median(compose);
 }
 BENCHMARK(BM_Usm2dEndToEnd)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -222,10 +239,6 @@ void BM_Usm2dVersusOiio(benchmark::State& state) {
     ours.push_back(std::chrono::duration<double>(t1 - t0).count());
     theirs.push_back(std::chrono::duration<double>(t2 - t1).count());
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
   state.counters["sigma_px"] = sigma;
   state.counters["oiio_width"] = width;
   state.counters["countershade_ms"] = 1e3 * median(ours);
