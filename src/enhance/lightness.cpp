@@ -73,6 +73,19 @@ namespace {
 
 constexpr size_t kBlock = 64;
 
+// Runs body(begin, end) over [0, n) in parallel, in ranges that start at multiples of kBlock, so
+// that vectors of pixels keep their buffers' alignment, which the CIELAB conversion's streaming
+// stores need. Each range's streaming stores are complete (sfence) before this returns.
+void parallel_blocks(size_t n, int threads, const std::function<void(size_t, size_t)>& body) {
+  parallel_ranges(
+      (n + kBlock - 1) / kBlock, threads,
+      [&](size_t begin, size_t end) {
+        body(begin * kBlock, std::min(n, end * kBlock));
+        _mm_sfence();
+      },
+      4096 / kBlock);
+}
+
 // Δ of the pixels [first, first + count) as LightnessChange defines it, the kind decided once per
 // block; `signal`: the view's signal lightness (detail changes only).
 void block_delta(const LightnessChange& change, const float* signal, size_t first, size_t count, double lambda,
@@ -308,7 +321,7 @@ COUNTERSHADE_AVX512 inline void store_rgb8(__m256 r, __m256 g, __m256 b, const f
   const __m512 head = _mm512_permutex2var_ps(rg, first, bb);
   const __m256 tail = _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, _mm512_castsi256_si512(last), bb));
   // Masked loads read only the kept floats: with none kept (the usual case) the input's memory is
-  // not read at all, and the composition is bound by memory traffic.
+  // not read at all.
   _mm512_storeu_ps(out, _mm512_mask_loadu_ps(head, __mmask16(keep), in));
   _mm256_storeu_ps(out + 16, _mm256_mask_loadu_ps(tail, __mmask8(keep >> 16), in + 16));
 }
@@ -381,7 +394,12 @@ template <typename D>
     v[2] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 3, 7, 0), b, 6, 1, 2, 7);
   }
   static_assert(sizeof(Lab) == 3 * sizeof(double));
-  std::memcpy(static_cast<void*>(out), v, sizeof v);
+  double* o = reinterpret_cast<double*>(out);
+  if (reinterpret_cast<uintptr_t>(o) % 16 != 0) return (void)std::memcpy(o, v, sizeof v);
+  // Streaming stores (see parallel_blocks): the 50 MB of a view's CIELAB are not read back soon,
+  // and they then skip reading every line before writing it.
+  const double* d = reinterpret_cast<const double*>(v);
+  for (size_t i = 0; i < sizeof v / sizeof(double); i += 2) _mm_stream_pd(o + i, _mm_loadu_pd(d + i));
 }
 
 // linear_rgb_to_lab on eight pixels at once, lane by lane the operations of the scalar code in
@@ -483,7 +501,7 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
   LabPixels lab(size_t(display.width) * display.height);  // every element is written below
   if (lightness) lightness->resize(lab.size());
   float* plane = lightness ? lightness->data() : nullptr;
-  parallel_ranges(
+  parallel_blocks(
       lab.size(), 0,
       [&](size_t begin, size_t end) {
         alignas(64) double linear[3][kBlock];
@@ -492,8 +510,7 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
           decode.decode_rgb(display.pixels.data() + 3 * first, count, linear[0], linear[1], linear[2]);
           linear_to_lab_block(linear[0], linear[1], linear[2], count, lab.data() + first, plane ? plane + first : nullptr);
         }
-      },
-      4096);
+      });
   return lab;
 }
 
@@ -539,7 +556,7 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
   const float* in = view.display.pixels.data();
   const float* signal = change.kind == LightnessChange::Kind::detail ? view_signal_lightness(view).data() : nullptr;
   float* result = out.display.pixels.data();
-  parallel_ranges(
+  parallel_blocks(
       view.lab.size(), threads,
       [&](size_t begin, size_t end) {
         size_t local = 0;
@@ -550,8 +567,7 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
           local += composer.compose(view.lab.data() + first, in + 3 * first, delta, count, result + 3 * first);
         }
         clipped += local;
-      },
-      4096);
+      });
   out.clipped_pixels = clipped;
   return out;
 }
