@@ -56,11 +56,12 @@ class ViewMemo {
   template <class T>
   std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make) const {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto [value, first] = values_.try_emplace(key);
+    const auto [entry, first] = values_.try_emplace(key);
+    std::shared_ptr<const void>& value = entry->second;
     // Null is kept too: made once, whatever it gives. Isolated, so that a parallel loop inside
     // `make` cannot pick up outer work that asks this memo again while the lock is held.
-    if (first) tbb::this_task_arena::isolate([&] { value->second = make(); });
-    return std::static_pointer_cast<const T>(value->second);
+    if (first) tbb::this_task_arena::isolate([&] { value = make(); });
+    return std::static_pointer_cast<const T>(value);
   }
 
  private:
