@@ -1,6 +1,7 @@
 #include "mesh/mesh_file_check.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -101,8 +102,12 @@ size_t check_obj(const std::filesystem::path& path) {
   size_t triangles = 0;
   std::string line;
   for (size_t number = 1; std::getline(in, line); ++number) {
-    // The keyword as OpenMesh reads it: the first word, after any whitespace (tabs, form feeds).
-    std::istringstream fields(line);
+    // The keyword as OpenMesh reads it: the line trimmed of spaces, tabs, CR and LF; skipped when
+    // it then starts with other whitespace (a vertical tab, a form feed), else its first word. A
+    // vertex OpenMesh skips but we counted would let a face reach past its vertices.
+    const size_t start = line.find_first_not_of(" \t\r\n");
+    if (start == std::string::npos || std::isspace(static_cast<unsigned char>(line[start]))) continue;
+    std::istringstream fields(line.substr(start));
     std::string keyword, rest;
     fields >> keyword;
     std::getline(fields, rest);

@@ -106,6 +106,11 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeOpenMeshReadsThem) {
       {"colour.obj", "v 0 0 0 1 2 3\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a colour outside [0, 1]"},
       {"formfeed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf\f1/1 2 3\n", "line 4: face texture coordinate index 1 is out of range (1..0)"},
       {"normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//2 2//1 3//1\n", "face normal index 2 is out of range (1..1)"},
+      // OpenMesh skips a line that starts with a vertical tab or a form feed (after spaces), so
+      // that vertex does not exist: counting it let a face index past OpenMesh's vertices.
+      {"vtab.obj", "v 0 0 0\nv 0 1 0\n\vv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 3/3 2/2\n",
+       "line 7: face vertex index 3 is out of range (1..2)"},
+      {"formfeed_line.obj", "v 0 0 0\nv 0 1 0\n \fv 0 0 1\nf 1 3 2\n", "line 4: face vertex index 3 is out of range (1..2)"},
       {"junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1x/0 2 3\n", "face index '1x' is not a non-zero integer"},
       {"zero_texcoord.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/0 2 3\n", "face index '0' is not a non-zero integer"},
       {"beyond.obj", "v 0 1e129 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 0 has a NaN or infinite coordinate"},
