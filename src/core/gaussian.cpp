@@ -137,7 +137,7 @@ struct ColumnScratch {
 
 // The column filter compiled twice: for AVX2 machines and for the x86-64 baseline, chosen at load
 // time (no FMA either way: -ffp-contract=off keeps the bytes the same on every processor).
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v3", "default")))
 void filter_columns(const float* in, float* out, int width, int height, int x0, int x1, const Deriche& f,
                     ColumnScratch& scratch) {
   if (f.in_double)
