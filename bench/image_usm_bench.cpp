@@ -135,10 +135,10 @@ void BM_DepthUsmKernelRatio(benchmark::State& state) {
   std::vector<double> t1, t5;
   for (auto _ : state) {
     for (auto [options, times] : {std::pair{&small, &t1}, std::pair{&large, &t5}}) {
-      auto start = std::chrono::steady_clock::now();
+      const auto start = std::chrono::steady_clock::now();
       Composed out = prepare_method("depth-usm", test_view(), *options)->compose(1.0);
       benchmark::DoNotOptimize(out.display.pixels.data());
-      times->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      lap(start, *times);
     }
   }
   state.counters["median_K1_ms"] = 1e3 * median(t1);
@@ -226,18 +226,16 @@ void BM_Usm2dVersusOiio(benchmark::State& state) {
   OIIO::ImageBuf dst;
   std::vector<double> ours, theirs;
   for (auto _ : state) {
-    auto t0 = std::chrono::steady_clock::now();
+    auto t = std::chrono::steady_clock::now();
     // Included: a view's CIELAB and L* plane, which the method reads, are part of its cost.
     PixelVector lightness;
     LabPixels lab = display_to_lab(view.display, view.encoding, view.bits, &lightness);
     benchmark::DoNotOptimize(lab.data());
     Composed out = prepare_method("usm2d", test_view(), {{"sigma_percent", 1.0}})->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
-    auto t1 = std::chrono::steady_clock::now();
+    t = lap(t, ours);
     OIIO::ImageBufAlgo::unsharp_mask(dst, src, "gaussian", width, 1.0f, 0.0f);
-    auto t2 = std::chrono::steady_clock::now();
-    ours.push_back(std::chrono::duration<double>(t1 - t0).count());
-    theirs.push_back(std::chrono::duration<double>(t2 - t1).count());
+    lap(t, theirs);
   }
   state.counters["sigma_px"] = sigma;
   state.counters["oiio_width"] = width;

@@ -181,7 +181,8 @@ void transpose_plane(const float* in, size_t in_stride, float* out, size_t out_s
       transpose_tile8(in + size_t(y) * in_stride + size_t(x), in_stride, out + size_t(x) * out_stride + size_t(y),
                       out_stride);
   for (int y = 0; y < rows; ++y)
-    for (int x = y < rows8 ? columns8 : 0; x < columns; ++x) out[size_t(x) * out_stride + size_t(y)] = in[size_t(y) * in_stride + size_t(x)];
+    for (int x = y < rows8 ? columns8 : 0; x < columns; ++x)
+      out[size_t(x) * out_stride + size_t(y)] = in[size_t(y) * in_stride + size_t(x)];
 }
 
 void transpose(const float* in, float* out, int width, int height, tbb::task_arena& arena) {

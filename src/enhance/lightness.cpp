@@ -90,12 +90,14 @@ void parallel_blocks(size_t n, int threads, const std::function<void(size_t, siz
 // block; `signal`: the view's signal lightness (detail changes only).
 void block_delta(const LightnessChange& change, const float* signal, size_t first, size_t count, double lambda,
                  double* delta) {
-  const double* amount = change.amount.data() + first;
-  if (change.kind == LightnessChange::Kind::detail) {
+  if (change.kind == LightnessChange::Kind::detail) {  // no amount: its (empty) data may be null
     const double scale = lambda * change.factor;
     const float *s = signal + first, *smooth = change.smooth.data() + first;
     for (size_t k = 0; k < count; ++k) delta[k] = scale * (double(s[k]) - double(smooth[k]));
-  } else if (change.kind == LightnessChange::Kind::blended) {
+    return;
+  }
+  const double* amount = change.amount.data() + first;
+  if (change.kind == LightnessChange::Kind::blended) {
     const float* weight = change.weight.data() + first;
     for (size_t k = 0; k < count; ++k) {  // in a loop that vectorises
       double alpha = lambda * double(weight[k]);
@@ -399,7 +401,8 @@ template <typename D>
   // Streaming stores (see parallel_blocks): the 50 MB of a view's CIELAB are not read back soon,
   // and they then skip reading every line before writing it.
   const double* d = reinterpret_cast<const double*>(v);
-  for (size_t i = 0; i < sizeof v / sizeof(double); i += 2) _mm_stream_pd(o + i, _mm_loadu_pd(d + i));
+  constexpr size_t kDoubles = 3 * sizeof(D) / sizeof(double);  // the three vectors' doubles
+  for (size_t i = 0; i < kDoubles; i += 2) _mm_stream_pd(o + i, _mm_loadu_pd(d + i));
 }
 
 // linear_rgb_to_lab on eight pixels at once, lane by lane the operations of the scalar code in
