@@ -27,7 +27,7 @@ namespace countershade::cli {
 namespace {
 
 struct FlickerArgs {
-  std::string scene, frames, csv, maps, object;
+  std::string scene, frames, csv, maps, object, without;
   MethodArgs method;
   std::optional<int> spp, threads;
   int bits = 8;  // the stimuli's output bit depth
@@ -84,11 +84,12 @@ Frame render_frame(const Scene& base, int frame, const ResolvedMethod& m, const 
 }
 
 // |ΔE| per pixel in false colour, 0 … 5 L* (NaN, where a pixel did not count: black).
-void write_map(const std::string& dir, int frame, const std::vector<float>& differences, const View& view) {
+void write_map(const std::string& dir, const char* prefix, int frame, const std::vector<float>& differences,
+               const View& view) {
   Image values(view.width(), view.height(), 1);
   for (size_t i = 0; i < differences.size(); ++i) values.pixels[i] = differences[i] / 5.0f;
   char name[32];
-  std::snprintf(name, sizeof name, "flicker-%04d.png", frame);
+  std::snprintf(name, sizeof name, "%s-%04d.png", prefix, frame);
   write_image(std::filesystem::path(dir) / name, false_colour_image(values));
 }
 
@@ -183,7 +184,10 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
                      Totals& totals) {
   const CarryPoint carry = carry_between_frames(base, frame - 1, frame);
   const PairChanges changes = pair_changes(a, b, carry);
-  if (!args.maps.empty()) write_map(args.maps, frame, changes.layer_differences, *a.view);
+  if (!args.maps.empty()) {
+    write_map(args.maps, "flicker", frame, changes.layer_differences, *a.view);
+    write_map(args.maps, "plain", frame, changes.plain_differences, *a.view);
+  }
   std::ostringstream row;
   row << frame << ',' << changes.layer.rms << ',' << changes.plain.rms << ',' << changes.layer.pixels;
   totals.flicker += changes.layer.rms;
@@ -194,12 +198,23 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
   return row.str();
 }
 
-// The index of the object --object names (-1 without one).
-int named_object(const Scene& scene, const std::string& name) {
+// The index of the object an option names (-1 without one).
+int named_object(const Scene& scene, const std::string& name, const char* option) {
   if (name.empty()) return -1;
   for (size_t k = 0; k < scene.objects.size(); ++k)
     if (scene.objects[k].name == name) return int(k);
-  throw InputError("--object: " + scene.file.string() + " has no object called '" + name + "'");
+  throw InputError(std::string(option) + ": " + scene.file.string() + " has no object called '" + name + "'");
+}
+
+// The scene without the object --without names, and without its motion: the flicker that remains
+// when, say, a moving occluder is taken out.
+void remove_object(Scene& scene, const std::string& name) {
+  const int k = named_object(scene, name, "--without");
+  scene.objects.erase(scene.objects.begin() + k);
+  auto& paths = scene.animation->objects;
+  std::erase_if(paths, [k](const ObjectPath& p) { return p.object == size_t(k); });
+  for (ObjectPath& p : paths)
+    if (p.object > size_t(k)) --p.object;
 }
 
 std::string summary(const Totals& t, const FlickerArgs& args) {
@@ -242,7 +257,8 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   if (args.spp) base.settings.spp = *args.spp;
   m.method->check_scene(base, *m.parameters);
   const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
-  const int object = named_object(base, args.object);
+  if (!args.without.empty()) remove_object(base, args.without);
+  const int object = named_object(base, args.object, "--object");
   std::string csv = "frame,flicker_lstar,plain_reprojection_lstar,pixels";
   if (args.scale_px > 0) csv += ",flicker_at_scale_lstar,plain_at_scale_lstar";
   if (args.stable > 0) csv += ",flicker_stable_lstar,stable_pixels";
@@ -273,7 +289,11 @@ void add_flicker_command(CLI::App& app) {
   cmd->add_option("--frames", args->frames, "Frames A:B (default: all)");
   cmd->add_option("--csv", args->csv, "Write frame, flicker, the plain render's reprojection error and pixels per pair");
   cmd->add_option("--maps", args->maps,
-                  "Write |change| per pixel of each pair as DIR/flicker-NNNN.png (viridis over 0–5 L*; black: not counted)");
+                  "Write |change| per pixel of each pair as DIR/flicker-NNNN.png, and the plain L*'s as "
+                  "DIR/plain-NNNN.png (viridis over 0–5 L*; black: not counted)");
+  cmd->add_option("--without", args->without,
+                  "Leave this object out of the scene, with its motion (e.g. a moving occluder, to see the flicker "
+                  "of the camera's motion alone)");
   cmd->add_option("--object", args->object,
                   "Also report how much the enhancement of this object's pixels changes per pair "
                   "(largest and 99th percentile over its pixels seen in both frames, in levels of 8-bit output; CSV "

@@ -178,6 +178,7 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   EXPECT_EQ(testing::count_lines(testing::read_file(dir / "f.csv")), 3);
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0001.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0002.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "maps/plain-0002.png"));
   const auto bad = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --frames 1:1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(testing::count_lines(bad.output), 1) << bad.output;
@@ -185,6 +186,24 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.output.find("--object"), std::string::npos) << unknown.output;
   EXPECT_EQ(testing::count_lines(unknown.output), 1) << unknown.output;
+}
+
+// --without leaves an object out with its motion; the paths of the objects after it still find
+// them (the box becomes the first object), and it is then no object to measure.
+TEST(Flicker, AnObjectLeftOutTakesItsMotionAlong) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
+  const std::string base = "flicker " + (dir / "orbit.json").string();
+  const auto r = testing::run_cli(base + " --without ground --object box --csv " + (dir / "f.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("box: largest change 0.00 code levels"), std::string::npos) << r.output;
+  const auto gone = testing::run_cli(base + " --without box --object box");
+  EXPECT_EQ(gone.exit_code, 2);
+  EXPECT_NE(gone.output.find("--object: "), std::string::npos) << gone.output;
+  EXPECT_EQ(testing::count_lines(gone.output), 1) << gone.output;
+  const auto unknown = testing::run_cli(base + " --without nothing");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.output.find("--without: "), std::string::npos) << unknown.output;
 }
 
 // --scale-px compares the layers blurred: none without enhancement, and the plain render's own
