@@ -148,6 +148,7 @@ struct Totals {
   double flicker = 0, plain = 0, at_scale = 0, plain_at_scale = 0, stable = 0, stable_share = 0;
   ObjectChange object, object_stable;  // the worst pair's
   int pairs = 0;
+  size_t pixels = 0;  // over every pair
 };
 
 void add_object_change(const ObjectChange& change, std::ostringstream& row, ObjectChange& worst) {
@@ -193,6 +194,7 @@ std::string pair_row(const Scene& base, const Frame& a, const Frame& b, int fram
   totals.flicker += changes.layer.rms;
   totals.plain += changes.plain.rms;
   ++totals.pairs;
+  totals.pixels += changes.layer.pixels;
   add_options(a, b, carry, changes, args, object, row, totals);
   row << '\n';
   return row.str();
@@ -274,6 +276,8 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
     previous = std::move(current);
     progress.update(double(f - first) / double(last - first));
   }
+  if (totals.pixels == 0)  // an RMS over nothing would read as perfect coherence
+    throw InputError(args.scene + ": no surface point is seen in two consecutive frames, so there is no flicker to measure");
   if (!args.csv.empty()) write_text_atomically(args.csv, csv);
   progress.finish(summary(totals, args));
 }

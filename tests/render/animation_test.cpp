@@ -204,6 +204,17 @@ TEST(Flicker, AnObjectLeftOutTakesItsMotionAlong) {
   const auto unknown = testing::run_cli(base + " --without nothing");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.output.find("--without: "), std::string::npos) << unknown.output;
+  // With both objects out nothing is measured: an error, not a flicker of 0.
+  testing::write_file(dir / "alone.json", R"({"version": 1,
+    "camera": {"eye": [0, 1, 4], "target": [0, 0.3, 0], "fov": 35, "width": 16, "height": 12},
+    "objects": [{"name": "box", "shape": {"type": "box", "size": [0.6, 0.6, 0.6]}}],
+    "lights": [{"type": "directional", "direction": [0.4, 1, 0.3], "irradiance": 2.5}],
+    "animation": {"duration": 1, "fps": 2,
+                  "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]]}}]}})");
+  const auto empty = testing::run_cli("flicker " + (dir / "alone.json").string() + " --without box");
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.output.find("no surface point is seen in two consecutive frames"), std::string::npos) << empty.output;
+  EXPECT_EQ(testing::count_lines(empty.output), 1) << empty.output;
 }
 
 // --scale-px compares the layers blurred: none without enhancement, and the plain render's own
