@@ -11,6 +11,7 @@
 #include <bit>
 #include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "core/atomic_file.h"
@@ -126,6 +127,13 @@ Image read_pfm(const std::filesystem::path& path) {
   in.get();  // the single whitespace character after the scale
   const int channels = magic == "PF" ? 3 : 1;
   check_image_size(path, width, height, channels);
+  // Checked before allocating: a short file's header must not make us zero gigabytes first.
+  const uint64_t declared = uint64_t(width) * uint64_t(height) * uint64_t(channels) * 4u;
+  const auto header = in.tellg();
+  if (header < 0 || std::filesystem::file_size(path) - uint64_t(header) < declared)
+    throw_input_error(path.string(), "PFM file is truncated (its header declares " + std::to_string(width) + "x" +
+                                         std::to_string(height) + " pixels, " + std::to_string(declared) +
+                                         " bytes of data)");
   Image image(width, height, channels);
   const bool little = scale < 0;
   const bool host_little = std::endian::native == std::endian::little;

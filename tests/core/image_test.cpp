@@ -78,6 +78,16 @@ TEST(Image, PfmRoundTripsBottomUpRowsAndInfinity) {
   EXPECT_THROW(read_image(dir / "bad.pfm"), InputError);
   testing::write_file(dir / "short.pfm", "Pf\n4 4\n-1.0\nabc");
   EXPECT_THROW(read_image(dir / "short.pfm"), InputError);
+  // A fuzzing finding: a 15-byte file whose header declares 27776x7651 colour pixels used to be
+  // allocated (2.5 GB, zeroed) before the first row was found missing. The message names the
+  // size the header declares.
+  testing::write_file(dir / "huge.pfm", "PF\n27776 7651\n1");
+  try {
+    read_image(dir / "huge.pfm");
+    ADD_FAILURE() << "a truncated PFM was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("27776x7651 pixels"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
