@@ -2,11 +2,16 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
 
 namespace countershade {
 namespace {
@@ -18,11 +23,44 @@ void embree_error(void* user, RTCError code, const char* message) {
     *error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "unknown");
 }
 
+// One object's triangles as Embree holds them.
+struct Triangles {
+  const float* vertices = nullptr;    // x y z per vertex
+  const unsigned* indices = nullptr;  // three per triangle
+};
+
+glm::dvec3 vertex(const Triangles& g, unsigned index) {
+  const float* v = g.vertices + 3 * size_t(index);
+  return {double(v[0]), double(v[1]), double(v[2])};
+}
+
+// The hit on the triangle Embree found, computed again in double precision (Möller–Trumbore).
+// Embree's kernels for different instruction sets (SSE2, AVX2, AVX-512) round t, u and v
+// differently, so without this a stimulus would differ in its last bits from one processor to
+// another. A degenerate triangle keeps Embree's values.
+void refine(const Triangles& g, const glm::dvec3& origin, const glm::dvec3& direction, Hit& hit) {
+  const unsigned* corner = g.indices + 3 * size_t(hit.triangle);
+  const glm::dvec3 p0 = vertex(g, corner[0]), e1 = vertex(g, corner[1]) - p0, e2 = vertex(g, corner[2]) - p0;
+  const glm::dvec3 p = glm::cross(direction, e2);
+  const double det = glm::dot(e1, p);
+  if (det == 0.0 || !std::isfinite(det)) return;
+  const double inverse = 1.0 / det;
+  const glm::dvec3 s = origin - p0, q = glm::cross(s, e1);
+  const double b1 = std::clamp(glm::dot(s, p) * inverse, 0.0, 1.0);
+  const double b2 = std::clamp(glm::dot(direction, q) * inverse, 0.0, 1.0 - b1);
+  // Rounded to single precision, Embree's own: a render's trace log keeps them as floats, so a
+  // replayed sample is the traced one.
+  hit.b1 = double(float(b1));
+  hit.b2 = double(float(b2));
+  hit.t = glm::dot(e2, q) * inverse;
+}
+
 }  // namespace
 
 struct RayTracer::Handles {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<Triangles> objects;  // by geometry id
   std::string error;
   ~Handles() {
     if (scene) rtcReleaseScene(scene);
@@ -53,6 +91,7 @@ RayTracer::RayTracer(const Scene& scene) : handles_(std::make_unique<Handles>())
         geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
     for (size_t t = 0; t < mesh.triangle_count(); ++t)
       std::memcpy(indices + 3 * t, &mesh.triangles[t], 3 * sizeof(unsigned));
+    handles_->objects.push_back({vertices, indices});
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(handles_->scene, geom, unsigned(id));
     rtcReleaseGeometry(geom);
@@ -85,7 +124,9 @@ std::optional<Hit> RayTracer::intersect(const glm::dvec3& origin, const glm::dve
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(handles_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  return Hit{rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
+  Hit hit{rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
+  refine(handles_->objects[hit.object], origin, direction, hit);
+  return hit;
 }
 
 bool RayTracer::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
