@@ -9,14 +9,16 @@ command -v qemu-x86_64 > /dev/null || { echo "qemu-x86_64 is missing (scripts/se
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# Curved and tilted triangles in every direction, cast shadows, sky light: every hit's distance and
-# barycentrics, and every colour path, matter.
+# Curved and tilted triangles in every direction, cast shadows, sky light and a mip-mapped texture:
+# every hit's distance, barycentrics and footprint, and every colour path, matter.
 cat > "$out/scene.json" <<'JSON'
 {"version": 1,
  "camera": {"eye": [2.2, 1.6, 3.0], "target": [0, 0.4, 0], "fov": 38, "width": 40, "height": 30},
  "render": {"seed": 3},
  "objects": [
-   {"name": "floor", "shape": {"type": "plane", "size": 6, "subdivisions": 8}},
+   {"name": "floor", "shape": {"type": "plane", "size": 6, "subdivisions": 8},
+    "material": {"texture": {"pattern": "checker-noise", "size": 64, "squares": 4, "noise": 0.35, "seed": 2},
+                 "texture_repeat": 3}},
    {"name": "ball", "shape": {"type": "sphere", "radius": 0.5, "subdivisions": 2},
     "transform": {"translate": [-0.5, 0.5, 0]}, "material": {"albedo": [0.7, 0.5, 0.4]}},
    {"name": "box", "shape": {"type": "box", "size": [0.6, 0.9, 0.6]},
@@ -40,6 +42,8 @@ for cpu in native Haswell-v4 qemu64; do
   render "$cpu" usm3d --method usm3d --sigma 0.15 --lambda 2
   render "$cpu" usm2d --method usm2d --sigma-px 2 --lambda 2
   render "$cpu" depth-usm --method depth-usm --kernel 10 --lambda 1
+  render "$cpu" texture-filter --method texture-filter --mode mip --filter unsharp --sigma 2 --lambda 1
+  render "$cpu" lla --method lla --sigma 0.05 --lambda 1
   [ "$cpu" = native ] && continue
   # The G-buffer holds each hit's depth and interpolated normal as floats: a difference in the
   # last bits shows there even where no 8-bit code changes.
@@ -49,12 +53,12 @@ for cpu in native Haswell-v4 qemu64; do
       failed=1
     fi
   done
-  for name in plain usm3d usm2d depth-usm; do
+  for name in plain usm3d usm2d depth-usm texture-filter lla; do
     if ! cmp -s "$out/native-$name.png" "$out/$cpu-$name.png"; then
       echo "$name: the image on $cpu differs from this processor's"
       failed=1
     fi
   done
 done
-[ "$failed" = 0 ] && echo "the same bytes on this processor, Haswell-v4 and qemu64 (plain, usm3d, usm2d, depth-usm, G-buffer)"
+[ "$failed" = 0 ] && echo "the same bytes on this processor, Haswell-v4 and qemu64 (plain, usm3d, usm2d, depth-usm, texture-filter, lla, G-buffer)"
 exit "$failed"
