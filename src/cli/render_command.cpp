@@ -79,11 +79,20 @@ std::string check_output(const RenderArgs& args, bool enhanced) {
   return ext;
 }
 
+// --width and --height override the camera's size; one given alone keeps the scene's aspect ratio,
+// so the image shows the same framing at another resolution.
+void apply_size(Camera& camera, std::optional<int> width, std::optional<int> height) {
+  const double aspect = double(camera.width) / double(camera.height);
+  if (width) camera.width = *width;
+  if (height) camera.height = *height;
+  if (width && !height) camera.height = std::max(1, int(std::lround(*width / aspect)));
+  if (height && !width) camera.width = std::max(1, int(std::lround(*height * aspect)));
+}
+
 std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderRequest& request) {
   auto scene = std::make_shared<Scene>(load_scene(args.scene));
   apply_request(*scene, request);
-  if (args.width) scene->camera.width = *args.width;
-  if (args.height) scene->camera.height = *args.height;
+  apply_size(scene->camera, args.width, args.height);
   if (args.spp) scene->settings.spp = *args.spp;
   if (args.noise) {
     if (scene->settings.sampling == SamplingMode::independent)
@@ -183,8 +192,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output,
                   "Output image: .png/.tif display-encoded, .exr linear radiance")->required();
   add_method_options(cmd, args->method, "Enhancement method (`countershade methods` lists them)");
-  cmd->add_option("--width", args->width, "Override the camera's width in pixels")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", args->height, "Override the camera's height in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--width", args->width, "Override the camera's width in pixels (alone: the height follows the scene's aspect ratio)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", args->height, "Override the camera's height in pixels (alone: the width follows the scene's aspect ratio)")->check(CLI::Range(1, 16384));
   auto* spp = cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")
                   ->check(CLI::Range(1, 65536));
   cmd->add_option("--noise", args->noise, "Sample to this L* noise RMS of the written image (the scene's budget otherwise)")

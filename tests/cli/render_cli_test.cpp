@@ -49,6 +49,19 @@ TEST(RenderCli, RendersPngExrAndAuxiliaryBuffers) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
 }
 
+TEST(RenderCli, OneSizeGivenAloneKeepsTheScenesAspectRatio) {
+  testing::TempDir dir;
+  auto scene = testing::write_file(dir / "s.json", kScene);  // 40×30
+  const std::string base = "render " + scene.string() + " -o ";
+  ASSERT_EQ(run_cli(base + (dir / "w.png").string() + " --width 20").exit_code, 0);
+  ASSERT_EQ(run_cli(base + (dir / "h.png").string() + " --height 9").exit_code, 0);
+  const Image w = read_image(dir / "w.png"), h = read_image(dir / "h.png");
+  EXPECT_EQ(w.width, 20);
+  EXPECT_EQ(w.height, 15);
+  EXPECT_EQ(h.width, 12);
+  EXPECT_EQ(h.height, 9);
+}
+
 TEST(RenderCli, Usm3dAtLambdaZeroMatchesTheUnenhancedPngByteForByte) {
   testing::TempDir dir;
   auto scene = testing::write_file(dir / "s.json", kScene);
