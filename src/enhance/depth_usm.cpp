@@ -375,7 +375,8 @@ struct DepthNormaliser {
   }
 };
 
-DepthNormaliser depth_normaliser(const View& view, const DepthMapping& mapping) {
+// The range of the view's valid depths; lo > hi when none is valid.
+std::pair<float, float> view_depth_range(const View& view) {
   float lo = INFINITY, hi = -INFINITY;
   std::mutex range_mutex;
   parallel_chunks(view.depth.size(), [&](size_t begin, size_t end) {
@@ -385,14 +386,18 @@ DepthNormaliser depth_normaliser(const View& view, const DepthMapping& mapping) 
     lo = std::min(lo, l);
     hi = std::max(hi, hh);
   });
+  return {lo, hi};
+}
+
+DepthNormaliser depth_normaliser(const View& view, const DepthMapping& mapping) {
+  // A fixed range needs no scan: an invalid depth maps to far whatever the range.
+  auto [lo, hi] = mapping.range ? std::pair<float, float>(float(mapping.range->first), float(mapping.range->second))
+                                : view_depth_range(view);
   DepthNormaliser n;
   n.any = lo <= hi;
   n.zbuffer = mapping.zbuffer;
+  n.clamp = mapping.range.has_value();
   if (!n.any) return n;
-  if (mapping.range) {
-    lo = float(mapping.range->first), hi = float(mapping.range->second);
-    n.clamp = true;
-  }
   n.lo = lo;
   n.scale = hi > lo ? 1.0 / (double(hi) - double(lo)) : 0.0;
   n.near = mapping.z_near.value_or(lo);
