@@ -29,7 +29,7 @@ namespace {
 struct FlickerArgs {
   std::string scene, frames, csv, maps, object, without;
   MethodArgs method;
-  std::optional<int> spp, threads;
+  std::optional<int> width, height, spp, threads;
   int bits = 8;  // the stimuli's output bit depth
   double scale_px = 0;  // > 0: also compare the layers blurred to this scale
   double stable = 0;    // > 0: also the flicker where the plain L* reprojects within this
@@ -256,6 +256,7 @@ void run(const FlickerArgs& args, const CLI::App* cmd) {
   }
   Scene base = load_scene(args.scene);
   apply_request(base, m.request);
+  resize(base.camera, args.width, args.height);
   if (args.spp) base.settings.spp = *args.spp;
   m.method->check_scene(base, *m.parameters);
   const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
@@ -314,6 +315,10 @@ void add_flicker_command(CLI::App& app) {
   cmd->add_option("--bits", args->bits, "The stimuli's bit depth (8 or 16), as a set's \"bits\"")
       ->check(CLI::IsMember({8, 16}))
       ->capture_default_str();
+  cmd->add_option("--width", args->width, "Override the camera's width in pixels (alone: the height follows the aspect ratio)")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", args->height, "Override the camera's height in pixels (alone: the width follows the aspect ratio)")
+      ->check(CLI::Range(1, 16384));
   cmd->add_option("--spp", args->spp, "A fixed number of samples per pixel instead of the noise budget")->check(CLI::Range(1, 65536));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->callback([cmd, args] { run(*args, cmd); });

@@ -79,20 +79,10 @@ std::string check_output(const RenderArgs& args, bool enhanced) {
   return ext;
 }
 
-// --width and --height override the camera's size; one given alone keeps the scene's aspect ratio,
-// so the image shows the same framing at another resolution.
-void apply_size(Camera& camera, std::optional<int> width, std::optional<int> height) {
-  const double aspect = double(camera.width) / double(camera.height);
-  if (width) camera.width = *width;
-  if (height) camera.height = *height;
-  if (width && !height) camera.height = std::max(1, int(std::lround(*width / aspect)));
-  if (height && !width) camera.width = std::max(1, int(std::lround(*height * aspect)));
-}
-
 std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderRequest& request) {
   auto scene = std::make_shared<Scene>(load_scene(args.scene));
   apply_request(*scene, request);
-  apply_size(scene->camera, args.width, args.height);
+  resize(scene->camera, args.width, args.height);
   if (args.spp) scene->settings.spp = *args.spp;
   if (args.noise) {
     if (scene->settings.sampling == SamplingMode::independent)

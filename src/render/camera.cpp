@@ -1,11 +1,20 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 namespace countershade {
+
+void resize(Camera& camera, std::optional<int> width, std::optional<int> height) {
+  const double aspect = double(camera.width) / double(camera.height);
+  if (width) camera.width = *width;
+  if (height) camera.height = *height;
+  if (width && !height) camera.height = std::max(1, int(std::lround(*width / aspect)));
+  if (height && !width) camera.width = std::max(1, int(std::lround(*height * aspect)));
+}
 
 CameraRays::CameraRays(const Camera& camera) : camera_(camera) {
   forward_ = glm::normalize(camera.target - camera.eye);

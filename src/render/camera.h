@@ -1,6 +1,8 @@
 #pragma once
 // Look-at camera, perspective (vertical field of view) or orthographic (view height).
 
+#include <optional>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -13,6 +15,10 @@ struct Camera {
   double ortho_height = 2.0;       // orthographic: world-space height of the view
   int width = 640, height = 480;
 };
+
+// Sets the image size (command-line overrides); one of the two given alone keeps the aspect ratio,
+// so the image shows the same framing at another resolution.
+void resize(Camera& camera, std::optional<int> width, std::optional<int> height);
 
 struct Ray {
   glm::dvec3 origin, direction;  // direction is unit length

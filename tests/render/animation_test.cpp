@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/image.h"
 #include "enhance/view.h"
 #include "render/camera.h"
 #include "render/scene_animation.h"
@@ -179,6 +180,13 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0001.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0002.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/plain-0002.png"));
+  // --width alone scales the frames and keeps the scene's 4:3.
+  const auto small = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --width 24 --frames 0:1 --maps " +
+                                      (dir / "small").string());
+  ASSERT_EQ(small.exit_code, 0) << small.output;
+  const Image map = read_image(dir / "small/flicker-0001.png");
+  EXPECT_EQ(map.width, 24);
+  EXPECT_EQ(map.height, 18);
   const auto bad = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --frames 1:1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(testing::count_lines(bad.output), 1) << bad.output;
