@@ -57,7 +57,8 @@ ParameterBag ParameterBag::from_json(const nlohmann::json& object, const std::st
     throw_input_error(file + (path.empty() ? "" : ": " + path), "expected an object, got " + json_type_name(object));
   for (auto it = object.begin(); it != object.end(); ++it) {
     if (skip.count(it.key())) continue;
-    bag.entries_[it.key()] = {it.value(), file + ": " + (path.empty() ? "" : path + ".") + it.key(), false};
+    const size_t order = bag.entries_.size();
+    bag.entries_[it.key()] = {it.value(), file + ": " + (path.empty() ? "" : path + ".") + it.key(), false, order};
   }
   return bag;
 }
@@ -87,13 +88,15 @@ ParameterBag ParameterBag::from_arguments(const std::vector<std::string>& words)
       value = "true";
     }
     if (bag.entries_.count(key)) throw InputError("--" + kebab_case(key) + ": given twice");
-    bag.entries_[key] = {value, "--" + kebab_case(key), true};
+    const size_t order = bag.entries_.size();
+    bag.entries_[key] = {value, "--" + kebab_case(key), true, order};
   }
   return bag;
 }
 
 void ParameterBag::set(const std::string& key, nlohmann::json value, const std::string& where) {
-  entries_[key] = {std::move(value), where, false};
+  const size_t order = entries_.count(key) ? entries_[key].order : entries_.size();
+  entries_[key] = {std::move(value), where, false, order};
 }
 
 const ParameterBag::Entry* ParameterBag::find(const std::string& key) const {
@@ -221,10 +224,13 @@ std::string ParameterBag::known_list() const {
 }
 
 void ParameterBag::finish(const std::string& owner) const {
-  for (const auto& [key, entry] : entries_)
-    if (!known_.count(key))
-      throw_input_error(entry.where, owner + " has no parameter '" + (command_line_ ? kebab_case(key) : key) +
-                                         "' (" + (known_.empty() ? known_list() : "its parameters: " + known_list()) + ")");
+  const std::pair<const std::string, Entry>* first = nullptr;
+  for (const auto& item : entries_)
+    if (!known_.count(item.first) && (!first || item.second.order < first->second.order)) first = &item;
+  if (!first) return;
+  const auto& [key, entry] = *first;
+  throw_input_error(entry.where, owner + " has no parameter '" + (command_line_ ? kebab_case(key) : key) + "' (" +
+                                     (known_.empty() ? known_list() : "its parameters: " + known_list()) + ")");
 }
 
 nlohmann::ordered_json ParameterBag::to_json() const {

@@ -62,6 +62,7 @@ class ParameterBag {
     nlohmann::json value;
     std::string where;
     bool from_text = false;  // command-line text, converted on read
+    size_t order = 0;        // as given, so that an error names the first unknown key typed
   };
   const Entry* find(const std::string& key) const;
   std::string known_list() const;

@@ -482,6 +482,10 @@ TEST(Usm3d, ParsesItsParametersAndRejectsTheRest) {
   message = testing::input_error_of(
       [&] { m.parse(ParameterBag::from_arguments({"--kernel", "5%", "--operator", "add"})); });
   EXPECT_NE(message.find("--kernel: usm3d has no parameter 'kernel'"), std::string::npos) << message;
+  // Of several, the first one typed.
+  message = testing::input_error_of(
+      [&] { m.parse(ParameterBag::from_arguments({"--sigma", "0.1", "--operator", "add", "--kernel", "5%"})); });
+  EXPECT_NE(message.find("--operator: usm3d has no parameter 'operator'"), std::string::npos) << message;
 }
 
 }  // namespace
