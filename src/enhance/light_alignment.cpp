@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "core/isa.h"
 #include "core/lane_math.h"
 #include "core/lane_vec3.h"
 
@@ -70,12 +71,36 @@ template <typename D>
 Vec3Lanes<double> lanes_of(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 glm::dvec3 vector_of(const Vec3Lanes<double>& v) { return {v.x, v.y, v.z}; }
 
-#if defined(__clang__)
-using AlignmentLanes = double __attribute__((vector_size(32)));  // see LabLanes in enhance/lightness.cpp
-#else
-using AlignmentLanes = double __attribute__((vector_size(64)));
-#endif
-constexpr size_t kLanes = sizeof(AlignmentLanes) / sizeof(double);
+// align_light_block on the lanes of D at once.
+template <typename D>
+[[gnu::always_inline]] inline void align_light_lanes(AlignmentBlock& block, size_t count, size_t scales,
+                                                     std::span<const double> strengths, double damping) {
+  constexpr size_t kLanes = sizeof(D) / sizeof(double);
+  static_assert(kAlignmentBlock % kLanes == 0);
+  scales = std::min(scales, kMaxAlignmentScales);
+  for (size_t first = 0; first < count; first += kLanes) {
+    if (scales < 2) {
+      for (int c = 0; c < 3; ++c) std::copy_n(block.light[c] + first, kLanes, block.aligned[c] + first);
+      continue;
+    }
+    Vec3Lanes<D> v[kMaxAlignmentScales];
+    for (size_t k = 0; k < scales; ++k) v[k] = load_lanes<D>(block.vectors[k], first);
+    const auto l = cascade_lanes(load_lanes<D>(block.light, first), v, scales, strengths, damping);
+    store_lanes(l, block.aligned, first);
+  }
+}
+
+COUNTERSHADE_AVX512_FUNCTION
+void align_light_avx512(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
+                        double damping) {
+  align_light_lanes<WideLanes>(block, count, scales, strengths, damping);
+}
+
+COUNTERSHADE_AVX2_CLONES
+void align_light_avx2(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
+                      double damping) {
+  align_light_lanes<NarrowLanes>(block, count, scales, strengths, damping);
+}
 
 }  // namespace
 
@@ -103,20 +128,9 @@ glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vect
   return vector_of(cascade_lanes(lanes_of(light), v, count, strengths, weight.damping()));
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void align_light_block(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
                        double damping) {
-  scales = std::min(scales, kMaxAlignmentScales);
-  for (size_t first = 0; first < count; first += kLanes) {
-    if (scales < 2) {
-      for (int c = 0; c < 3; ++c) std::copy_n(block.light[c] + first, kLanes, block.aligned[c] + first);
-      continue;
-    }
-    Vec3Lanes<AlignmentLanes> v[kMaxAlignmentScales];
-    for (size_t k = 0; k < scales; ++k) v[k] = load_lanes<AlignmentLanes>(block.vectors[k], first);
-    const auto l = cascade_lanes(load_lanes<AlignmentLanes>(block.light, first), v, scales, strengths, damping);
-    store_lanes(l, block.aligned, first);
-  }
+  (has_avx512() ? align_light_avx512 : align_light_avx2)(block, count, scales, strengths, damping);
 }
 
 }  // namespace countershade

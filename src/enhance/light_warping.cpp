@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/isa.h"
 #include "core/lane_math.h"
 #include "core/lane_vec3.h"
 #include "enhance/light_warping.h"
@@ -42,14 +43,6 @@ template <typename D, typename I>
   return select_lanes(across_length < 1e-12, wi, r * cos_warped + (across / across_length) * sin_warped);
 }
 
-#if defined(__clang__)
-using WarpLanes = double __attribute__((vector_size(32)));  // see LabLanes in enhance/lightness.cpp
-using WarpLaneBits = int64_t __attribute__((vector_size(32)));
-#else
-using WarpLanes = double __attribute__((vector_size(64)));
-using WarpLaneBits = int64_t __attribute__((vector_size(64)));
-#endif
-constexpr size_t kWarpLanes = sizeof(WarpLanes) / sizeof(double);
 constexpr size_t kWarpBlock = 64;
 
 // Planes of one coordinate per light sample.
@@ -58,16 +51,32 @@ struct WarpBlock {
   double warped[3][kWarpBlock] = {};
 };
 
-// Warps samples 0 … count−1 of the block (those past `count` are computed and ignored).
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void warp_light_block(WarpBlock& block, size_t count, double lambda) {
-  for (size_t first = 0; first < count; first += kWarpLanes) {
-    WarpLanes kappa;
+// Warps samples 0 … count−1 of the block on the lanes of D at once (those past `count` are
+// computed and ignored).
+template <typename D, typename I>
+[[gnu::always_inline]] inline void warp_light_lanes(WarpBlock& block, size_t count, double lambda) {
+  constexpr size_t kLanes = sizeof(D) / sizeof(double);
+  static_assert(kWarpBlock % kLanes == 0);
+  for (size_t first = 0; first < count; first += kLanes) {
+    D kappa;
     std::memcpy(&kappa, block.kappa + first, sizeof kappa);
-    const auto w = warp_lanes<WarpLanes, WarpLaneBits>(load_lanes<WarpLanes>(block.wi, first),
-                                                       load_lanes<WarpLanes>(block.r, first), kappa, lambda);
+    const auto w = warp_lanes<D, I>(load_lanes<D>(block.wi, first), load_lanes<D>(block.r, first), kappa, lambda);
     store_lanes(w, block.warped, first);
   }
+}
+
+COUNTERSHADE_AVX512_FUNCTION
+void warp_light_avx512(WarpBlock& block, size_t count, double lambda) {
+  warp_light_lanes<WideLanes, WideLaneBits>(block, count, lambda);
+}
+
+COUNTERSHADE_AVX2_CLONES
+void warp_light_avx2(WarpBlock& block, size_t count, double lambda) {
+  warp_light_lanes<NarrowLanes, NarrowLaneBits>(block, count, lambda);
+}
+
+void warp_light_block(WarpBlock& block, size_t count, double lambda) {
+  (has_avx512() ? warp_light_avx512 : warp_light_avx2)(block, count, lambda);
 }
 
 }  // namespace

@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <optional>
+#include <type_traits>
 
 #include <immintrin.h>
 
@@ -13,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/code_quantizer.h"
+#include "core/isa.h"
 #include "core/parallel.h"
 #include "enhance/stimulus_noise.h"
 
@@ -117,6 +119,9 @@ using v4d = double __attribute__((vector_size(32)));
 using v4l = int64_t __attribute__((vector_size(32)));
 using v8d = double __attribute__((vector_size(64)));
 using v8l = int64_t __attribute__((vector_size(64)));
+using v4f = float __attribute__((vector_size(16)));
+using v8f = float __attribute__((vector_size(32)));
+using v8i = int32_t __attribute__((vector_size(32)));
 
 // lab_to_linear_rgb(with_lightness(lab, target)) on four or eight pixels: the same operations in
 // the same order as the scalar functions of core/color.h, lane by lane, so the results are
@@ -224,7 +229,7 @@ template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, double, flo
   return clipped;
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+COUNTERSHADE_CLONES
 size_t compose_block_fast(const Lab* lab, const float* in, const double* delta, size_t count,
                           const CodeQuantizer::Table& table, double inverse_levels, float* out) {
   return compose_block<quantize_rgb4>(lab, in, delta, count, table, inverse_levels, out);
@@ -244,11 +249,6 @@ size_t compose_block_fast(const Lab* lab, const float* in, const double* delta, 
 
 std::atomic<bool> wide_composition_allowed{true};
 
-bool has_avx512() {
-  static const bool yes = __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                          __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
-  return yes;
-}
 
 // The code values (code / levels) of eight linear values, clamped as clamp_unit4 does.
 COUNTERSHADE_AVX512 inline __m256 quantize8(__m512d c, const CodeQuantizer::Table& table, __m512d inverse_levels) {
@@ -371,16 +371,6 @@ size_t compose_block_slow(const Lab* lab, const float* in, const double* delta, 
   return clipped;
 }
 
-#if defined(__clang__)
-// clang refuses 512-bit vectors as arguments (even of always-inline helpers) in the clones
-// without AVX-512, so the fuzz build converts four pixels at a time; the lanes are the same.
-using LabLanes = v4d;
-using LabLaneBits = v4l;
-#else
-using LabLanes = v8d;
-using LabLaneBits = v8l;
-#endif
-
 // Lanes of L*, a* and b* stored as consecutive Lab pixels: two two-source shuffles per output
 // vector (one permute each with AVX-512), rather than one extraction per value.
 template <typename D>
@@ -405,12 +395,12 @@ template <typename D>
   for (size_t i = 0; i < kDoubles; i += 2) _mm_stream_pd(o + i, _mm_loadu_pd(d + i));
 }
 
-// linear_rgb_to_lab on eight pixels at once, lane by lane the operations of the scalar code in
-// core/color: one AVX-512 register per vector where there is one, split by the compiler elsewhere.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+// linear_rgb_to_lab on the lanes of D at once (eight or four pixels), lane by lane the operations
+// of the scalar code in core/color.
+template <typename D, typename I>
+[[gnu::always_inline]] inline void linear_to_lab_lanes(const double* r, const double* g, const double* b, size_t count,
+                                                       Lab* out, float* lightness) {
   using namespace color_constants;
-  using D = LabLanes;
   constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
     D R, G, B;
@@ -420,12 +410,13 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
     const D X = kRgbToXyz[0][0] * R + kRgbToXyz[0][1] * G + kRgbToXyz[0][2] * B;
     const D Y = kRgbToXyz[1][0] * R + kRgbToXyz[1][1] * G + kRgbToXyz[1][2] * B;
     const D Z = kRgbToXyz[2][0] * R + kRgbToXyz[2][1] * G + kRgbToXyz[2][2] * B;
-    const D fx = lab_f_lanes<D, LabLaneBits>(X * kInverseWhite[0]), fy = lab_f_lanes<D, LabLaneBits>(Y * kInverseWhite[1]),
-            fz = lab_f_lanes<D, LabLaneBits>(Z * kInverseWhite[2]);
+    const D fx = lab_f_lanes<D, I>(X * kInverseWhite[0]), fy = lab_f_lanes<D, I>(Y * kInverseWhite[1]),
+            fz = lab_f_lanes<D, I>(Z * kInverseWhite[2]);
     const D L = 116.0 * fy - 16.0, a = 500.0 * (fx - fy), bb = 200.0 * (fy - fz);
     store_lab_lanes(L, a, bb, out + k);
     if (lightness) {
-      const auto single = __builtin_convertvector(L, float __attribute__((vector_size(sizeof(D) / 2))));
+      using Singles = std::conditional_t<sizeof(D) == 64, v8f, v4f>;
+      const auto single = __builtin_convertvector(L, Singles);
       std::memcpy(lightness + k, &single, sizeof single);
     }
   }
@@ -435,17 +426,50 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
   }
 }
 
+COUNTERSHADE_AVX512_FUNCTION
+void linear_to_lab_avx512(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+  linear_to_lab_lanes<WideLanes, WideLaneBits>(r, g, b, count, out, lightness);
+}
+
+COUNTERSHADE_AVX2_CLONES
+void linear_to_lab_avx2(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+  linear_to_lab_lanes<NarrowLanes, NarrowLaneBits>(r, g, b, count, out, lightness);
+}
+
+void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+  (has_avx512() ? linear_to_lab_avx512 : linear_to_lab_avx2)(r, g, b, count, out, lightness);
+}
+
+// The code of a value (code / levels) and whether the value is exactly its code's value.
+template <typename F, typename I>
+[[gnu::always_inline]] inline I code_of(F v, float levels, I* exact) {
+  const F unit = v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f;  // NaN: 0, not exact below
+  I code;
+  if constexpr (std::is_scalar_v<F>) code = I(unit * levels + 0.5f);
+  else code = __builtin_convertvector(unit * levels + 0.5f, I);
+  F back;
+  if constexpr (std::is_scalar_v<F>) back = F(code);
+  else back = __builtin_convertvector(code, F);
+  *exact &= back / levels == v;
+  return code;
+}
+
 // The codes of n values (code / levels), and whether every value is exactly its code's value.
-// Branch-free, so that it vectorises.
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+// Eight lanes at a time in vectors: written as a plain loop, the comparisons (which may trap on
+// NaN) kept GCC from vectorising it for processors without AVX-512 (6 times slower).
+COUNTERSHADE_CLONES
 bool exact_codes(const float* values, size_t n, float levels, int32_t* code) {
-  int exact = 1;
-  for (size_t i = 0; i < n; ++i) {
-    const float v = values[i];
-    const float unit = v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f;  // NaN: 0, not exact below
-    code[i] = int32_t(unit * levels + 0.5f);
-    exact &= float(code[i]) / levels == v;
+  v8i exact8 = v8i{} - 1;
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    v8f v;
+    std::memcpy(&v, values + i, sizeof v);
+    const v8i c = code_of(v, levels, &exact8);
+    std::memcpy(code + i, &c, sizeof c);
   }
+  int32_t exact = 1;
+  for (int lane = 0; lane < 8; ++lane) exact &= exact8[lane] != 0;
+  for (; i < n; ++i) code[i] = code_of(values[i], levels, &exact);
   return exact;
 }
 
