@@ -249,7 +249,6 @@ size_t compose_block_fast(const Lab* lab, const float* in, const double* delta, 
 
 std::atomic<bool> wide_composition_allowed{true};
 
-
 // The code values (code / levels) of eight linear values, clamped as clamp_unit4 does.
 COUNTERSHADE_AVX512 inline __m256 quantize8(__m512d c, const CodeQuantizer::Table& table, __m512d inverse_levels) {
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
@@ -440,17 +439,20 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
   (has_avx512() ? linear_to_lab_avx512 : linear_to_lab_avx2)(r, g, b, count, out, lightness);
 }
 
-// The code of a value (code / levels) and whether the value is exactly its code's value.
+// A number or each lane of a vector converted to To (floats to integers truncated).
+template <typename To, typename From>
+[[gnu::always_inline]] inline To convert(From x) {
+  if constexpr (std::is_scalar_v<From>) return To(x);
+  else return __builtin_convertvector(x, To);
+}
+
+// The code of a value (code / levels) and whether the value is exactly its code's value, for a
+// float (I = int32_t) or lanes of floats (I: lanes of int32_t).
 template <typename F, typename I>
 [[gnu::always_inline]] inline I code_of(F v, float levels, I* exact) {
   const F unit = v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f;  // NaN: 0, not exact below
-  I code;
-  if constexpr (std::is_scalar_v<F>) code = I(unit * levels + 0.5f);
-  else code = __builtin_convertvector(unit * levels + 0.5f, I);
-  F back;
-  if constexpr (std::is_scalar_v<F>) back = F(code);
-  else back = __builtin_convertvector(code, F);
-  *exact &= back / levels == v;
+  const I code = convert<I>(unit * levels + 0.5f);
+  *exact &= convert<F>(code) / levels == v;
   return code;
 }
 
