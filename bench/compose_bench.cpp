@@ -4,6 +4,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "core/isa.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 
@@ -45,14 +46,14 @@ std::shared_ptr<const View> rendered_view() {
 void BM_ComposeLightness(benchmark::State& state) {
   const Case& c = kCases[state.range(0)];
   auto prepared = prepare_method(c.method, rendered_view(), c.parameters);
-  allow_wide_composition(state.range(1) != 0);
+  allow_avx512(state.range(1) != 0);
   double lambda = 0.5;
   for (auto _ : state) {
     Composed out = prepared->compose(lambda);
     benchmark::DoNotOptimize(out.display.pixels.data());
     lambda += 0.01;
   }
-  allow_wide_composition(true);
+  allow_avx512(true);
   state.SetLabel(std::string(c.method) + " " + c.parameters.dump() + (state.range(1) ? "" : ", four pixels at a time"));
 }
 // The second argument: 1 lets the composition take eight pixels at a time where the processor has

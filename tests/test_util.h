@@ -15,8 +15,21 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/isa.h"
 
 namespace countershade::testing {
+
+// Runs `check` with the AVX-512 functions and again without them (the path of other processors),
+// so that one machine tests both; once where the processor has no AVX-512.
+inline void with_and_without_avx512(const std::function<void()>& check) {
+  check();
+  if (!has_avx512()) return;
+  allow_avx512(false);
+  struct Restore {
+    ~Restore() { allow_avx512(true); }
+  } restore;
+  check();
+}
 
 inline std::filesystem::path shared_dir() { return COUNTERSHADE_SHARED_DIR; }
 inline std::filesystem::path source_dir() { return COUNTERSHADE_SOURCE_DIR; }

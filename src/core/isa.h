@@ -11,9 +11,12 @@
 
 namespace countershade {
 
-// Whether the AVX-512 functions below may run: the processor has AVX-512 (F, CD, DQ, BW, VL) and
-// this is not a COUNTERSHADE_WITHOUT_AVX512 build.
+// Whether the AVX-512 functions below may run: the processor has AVX-512 (F, CD, DQ, BW, VL), this
+// is not a COUNTERSHADE_WITHOUT_AVX512 build, and allow_avx512 did not turn them off.
 bool has_avx512();
+// Turns the AVX-512 functions off (false) or on again where the processor has them (true, the
+// default). Both ways give the same bits; tests and benchmarks compare the two paths on one machine.
+void allow_avx512(bool allow);
 
 // Lanes of doubles (and their 64-bit integers) for loops written once for any lane count: eight
 // for the AVX-512 function, four for the others. Vectors wider than the processor's registers cost

@@ -247,8 +247,6 @@ size_t compose_block_fast(const Lab* lab, const float* in, const double* delta, 
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
-std::atomic<bool> wide_composition_allowed{true};
-
 // The code values (code / levels) of eight linear values, clamped as clamp_unit4 does.
 COUNTERSHADE_AVX512 inline __m256 quantize8(__m512d c, const CodeQuantizer::Table& table, __m512d inverse_levels) {
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
@@ -578,7 +576,7 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
   const CodeQuantizer& quantizer = CodeQuantizer::shared(view.encoding, view.bits);
   const BlockComposer composer{quantizer, quantizer.uses_table() ? std::optional(quantizer.table()) : std::nullopt,
                                1.0 / double(float((1u << view.bits) - 1u)),  // see code_fraction
-                               has_avx512() && wide_composition_allowed};
+                               has_avx512()};
   Composed out;
   out.display = Image(view.width(), view.height(), 3, Image::Uninitialized{});  // every pixel is written below
   std::atomic<size_t> clipped{0};
@@ -600,8 +598,6 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
   out.clipped_pixels = clipped;
   return out;
 }
-
-void allow_wide_composition(bool allow) { wide_composition_allowed = allow; }
 
 std::vector<std::pair<std::string, Image>> LightnessPrepared::auxiliary() const {
   std::vector<std::pair<std::string, Image>> out = auxiliary_;

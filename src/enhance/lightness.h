@@ -65,10 +65,6 @@ struct LightnessChange {
 // values exactly, so λ = 0 reproduces the view bit for bit.
 Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0);
 
-// Whether compose_lightness may take eight pixels at a time where the processor has AVX-512
-// (the default). Both ways give the same bits; the switch lets tests and benchmarks compare them.
-void allow_wide_composition(bool allow);
-
 // The sampling noise of the stimulus of strength λ (PreparedEnhancement::noise).
 using NoiseFunction = std::function<NoiseModel(double lambda)>;
 

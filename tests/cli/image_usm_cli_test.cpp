@@ -27,16 +27,6 @@ const char* kScene = R"({
   "lights": [{"type": "directional", "direction": [1, 2, 1], "irradiance": 2}, {"type": "ambient", "radiance": 0.2}]
 })";
 
-// The largest difference of two 8-bit images' code values.
-int largest_code_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
-  const Image first = read_image(a), second = read_image(b);
-  EXPECT_EQ(first.pixels.size(), second.pixels.size());
-  int largest = 0;
-  for (size_t i = 0; i < std::min(first.pixels.size(), second.pixels.size()); ++i)
-    largest = std::max(largest, int(std::lround(std::abs(first.pixels[i] - second.pixels[i]) * 255.0f)));
-  return largest;
-}
-
 // Pixels with a depth edge in their 3×3 neighbourhood (another object, background against surface,
 // eye depths more than 5 % apart): where depth-usm samples a rendered pixel's area again.
 std::vector<bool> depth_edges(const Image& object, const Image& depth) {

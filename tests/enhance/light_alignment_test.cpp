@@ -10,6 +10,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "test_util.h"
+
 namespace countershade {
 namespace {
 
@@ -142,23 +144,25 @@ TEST(LightAlignment, FollowsTheDefinitionWithTheLibrarysFunctions) {
 }
 
 TEST(LightAlignment, ABlockAlignsEveryPointAsAlignLightDoesBitForBit) {
-  const std::vector<double> strengths = {1.0, 0.35};
-  const AlignmentWeight weight(2.5);
-  const std::vector<AlignmentCase> cases = alignment_cases(3 * kAlignmentBlock);
-  AlignmentBlock block;
-  for (size_t first = 0; first < cases.size(); first += kAlignmentBlock - 3) {  // blocks not filled to the end
-    const size_t count = std::min(kAlignmentBlock - 3, cases.size() - first);
-    for (size_t j = 0; j < count; ++j)
-      for (int c = 0; c < 3; ++c) {
-        block.light[c][j] = cases[first + j].light[c];
-        for (int k = 0; k < 3; ++k) block.vectors[k][c][j] = cases[first + j].normals[k][c];
+  testing::with_and_without_avx512([] {
+    const std::vector<double> strengths = {1.0, 0.35};
+    const AlignmentWeight weight(2.5);
+    const std::vector<AlignmentCase> cases = alignment_cases(3 * kAlignmentBlock);
+    AlignmentBlock block;
+    for (size_t first = 0; first < cases.size(); first += kAlignmentBlock - 3) {  // blocks not filled to the end
+      const size_t count = std::min(kAlignmentBlock - 3, cases.size() - first);
+      for (size_t j = 0; j < count; ++j)
+        for (int c = 0; c < 3; ++c) {
+          block.light[c][j] = cases[first + j].light[c];
+          for (int k = 0; k < 3; ++k) block.vectors[k][c][j] = cases[first + j].normals[k][c];
+        }
+      align_light_block(block, count, 3, strengths, weight.damping());
+      for (size_t j = 0; j < count; ++j) {
+        const glm::dvec3 one = align_light(cases[first + j].light, cases[first + j].normals, strengths, weight);
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(block.aligned[c][j], one[c]) << "point " << first + j;
       }
-    align_light_block(block, count, 3, strengths, weight.damping());
-    for (size_t j = 0; j < count; ++j) {
-      const glm::dvec3 one = align_light(cases[first + j].light, cases[first + j].normals, strengths, weight);
-      for (int c = 0; c < 3; ++c) ASSERT_EQ(block.aligned[c][j], one[c]) << "point " << first + j;
     }
-  }
+  });
 }
 
 }  // namespace

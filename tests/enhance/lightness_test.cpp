@@ -8,6 +8,8 @@
 #include <cmath>
 #include <random>
 
+#include "test_util.h"
+
 namespace countershade {
 namespace {
 
@@ -15,29 +17,31 @@ namespace {
 // for bit, for exact codes of 8 and 16 bits and for values that are not codes or out of range;
 // so does its plane of L* as floats.
 TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
-  std::mt19937 random(3);
-  for (int bits : {8, 16}) {
-    const float levels = float((1u << bits) - 1u);
-    Image image(131, 7, 3);  // an odd size: the vector blocks and their remainders
-    std::uniform_int_distribution<int> code(0, int(levels));
-    for (float& v : image.pixels) v = float(code(random)) / levels;
-    image.pixels[5] = 0.123456f;  // not a code: its block is decoded directly
-    image.pixels[400] = -0.0f;    // the code 0
-    image.pixels[1000] = 1.5f;    // out of range: decoded directly
-    image.pixels[2000] = -0.25f;
-    for (const auto& encoding : {DisplayEncoding::srgb(), DisplayEncoding::gamma(2.2)}) {
-      PixelVector lightness;
-      LabPixels lab = display_to_lab(image, encoding, bits, &lightness);
-      ASSERT_EQ(lightness.size(), lab.size());
-      for (size_t i = 0; i < lab.size(); ++i) {
-        const Lab expected = display_pixel_to_lab(&image.pixels[3 * i], encoding);
-        ASSERT_EQ(lightness[i], float(expected.L)) << i;
-        ASSERT_EQ(lab[i].L, expected.L) << i;
-        ASSERT_EQ(lab[i].a, expected.a) << i;
-        ASSERT_EQ(lab[i].b, expected.b) << i;
+  testing::with_and_without_avx512([] {
+    std::mt19937 random(3);
+    for (int bits : {8, 16}) {
+      const float levels = float((1u << bits) - 1u);
+      Image image(131, 7, 3);  // an odd size: the vector blocks and their remainders
+      std::uniform_int_distribution<int> code(0, int(levels));
+      for (float& v : image.pixels) v = float(code(random)) / levels;
+      image.pixels[5] = 0.123456f;  // not a code: its block is decoded directly
+      image.pixels[400] = -0.0f;    // the code 0
+      image.pixels[1000] = 1.5f;    // out of range: decoded directly
+      image.pixels[2000] = -0.25f;
+      for (const auto& encoding : {DisplayEncoding::srgb(), DisplayEncoding::gamma(2.2)}) {
+        PixelVector lightness;
+        LabPixels lab = display_to_lab(image, encoding, bits, &lightness);
+        ASSERT_EQ(lightness.size(), lab.size());
+        for (size_t i = 0; i < lab.size(); ++i) {
+          const Lab expected = display_pixel_to_lab(&image.pixels[3 * i], encoding);
+          ASSERT_EQ(lightness[i], float(expected.L)) << i;
+          ASSERT_EQ(lab[i].L, expected.L) << i;
+          ASSERT_EQ(lab[i].a, expected.a) << i;
+          ASSERT_EQ(lab[i].b, expected.b) << i;
+        }
       }
     }
-  }
+  });
 }
 
 // The cube root is within a few ulp of the correctly rounded one over its whole range.
@@ -87,12 +91,7 @@ void expect_compose_equals_the_scalar_definition() {
 }
 
 TEST(Lightness, ComposeEqualsTheScalarDefinition) {
-  expect_compose_equals_the_scalar_definition();
-  struct FourAtATime {
-    FourAtATime() { allow_wide_composition(false); }
-    ~FourAtATime() { allow_wide_composition(true); }
-  } four;
-  expect_compose_equals_the_scalar_definition();
+  testing::with_and_without_avx512(expect_compose_equals_the_scalar_definition);
 }
 
 // A detail change gives the bits of the scaled change whose amount is the stored difference
