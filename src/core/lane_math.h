@@ -13,6 +13,16 @@
 
 namespace countershade {
 
+// A number, or each lane of a vector, converted to To (floating point to integer truncates).
+template <typename To, typename From>
+[[gnu::always_inline]] inline To convert_lanes(From x) {
+  if constexpr (std::is_scalar_v<From>) {
+    return To(x);
+  } else {
+    return __builtin_convertvector(x, To);
+  }
+}
+
 template <typename D>
 [[gnu::always_inline]] inline D sqrt_lanes(D x) {
   if constexpr (std::is_same_v<D, double>) {
@@ -90,12 +100,7 @@ template <typename D, typename I>
   x = x > -700.0 ? (x < 700.0 ? x : 700.0) : -700.0;
   const D n = (x * kLog2e + kRound) - kRound;
   const D r = (x - n * kLn2High) - n * kLn2Low;
-  I k;
-  if constexpr (std::is_same_v<D, double>) {
-    k = I(n);
-  } else {
-    k = __builtin_convertvector(n, I);
-  }
+  const I k = convert_lanes<I>(n);
   return horner_lanes(r, kTaylor) * __builtin_bit_cast(D, (k + 1023) << 52);
 }
 

@@ -15,6 +15,7 @@
 
 #include "core/code_quantizer.h"
 #include "core/isa.h"
+#include "core/lane_math.h"
 #include "core/parallel.h"
 #include "enhance/stimulus_noise.h"
 
@@ -115,8 +116,8 @@ void block_delta(const LightnessChange& change, const float* signal, size_t firs
   }
 }
 
-using v4d = double __attribute__((vector_size(32)));
-using v4l = int64_t __attribute__((vector_size(32)));
+using v4d = NarrowLanes;
+using v4l = NarrowLaneBits;
 using v8d = double __attribute__((vector_size(64)));
 using v8l = int64_t __attribute__((vector_size(64)));
 using v4f = float __attribute__((vector_size(16)));
@@ -437,20 +438,13 @@ void linear_to_lab_block(const double* r, const double* g, const double* b, size
   (has_avx512() ? linear_to_lab_avx512 : linear_to_lab_avx2)(r, g, b, count, out, lightness);
 }
 
-// A number or each lane of a vector converted to To (floats to integers truncated).
-template <typename To, typename From>
-[[gnu::always_inline]] inline To convert(From x) {
-  if constexpr (std::is_scalar_v<From>) return To(x);
-  else return __builtin_convertvector(x, To);
-}
-
 // The code of a value (code / levels) and whether the value is exactly its code's value, for a
 // float (I = int32_t) or lanes of floats (I: lanes of int32_t).
 template <typename F, typename I>
 [[gnu::always_inline]] inline I code_of(F v, float levels, I* exact) {
   const F unit = v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f;  // NaN: 0, not exact below
-  const I code = convert<I>(unit * levels + 0.5f);
-  *exact &= convert<F>(code) / levels == v;
+  const I code = convert_lanes<I>(unit * levels + 0.5f);
+  *exact &= convert_lanes<F>(code) / levels == v;
   return code;
 }
 
