@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "core/color.h"
 #include "core/display.h"
@@ -94,7 +95,7 @@ double lightness_step(const CodeSteps& s) {
 
 double quantized_noise_steps(double r) {
   r = std::abs(r);
-  if (r >= kTableMax) return std::sqrt(r * r + 1.0 / 12.0);
+  if (!(r < kTableMax)) return std::sqrt(r * r + 1.0 / 12.0);  // NaN stays NaN, not an index
   const auto& table = quantized_table();
   const double x = r / kTableMax * kTableSteps;
   const int i = std::min(int(x), kTableSteps - 1);
@@ -111,6 +112,8 @@ NoiseModel lambda_noise(const View& view, const ChangeNoise* change, double lamb
     if (change)
       variance += 2.0 * lambda * change->covariance[p] + lambda * lambda * change->variance[p];
     if (!extra.empty()) variance += lambda * lambda * double(extra[p]) * extra[p];
+    // At an absurd λ the terms overflow, and inf − inf is NaN: the noise is unbounded then.
+    if (std::isnan(variance)) variance = std::numeric_limits<double>::infinity();
     model.sigma[p] = float(std::sqrt(std::max(variance, 0.0)));
   }
   return model;
@@ -140,6 +143,10 @@ NoiseSummary summarize_noise(const std::vector<float>& sigma) {
   }
   out.rms = std::sqrt(sum / double(sigma.size()));
   if (largest <= 0) return out;
+  if (!std::isfinite(largest)) {  // some pixel's noise is unbounded (an absurd λ), and so is p99
+    out.p99 = largest;
+    return out;
+  }
   // P(|e| > x) averaged over pixels falls with x; find where it is 1 %, on a histogram of σ.
   constexpr int kBins = 2048;
   std::vector<double> count(kBins, 0.0);

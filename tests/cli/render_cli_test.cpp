@@ -77,6 +77,20 @@ TEST(RenderCli, Usm3dAtLambdaZeroMatchesTheUnenhancedPngByteForByte) {
   EXPECT_NE(testing::read_file(dir / "strong.png"), testing::read_file(dir / "none.png"));
 }
 
+// λ = 1e300 overflows the noise model's terms (inf − inf); the stimulus saturates and its noise
+// is reported as unbounded. It used to index a table with NaN and crash.
+TEST(RenderCli, AnAbsurdLambdaSaturatesAndReportsUnboundedNoise) {
+  testing::TempDir dir;
+  auto scene = testing::write_file(dir / "s.json", kScene);
+  for (const char* lambda : {"1e300", "-1e300"}) {
+    auto r = run_cli("render " + scene.string() + " -o " + (dir / "o.png").string() +
+                     " --method usm3d --sigma 0.2 --lambda " + lambda);
+    ASSERT_EQ(r.exit_code, 0) << lambda << "\n" << r.output;
+    EXPECT_NE(r.output.find("noise inf L* RMS"), std::string::npos) << r.output;
+    EXPECT_EQ(read_image(dir / "o.png").width, 40);
+  }
+}
+
 TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
   testing::TempDir dir;
   auto scene = testing::write_file(dir / "s.json", kScene);

@@ -16,6 +16,8 @@ TEST(StimulusNoise, QuantisedNoiseHasItsLimits) {
   EXPECT_NEAR(quantized_noise_steps(0.001), std::sqrt(0.001 / std::sqrt(M_PI)), 2e-4);
   EXPECT_NEAR(quantized_noise_steps(10.0), std::sqrt(100.0 + 1.0 / 12.0), 1e-6);
   EXPECT_NEAR(quantized_noise_steps(-10.0), quantized_noise_steps(10.0), 1e-12);
+  EXPECT_EQ(quantized_noise_steps(INFINITY), INFINITY);
+  EXPECT_TRUE(std::isnan(quantized_noise_steps(NAN)));  // not a table index
 }
 
 // Against simulation: two renders of a pixel differ by independent normal errors before rounding.
@@ -46,6 +48,10 @@ TEST(StimulusNoise, SummaryGivesRmsAndTheNinetyNinthPercentile) {
   EXPECT_NEAR(mixed.rms, std::sqrt(0.5), 1e-6);
   EXPECT_NEAR(mixed.p99, 2.3263, 3e-3);  // 2 % of the noisy half exceed it
   EXPECT_EQ(summarize_noise(std::vector<float>(10, 0.0f)).p99, 0.0);
+  std::vector<float> unbounded(10, 0.5f);
+  unbounded[3] = INFINITY;  // a pixel at an absurd λ
+  EXPECT_EQ(summarize_noise(unbounded).rms, INFINITY);
+  EXPECT_EQ(summarize_noise(unbounded).p99, INFINITY);
 }
 
 }  // namespace
