@@ -1,5 +1,6 @@
 #include "analysis/cluster.h"
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -10,15 +11,17 @@ namespace countershade::analysis {
 
 namespace {
 
-// The closest pair of active clusters (the first in row order on ties), and its distance².
+// The closest pair of active clusters (the first in row order on ties), and its distance². A
+// distance that is not a number never wins; if none is a number, the first pair is merged.
 std::tuple<int, int, double> closest_pair(const Eigen::MatrixXd& d2, const std::vector<bool>& active) {
   const int n = int(d2.rows());
   int bi = -1, bj = -1;
-  double best = std::numeric_limits<double>::infinity();
+  double best = std::numeric_limits<double>::quiet_NaN();
   for (int i = 0; i < n; ++i) {
     if (!active[i]) continue;
     for (int j = i + 1; j < n; ++j)
-      if (active[j] && d2(i, j) < best) best = d2(i, j), bi = i, bj = j;
+      if (active[j] && (bi < 0 || d2(i, j) < best || (std::isnan(best) && !std::isnan(d2(i, j)))))
+        best = d2(i, j), bi = i, bj = j;
   }
   return {bi, bj, best};
 }

@@ -57,5 +57,16 @@ TEST(Cluster, WardSeparatesTwoObviousGroupsAndLabelsByFirstAppearance) {
   EXPECT_EQ(d.order.size(), 6u);
 }
 
+// Distances that overflow (inf − inf in the update is NaN) still give a full tree: every step merges
+// some pair. The first closest-pair search found none and indexed cluster −1.
+TEST(Cluster, WardMergesEverythingEvenWhenDistancesAreNotNumbers) {
+  Eigen::MatrixXd x(4, 1);
+  x << 1e300, -1e300, 0, 1;
+  const Dendrogram d = ward_d2(x);
+  EXPECT_EQ(d.merges.size(), 3u);
+  EXPECT_EQ(d.order.size(), 4u);
+  EXPECT_EQ(cut_tree(d, 4, 2).size(), 4u);
+}
+
 }  // namespace
 }  // namespace countershade::analysis
