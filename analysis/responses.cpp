@@ -79,6 +79,9 @@ class ResponseRows {
     resp.sigma = number(r, "sigma");
     resp.lambda = number(r, "lambda");
     if (resp.lambda < 0) throw_input_error(where(r, "lambda"), "λ must not be negative");
+    if (resp.lambda > kLargestLambda) throw_input_error(where(r, "lambda"), "λ beyond 1e6, the largest of any stimulus grid");
+    if (resp.lambda > 0 && resp.lambda < kLambdaResolution)
+      throw_input_error(where(r, "lambda"), "λ between 0 and 1e-9 is on no stimulus grid");
     auto question = question_from_name(text(r, "question"));
     if (!question)
       throw_input_error(where(r, "question"), "unknown question '" + text(r, "question") + "' (expected low, high or best)");
@@ -92,7 +95,8 @@ class ResponseRows {
   void read_grid(size_t r, Response& resp) const {
     if (column_.count("lambda_step")) {
       resp.lambda_step = number(r, "lambda_step");
-      if (!(resp.lambda_step > 0)) throw_input_error(where(r, "lambda_step"), "must be positive");
+      if (!(resp.lambda_step > 0) || resp.lambda_step > kLargestLambda)
+        throw_input_error(where(r, "lambda_step"), "must be positive and at most 1e6");
     }
     if (column_.count("lambda_index")) {
       const double index = number(r, "lambda_index");
@@ -102,7 +106,8 @@ class ResponseRows {
     }
     if (column_.count("lambda_max")) {
       resp.lambda_max = number(r, "lambda_max");
-      if (!(resp.lambda_max > 0)) throw_input_error(where(r, "lambda_max"), "must be positive");
+      if (!(resp.lambda_max > 0) || resp.lambda_max > kLargestLambda)
+        throw_input_error(where(r, "lambda_max"), "must be positive and at most 1e6");
       if (resp.lambda > resp.lambda_max * (1 + 1e-9))
         throw_input_error(where(r, "lambda"), "λ " + text(r, "lambda") + " is above lambda_max " + text(r, "lambda_max"));
     }

@@ -31,6 +31,8 @@ void add_flicker_command(CLI::App& app);
 
 // Sign checks with one short line of message (use these, not CLI::PositiveNumber).
 extern const CLI::Validator kPositive, kNonNegative;
+// lowest ≤ value ≤ highest, with a short message (CLI11's Range prints six decimals: 1e-9 as 0).
+CLI::Validator within(double lowest, double highest);
 
 // Adds a check to every floating-point option of every command: NaN and infinity are refused.
 void reject_non_finite_numbers(CLI::App& app);

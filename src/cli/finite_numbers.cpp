@@ -2,6 +2,7 @@
 // compare, and a NaN passes every comparison.
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "cli/commands.h"
@@ -29,6 +30,22 @@ CLI::Validator sign_check(bool zero_allowed) {
 }  // namespace
 
 const CLI::Validator kPositive = sign_check(false), kNonNegative = sign_check(true);
+
+CLI::Validator within(double lowest, double highest) {
+  char range[64];
+  std::snprintf(range, sizeof range, "%g to %g", lowest, highest);
+  return CLI::Validator(
+      [lowest, highest, range = std::string(range)](std::string& text) -> std::string {
+        double value = 0;
+        try {
+          value = std::stod(text);
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        return value >= lowest && value <= highest ? "" : "must be " + range + ", not " + text;
+      },
+      "FLOAT in " + std::string(range));
+}
 
 void reject_non_finite_numbers(CLI::App& app) {
   const CLI::Validator finite(

@@ -8,8 +8,12 @@
 #include "analysis/simulate.h"
 #include "cli/commands.h"
 #include "core/error.h"
+#include "formats/responses.h"
 
 namespace countershade::cli {
+namespace {
+constexpr double kMaxGridSteps = 100000;  // as an experiment's λ grid; the index is an int
+}  // namespace
 
 void add_simulate_command(CLI::App& app) {
   auto d = std::make_shared<analysis::SimulationDesign>();
@@ -19,13 +23,13 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("-o,--output", *output, "Responses CSV to write")->required();
   cmd->add_option("--subjects", d->subjects, "Number of observers")->check(CLI::Range(3, 100000))->capture_default_str();
   cmd->add_option("--repetitions", d->repetitions, "Answers per cell")->check(CLI::Range(1, 100))->capture_default_str();
-  cmd->add_option("--lambda-min", d->lambda_min, "First value of the λ grid")->check(kNonNegative)->capture_default_str();
-  cmd->add_option("--lambda-step", d->lambda_step, "λ grid step")->check(kPositive)->capture_default_str();
+  cmd->add_option("--lambda-min", d->lambda_min, "First value of the λ grid")->check(within(0.0, kLargestLambda))->capture_default_str();
+  cmd->add_option("--lambda-step", d->lambda_step, "λ grid step")->check(within(kLambdaResolution, kLargestLambda))->capture_default_str();
   cmd->add_option("--lambda-max", d->lambda_max, "Top of the λ grid (answers beyond it are censored there)")
-      ->check(kPositive)->capture_default_str();
-  cmd->add_option("--low", d->low, "Group λ_Low")->check(kPositive)->capture_default_str();
-  cmd->add_option("--answer-sd", d->answer_sd, "Within-subject SD of ln λ")->check(kNonNegative)->capture_default_str();
-  cmd->add_option("--high-jnd", d->high_jnd, "λ_High in JND")->check(kPositive)->capture_default_str();
+      ->check(within(kLambdaResolution, kLargestLambda))->capture_default_str();
+  cmd->add_option("--low", d->low, "Group λ_Low")->check(within(kLambdaResolution, kLargestLambda))->capture_default_str();
+  cmd->add_option("--answer-sd", d->answer_sd, "Within-subject SD of ln λ")->check(within(0.0, 10.0))->capture_default_str();
+  cmd->add_option("--high-jnd", d->high_jnd, "λ_High in JND")->check(within(kLambdaResolution, kLargestLambda))->capture_default_str();
   cmd->add_option("--weak-fraction", d->weak_fraction, "Share of observers preferring weak enhancement")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--seed", *seed, "Random seed")->capture_default_str();
@@ -34,6 +38,8 @@ void add_simulate_command(CLI::App& app) {
     d->seed = uint64_t(*seed);
     if (!(d->lambda_max >= d->lambda_min + d->lambda_step))
       throw InputError("--lambda-max: must be at least one step above --lambda-min");
+    if ((d->lambda_max - d->lambda_min) / d->lambda_step > kMaxGridSteps)
+      throw InputError("--lambda-step: more than 100000 grid values from --lambda-min to --lambda-max");
     const double rows = double(d->subjects) * double(d->repetitions) * double(d->scenes.size() * d->sigmas.size()) * 3;
     if (rows > 1e7)
       throw InputError("--subjects × --repetitions: " + std::to_string(d->subjects) + " observers × " +

@@ -14,6 +14,14 @@ inline constexpr const char* kQuestionNames[] = {"low", "high", "best"};
 inline const char* question_name(Question q) { return kQuestionNames[int(q)]; }
 std::optional<Question> question_from_name(const std::string& name);
 
+// The largest |λ| (and λ step) of a stimulus grid, and so of a recorded answer. Every method
+// saturates long before; the bound keeps the grid's decimal rounding exact and the analysis's
+// squares finite.
+inline constexpr double kLargestLambda = 1e6;
+// Grid values are rounded to this (so 0.15 is 0.15): a λ above 0 and below it is on no grid, and
+// as a λ_Low it would turn JND = λ / λ_Low into numbers whose squares overflow.
+inline constexpr double kLambdaResolution = 1e-9;
+
 // The columns the app writes, in order: the required ones, then every optional one.
 const std::vector<std::string>& response_columns();
 // The columns every responses file must have.

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "formats/responses.h"
 #include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
@@ -23,11 +24,14 @@
 
 namespace countershade {
 
-int LambdaGrid::count() const { return int(std::floor((max - min) / step + 1e-9)) + 1; }
+int LambdaGrid::count() const {
+  const double steps = std::floor((max - min) / step + 1e-9);
+  return steps < double(kMaxCount) ? int(steps) + 1 : kMaxCount + 1;  // no overflow of the int
+}
 
 double LambdaGrid::value(int index) const {
   double v = min + double(index) * step;
-  return std::round(v * 1e9) / 1e9;  // exact decimal grid values (0.15, not 0.15000000000000002)
+  return std::round(v / kLambdaResolution) * kLambdaResolution;  // exact decimal values: 0.15, not 0.15000000000000002
 }
 
 bool ExperimentMethod::applies_to(const std::string& scene) const {
@@ -89,8 +93,10 @@ LambdaGrid read_lambda_grid(const JsonObject& l) {
   grid.max = l.number_or("max", 3.0);
   grid.step = l.number_or("step", 0.05);
   if (!(grid.step > 0)) l.fail("step", "must be positive");
+  for (const char* key : {"min", "max", "step"})
+    if (std::abs(l.number_or(key, 0.0)) > kLargestLambda) l.fail(key, "beyond ±1e6 (every method saturates long before)");
   if (grid.max < grid.min) l.fail("max", "the λ range is empty (max < min)");
-  if (grid.count() > 100000) l.fail("step", "more than 100000 λ values");
+  if (grid.count() > LambdaGrid::kMaxCount) l.fail("step", "more than 100000 λ values");
   l.finish();
   return grid;
 }

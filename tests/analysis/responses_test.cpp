@@ -42,6 +42,11 @@ TEST(Responses, BadInputNamesFileLineAndColumn) {
       {std::string(kHeader) + "S1,\"a,0.1,low,0.5,0.05\n", "a quoted field is never closed"},
       {std::string(kHeader) + "S1,a,nan,low,0.5,0.05\n", "column 3 (sigma): 'nan' is not a number"},
       {std::string(kHeader) + "S1,a,0.1,low,-0.5,0.05\n", "column 5 (lambda): λ must not be negative"},
+      // Values no stimulus grid holds: their squares overflowed the clustering (a crash) and the
+      // JND scale (λ / λ_Low) turned the statistics into nulls.
+      {std::string(kHeader) + "S1,a,0.1,low,1e300,0.05\n", "column 5 (lambda): λ beyond 1e6"},
+      {std::string(kHeader) + "S1,a,0.1,low,1e-300,0.05\n", "column 5 (lambda): λ between 0 and 1e-9"},
+      {std::string(kHeader) + "S1,a,0.1,low,0.5,1e300\n", "column 6 (lambda_step): must be positive and at most 1e6"},
       {std::string(kHeader), "no responses after the header row"},
   };
   int i = 0;

@@ -171,7 +171,11 @@ TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {
            {"simulate" + out + " --low nan", "finite"},
            {"simulate" + out + " --answer-sd inf", "finite"},
            {"simulate" + out + " --weak-fraction nan", "finite"},
-           {"simulate" + out + " --lambda-step 0", "--lambda-step: must be more than 0, not 0"},
+           {"simulate" + out + " --lambda-step 0", "--lambda-step: must be 1e-09 to 1e+06, not 0"},
+           // A step of 1e-300 wrote lambda_index -2147483648 and λ -0: a corrupt CSV.
+           {"simulate" + out + " --lambda-step 1e-300", "--lambda-step: must be 1e-09 to 1e+06, not 1e-300"},
+           {"simulate" + out + " --lambda-max 1e300", "--lambda-max: must be 1e-09 to 1e+06"},
+           {"simulate" + out + " --lambda-max 1e6 --lambda-step 1e-3", "more than 100000 grid values"},
            {"simulate" + out + " --subjects 100000 --repetitions 100", "the limit is 10000000"},
        })
     expect_refused(c);

@@ -196,6 +196,10 @@ TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
       {variant("\"min\": 0, \"max\": 2", "\"min\": 2, \"max\": 1"), "the λ range is empty"},
       {variant("\"step\": 0.5", "\"step\": 0"), "lambda.step: must be positive"},
       {variant("\"step\": 0.5", "\"step\": -0.1"), "lambda.step: must be positive"},
+      // An absurd λ overflowed the decimal rounding to inf, and a count past INT_MAX wrapped.
+      {variant("\"min\": 0, \"max\": 2", "\"min\": 0, \"max\": 1e300"), "lambda.max: beyond ±1e6"},
+      {variant("\"min\": 0, \"max\": 2", "\"min\": -1e7, \"max\": 2"), "lambda.min: beyond ±1e6"},
+      {variant("\"step\": 0.5", "\"step\": 1e-12"), "more than 100000 λ values"},
       {variant("{\"name\": \"grey\"", "{\"name\": \"cube\""), "duplicate scene name 'cube'"},
       {variant("\"method\": \"usm2d\"", "\"method\": \"blur\""), "unknown method 'blur'"},
       {variant("\"sigma_fraction\": [0.03, 0.08]", "\"sigma_fraction\": []"), "the σ list is empty"},
