@@ -182,6 +182,12 @@ void add_anovas(BlockResults& b) {
   }
   b.json["anova"] = anova_json("question*scene*sigma", b.anova);
   b.json["anova_best_sigma"] = anova_json("scene*sigma (best only)", b.anova_best_sigma);
+  for (const std::vector<AnovaRow>* rows : {&b.anova, &b.anova_best_sigma})
+    for (const AnovaRow& r : *rows)
+      if (r.df1 > 1 && !r.has_sphericity)
+        b.warnings.push_back(r.effect + ": " + std::to_string(n) + " subjects are too few for a sphericity test of " +
+                             std::to_string(int(r.df1)) + " contrasts (at least " + std::to_string(int(r.df1) + 1) +
+                             " needed): no Mauchly test and no ε corrections, as in R");
 }
 
 // Paired t-tests between the questions on subject means, and λ_Best against 1 JND per scene,

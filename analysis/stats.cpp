@@ -168,7 +168,9 @@ std::vector<AnovaRow> rm_anova(const Eigen::MatrixXd& data, const std::vector<Wi
     row.F = (ss[k].ss_effect / row.df1) / (ss[k].ss_error / row.df2);
     row.p = f_upper(row.F, row.df1, row.df2);
     row.ges = ss[k].ss_effect / (ss[k].ss_effect + total_error);
-    if (p > 1) add_sphericity(row, ss[k].covariance, n, double(data.cols()));
+    // With fewer than p + 1 subjects the scores' covariance is singular: R (car, afex) reports no
+    // sphericity test and no corrections then, and neither does this.
+    if (p > 1 && n - 1 >= p) add_sphericity(row, ss[k].covariance, n, double(data.cols()));
     rows.push_back(row);
   }
   return rows;

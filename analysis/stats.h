@@ -33,7 +33,8 @@ struct WithinFactor {
 struct AnovaRow {
   std::string effect;  // "question", "question:scene", ...
   double df1 = 0, df2 = 0, F = 0, p = 0, ges = 0;
-  bool has_sphericity = false;  // Mauchly and corrections exist only when df1 > 1
+  // Mauchly and the corrections exist only when df1 > 1 and there are more subjects than df1.
+  bool has_sphericity = false;
   double mauchly_W = 0, mauchly_p = 0, gg_epsilon = 1, p_gg = 0, hf_epsilon = 1, p_hf = 0;
 };
 

@@ -33,6 +33,24 @@ TEST(AnalyzeCli, WritesResultsTablesFiguresAndReport) {
   EXPECT_EQ(anova.rfind("model,effect,df1,df2,F,p,ges", 0), 0u) << anova.substr(0, 80);
 }
 
+// study_b has 11 subjects, too few for the 12 contrasts of question × scene × σ: R reports no
+// sphericity test and no corrections for that effect, and the tables leave those cells empty.
+TEST(AnalyzeCli, AnEffectWithMoreContrastsThanSubjectsHasNoSphericityTest) {
+  testing::TempDir dir;
+  std::string study = (testing::shared_dir() / "reference/analysis/study_b.csv").string();
+  auto r = run_cli("analyze " + study + " -o " + (dir / "out").string() + " --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("question:scene:sigma: 11 subjects are too few for a sphericity test of 12 contrasts"),
+            std::string::npos)
+      << r.output;
+  const std::string anova = testing::read_file(dir / "out/anova.csv");
+  const size_t row = anova.find("question*scene*sigma,question:scene:sigma,12,120,");
+  ASSERT_NE(row, std::string::npos) << anova;
+  EXPECT_NE(anova.find(",,,,,,\n", row), std::string::npos) << anova.substr(row, 200);  // six empty cells
+  EXPECT_EQ(anova.find("nan"), std::string::npos) << anova;
+  EXPECT_EQ(testing::read_file(dir / "out/report.html").find("nan<"), std::string::npos);
+}
+
 TEST(AnalyzeCli, SimulatedStudyRoundTripsWithMethodBlocks) {
   testing::TempDir dir;
   auto r = run_cli("simulate -o " + (dir / "sim.csv").string() + " --subjects 12 --seed 3");
