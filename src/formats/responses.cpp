@@ -3,6 +3,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "core/utf8.h"
 
 namespace countershade {
 
@@ -48,6 +49,8 @@ class CsvParser {
     throw_input_error(file_ + ": line " + std::to_string(line_) + ", column " + std::to_string(row_.size() + 1), what);
   }
   void end_field() {
+    // Names end up in results.json and the report, which hold only UTF-8 text.
+    if (!is_utf8(field_)) fail("not UTF-8 text (save the file as UTF-8)");
     row_.push_back(std::move(field_));
     field_.clear();
     field_started_ = after_quote_ = false;

@@ -48,6 +48,10 @@ TEST(Responses, BadInputNamesFileLineAndColumn) {
       {std::string(kHeader) + "S1,a,0.1,low,1e-300,0.05\n", "column 5 (lambda): λ between 0 and 1e-9"},
       {std::string(kHeader) + "S1,a,0.1,low,0.5,1e300\n", "column 6 (lambda_step): must be positive and at most 1e6"},
       {std::string(kHeader), "no responses after the header row"},
+      // Found by the analysis fuzzer: a Latin-1 subject id reached results.json, whose writer
+      // threw on it (exit 1, "failure").
+      {std::string(kHeader) + "S\xe9,a,0.1,low,0.5,0.05\n", "line 2, column 1: not UTF-8 text"},
+      {std::string(kHeader) + "S1,\"a\xff\",0.1,low,0.5,0.05\n", "line 2, column 2: not UTF-8 text"},
   };
   int i = 0;
   for (const auto& c : cases) {
