@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cfloat>
 #include <cmath>
 #include <mutex>
 
@@ -192,7 +193,11 @@ class DepthUsmRgb final : public PreparedEnhancement {
     const float* in = view_->display.pixels.data();
     const float *darker = si_.darker.pixels.data(), *lighter = si_.lighter.pixels.data();
     float* out = result.pixels.data();
-    const float coefficients[6] = {float(a.x), float(a.y), float(a.z), float(b.x), float(b.y), float(b.z)};
+    // Beyond float's range a coefficient would be inf, and inf × a zero ΔD is NaN. |ΔD| ≤ 1, so
+    // at ±FLT_MAX each term stays finite or saturates, and the clip does the rest.
+    const auto coefficient = [](double c) { return float(std::clamp(c, -double(FLT_MAX), double(FLT_MAX))); };
+    const float coefficients[6] = {coefficient(a.x), coefficient(a.y), coefficient(a.z),
+                                   coefficient(b.x), coefficient(b.y), coefficient(b.z)};
     parallel_chunks(view_->lab.size(), [&](size_t begin, size_t end) {
       clipped += offset_and_clip(in + 3 * begin, darker + begin, lighter + begin, out + 3 * begin, end - begin,
                                  coefficients);
