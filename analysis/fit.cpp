@@ -311,6 +311,9 @@ double fit_cdf(const Fit& fit, double lambda) {
 }
 
 void bootstrap_threshold(Fit& fit, const AnswerGrid& grid, int resamples, uint64_t seed) {
+  // A model whose parameters ran off to infinity draws no thresholds (found by the fuzzer: NaN
+  // draws became grid indices); its fit is reported as not converged already.
+  if (!std::isfinite(fit.location) || !std::isfinite(fit.scale) || !(fit.scale > 0)) return;
   const double start[2] = {fit.location, std::log(fit.scale)};
   // Each resample has its own random stream, so the result does not depend on scheduling.
   std::vector<double> results(size_t(resamples), std::nan(""));

@@ -47,7 +47,8 @@ struct Fit {
   size_t left_censored = 0, right_censored = 0;  // answers at the bottom and the top of the grid
   bool identified = true;    // false when every answer is censored on the same side
   bool converged = false;    // never true for an unidentified fit
-  double ci_low = 0, ci_high = 0;  // bootstrap 95% CI of the threshold (when bootstrapped)
+  // Bootstrap 95% CI of the threshold; NaN (NA, null) unless at least two refits converged.
+  double ci_low = std::numeric_limits<double>::quiet_NaN(), ci_high = std::numeric_limits<double>::quiet_NaN();
   int bootstrap = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 
 #include "analysis/fit.h"
@@ -106,6 +107,19 @@ TEST(Recovery, SameSeedGivesTheSameBootstrapInterval) {
   EXPECT_EQ(a.ci_high, b.ci_high);
   EXPECT_LT(a.ci_low, a.threshold);
   EXPECT_GT(a.ci_high, a.threshold);
+}
+
+// Found by the analysis fuzzer: a fit whose location ran off to infinity drew NaN thresholds, and
+// a NaN became a grid index (undefined behaviour). Such a model is not resampled.
+TEST(Recovery, AModelThatRanOffToInfinityIsNotBootstrapped) {
+  const auto answers = on_grid({0.25, 0.3, 0.3, 0.35, 0.2}, 0.05);
+  for (FitModel model : {FitModel::lognormal, FitModel::weibull, FitModel::logistic}) {
+    Fit fit = fit_threshold(answers, model);
+    fit.location = -std::numeric_limits<double>::infinity();
+    bootstrap_threshold(fit, {0.0, 0.05, 0.5}, 20, 3);
+    EXPECT_EQ(fit.bootstrap, 0) << fit_model_name(model);
+    EXPECT_TRUE(std::isnan(fit.ci_low)) << fit_model_name(model);
+  }
 }
 
 TEST(Recovery, WeibullAndLogisticModelsFitTheirOwnData) {
