@@ -11,9 +11,6 @@
 #include "formats/responses.h"
 
 namespace countershade::cli {
-namespace {
-constexpr double kMaxGridSteps = 100000;  // as an experiment's λ grid; the index is an int
-}  // namespace
 
 void add_simulate_command(CLI::App& app) {
   auto d = std::make_shared<analysis::SimulationDesign>();
@@ -38,7 +35,7 @@ void add_simulate_command(CLI::App& app) {
     d->seed = uint64_t(*seed);
     if (!(d->lambda_max >= d->lambda_min + d->lambda_step))
       throw InputError("--lambda-max: must be at least one step above --lambda-min");
-    if ((d->lambda_max - d->lambda_min) / d->lambda_step > kMaxGridSteps)
+    if ((d->lambda_max - d->lambda_min) / d->lambda_step >= kMostLambdaValues)
       throw InputError("--lambda-step: more than 100000 grid values from --lambda-min to --lambda-max");
     const double rows = double(d->subjects) * double(d->repetitions) * double(d->scenes.size() * d->sigmas.size()) * 3;
     if (rows > 1e7)

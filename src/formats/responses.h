@@ -18,6 +18,8 @@ std::optional<Question> question_from_name(const std::string& name);
 // saturates long before; the bound keeps the grid's decimal rounding exact and the analysis's
 // squares finite.
 inline constexpr double kLargestLambda = 1e6;
+// The most values a λ grid may have (its index is an int; 100,000 steps is already absurd).
+inline constexpr int kMostLambdaValues = 100000;
 // Grid values are rounded to this (so 0.15 is 0.15): a λ above 0 and below it is on no grid, and
 // as a λ_Low it would turn JND = λ / λ_Low into numbers whose squares overflow.
 inline constexpr double kLambdaResolution = 1e-9;

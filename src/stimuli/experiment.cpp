@@ -26,7 +26,7 @@ namespace countershade {
 
 int LambdaGrid::count() const {
   const double steps = std::floor((max - min) / step + 1e-9);
-  return steps < double(kMaxCount) ? int(steps) + 1 : kMaxCount + 1;  // no overflow of the int
+  return steps < double(kMostLambdaValues) ? int(steps) + 1 : kMostLambdaValues + 1;  // no overflow of the int
 }
 
 double LambdaGrid::value(int index) const {
@@ -96,7 +96,7 @@ LambdaGrid read_lambda_grid(const JsonObject& l) {
   for (const char* key : {"min", "max", "step"})
     if (std::abs(l.number_or(key, 0.0)) > kLargestLambda) l.fail(key, "beyond ±1e6 (every method saturates long before)");
   if (grid.max < grid.min) l.fail("max", "the λ range is empty (max < min)");
-  if (grid.count() > LambdaGrid::kMaxCount) l.fail("step", "more than 100000 λ values");
+  if (grid.count() > kMostLambdaValues) l.fail("step", "more than 100000 λ values");
   l.finish();
   return grid;
 }

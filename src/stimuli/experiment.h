@@ -49,7 +49,6 @@ struct ExperimentMethod {
 };
 
 struct LambdaGrid {
-  static constexpr int kMaxCount = 100000;
   double min = 0, max = 3, step = 0.05;
   int count() const;                 // number of grid values, min and max included
   double value(int index) const;     // λ derived from the index, never accumulated
