@@ -1,6 +1,7 @@
 #include "formats/manifest.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "core/atomic_file.h"
@@ -8,6 +9,7 @@
 #include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
+#include "formats/responses.h"
 
 namespace countershade {
 
@@ -40,6 +42,12 @@ class ManifestReader {
     if (!v.is_number()) fail(where + key, "not a number");
     return v.get<double>();
   }
+  // A λ as stimulus grids hold them (formats/responses.h): the app records it as the answer.
+  double lambda(const OrderedJson& o, const std::string& where, const char* key) const {
+    const double v = number(o, where, key);
+    if (std::abs(v) > kLargestLambda) fail(where + key, "beyond ±1e6, which no stimulus grid holds");
+    return v;
+  }
   int64_t integer(const OrderedJson& o, const std::string& where, const char* key, int64_t lo, int64_t hi) const {
     const OrderedJson& v = need(o, where, key);
     if (!v.is_number_integer()) fail(where + key, "not an integer");
@@ -66,7 +74,7 @@ class ManifestReader {
     if (s.contains("label")) e.label = string(s, where, "label");
     if (s.contains("sigma")) e.sigma = number(s, where, "sigma");
     if (s.contains("sigma_kind")) e.sigma_kind = string(s, where, "sigma_kind");
-    if (s.contains("lambda")) e.lambda = number(s, where, "lambda");
+    if (s.contains("lambda")) e.lambda = lambda(s, where, "lambda");
     if (s.contains("lambda_index")) e.lambda_index = int(integer(s, where, "lambda_index", 0, 1 << 30));
     if (s.contains("clipped_pixels")) e.clipped_pixels = uint64_t(integer(s, where, "clipped_pixels", 0, INT64_MAX));
     if (s.contains("size")) e.size = uint64_t(integer(s, where, "size", 0, INT64_MAX));
@@ -124,10 +132,10 @@ class ManifestReader {
   LambdaGridInfo grid(const OrderedJson& g) const {
     if (!g.is_object()) fail("lambda_grid", "not an object");
     LambdaGridInfo out;
-    out.min = number(g, "lambda_grid.", "min");
-    out.step = number(g, "lambda_grid.", "step");
-    out.count = int(integer(g, "lambda_grid.", "count", 1, 1 << 24));
-    out.max = g.contains("max") ? number(g, "lambda_grid.", "max") : out.min + out.step * (out.count - 1);
+    out.min = lambda(g, "lambda_grid.", "min");
+    out.step = lambda(g, "lambda_grid.", "step");
+    out.count = int(integer(g, "lambda_grid.", "count", 1, kMostLambdaValues));
+    out.max = g.contains("max") ? lambda(g, "lambda_grid.", "max") : out.min + out.step * (out.count - 1);
     return out;
   }
 

@@ -64,6 +64,16 @@ TEST(AdjustCli, BadInputIsRefusedBeforeAnyWindowOpens) {
   expect_refused(run_without_display("adjust " + set + " --subject P1 --screenshot " + (dir / "blocker/shot.png").string() + sessions),
                  "blocker");
 
+  // A λ that no stimulus grid holds would be recorded as an answer the analysis refuses.
+  {
+    std::string text = testing::read_file(manifest);
+    const size_t at = text.find("\"lambda\": 0.8");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::string("\"lambda\": 0.8").size(), "\"lambda\": 1e300");
+    const fs::path absurd = testing::write_file(manifest.parent_path() / "absurd.json", text);
+    expect_refused(run_without_display("adjust " + absurd.string() + " --subject P1" + sessions), "beyond ±1e6");
+  }
+
   // A changed image, then a missing one.
   fs::path image = dir / "set/small/usm3d/sigma-0.08/lambda-0.8.png";
   std::string bytes = testing::read_file(image);
