@@ -226,6 +226,23 @@ void add_t_tests(BlockResults& b) {
                                            {"df", tests[s].df}, {"p", tests[s].p}, {"p_holm", adjusted[s]}});
 }
 
+// A statistic that is not finite means that the answers it compares do not vary between subjects
+// (an error variance of 0): say so, since its p-value (0, or NA for 0 / 0) rests on nothing.
+void warn_about_constant_data(BlockResults& b) {
+  const std::pair<const char*, const char*> tables[] = {
+      {"anova", "F"}, {"anova_best_sigma", "F"}, {"pairwise", "t"}, {"best_vs_threshold", "t"}};
+  for (const auto& [table, statistic] : tables)
+    for (const json& row : b.json[table]) {
+      const double value = row[statistic].get<double>();
+      if (std::isfinite(value)) continue;
+      const std::string name = row.contains("effect") ? row["effect"].get<std::string>()
+                               : row.contains("scene") ? row["scene"].get<std::string>()
+                                                       : row["a"].get<std::string>() + " − " + row["b"].get<std::string>();
+      b.warnings.push_back(std::string(table) + " " + name + ": " + statistic + " = " + (std::isnan(value) ? "NA" : "Inf") +
+                           ", the answers do not vary between subjects (an error variance of 0)");
+    }
+}
+
 // Ward clusters of subjects by their per-scene λ_Best.
 void add_clusters(BlockResults& b, int clusters) {
   const CellTable& jnd = b.jnd;
@@ -369,6 +386,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   add_descriptives(b);
   add_anovas(b);
   add_t_tests(b);
+  warn_about_constant_data(b);
   add_clusters(b, options.clusters);
   add_fits(b, rows, options);
   out["warnings"] = b.warnings;

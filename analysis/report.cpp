@@ -16,12 +16,15 @@ using json = nlohmann::ordered_json;
 void write_text(const std::filesystem::path& path, const std::string& text) { write_text_atomically(path, text); }
 
 // A value that could not be computed (NaN, e.g. the standard error of a fit that did not
-// converge) is written as R's NA in CSV, "—" in HTML and null in JSON.
-bool not_available(const json& v) { return v.is_null() || (v.is_number_float() && !std::isfinite(v.get<double>())); }
+// converge) is written as R's NA in CSV, "—" in HTML and null in JSON; an infinite one (F with no
+// error variance) as R's Inf, "∞" and null.
+bool not_available(const json& v) { return v.is_null() || (v.is_number_float() && std::isnan(v.get<double>())); }
+bool infinite(const json& v) { return v.is_number_float() && std::isinf(v.get<double>()); }
 
 std::string cell(const json& v) {
   if (v.is_string()) return csv_field(v.get<std::string>());
   if (not_available(v)) return "NA";
+  if (infinite(v)) return v.get<double>() > 0 ? "Inf" : "-Inf";
   std::ostringstream s;
   s.precision(15);
   if (v.is_number_float()) s << v.get<double>();
@@ -84,6 +87,7 @@ std::string html_table(const json& rows, const std::vector<std::string>& keys) {
     for (const auto& k : keys) {
       std::string v = !row.contains(k)           ? ""
                       : not_available(row[k])      ? "—"
+                      : infinite(row[k])           ? (row[k].get<double>() > 0 ? "∞" : "−∞")
                       : row[k].is_number_float()   ? fixed(row[k], 4)
                       : row[k].is_string()         ? row[k].get<std::string>()
                                                    : row[k].dump();

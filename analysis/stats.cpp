@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <boost/math/distributions/chi_squared.hpp>
@@ -22,17 +23,31 @@ Summary summarize(const std::vector<double>& v) {
   return s;
 }
 
+// The upper tails follow R's pf, pt and pchisq at the edges, where Boost throws: a statistic or a
+// df that is not a number gives NaN (NA), an infinite statistic 0. Data without any variance give
+// such statistics (F = effect / 0 = inf, 0 / 0 = NaN).
+namespace {
+constexpr double kNotAvailable = std::numeric_limits<double>::quiet_NaN();
+bool usable_df(double df) { return df > 0 && std::isfinite(df); }
+}  // namespace
+
 double f_upper(double F, double df1, double df2) {
+  if (std::isnan(F) || !usable_df(df1) || !usable_df(df2)) return kNotAvailable;
   if (!(F > 0)) return 1.0;
+  if (std::isinf(F)) return 0.0;
   return boost::math::cdf(boost::math::complement(boost::math::fisher_f(df1, df2), F));
 }
 
 double t_two_sided(double t, double df) {
+  if (std::isnan(t) || !usable_df(df)) return kNotAvailable;
+  if (std::isinf(t)) return 0.0;
   return 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(df), std::abs(t)));
 }
 
 double chi2_upper(double x, double df) {
+  if (std::isnan(x) || !usable_df(df)) return kNotAvailable;
   if (!(x > 0)) return 1.0;
+  if (std::isinf(x)) return 0.0;
   return boost::math::cdf(boost::math::complement(boost::math::chi_squared(df), x));
 }
 
@@ -47,11 +62,13 @@ TTest t_test(const std::vector<double>& values, double mu) {
 }
 
 std::vector<double> holm(const std::vector<double>& p) {
-  const size_t m = p.size();
-  std::vector<size_t> order(m);
-  std::iota(order.begin(), order.end(), 0);
+  // As R: an NA stays NA and does not count among the m tests (NaN would also break the sort).
+  std::vector<size_t> order;
+  for (size_t i = 0; i < p.size(); ++i)
+    if (!std::isnan(p[i])) order.push_back(i);
+  const size_t m = order.size();
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return p[a] < p[b]; });
-  std::vector<double> adjusted(m);
+  std::vector<double> adjusted(p.size(), kNotAvailable);
   double running = 0;
   for (size_t k = 0; k < m; ++k) {
     running = std::max(running, std::min(1.0, double(m - k) * p[order[k]]));
@@ -138,7 +155,7 @@ void add_sphericity(AnovaRow& row, const Eigen::MatrixXd& S, double n, double ce
   // Greenhouse–Geisser and Huynh–Feldt (car's formula, capped at 1).
   row.gg_epsilon = trace * trace / (p * (S * S).trace());
   const double hf = (n * p * row.gg_epsilon - 2) / (p * (n - 1 - p * row.gg_epsilon));
-  row.hf_epsilon = std::min(1.0, hf);
+  row.hf_epsilon = std::isnan(hf) ? hf : std::min(1.0, hf);
   row.p_gg = f_upper(row.F, row.df1 * row.gg_epsilon, row.df2 * row.gg_epsilon);
   row.p_hf = f_upper(row.F, row.df1 * row.hf_epsilon, row.df2 * row.hf_epsilon);
 }

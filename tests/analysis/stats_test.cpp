@@ -19,6 +19,30 @@ TEST(Stats, HolmMatchesRsPAdjust) {
   EXPECT_EQ(holm({0.6, 0.9})[1], 1.0);
 }
 
+// R's p.adjust leaves an NA where it is and does not count it: p.adjust(c(0.01, NA, 0.04),
+// "holm") = 0.02 NA 0.04. A NaN in the sort used to break its ordering.
+TEST(Stats, HolmLeavesNaAndDoesNotCountIt) {
+  const auto adjusted = holm({0.01, std::nan(""), 0.04});
+  EXPECT_NEAR(adjusted[0], 0.02, 1e-15);
+  EXPECT_TRUE(std::isnan(adjusted[1]));
+  EXPECT_NEAR(adjusted[2], 0.04, 1e-15);
+}
+
+// The tails at the edges, as R's pf, pt and pchisq (Boost throws there, and `analyze` failed on
+// answers without any variance between subjects): pf(Inf, 2, 4, lower = FALSE) = 0,
+// pf(NaN, ...) = NaN, a df of 0 or NaN gives NaN.
+TEST(Stats, TailsAtInfinityAndNaN) {
+  EXPECT_EQ(f_upper(INFINITY, 2, 4), 0.0);
+  EXPECT_TRUE(std::isnan(f_upper(NAN, 2, 4)));
+  EXPECT_TRUE(std::isnan(f_upper(3.0, NAN, 4)));
+  EXPECT_EQ(f_upper(0.0, 2, 4), 1.0);
+  EXPECT_EQ(t_two_sided(-INFINITY, 3), 0.0);
+  EXPECT_TRUE(std::isnan(t_two_sided(NAN, 3)));
+  EXPECT_TRUE(std::isnan(t_two_sided(1.0, 0)));  // one subject: no df
+  EXPECT_EQ(chi2_upper(INFINITY, 2), 0.0);
+  EXPECT_TRUE(std::isnan(chi2_upper(NAN, 2)));
+}
+
 TEST(Stats, TTestKnownValues) {
   // {1, 2, 3, 4, 6} against 2: mean 3.2, variance 14.8/4 = 3.7, t = 1.2/√(3.7/5).
   TTest t = t_test({1, 2, 3, 4, 6}, 2.0);

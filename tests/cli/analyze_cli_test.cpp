@@ -51,6 +51,29 @@ TEST(AnalyzeCli, AnEffectWithMoreContrastsThanSubjectsHasNoSphericityTest) {
   EXPECT_EQ(testing::read_file(dir / "out/report.html").find("nan<"), std::string::npos);
 }
 
+// Every subject gives the same answers: no error variance, so F and t are infinite (or 0 / 0).
+// Boost's distributions threw on them and the analysis failed (exit 1); R's pf gives p = 0 (NA for
+// 0 / 0). The tables say Inf and NA, and a warning names each statistic.
+TEST(AnalyzeCli, AnswersThatDoNotVaryBetweenSubjectsGiveInfAndNaWithWarnings) {
+  testing::TempDir dir;
+  std::string csv = "subject,scene,sigma,question,lambda,lambda_step\n";
+  for (const char* subject : {"S1", "S2", "S3"})
+    for (const char* scene : {"a", "b"})
+      for (const char* sigma : {"0.1", "0.2"})
+        for (const auto& [question, lambda] : {std::pair{"low", "0.3"}, {"best", "0.6"}, {"high", "1.2"}})
+          csv += std::string(subject) + "," + scene + "," + sigma + "," + question + "," + lambda + ",0.05\n";
+  auto file = testing::write_file(dir / "same.csv", csv);
+  auto r = run_cli("analyze " + file.string() + " -o " + (dir / "out").string() + " --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("anova question: F = Inf, the answers do not vary between subjects"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("pairwise best − low: t = Inf"), std::string::npos) << r.output;
+  const std::string anova = testing::read_file(dir / "out/anova.csv");
+  EXPECT_NE(anova.find("question*scene*sigma,question,2,4,Inf,0,1,"), std::string::npos) << anova;
+  EXPECT_NE(anova.find("question*scene*sigma,scene,1,2,NA,NA,NA,"), std::string::npos) << anova;
+  EXPECT_NE(testing::read_file(dir / "out/report.html").find("∞"), std::string::npos);
+}
+
 TEST(AnalyzeCli, SimulatedStudyRoundTripsWithMethodBlocks) {
   testing::TempDir dir;
   auto r = run_cli("simulate -o " + (dir / "sim.csv").string() + " --subjects 12 --seed 3");
