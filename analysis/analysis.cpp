@@ -370,7 +370,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   if (n < 3) {
     const std::string& source = rows.front()->source;  // "file:line"
     throw InputError(source.substr(0, source.rfind(':')) + ": " + (method.empty() ? "" : "method " + method + ": ") +
-                     "only " + std::to_string(n) + " subjects have answers in every cell (need 3 or more; " +
+                     "only " + std::to_string(n) + (n == 1 ? " subject has" : " subjects have") + " answers in every cell (need 3 or more; " +
                      std::to_string(b.excluded.size()) + " excluded" +
                      (b.excluded.empty() ? "" : ", e.g. " + b.excluded.front().subject + ": " + b.excluded.front().reason) + ")");
   }
