@@ -121,6 +121,19 @@ CellTable subject_means(BlockResults& b, const std::vector<const Response*>& row
 }
 
 // JND: λ divided by λ_Low of the same subject (or of the group mean) in the same scene × σ.
+// Under group normalisation a scene × σ whose answers to λ_Low are all 0 has no JND scale (every
+// JND there would be λ / 0); `where` names the data ("file: method M: ").
+void check_group_scale(const BlockResults& b, const CellTable& means, const std::string& where) {
+  for (size_t s = 0; s < means.scenes(); ++s)
+    for (size_t g = 0; g < means.sigmas(); ++g) {
+      bool any = false;
+      for (size_t i = 0; i < means.subjects(); ++i) any |= means.at(i, s, g, Question::low) > 0;
+      if (!any)
+        throw InputError(where + "scene " + b.scenes[s] + ", sigma " + json(b.sigmas[g]).dump() +
+                         ": every λ_Low is 0, so --normalization group has no JND scale there");
+    }
+}
+
 CellTable jnd_cells(const CellTable& means, const std::string& normalization) {
   const size_t n = means.subjects(), ns = means.scenes(), nsig = means.sigmas();
   std::vector<double> group_low(ns * nsig, 0.0);
@@ -358,6 +371,12 @@ void add_fits(BlockResults& b, const std::vector<const Response*>& rows, const A
       }
 }
 
+// "file: method M: ", the start of an error about a block's data.
+std::string data_name(const std::vector<const Response*>& rows, const std::string& method) {
+  const std::string& source = rows.front()->source;  // "file:line"
+  return source.substr(0, source.rfind(':')) + ": " + (method.empty() ? "" : "method " + method + ": ");
+}
+
 BlockResults analyze_block(const std::string& method, const std::vector<const Response*>& rows,
                            const AnalysisOptions& options) {
   BlockResults b;
@@ -368,12 +387,13 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   const CellTable means = subject_means(b, rows, options.normalization == "subject");
   const size_t n = b.subjects.size();
   if (n < 3) {
-    const std::string& source = rows.front()->source;  // "file:line"
-    throw InputError(source.substr(0, source.rfind(':')) + ": " + (method.empty() ? "" : "method " + method + ": ") +
-                     "only " + std::to_string(n) + (n == 1 ? " subject has" : " subjects have") + " answers in every cell (need 3 or more; " +
-                     std::to_string(b.excluded.size()) + " excluded" +
-                     (b.excluded.empty() ? "" : ", e.g. " + b.excluded.front().subject + ": " + b.excluded.front().reason) + ")");
+    const std::string example =
+        b.excluded.empty() ? "" : ", e.g. " + b.excluded.front().subject + ": " + b.excluded.front().reason;
+    throw InputError(data_name(rows, method) + "only " + std::to_string(n) + (n == 1 ? " subject has" : " subjects have") +
+                     " answers in every cell (need 3 or more; " + std::to_string(b.excluded.size()) + " excluded" +
+                     example + ")");
   }
+  if (options.normalization == "group") check_group_scale(b, means, data_name(rows, method));
   b.jnd = jnd_cells(means, options.normalization);
 
   json& out = b.json;

@@ -51,18 +51,24 @@ TEST(AnalyzeCli, AnEffectWithMoreContrastsThanSubjectsHasNoSphericityTest) {
   EXPECT_EQ(testing::read_file(dir / "out/report.html").find("nan<"), std::string::npos);
 }
 
+// Three subjects who all give the same answers, λ_Low = `low`, in two scenes × two σ.
+std::string same_answers_csv(const std::string& low) {
+  std::string csv = "subject,scene,sigma,question,lambda,lambda_step\n";
+  for (const char* subject : {"S1", "S2", "S3"})
+    for (const char* scene : {"a", "b"})
+      for (const char* sigma : {"0.1", "0.2"})
+        for (const auto& [question, lambda] :
+             {std::pair<std::string, std::string>{"low", low}, {"best", "0.6"}, {"high", "1.2"}})
+          csv += std::string(subject) + "," + scene + "," + sigma + "," + question + "," + lambda + ",0.05\n";
+  return csv;
+}
+
 // Every subject gives the same answers: no error variance, so F and t are infinite (or 0 / 0).
 // Boost's distributions threw on them and the analysis failed (exit 1); R's pf gives p = 0 (NA for
 // 0 / 0). The tables say Inf and NA, and a warning names each statistic.
 TEST(AnalyzeCli, AnswersThatDoNotVaryBetweenSubjectsGiveInfAndNaWithWarnings) {
   testing::TempDir dir;
-  std::string csv = "subject,scene,sigma,question,lambda,lambda_step\n";
-  for (const char* subject : {"S1", "S2", "S3"})
-    for (const char* scene : {"a", "b"})
-      for (const char* sigma : {"0.1", "0.2"})
-        for (const auto& [question, lambda] : {std::pair{"low", "0.3"}, {"best", "0.6"}, {"high", "1.2"}})
-          csv += std::string(subject) + "," + scene + "," + sigma + "," + question + "," + lambda + ",0.05\n";
-  auto file = testing::write_file(dir / "same.csv", csv);
+  auto file = testing::write_file(dir / "same.csv", same_answers_csv("0.3"));
   auto r = run_cli("analyze " + file.string() + " -o " + (dir / "out").string() + " --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("anova question: F = Inf, the answers do not vary between subjects"), std::string::npos)
@@ -90,6 +96,7 @@ TEST(AnalyzeCli, BadInputExitsWithTwoAndOneLine) {
   testing::TempDir dir;
   auto missing_column = testing::write_file(dir / "a.csv", "subject,scene,sigma,question\nS1,a,0.1,low\n");
   auto no_step = testing::write_file(dir / "b.csv", "subject,scene,sigma,question,lambda\nS1,a,0.1,low,0.5\n");
+  auto no_low = testing::write_file(dir / "c.csv", same_answers_csv("0"));
   struct Case {
     std::string args, expected;
   } cases[] = {
@@ -100,6 +107,9 @@ TEST(AnalyzeCli, BadInputExitsWithTwoAndOneLine) {
       {no_step.string() + " -o " + (dir / "o").string() + " --lambda-step 0.05",
        "b.csv: only 0 subjects have answers in every cell"},
       {no_step.string() + " -o " + (dir / "b.csv/o").string() + " --lambda-step 0.05", "is not a folder"},
+      // The group mean of λ_Low is 0 there: every JND would be λ / 0 (it gave tables of NA and Inf).
+      {no_low.string() + " -o " + (dir / "o").string() + " --normalization group",
+       "c.csv: scene a, sigma 0.1: every λ_Low is 0, so --normalization group has no JND scale there"},
   };
   for (const auto& c : cases) {
     auto r = run_cli("analyze " + c.args);
