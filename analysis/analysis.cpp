@@ -120,7 +120,6 @@ CellTable subject_means(BlockResults& b, const std::vector<const Response*>& row
   return table;
 }
 
-// JND: λ divided by λ_Low of the same subject (or of the group mean) in the same scene × σ.
 // Under group normalisation a scene × σ whose answers to λ_Low are all 0 has no JND scale (every
 // JND there would be λ / 0); `where` names the data ("file: method M: ").
 void check_group_scale(const BlockResults& b, const CellTable& means, const std::string& where) {
@@ -134,6 +133,7 @@ void check_group_scale(const BlockResults& b, const CellTable& means, const std:
     }
 }
 
+// JND: λ divided by λ_Low of the same subject (or of the group mean) in the same scene × σ.
 CellTable jnd_cells(const CellTable& means, const std::string& normalization) {
   const size_t n = means.subjects(), ns = means.scenes(), nsig = means.sigmas();
   std::vector<double> group_low(ns * nsig, 0.0);
