@@ -1,5 +1,8 @@
 // What an extra λ costs for the methods that change shading, against the render they start from:
-// the mestres2021 scene (igea, Lambertian, 512×384, 4 spp, light at 45° elevation), both threads.
+// the mestres2021 scene (igea, Lambertian, 512×384, 4 spp), both threads, with the light at 45°
+// elevation towards the view (most of the face lit), and as a grazing side light (15°, 102.86°:
+// most of the face on the light's dark side, which lla, exaggerated-shading and light-warping shade),
+// without shadows as in the experiment and with them (each dark-side sample then traces a ray per λ).
 //   build/bin/countershade_bench --benchmark_filter=ShadingExtraLambda
 // The counter `vs_render` is (time of one compose at λ = 1) / (time of the render it starts from).
 // TraceLogRecording: the render of that scene keeping its ray log (what a set does for these
@@ -28,26 +31,31 @@
 namespace countershade {
 namespace {
 
-std::shared_ptr<const Scene> mestres_scene() {
-  static std::shared_ptr<const Scene> scene = [] {
-    const Experiment e = load_experiment(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/mestres2021/experiment.json");
-    return std::make_shared<const Scene>(load_experiment_scene(e, e.scenes[7]));  // igea-e45-a0
-  }();
+enum class Light { front, side, side_shadowed };
+
+// igea under the experiment's light 8 (45°, 0°) or 3 (15°, 102.86°), the latter also with shadows.
+std::shared_ptr<const Scene> mestres_scene(Light light) {
+  static const Experiment e =
+      load_experiment(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/mestres2021/experiment.json");
+  auto scene = std::make_shared<Scene>(load_experiment_scene(e, e.scenes[light == Light::front ? 7 : 2]));
+  for (auto& l : scene->directional_lights) l.shadows = light == Light::side_shadowed;
   return scene;
 }
 
 void extra_lambda(benchmark::State& state, const std::string& method, const nlohmann::json& parameters) {
-  measure_extra_lambda(state, mestres_scene(), method, parameters);  // the scene is loaded before any timing
+  // The scene is loaded before any timing.
+  measure_extra_lambda(state, mestres_scene(Light(state.range(0))), method, parameters);
 }
 
 void BM_ShadingExtraLambdaLla(benchmark::State& s) { extra_lambda(s, "lla", {{"sigma", 0.06}}); }
 void BM_ShadingExtraLambdaEs(benchmark::State& s) { extra_lambda(s, "exaggerated-shading", {{"sigma", 0.06}}); }
 void BM_ShadingExtraLambdaLw(benchmark::State& s) { extra_lambda(s, "light-warping", nlohmann::json::object()); }
 void BM_ShadingExtraLambdaRs(benchmark::State& s) { extra_lambda(s, "radiance-scaling", nlohmann::json::object()); }
-BENCHMARK(BM_ShadingExtraLambdaLla)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_ShadingExtraLambdaEs)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_ShadingExtraLambdaLw)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_ShadingExtraLambdaRs)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+// Argument: 0 the front light, 1 the side light, 2 the side light with shadows.
+BENCHMARK(BM_ShadingExtraLambdaLla)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_ShadingExtraLambdaEs)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_ShadingExtraLambdaLw)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_ShadingExtraLambdaRs)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 
 double seconds_to_render(const Scene& scene, const RayTracer& tracer, bool record) {
   RenderOptions options;
@@ -58,7 +66,7 @@ double seconds_to_render(const Scene& scene, const RayTracer& tracer, bool recor
 }
 
 void BM_TraceLogRecording(benchmark::State& state) {
-  const auto scene = mestres_scene();
+  const auto scene = mestres_scene(Light::front);
   const RayTracer tracer(*scene);
   double plain = 0, recording = 0;
   for (auto _ : state) {

@@ -15,7 +15,8 @@ namespace countershade::cli {
 namespace {
 
 struct CongruenceArgs {
-  std::string image, depth, map;
+  std::string image, depth, map, penalty = "signed";
+  double tensor_sigma = 2;
 };
 
 void run(const CongruenceArgs& args) {
@@ -23,7 +24,10 @@ void run(const CongruenceArgs& args) {
   int bits = 0;
   const Image display = load_display_image(args.image, bits);
   const std::vector<float> depth = load_depth(args.depth, "depth", display.width, display.height);
-  const Congruence c = display_congruence(display, DisplayEncoding{}, bits, depth);
+  CongruenceOptions options;
+  options.penalty = args.penalty == "absolute" ? CongruencePenalty::absolute : CongruencePenalty::signed_clamp;
+  options.tensor_sigma = args.tensor_sigma;
+  const Congruence c = display_congruence(display, DisplayEncoding{}, bits, depth, options);
   if (!args.map.empty()) write_image(args.map, false_colour_image(c.map));
   std::printf("congruence: %s, %zu interior pixels%s, score %.6f\n", args.image.c_str(), c.interior_pixels,
               args.map.empty() ? "" : (", map " + args.map).c_str(), c.score);
@@ -39,6 +43,14 @@ void add_congruence_command(CLI::App& app) {
   cmd->add_option("--depth", args->depth, "Depth map of the same size (EXR, PFM, PNG-16, TIFF); 0, inf and NaN are background")
       ->required();
   cmd->add_option("--map", args->map, "Write the per-pixel score in false colour (viridis: 0 dark blue, 1 yellow)");
+  cmd->add_option("--penalty", args->penalty,
+                  "signed: shading stronger than shape costs nothing (the paper's clamp); absolute: |e_c − e_s| "
+                  "is penalised both ways (the earlier reading, for old figures)")
+      ->check(CLI::IsMember({"signed", "absolute"}))
+      ->capture_default_str();
+  cmd->add_option("--tensor-sigma", args->tensor_sigma, "σ_t of the structure tensors' Gaussian, pixels (0.5 to 50)")
+      ->check(CLI::Range(0.5, 50.0))
+      ->capture_default_str();
   cmd->callback([args] { run(*args); });
   cmd->footer(
       "Examples:\n"

@@ -1,7 +1,9 @@
 // Exaggerated shading (Rusinkiewicz et al. 2006), in countershade's surface mode: the diffuse term
 // of every light sample is replaced by a half-Lambertian, multi-scale shading in which the light
 // grazes each coarser scale of the surface, so that detail at every scale shows. λ blends the
-// plain render (0) and exaggerated shading (1). Specular shading and shadows are the plain ones.
+// plain render (0) and exaggerated shading (1). Specular shading and cast shadows are the plain ones.
+// The half-Lambertian term has no dark side: behind the original light's terminator a point keeps
+// it wherever the light mirrored across its tangent plane is open (docs/enhancement-methods.md).
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +24,7 @@ struct EsParameters final : MethodParameters {
   NormalScales normals;         // σ_1 and S
   double contrast = 2;          // a
   std::vector<double> weights;  // k_1 … k_{S−1}, then k_b; they sum to 1
+  double terminator_fade = 0;   // ShadingHook::terminator_band
 };
 
 // Σ_i k_i·c_i + k_b·(½ + ½·n_S·l), c_i = ½ + ½·clamp(a·n_i·l_{i+1}, −1, 1), where l_{i+1} is the light
@@ -52,6 +55,15 @@ class EsHook final : public ShadingHook {
     return (1 - blend_) * reflect_plain(s, wi, incident) + blend_ * enhanced;
   }
 
+  // The half-Lambertian term has no single light direction. Its visibility on the dark side is
+  // tested along the light mirrored across the tangent plane: the same angle above the surface
+  // as the light is below it, so the test meets the original shadow ray at the terminator.
+  bool shades_dark_side() const override { return true; }
+  std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s, const glm::dvec3& wi) const override {
+    return wi - 2 * glm::dot(s.normal, wi) * s.normal;
+  }
+  double terminator_band() const override { return parameters_.terminator_fade; }
+
  private:
   std::shared_ptr<const NormalScaleField> normals_;
   EsParameters parameters_;
@@ -70,6 +82,7 @@ class EsMethod final : public EnhancementMethod {
     std::vector<ParameterDoc> docs = normal_scales_docs();
     docs.push_back({"contrast", "2", "the contrast a of each scale's term"});
     docs.push_back({"weights", "all 1/S", "S weights k_1 … k_{S−1}, k_b (finest first, the base last); they must sum to 1"});
+    docs.push_back(terminator_fade_doc());
     return docs;
   }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
@@ -79,6 +92,7 @@ class EsMethod final : public EnhancementMethod {
     const int scales = p->normals.scales;
     p->contrast = bag.number_in("contrast", 2.0, 0.0, 100.0);
     p->weights = bag.numbers("weights", std::vector<double>(size_t(scales), 1.0 / scales));
+    p->terminator_fade = read_terminator_fade(bag);
     bag.finish(name());
     check_normal_scales(bag, p->normals, sigma);
     if (p->weights.size() != size_t(scales)) bag.fail("weights", "needs " + std::to_string(scales) + " values");
@@ -103,6 +117,7 @@ class EsMethod final : public EnhancementMethod {
     nlohmann::json recorded = describe_normals(p.normals, *normals);
     recorded["contrast"] = p.contrast;
     recorded["weights"] = p.weights;
+    recorded["terminator_fade"] = p.terminator_fade;
     return std::make_unique<HookedRender>(context, hook_for, recorded);
   }
 };

@@ -107,11 +107,23 @@ namespace {
 
 struct LwParameters final : MethodParameters {
   double tau = 1;  // τ, pixels: the scale of κ = tanh(τ·curvature)
+  double terminator_fade = 0;  // ShadingHook::terminator_band
 };
 
 class LwHook final : public ShadingHook {
  public:
-  LwHook(std::shared_ptr<const ViewCurvature> kappa, double lambda) : kappa_(std::move(kappa)), lambda_(lambda) {}
+  LwHook(std::shared_ptr<const ViewCurvature> kappa, double lambda, double band)
+      : kappa_(std::move(kappa)), lambda_(lambda), band_(band) {}
+
+  // The warp remaps the whole sphere of light directions around r, those below the surface's
+  // horizon included: a light just behind the terminator may be turned in front of it, and is then
+  // shaded like its neighbour just in front (with the warped direction's visibility). Keeping the
+  // attached shadow instead would draw the terminator as an edge wherever the warp lifts the light.
+  bool shades_dark_side() const override { return true; }
+  std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s, const glm::dvec3& wi) const override {
+    return warp_light(wi, reflected_view(s), kappa_->at(s.point.position), lambda_);
+  }
+  double terminator_band() const override { return band_; }
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
     return reflect_plain(s, warp_light(wi, reflected_view(s), kappa_->at(s.point.position), lambda_), incident);
@@ -138,7 +150,7 @@ class LwHook final : public ShadingHook {
   static glm::dvec3 reflected_view(const ShadingInputs& s) { return 2 * glm::dot(s.normal, s.wo) * s.normal - s.wo; }
 
   std::shared_ptr<const ViewCurvature> kappa_;
-  double lambda_;
+  double lambda_, band_;
 };
 
 class LwMethod final : public EnhancementMethod {
@@ -147,11 +159,12 @@ class LwMethod final : public EnhancementMethod {
   std::string summary() const override { return "light warping: light turned by view-dependent curvature (shading)"; }
   MethodAxes axes() const override { return {"warp strength λ (0 = plain)", {}}; }
   std::vector<ParameterDoc> parameter_docs() const override {
-    return {curvature_tau_doc()};
+    return {curvature_tau_doc(), terminator_fade_doc()};
   }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<LwParameters>();
     p->tau = read_curvature_tau(bag);
+    p->terminator_fade = read_terminator_fade(bag);
     bag.finish(name());
     return p;
   }
@@ -161,10 +174,11 @@ class LwMethod final : public EnhancementMethod {
     require_scene(context, name());
     const auto& p = parameters_as<LwParameters>(parameters);
     auto kappa = std::make_shared<const ViewCurvature>(*context.view, p.tau);
-    auto hook_for = [kappa](double lambda) -> std::shared_ptr<const ShadingHook> {
-      return lambda != 0 ? std::make_shared<LwHook>(kappa, lambda) : nullptr;
+    auto hook_for = [kappa, band = p.terminator_fade](double lambda) -> std::shared_ptr<const ShadingHook> {
+      return lambda != 0 ? std::make_shared<LwHook>(kappa, lambda, band) : nullptr;
     };
-    return std::make_unique<HookedRender>(context, hook_for, nlohmann::json{{"tau", p.tau}});
+    return std::make_unique<HookedRender>(context, hook_for,
+                                          nlohmann::json{{"tau", p.tau}, {"terminator_fade", p.terminator_fade}});
   }
 };
 

@@ -1,8 +1,9 @@
 // Local light alignment (Mestres et al. 2021): per shading point, the light direction is rotated
 // from the coarsest scale of the normal field to the finest, so that every feature gets a lit and
 // an unlit side (enhance/light_alignment.h). Diffuse shading is guided by the multi-scale normals,
-// specular shading by the reflected view vectors. Visibility stays that of the original light
-// (the shading hook). The normals come in `surface` or `image` mode (enhance/normal_field.h).
+// specular shading by the reflected view vectors. Where a point faces the original light its
+// visibility is that light's; on the light's dark side the point is lit by max(0, n_1·l_1) where the
+// aligned direction l_1 is open (docs/methods.md, "Shape depiction"). The normals come in `surface` or `image` mode (enhance/normal_field.h).
 // λ scales the per-scale strengths: s_i = clamp(λ·profile_i, 0, 1).
 
 #include <algorithm>
@@ -23,6 +24,7 @@ namespace {
 struct LlaParameters final : MethodParameters {
   NormalScales normals;        // σ_1 and S
   double gamma = 3;            // W_γ
+  double terminator_fade = 0;  // ShadingHook::terminator_band
   std::vector<double> profile;  // ŝ_1 … ŝ_{S−1}
 };
 
@@ -30,8 +32,27 @@ struct LlaParameters final : MethodParameters {
 // multi-scale normals, the specular term towards the reflected view vectors.
 class AlignmentHook final : public ShadingHook {
  public:
-  AlignmentHook(std::shared_ptr<const NormalScaleField> normals, std::vector<double> strengths, double gamma)
-      : normals_(std::move(normals)), strengths_(std::move(strengths)), weight_(gamma) {}
+  AlignmentHook(std::shared_ptr<const NormalScaleField> normals, std::vector<double> strengths, double gamma, double band)
+      : normals_(std::move(normals)), strengths_(std::move(strengths)), weight_(gamma), band_(band) {}
+
+  // The diffuse term's direction, l_1: on the dark side a point is lit where l_1 is open.
+  bool shades_dark_side() const override { return true; }
+  std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s, const glm::dvec3& wi) const override {
+    glm::dvec3 n[kMaxNormalScales];
+    normals_->at_shading_point(s, n);
+    return align_light(wi, {n, size_t(normals_->scales())}, strengths_, weight_);
+  }
+  double terminator_band() const override { return band_; }
+
+  // The same directions, aligned in blocks of vector lanes.
+  void dark_side_directions(std::span<const HookSample> samples, std::optional<glm::dvec3>* out) const override {
+    thread_local AlignmentBlock block;
+    for (size_t first = 0; first < samples.size(); first += kAlignmentBlock) {
+      const auto part = samples.subspan(first, std::min(kAlignmentBlock, samples.size() - first));
+      align_diffuse(part, block);
+      for (size_t j = 0; j < part.size(); ++j) out[first + j] = aligned(block, j);
+    }
+  }
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
     glm::dvec3 n[kMaxNormalScales], r[kMaxNormalScales];
@@ -58,9 +79,9 @@ class AlignmentHook final : public ShadingHook {
     return {block.aligned[0][j], block.aligned[1][j], block.aligned[2][j]};
   }
 
-  // Diffuse: the light aligned to the normals; then, if any sample's material has a specular
-  // lobe, specular: the light aligned to the reflected view vectors, as reflect() does per sample.
-  void reflect_block(std::span<const HookSample> samples, AlignmentBlock& block, glm::dvec3* out) const {
+  // The samples' lights aligned to their normals (block.aligned), the normals left in block.vectors;
+  // whether any sample's material has a specular lobe.
+  bool align_diffuse(std::span<const HookSample> samples, AlignmentBlock& block) const {
     const size_t scales = size_t(normals_->scales());
     bool specular = false;
     for (size_t j = 0; j < samples.size(); ++j) {
@@ -73,6 +94,14 @@ class AlignmentHook final : public ShadingHook {
       specular |= samples[j].inputs->material.specular != SpecularModel::none;
     }
     align_light_block(block, samples.size(), scales, strengths_, weight_.damping());
+    return specular;
+  }
+
+  // Diffuse: the light aligned to the normals; then, if any sample's material has a specular
+  // lobe, specular: the light aligned to the reflected view vectors, as reflect() does per sample.
+  void reflect_block(std::span<const HookSample> samples, AlignmentBlock& block, glm::dvec3* out) const {
+    const size_t scales = size_t(normals_->scales());
+    const bool specular = align_diffuse(samples, block);
     for (size_t j = 0; j < samples.size(); ++j)
       out[j] = reflect_diffuse(*samples[j].inputs, aligned(block, j), samples[j].incident);
     if (!specular) {
@@ -96,6 +125,7 @@ class AlignmentHook final : public ShadingHook {
   std::shared_ptr<const NormalScaleField> normals_;
   std::vector<double> strengths_;
   AlignmentWeight weight_;
+  double band_;
 };
 
 class LlaMethod final : public EnhancementMethod {
@@ -110,6 +140,7 @@ class LlaMethod final : public EnhancementMethod {
     std::vector<ParameterDoc> docs = normal_scales_docs();
     docs.push_back({"gamma", "3", "γ of the weight W_γ: larger values sharpen the lit/unlit transitions"});
     docs.push_back({"profile", "all 1", "S − 1 strengths in [0, 1], finest first, scaled by λ"});
+    docs.push_back(terminator_fade_doc());
     return docs;
   }
 
@@ -120,6 +151,7 @@ class LlaMethod final : public EnhancementMethod {
     const int scales = p->normals.scales;
     p->gamma = bag.number_in("gamma", 3.0, 0.0, 50.0);
     p->profile = bag.numbers("profile", std::vector<double>(size_t(scales - 1), 1.0));
+    p->terminator_fade = read_terminator_fade(bag);
     bag.finish(name());
     check_normal_scales(bag, p->normals, sigma);
     if (p->profile.size() != size_t(scales - 1))
@@ -140,11 +172,12 @@ class LlaMethod final : public EnhancementMethod {
       std::vector<double> strengths;
       for (double s : p.profile) strengths.push_back(std::clamp(lambda * s, 0.0, 1.0));
       if (std::all_of(strengths.begin(), strengths.end(), [](double s) { return s <= 0; })) return nullptr;
-      return std::make_shared<AlignmentHook>(normals, std::move(strengths), p.gamma);
+      return std::make_shared<AlignmentHook>(normals, std::move(strengths), p.gamma, p.terminator_fade);
     };
     nlohmann::json recorded = describe_normals(p.normals, *normals);
     recorded["gamma"] = p.gamma;
     recorded["profile"] = p.profile;
+    recorded["terminator_fade"] = p.terminator_fade;
     return std::make_unique<HookedRender>(context, hook_for, recorded);
   }
 };

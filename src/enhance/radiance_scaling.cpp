@@ -21,6 +21,7 @@ namespace {
 struct RsParameters final : MethodParameters {
   double gamma = 1;  // γ: how strongly curvature scales
   double tau = 1;    // τ, pixels: the scale of κ = tanh(τ·curvature)
+  double terminator_fade = 0;  // ShadingHook::terminator_band
 };
 
 }  // namespace
@@ -37,8 +38,11 @@ namespace {
 
 class RsHook final : public ShadingHook {
  public:
-  RsHook(std::shared_ptr<const ViewCurvature> kappa, double alpha, double gamma)
-      : kappa_(std::move(kappa)), alpha_(alpha), gamma_(gamma) {}
+  RsHook(std::shared_ptr<const ViewCurvature> kappa, double alpha, double gamma, double band)
+      : kappa_(std::move(kappa)), alpha_(alpha), gamma_(gamma), band_(band) {}
+
+  // Radiance scaling scales the light that reaches the point: the attached shadow stays dark.
+  double terminator_band() const override { return band_; }
 
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
     const double kappa = kappa_->at(s.point.position);
@@ -48,7 +52,7 @@ class RsHook final : public ShadingHook {
 
  private:
   std::shared_ptr<const ViewCurvature> kappa_;
-  double alpha_, gamma_;
+  double alpha_, gamma_, band_;
 };
 
 class RsMethod final : public EnhancementMethod {
@@ -58,12 +62,13 @@ class RsMethod final : public EnhancementMethod {
   MethodAxes axes() const override { return {"enhancement α = clamp(λ, 0, 1)", {}}; }
   std::vector<ParameterDoc> parameter_docs() const override {
     return {{"gamma", "1", "γ: how strongly curvature scales the light"},
-            curvature_tau_doc()};
+            curvature_tau_doc(), terminator_fade_doc()};
   }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<RsParameters>();
     p->gamma = bag.number_in("gamma", 1.0, 0.0, 50.0);
     p->tau = read_curvature_tau(bag);
+    p->terminator_fade = read_terminator_fade(bag);
     bag.finish(name());
     return p;
   }
@@ -75,9 +80,10 @@ class RsMethod final : public EnhancementMethod {
     auto kappa = std::make_shared<const ViewCurvature>(*context.view, p.tau);
     auto hook_for = [p, kappa](double lambda) -> std::shared_ptr<const ShadingHook> {
       const double alpha = std::clamp(lambda, 0.0, 1.0);
-      return alpha > 0 ? std::make_shared<RsHook>(kappa, alpha, p.gamma) : nullptr;
+      return alpha > 0 ? std::make_shared<RsHook>(kappa, alpha, p.gamma, p.terminator_fade) : nullptr;
     };
-    return std::make_unique<HookedRender>(context, hook_for, nlohmann::json{{"gamma", p.gamma}, {"tau", p.tau}});
+    return std::make_unique<HookedRender>(
+        context, hook_for, nlohmann::json{{"gamma", p.gamma}, {"tau", p.tau}, {"terminator_fade", p.terminator_fade}});
   }
 };
 

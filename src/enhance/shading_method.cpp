@@ -36,6 +36,14 @@ std::vector<ParameterDoc> normal_scales_docs() {
           {"depth_tolerance", "0.02", "image mode: the range kernel's σ as a fraction of the pixel's depth"}};
 }
 
+double read_terminator_fade(const ParameterBag& bag) { return bag.number_in("terminator_fade", 0.0, 0.0, 1.0); }
+
+ParameterDoc terminator_fade_doc() {
+  return {"terminator_fade", "0",
+          "cosine band (0 to 1) over which the change fades out towards the original light's terminator, hiding "
+          "facet steps there; with a band the original light's dark side stays dark (0: no fade)"};
+}
+
 RenderRequest shading_request() {
   RenderRequest r;
   r.scene = true;

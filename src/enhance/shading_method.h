@@ -30,6 +30,12 @@ void check_normal_scales(const ParameterBag& bag, NormalScales& scales, const st
 WidthAxis normal_scales_axis();
 std::vector<ParameterDoc> normal_scales_docs();
 
+// `terminator_fade`, which every shading method takes: the cosine band over which its change fades
+// out towards the original light's terminator (ShadingHook::terminator_band). 0, the default, is
+// no fade, and the method shades the dark side where it does so (docs/methods.md).
+double read_terminator_fade(const ParameterBag& bag);
+ParameterDoc terminator_fade_doc();
+
 // The normals' entries of a method's recorded parameters: scales, mode and the mode's figures.
 nlohmann::json describe_normals(const NormalScales& scales, const NormalScaleField& normals);
 

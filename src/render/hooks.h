@@ -3,15 +3,17 @@
 // Both are optional: a render without hooks takes the plain path and pays nothing for them.
 //
 // - A shading hook changes how one light sample is reflected: it may shade with another light
-//   (or guide) direction per shading component, or scale or replace the result. Visibility
-//   (shadow rays, environment occlusion) is always traced for the original direction, and light
-//   from behind the shading normal never arrives. Within a band of the original light's
-//   terminator the hook's change fades out (terminator_fade), so a hooked shading meets the plain
-//   one continuously along the smooth terminator instead of stepping at the mesh's facets.
+//   (or guide) direction per shading component, or scale or replace the result. Where the point
+//   faces the original light, visibility (shadow rays, environment occlusion) is that of the
+//   original direction. On the original light's dark side (n·wi ≤ 0, its attached shadow) a hook
+//   may shade too (dark_side_direction): the sample then arrives if the direction the hook shades
+//   with is open. Optionally the hook's change fades out within a band of the original light's
+//   terminator (terminator_band, off by default), and the dark side then stays dark.
 // - A texture hook replaces the texture a material samples (e.g. a filtered mip pyramid).
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <span>
 
 #include <glm/vec3.hpp>
@@ -42,10 +44,10 @@ glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm
 glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
 glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
 
-// How much of a hook's change a light sample keeps, by its cosine with the shading normal:
-// smoothstep from 0 at the terminator to 1 at cos = kTerminatorBand (about 76° from the normal).
-inline constexpr double kTerminatorBand = 0.25;
-double terminator_fade(double cos_i);
+// How much of a hook's change a light sample keeps, by its cosine with the shading normal, when the
+// hook fades out over a band of the original terminator: smoothstep from 0 at the terminator to 1
+// at cos = band. A band of 0 keeps the whole change wherever the light faces the normal.
+double terminator_fade(double cos_i, double band);
 
 // One light sample for ShadingHook::reflect_many.
 struct HookSample {
@@ -66,6 +68,26 @@ class ShadingHook {
   virtual void reflect_many(std::span<const HookSample> samples, glm::dvec3* out) const {
     for (size_t k = 0; k < samples.size(); ++k) out[k] = reflect(*samples[k].inputs, samples[k].wi, samples[k].incident);
   }
+  // A hook that shades the original light's dark side returns, for a light sample from behind the
+  // shading normal of a light that casts shadows, the direction it shades that sample with: the
+  // sample arrives (and reflect() is asked for it) when that direction faces the normal and its
+  // shadow ray is open. None: that sample stays dark, as in the plain render.
+  virtual std::optional<glm::dvec3> dark_side_direction(const ShadingInputs&, const glm::dvec3&) const {
+    return std::nullopt;
+  }
+  // Whether it shades the dark side at all. A light that casts no shadows needs no direction:
+  // such a hook's reflect() is asked for its dark-side samples directly (with the others, through
+  // reflect_many), and must itself give nothing where its direction is behind the normal.
+  virtual bool shades_dark_side() const { return false; }
+  // dark_side_direction() of many samples at once (a replay asks for all its rays' directions
+  // together), so that a hook may vectorise it; out[k] must equal dark_side_direction(samples[k])
+  // bit for bit.
+  virtual void dark_side_directions(std::span<const HookSample> samples, std::optional<glm::dvec3>* out) const {
+    for (size_t k = 0; k < samples.size(); ++k) out[k] = dark_side_direction(*samples[k].inputs, samples[k].wi);
+  }
+  // The cosine band over which the change fades out towards the original terminator (0: none).
+  // With a band the dark side stays dark whatever dark_side_direction says.
+  virtual double terminator_band() const { return 0; }
 };
 
 class TextureHook {

@@ -180,9 +180,9 @@ void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, 
   light = {wi, radiance, divisor, facing && (distance <= 0 || visible(c, wi, distance, counts))};
 }
 
-double terminator_fade(double cos_i) {
-  if (cos_i >= kTerminatorBand) return 1.0;
-  const double x = std::max(cos_i, 0.0) / kTerminatorBand;
+double terminator_fade(double cos_i, double band) {
+  if (band <= 0 || cos_i >= band) return cos_i > 0 ? 1.0 : 0.0;
+  const double x = std::max(cos_i, 0.0) / band;
   return x * x * (3 - 2 * x);
 }
 
@@ -191,12 +191,45 @@ glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& ligh
   if (!shading_hook_) return brdf(s, light.wi) * light.radiance * (cos_i / light.divisor);
   const glm::dvec3 incident = light.radiance / light.divisor;
   const glm::dvec3 hooked = given ? *given++ : shading_hook_->reflect(s, light.wi, incident);
-  const double fade = terminator_fade(cos_i);
+  const double band = shading_hook_->terminator_band();
+  if (band <= 0) return hooked;
+  const double fade = terminator_fade(cos_i, band);
   if (fade >= 1) return hooked;
   // Near the original light's terminator the hook's change fades out, so the hooked shading meets
   // the plain one (zero at the terminator) continuously along the smooth shading normal.
   const glm::dvec3 plain = reflect_plain(s, light.wi, incident);
   return plain + fade * (hooked - plain);
+}
+
+std::vector<Shader::DarkSideRay> Shader::dark_side_rays(const Scene& scene) {
+  std::vector<DarkSideRay> rays;
+  for (const auto& light : scene.directional_lights)
+    rays.insert(rays.end(), size_t(samples_per_point(light)), light.shadows ? DarkSideRay::to_infinity : DarkSideRay::none);
+  for (const auto& light : scene.point_lights) rays.insert(rays.end(), size_t(samples_per_point(light)), DarkSideRay::to_point);
+  // An environment's samples from behind the normal are never shaded: its cosine sampler draws
+  // none there, and an importance-sampled one would need a ray per sample and per λ.
+  if (scene.environment) rays.insert(rays.end(), size_t(scene.environment->samples), DarkSideRay::never);
+  return rays;
+}
+
+Shader::DarkSide Shader::dark_side(const ShadingInputs& s, const LightSampleRecord& light, size_t k) const {
+  // Only a sample from behind the shading normal: one that faces it and does not arrive is a cast
+  // shadow. A sample with nothing to carry (inside a point light) needs nothing.
+  if (!shading_hook_ || light.arrives || !shading_hook_->shades_dark_side() || shading_hook_->terminator_band() > 0 ||
+      glm::dot(s.normal, light.wi) > 0 || light.radiance == glm::dvec3(0.0) || dark_side_rays_[k] == DarkSideRay::never)
+    return DarkSide::dark;
+  return dark_side_rays_[k] == DarkSideRay::none ? DarkSide::unshadowed : DarkSide::traced;
+}
+
+bool Shader::dark_side_open(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k,
+                            const std::optional<glm::dvec3>& towards) const {
+  if (!towards || !(glm::dot(s.normal, *towards) > 0)) return false;
+  // Another object (or another part of this one) may still block the direction it is shaded with.
+  // A point light's divisor is the squared distance to the sampled point on it.
+  const double reach = dark_side_rays_[k] == DarkSideRay::to_point ? std::sqrt(light.divisor) : 1e30;
+  const Context c{s.point, s.normal, r.geometric_normal(s.point), shadow_origin(scene_, s.point, r.back), nullptr, nullptr};
+  RayCounts counts;
+  return visible(c, *towards, reach, counts);
 }
 
 void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
@@ -299,29 +332,77 @@ void Shader::replay_many(std::span<const ReplayInput> records, glm::dvec3* radia
   thread_local std::vector<ShadingInputs> points;
   thread_local std::vector<HookSample> samples;
   thread_local std::vector<glm::dvec3> hooked;
+  thread_local std::vector<uint8_t> open;
   points.clear();
   points.reserve(records.size());  // `samples` points into it: no reallocation below
-  samples.clear();
-  for (const ReplayInput& in : records) {
+  for (const ReplayInput& in : records)
     points.push_back(inputs(*in.point, *in.record, texture_hook_ ? albedo(*in.point) : in.record->albedo));
-    for (size_t k = 0; shading_hook_ && k < light_samples_; ++k)
-      if (in.lights[k].arrives)
-        samples.push_back({&points.back(), in.lights[k].wi, in.lights[k].radiance / in.lights[k].divisor});
-  }
+  trace_dark_sides(records, points, open);
+  // The samples evaluate_inputs reflects through `hooked`: those that arrive, those on the dark
+  // side that the hook shades without a shadow ray, and those whose ray along the hook's direction
+  // was open.
+  samples.clear();
+  const uint8_t* next_open = open.data();
+  for (size_t j = 0; shading_hook_ && j < records.size(); ++j)
+    for (size_t k = 0; k < light_samples_; ++k) {
+      const LightSampleRecord& light = records[j].lights[k];
+      const DarkSide side = light.arrives ? DarkSide::unshadowed : dark_side(points[j], light, k);
+      if (side == DarkSide::dark || (side == DarkSide::traced && !*next_open++)) continue;
+      samples.push_back({&points[j], light.wi, light.radiance / light.divisor});
+    }
   hooked.resize(samples.size());
   if (shading_hook_) shading_hook_->reflect_many(samples, hooked.data());
   const glm::dvec3* next = shading_hook_ ? hooked.data() : nullptr;
-  for (size_t j = 0; j < records.size(); ++j) radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next);
+  next_open = open.data();
+  for (size_t j = 0; j < records.size(); ++j)
+    radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next, &next_open);
+}
+
+void Shader::trace_dark_sides(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
+                              std::vector<uint8_t>& open) const {
+  thread_local std::vector<HookSample> traced;
+  thread_local std::vector<std::pair<size_t, size_t>> where;  // (record, light sample) of each
+  thread_local std::vector<std::optional<glm::dvec3>> towards;
+  traced.clear();
+  where.clear();
+  for (size_t j = 0; shading_hook_ && j < records.size(); ++j)
+    for (size_t k = 0; k < light_samples_; ++k) {
+      const LightSampleRecord& light = records[j].lights[k];
+      if (dark_side(points[j], light, k) != DarkSide::traced) continue;
+      traced.push_back({&points[j], light.wi, light.radiance / light.divisor});
+      where.emplace_back(j, k);
+    }
+  towards.assign(traced.size(), std::nullopt);
+  if (!traced.empty()) shading_hook_->dark_side_directions(traced, towards.data());
+  open.resize(traced.size());
+  for (size_t t = 0; t < traced.size(); ++t) {
+    const auto [j, k] = where[t];
+    open[t] = dark_side_open(points[j], *records[j].record, records[j].lights[k], k, towards[t]);
+  }
 }
 
 glm::dvec3 Shader::evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
-                                   const glm::dvec3*& hooked) const {
+                                   const glm::dvec3*& hooked, const uint8_t** open) const {
   const glm::dvec3& albedo = s.albedo;
-  // Sums per light, in the order the samples were drawn; a sample that does not arrive adds nothing.
+  // Sums per light, in the order the samples were drawn. A sample that does not arrive adds nothing,
+  // unless it lies on the original light's dark side and the hook shades there (dark_side).
+  size_t k = 0;
   auto sum_of = [&](int samples) {
     glm::dvec3 sum(0.0);
-    for (int k = 0; k < samples; ++k, ++lights)
-      if (lights->arrives) sum += reflect(s, *lights, hooked);
+    for (int j = 0; j < samples; ++j, ++k) {
+      const LightSampleRecord& light = lights[k];
+      if (light.arrives) {
+        sum += reflect(s, light, hooked);
+        continue;
+      }
+      const DarkSide side = dark_side(s, light, k);
+      if (side == DarkSide::unshadowed) {
+        sum += reflect(s, light, hooked);
+      } else if (side == DarkSide::traced) {
+        const bool lit = open ? *(*open)++ != 0 : dark_side_open(s, r, light, k, shading_hook_->dark_side_direction(s, light.wi));
+        if (lit) sum += reflect(s, light, hooked);
+      }
+    }
     return sum;
   };
   glm::dvec3 L(0.0);

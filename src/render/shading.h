@@ -89,7 +89,7 @@ class Shader {
   Shader(const Scene& scene, const RayTracer& tracer, const ShadingHook* shading_hook = nullptr,
          const TextureHook* texture_hook = nullptr)
       : scene_(scene), tracer_(tracer), shading_hook_(shading_hook), texture_hook_(texture_hook),
-        light_samples_(count_light_samples(scene)) {}
+        light_samples_(count_light_samples(scene)), dark_side_rays_(dark_side_rays(scene)) {}
 
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
   // from behind its front face is shaded as the back face (open meshes, planes from below).
@@ -142,17 +142,37 @@ class Shader {
   }
   // evaluate() for given inputs. `hooked` (optional): the hook's reflections of the arriving light
   // samples in order, read and advanced instead of asking the hook one sample at a time.
+  // `open` (optional): dark_side_open of the samples that need a ray, in order, read and advanced
+  // instead of tracing them.
   glm::dvec3 evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
-                             const glm::dvec3*& hooked) const;
+                             const glm::dvec3*& hooked, const uint8_t** open = nullptr) const;
   // The reflection of one arriving light sample (through the shading hook if there is one; its
   // value taken from `hooked` when that is not null).
   glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light, const glm::dvec3*& hooked) const;
+  // The original light's dark side (ShadingHook::dark_side_direction). How a light sample's dark
+  // side could be lit: the shadow ray it would need, per sample index in drawing order.
+  enum class DarkSideRay : uint8_t { never, none, to_infinity, to_point };
+  static std::vector<DarkSideRay> dark_side_rays(const Scene& scene);
+  // What this shader does with light sample k that did not arrive: leave it dark (it faces the
+  // normal and is shadowed, or the hook does not shade the dark side), reflect it through the hook
+  // as it is (its light casts no shadows), or trace the hook's direction first.
+  enum class DarkSide { dark, unshadowed, traced };
+  DarkSide dark_side(const ShadingInputs& s, const LightSampleRecord& light, size_t k) const;
+  // Whether a dark-side sample that needs a ray is lit: the hook's direction `towards` faces the
+  // normal and its shadow ray is open.
+  bool dark_side_open(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k,
+                      const std::optional<glm::dvec3>& towards) const;
+  // dark_side_open for every dark-side sample of `records` that needs a ray, in order (record by
+  // record, sample by sample), the hook's directions asked for all of them at once.
+  void trace_dark_sides(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
+                        std::vector<uint8_t>& open) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;
   const ShadingHook* shading_hook_;
   const TextureHook* texture_hook_;
   size_t light_samples_;
+  std::vector<DarkSideRay> dark_side_rays_;
 };
 
 // Unit vector in the cone of half-angle `max_angle` around `axis`, uniform over the cap.

@@ -11,7 +11,6 @@
 namespace countershade {
 namespace {
 
-constexpr double kTensorSigma = 2.0;       // σ_t in pixels, truncated at 4σ_t
 constexpr double kIsotropic = 1e-12;       // eigenvalue gap below which there is no orientation
 constexpr double kNormalisingQuantile = 0.99;
 
@@ -70,7 +69,7 @@ void eigen(double a, double b, double c, float& vx, float& vy, float& e) {
   vx = float(ux / length), vy = float(uy / length);
 }
 
-Flow flow(const std::vector<float>& field, const std::vector<char>& interior, int w, int h) {
+Flow flow(const std::vector<float>& field, const std::vector<char>& interior, int w, int h, double tensor_sigma) {
   const size_t n = field.size();
   std::vector<float> xx(n, 0.0f), xy(n, 0.0f), yy(n, 0.0f);
   for (int y = 0; y < h; ++y)
@@ -80,7 +79,7 @@ Flow flow(const std::vector<float>& field, const std::vector<char>& interior, in
       const float gx = derivative(field, i, 1, x, w), gy = derivative(field, i, w, y, h);
       xx[size_t(i)] = gx * gx, xy[size_t(i)] = gx * gy, yy[size_t(i)] = gy * gy;
     }
-  for (std::vector<float>* p : {&xx, &xy, &yy}) gaussian_blur_exact(p->data(), p->data(), w, h, kTensorSigma, 1);
+  for (std::vector<float>* p : {&xx, &xy, &yy}) gaussian_blur_exact(p->data(), p->data(), w, h, tensor_sigma, 1);
   Flow f{std::vector<float>(n), std::vector<float>(n), std::vector<float>(n)};
   for (size_t i = 0; i < n; ++i) eigen(xx[i], xy[i], yy[i], f.vx[i], f.vy[i], f.e[i]);
   return f;
@@ -106,14 +105,15 @@ double percentile(std::vector<float> values, double p) {
   return values[k] + (h - double(k)) * (double(values[k + 1]) - double(values[k]));
 }
 
-Congruence congruence(const Image& lightness, const Image& depth) {
+Congruence congruence(const Image& lightness, const Image& depth, const CongruenceOptions& options) {
   if (lightness.channels != 1 || depth.channels != 1 || lightness.width != depth.width || lightness.height != depth.height)
     throw std::invalid_argument("congruence: lightness and depth must be one-channel images of the same size");
   const int w = depth.width, h = depth.height;
   const std::vector<char> interior = interior_mask(depth);
   std::vector<float> shading(lightness.pixels.size());
   for (size_t i = 0; i < shading.size(); ++i) shading[i] = lightness.pixels[i] / 100.0f;
-  Flow s = flow(shading, interior, w, h), c = flow(normalised_depth(depth), interior, w, h);
+  Flow s = flow(shading, interior, w, h, options.tensor_sigma);
+  Flow c = flow(normalised_depth(depth), interior, w, h, options.tensor_sigma);
   normalise_magnitude(s.e, interior);
   normalise_magnitude(c.e, interior);
   Congruence out;
@@ -122,7 +122,9 @@ Congruence congruence(const Image& lightness, const Image& depth) {
   for (size_t i = 0; i < interior.size(); ++i) {
     if (!interior[i]) continue;
     const double alignment = std::abs(double(c.vx[i]) * s.vx[i] + double(c.vy[i]) * s.vy[i]);
-    const double term = c.e[i] * (1.0 - std::clamp(std::abs(double(c.e[i]) - s.e[i]), 0.0, 1.0)) * alignment;
+    const double difference = double(c.e[i]) - s.e[i];
+    const double d = options.penalty == CongruencePenalty::absolute ? std::abs(difference) : difference;
+    const double term = c.e[i] * (1.0 - std::clamp(d, 0.0, 1.0)) * alignment;
     out.map.pixels[i] = float(term);
     agreement += term, weight += c.e[i];
     ++out.interior_pixels;
@@ -132,14 +134,14 @@ Congruence congruence(const Image& lightness, const Image& depth) {
 }
 
 Congruence display_congruence(const Image& display, const DisplayEncoding& encoding, int bits,
-                              const std::vector<float>& depth) {
+                              const std::vector<float>& depth, const CongruenceOptions& options) {
   const LabPixels lab = display_to_lab(display, encoding, bits);
   Image lightness(display.width, display.height, 1);
   for (size_t i = 0; i < lab.size(); ++i) lightness.pixels[i] = float(lab[i].L);
   Image depth_image(display.width, display.height, 1);
   if (depth.size() != depth_image.pixels.size()) throw std::invalid_argument("congruence: depth size differs from the image");
   std::copy(depth.begin(), depth.end(), depth_image.pixels.begin());
-  return congruence(lightness, depth_image);
+  return congruence(lightness, depth_image, options);
 }
 
 }  // namespace countershade

@@ -139,11 +139,12 @@ std::string degrees_name(double degrees) {
   return name == "-0" ? "0" : name;
 }
 
-// "light_directions": {"elevations": [degrees…], "azimuths": N}: one scene per (elevation,
-// azimuth), the azimuths 360°/N apart from 0, named NAME-eELEVATION-aAZIMUTH.
+// "light_directions": {"elevations": [degrees…], "azimuths": N, "horizon": "view"|"image"}: one
+// scene per (elevation, azimuth), the azimuths 360°/N apart from 0, named NAME-eELEVATION-aAZIMUTH.
 std::vector<ExperimentScene> light_variants(const ExperimentScene& scene, const JsonObject& d) {
   std::vector<double> elevations = d.numbers("elevations");
   const int azimuths = int(d.integer_in("azimuths", 1, 1, 360));
+  const bool image_plane = d.choice("horizon", "view", {"view", "image"}) == "image";
   d.finish();
   if (elevations.empty()) d.fail("elevations", "needs at least one elevation");
   std::vector<ExperimentScene> out;
@@ -151,7 +152,7 @@ std::vector<ExperimentScene> light_variants(const ExperimentScene& scene, const 
     if (!(elevation > -90 && elevation < 90)) d.fail("elevations", "each elevation must lie in (-90, 90) degrees");
     for (int k = 0; k < azimuths; ++k) {
       ExperimentScene variant = scene;
-      variant.light = ViewLight{elevation, 360.0 * k / azimuths};
+      variant.light = ViewLight{elevation, 360.0 * k / azimuths, image_plane};
       variant.swept_from = scene.name;
       variant.name += "-e" + degrees_name(elevation) + "-a" + degrees_name(variant.light->azimuth);
       out.push_back(variant);
@@ -183,7 +184,17 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
     e.contact_columns = int(c.integer_in("columns", 6, 2, 32));
     c.finish();
   }
-  e.congruence = root.boolean_or("congruence", false);
+  // "congruence": true, or an object of the score's options (which also turns it on).
+  if (root.has("congruence") && root.value().at("congruence").is_object()) {
+    const JsonObject c = root.object("congruence");
+    e.congruence = true;
+    if (c.choice("penalty", "signed", {"signed", "absolute"}) == "absolute")
+      e.congruence_options.penalty = CongruencePenalty::absolute;
+    e.congruence_options.tensor_sigma = c.number_in("tensor_sigma", 2.0, 0.5, 50.0);
+    c.finish();
+  } else {
+    e.congruence = root.boolean_or("congruence", false);
+  }
   e.video = root.boolean_or("video", false);
   if (e.video && e.bits != 8) root.fail("video", "the videos are 8-bit: use \"output\": {\"bits\": 8}");
   if (root.has("coherence")) {
@@ -238,6 +249,8 @@ glm::dvec3 view_light_direction(const Camera& camera, const ViewLight& light) {
   const double e = glm::radians(light.elevation), a = glm::radians(light.azimuth);
   // The horizon's direction towards the viewer, and the view's right and up.
   const glm::dvec3 towards_viewer = -rays.forward(), right = rays.right(), up = rays.up();
+  if (light.image_plane)
+    return glm::normalize(std::cos(e) * (std::cos(a) * right + std::sin(a) * up) + std::sin(e) * towards_viewer);
   const glm::dvec3 horizon = std::cos(a) * towards_viewer + std::sin(a) * right;
   return glm::normalize(std::cos(e) * horizon + std::sin(e) * up);
 }

@@ -14,6 +14,7 @@
 #include "enhance/method.h"
 #include "render/render_request.h"
 #include "render/scene.h"
+#include "stimuli/congruence.h"
 
 namespace countershade {
 
@@ -21,8 +22,14 @@ inline constexpr int kExperimentFormatVersion = 1;
 
 // A light direction relative to the view: elevation above the view's horizon and azimuth from
 // the direction towards the viewer (positive to the viewer's right), both in degrees.
+// A light direction laid out around the view. `horizon` view: elevation above the view's horizon,
+// azimuth from the direction towards the viewer, turning to the viewer's right. `horizon` image:
+// elevation above the image plane towards the viewer, azimuth from the view's right, turning up
+// (a surface seen head-on, such as a relief from above, is then lit from in front of it at every
+// azimuth).
 struct ViewLight {
   double elevation = 0, azimuth = 0;
+  bool image_plane = false;
 };
 
 struct ExperimentScene {
@@ -67,6 +74,7 @@ struct Experiment {
   int contact_columns = 6;
   std::optional<NoiseBudget> noise;  // replaces the scenes' budgets (a scene's spp still wins)
   bool congruence = false;            // score every stimulus (methods.md, "Congruence score")
+  CongruenceOptions congruence_options;  // "congruence": {"penalty", "tensor_sigma"}
   // Measure every stimulus's perspective coherence under a camera dolly of this fraction of the
   // eye–target distance (methods.md, "Perspective coherence metric").
   std::optional<double> coherence_dolly;

@@ -139,8 +139,9 @@ void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& mode
 }
 
 // The congruence score of a stimulus, and its map in false colour as congruence/FILE.
-void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Image& display, const View& view, int bits) {
-  const Congruence c = display_congruence(display, view.encoding, bits, view.depth);
+void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Image& display, const View& view, int bits,
+                       const CongruenceOptions& options) {
+  const Congruence c = display_congruence(display, view.encoding, bits, view.depth, options);
   entry.extra["congruence"] = round_to(c.score, 4);
   const std::string map = "congruence/" + entry.file;
   fs::create_directories((set_dir / map).parent_path());
@@ -305,7 +306,7 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
   if (u.frame >= 0) entry.frame = ManifestEntry::Frame{u.frame, e_.scenes[u.scene].fps};
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
   record_noise(entry, view, NoiseModel{}, view.display);
-  if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits);
+  if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits, e_.congruence_options);
   if (moved) record_coherence(entry, view, view_lightness(view), *moved, view_lightness(*moved));
   entry = write_stimulus(dir_, std::move(entry), view.display, e_.bits);
   encode_seconds_.fetch_add(since(te));
@@ -338,7 +339,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
-      if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits);
+      if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
       if (moved)
         record_coherence(entry, *view, enhancement_layer(*view, c.display), *moved,
                          enhancement_layer(*moved, prepared_moved->compose(e_.lambda.value(l)).display), &plain);

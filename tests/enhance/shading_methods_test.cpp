@@ -238,7 +238,7 @@ TEST(ExaggeratedShading, LambdaZeroIsPlainAndFullStrengthFlattensTheLitSide) {
   const auto view = render_ball(dir, "[0, 0.5, 5]");
   const auto prepared = prepared_on_ball(view, "exaggerated-shading");
   const Image es = prepared->compose(1.0).display;
-  EXPECT_LT(lightness_spread(es, *view, kTerminatorBand), 0.8 * lightness_spread(view->display, *view, kTerminatorBand));
+  EXPECT_LT(lightness_spread(es, *view, 0.25), 0.8 * lightness_spread(view->display, *view, 0.25));
   EXPECT_GT(facet_contrast(es, *view), 0.0);
   EXPECT_NE(testing::input_error_of([] { parse_method("exaggerated-shading", {{"sigma", 0.1}, {"weights", {0.5, 0.2, 0.2}}}); })
                 .find("must sum to 1"),
@@ -264,6 +264,41 @@ TEST(ShadingMethods, NoMethodDrawsTheTerminatorAsAnEdge) {
       EXPECT_LT(largest_step(prepared->compose(1.0).display, *view), 16.0) << method << ", shadows " << shadows;
     }
   }
+}
+
+// The key light's dark side (shading normal facing away from it; the light casts no shadows, and
+// there is no ambient light): black in the plain render. At λ = 1 local light alignment lights
+// part of it, with max(0, n_1·l_1) along the facets' features, and exaggerated shading's
+// half-Lambertian term all of it; light warping lights the part where the warp turns the light in
+// front of the surface. With a terminator band, or under radiance scaling (which scales the light
+// that arrives), it stays black.
+TEST(ShadingMethods, TheOriginalLightsDarkSideIsShadedByLlaAndEs) {
+  testing::TempDir dir;
+  std::string scene = faceted_ball("[0, 0.5, 5]");
+  scene.replace(scene.find(", {\"type\": \"ambient\", \"radiance\": 0.1}"), 38, "");
+  scene.replace(scene.find("\"irradiance\": 2"), 15, "\"irradiance\": 2, \"shadows\": false");
+  const auto view = render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "dark.json", scene))));
+  auto dark_side_lit = [&](const std::string& method, const nlohmann::json& parameters) {
+    const Image image = prepare_method(method, view, parameters)->compose(1.0).display;
+    size_t lit = 0, dark = 0;
+    for (size_t i = 0; i < view->depth.size(); ++i) {
+      // The dark side: the pixel's normal faces away from the light and none of its samples is lit.
+      if (!on_object(*view, i) || glm::dot(glm::dvec3(view->render.gbuffer.normal[i]), kKeyLight) > 0 ||
+          view->render.radiance.pixels[3 * i] != 0.0f)
+        continue;
+      ++dark;
+      lit += lightness_at(image, *view, i) > 1.0;
+    }
+    EXPECT_GT(dark, 150u);
+    return double(lit) / double(dark);
+  };
+  EXPECT_GT(dark_side_lit("lla", {{"sigma", 0.15}}), 0.2);
+  EXPECT_EQ(dark_side_lit("exaggerated-shading", {{"sigma", 0.15}}), 1.0);
+  EXPECT_EQ(dark_side_lit("lla", {{"sigma", 0.15}, {"terminator_fade", 0.25}}), 0.0);
+  EXPECT_EQ(dark_side_lit("exaggerated-shading", {{"sigma", 0.15}, {"terminator_fade", 0.25}}), 0.0);
+  EXPECT_GT(dark_side_lit("light-warping", {{"tau", 10.0}}), 0.05);
+  EXPECT_EQ(dark_side_lit("light-warping", {{"tau", 10.0}, {"terminator_fade", 0.25}}), 0.0);
+  EXPECT_EQ(dark_side_lit("radiance-scaling", {{"tau", 10.0}}), 0.0);
 }
 
 TEST(RadianceScaling, TheScaleIsOneWithoutCurvatureAndMonotoneInIt) {

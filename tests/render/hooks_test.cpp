@@ -31,12 +31,36 @@ class PlainHook final : public ShadingHook {
   }
 };
 
-// Shades as if every light came straight along the normal.
+// Shades as if every light came straight along the normal, optionally fading out over a band of
+// the terminator.
 class HeadOnHook final : public ShadingHook {
  public:
+  explicit HeadOnHook(double band = 0) : band_(band) {}
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&, const glm::dvec3& incident) const override {
     return reflect_plain(s, s.normal, incident);
   }
+  double terminator_band() const override { return band_; }
+
+ private:
+  double band_;
+};
+
+// Shades head-on on the dark side too, where the light mirrored across the tangent plane is open
+// (as exaggerated shading does), with an optional terminator band.
+class DarkSideHook final : public ShadingHook {
+ public:
+  explicit DarkSideHook(double band = 0) : band_(band) {}
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&, const glm::dvec3& incident) const override {
+    return reflect_plain(s, s.normal, incident);
+  }
+  bool shades_dark_side() const override { return true; }
+  std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s, const glm::dvec3& wi) const override {
+    return wi - 2 * glm::dot(s.normal, wi) * s.normal;
+  }
+  double terminator_band() const override { return band_; }
+
+ private:
+  double band_;
 };
 
 class ConstantTexture final : public TextureHook {
@@ -90,38 +114,87 @@ TEST(Hooks, AShadingHookChangesShadingButNotShadows) {
 }
 
 TEST(Hooks, TheTerminatorFadeRisesSmoothlyFromZeroToOne) {
-  EXPECT_EQ(terminator_fade(-0.5), 0.0);
-  EXPECT_EQ(terminator_fade(0.0), 0.0);
-  EXPECT_EQ(terminator_fade(kTerminatorBand), 1.0);
-  EXPECT_EQ(terminator_fade(0.9), 1.0);
-  EXPECT_DOUBLE_EQ(terminator_fade(0.5 * kTerminatorBand), 0.5);
+  const double band = 0.25;
+  EXPECT_EQ(terminator_fade(-0.5, band), 0.0);
+  EXPECT_EQ(terminator_fade(0.0, band), 0.0);
+  EXPECT_EQ(terminator_fade(band, band), 1.0);
+  EXPECT_EQ(terminator_fade(0.9, band), 1.0);
+  EXPECT_DOUBLE_EQ(terminator_fade(0.5 * band, band), 0.5);
   const double h = 1e-6;  // flat at both ends: no kink where the fade starts or ends
-  EXPECT_LT(terminator_fade(h) / h, 1e-4);
-  EXPECT_LT((1 - terminator_fade(kTerminatorBand - h)) / h, 1e-4);
-  for (double c = 0; c < kTerminatorBand; c += 0.01) EXPECT_LT(terminator_fade(c), terminator_fade(c + 0.01));
+  EXPECT_LT(terminator_fade(h, band) / h, 1e-4);
+  EXPECT_LT((1 - terminator_fade(band - h, band)) / h, 1e-4);
+  for (double c = 0; c < band; c += 0.01) EXPECT_LT(terminator_fade(c, band), terminator_fade(c + 0.01, band));
+  // No band: the whole change wherever the light faces the normal, none behind it.
+  EXPECT_EQ(terminator_fade(1e-9, 0.0), 1.0);
+  EXPECT_EQ(terminator_fade(0.0, 0.0), 0.0);
+  EXPECT_EQ(terminator_fade(-0.3, 0.0), 0.0);
 }
 
-// Light grazing the floor at cos 0.1, inside the terminator band: the hook's change is faded in
-// by terminator_fade(0.1), so the floor lies between the plain and the head-on shading.
-TEST(Hooks, AHookChangesLightNearTheTerminatorOnlyInPart) {
+// Light grazing the floor at cos 0.1, inside a terminator band of 0.25: the hook's change is faded
+// in by terminator_fade(0.1, 0.25), so the floor lies between the plain and the head-on shading.
+// Without a band (the default) the floor is shaded head-on.
+TEST(Hooks, AHookChangesLightNearTheTerminatorOnlyInPartWithABand) {
   testing::TempDir dir;
   std::string scene = kShadowScene;
   const double cos_i = 0.1, sin_i = std::sqrt(1 - cos_i * cos_i);
   scene.replace(scene.find("[1, 0.6, 0]"), 11, "[" + std::to_string(sin_i) + ", " + std::to_string(cos_i) + ", 0]");
   auto view = base_view(dir, scene);
   RenderRequest request;
+  request.shading_hook = std::make_shared<HeadOnHook>(0.25);
+  auto faded = make_context(view).render_again(request);
   request.shading_hook = std::make_shared<HeadOnHook>();
-  auto hooked = make_context(view).render_again(request);
+  auto whole = make_context(view).render_again(request);
   const GBuffer& g = view->render.gbuffer;
   const double plain = 0.6 / M_PI * 2.0 * cos_i, head_on = 0.6 / M_PI * 2.0;
-  const double expected = plain + terminator_fade(cos_i) * (head_on - plain);
+  const double expected = plain + terminator_fade(cos_i, 0.25) * (head_on - plain);
+  ASSERT_LT(expected, 0.5 * head_on);
   int lit = 0;
   for (size_t i = 0; i < g.object.size(); ++i) {
     if (g.object[i] != 0 || view->render.radiance.pixels[3 * i] == 0.0f) continue;
     EXPECT_NEAR(view->render.radiance.pixels[3 * i], plain, 1e-5);
-    EXPECT_NEAR(hooked->render.radiance.pixels[3 * i], expected, 1e-5) << i;
+    EXPECT_NEAR(faded->render.radiance.pixels[3 * i], expected, 1e-5) << i;
+    EXPECT_NEAR(whole->render.radiance.pixels[3 * i], head_on, 1e-5) << i;
     ++lit;
   }
+  EXPECT_GT(lit, 500);
+}
+
+// The floor lit from below: the plain render leaves all of it on the light's dark side, black. A
+// hook that shades the dark side lights it wherever the direction it shades with is open: here
+// the light mirrored above the floor, so the box's shadow is the one the mirrored light casts in a
+// plain render. A hook that keeps the dark side dark, or fades over a band, leaves it black.
+TEST(Hooks, AHookMayShadeTheDarkSideWhereItsOwnDirectionIsOpen) {
+  testing::TempDir below, above;
+  std::string from_below = kShadowScene;
+  from_below.replace(from_below.find("[1, 0.6, 0]"), 11, "[1, -0.6, 0]");
+  auto view = base_view(below, from_below);
+  auto mirrored = base_view(above, kShadowScene);
+  auto hooked_with = [&](std::shared_ptr<const ShadingHook> hook) {
+    RenderRequest request;
+    request.shading_hook = std::move(hook);
+    return make_context(view).render_again(request);
+  };
+  auto dark_side = hooked_with(std::make_shared<DarkSideHook>());
+  auto head_on = hooked_with(std::make_shared<HeadOnHook>());
+  auto banded = hooked_with(std::make_shared<DarkSideHook>(0.25));
+  const GBuffer& g = view->render.gbuffer;
+  const double lit_value = 0.6 / M_PI * 2.0;
+  int lit = 0, shadow = 0;
+  for (size_t i = 0; i < g.object.size(); ++i) {
+    if (g.object[i] != 0) continue;
+    ASSERT_EQ(view->render.radiance.pixels[3 * i], 0.0f) << i;
+    EXPECT_EQ(head_on->render.radiance.pixels[3 * i], 0.0f) << i;
+    EXPECT_EQ(banded->render.radiance.pixels[3 * i], 0.0f) << i;
+    const float after = dark_side->render.radiance.pixels[3 * i];
+    if (mirrored->render.radiance.pixels[3 * i] == 0.0f) {
+      EXPECT_EQ(after, 0.0f) << i;
+      ++shadow;
+    } else if (mirrored->render.radiance.pixels[3 * i] > 0.99f * float(0.6 / M_PI * 2.0 * 0.6 / std::sqrt(1.36))) {
+      EXPECT_NEAR(after, lit_value, 1e-5) << i;
+      ++lit;
+    }
+  }
+  EXPECT_GT(shadow, 50);
   EXPECT_GT(lit, 500);
 }
 

@@ -1,7 +1,8 @@
 // The congruence score against a second, plain implementation of docs/methods.md ("Congruence
 // score"), written separately in double precision with other formulas where the definition allows
 // (a 2D convolution instead of two passes, the eigenvector from its angle), on fields with an
-// irregular foreground that touches the image border, flat patches and noise.
+// irregular foreground that touches the image border, flat patches and noise, and on a rendered
+// mesh; with the paper's signed clamp and with the absolute difference.
 
 #include <gtest/gtest.h>
 
@@ -12,7 +13,10 @@
 #include <vector>
 
 #include "core/random.h"
+#include "enhance/lightness.h"
+#include "enhance/method.h"
 #include "stimuli/congruence.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -111,7 +115,13 @@ struct Reference {
   Plane map;
 };
 
-Reference reference_congruence(const Field& lightness, const Field& depth) {
+// The score's penalty ⌊e_c − e_s⌋ (signed) or ⌊|e_c − e_s|⌋ (absolute), ⌊·⌋ clamping to [0, 1].
+double reference_penalty(double ec, double es, bool absolute) {
+  const double d = absolute ? std::fabs(ec - es) : ec - es;
+  return d <= 0 ? 0.0 : (d >= 1 ? 1.0 : d);
+}
+
+Reference reference_congruence(const Field& lightness, const Field& depth, bool absolute = false) {
   const std::vector<bool> interior = reference_interior(depth);
   Field shading = lightness, shape = depth;
   for (double& v : shading.v) v /= 100.0;
@@ -126,7 +136,7 @@ Reference reference_congruence(const Field& lightness, const Field& depth) {
   double sum = 0, weight = 0;
   for (size_t i = 0; i < interior.size(); ++i) {
     if (!interior[i]) continue;
-    out.map[i] = c.e[i] * (1 - std::min(1.0, std::abs(c.e[i] - s.e[i]))) * std::abs(c.vx[i] * s.vx[i] + c.vy[i] * s.vy[i]);
+    out.map[i] = c.e[i] * (1 - reference_penalty(c.e[i], s.e[i], absolute)) * std::abs(c.vx[i] * s.vx[i] + c.vy[i] * s.vy[i]);
     sum += out.map[i], weight += c.e[i];
   }
   out.score = weight > 0 ? sum / weight : 0.0;
@@ -136,12 +146,12 @@ Reference reference_congruence(const Field& lightness, const Field& depth) {
 // A scene of w×h: two overlapping bumps on a tilted base whose foreground is irregular and runs
 // off the image's left and bottom edges; shading from a light with noise, a flat patch and a
 // step (so that isotropic, anisotropic and clamped magnitudes all occur).
-struct Scene {
+struct Fields {
   Image lightness, depth;
 };
 
-Scene make_scene(int w, int h, uint64_t seed, double noise) {
-  Scene s{Image(w, h, 1), Image(w, h, 1)};
+Fields make_scene(int w, int h, uint64_t seed, double noise) {
+  Fields s{Image(w, h, 1), Image(w, h, 1)};
   SampleStream random(seed, 0, 0, 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -161,22 +171,59 @@ Scene make_scene(int w, int h, uint64_t seed, double noise) {
 
 Field field_of(const Image& image) { return {image.width, image.height, Plane(image.pixels.begin(), image.pixels.end())}; }
 
-TEST(CongruenceReference, AgreesWithASeparateImplementationOfTheDefinition) {
-  for (const auto& [w, h, seed, noise] : {std::tuple{96, 64, 1u, 0.0}, std::tuple{80, 72, 2u, 20.0}, std::tuple{64, 96, 3u, 100.0}}) {
-    const Scene scene = make_scene(w, h, seed, noise);
-    const Congruence ours = congruence(scene.lightness, scene.depth);
-    const Reference ref = reference_congruence(field_of(scene.lightness), field_of(scene.depth));
-    EXPECT_GT(ref.score, 0.05);
-    EXPECT_NEAR(ours.score, ref.score, 1e-5) << w << "x" << h << " noise " << noise;
+void expect_agreement(const Image& lightness, const Image& depth, const std::string& what) {
+  for (bool absolute : {false, true}) {
+    const Congruence ours =
+        congruence(lightness, depth, {absolute ? CongruencePenalty::absolute : CongruencePenalty::signed_clamp});
+    const Reference ref = reference_congruence(field_of(lightness), field_of(depth), absolute);
+    EXPECT_GT(ref.score, 0.05) << what;
+    EXPECT_NEAR(ours.score, ref.score, 1e-5) << what << (absolute ? ", absolute" : ", signed");
     double worst = 0;
     for (size_t i = 0; i < ref.map.size(); ++i) worst = std::max(worst, std::abs(double(ours.map.pixels[i]) - ref.map[i]));
-    EXPECT_LT(worst, 1e-4) << w << "x" << h << " noise " << noise;
+    EXPECT_LT(worst, 1e-4) << what << (absolute ? ", absolute" : ", signed");
   }
+}
+
+TEST(CongruenceReference, AgreesWithASeparateImplementationOfTheDefinition) {
+  for (const auto& [w, h, seed, noise] : {std::tuple{96, 64, 1u, 0.0}, std::tuple{80, 72, 2u, 20.0}, std::tuple{64, 96, 3u, 100.0}}) {
+    const Fields scene = make_scene(w, h, seed, noise);
+    expect_agreement(scene.lightness, scene.depth, std::to_string(w) + "x" + std::to_string(h) + " noise " + std::to_string(noise));
+  }
+}
+
+// A rendered mesh the implementation has never seen: a bumpy, faceted ball in perspective under a
+// raking light, scored from its display image and depth buffer.
+TEST(CongruenceReference, AgreesWithASeparateImplementationOnARenderedMesh) {
+  testing::TempDir dir;
+  const auto scene = std::make_shared<Scene>(load_scene(testing::write_file(dir / "ball.json", R"({
+    "version": 1,
+    "camera": {"eye": [0.4, 0.3, 3.2], "target": [0, 0, 0], "fov": 40, "width": 112, "height": 84},
+    "render": {"spp": 4},
+    "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 2}, "crease_angle": 0, "material": {"albedo": 0.7}},
+                {"shape": {"type": "box", "size": [0.5, 0.5, 0.5]}, "transform": {"translate": [0.7, -0.5, 0.9]}}],
+    "lights": [{"type": "directional", "direction": [-0.8, 0.3, 0.4], "irradiance": 2.5}, {"type": "ambient", "radiance": 0.05}]
+  })")));
+  const auto view = render_view(scene);
+  const LabPixels lab = display_to_lab(view->display, view->encoding, 0);
+  Image lightness(view->display.width, view->display.height, 1), depth(lightness.width, lightness.height, 1);
+  for (size_t i = 0; i < lab.size(); ++i) lightness.pixels[i] = float(lab[i].L), depth.pixels[i] = view->depth[i];
+  expect_agreement(lightness, depth, "rendered ball");
+}
+
+// Shading stronger than shape (e_s > e_c) costs nothing under the signed clamp and lowers a pixel's
+// term under the absolute difference: the signed map is never below the absolute one, and the two
+// readings differ on the whole.
+TEST(CongruenceReference, TheSignedClampDoesNotPenaliseExaggeration) {
+  const Fields scene = make_scene(96, 64, 1, 20.0);
+  const Congruence ours = congruence(scene.lightness, scene.depth);
+  const Congruence absolute = congruence(scene.lightness, scene.depth, {CongruencePenalty::absolute});
+  for (size_t i = 0; i < ours.map.pixels.size(); ++i) ASSERT_GE(ours.map.pixels[i], absolute.map.pixels[i]) << i;
+  EXPECT_GT(ours.score, absolute.score + 0.01);
 }
 
 // The reference itself must be able to disagree: a shading turned by 90° scores differently.
 TEST(CongruenceReference, TheComparisonSeesAChangedImage) {
-  const Scene scene = make_scene(96, 64, 1, 0.0);
+  const Fields scene = make_scene(96, 64, 1, 0.0);
   Image turned = scene.lightness;
   for (int y = 0; y < turned.height; ++y)
     for (int x = 0; x < turned.width; ++x) turned.at(x, y) = scene.lightness.at(x, (y + 5) % turned.height);

@@ -44,6 +44,11 @@ TEST(CongruenceSet, LightDirectionsAreRelativeToTheView) {
   EXPECT_LT(glm::length(view_light_direction(camera, {0, 0}) + rays.forward()), 1e-12);  // towards the viewer
   EXPECT_LT(glm::length(view_light_direction(camera, {0, 90}) - rays.right()), 1e-12);
   EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
+  // Around the image plane: azimuth 0 from the right, 90 from above, the elevation towards the viewer.
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0, true}) - rays.right()), 1e-12);
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 90, true}) - rays.up()), 1e-12);
+  for (double azimuth : {0.0, 102.9, 205.7, 308.6})
+    EXPECT_NEAR(glm::dot(view_light_direction(camera, {15, azimuth, true}), -rays.forward()), std::sin(15.0 * M_PI / 180.0), 1e-12);
 }
 
 TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
