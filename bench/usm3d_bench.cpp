@@ -20,7 +20,7 @@ namespace {
 const std::string kSource = COUNTERSHADE_SOURCE_DIR;
 
 const TriangleMesh& igea_mesh() {
-  static TriangleMesh mesh = load_mesh(kSource + "/../shared/data/meshes/igea.obj");
+  static TriangleMesh mesh = load_mesh(kSource + "/data/meshes/igea.obj");
   return mesh;
 }
 

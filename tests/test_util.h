@@ -31,9 +31,12 @@ inline void with_and_without_avx512(const std::function<void()>& check) {
   check();
 }
 
-inline std::filesystem::path shared_dir() { return COUNTERSHADE_SHARED_DIR; }
 inline std::filesystem::path source_dir() { return COUNTERSHADE_SOURCE_DIR; }
-inline std::filesystem::path mesh_path(const std::string& name) { return shared_dir() / "data/meshes" / name; }
+// The repository's meshes (data/meshes) and the tests' reference results (tests/reference).
+inline std::filesystem::path mesh_path(const std::string& name) { return source_dir() / "data/meshes" / name; }
+inline std::filesystem::path reference_path(const std::string& relative) {
+  return source_dir() / "tests/reference" / relative;
+}
 
 // A fresh folder under the system temp dir, removed with its contents at scope exit.
 class TempDir {

@@ -17,7 +17,7 @@ namespace {
 using nlohmann::json;
 
 json load(const std::string& name) {
-  std::ifstream in(testing::shared_dir() / "reference/analysis" / name);
+  std::ifstream in(testing::reference_path("analysis") / name);
   return json::parse(in);
 }
 
@@ -73,7 +73,7 @@ void compare_clusters(const json& expected, const json& actual) {
 
 void check_study(const std::string& study) {
   json expected = load(study + ".expected.json");
-  auto responses = read_responses(testing::shared_dir() / "reference/analysis" / (study + ".csv"));
+  auto responses = read_responses(testing::reference_path("analysis") / (study + ".csv"));
   auto blocks = analyze(responses, AnalysisOptions{});
   ASSERT_EQ(blocks.size(), 1u);
   const json& actual = blocks[0].json;

@@ -16,7 +16,7 @@ using testing::run_cli;
 
 TEST(AnalyzeCli, WritesResultsTablesFiguresAndReport) {
   testing::TempDir dir;
-  std::string study = (testing::shared_dir() / "reference/analysis/study_a.csv").string();
+  std::string study = testing::reference_path("analysis/study_a.csv").string();
   auto r = run_cli("analyze " + study + " -o " + (dir / "out").string() + " --bootstrap 20");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"results.json", "descriptives.csv", "anova.csv", "pairwise.csv", "fits.csv", "clusters.csv",
@@ -37,7 +37,7 @@ TEST(AnalyzeCli, WritesResultsTablesFiguresAndReport) {
 // sphericity test and no corrections for that effect, and the tables leave those cells empty.
 TEST(AnalyzeCli, AnEffectWithMoreContrastsThanSubjectsHasNoSphericityTest) {
   testing::TempDir dir;
-  std::string study = (testing::shared_dir() / "reference/analysis/study_b.csv").string();
+  std::string study = testing::reference_path("analysis/study_b.csv").string();
   auto r = run_cli("analyze " + study + " -o " + (dir / "out").string() + " --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("question:scene:sigma: 11 subjects are too few for a sphericity test of 12 contrasts"),

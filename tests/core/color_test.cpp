@@ -17,9 +17,9 @@ struct Reference {
   Lab lab;
 };
 
-// The rows of a numeric CSV under ../shared/reference/color, after its header.
+// The rows of a numeric CSV under tests/reference/color, after its header.
 std::vector<std::vector<double>> read_reference_csv(const std::string& name) {
-  std::ifstream in(testing::shared_dir() / "reference/color" / name);
+  std::ifstream in(testing::reference_path("color") / name);
   std::string line;
   std::getline(in, line);
   std::vector<std::vector<double>> rows;

@@ -152,7 +152,7 @@ TEST(Renderer, PointInShadowReceivesNoDirectLight) {
 
 TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
   testing::TempDir dir;
-  std::string mesh = (testing::shared_dir() / "data/meshes/spot.obj").string();
+  std::string mesh = testing::mesh_path("spot.obj").string();
   Scene scene = scene_from(dir, R"({
     "version": 1,
     "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], "width": 56, "height": 40},

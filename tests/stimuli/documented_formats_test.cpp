@@ -37,11 +37,11 @@ std::vector<std::string> json_blocks(const fs::path& doc) {
 TEST(DocumentedFormats, TheSceneFormatsCompleteExampleLoads) {
   const auto blocks = json_blocks(source_dir() / "docs/scene-format.md");
   ASSERT_EQ(blocks.size(), 2u) << "the complete example and the animation block";
-  // Its mesh paths start ../../../shared, as from experiments/<design>/scenes/.
+  // Its mesh paths start ../../data, as from experiments/scenes/.
   testing::TempDir dir;
-  fs::create_symlink(testing::shared_dir(), dir / "shared");
-  fs::create_directories(dir / "a/b/c");
-  const Scene scene = load_scene(write_file(dir / "a/b/c/scene.json", blocks[0]));
+  fs::create_symlink(source_dir() / "data", dir / "data");
+  fs::create_directories(dir / "a/b");
+  const Scene scene = load_scene(write_file(dir / "a/b/scene.json", blocks[0]));
   EXPECT_EQ(scene.objects.size(), 4u);
   EXPECT_EQ(scene.point_lights.size(), 1u);
   EXPECT_EQ(scene.directional_lights.size(), 1u);
