@@ -196,6 +196,7 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
     e.congruence = root.boolean_or("congruence", false);
   }
   e.video = root.boolean_or("video", false);
+  e.hold_mean = root.boolean_or("hold_mean", false);
   if (e.video && e.bits != 8) root.fail("video", "the videos are 8-bit: use \"output\": {\"bits\": 8}");
   if (root.has("coherence")) {
     const JsonObject c = root.object("coherence");

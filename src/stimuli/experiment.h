@@ -79,6 +79,9 @@ struct Experiment {
   // eye–target distance (methods.md, "Perspective coherence metric").
   std::optional<double> coherence_dolly;
   bool video = false;  // a lossless video of every sequence (stimuli/sequence_videos.h)
+  // Every stimulus gets its reference's mean L* by a uniform offset of its object pixels
+  // (stimuli/mean_hold.h): a study-design option on top of the methods.
+  bool hold_mean = false;
 };
 
 Experiment load_experiment(const std::filesystem::path& path);

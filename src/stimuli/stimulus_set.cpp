@@ -21,6 +21,7 @@
 #include "stimuli/congruence.h"
 #include "stimuli/coherence_figures.h"
 #include "stimuli/congruence_figures.h"
+#include "stimuli/mean_hold.h"
 #include "stimuli/flicker_figures.h"
 #include "enhance/lightness.h"
 #include "stimuli/perspective_coherence.h"
@@ -136,6 +137,14 @@ void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& mode
   set_image_noise(entry, recorded);
   entry.extra["spp"] = {{"min", sampling.pixels.min}, {"mean", round_to(sampling.pixels.mean, 2)},
                         {"max", sampling.pixels.max}};
+}
+
+// The stimulus with its reference's mean L* (the experiment's hold_mean); returns the L* offset.
+double hold_mean(const View& view, Composed& c) {
+  HeldMean held = hold_mean_lightness(view, c.display);
+  c.display = std::move(held.display);
+  c.clipped_pixels += held.clipped_pixels;
+  return held.offset;
 }
 
 // The congruence score of a stimulus, and its map in false colour as congruence/FILE.
@@ -335,9 +344,11 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       if (done_.count(rel)) return record(done_.at(rel), false);
       auto tc = Clock::now();
       Composed c = prepared->compose(e_.lambda.value(l));
+      const std::optional<double> offset = e_.hold_mean ? std::optional(hold_mean(*view, c)) : std::nullopt;
       compose_seconds_.fetch_add(since(tc));
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
+      if (offset) entry.extra["mean_offset"] = round_to(*offset, 4);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
       if (moved)

@@ -1,0 +1,31 @@
+#pragma once
+// Holding a stimulus's mean lightness at its reference's (an experiment's "hold_mean"). 3D unsharp
+// masking brightens a scene as λ grows by its design (its contrast is taken against surface the
+// camera does not see), and observers may judge that brightening instead of the enhancement. This
+// is a study-design choice on top of a method, not part of any method: the stimulus's object
+// pixels are shifted by one uniform L* offset, through the lightness-only rule (hue and chroma
+// kept), until the mean L* of the image as written equals the reference's.
+
+#include <cstddef>
+
+#include "core/image.h"
+#include "enhance/view.h"
+
+namespace countershade {
+
+struct HeldMean {
+  Image display;          // the stimulus with its offset, code values of the view's bit depth
+  double offset = 0;      // the L* offset δ applied to every object pixel
+  size_t clipped_pixels = 0;  // pixels the offset clipped (L' outside [0, 100] or a channel outside [0, 1])
+};
+
+// `display`: a stimulus of `view` (code values at view.bits). Object pixels are those with a
+// finite, positive depth (every pixel when the view has no depth). The offset is found to within
+// `tolerance` L* of the reference's mean, measured over the whole image decoded from its codes (as
+// the audit measures drift); a stimulus equal to the view's image is returned unchanged.
+HeldMean hold_mean_lightness(const View& view, const Image& display, double tolerance = 0.005);
+
+// The mean L* of a display image of code values at `bits`, decoded with `encoding`.
+double mean_lightness(const Image& display, const DisplayEncoding& encoding, int bits);
+
+}  // namespace countershade

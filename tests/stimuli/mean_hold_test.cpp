@@ -1,0 +1,137 @@
+// Holding a stimulus's mean lightness at its reference's (an experiment's "hold_mean"): against
+// L* computed here from the sRGB definitions, on a synthetic image and in a stimulus set whose
+// audit then finds no drift.
+
+#include "stimuli/mean_hold.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/image.h"
+#include "enhance/method.h"
+#include "stimuli/audit.h"
+#include "stimuli/experiment.h"
+#include "stimuli/stimulus_set.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+namespace fs = std::filesystem;
+
+// CIELAB of an 8-bit sRGB code triple, from the standard's formulas (D65, Y of the white = 1).
+struct ReferenceLab {
+  double L, a, b;
+};
+ReferenceLab reference_lab(const float* rgb) {
+  double linear[3];
+  for (int c = 0; c < 3; ++c) {
+    const double v = std::round(rgb[c] * 255.0) / 255.0;
+    linear[c] = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  }
+  const double X = 0.4124564 * linear[0] + 0.3575761 * linear[1] + 0.1804375 * linear[2];
+  const double Y = 0.2126729 * linear[0] + 0.7151522 * linear[1] + 0.0721750 * linear[2];
+  const double Z = 0.0193339 * linear[0] + 0.1191920 * linear[1] + 0.9503041 * linear[2];
+  auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
+  const double fx = f(X / 0.95047), fy = f(Y), fz = f(Z / 1.08883);
+  return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+}
+
+double reference_mean(const Image& image) {
+  double sum = 0;
+  for (size_t p = 0; p < image.pixels.size() / 3; ++p) sum += reference_lab(&image.pixels[3 * p]).L;
+  return sum / double(image.pixels.size() / 3);
+}
+
+// A dark grey background (no depth) around an object of coloured stripes (depth 1).
+std::shared_ptr<const View> striped_view() {
+  const int w = 64, h = 48;
+  Image display(w, h, 3);
+  std::vector<float> depth(size_t(w) * h, INFINITY);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const bool object = x >= 12 && x < 52 && y >= 8 && y < 40;
+      const float t = float((x / 4) % 5) / 4.0f;
+      const float rgb[3] = {object ? 0.3f + 0.5f * t : 0.2f, object ? 0.35f + 0.2f * t : 0.2f, object ? 0.5f - 0.3f * t : 0.2f};
+      for (int c = 0; c < 3; ++c) display.pixels[3 * i + size_t(c)] = rgb[c];
+      if (object) depth[i] = 1.0f;
+    }
+  return make_image_view(display, depth, DisplayEncoding::srgb(), 8);
+}
+
+TEST(MeanHold, AnEnhancedImageGetsItsReferencesMeanByOneOffsetOnItsObject) {
+  const auto view = striped_view();
+  // An "enhancement" that brightens the object: every channel of its pixels up by 20 codes (some clip).
+  Image enhanced = view->display;
+  for (size_t p = 0; p < view->depth.size(); ++p)
+    for (int c = 0; std::isfinite(view->depth[p]) && c < 3; ++c)
+      enhanced.pixels[3 * p + size_t(c)] = std::min(1.0f, enhanced.pixels[3 * p + size_t(c)] + 20.0f / 255.0f);
+  const double target = reference_mean(view->display);
+  ASSERT_GT(std::abs(reference_mean(enhanced) - target), 0.3) << "the enhancement must move the mean to test anything";
+  const HeldMean held = hold_mean_lightness(*view, enhanced);
+  EXPECT_NEAR(reference_mean(held.display), target, 0.05);
+  EXPECT_NEAR(mean_lightness(held.display, view->encoding, 8), target, 0.05);
+  size_t object = 0;
+  for (size_t p = 0; p < view->depth.size(); ++p) {
+    const float* before = &enhanced.pixels[3 * p];
+    const float* after = &held.display.pixels[3 * p];
+    if (!std::isfinite(view->depth[p])) {  // the background keeps its codes
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(after[c], before[c]) << p;
+      continue;
+    }
+    ++object;
+    const ReferenceLab x = reference_lab(before), y = reference_lab(after);
+    EXPECT_NEAR(y.L - x.L, held.offset, 0.6) << p;  // one offset, up to an 8-bit step
+    const double hue_x = std::atan2(x.b, x.a), hue_y = std::atan2(y.b, y.a);
+    if (std::hypot(x.a, x.b) > 10) EXPECT_NEAR(std::remainder(hue_y - hue_x, 2 * std::numbers::pi), 0.0, 0.05) << p;
+  }
+  EXPECT_GT(object, 1000u);
+  // The reference itself, and a stimulus equal to it, stay as they are.
+  const HeldMean same = hold_mean_lightness(*view, view->display);
+  EXPECT_EQ(same.display.pixels, view->display.pixels);
+  EXPECT_EQ(same.offset, 0.0);
+}
+
+// A set of the lit cube under usm3d up to λ = 3 drifts without hold_mean and not with it; every
+// stimulus records its offset, and λ = 0 is the reference byte for byte.
+TEST(MeanHold, ASetWithHoldMeanPassesTheDriftCheck) {
+  testing::TempDir dir;
+  testing::write_file(dir / "cube.json", testing::kLitCubeScene);
+  auto experiment = [&](bool hold) {
+    return load_experiment(testing::write_file(dir / (hold ? "held.json" : "free.json"), std::string(R"({
+      "version": 1, "name": "held", "seed": 5, "lambda": {"min": 0, "max": 3, "step": 1.5},
+      "scenes": [{"name": "cube", "file": "cube.json", "width": 96, "height": 72}],
+      "methods": [{"method": "usm3d", "sigma_fraction": [0.1]}], "audit": {"max_drift": 0.1})") +
+                                                   (hold ? R"(, "hold_mean": true})" : "}")));
+  };
+  GenerateOptions options;
+  options.contact_sheets = false;
+  for (bool hold : {false, true}) {
+    const fs::path set = dir / (hold ? "held" : "free");
+    generate_stimulus_set(experiment(hold), set, options);
+    const AuditReport report = audit_stimulus_set(set / "manifest.json");
+    size_t failed = 0;
+    for (const auto& check : report.checks) failed += check.check == "mean L* drift" && !check.passed;
+    EXPECT_EQ(failed, hold ? 0u : 1u) << (hold ? "held" : "free");
+    if (!hold) continue;
+    const Manifest manifest = read_manifest(set / "manifest.json");
+    const Image reference = read_image(set / "cube/reference.png");
+    for (const auto& entry : manifest.stimuli) {
+      if (entry.method == kReferenceMethod) continue;
+      ASSERT_TRUE(entry.extra.contains("mean_offset")) << entry.file;
+      const Image image = read_image(set / entry.file);
+      EXPECT_NEAR(reference_mean(image), reference_mean(reference), 0.05) << entry.file;
+      if (entry.lambda == 0) {
+        EXPECT_EQ(image.pixels, reference.pixels);
+        EXPECT_EQ(entry.extra["mean_offset"].get<double>(), 0.0);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace countershade
