@@ -42,7 +42,8 @@ struct RenderArgs {
   std::optional<double> exposure, noise;
   int bits = 8;
   std::string aux;
-  std::string frames;  // "A:B": frames of the scene's animation
+  std::string frames;     // "A:B": frames of the scene's animation
+  std::string reference;  // also the plain image, from the same render
 };
 
 // Writes the G-buffer and the sampling as EXR files a researcher can open: depth, normal, object
@@ -76,6 +77,7 @@ std::string check_output(const RenderArgs& args, bool enhanced) {
                                             ".png, .tif (display-encoded) or .exr (linear)");
   if (ext == ".exr" && enhanced) throw_input_error(args.output, "enhanced stimuli are display-referred: write .png or .tif");
   if (!args.aux.empty()) check_output_folder(args.aux);
+  if (!args.reference.empty()) check_output_file(args.reference, {".png", ".tif", ".tiff"}, ".png or .tif");
   return ext;
 }
 
@@ -116,7 +118,8 @@ std::string render_summary(const std::string& output, const View& view, const No
 
 // Renders `scene` (enhanced as asked) to `output`; returns the summary line.
 std::string render_one(const RenderArgs& args, const ResolvedMethod& method, std::shared_ptr<const Scene> scene,
-                       const std::string& output, const std::string& ext, Progress& progress) {
+                       const std::string& output, const std::string& reference, const std::string& ext,
+                       Progress& progress) {
   auto start = std::chrono::steady_clock::now();
   ViewOptions vo;
   vo.bits = args.bits;
@@ -127,6 +130,9 @@ std::string render_one(const RenderArgs& args, const ResolvedMethod& method, std
   plan.max_abs_lambda = std::abs(args.method.lambda);
   std::shared_ptr<const View> view = render_view(scene, plan, vo);
   if (!args.aux.empty()) write_aux(args.aux, view->render);
+  // The plain image of the very samples the stimulus is composed from: two renders would sample
+  // silhouettes differently under the adaptive budget.
+  if (!reference.empty()) write_image(reference, view->display, {args.bits});
 
   std::string details;
   NoiseSummary noise = summarize_noise(view->render.noise);
@@ -161,7 +167,7 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
   method.method->check_scene(*scene, *method.parameters);
   if (args.frames.empty()) {
     Progress progress("render");
-    progress.finish(render_one(args, method, scene, args.output, ext, progress));
+    progress.finish(render_one(args, method, scene, args.output, args.reference, ext, progress));
     return;
   }
   if (!args.aux.empty()) throw InputError("--aux: not with --frames (render one frame with its own --aux)");
@@ -169,7 +175,8 @@ void run(const RenderArgs& args, const CLI::App* cmd) {
   for (int f = first; f <= last; ++f) {
     Progress progress("render frame " + std::to_string(f));
     auto posed = std::make_shared<const Scene>(scene_at(*scene, scene->animation->time_of(f)));
-    progress.finish(render_one(args, method, posed, frame_path(args.output, f), ext, progress));
+    const std::string reference = args.reference.empty() ? "" : frame_path(args.reference, f);
+    progress.finish(render_one(args, method, posed, frame_path(args.output, f), reference, ext, progress));
   }
 }
 
@@ -200,6 +207,9 @@ void add_render_command(CLI::App& app) {
                   "Also write depth.exr, normal.exr, object_id.exr, spp.exr, noise.exr (L* per pixel) and the "
                   "method's intermediate images "
                   "(e.g. depth-usm's D, G*D and ΔD) to this folder");
+  cmd->add_option("--reference", args->reference,
+                  "Also write the plain image (.png/.tif) from the same samples as the enhanced one (with --frames, "
+                  "numbered like OUT)");
   cmd->callback([args, cmd] { run(*args, cmd); });
   cmd->footer(method_parameters_help() +
               "\nExamples:\n"

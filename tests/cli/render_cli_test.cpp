@@ -77,6 +77,32 @@ TEST(RenderCli, Usm3dAtLambdaZeroMatchesTheUnenhancedPngByteForByte) {
   EXPECT_NE(testing::read_file(dir / "strong.png"), testing::read_file(dir / "none.png"));
 }
 
+// --reference writes the plain image of the same render: a uniformly lit ball (ambient light only,
+// sampled adaptively) has no contrast to enhance, so usm3d at λ = 1 must give the reference's
+// bytes at every pixel, silhouettes included; at λ = 0 too. A reference that is not an image is
+// refused before any work.
+TEST(RenderCli, TheReferenceComesFromTheSameSamplesAsTheStimulus) {
+  testing::TempDir dir;
+  auto scene = testing::write_file(dir / "uniform.json", R"({
+    "version": 1,
+    "camera": {"eye": [0, 1, 4], "target": [0, 0, 0], "width": 48, "height": 36},
+    "render": {"noise": {"target": 0.5, "min_spp": 4, "max_spp": 256}},
+    "display": {"background": 0.1},
+    "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 3}, "material": {"albedo": 0.6}}],
+    "lights": [{"type": "ambient", "radiance": 1.0}]
+  })");
+  for (const char* lambda : {"1", "0"}) {
+    auto r = run_cli("render " + scene.string() + " -o " + (dir / "enhanced.png").string() + " --reference " +
+                     (dir / "plain.png").string() + " --method usm3d --sigma 0.3 --lambda " + lambda);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(read_image(dir / "enhanced.png").pixels, read_image(dir / "plain.png").pixels) << "lambda " << lambda;
+  }
+  auto bad = run_cli("render " + scene.string() + " -o " + (dir / "x.png").string() + " --reference " +
+                     (dir / "plain.exr").string() + " --method usm3d --sigma 0.3 --lambda 1");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("plain.exr"), std::string::npos) << bad.output;
+}
+
 // λ = 1e300 overflows the noise model's terms (inf − inf); the stimulus saturates and its noise
 // is reported as unbounded. It used to index a table with NaN and crash.
 TEST(RenderCli, AnAbsurdLambdaSaturatesAndReportsUnboundedNoise) {
