@@ -86,9 +86,7 @@ void compare_with_reference(const Decoded& d, const Decoded& reference, Stimulus
     const uint16_t *c = &d.codes[3 * p], *r = &reference.codes[3 * p];
     if (c[0] == r[0] && c[1] == r[1] && c[2] == r[2]) continue;
     ++changed;
-    bool at_limit = false;
-    for (int k = 0; k < 3; ++k) at_limit |= (c[k] == 0 || c[k] == top) && c[k] != r[k];
-    clipped += at_limit;
+    clipped += clipped_by_enhancement(c, r, top);
     const float e = float(ciede2000(reference.lab[p], d.lab[p]));
     differences.push_back(e);
     sum += e;

@@ -78,6 +78,15 @@ std::vector<AuditCondition> audit_conditions(const AuditReport& report);
 // (appended to report.checks).
 void add_audit_checks(AuditReport& report, const Manifest& manifest);
 
+// Whether the enhancement clipped a pixel: its codes (three channels) differ from the reference's,
+// and a channel sits at 0 or at `top` (full scale) where the reference's does not.
+inline bool clipped_by_enhancement(const uint16_t* stimulus, const uint16_t* reference, uint16_t top) {
+  if (stimulus[0] == reference[0] && stimulus[1] == reference[1] && stimulus[2] == reference[2]) return false;
+  bool at_limit = false;
+  for (int k = 0; k < 3; ++k) at_limit |= (stimulus[k] == 0 || stimulus[k] == top) && stimulus[k] != reference[k];
+  return at_limit;
+}
+
 // Checks the set's integrity first (every file listed with its size and sha256, nothing
 // unlisted): a tampered set is an InputError (exit 2). Then measures every stimulus.
 AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const AuditOptions& options = {});

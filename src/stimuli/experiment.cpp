@@ -221,7 +221,9 @@ Experiment load_experiment(const std::filesystem::path& path) {
   // The adjustment procedure: parsed now as `adjust` will parse it, so a typo fails here, not
   // in front of the first participant.
   if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
-  if (root.has("audit")) read_audit_limits(root.object("audit"));  // the audit's limits, checked now
+  // The audit's limits, checked now; headroom keeps to its clipping limit.
+  if (root.has("audit")) e.max_clipped = read_audit_limits(root.object("audit")).max_clipped;
+  e.headroom = root.boolean_or("headroom", false);
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
   if (root.has("lambda")) e.lambda = read_lambda_grid(root.object("lambda"));
   if (root.has("output")) e.bits = read_output_bits(root.object("output"));
@@ -238,6 +240,9 @@ Experiment load_experiment(const std::filesystem::path& path) {
       m.fail("method", "two methods share the folder '" + e.methods.back().label + "' (give one a \"label\")");
   }
   if (e.methods.empty()) root.fail("methods", "an experiment needs at least one method");
+  for (const auto& scene : e.scenes)
+    if (e.headroom && scene.is_sequence())
+      root.fail("headroom", "applies to still scenes only ('" + scene.name + "' is a sequence)");
   for (const auto& m : e.methods)
     for (const auto& s : m.scenes)
       if (!names.count(s)) throw_input_error(path.string() + ": methods", "method '" + m.label + "' names an unknown scene '" + s + "'");

@@ -82,6 +82,10 @@ struct Experiment {
   // Every stimulus gets its reference's mean L* by a uniform offset of its object pixels
   // (stimuli/mean_hold.h): a study-design option on top of the methods.
   bool hold_mean = false;
+  // Each still scene's exposure is lowered, for all its stimuli alike, until no condition clips
+  // more than `max_clipped` (the audit's limit) at the grid's extremes (stimuli/headroom.h).
+  bool headroom = false;
+  double max_clipped = 0.01;
 };
 
 Experiment load_experiment(const std::filesystem::path& path);

@@ -21,6 +21,7 @@
 #include "stimuli/congruence.h"
 #include "stimuli/coherence_figures.h"
 #include "stimuli/congruence_figures.h"
+#include "stimuli/headroom.h"
 #include "stimuli/mean_hold.h"
 #include "stimuli/flicker_figures.h"
 #include "enhance/lightness.h"
@@ -234,6 +235,7 @@ class SetGenerator {
   bool all_done(const Shot& shot) const;
   void record(ManifestEntry entry, bool is_new);
   void make_shot(const Shot& shot, const ScenePlan& plan);
+  std::shared_ptr<const View> headroom_view(size_t scene, const ScenePlan& plan, const ViewOptions& options);
   void write_reference(const SetUnit& unit, const View& view, const View* moved);
   // `plain`: the plain render's own change per pixel under the dolly (with `moved`).
   void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view,
@@ -314,6 +316,7 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
   entry.method = kReferenceMethod;
   if (u.frame >= 0) entry.frame = ManifestEntry::Frame{u.frame, e_.scenes[u.scene].fps};
   entry.extra["display_encoding"] = view.scene->display.encoding.describe();
+  if (e_.headroom) entry.extra["exposure_stops"] = round_to(view.scene->display.exposure_stops, 4);
   record_noise(entry, view, NoiseModel{}, view.display);
   if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits, e_.congruence_options);
   if (moved) record_coherence(entry, view, view_lightness(view), *moved, view_lightness(*moved));
@@ -349,6 +352,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
       if (offset) entry.extra["mean_offset"] = round_to(*offset, 4);
+      if (e_.headroom) entry.extra["exposure_stops"] = round_to(view->scene->display.exposure_stops, 4);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
       if (moved)
@@ -376,8 +380,8 @@ void SetGenerator::make_shot(const Shot& shot, const ScenePlan& plan) {
   const auto scene = first.frame < 0 ? base : std::make_shared<const Scene>(scene_at(*base, base->animation->time_of(first.frame)));
   std::shared_ptr<const View> view, moved;
   run_with_threads(options_.jobs, [&] {
-    view = render_view(scene, plan.plan, vo);
-    moved = moved_view(e_, *scene, plan.plan, vo);
+    view = e_.headroom ? headroom_view(first.scene, plan, vo) : render_view(scene, plan.plan, vo);
+    moved = moved_view(e_, *view->scene, plan.plan, vo);
   });
   render_seconds_.fetch_add(since(t0));
   const std::vector<float> plain = plain_differences(*view, moved.get());  // once for every condition
@@ -385,6 +389,28 @@ void SetGenerator::make_shot(const Shot& shot, const ScenePlan& plan) {
     if (u.is_reference()) write_reference(u, *view, moved.get());
     else write_condition(u, view, moved, plain, plan.use_of.at({u.method, int(u.sigma)}));
   }
+}
+
+// The still scene's view at the exposure the experiment's headroom settles on: each exposure the
+// search tries is a render of its own, and the view of the one it returns is kept.
+std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePlan& plan, const ViewOptions& options) {
+  const std::vector<double> extremes = {e_.lambda.value(0), e_.lambda.value(e_.lambda.count() - 1)};
+  std::shared_ptr<const View> kept;
+  double kept_stops = 0;
+  auto at = [&](double stops) {
+    auto scene = std::make_shared<Scene>(*scenes_[s]);
+    scene->display.exposure_stops += stops;
+    return render_view(scene, plan.plan, options);
+  };
+  const double stops = headroom_stops(
+      [&](double stops) {
+        auto view = at(stops);
+        const double share = largest_clipped_share(view, extremes, options_.jobs);
+        if (share <= e_.max_clipped && (!kept || stops > kept_stops)) kept = view, kept_stops = stops;
+        return share;
+      },
+      e_.max_clipped);
+  return kept && kept_stops == stops ? kept : at(stops);
 }
 
 void SetGenerator::finish() {

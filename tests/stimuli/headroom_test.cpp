@@ -1,0 +1,84 @@
+// Headroom against clipping (an experiment's "headroom"): the search for the exposure, and a set
+// that clips at the top of its grid without it and passes the audit's clipping check with it.
+
+#include "stimuli/headroom.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "core/error.h"
+#include "formats/manifest.h"
+#include "stimuli/audit.h"
+#include "stimuli/experiment.h"
+#include "stimuli/stimulus_set.h"
+#include "test_util.h"
+
+namespace countershade {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Headroom, TheSearchFindsTheHighestExposureWithinTheLimit) {
+  // A share that falls linearly as the exposure drops: within 0.01 from −1.0 stops down.
+  int calls = 0;
+  auto linear = [&](double stops) {
+    ++calls;
+    return std::max(0.0, 0.05 + 0.04 * stops);
+  };
+  const double stops = headroom_stops(linear, 0.01);
+  EXPECT_LE(stops, -1.0);
+  EXPECT_GE(stops, -1.05);
+  EXPECT_LE(calls, 10);
+  // Already within the limit: no change, one look.
+  calls = 0;
+  EXPECT_EQ(headroom_stops([&](double) { return ++calls, 0.005; }, 0.01), 0.0);
+  EXPECT_EQ(calls, 1);
+  // Never within it: the floor.
+  EXPECT_EQ(headroom_stops([](double) { return 1.0; }, 0.01, 0.05, -3), -3.0);
+}
+
+// A bright cube under usm3d up to λ = 3: the top of the grid clips more than 1 % of the image
+// without headroom, and not with it; every entry records the one exposure used.
+TEST(Headroom, ASetWithHeadroomPassesTheClippingCheck) {
+  testing::TempDir dir;
+  std::string scene = testing::kLitCubeScene;
+  scene.replace(scene.find("\"irradiance\": 1.6"), 17, "\"irradiance\": 3.5");
+  testing::write_file(dir / "cube.json", scene);
+  auto experiment = [&](bool headroom) {
+    return load_experiment(testing::write_file(dir / (headroom ? "room.json" : "full.json"), std::string(R"({
+      "version": 1, "name": "room", "seed": 5, "lambda": {"min": 0, "max": 3, "step": 1.5},
+      "scenes": [{"name": "cube", "file": "cube.json", "width": 96, "height": 72}],
+      "methods": [{"method": "usm3d", "sigma_fraction": [0.1]}], "audit": {"max_drift": 100, "max_clipped": 0.01})") +
+                                                   (headroom ? R"(, "headroom": true})" : "}")));
+  };
+  GenerateOptions options;
+  options.contact_sheets = false;
+  for (bool headroom : {false, true}) {
+    const fs::path set = dir / (headroom ? "room" : "full");
+    generate_stimulus_set(experiment(headroom), set, options);
+    const AuditReport report = audit_stimulus_set(set / "manifest.json");
+    size_t failed = 0;
+    for (const auto& check : report.checks) failed += check.check == "clipped pixels" && !check.passed;
+    EXPECT_EQ(failed, headroom ? 0u : 1u) << (headroom ? "with headroom" : "without");
+    if (!headroom) continue;
+    std::set<double> stops;
+    for (const auto& entry : read_manifest(set / "manifest.json").stimuli) stops.insert(entry.extra.at("exposure_stops").get<double>());
+    ASSERT_EQ(stops.size(), 1u);
+    EXPECT_LT(*stops.begin(), 0.0);
+  }
+}
+
+TEST(Headroom, SequencesAreRefused) {
+  testing::TempDir dir;
+  testing::write_file(dir / "orbit.json", testing::kOrbitingBoxScene);
+  const auto file = testing::write_file(dir / "e.json", R"({
+    "version": 1, "name": "s", "headroom": true, "lambda": {"min": 0, "max": 1, "step": 1},
+    "scenes": [{"name": "orbit", "file": "orbit.json", "frames": "all"}],
+    "methods": [{"method": "usm2d", "sigma_percent": [2]}]})");
+  EXPECT_NE(testing::input_error_of([&] { load_experiment(file); }).find("still scenes only"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace countershade
