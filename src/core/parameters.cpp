@@ -130,6 +130,7 @@ std::optional<double> ParameterBag::optional_number(const std::string& key) cons
 }
 
 double ParameterBag::number(const std::string& key, double fallback) const {
+  fallbacks_[key] = fallback;
   return optional_number(key).value_or(fallback);
 }
 
@@ -148,10 +149,12 @@ std::optional<long long> ParameterBag::optional_integer(const std::string& key, 
 }
 
 long long ParameterBag::integer_in(const std::string& key, long long fallback, long long lo, long long hi) const {
+  fallbacks_[key] = fallback;
   return optional_integer(key, lo, hi).value_or(fallback);
 }
 
 bool ParameterBag::boolean(const std::string& key, bool fallback) const {
+  fallbacks_[key] = fallback;
   const Entry* e = find(key);
   if (!e) return fallback;
   if (!e->from_text) {
@@ -174,6 +177,7 @@ std::optional<std::string> ParameterBag::text(const std::string& key) const {
 
 std::string ParameterBag::choice(const std::string& key, const std::string& fallback,
                                  const std::vector<std::string>& choices) const {
+  fallbacks_[key] = fallback;
   const Entry* e = find(key);
   std::string v = fallback;
   if (e) {
@@ -189,6 +193,7 @@ std::string ParameterBag::choice(const std::string& key, const std::string& fall
 }
 
 std::vector<double> ParameterBag::numbers(const std::string& key, const std::vector<double>& fallback) const {
+  fallbacks_[key] = fallback;
   const Entry* e = find(key);
   if (!e) return fallback;
   std::vector<double> out;
@@ -210,8 +215,10 @@ std::vector<double> ParameterBag::numbers(const std::string& key, const std::vec
 }
 
 glm::dvec3 ParameterBag::vec3(const std::string& key, const glm::dvec3& fallback) const {
-  if (!has(key)) return fallback;
-  std::vector<double> v = numbers(key, {});
+  const bool given = has(key);
+  std::vector<double> v = given ? numbers(key, {}) : std::vector<double>{};
+  fallbacks_[key] = std::vector<double>{fallback.x, fallback.y, fallback.z};  // after numbers(), which records {}
+  if (!given) return fallback;
   if (v.size() == 1) return glm::dvec3(v[0]);
   if (v.size() != 3) fail(key, command_line_ ? "expected three numbers R,G,B" : "expected an array of 3 numbers");
   return {v[0], v[1], v[2]};

@@ -56,6 +56,9 @@ class ParameterBag {
 
   // The values as given, for records.
   nlohmann::ordered_json to_json() const;
+  // The fallback each typed read used so far, by key (the last read's, where a key is read twice),
+  // so that a test can hold a method's documented defaults to what its parser does.
+  const std::map<std::string, nlohmann::json>& fallbacks() const { return fallbacks_; }
 
  private:
   struct Entry {
@@ -70,6 +73,7 @@ class ParameterBag {
   std::map<std::string, Entry> entries_;
   bool command_line_ = false;
   mutable std::set<std::string> known_;
+  mutable std::map<std::string, nlohmann::json> fallbacks_;
 };
 
 // "sigma_px" <-> "sigma-px".
