@@ -9,11 +9,13 @@
 namespace countershade {
 
 double headroom_stops(const ClippedAt& clipped_at, double limit, double resolution, double floor) {
-  if (clipped_at(0.0) <= limit) return 0.0;
+  double share = clipped_at(0.0);
+  if (share <= limit) return 0.0;
   double failing = 0.0, passing = -0.25;
-  while (clipped_at(passing) > limit) {
+  for (double lower; (lower = clipped_at(passing)) > limit; share = lower) {
+    // A share that does not fall with the exposure is not clipping at the top: nothing to gain.
+    if (lower >= share || passing <= floor) return failing;
     failing = passing;
-    if (passing <= floor) return floor;
     passing = std::max(2 * passing, floor);
   }
   while (failing - passing > resolution) {
@@ -31,10 +33,17 @@ std::vector<uint16_t> codes_of(const Image& display, int bits) {
   return codes;
 }
 
+// The share of pixels the enhancement clipped at full scale. Clipping at black (a darkening
+// operator's) does not shrink with the exposure, so it is left to the audit.
 double clipped_share(const std::vector<uint16_t>& stimulus, const std::vector<uint16_t>& reference, int bits) {
   const uint16_t top = uint16_t((1u << bits) - 1u);
   size_t clipped = 0;
-  for (size_t p = 0; 3 * p < stimulus.size(); ++p) clipped += clipped_by_enhancement(&stimulus[3 * p], &reference[3 * p], top);
+  for (size_t p = 0; 3 * p < stimulus.size(); ++p) {
+    const uint16_t *s = &stimulus[3 * p], *r = &reference[3 * p];
+    bool at_top = false;
+    for (int k = 0; k < 3; ++k) at_top |= s[k] == top && r[k] != top;
+    clipped += at_top && clipped_by_enhancement(s, r, top);
+  }
   return stimulus.empty() ? 0.0 : double(clipped) / double(stimulus.size() / 3);
 }
 

@@ -18,12 +18,14 @@ namespace countershade {
 using ClippedAt = std::function<double(double stops)>;
 
 // The largest exposure change ≤ 0 at which clipped_at ≤ limit: 0 when that already holds, else
-// found by halving steps of −0.25, −0.5, −1 … stops and then bisecting to `resolution` stops.
-// Below `floor` the search stops and returns `floor`.
+// found by doubling steps of −0.25, −0.5, −1 … stops and then bisecting to `resolution` stops.
+// Where a step down does not lower the share, or at `floor`, the search gives up and returns the
+// last exposure it tried before that step (the limit is then not met; the audit says so).
 double headroom_stops(const ClippedAt& clipped_at, double limit, double resolution = 0.05, double floor = -8);
 
-// The largest share of the view's pixels that any of its enhancing uses clips (as the audit
-// counts it: a channel at 0 or full scale where the view's own image has not) at any of `lambdas`.
+// The largest share of the view's pixels that any of its enhancing uses clips at full scale (a
+// channel at the top code where the view's own image has not) at any of `lambdas`. Clipping at
+// black does not shrink with the exposure and is not counted.
 double largest_clipped_share(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads);
 
 }  // namespace countershade

@@ -35,8 +35,10 @@ TEST(Headroom, TheSearchFindsTheHighestExposureWithinTheLimit) {
   calls = 0;
   EXPECT_EQ(headroom_stops([&](double) { return ++calls, 0.005; }, 0.01), 0.0);
   EXPECT_EQ(calls, 1);
-  // Never within it: the floor.
-  EXPECT_EQ(headroom_stops([](double) { return 1.0; }, 0.01, 0.05, -3), -3.0);
+  // A share that does not fall with the exposure (clipping at black): no change is worth making.
+  EXPECT_EQ(headroom_stops([](double) { return 0.2; }, 0.01), 0.0);
+  // One that falls but never far enough: the floor's neighbour, where it gave up.
+  EXPECT_EQ(headroom_stops([](double stops) { return 0.5 + 0.01 * stops; }, 0.01, 0.05, -2), -1.0);
 }
 
 // A bright cube under usm3d up to λ = 3: the top of the grid clips more than 1 % of the image
@@ -44,7 +46,10 @@ TEST(Headroom, TheSearchFindsTheHighestExposureWithinTheLimit) {
 TEST(Headroom, ASetWithHeadroomPassesTheClippingCheck) {
   testing::TempDir dir;
   std::string scene = testing::kLitCubeScene;
-  scene.replace(scene.find("\"irradiance\": 1.6"), 17, "\"irradiance\": 3.5");
+  // Bright all over (strong ambient light), so that what clips, clips at white.
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\"irradiance\": 1.6", "\"irradiance\": 2.0"},
+                                 {"\"radiance\": 0.25", "\"radiance\": 1.2"}})
+    scene.replace(scene.find(from), from.size(), to);
   testing::write_file(dir / "cube.json", scene);
   auto experiment = [&](bool headroom) {
     return load_experiment(testing::write_file(dir / (headroom ? "room.json" : "full.json"), std::string(R"({
