@@ -5,6 +5,7 @@
 
 #include "enhance/method.h"
 #include "stimuli/audit.h"
+#include "stimuli/mean_hold.h"
 
 namespace countershade {
 
@@ -49,7 +50,8 @@ double clipped_share(const std::vector<uint16_t>& stimulus, const std::vector<ui
 
 }  // namespace
 
-double largest_clipped_share(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads) {
+double largest_clipped_share(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
+                             bool hold_mean) {
   const std::vector<uint16_t> reference = codes_of(view->display, view->bits);
   double largest = 0;
   for (size_t use = 0; use < view->uses.size(); ++use) {
@@ -58,8 +60,11 @@ double largest_clipped_share(const std::shared_ptr<const View>& view, const std:
     PrepareContext context = make_use_context(view, use, threads);
     context.compose_from_samples = true;
     const auto prepared = u.method->prepare(context, *u.parameters);
-    for (double lambda : lambdas)
-      largest = std::max(largest, clipped_share(codes_of(prepared->compose(lambda).display, view->bits), reference, view->bits));
+    for (double lambda : lambdas) {
+      Image display = prepared->compose(lambda).display;
+      if (hold_mean) display = hold_mean_lightness(*view, display).display;
+      largest = std::max(largest, clipped_share(codes_of(display, view->bits), reference, view->bits));
+    }
   }
   return largest;
 }

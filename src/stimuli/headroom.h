@@ -25,7 +25,9 @@ double headroom_stops(const ClippedAt& clipped_at, double limit, double resoluti
 
 // The largest share of the view's pixels that any of its enhancing uses clips at full scale (a
 // channel at the top code where the view's own image has not) at any of `lambdas`. Clipping at
-// black does not shrink with the exposure and is not counted.
-double largest_clipped_share(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads);
+// black does not shrink with the exposure and is not counted. With `hold_mean`, each stimulus is
+// measured as the set writes it, after its mean is held (stimuli/mean_hold.h).
+double largest_clipped_share(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
+                             bool hold_mean);
 
 }  // namespace countershade

@@ -405,7 +405,7 @@ std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePla
   const double stops = headroom_stops(
       [&](double stops) {
         auto view = at(stops);
-        const double share = largest_clipped_share(view, extremes, options_.jobs);
+        const double share = largest_clipped_share(view, extremes, options_.jobs, e_.hold_mean);
         if (share <= e_.max_clipped && (!kept || stops > kept_stops)) kept = view, kept_stops = stops;
         return share;
       },
