@@ -1,10 +1,11 @@
 #pragma once
 // The ray tracer's answers to one render, kept for renders of the same view with hooks.
 //
-// Hooks change how a point is shaded or textured, never which rays are traced: a render with
-// hooks takes the same camera samples, hits the same points and asks the same shadow rays as the
-// render without them (see ShadowAnswers). So such a render can read every answer back instead of
-// tracing it, and gives the image it would give by tracing, bit for bit. That makes an extra λ of a
+// Hooks change how a point is shaded or textured, never which of the render's rays are traced: a
+// render with hooks takes the same camera samples, hits the same points and asks the same shadow
+// rays as the render without them (see ShadowAnswers). So such a render can read every answer back
+// instead of tracing it, and gives the image it would give by tracing, bit for bit. (A hook that
+// lights the original light's dark side traces rays of its own there, per λ: render/hooks.h.) That makes an extra λ of a
 // method that renders again (shading and texture hooks) cost its shading, not its rays.
 //
 // While it fits, the log also keeps every sample's shading record (render/shading.h: its albedo,
