@@ -205,6 +205,14 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
   }
 }
 
+// "headroom": true, for still scenes only (one exposure would have to serve every frame).
+void read_headroom(const JsonObject& root, Experiment& e) {
+  e.headroom = root.boolean_or("headroom", false);
+  for (const auto& scene : e.scenes)
+    if (e.headroom && scene.is_sequence())
+      root.fail("headroom", "applies to still scenes only ('" + scene.name + "' is a sequence)");
+}
+
 }  // namespace
 
 Experiment load_experiment(const std::filesystem::path& path) {
@@ -223,7 +231,6 @@ Experiment load_experiment(const std::filesystem::path& path) {
   if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
   // The audit's limits, checked now; headroom keeps to its clipping limit.
   if (root.has("audit")) e.max_clipped = read_audit_limits(root.object("audit")).max_clipped;
-  e.headroom = root.boolean_or("headroom", false);
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
   if (root.has("lambda")) e.lambda = read_lambda_grid(root.object("lambda"));
   if (root.has("output")) e.bits = read_output_bits(root.object("output"));
@@ -240,9 +247,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
       m.fail("method", "two methods share the folder '" + e.methods.back().label + "' (give one a \"label\")");
   }
   if (e.methods.empty()) root.fail("methods", "an experiment needs at least one method");
-  for (const auto& scene : e.scenes)
-    if (e.headroom && scene.is_sequence())
-      root.fail("headroom", "applies to still scenes only ('" + scene.name + "' is a sequence)");
+  read_headroom(root, e);
   for (const auto& m : e.methods)
     for (const auto& s : m.scenes)
       if (!names.count(s)) throw_input_error(path.string() + ": methods", "method '" + m.label + "' names an unknown scene '" + s + "'");
