@@ -215,7 +215,7 @@ std::vector<Shader::DarkSideRay> Shader::dark_side_rays(const Scene& scene) {
 Shader::DarkSide Shader::dark_side(const ShadingInputs& s, const LightSampleRecord& light, size_t k) const {
   // Only a sample from behind the shading normal: one that faces it and does not arrive is a cast
   // shadow. A sample with nothing to carry (inside a point light) needs nothing.
-  if (!shading_hook_ || light.arrives || !shading_hook_->shades_dark_side() || shading_hook_->terminator_band() > 0 ||
+  if (!shading_hook_ || !shading_hook_->shades_dark_side() || shading_hook_->terminator_band() > 0 ||
       glm::dot(s.normal, light.wi) > 0 || light.radiance == glm::dvec3(0.0) || dark_side_rays_[k] == DarkSideRay::never)
     return DarkSide::dark;
   return dark_side_rays_[k] == DarkSideRay::none ? DarkSide::unshadowed : DarkSide::traced;
@@ -332,77 +332,72 @@ void Shader::replay_many(std::span<const ReplayInput> records, glm::dvec3* radia
   thread_local std::vector<ShadingInputs> points;
   thread_local std::vector<HookSample> samples;
   thread_local std::vector<glm::dvec3> hooked;
-  thread_local std::vector<uint8_t> open;
+  thread_local std::vector<uint8_t> lit;
   points.clear();
   points.reserve(records.size());  // `samples` points into it: no reallocation below
   for (const ReplayInput& in : records)
     points.push_back(inputs(*in.point, *in.record, texture_hook_ ? albedo(*in.point) : in.record->albedo));
-  trace_dark_sides(records, points, open);
-  // The samples evaluate_inputs reflects through `hooked`: those that arrive, those on the dark
-  // side that the hook shades without a shadow ray, and those whose ray along the hook's direction
-  // was open.
+  lit_samples(records, points, lit);
+  // The samples evaluate_inputs reflects through `hooked`, in order: every lit one.
   samples.clear();
-  const uint8_t* next_open = open.data();
   for (size_t j = 0; shading_hook_ && j < records.size(); ++j)
-    for (size_t k = 0; k < light_samples_; ++k) {
-      const LightSampleRecord& light = records[j].lights[k];
-      const DarkSide side = light.arrives ? DarkSide::unshadowed : dark_side(points[j], light, k);
-      if (side == DarkSide::dark || (side == DarkSide::traced && !*next_open++)) continue;
-      samples.push_back({&points[j], light.wi, light.radiance / light.divisor});
-    }
+    for (size_t k = 0; k < light_samples_; ++k)
+      if (lit[j * light_samples_ + k]) {
+        const LightSampleRecord& light = records[j].lights[k];
+        samples.push_back({&points[j], light.wi, light.radiance / light.divisor});
+      }
   hooked.resize(samples.size());
   if (shading_hook_) shading_hook_->reflect_many(samples, hooked.data());
   const glm::dvec3* next = shading_hook_ ? hooked.data() : nullptr;
-  next_open = open.data();
   for (size_t j = 0; j < records.size(); ++j)
-    radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next, &next_open);
+    radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next, &lit[j * light_samples_]);
 }
 
-void Shader::trace_dark_sides(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
-                              std::vector<uint8_t>& open) const {
+void Shader::lit_samples(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
+                         std::vector<uint8_t>& lit) const {
   thread_local std::vector<HookSample> traced;
-  thread_local std::vector<std::pair<size_t, size_t>> where;  // (record, light sample) of each
+  thread_local std::vector<size_t> where;  // each traced sample's index in `lit`
   thread_local std::vector<std::optional<glm::dvec3>> towards;
   traced.clear();
   where.clear();
-  for (size_t j = 0; shading_hook_ && j < records.size(); ++j)
+  lit.assign(records.size() * light_samples_, 0);
+  for (size_t j = 0; j < records.size(); ++j)
     for (size_t k = 0; k < light_samples_; ++k) {
       const LightSampleRecord& light = records[j].lights[k];
-      if (dark_side(points[j], light, k) != DarkSide::traced) continue;
+      const DarkSide side = light.arrives ? DarkSide::unshadowed : dark_side(points[j], light, k);
+      lit[j * light_samples_ + k] = side == DarkSide::unshadowed;
+      if (side != DarkSide::traced) continue;
       traced.push_back({&points[j], light.wi, light.radiance / light.divisor});
-      where.emplace_back(j, k);
+      where.push_back(j * light_samples_ + k);
     }
+  // The rays of the dark side, their directions asked of the hook all at once.
   towards.assign(traced.size(), std::nullopt);
   if (!traced.empty()) shading_hook_->dark_side_directions(traced, towards.data());
-  open.resize(traced.size());
   for (size_t t = 0; t < traced.size(); ++t) {
-    const auto [j, k] = where[t];
-    open[t] = dark_side_open(points[j], *records[j].record, records[j].lights[k], k, towards[t]);
+    const size_t j = where[t] / light_samples_, k = where[t] % light_samples_;
+    lit[where[t]] = dark_side_open(points[j], *records[j].record, records[j].lights[k], k, towards[t]);
+  }
+}
+
+bool Shader::sample_lit(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k) const {
+  if (light.arrives) return true;
+  switch (dark_side(s, light, k)) {
+    case DarkSide::unshadowed: return true;
+    case DarkSide::traced: return dark_side_open(s, r, light, k, shading_hook_->dark_side_direction(s, light.wi));
+    default: return false;
   }
 }
 
 glm::dvec3 Shader::evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
-                                   const glm::dvec3*& hooked, const uint8_t** open) const {
+                                   const glm::dvec3*& hooked, const uint8_t* lit) const {
   const glm::dvec3& albedo = s.albedo;
   // Sums per light, in the order the samples were drawn. A sample that does not arrive adds nothing,
-  // unless it lies on the original light's dark side and the hook shades there (dark_side).
+  // unless it lies on the original light's dark side and the hook lights it there (sample_lit).
   size_t k = 0;
   auto sum_of = [&](int samples) {
     glm::dvec3 sum(0.0);
-    for (int j = 0; j < samples; ++j, ++k) {
-      const LightSampleRecord& light = lights[k];
-      if (light.arrives) {
-        sum += reflect(s, light, hooked);
-        continue;
-      }
-      const DarkSide side = dark_side(s, light, k);
-      if (side == DarkSide::unshadowed) {
-        sum += reflect(s, light, hooked);
-      } else if (side == DarkSide::traced) {
-        const bool lit = open ? *(*open)++ != 0 : dark_side_open(s, r, light, k, shading_hook_->dark_side_direction(s, light.wi));
-        if (lit) sum += reflect(s, light, hooked);
-      }
-    }
+    for (int j = 0; j < samples; ++j, ++k)
+      if (lit ? lit[k] != 0 : sample_lit(s, r, lights[k], k)) sum += reflect(s, lights[k], hooked);
     return sum;
   };
   glm::dvec3 L(0.0);

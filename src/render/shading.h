@@ -142,10 +142,9 @@ class Shader {
   }
   // evaluate() for given inputs. `hooked` (optional): the hook's reflections of the arriving light
   // samples in order, read and advanced instead of asking the hook one sample at a time.
-  // `open` (optional): dark_side_open of the samples that need a ray, in order, read and advanced
-  // instead of tracing them.
+  // `lit` (optional): sample_lit of each of the point's light samples, read instead of deciding it.
   glm::dvec3 evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
-                             const glm::dvec3*& hooked, const uint8_t** open = nullptr) const;
+                             const glm::dvec3*& hooked, const uint8_t* lit = nullptr) const;
   // The reflection of one arriving light sample (through the shading hook if there is one; its
   // value taken from `hooked` when that is not null).
   glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light, const glm::dvec3*& hooked) const;
@@ -153,7 +152,7 @@ class Shader {
   // side could be lit: the shadow ray it would need, per sample index in drawing order.
   enum class DarkSideRay : uint8_t { never, none, to_infinity, to_point };
   static std::vector<DarkSideRay> dark_side_rays(const Scene& scene);
-  // What this shader does with light sample k that did not arrive: leave it dark (it faces the
+  // What this shader does with light sample k if it did not arrive: leave it dark (it faces the
   // normal and is shadowed, or the hook does not shade the dark side), reflect it through the hook
   // as it is (its light casts no shadows), or trace the hook's direction first.
   enum class DarkSide { dark, unshadowed, traced };
@@ -162,10 +161,13 @@ class Shader {
   // normal and its shadow ray is open.
   bool dark_side_open(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k,
                       const std::optional<glm::dvec3>& towards) const;
-  // dark_side_open for every dark-side sample of `records` that needs a ray, in order (record by
-  // record, sample by sample), the hook's directions asked for all of them at once.
-  void trace_dark_sides(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
-                        std::vector<uint8_t>& open) const;
+  // Whether light sample k of a point is reflected: it arrives, or it lies on a dark side the hook
+  // lights (with the hook's direction open where its light casts shadows).
+  bool sample_lit(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k) const;
+  // sample_lit of every light sample of `records`, record by record (records.size() × light
+  // samples), the dark side's directions asked of the hook for all of them at once.
+  void lit_samples(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
+                   std::vector<uint8_t>& lit) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;

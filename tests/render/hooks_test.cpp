@@ -32,28 +32,15 @@ class PlainHook final : public ShadingHook {
 };
 
 // Shades as if every light came straight along the normal, optionally fading out over a band of
-// the terminator.
+// the terminator. With `dark_side`, it shades the dark side too, where the light mirrored across the
+// tangent plane is open (as exaggerated shading does).
 class HeadOnHook final : public ShadingHook {
  public:
-  explicit HeadOnHook(double band = 0) : band_(band) {}
+  explicit HeadOnHook(double band = 0, bool dark_side = false) : band_(band), dark_side_(dark_side) {}
   glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&, const glm::dvec3& incident) const override {
     return reflect_plain(s, s.normal, incident);
   }
-  double terminator_band() const override { return band_; }
-
- private:
-  double band_;
-};
-
-// Shades head-on on the dark side too, where the light mirrored across the tangent plane is open
-// (as exaggerated shading does), with an optional terminator band.
-class DarkSideHook final : public ShadingHook {
- public:
-  explicit DarkSideHook(double band = 0) : band_(band) {}
-  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&, const glm::dvec3& incident) const override {
-    return reflect_plain(s, s.normal, incident);
-  }
-  bool shades_dark_side() const override { return true; }
+  bool shades_dark_side() const override { return dark_side_; }
   std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s, const glm::dvec3& wi) const override {
     return wi - 2 * glm::dot(s.normal, wi) * s.normal;
   }
@@ -61,6 +48,7 @@ class DarkSideHook final : public ShadingHook {
 
  private:
   double band_;
+  bool dark_side_;
 };
 
 class ConstantTexture final : public TextureHook {
@@ -174,9 +162,9 @@ TEST(Hooks, AHookMayShadeTheDarkSideWhereItsOwnDirectionIsOpen) {
     request.shading_hook = std::move(hook);
     return make_context(view).render_again(request);
   };
-  auto dark_side = hooked_with(std::make_shared<DarkSideHook>());
+  auto dark_side = hooked_with(std::make_shared<HeadOnHook>(0.0, true));
   auto head_on = hooked_with(std::make_shared<HeadOnHook>());
-  auto banded = hooked_with(std::make_shared<DarkSideHook>(0.25));
+  auto banded = hooked_with(std::make_shared<HeadOnHook>(0.25, true));
   const GBuffer& g = view->render.gbuffer;
   const double lit_value = 0.6 / M_PI * 2.0;
   int lit = 0, shadow = 0;

@@ -13,6 +13,7 @@
 #include "stimuli/audit.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
+#include "set_test_util.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -64,8 +65,7 @@ TEST(Headroom, ASetWithHeadroomPassesTheClippingCheck) {
     const fs::path set = dir / (headroom ? "room" : "full");
     generate_stimulus_set(experiment(headroom), set, options);
     const AuditReport report = audit_stimulus_set(set / "manifest.json");
-    size_t failed = 0;
-    for (const auto& check : report.checks) failed += check.check == "clipped pixels" && !check.passed;
+    const size_t failed = testing::failed_checks(report, "clipped pixels");
     EXPECT_EQ(failed, headroom ? 0u : 1u) << (headroom ? "with headroom" : "without");
     if (!headroom) continue;
     std::set<double> stops;

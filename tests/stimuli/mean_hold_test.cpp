@@ -15,6 +15,7 @@
 #include "stimuli/audit.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
+#include "set_test_util.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -114,8 +115,7 @@ TEST(MeanHold, ASetWithHoldMeanPassesTheDriftCheck) {
     const fs::path set = dir / (hold ? "held" : "free");
     generate_stimulus_set(experiment(hold), set, options);
     const AuditReport report = audit_stimulus_set(set / "manifest.json");
-    size_t failed = 0;
-    for (const auto& check : report.checks) failed += check.check == "mean L* drift" && !check.passed;
+    const size_t failed = testing::failed_checks(report, "mean L* drift");
     EXPECT_EQ(failed, hold ? 0u : 1u) << (hold ? "held" : "free");
     if (!hold) continue;
     const Manifest manifest = read_manifest(set / "manifest.json");

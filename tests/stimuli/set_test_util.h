@@ -7,6 +7,7 @@
 #include <string>
 
 #include "formats/manifest.h"
+#include "stimuli/audit.h"
 #include "stimuli/stimulus_set.h"
 
 namespace countershade::testing {
@@ -20,6 +21,13 @@ inline OrderedJson manifest_json(const std::filesystem::path& dir, const std::st
 inline OrderedJson without_run(OrderedJson manifest) {
   manifest.erase("run");
   return manifest;
+}
+
+// How many of the audit's checks named `check` ("mean L* drift", "clipped pixels") failed.
+inline size_t failed_checks(const AuditReport& report, const std::string& check) {
+  size_t failed = 0;
+  for (const auto& c : report.checks) failed += c.check == check && !c.passed;
+  return failed;
 }
 
 inline GenerateOptions with_jobs(int n) {
