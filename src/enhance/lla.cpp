@@ -2,8 +2,9 @@
 // from the coarsest scale of the normal field to the finest, so that every feature gets a lit and
 // an unlit side (enhance/light_alignment.h). Diffuse shading is guided by the multi-scale normals,
 // specular shading by the reflected view vectors. Where a point faces the original light its
-// visibility is that light's; on the light's dark side the point is lit by max(0, n_1·l_1) where the
-// aligned direction l_1 is open (docs/methods.md, "Shape depiction"). The normals come in `surface` or `image` mode (enhance/normal_field.h).
+// visibility is that light's; on the light's dark side the point is lit by max(0, n_1·l_1) where
+// the aligned direction l_1 is open (docs/methods.md, "Shape depiction"). The normals come in
+// `surface` or `image` mode (enhance/normal_field.h).
 // λ scales the per-scale strengths: s_i = clamp(λ·profile_i, 0, 1).
 
 #include <algorithm>

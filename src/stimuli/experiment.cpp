@@ -196,7 +196,6 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
     e.congruence = root.boolean_or("congruence", false);
   }
   e.video = root.boolean_or("video", false);
-  e.hold_mean = root.boolean_or("hold_mean", false);
   if (e.video && e.bits != 8) root.fail("video", "the videos are 8-bit: use \"output\": {\"bits\": 8}");
   if (root.has("coherence")) {
     const JsonObject c = root.object("coherence");
@@ -205,8 +204,10 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
   }
 }
 
-// "headroom": true, for still scenes only (one exposure would have to serve every frame).
-void read_headroom(const JsonObject& root, Experiment& e) {
+// The study-design options on top of the methods: "hold_mean", and "headroom" for still scenes
+// only (one exposure would have to serve every frame).
+void read_design_options(const JsonObject& root, Experiment& e) {
+  e.hold_mean = root.boolean_or("hold_mean", false);
   e.headroom = root.boolean_or("headroom", false);
   for (const auto& scene : e.scenes)
     if (e.headroom && scene.is_sequence())
@@ -247,7 +248,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
       m.fail("method", "two methods share the folder '" + e.methods.back().label + "' (give one a \"label\")");
   }
   if (e.methods.empty()) root.fail("methods", "an experiment needs at least one method");
-  read_headroom(root, e);
+  read_design_options(root, e);
   for (const auto& m : e.methods)
     for (const auto& s : m.scenes)
       if (!names.count(s)) throw_input_error(path.string() + ": methods", "method '" + m.label + "' names an unknown scene '" + s + "'");
