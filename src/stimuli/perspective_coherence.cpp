@@ -45,7 +45,7 @@ void catmull_rom(double t, double w[4]) {
 // that detail near the pixel scale survives the resampling better than bilinearly), if the 4×4
 // pixels there all see `object` within 10 % of that depth (so no other surface mixes in, not even
 // one just behind a silhouette) and the four nearest see the point of eye depth `depth`.
-bool lookup(const View& v, const glm::dvec2& film, double depth, int object, const std::vector<float>& values,
+bool lookup(const View& v, const glm::dvec2& film, double depth, int object, std::span<const float> values,
             double& out) {
   const double fx = film.x - 0.5, fy = film.y - 0.5;
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
@@ -89,8 +89,8 @@ CarryPoint carry_between_frames(const Scene& base, int from, int to) {
   };
 }
 
-Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
-                              const std::vector<float>& moved_values, const CarryPoint& carry,
+Reprojection reprojection_rms(const View& first, std::span<const float> first_values, const View& moved,
+                              std::span<const float> moved_values, const CarryPoint& carry,
                               std::vector<float>* differences) {
   if (differences) differences->assign(first_values.size(), std::numeric_limits<float>::quiet_NaN());
   const CameraRays a(first.scene->camera), b(moved.scene->camera);

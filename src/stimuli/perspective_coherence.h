@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -42,8 +43,8 @@ CarryPoint carry_between_frames(const Scene& base, int from, int to);
 // within 1 %. moved_values is interpolated bicubically there; `carry` moves the point first.
 // With `differences`, also |first_values(x) − moved_values(x′)| per pixel of the first frame
 // (NaN where x did not count).
-Reprojection reprojection_rms(const View& first, const std::vector<float>& first_values, const View& moved,
-                              const std::vector<float>& moved_values, const CarryPoint& carry = {},
+Reprojection reprojection_rms(const View& first, std::span<const float> first_values, const View& moved,
+                              std::span<const float> moved_values, const CarryPoint& carry = {},
                               std::vector<float>* differences = nullptr);
 
 // The tolerance of a set's stable figures (flicker and coherence): the pixels whose plain L*

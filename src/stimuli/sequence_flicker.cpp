@@ -11,7 +11,7 @@
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene_animation.h"
-#include "stimuli/perspective_coherence.h"
+#include "stimuli/flicker.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
@@ -93,34 +93,43 @@ FrameLayers FlickerMeter::layers_at(const Sequences& sequences, int frame) const
   return out;
 }
 
-// One frame pair of every sequence that has both frames. The reference's own per-pixel change
-// comes first: it picks the stable pixels of every condition.
+// One frame pair of every sequence that has both frames, measured as the `flicker` command
+// measures it (stimuli/flicker.h). The reference's own change is the plain change; its per-pixel
+// differences pick the stable pixels of every condition.
 void FlickerMeter::measure_pair(Sequences& sequences, const FrameLayers& previous, const FrameLayers& current,
                                 int frame) const {
+  const auto plain_a = previous.layers.find(reference_), plain_b = current.layers.find(reference_);
+  if (plain_a == previous.layers.end() || plain_b == current.layers.end()) return;
+  const auto frame_of = [&](const FrameLayers& layers, const std::vector<float>& layer, const std::vector<float>& plain) {
+    FlickerFrame f;
+    f.view = layers.geometry;
+    f.layer = layer;
+    f.plain = plain;
+    return f;
+  };
   const CarryPoint carry = carry_between_frames(base_, frame - 1, frame);
-  auto record = [&](const std::string& folder, std::vector<float>& differences) {
-    const Reprojection r = reprojection_rms(*previous.geometry, previous.layers.at(folder), *current.geometry,
-                                            current.layers.at(folder), carry, &differences);
+  const PlainChange plain = plain_change(frame_of(previous, plain_a->second, plain_a->second),
+                                         frame_of(current, plain_b->second, plain_b->second), carry);
+  const auto record = [&](const std::string& folder, const Reprojection& r) {
     ManifestEntry& entry = *sequences.at(folder).at(frame);
     entry.extra["flicker"] = round_to(r.rms, 4);
     entry.extra["flicker_pixels"] = r.pixels;
     return &entry;
   };
-  std::vector<float> plain;
+  record(reference_, plain.rms);
   std::vector<std::string> folders;
-  for (const auto& [folder, layer] : current.layers) {
-    if (!previous.layers.count(folder)) continue;
-    if (folder == reference_) record(folder, plain);  // before the others: it picks their stable pixels
-    else folders.push_back(folder);
-  }
+  for (const auto& [folder, layer] : current.layers)
+    if (folder != reference_ && previous.layers.count(folder)) folders.push_back(folder);
+  FlickerOptions options;
+  options.stable = kStableTolerance;
   parallel_ranges(folders.size(), threads_, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      std::vector<float> differences;
-      ManifestEntry* entry = record(folders[k], differences);
-      if (plain.empty()) continue;
-      const Reprojection stable = rms_where_stable(differences, plain, kStableTolerance);
-      entry->extra["flicker_stable"] = round_to(stable.rms, 4);
-      entry->extra["flicker_stable_pixels"] = stable.pixels;
+      const PairFlicker pair = pair_flicker(frame_of(previous, previous.layers.at(folders[k]), plain_a->second),
+                                            frame_of(current, current.layers.at(folders[k]), plain_b->second), carry,
+                                            plain, options);
+      ManifestEntry* entry = record(folders[k], pair.layer);
+      entry->extra["flicker_stable"] = round_to(pair.stable.rms, 4);
+      entry->extra["flicker_stable_pixels"] = pair.stable.pixels;
     }
   });
 }

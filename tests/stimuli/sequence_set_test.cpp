@@ -1,6 +1,6 @@
 // Stimulus sets with sequences: a scene's animation frames as stimuli, the manifest's frame
 // records, reproducibility across thread counts and shards, resuming frame by frame, the flicker
-// recorded per frame (against the `flicker` command), and bad frame ranges.
+// recorded per frame (against the `flicker` command's measure), and bad frame ranges.
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,10 @@
 
 #include "core/error.h"
 #include "core/sha256.h"
+#include "enhance/registry.h"
+#include "enhance/view.h"
 #include "stimuli/audit.h"
+#include "stimuli/flicker.h"
 #include "stimuli/lossless_video.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/stimulus_set.h"
@@ -106,35 +109,34 @@ TEST(SequenceSet, ResumesFrameByFrame) {
             testing::without_run(testing::manifest_json(dir / "cut")));
 }
 
-// One frame's figures from the flicker command's CSV (written with --stable).
+// One frame's figures as the `flicker` command measures them (with --stable).
 struct CommandFlicker {
   double flicker = 0, plain = 0, stable = 0;
 };
 
-std::map<int, CommandFlicker> read_flicker_csv(const std::filesystem::path& path) {
+// The `flicker` command's measure, in process: usm2d at λ = 1 over every frame of the scene.
+std::map<int, CommandFlicker> rendered_flicker(const fs::path& scene_file) {
+  const EnhancementMethod& usm2d = method_named("usm2d", "test");
+  FlickerRender render;
+  render.method = &usm2d;
+  render.parameters = usm2d.parse(ParameterBag::from_json({{"sigma_percent", 3}}, "test", "usm2d"));
+  Scene base = load_scene(scene_file);
+  apply_request(base, usm2d.request(*render.parameters));
+  FlickerOptions options;
+  options.stable = kStableTolerance;
   std::map<int, CommandFlicker> out;
-  std::istringstream csv(testing::read_file(path));
-  std::string line;
-  std::getline(csv, line);
-  while (std::getline(csv, line)) {
-    int frame = 0;
-    size_t pixels = 0;
-    CommandFlicker f;
-    EXPECT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%zu,%lf", &frame, &f.flicker, &f.plain, &pixels, &f.stable), 5) << line;
-    out[frame] = f;
-  }
+  measure_rendered_flicker(base, 0, base.animation->frame_count() - 1, render, options,
+                           [&](int frame, const FlickerFrame&, const FlickerFrame&, const PlainChange& plain,
+                               const PairFlicker& pair) { out[frame] = {pair.layer.rms, plain.rms.rms, pair.stable.rms}; });
   return out;
 }
 
-// The set measures flicker from its files; the `flicker` command renders and measures in memory.
-// They agree frame by frame, for a method and for the plain render.
+// The set measures flicker from its files; the `flicker` command renders and measures in memory,
+// through the same pair measure. They agree frame by frame, for a method and for the plain render.
 TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
   testing::TempDir dir;
   generate_stimulus_set(load_experiment(write_experiment(dir)), dir / "set", testing::with_jobs(2));
-  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() +
-                                  " --method usm2d --sigma-percent 3 --lambda 1 --stable 0.1 --csv " + (dir / "f.csv").string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::map<int, CommandFlicker> command = read_flicker_csv(dir / "f.csv");
+  const std::map<int, CommandFlicker> command = rendered_flicker(dir / "orbit.json");
   ASSERT_EQ(command.size(), 3u);
   int compared = 0;
   const OrderedJson manifest = testing::manifest_json(dir / "set");  // alive while iterating

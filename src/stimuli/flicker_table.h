@@ -1,0 +1,30 @@
+#pragma once
+// The `flicker` command's report: one CSV row per frame pair (the columns depend on the options
+// measured, docs/enhancement-methods.md "Flicker"), and a one-line summary of the means over
+// pairs.
+
+#include <string>
+
+#include "stimuli/flicker.h"
+
+namespace countershade {
+
+class FlickerTable {
+ public:
+  explicit FlickerTable(const FlickerOptions& options);
+  void add(int frame, const PlainChange& plain, const PairFlicker& pair);
+  const std::string& csv() const { return csv_; }
+  size_t pixels() const { return pixels_; }  // over every pair: 0 means nothing was measured
+  // `object`: the name of FlickerOptions::object.
+  std::string summary(const std::string& object) const;
+
+ private:
+  const FlickerOptions& o_;
+  std::string csv_;
+  double mean_[6] = {};  // sums over pairs: layer, plain, both at scale, stable, stable share
+  ObjectChange object_, object_stable_;  // the worst pair's
+  int pairs_ = 0;
+  size_t pixels_ = 0;
+};
+
+}  // namespace countershade
