@@ -29,7 +29,7 @@ struct StimuliArgs {
 void run_stimuli(const StimuliArgs& args) {
   Experiment experiment = load_experiment(args.experiment);
   if (args.merge) {
-    auto path = merge_shard_manifests(experiment, args.output);
+    auto path = merge_shard_manifests(experiment, args.output, {args.jobs, !args.no_sheets});
     std::fprintf(stderr, "stimuli: merged shards into %s\n", path.string().c_str());
     print_audit_summary(path, args.jobs);
     return;

@@ -214,11 +214,23 @@ std::shared_ptr<Scene> set_scene(const Experiment& e, size_t s) {
   return scene;
 }
 
-// Flicker for every sequence of a complete set, measured from its files (sequence_flicker.h).
-void measure_flicker(const Experiment& e, const fs::path& dir, std::vector<ManifestEntry>& entries,
-                     const std::function<std::shared_ptr<const Scene>(size_t)>& scene_of, int threads) {
+// The end of a complete set, made in one run or merged from shards: the figures measured from its
+// files (flicker), the videos, manifest.json with the run record `run()` gives at that moment, and
+// the sheets and figures drawn from the manifest.
+void finish_set(const Experiment& e, const fs::path& dir, Manifest& manifest,
+                const std::function<std::shared_ptr<const Scene>(size_t)>& scene_of,
+                const std::function<nlohmann::json()>& run, const FinishOptions& options) {
+  sort_entries(manifest.stimuli);
   for (size_t s = 0; s < e.scenes.size(); ++s)
-    if (e.scenes[s].is_sequence()) measure_sequence_flicker(e, dir, e.scenes[s], *scene_of(s), entries, threads);
+    if (e.scenes[s].is_sequence())
+      measure_sequence_flicker(e, dir, e.scenes[s], *scene_of(s), manifest.stimuli, options.jobs);
+  if (e.video) write_sequence_videos(dir, manifest, options.jobs);
+  manifest.run = run();
+  write_manifest(dir / "manifest.json", manifest);
+  if (options.contact_sheets) write_set_contact_sheets(e, dir, manifest);
+  if (e.congruence) write_congruence_figures(e, dir, manifest, options.contact_sheets);
+  write_coherence_figures(e, dir, manifest);
+  write_flicker_figures(e, dir, manifest);
 }
 
 class SetGenerator {
@@ -414,36 +426,36 @@ std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePla
 }
 
 void SetGenerator::finish() {
-  sort_entries(entries_);
-  if (options_.shards == 1)
-    measure_flicker(e_, dir_, entries_, [&](size_t s) { return scenes_[s]; }, options_.jobs);
-  report_.images_written = written_;
-  report_.images_skipped = skipped_;
-  report_.render_seconds = render_seconds_;
-  report_.prepare_seconds = prepare_seconds_;
-  report_.compose_seconds = compose_seconds_;
-  report_.encode_seconds = encode_seconds_;
-  report_.total_seconds = since(start_);
   Manifest manifest = manifest_header(e_);
-  if (options_.shards > 1) manifest.shard = std::make_pair(options_.shard, options_.shards);
-  manifest.stimuli = entries_;
-  if (e_.video && options_.shards == 1) write_sequence_videos(dir_, manifest, options_.jobs);
-  manifest.run = {{"started_utc", started_},
-                  {"finished_utc", utc_timestamp(false)},
-                  {"jobs", options_.jobs},
-                  {"seconds",
-                   {{"render", report_.render_seconds}, {"prepare", report_.prepare_seconds},
-                    {"compose", report_.compose_seconds}, {"encode", report_.encode_seconds},
-                    {"total", report_.total_seconds}}}};
-  write_manifest(manifest_path_, manifest);
+  manifest.stimuli = std::move(entries_);
+  auto run = [&] {
+    report_.images_written = written_;
+    report_.images_skipped = skipped_;
+    report_.render_seconds = render_seconds_;
+    report_.prepare_seconds = prepare_seconds_;
+    report_.compose_seconds = compose_seconds_;
+    report_.encode_seconds = encode_seconds_;
+    report_.total_seconds = since(start_);
+    return nlohmann::json{{"started_utc", started_},
+                          {"finished_utc", utc_timestamp(false)},
+                          {"jobs", options_.jobs},
+                          {"seconds",
+                           {{"render", report_.render_seconds}, {"prepare", report_.prepare_seconds},
+                            {"compose", report_.compose_seconds}, {"encode", report_.encode_seconds},
+                            {"total", report_.total_seconds}}}};
+  };
+  if (options_.shards > 1) {  // a part: its manifest only; the merge finishes the set
+    sort_entries(manifest.stimuli);
+    manifest.shard = std::make_pair(options_.shard, options_.shards);
+    manifest.run = run();
+    write_manifest(manifest_path_, manifest);
+  } else {
+    finish_set(e_, dir_, manifest, [&](size_t s) { return scenes_[s]; }, run, {options_.jobs, options_.contact_sheets});
+  }
   std::error_code ec;
   fs::remove(journal_path_, ec);
-  if (options_.contact_sheets && options_.shards == 1) write_set_contact_sheets(e_, dir_, manifest);
-  if (e_.congruence && options_.shards == 1) write_congruence_figures(e_, dir_, manifest, options_.contact_sheets);
-  if (options_.shards == 1) write_coherence_figures(e_, dir_, manifest);
-  if (options_.shards == 1) write_flicker_figures(e_, dir_, manifest);
   report_.manifest = manifest_path_;
-  progress_.finish("wrote " + manifest_path_.string() + " (" + std::to_string(entries_.size()) + " images, " +
+  progress_.finish("wrote " + manifest_path_.string() + " (" + std::to_string(manifest.stimuli.size()) + " images, " +
                    format_seconds(report_.total_seconds) + ")");
 }
 
@@ -481,7 +493,7 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, c
   return SetGenerator(e, dir, options).run();
 }
 
-fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir) {
+fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir, const FinishOptions& options) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw_input_error(dir.string(), "no such folder (nothing to merge)");
   std::map<int, Manifest> shards;
@@ -507,15 +519,8 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir) {
     started = std::min(started, m.run.value("started_utc", started));
     finished = std::max(finished, m.run.value("finished_utc", finished));
   }
-  sort_entries(manifest.stimuli);
-  measure_flicker(e, dir, manifest.stimuli, [&](size_t s) { return set_scene(e, s); }, 0);
-  if (e.video) write_sequence_videos(dir, manifest, 0);
-  manifest.run = {{"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
-  write_manifest(dir / "manifest.json", manifest);
-  write_set_contact_sheets(e, dir, manifest);
-  if (e.congruence) write_congruence_figures(e, dir, manifest, true);
-  write_coherence_figures(e, dir, manifest);
-  write_flicker_figures(e, dir, manifest);
+  const nlohmann::json run = {{"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
+  finish_set(e, dir, manifest, [&](size_t s) { return set_scene(e, s); }, [&] { return run; }, options);
   return dir / "manifest.json";
 }
 

@@ -29,8 +29,16 @@ struct GenerateReport {
 GenerateReport generate_stimulus_set(const Experiment& experiment, const std::filesystem::path& dir,
                                      const GenerateOptions& options);
 
-// Joins manifest.shard-*-of-N.json in `dir` into manifest.json (and writes the contact sheets).
-std::filesystem::path merge_shard_manifests(const Experiment& experiment, const std::filesystem::path& dir);
+// How a complete set is finished, in one run or by a merge.
+struct FinishOptions {
+  int jobs = 0;  // threads (0 = all cores)
+  bool contact_sheets = true;
+};
+
+// Joins manifest.shard-*-of-N.json in `dir` into manifest.json and finishes the set as a run on
+// one machine does: the same flicker figures, videos, sheets and figures.
+std::filesystem::path merge_shard_manifests(const Experiment& experiment, const std::filesystem::path& dir,
+                                            const FinishOptions& options = {});
 
 // Parses "I/N"; throws InputError.
 std::pair<int, int> parse_shard(const std::string& text);

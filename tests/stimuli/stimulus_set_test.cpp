@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <thread>
 
 #include "core/error.h"
@@ -67,6 +68,14 @@ TEST(StimulusSet, ReproducibleAcrossRunsAndThreadCounts) {
   EXPECT_TRUE(fs::exists(dir / "a/contact-sheets/cube-usm3d.png"));
 }
 
+// Every file under `dir`, as paths relative to it.
+std::set<std::string> files_under(const fs::path& dir) {
+  std::set<std::string> out;
+  for (const auto& f : fs::recursive_directory_iterator(dir))
+    if (f.is_regular_file()) out.insert(fs::relative(f.path(), dir).string());
+  return out;
+}
+
 TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
   testing::TempDir dir;
   Experiment e = load_experiment(write_experiment(dir));
@@ -77,6 +86,15 @@ TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
   EXPECT_EQ(testing::without_run(testing::manifest_json(dir / "single")),
             testing::without_run(testing::manifest_json(dir / "sharded")));
   EXPECT_TRUE(verify_stimulus_set(dir / "sharded/manifest.json").empty());
+  // One finish for both: the same files (sheets and figures included), apart from the parts' manifests.
+  std::set<std::string> merged = files_under(dir / "sharded");
+  std::erase_if(merged, [](const std::string& f) { return f.rfind("manifest.shard-", 0) == 0; });
+  EXPECT_EQ(files_under(dir / "single"), merged);
+  EXPECT_TRUE(merged.count("contact-sheets/cube-usm3d.png"));
+  // Without sheets, a merge writes none, as a single run without them does.
+  testing::generate_in_shards(e, dir / "bare", 2);
+  merge_shard_manifests(e, dir / "bare", {.jobs = 2, .contact_sheets = false});
+  EXPECT_FALSE(fs::exists(dir / "bare/contact-sheets"));
 }
 
 TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
