@@ -134,7 +134,7 @@ void check_group_scale(const BlockResults& b, const CellTable& means, const std:
 }
 
 // JND: λ divided by λ_Low of the same subject (or of the group mean) in the same scene × σ.
-CellTable jnd_cells(const CellTable& means, const std::string& normalization) {
+CellTable jnd_cells(const CellTable& means, JndNormalization normalization) {
   const size_t n = means.subjects(), ns = means.scenes(), nsig = means.sigmas();
   std::vector<double> group_low(ns * nsig, 0.0);
   for (size_t i = 0; i < n; ++i)
@@ -146,7 +146,7 @@ CellTable jnd_cells(const CellTable& means, const std::string& normalization) {
       for (size_t g = 0; g < nsig; ++g)
         for (Question q : kQuestions)
           jnd.at(i, s, g, q) =
-              means.at(i, s, g, q) / (normalization == "group" ? group_low[s * nsig + g] : means.at(i, s, g, Question::low));
+              means.at(i, s, g, q) / (normalization == JndNormalization::group ? group_low[s * nsig + g] : means.at(i, s, g, Question::low));
   return jnd;
 }
 
@@ -384,7 +384,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   b.lambda_step = resolve_step(rows, options);
   collect_design(b, rows);
   // Dividing by a subject's own λ_Low needs it positive; the group mean does not.
-  const CellTable means = subject_means(b, rows, options.normalization == "subject");
+  const CellTable means = subject_means(b, rows, options.normalization == JndNormalization::subject);
   const size_t n = b.subjects.size();
   if (n < 3) {
     const std::string example =
@@ -393,7 +393,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
                      " answers in every cell (need 3 or more; " + std::to_string(b.excluded.size()) + " excluded" +
                      example + ")");
   }
-  if (options.normalization == "group") check_group_scale(b, means, data_name(rows, method));
+  if (options.normalization == JndNormalization::group) check_group_scale(b, means, data_name(rows, method));
   b.jnd = jnd_cells(means, options.normalization);
 
   json& out = b.json;
@@ -401,7 +401,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   out["excluded_subjects"] = json::array();
   for (const auto& e : b.excluded) out["excluded_subjects"].push_back({{"subject", e.subject}, {"reason", e.reason}});
   out["lambda_step"] = b.lambda_step;
-  out["jnd_normalization"] = options.normalization;
+  out["jnd_normalization"] = jnd_normalization_name(options.normalization);
   if (!method.empty()) out["method"] = method;
   add_descriptives(b);
   add_anovas(b);
@@ -415,9 +415,17 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
 
 }  // namespace
 
+JndNormalization parse_jnd_normalization(const std::string& name) {
+  if (name == "subject") return JndNormalization::subject;
+  if (name == "group") return JndNormalization::group;
+  throw InputError("--normalization: expected subject or group, got '" + name + "'");
+}
+
+const char* jnd_normalization_name(JndNormalization normalization) {
+  return normalization == JndNormalization::group ? "group" : "subject";
+}
+
 std::vector<BlockResults> analyze(const std::vector<Response>& responses, const AnalysisOptions& options) {
-  if (options.normalization != "subject" && options.normalization != "group")
-    throw InputError("--normalization: expected subject or group");
   if (options.lambda_step && !(*options.lambda_step > 0)) throw InputError("--lambda-step: must be positive");
   std::map<std::string, std::vector<const Response*>> blocks;
   for (const auto& r : responses) blocks[r.method].push_back(&r);

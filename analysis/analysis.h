@@ -19,8 +19,13 @@
 
 namespace countershade::analysis {
 
+// Which λ_Low a subject's JND unit is: the subject's own, or the mean over subjects (per scene × σ).
+enum class JndNormalization { subject, group };
+JndNormalization parse_jnd_normalization(const std::string& name);  // throws InputError
+const char* jnd_normalization_name(JndNormalization normalization);
+
 struct AnalysisOptions {
-  std::string normalization = "subject";  // subject | group
+  JndNormalization normalization = JndNormalization::subject;
   std::optional<double> lambda_step;      // overrides the CSV's lambda_step column
   int clusters = 2;
   FitModel model = FitModel::lognormal;

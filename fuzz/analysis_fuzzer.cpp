@@ -14,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return fuzz::expect_clean_refusal([&] {
     const std::vector<analysis::Response> responses = analysis::read_responses(path);
     analysis::AnalysisOptions options;
-    options.normalization = size % 2 ? "group" : "subject";
+    options.normalization = size % 2 ? analysis::JndNormalization::group : analysis::JndNormalization::subject;
     options.model = (size / 2) % 3 == 0 ? analysis::FitModel::lognormal
                     : (size / 2) % 3 == 1 ? analysis::FitModel::weibull
                                           : analysis::FitModel::logistic;

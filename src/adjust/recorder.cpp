@@ -153,13 +153,9 @@ SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& p
     : study_(study), plan_(plan), who_(who), files_(session_files(dir, who.subject, who.session)) {
   if (resume) open_existing();
   else create(dir);
-  sidecar_["runs"].push_back({{"started_utc", utc_timestamp()},
-                              {"end", "running"},
-                              {"resumed", resume},
-                              {"answers_before", recorded_.rows},
-                              {"answers", 0},
-                              {"pauses", OrderedJson::array()},
-                              {"focus_losses", OrderedJson::array()}});
+  run_.started_utc = utc_timestamp();
+  run_.resumed = resume;
+  run_.answers_before = recorded_.rows;
   save();
 }
 
@@ -211,7 +207,7 @@ void SessionRecorder::open_existing() {
   recorded_ = read_recorded_answers(files_.csv, study_, plan_);
   // Runs that never recorded their end were interrupted (killed, crashed, power lost).
   for (auto& r : sidecar_["runs"])
-    if (r.value("end", std::string()) == "running") r["end"] = "interrupted";
+    if (r.value("end", std::string()) == run_end_name(RunEnd::running)) r["end"] = run_end_name(RunEnd::interrupted);
   if (!recorded_.dropped_tail.empty()) move_partial_line_aside();
   csv_ = AppendOnlyFile::open_existing(files_.csv);
   keys_ = AppendOnlyFile::open_existing(files_.keys);
@@ -267,7 +263,7 @@ void SessionRecorder::record_answer(const Answer& a, double time_s) {
   csv_.append(csv_line(fields));
   csv_.sync();
   keys_.sync();
-  run()["answers"] = run()["answers"].get<int>() + 1;
+  ++run_.answers;
 }
 
 void SessionRecorder::log_event(double time_s, const std::string& event, const std::string& key,
@@ -283,10 +279,16 @@ void SessionRecorder::log_line(double time_s, const std::string& event, const st
   char t[32];
   std::snprintf(t, sizeof t, "%.4f", time_s);
   // Tab-separated (no field holds a tab), so `analyze sessions/*.csv` never picks it up.
-  keys_.append(std::to_string(sidecar_["runs"].size()) + '\t' + t + '\t' + event + '\t' + key + '\t' + trial + '\t' +
+  keys_.append(std::to_string(sidecar_["runs"].size() + 1) + '\t' + t + '\t' + event + '\t' + key + '\t' + trial + '\t' +
                question + '\t' + lambda_index + '\n');
 }
 
-void SessionRecorder::save() { write_text_atomically(files_.sidecar, sidecar_.dump(2) + "\n"); }
+OrderedJson SessionRecorder::sidecar() const {
+  OrderedJson out = sidecar_;
+  out["runs"].push_back(run_.to_json());
+  return out;
+}
+
+void SessionRecorder::save() { write_text_atomically(files_.sidecar, sidecar().dump(2) + "\n"); }
 
 }  // namespace countershade::adjust

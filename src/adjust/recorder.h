@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adjust/procedure.h"
+#include "adjust/session_run.h"
 #include "core/append_file.h"
 #include "adjust/study.h"
 
@@ -66,9 +67,10 @@ class SessionRecorder {
   void log_line(double time_s, const std::string& event, const std::string& key, const std::string& trial,
                 const std::string& question, const std::string& lambda_index);
 
-  // The current run's entry in the sidecar, for the session to fill in; save() writes the sidecar.
-  nlohmann::ordered_json& run() { return sidecar_["runs"].back(); }
-  nlohmann::ordered_json& sidecar() { return sidecar_; }
+  // The current run, for the session to fill in; save() writes the sidecar.
+  SessionRun& run() { return run_; }
+  // The sidecar as save() writes it: the session's record, the earlier runs and this one.
+  nlohmann::ordered_json sidecar() const;
   void save();
 
  private:
@@ -84,7 +86,8 @@ class SessionRecorder {
   SessionFiles files_;
   AppendOnlyFile csv_, keys_;
   RecordedAnswers recorded_;
-  nlohmann::ordered_json sidecar_;
+  nlohmann::ordered_json sidecar_;  // all but the current run
+  SessionRun run_;
 };
 
 // The plan as stored in the sidecar (one compact object per trial), for the resume check.

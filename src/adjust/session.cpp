@@ -15,6 +15,7 @@
 #include "adjust/input_script.h"
 #include "adjust/presenter.h"
 #include "adjust/recorder.h"
+#include "adjust/session_run.h"
 #include "adjust/study.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -150,24 +151,24 @@ class SessionLoop {
     if (inputs.observer_seed) observer_.emplace(*inputs.observer_seed, study);
   }
 
-  // Runs until the session ends; returns how ("completed", "quit", "closed", ...).
-  std::string run() {
+  // Runs until the session ends; returns how.
+  RunEnd run() {
     preload();
-    if (!end_.empty()) return end_;
+    if (end_) return *end_;
     t0_ = presenter_.now();
-    while (end_.empty()) {
+    while (!end_) {
       const double now = presenter_.now() - t0_;
       take_input(now);
-      if (!end_.empty()) break;
+      if (end_) break;
       const int index_before = procedure_.lambda_index();
       procedure_.tick(now);
       log_repeats(now, index_before);
       draw_frame();
       const bool automated = o_.script.has_value() || observer_.has_value();
-      if (automated && procedure_.phase() == Procedure::Phase::finished) end_ = "completed";
-      if (o_.script && !observer_ && next_script_ == script_.size() && end_.empty()) end_ = "script-ended";
+      if (automated && procedure_.phase() == Procedure::Phase::finished) end_ = RunEnd::completed;
+      if (o_.script && !observer_ && next_script_ == script_.size() && !end_) end_ = RunEnd::script_ended;
     }
-    return end_;
+    return *end_;
   }
 
   OrderedJson frame_statistics() const {
@@ -188,7 +189,7 @@ class SessionLoop {
     const double start = presenter_.now();
     texture_.resize(study_.images.size());
     const size_t batch = 8;
-    for (size_t first = 0; first < study_.images.size() && end_.empty(); first += batch) {
+    for (size_t first = 0; first < study_.images.size() && !end_; first += batch) {
       const size_t last = std::min(first + batch, study_.images.size());
       std::vector<std::vector<uint8_t>> pixels(last - first);
       tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = decode_rgba(study_.images[i]); });
@@ -199,9 +200,9 @@ class SessionLoop {
       loading.progress = double(last) / double(study_.images.size());
       presenter_.draw(loading);
       for (const auto& e : presenter_.poll_events())
-        if (e.kind == WindowEvent::Kind::close) end_ = "closed";
+        if (e.kind == WindowEvent::Kind::close) end_ = RunEnd::closed;
     }
-    recorder_.run()["preload"] = {{"images", study_.images.size()}, {"seconds", presenter_.now() - start}};
+    recorder_.run().preload = Preload{study_.images.size(), presenter_.now() - start};
     recorder_.save();
   }
 
@@ -214,10 +215,10 @@ class SessionLoop {
   // Window events, the script's due events, the model observer's, and signals.
   void take_input(double now) {
     for (const auto& w : presenter_.poll_events()) window_event(w);
-    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && end_.empty()) handle(script_[next_script_++]);
+    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_) handle(script_[next_script_++]);
     if (observer_)
       for (const auto& e : observer_->act(procedure_, now)) handle(e);
-    if (g_signal) end_ = g_signal == SIGTERM ? "terminated" : "interrupted";
+    if (g_signal) end_ = g_signal == SIGTERM ? RunEnd::terminated : RunEnd::interrupted;
   }
 
   void window_event(const WindowEvent& w) {
@@ -225,11 +226,11 @@ class SessionLoop {
     switch (w.kind) {
       case WindowEvent::Kind::press: handle({t, InputEvent::Kind::press, w.key}); break;
       case WindowEvent::Kind::release: handle({t, InputEvent::Kind::release, w.key}); break;
-      case WindowEvent::Kind::close: end_ = "closed"; break;
+      case WindowEvent::Kind::close: end_ = RunEnd::closed; break;
       case WindowEvent::Kind::focus_gained: log(t, "focus-gained", ""); break;
       case WindowEvent::Kind::focus_lost:
         log(t, "focus-lost", "");
-        recorder_.run()["focus_losses"].push_back({{"at_s", t}, {"utc", utc_timestamp()}});
+        recorder_.run().focus_losses.push_back({t, utc_timestamp()});
         // Another window took the keyboard: pause, so the trial does not run on unattended.
         if (procedure_.phase() == Procedure::Phase::question) handle({t, InputEvent::Kind::press, Key::escape});
         recorder_.save();
@@ -240,7 +241,7 @@ class SessionLoop {
   void handle(const InputEvent& e) {
     switch (e.kind) {
       case InputEvent::Kind::screenshot: screenshot_due_ = true; return;
-      case InputEvent::Kind::close: end_ = "closed"; return;
+      case InputEvent::Kind::close: end_ = RunEnd::closed; return;
       case InputEvent::Kind::release: {
         const int index_before = procedure_.lambda_index();
         procedure_.release(e.key, e.time_s);  // may apply repeats that fell due before it
@@ -257,7 +258,7 @@ class SessionLoop {
     const auto before = procedure_.phase();
     if (before == Procedure::Phase::finished) {
       log(e.time_s, "press", key_name(e.key));
-      if (e.key == Key::enter || e.key == Key::escape) end_ = "completed";
+      if (e.key == Key::enter || e.key == Key::escape) end_ = RunEnd::completed;
       return;
     }
     // Logged after the procedure took the key, so an arrow's line shows the new λ index.
@@ -275,14 +276,14 @@ class SessionLoop {
       pause_started_ = t;
       log(t, "pause", "");
     } else if (before == Procedure::Phase::paused && after != before && after != Procedure::Phase::quit) {
-      recorder_.run()["pauses"].push_back({{"at_s", *pause_started_}, {"seconds", t - *pause_started_}});
+      recorder_.run().pauses.push_back({*pause_started_, t - *pause_started_});
       log(t, "resume", "");
       recorder_.save();
     }
     if (after == Procedure::Phase::quit) {
       if (pause_started_)
-        recorder_.run()["pauses"].push_back({{"at_s", *pause_started_}, {"seconds", t - *pause_started_}, {"quit", true}});
-      end_ = "quit";
+        recorder_.run().pauses.push_back({*pause_started_, t - *pause_started_, true});
+      end_ = RunEnd::quit;
     }
   }
 
@@ -381,7 +382,7 @@ class SessionLoop {
   std::vector<InputEvent> script_;
   std::optional<SimulatedObserver> observer_;
   std::vector<unsigned> texture_;
-  std::string end_;
+  std::optional<RunEnd> end_;
   double t0_ = 0, last_frame_ = -1;
   size_t next_script_ = 0;
   bool screenshot_due_ = false;
@@ -396,9 +397,9 @@ std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& stu
   try {
     return std::make_unique<Presenter>(display_options(o, study));
   } catch (...) {
-    recorder.run()["end"] = "display-failed";
+    recorder.run().end = RunEnd::display_failed;
     recorder.save();
-    if (!o.resume && recorder.run()["answers"] == 0) {
+    if (!o.resume && recorder.run().answers == 0) {
       std::error_code ec;
       for (const auto& p : {recorder.files().csv, recorder.files().sidecar, recorder.files().keys}) fs::remove(p, ec);
     }
@@ -408,21 +409,22 @@ std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& stu
 
 // Runs the session's loop with the signal handlers installed; records the frame statistics, or
 // the error that ended it (then rethrown).
-std::string run_loop(const SessionOptions& o, const Study& study, Procedure& procedure, SessionRecorder& recorder,
+RunEnd run_loop(const SessionOptions& o, const Study& study, Procedure& procedure, SessionRecorder& recorder,
                      Presenter& presenter, CheckedInputs inputs) {
   SignalGuard signals;
   SessionLoop loop(o, study, procedure, recorder, presenter, std::move(inputs));
-  std::string end;
+  RunEnd end = RunEnd::running;
   try {
     end = loop.run();
   } catch (const std::exception& e) {
-    recorder.run()["end"] = std::string("error: ") + e.what();
-    recorder.run()["ended_utc"] = utc_timestamp();
+    recorder.run().end = RunEnd::error;
+    recorder.run().error = e.what();
+    recorder.run().ended_utc = utc_timestamp();
     recorder.save();
     throw;
   }
-  recorder.run()["frames"] = loop.frame_statistics();
-  recorder.run()["system_key_repeats_ignored"] = presenter.system_repeats_ignored();
+  recorder.run().frames = loop.frame_statistics();
+  recorder.run().system_key_repeats_ignored = presenter.system_repeats_ignored();
   return end;
 }
 
@@ -443,20 +445,20 @@ int run_session(const SessionOptions& o) {
   if (o.resume) procedure.resume(recorder.recorded().answered);
   const int total_questions = procedure.real_trial_count() * kQuestionCount;
   if (procedure.done()) {
-    recorder.run()["end"] = "already-complete";
+    recorder.run().end = RunEnd::already_complete;
     recorder.save();
     std::printf("%s session %d is already complete: %d of %d answers in %s\n", o.subject.c_str(), o.session,
                 total_questions, total_questions, recorder.files().csv.string().c_str());
     return 0;
   }
   std::unique_ptr<Presenter> presenter = open_window(o, study, recorder);
-  recorder.run()["display"] = presenter->display_info();
-  const std::string end = run_loop(o, study, procedure, recorder, *presenter, std::move(inputs));
-  recorder.run()["end"] = end;
-  recorder.run()["ended_utc"] = utc_timestamp();
+  recorder.run().display = presenter->display_info();
+  const RunEnd end = run_loop(o, study, procedure, recorder, *presenter, std::move(inputs));
+  recorder.run().end = end;
+  recorder.run().ended_utc = utc_timestamp();
   recorder.save();
   presenter.reset();
-  std::printf("%s session %d: %s; %d of %d answers recorded in %s\n", o.subject.c_str(), o.session, end.c_str(),
+  std::printf("%s session %d: %s; %d of %d answers recorded in %s\n", o.subject.c_str(), o.session, run_end_name(end),
               procedure.answered_count(), total_questions, recorder.files().csv.string().c_str());
   return 0;
 }

@@ -31,7 +31,7 @@ struct AnalyzeArgs {
 
 void run(const AnalyzeArgs& args) {
   analysis::AnalysisOptions options;
-  options.normalization = args.normalization;
+  options.normalization = analysis::parse_jnd_normalization(args.normalization);
   options.lambda_step = args.lambda_step;
   options.clusters = args.clusters;
   options.model = analysis::parse_fit_model(args.model);

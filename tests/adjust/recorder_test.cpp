@@ -111,8 +111,9 @@ TEST(AdjustRecorder, ResumeReadsTheAnswersBackAndMarksTheKilledRun) {
   ASSERT_EQ(got.answered.size(), 4u);
   EXPECT_EQ(got.answered.at({1, 0}).lambda_index, 1);
   EXPECT_EQ(resumed.sidecar()["runs"][0]["end"], "interrupted");
-  EXPECT_EQ(resumed.run()["end"], "running");
-  EXPECT_EQ(resumed.run()["answers_before"], 4);
+  EXPECT_EQ(resumed.run().end, RunEnd::running);
+  EXPECT_EQ(resumed.sidecar()["runs"][1]["end"], "running");
+  EXPECT_EQ(resumed.run().answers_before, 4);
   Procedure p(f.study.conditions, f.plan);
   p.resume(got.answered);
   p.press(Key::enter, 0);

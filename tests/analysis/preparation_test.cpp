@@ -51,7 +51,7 @@ TEST(Preparation, ALowOfZeroExcludesOnlyUnderSubjectNormalisation) {
       r.lambda_index = 0;
     }
   AnalysisOptions group;
-  group.normalization = "group";
+  group.normalization = analysis::JndNormalization::group;
   auto blocks = analyze(rows, group);
   EXPECT_TRUE(blocks[0].excluded.empty());
   EXPECT_EQ(blocks[0].json["n_subjects"], 6);
@@ -63,7 +63,7 @@ TEST(Preparation, ALowOfZeroExcludesOnlyUnderSubjectNormalisation) {
 TEST(Preparation, GroupNormalisationDividesByTheMeanLow) {
   auto rows = small_study(8, 4);
   AnalysisOptions group;
-  group.normalization = "group";
+  group.normalization = analysis::JndNormalization::group;
   auto blocks = analyze(rows, group);
   // Under group normalisation the mean λ_Low of every scene × σ is exactly 1 JND, while single
   // subjects vary around it (under subject normalisation every λ_Low is 1).
