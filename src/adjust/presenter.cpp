@@ -231,7 +231,11 @@ std::vector<WindowEvent> Presenter::poll_events() {
   return out;
 }
 
-double Presenter::now() const { return glfwGetTime(); }
+double Presenter::now() const { return options_.frame_clock ? frames_ / refresh_hz_ : glfwGetTime(); }
+
+const char* Presenter::pacing() const {
+  return options_.frame_clock ? "frame-clock" : timer_pacing_ ? "timer" : "vsync";
+}
 
 namespace {
 
@@ -335,6 +339,7 @@ StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::pat
 }
 
 void Presenter::pace() {
+  if (options_.frame_clock) return void(++frames_);
   const double period = 1.0 / refresh_hz_;
   const double t = glfwGetTime();
   if (last_swap_ >= 0 && frames_ < 20) early_intervals_.push_back(t - last_swap_);

@@ -27,6 +27,10 @@ struct DisplayOptions {
   int surround = 128;
   double font_px = 22;
   std::string title = "countershade adjust";
+  // The session's clock counts frames: each frame is exactly one refresh period after the last,
+  // and pace() does not wait. For scripted runs (tests, recordings), whose logic then does not
+  // depend on how busy the machine is.
+  bool frame_clock = false;
 };
 
 // A key or window event from GLFW, with its time on glfwGetTime()'s clock.
@@ -75,13 +79,17 @@ class Presenter {
 
   // Events since the last call. GLFW_REPEAT is dropped on purpose: the procedure times repeats.
   std::vector<WindowEvent> poll_events();
+  // The session's clock: glfwGetTime(), or with DisplayOptions::frame_clock the frames paced so
+  // far times the refresh period.
   double now() const;
 
   // Draws a frame; when `screenshot` is set, writes that frame (as displayed) to the PNG first.
   StimulusLayout draw(const FrameContent& content, const std::filesystem::path& screenshot = {});
-  // Blocks until the next frame is due: vsync where the driver provides it, else a timer.
+  // Blocks until the next frame is due: vsync where the driver provides it, else a timer (with the
+  // frame clock: advances it, without waiting).
   void pace();
-  bool timer_paced() const { return timer_pacing_; }
+  // How frames are paced: "vsync", "timer" or "frame-clock".
+  const char* pacing() const;
   // How many GLFW_REPEAT events (the system's key repeat) were dropped.
   long system_repeats_ignored() const { return repeats_ignored_; }
 

@@ -76,6 +76,7 @@ struct FrameTimes {
   std::vector<float> draw;          // time to build, render and swap a frame
   std::vector<double> dropped_at;   // session time of the first dropped frames
   std::vector<float> key_to_frame;  // from a key press to the swap of the frame that shows it
+  int key_to_frame_frames = 0;      // the most frames any press took to appear: 1 is the next frame
 
   // period > 0: also counts the values over 1.2 periods as dropped frames.
   static OrderedJson summary(std::vector<float> v, double period) {
@@ -110,6 +111,8 @@ CheckedInputs check_inputs(const SessionOptions& o) {
   check_subject_id(o.subject);
   if (o.session < 1 || o.session > 99) throw_input_error("--session", "must be between 1 and 99");
   if (o.script && o.observer) throw_input_error("--observer", "cannot be combined with --script");
+  if (o.frame_clock && !o.script && !o.observer)
+    throw_input_error("--frame-clock", "needs --script or --observer (a person needs the real clock)");
   CheckedInputs in;
   if (o.script) in.script = parse_key_script(*o.script);
   if (o.observer) in.observer_seed = parse_observer_spec(*o.observer);
@@ -137,6 +140,7 @@ DisplayOptions display_options(const SessionOptions& o, const Study& study) {
   display.surround = study.config.surround;
   display.font_px = study.config.font_px;
   display.title = "countershade adjust: " + study.set_name;
+  display.frame_clock = o.frame_clock;
   return display;
 }
 
@@ -173,14 +177,15 @@ class SessionLoop {
 
   OrderedJson frame_statistics() const {
     const double period = 1.0 / presenter_.refresh_hz();
-    return {{"pacing", presenter_.timer_paced() ? "timer" : "vsync"},
+    return {{"pacing", presenter_.pacing()},
             {"period_ms", 1000 * period},
             {"dropped_threshold_ms", 1200 * period},
             {"all", FrameTimes::summary(times_.all, period)},
             {"key_held", FrameTimes::summary(times_.held, period)},
             {"draw", FrameTimes::summary(times_.draw, period)},
             {"dropped_at_s", times_.dropped_at},
-            {"key_to_frame", FrameTimes::summary(times_.key_to_frame, 0)}};
+            {"key_to_frame", FrameTimes::summary(times_.key_to_frame, 0)},
+            {"key_to_frame_frames_max", times_.key_to_frame_frames}};
   }
 
  private:
@@ -254,7 +259,7 @@ class SessionLoop {
   }
 
   void press(const InputEvent& e) {
-    pending_presses_.push_back(e.time_s);
+    pending_presses_.push_back({e.time_s, frame_});
     const auto before = procedure_.phase();
     if (before == Procedure::Phase::finished) {
       log(e.time_s, "press", key_name(e.key));
@@ -348,8 +353,11 @@ class SessionLoop {
     const double draw_start = presenter_.now();
     const StimulusLayout layout = presenter_.draw(frame_content(draw_start - t0_), shot);
     const double draw_seconds = presenter_.now() - draw_start;
-    // The frame just swapped is the first to show these presses.
-    for (double pressed : pending_presses_) times_.key_to_frame.push_back(float(presenter_.now() - t0_ - pressed));
+    // The frame just swapped is the first to show these presses: frame_ counts the frames before it.
+    for (const auto& [pressed, frames_before] : pending_presses_) {
+      times_.key_to_frame.push_back(float(presenter_.now() - t0_ - pressed));
+      times_.key_to_frame_frames = std::max(times_.key_to_frame_frames, frame_ + 1 - frames_before);
+    }
     pending_presses_.clear();
     if (!shot.empty()) {
       describe_screenshot(shot, layout, draw_start - t0_);
@@ -389,7 +397,7 @@ class SessionLoop {
   int screenshots_ = 0, frame_ = 0;
   FrameTimes times_;
   std::optional<double> pause_started_;
-  std::vector<double> pending_presses_;  // presses not yet on screen
+  std::vector<std::pair<double, int>> pending_presses_;  // presses not yet on screen: time, frames drawn before
 };
 
 // Opens the window; a failure is recorded, and a new session without answers leaves no files.

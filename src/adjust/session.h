@@ -21,6 +21,7 @@ struct SessionOptions {
   std::optional<std::filesystem::path> script;
   std::optional<std::filesystem::path> screenshot;
   std::optional<std::string> observer;  // "simulated:SEED"
+  bool frame_clock = false;             // DisplayOptions::frame_clock (with a script or an observer)
 };
 
 // Returns the exit status: 0 when the run ended normally (finished, quit and saved, closed or

@@ -28,6 +28,9 @@ void add_adjust_command(CLI::App& app) {
   cmd->add_option("--script", *script, "Timed key events instead of a person (tests, demos)");
   cmd->add_option("--screenshot", *screenshot, "PNG written at each 'screenshot' line of the script");
   cmd->add_option("--observer", *observer, "A model observer answers: simulated:SEED");
+  cmd->add_flag("--frame-clock", o->frame_clock,
+                "With --script or --observer: time advances exactly one refresh period per frame and frames are "
+                "not paced, so a scripted run does the same whatever the machine's load (tests, recordings)");
   cmd->callback([=] {
     adjust::SessionOptions run = *o;
     run.manifest = *manifest;

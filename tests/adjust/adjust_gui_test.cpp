@@ -73,7 +73,9 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
   }
   testing::write_file(dir / "keys.txt", script);
   testing::XvfbServer x;
-  ASSERT_EQ(run_app(x, adjust_args(manifest, dir / "sessions", "P01", {"--script", (dir / "keys.txt").string()}),
+  ASSERT_EQ(run_app(x,
+                    adjust_args(manifest, dir / "sessions", "P01",
+                                {"--script", (dir / "keys.txt").string(), "--frame-clock"}),
                     dir / "log.txt"),
             0)
       << testing::read_file(dir / "log.txt");
@@ -111,10 +113,12 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
   EXPECT_EQ(run["preload"]["images"], 26);  // 2 references + 4 conditions × 6 grid images
   EXPECT_NE(run["display"]["gl_renderer"].get<std::string>(), "");
   EXPECT_GT(run["frames"]["all"]["count"].get<int>(), 10);
-  // Every press reaches the screen with the next frame: 1 + 8 × 9 + 3 presses in the script.
-  const auto& latency = run["frames"]["key_to_frame"];
-  EXPECT_EQ(latency["count"], 1 + 8 * 9 + 3);
-  EXPECT_LT(latency["max_ms"].get<double>(), 250.0);
+  // Every press reaches the screen with the next frame: 1 + 8 × 9 + 3 presses in the script. (The
+  // time this takes is measured by bench/adjust/measure; the frame clock makes the run independent
+  // of the machine's load.)
+  EXPECT_EQ(run["frames"]["pacing"], "frame-clock");
+  EXPECT_EQ(run["frames"]["key_to_frame"]["count"], 1 + 8 * 9 + 3);
+  EXPECT_EQ(run["frames"]["key_to_frame_frames_max"], 1);
   const std::string keys = testing::read_file(dir / "sessions/P01_s01.keys.tsv");
   EXPECT_NE(keys.find("answer-revised"), std::string::npos);
 }
@@ -279,34 +283,21 @@ json play_for_ten_seconds(const fs::path& manifest, const fs::path& dir, const s
   testing::XvfbServer x;
   EXPECT_EQ(run_app(x,
                     adjust_args(manifest, dir / "sessions", subject,
-                                {"--script", (dir / "keys.txt").string(), "--screenshot", (dir / "shot.png").string()}),
+                                {"--script", (dir / "keys.txt").string(), "--screenshot", (dir / "shot.png").string(),
+                                 "--frame-clock"}),
                     dir / "log.txt"),
             0)
       << testing::read_file(dir / "log.txt");
   return json::parse(testing::read_file(dir / "sessions" / (subject + "_s01.json")))["runs"][0];
 }
 
-// Two 512×384 sequences side by side for 10 s: both sides always show the same frame, the frames
-// advance, a λ step keeps playing, and no frame is dropped at the display's rate. Run alone (ctest
-// RUN_SERIAL), so other tests do not take the cores it needs. A shared virtual machine can still
-// stall the process (or the X server) now and then (CI saw runs with 1 or 2 frames of 22 ms among
-// 600, at random moments), so one of five runs must be free of drops. Three were too few: on
-// 2026-11-24, in 13 runs of this test alone, the first try dropped a frame in 7 and one run lost
-// all three.
-TEST(AdjustPlayback, TwoSequencesPlayInStepForTenSecondsWithoutDroppedFrames) {
-  // Mesa's software rasteriser starts a thread per core; on a 2-core machine they compete with the
-  // X server and the app's own loop. With one rasteriser thread 4 of 15 runs dropped a frame, with
-  // the default 6 of 11 (2026-11-23, this test run alone). An explicit setting is kept.
-  ::setenv("LP_NUM_THREADS", "1", 0);
+// Two 512×384 sequences side by side for 10 s of the frame clock: both sides always show the same
+// frame, the frames advance, and a λ step keeps playing. Whether a real display keeps up (no
+// dropped frame at 60 Hz) is measured by bench/adjust/measure, not here: it depends on the load.
+TEST(AdjustPlayback, TwoSequencesPlayInStepAndKeepPlayingAcrossALambdaStep) {
   testing::TempDir dir;
   const auto manifest = testing::make_sequence_set(dir, R"({"start": "zero"})", 512, 384);
-  json run = play_for_ten_seconds(manifest, dir.path(), "P09");
-  std::string earlier;
-  for (const char* subject : {"P10", "P11", "P12", "P13"}) {
-    if (run["frames"]["all"]["dropped"] == 0) break;
-    earlier += "\nearlier run: " + run["frames"].dump();
-    run = play_for_ten_seconds(manifest, dir.path(), subject);
-  }
+  const json run = play_for_ten_seconds(manifest, dir.path(), "P09");
   auto frame_of = [](const std::string& file) { return fs::path(file).filename().string(); };
   std::vector<std::pair<std::string, std::string>> shots;
   for (const char* name : {"shot.png", "shot-2.png", "shot-3.png"}) shots.push_back(shown_files(dir / name, dir / "set"));
@@ -317,9 +308,10 @@ TEST(AdjustPlayback, TwoSequencesPlayInStepForTenSecondsWithoutDroppedFrames) {
 
   EXPECT_EQ(run["preload"]["images"], 3 * 4);
   const auto& frames = run["frames"];
-  EXPECT_NEAR(frames["period_ms"].get<double>(), 1000.0 / 60, 0.5);
-  EXPECT_GT(frames["all"]["count"].get<int>(), 9 * 60);
-  EXPECT_EQ(frames["all"]["dropped"], 0) << "last run: " << frames.dump() << earlier;
+  EXPECT_EQ(frames["pacing"], "frame-clock");
+  // 10.26 s of script at 60 frames per second, less the 20 frames that calibrate pacing and the 3
+  // screenshots (neither is timed).
+  EXPECT_NEAR(frames["all"]["count"].get<int>(), 10.26 * 60 - 23, 2);
 }
 
 TEST(AdjustGui, SimulatedObserverSessionsFeedTheAnalysis) {

@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdint>
 #include <limits>
 
@@ -57,14 +56,13 @@ struct Case {
   std::string arguments, expected;  // expected: a part of the one-line message
 };
 
+// A hang (say, on a header that claims a huge image) shows as the test's ctest timeout: no clock
+// here, so that the test passes on a busy machine.
 void expect_refused(const Case& c) {
-  const auto start = std::chrono::steady_clock::now();
   const auto r = testing::run_cli(c.arguments);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.exit_code, 2) << c.arguments << "\n" << r.output;
   EXPECT_EQ(testing::count_lines(r.output), 1) << c.arguments << "\n" << r.output;
   EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.arguments << "\n" << r.output;
-  EXPECT_LT(seconds, 5.0) << c.arguments;
 }
 
 TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
