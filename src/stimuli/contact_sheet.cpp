@@ -39,7 +39,7 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
   size_t longest_row = 0;  // row labels are about 8 px a character at 14 px
   for (const auto& label : row_labels) longest_row = std::max(longest_row, label.size());
   const int tw = first.width, th = first.height, gap = 8 + 16, top = 56;  // 16: the captions
-  const int left = std::max(110, 16 + 8 * int(longest_row));
+  const int left = longest_row == 0 ? 10 : std::max(110, 16 + 8 * int(longest_row));  // no row labels: no column for them
   const int cols = int(column_labels.size()), rows = int(row_labels.size());
   const int width = std::max(left + cols * (tw + gap), 20 + 10 * int(title.size())), height = top + rows * (th + gap);
   OIIO::ImageBuf sheet(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
@@ -50,7 +50,7 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
     OIIO::ImageBufAlgo::render_text(sheet, left + c * (tw + gap), top - 10, column_labels[size_t(c)], 14, "DejaVuSans", ink);
   for (int r = 0; r < rows; ++r) {
     OIIO::ImageBufAlgo::render_text(sheet, 8, top + r * (th + gap) + th / 2, row_labels[size_t(r)], 14, "DejaVuSans", ink);
-    for (int c = 0; c < cols; ++c) {
+    for (int c = 0; c < cols && size_t(c) < cells[size_t(r)].size(); ++c) {  // a last row may be short
       const ContactCell& cell = cells[size_t(r)][size_t(c)];
       Image t = r == 0 && c == 0 ? first : thumbnail(read_image(cell.file), thumbnail_width);
       int x0 = left + c * (tw + gap), y0 = top + r * (th + gap);

@@ -159,6 +159,29 @@ TEST(BadInput, OutputsAreCheckedBeforeAnythingIsWritten) {
   expect_refused({"render " + scene + " -o " + (dir / "o.png").string() + " --aux " + (dir / "keep.png").string(),
                   "is a file, not a folder"});
   EXPECT_FALSE(fs::exists(dir / "o.png"));
+  expect_refused({"sheet " + (dir / "in.png").string() + "=a " + (dir / "missing.png").string() + "=b -o " +
+                      (dir / "sheet.png").string(),
+                  "missing.png: no such image"});
+  EXPECT_FALSE(fs::exists(dir / "sheet.png"));
+}
+
+// `sheet` puts the images in rows of --columns, thumbnails at a whole-factor shrink, a short last
+// row allowed: two 64-px images and one more in rows of two.
+TEST(SheetCommand, PlacesEveryImageInRowsAtItsThumbnailSize) {
+  testing::TempDir dir;
+  write_image(dir / "a.png", Image(64, 48, 3, 1.0f));
+  write_image(dir / "b.png", Image(64, 48, 3, 0.0f));
+  const auto r = testing::run_cli("sheet " + (dir / "a.png").string() + "=white " + (dir / "b.png").string() + "=black " +
+                                  (dir / "a.png").string() + " -o " + (dir / "s.png").string() + " --columns 2 --width 32");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Image sheet = read_image(dir / "s.png");
+  // 10 px margin, thumbnails 32×24 with a 24-px gap, 56 px above the first row.
+  EXPECT_EQ(sheet.width, 10 + 2 * (32 + 24));
+  EXPECT_EQ(sheet.height, 56 + 2 * (24 + 24));
+  EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 12, 0), 1.0f);                  // a, row 1
+  EXPECT_FLOAT_EQ(sheet.at(10 + 56 + 16, 56 + 12, 0), 0.0f);             // b, row 1
+  EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 48 + 12, 0), 1.0f);             // a again, row 2
+  EXPECT_NEAR(sheet.at(10 + 56 + 16, 56 + 48 + 12, 0), 0.5f, 1.0f / 255);  // nothing: the grey surround
 }
 
 TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {
