@@ -76,7 +76,7 @@ TEST(MethodExtension, ATestMethodMakesAStimulusSetAndRunsInTheApp) {
   testing::Child app({COUNTERSHADE_IDENTITY_BINARY, "adjust", (dir / "set/manifest.json").string(), "--subject", "M1",
                       "--sessions", (dir / "sessions").string(), "--observer", "simulated:4"},
                      x.display(), (dir / "log.txt").string());
-  ASSERT_EQ(app.wait(60), 0) << testing::read_file(dir / "log.txt");
+  ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
   auto rows = analysis::read_responses(dir / "sessions/M1_s01.csv");
   ASSERT_EQ(rows.size(), 2u * 3u);  // two conditions (the widths) × three questions
   for (const auto& r : rows) EXPECT_EQ(r.method, "identity");

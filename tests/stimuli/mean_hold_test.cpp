@@ -88,7 +88,9 @@ TEST(MeanHold, AnEnhancedImageGetsItsReferencesMeanByOneOffsetOnItsObject) {
     const ReferenceLab x = reference_lab(before), y = reference_lab(after);
     EXPECT_NEAR(y.L - x.L, held.offset, 0.6) << p;  // one offset, up to an 8-bit step
     const double hue_x = std::atan2(x.b, x.a), hue_y = std::atan2(y.b, y.a);
-    if (std::hypot(x.a, x.b) > 10) EXPECT_NEAR(std::remainder(hue_y - hue_x, 2 * std::numbers::pi), 0.0, 0.05) << p;
+    if (std::hypot(x.a, x.b) > 10) {
+      EXPECT_NEAR(std::remainder(hue_y - hue_x, 2 * std::numbers::pi), 0.0, 0.05) << p;
+    }
   }
   EXPECT_GT(object, 1000u);
   // The reference itself, and a stimulus equal to it, stay as they are.
