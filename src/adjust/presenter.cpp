@@ -10,10 +10,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <thread>
 
 #include "core/error.h"
+#include "core/visual_angle.h"
 #include "core/image.h"
 
 namespace countershade::adjust {
@@ -104,7 +106,34 @@ GLFWmonitor* Presenter::open_monitor(int need_w, int need_h) {
                                      std::to_string(o.monitor) + " is " + std::to_string(screen_w_) + "x" +
                                      std::to_string(screen_h_) + " (use a larger screen or a set with smaller images)");
   }
+  if (o.pixels_per_degree) check_visual_angle(monitor, screen_w_);
   return monitor;
+}
+
+// A set made for another screen would show its sizes and σ in degrees wrongly: refused.
+void Presenter::check_visual_angle(GLFWmonitor* monitor, int width_px) const {
+  const DisplayOptions& o = options_;
+  double width_mm = o.monitor_width_mm.value_or(0.0);
+  if (!o.monitor_width_mm) {
+    int w = 0, h = 0;
+    glfwGetMonitorPhysicalSize(monitor, &w, &h);
+    width_mm = w;
+  }
+  char text[320];
+  if (!(width_mm > 0)) {
+    glfwTerminate();
+    throw_input_error("--monitor-width-mm", "the monitor does not report its size; give its width in mm");
+  }
+  const double ppd = pixels_per_degree(width_mm, width_px, *o.distance_mm);
+  if (std::abs(ppd / *o.pixels_per_degree - 1.0) <= 0.02) return;
+  std::snprintf(text, sizeof text,
+                "the set was made for %.2f pixels per degree at %.0f mm, but monitor %d (%d px, %.0f mm wide) gives "
+                "%.2f (%+.1f %%; at most 2 %% allowed): use the screen the set was made for, or --monitor-width-mm "
+                "if the monitor misreports its size",
+                *o.pixels_per_degree, *o.distance_mm, o.monitor, width_px, width_mm, ppd,
+                100.0 * (ppd / *o.pixels_per_degree - 1.0));
+  glfwTerminate();
+  throw_input_error("display", text);
 }
 
 void Presenter::create_window(GLFWmonitor* monitor, int need_w, int need_h) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct DisplayOptions {
   // and pace() does not wait. For scripted runs (tests, recordings), whose logic then does not
   // depend on how busy the machine is.
   bool frame_clock = false;
+  // The set's pixels per degree at its viewing distance: the monitor must give the same within 2 %.
+  // Its width in mm comes from GLFW (the monitor's EDID) unless `monitor_width_mm` is given.
+  std::optional<double> pixels_per_degree, distance_mm, monitor_width_mm;
 };
 
 // A key or window event from GLFW, with its time on glfwGetTime()'s clock.
@@ -110,6 +114,7 @@ class Presenter {
   // The constructor's steps: GLFW and the monitor (its size checked against the need_w × need_h
   // pixels the stimuli need), the window with its OpenGL context, Dear ImGui.
   GLFWmonitor* open_monitor(int need_w, int need_h);
+  void check_visual_angle(GLFWmonitor* monitor, int width_px) const;
   void create_window(GLFWmonitor* monitor, int need_w, int need_h);
   void start_imgui();
 

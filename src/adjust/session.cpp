@@ -141,6 +141,9 @@ DisplayOptions display_options(const SessionOptions& o, const Study& study) {
   display.font_px = study.config.font_px;
   display.title = "countershade adjust: " + study.set_name;
   display.frame_clock = o.frame_clock;
+  display.pixels_per_degree = study.pixels_per_degree;
+  display.distance_mm = study.distance_mm;
+  display.monitor_width_mm = o.monitor_width_mm;
   return display;
 }
 

@@ -120,6 +120,10 @@ void read_grid(Study& study, const Manifest& manifest, const std::string& mfile)
     fail("bits", "the adjustment app shows 8-bit stimuli; this set has " + std::to_string(manifest.bits) +
                      "-bit images (generate it with \"output\": {\"bits\": 8})");
   study.manifest_seed = manifest.seed;
+  if (manifest.viewing.pixels_per_degree) {
+    study.pixels_per_degree = manifest.viewing.pixels_per_degree;
+    study.distance_mm = manifest.viewing.distance_mm;
+  }
   study.lambda_min = manifest.lambda_grid.min;
   study.lambda_step = manifest.lambda_grid.step;
   if (!(study.lambda_step > 0) || manifest.lambda_grid.count < 2)

@@ -80,6 +80,9 @@ struct Study {
   std::string set_name;
   uint64_t manifest_seed = 1;
   double lambda_min = 0, lambda_step = 0.05;
+  // The set's screen (manifest `viewing`): its pixels per degree and viewing distance, which the
+  // monitor must match.
+  std::optional<double> pixels_per_degree, distance_mm;
   std::vector<Condition> conditions;
   // Per condition: slot 0 is the reference (unenhanced) stimulus, slot 1 + i the stimulus of λ
   // index i (indices into `stimuli`).

@@ -7,6 +7,21 @@
 
 namespace countershade::cli {
 
+namespace {
+
+// What runs a session without a person: a key script, screenshots, a model observer, the frame clock.
+void add_automation_options(CLI::App* cmd, adjust::SessionOptions& o, std::string& script, std::string& screenshot,
+                            std::string& observer) {
+  cmd->add_option("--script", script, "Timed key events instead of a person (tests, demos)");
+  cmd->add_option("--screenshot", screenshot, "PNG written at each 'screenshot' line of the script");
+  cmd->add_option("--observer", observer, "A model observer answers: simulated:SEED");
+  cmd->add_flag("--frame-clock", o.frame_clock,
+                "With --script or --observer: time advances exactly one refresh period per frame and frames are "
+                "not paced, so a scripted run does the same whatever the machine's load (tests, recordings)");
+}
+
+}  // namespace
+
 void add_adjust_command(CLI::App& app) {
   auto o = std::make_shared<adjust::SessionOptions>();
   auto manifest = std::make_shared<std::string>();
@@ -25,12 +40,11 @@ void add_adjust_command(CLI::App& app) {
   cmd->add_flag("--resume", o->resume, "Continue an interrupted or quit session at its first unanswered question");
   cmd->add_flag("--fullscreen", o->fullscreen, "Fullscreen on the chosen monitor");
   cmd->add_option("--monitor", o->monitor, "Monitor number, from 0")->capture_default_str();
-  cmd->add_option("--script", *script, "Timed key events instead of a person (tests, demos)");
-  cmd->add_option("--screenshot", *screenshot, "PNG written at each 'screenshot' line of the script");
-  cmd->add_option("--observer", *observer, "A model observer answers: simulated:SEED");
-  cmd->add_flag("--frame-clock", o->frame_clock,
-                "With --script or --observer: time advances exactly one refresh period per frame and frames are "
-                "not paced, so a scripted run does the same whatever the machine's load (tests, recordings)");
+  cmd->add_option("--monitor-width-mm", o->monitor_width_mm,
+                  "The monitor's visible width in mm, where it misreports its size (a set with a screen is shown only "
+                  "if the monitor's pixels per degree match the set's within 2 %)")
+      ->check(CLI::Range(1.0, 1e5));
+  add_automation_options(cmd, *o, *script, *screenshot, *observer);
   cmd->callback([=] {
     adjust::SessionOptions run = *o;
     run.manifest = *manifest;

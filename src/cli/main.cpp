@@ -30,6 +30,7 @@ void add_commands(CLI::App& app) {
   add_image_filter_command(app);
   add_flicker_command(app);
   add_sheet_command(app);
+  add_calibrate_command(app);
   reject_non_finite_numbers(app);
 }
 

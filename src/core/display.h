@@ -20,6 +20,9 @@ class DisplayEncoding {
   static DisplayEncoding lut(std::vector<double> codes, std::vector<double> luminances);
 
   Kind kind() const { return kind_; }
+  // A table's rows, normalised to [0, 1] (empty for the other kinds).
+  const std::vector<double>& lut_codes() const { return codes_; }
+  const std::vector<double>& lut_luminances() const { return luminances_; }
   double gamma_exponent() const { return gamma_; }
   std::string describe() const;
   bool operator==(const DisplayEncoding& other) const = default;

@@ -83,12 +83,21 @@ void plot_axes(std::ostringstream& svg, const LinePlot& plot, const PlotFrame& f
 
 // One series as a polyline, and its legend entry (row k) when it has a label.
 void plot_series(std::ostringstream& svg, const PlotSeries& s, size_t k, const PlotFrame& f) {
+  const double ly = f.top + 14 + 18 * double(k);
+  if (s.points) {
+    for (size_t i = 0; i < s.x.size(); ++i)
+      svg << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i]) << "\" r=\"3.5\" fill=\"" << s.color << "\"/>";
+    svg << "\n";
+    if (!s.label.empty())
+      svg << "<circle cx=\"" << f.left + f.pw + 21 << "\" cy=\"" << ly << "\" r=\"3.5\" fill=\"" << s.color
+          << "\"/><text x=\"" << f.left + f.pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
+    return;
+  }
   svg << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1.8\""
       << (s.dashed ? " stroke-dasharray=\"5,3\"" : "") << " points=\"";
   for (size_t i = 0; i < s.x.size(); ++i) svg << f.px(s.x[i]) << "," << f.py(s.y[i]) << " ";
   svg << "\"/>\n";
   if (s.label.empty()) return;
-  const double ly = f.top + 14 + 18 * double(k);
   svg << "<line x1=\"" << f.left + f.pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << f.left + f.pw + 32 << "\" y2=\"" << ly
       << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"5,3\"" : "")
       << "/><text x=\"" << f.left + f.pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";

@@ -12,6 +12,7 @@ struct PlotSeries {
   std::vector<double> x, y;
   std::string color = "#1f77b4";
   bool dashed = false;
+  bool points = false;  // a marker at each point and no line (measurements)
 };
 
 struct LinePlot {

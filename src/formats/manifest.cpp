@@ -110,7 +110,21 @@ class ManifestReader {
     }
     for (size_t i = 0; i < m["stimuli"].size(); ++i) out.stimuli.push_back(entry(m["stimuli"][i], i));
     if (m.contains("videos")) out.videos = videos(m["videos"]);
+    if (m.contains("viewing")) out.viewing = viewing(m["viewing"]);
     if (m.contains("run")) out.run = m["run"];
+    return out;
+  }
+
+  Viewing viewing(const OrderedJson& v) const {
+    if (!v.is_object()) fail("viewing", "not an object");
+    Viewing out;
+    out.pixels_per_degree = number(v, "viewing.", "pixels_per_degree");
+    const OrderedJson& screen = need(v, "viewing.", "screen");
+    out.width_mm = number(screen, "viewing.screen.", "width_mm");
+    out.distance_mm = number(screen, "viewing.screen.", "distance_mm");
+    out.width_px = int(integer(screen, "viewing.screen.", "width_px", 1, 1 << 16));
+    if (!(*out.pixels_per_degree > 0 && out.width_mm > 0 && out.distance_mm > 0))
+      fail("viewing", "pixels_per_degree, width_mm and distance_mm must be positive");
     return out;
   }
 
@@ -195,6 +209,10 @@ OrderedJson to_json(const Manifest& m) {
   j["stimuli"] = OrderedJson::array();
   for (const auto& e : m.stimuli) j["stimuli"].push_back(to_json(e));
   if (!m.videos.empty()) j["videos"] = m.videos;
+  if (!m.viewing.empty())
+    j["viewing"] = {{"pixels_per_degree", *m.viewing.pixels_per_degree},
+                    {"screen",
+                     {{"width_mm", m.viewing.width_mm}, {"width_px", m.viewing.width_px}, {"distance_mm", m.viewing.distance_mm}}}};
   j["run"] = m.run;
   return j;
 }

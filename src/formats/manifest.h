@@ -67,6 +67,16 @@ struct ImageNoise {
 void set_image_noise(ManifestEntry& entry, const ImageNoise& noise);
 std::optional<ImageNoise> image_noise(const ManifestEntry& entry);  // none when not recorded
 
+// How a set is to be viewed (docs/display.md): the experiment's screen and its pixels per degree.
+// (A scene shown on a calibrated display records its lookup table and luminance range on its
+// reference entry: `display_lut`, `luminance_cd_m2`.)
+struct Viewing {
+  std::optional<double> pixels_per_degree;
+  double width_mm = 0, distance_mm = 0;  // the screen's
+  int width_px = 0;
+  bool empty() const { return !pixels_per_degree; }
+};
+
 struct Manifest {
   int format_version = kManifestFormatVersion;
   std::string software_version, experiment_name, experiment_sha256;
@@ -78,6 +88,7 @@ struct Manifest {
   std::vector<ManifestEntry> stimuli;
   // Lossless videos of the sequences, for sharing: {file, sequence, frames, fps, size, sha256}.
   OrderedJson videos = OrderedJson::array();
+  Viewing viewing;  // "viewing", when the experiment gives a screen or a scene a calibrated display
   OrderedJson run = OrderedJson::object();  // timings and timestamps: differ between runs
   std::string file_sha256;  // of the file it was read from (not written)
 };

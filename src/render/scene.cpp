@@ -125,6 +125,14 @@ class SceneLoader {
   Display display(const JsonObject& o) {
     Display d;
     d.exposure_stops = o.number_in("exposure", 0.0, -30.0, 30.0);
+    if (o.has("calibration")) {
+      if (o.has("encoding") || o.has("lut") || o.has("gamma"))
+        o.fail("calibration", "a calibrated display takes its encoding from the calibration; give no encoding, lut or gamma");
+      calibrated(o, resolve(o, "calibration"), d);
+      if (o.has("background")) d.background = non_negative_color(o, "background", glm::dvec3(0));
+      o.finish();
+      return d;
+    }
     std::string encoding = o.choice("encoding", "srgb", {"srgb", "gamma", "lut"});
     if (encoding == "gamma") {
       d.encoding = DisplayEncoding::gamma(o.number_in("gamma", 2.2, 0.1, 10.0));
@@ -134,6 +142,24 @@ class SceneLoader {
     if (o.has("background")) d.background = non_negative_color(o, "background", glm::dvec3(0));
     o.finish();
     return d;
+  }
+
+  // The display block that `countershade calibrate` wrote: its lookup table (relative to the
+  // calibration file) and its luminance range.
+  static void calibrated(const JsonObject& o, const fs::path& file, Display& d) {
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) o.fail("calibration", "no such file '" + file.string() + "'");
+    const nlohmann::json j = parse_json_file(file);
+    const JsonObject c(j, file.string(), "");
+    const JsonObject block = c.object("display");
+    if (block.string("encoding") != "lut") block.fail("encoding", "expected \"lut\" (a file written by countershade calibrate)");
+    fs::path lut = block.string("lut");
+    if (lut.is_relative()) lut = file.parent_path() / lut;
+    d.encoding = read_lut(block, lut);
+    const JsonObject range = c.object("luminance_cd_m2");
+    const double black = range.number("black"), white = range.number("white");
+    if (!(black >= 0 && white > black)) range.fail("white", "expected 0 ≤ black < white");
+    d.luminance_cd_m2 = std::make_pair(black, white);
   }
 
   static DisplayEncoding read_lut(const JsonObject& o, const fs::path& file) {

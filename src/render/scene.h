@@ -79,6 +79,9 @@ struct Display {
   double exposure_stops = 0;
   DisplayEncoding encoding = DisplayEncoding::srgb();
   std::optional<glm::dvec3> background;  // linear radiance where camera rays miss; overrides env
+  // A photometer-calibrated display (`calibration`, docs/display.md): the luminance of code 0
+  // and of full scale, in cd/m².
+  std::optional<std::pair<double, double>> luminance_cd_m2;
 };
 
 // How many samples an image takes. By default a noise budget: every pixel is sampled until the

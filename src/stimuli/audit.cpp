@@ -27,12 +27,21 @@ struct Decoded {
   LabPixels lab;
 };
 
-// The display encoding a reference entry records ("srgb", "gamma 2.2"); a measured table is not
-// stored in the manifest, so its sets are decoded as sRGB (noted in the report).
+// The display encoding a reference entry records ("srgb", "gamma 2.2", or a measured table with its
+// rows in `display_lut`); a table without its rows (a set made before they were recorded) is
+// decoded as sRGB, noted in the report.
 DisplayEncoding encoding_of(const ManifestEntry& reference, std::vector<std::string>& notes) {
   const auto it = reference.extra.find("display_encoding");
   const std::string text = it != reference.extra.end() && it->is_string() ? it->get<std::string>() : "srgb";
   if (text.rfind("gamma ", 0) == 0) return DisplayEncoding::gamma(std::stod(text.substr(6)));
+  const auto lut = reference.extra.find("display_lut");
+  if (lut != reference.extra.end()) {
+    try {
+      return DisplayEncoding::lut(lut->at("codes").get<std::vector<double>>(), lut->at("luminances").get<std::vector<double>>());
+    } catch (const std::exception& e) {
+      throw_input_error(reference.file + ": display_lut", e.what());
+    }
+  }
   if (text != "srgb")
     notes.push_back(reference.scene + ": display encoding '" + text + "' is not stored in the manifest; L* decoded as sRGB");
   return DisplayEncoding::srgb();
@@ -56,13 +65,26 @@ Decoded decode(const std::filesystem::path& file, const DisplayEncoding& encodin
   return d;
 }
 
-void lightness_statistics(const Decoded& d, StimulusAudit& out) {
-  double sum = 0, squares = 0;
-  for (const Lab& lab : d.lab) sum += lab.L;
+// `range`: a calibrated display's black and white (cd/m²), for the mean luminance.
+void lightness_statistics(const Decoded& d, const std::optional<std::pair<double, double>>& range, StimulusAudit& out) {
+  double sum = 0, squares = 0, relative = 0;
+  for (const Lab& lab : d.lab) sum += lab.L, relative += lab_to_xyz(lab).y;
   const double n = double(d.lab.size()), mean = sum / n;
   for (const Lab& lab : d.lab) squares += (lab.L - mean) * (lab.L - mean);
   out.mean_lightness = mean;
   out.rms_contrast = std::sqrt(squares / n);
+  if (range) out.mean_luminance_cd_m2 = range->first + (relative / n) * (range->second - range->first);
+}
+
+// A calibrated display's luminance range, as the scene's reference entry records it.
+std::optional<std::pair<double, double>> luminance_range(const ManifestEntry& reference) {
+  const auto it = reference.extra.find("luminance_cd_m2");
+  if (it == reference.extra.end()) return std::nullopt;
+  try {
+    return std::make_pair(it->at("black").get<double>(), it->at("white").get<double>());
+  } catch (const std::exception&) {
+    throw_input_error(reference.file + ": luminance_cd_m2", "expected {\"black\": number, \"white\": number}");
+  }
 }
 
 // The 99th percentile (R's type 7 without interpolation: the value at ⌊0.99·(n − 1)⌋) of values
@@ -139,6 +161,16 @@ StimulusAudit describe(const ManifestEntry& e) {
   return s;
 }
 
+// The manifest of a set whose files all match it; an InputError names the first mismatch.
+Manifest verified_manifest(const std::filesystem::path& manifest_path) {
+  Manifest manifest = read_manifest(manifest_path);
+  const auto problems = verify_stimulus_set(manifest_path);
+  if (!problems.empty())
+    throw_input_error(manifest_path.string(), "the set does not match its manifest (" + problems.front() +
+                                                  (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") + ")");
+  return manifest;
+}
+
 }  // namespace
 
 AuditLimits read_audit_limits(const JsonObject& o) {
@@ -181,11 +213,7 @@ std::string AuditReport::summary() const {
 }
 
 AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const AuditOptions& options) {
-  const Manifest manifest = read_manifest(manifest_path);
-  const auto problems = verify_stimulus_set(manifest_path);
-  if (!problems.empty())
-    throw_input_error(manifest_path.string(), "the set does not match its manifest (" + problems.front() +
-                                                  (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") + ")");
+  const Manifest manifest = verified_manifest(manifest_path);
   const std::filesystem::path dir = manifest_path.parent_path();
   AuditReport report;
   report.manifest = manifest_path;
@@ -194,6 +222,9 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
     report.limits = read_audit_limits(JsonObject(manifest.experiment["audit"], manifest_path.string(), "experiment.audit"));
   std::map<std::string, DisplayEncoding> encodings;
   const auto references = decoded_references(manifest, dir, encodings, report.notes);
+  std::map<std::string, std::optional<std::pair<double, double>>> ranges;  // per scene, a calibrated display's
+  for (const auto& e : manifest.stimuli)
+    if (e.is_reference()) ranges[e.scene] = luminance_range(e);
   report.stimuli.resize(manifest.stimuli.size());
   std::atomic<size_t> done{0};
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -210,7 +241,7 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
       const Decoded& d = e.is_reference() ? reference->second : own;
       if (d.width != reference->second.width || d.height != reference->second.height || d.bits != reference->second.bits)
         throw_input_error(e.file, "differs in size or bit depth from its scene's reference");
-      lightness_statistics(d, s);
+      lightness_statistics(d, ranges.at(e.scene), s);
       compare_with_reference(d, reference->second, s);
       report.stimuli[i] = std::move(s);
       if (options.progress) options.progress(double(++done) / double(manifest.stimuli.size()));

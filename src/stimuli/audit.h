@@ -36,6 +36,7 @@ struct StimulusAudit {
   int frame = -1;  // a sequence's frame; -1 for a still
   bool reference = false;
   double mean_lightness = 0, rms_contrast = 0, clipped_fraction = 0;
+  std::optional<double> mean_luminance_cd_m2;  // on a calibrated display (its reference records the range)
   double drift = 0;  // mean L* minus its reference's (the same frame's, in a sequence)
   double delta_e_mean = 0, delta_e_p99 = 0, changed_fraction = 0;  // against the reference
   std::optional<double> noise_rms, noise_p99;

@@ -1,5 +1,6 @@
 #include "stimuli/audit_report.h"
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -19,8 +20,9 @@ using json = nlohmann::ordered_json;
 
 json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
-json stimulus_json(const StimulusAudit& s) {
-  return {{"file", s.file},
+// `luminance`: the set has a scene on a calibrated display, so every row gets the column.
+json stimulus_json(const StimulusAudit& s, bool luminance) {
+  json out = {{"file", s.file},
           {"scene", s.scene},
           {"condition", s.reference ? "reference" : s.condition},
           {"sigma", s.sigma},
@@ -33,6 +35,8 @@ json stimulus_json(const StimulusAudit& s) {
           {"changed_fraction", s.changed_fraction},
           {"noise_rms", optional_number(s.noise_rms)},
           {"noise_p99", optional_number(s.noise_p99)}};
+  if (luminance) out["mean_luminance_cd_m2"] = optional_number(s.mean_luminance_cd_m2);
+  return out;
 }
 
 json report_json(const AuditReport& r) {
@@ -44,7 +48,8 @@ json report_json(const AuditReport& r) {
     out["checks"].push_back({{"check", c.check}, {"scene", c.scene}, {"condition", c.condition}, {"passed", c.passed},
                              {"detail", c.detail}});
   out["stimuli"] = json::array();
-  for (const auto& s : r.stimuli) out["stimuli"].push_back(stimulus_json(s));
+  const bool luminance = std::any_of(r.stimuli.begin(), r.stimuli.end(), [](const StimulusAudit& s) { return s.mean_luminance_cd_m2.has_value(); });
+  for (const auto& s : r.stimuli) out["stimuli"].push_back(stimulus_json(s, luminance));
   out["notes"] = r.notes;
   return out;
 }

@@ -45,10 +45,15 @@ namespace {
 std::string width_key(const EnhancementMethod& method, const JsonObject& o) {
   std::string found, list;
   int count = 0;
+  std::vector<std::string> keys;
   for (const auto& w : method.axes().widths) {
-    list += (list.empty() ? "" : ", ") + w.key;
-    if (o.has(w.key)) {
-      found = w.key;
+    keys.push_back(w.key);
+    if (w.key == "sigma_px") keys.push_back("sigma_deg");  // a σ in pixels may be given in degrees
+  }
+  for (const auto& key : keys) {
+    list += (list.empty() ? "" : ", ") + key;
+    if (o.has(key)) {
+      found = key;
       ++count;
     }
   }
@@ -62,10 +67,19 @@ void check_label(const JsonObject& o, const std::string& label) {
     o.fail("label", "'" + label + "' must be a plain folder name (no '/', '\\', '.' or '..')");
 }
 
-ExperimentMethod parse_method(const JsonObject& o) {
+// The pixels per degree that a size in degrees (`what`, at `key`) needs.
+double degrees_to_pixels(const JsonObject& o, const std::string& key, const std::optional<Screen>& screen) {
+  if (!screen) o.fail(key, "a size in degrees needs the experiment's \"screen\" block (width_mm, width_px, distance_mm)");
+  return screen->pixels_per_degree();
+}
+
+ExperimentMethod parse_method(const JsonObject& o, const std::optional<Screen>& screen) {
   ExperimentMethod m;
   m.method = &method_named(o.string("method"), o.file() + ": " + o.key_path("method"));
   const std::string key = width_key(*m.method, o);
+  // σ in degrees is parsed as σ in pixels, so that the stimuli equal those given in pixels.
+  const double px_per_unit = key == "sigma_deg" ? degrees_to_pixels(o, key, screen) : 1.0;
+  const std::string parsed_key = key == "sigma_deg" ? "sigma_px" : key;
   m.sigma_key = key;
   m.sigmas = key.empty() ? std::vector<double>{0.0} : o.numbers(key);
   if (m.sigmas.empty()) o.fail(key, "the σ list is empty");
@@ -78,7 +92,8 @@ ExperimentMethod parse_method(const JsonObject& o) {
   const std::set<std::string> own = {"method", "label", "scenes", key};
   for (size_t g = 0; g < m.sigmas.size(); ++g) {
     ParameterBag bag = ParameterBag::from_json(o.value(), o.file(), o.path(), own);
-    if (!key.empty()) bag.set(key, m.sigmas[g], o.file() + ": " + o.key_path(key) + "[" + std::to_string(g) + "]");
+    if (!key.empty())
+      bag.set(parsed_key, m.sigmas[g] * px_per_unit, o.file() + ": " + o.key_path(key) + "[" + std::to_string(g) + "]");
     m.parameters.push_back(m.method->parse(bag));
     m.request.merge(m.method->request(*m.parameters.back()), o.file() + ": " + o.path());
   }
@@ -108,7 +123,7 @@ int read_output_bits(const JsonObject& out) {
   return bits;
 }
 
-ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& base) {
+ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& base, const std::optional<Screen>& screen) {
   ExperimentScene scene;
   scene.name = s.string("name");
   if (scene.name.empty() || scene.name.find_first_of("/\\. ") != std::string::npos)
@@ -119,6 +134,14 @@ ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& ba
   if (!std::filesystem::is_regular_file(scene.file, ec)) s.fail("file", "unknown scene: no such file " + scene.file.string());
   if (s.has("width")) scene.width = int(s.integer_in("width", 0, 1, 16384));
   if (s.has("height")) scene.height = int(s.integer_in("height", 0, 1, 16384));
+  for (auto [key, size] : {std::pair{"width_deg", &scene.width}, std::pair{"height_deg", &scene.height}}) {
+    if (!s.has(key)) continue;
+    const std::string pixel_key = std::string(key).substr(0, std::string(key).size() - 4);
+    if (s.has(pixel_key)) s.fail(key, "give the size in pixels or in degrees, not both");
+    const long long pixels = std::llround(s.number_in(key, 0, 1e-3, 360.0) * degrees_to_pixels(s, key, screen));
+    if (pixels < 1 || pixels > 16384) s.fail(key, "is " + std::to_string(pixels) + " pixels on this screen (1 to 16384)");
+    *size = int(pixels);
+  }
   if (s.has("spp")) scene.spp = int(s.integer_in("spp", 0, 1, 65536));
   if (s.has("frames")) {  // the scene is read now, so a bad range fails before anything renders
     const Scene animated = load_scene(scene.file);
@@ -161,11 +184,12 @@ std::vector<ExperimentScene> light_variants(const ExperimentScene& scene, const 
   return out;
 }
 
-std::vector<ExperimentScene> parse_scenes(const JsonObject& root, const std::filesystem::path& base) {
+std::vector<ExperimentScene> parse_scenes(const JsonObject& root, const std::filesystem::path& base,
+                                          const std::optional<Screen>& screen) {
   std::vector<ExperimentScene> scenes;
   std::set<std::string> names;
   for (const auto& s : root.objects("scenes")) {
-    const ExperimentScene scene = parse_scene(s, base);
+    const ExperimentScene scene = parse_scene(s, base, screen);
     const std::vector<ExperimentScene> variants =
         s.has("light_directions") ? light_variants(scene, s.object("light_directions")) : std::vector<ExperimentScene>{scene};
     s.finish();
@@ -237,13 +261,14 @@ Experiment load_experiment(const std::filesystem::path& path) {
   if (root.has("output")) e.bits = read_output_bits(root.object("output"));
   if (root.has("noise")) e.noise = read_noise_budget(root.object("noise"));
   read_figure_options(root, e);
-  e.scenes = parse_scenes(root, path.parent_path());
+  if (root.has("screen")) e.screen = read_screen(root.object("screen"));
+  e.scenes = parse_scenes(root, path.parent_path(), e.screen);
   std::set<std::string> names;
   for (const auto& scene : e.scenes) names.insert(scene.name);
   if (e.scenes.empty()) root.fail("scenes", "an experiment needs at least one scene");
   std::set<std::string> labels;
   for (const auto& m : root.objects("methods")) {
-    e.methods.push_back(parse_method(m));
+    e.methods.push_back(parse_method(m, e.screen));
     if (!labels.insert(e.methods.back().label).second)
       m.fail("method", "two methods share the folder '" + e.methods.back().label + "' (give one a \"label\")");
   }

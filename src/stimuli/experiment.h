@@ -14,6 +14,7 @@
 #include "enhance/method.h"
 #include "render/render_request.h"
 #include "render/scene.h"
+#include "stimuli/screen.h"
 #include "stimuli/congruence.h"
 
 namespace countershade {
@@ -86,6 +87,9 @@ struct Experiment {
   // more than `max_clipped` (the audit's limit) at the grid's extremes (stimuli/headroom.h).
   bool headroom = false;
   double max_clipped = 0.01;
+  // The screen the study is shown on ("screen"): its pixels per degree turn sizes and σ given in
+  // degrees (`width_deg`, `sigma_deg`) into pixels.
+  std::optional<Screen> screen;
 };
 
 Experiment load_experiment(const std::filesystem::path& path);

@@ -1,6 +1,7 @@
 #include "stimuli/headroom.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "enhance/method.h"
@@ -9,19 +10,24 @@
 
 namespace countershade {
 
-double headroom_stops(const ClippedAt& clipped_at, double limit, double resolution, double floor) {
-  double share = clipped_at(0.0);
-  if (share <= limit) return 0.0;
-  double failing = 0.0, passing = -0.25;
-  for (double lower; (lower = clipped_at(passing)) > limit; share = lower) {
-    // A share that does not fall with the exposure is not clipping at the top: nothing to gain.
-    if (lower >= share || passing <= floor) return failing;
+double headroom_stops(const ClippedAt& clipped_at, double limit, double resolution, double floor, double ceiling) {
+  const Clipped start = clipped_at(0.0);
+  // Within the limit, nothing to do; over it at both ends, no exposure helps one without the other.
+  if (start.within(limit) || (start.white > limit && start.black > limit)) return 0.0;
+  const double direction = start.white > limit ? -1.0 : 1.0, end = direction < 0 ? floor : ceiling;
+  auto leading = [&](const Clipped& c) { return direction < 0 ? c.white : c.black; };  // the share the move is after
+  auto other = [&](const Clipped& c) { return direction < 0 ? c.black : c.white; };
+  double share = leading(start), failing = 0.0, passing = 0.25 * direction;
+  for (Clipped c; !(c = clipped_at(passing)).within(limit); share = leading(c)) {
+    // A share that does not fall as the exposure moves, or the other end now over the limit
+    // (moving on would only add to it): nothing to gain.
+    if (leading(c) >= share || other(c) > limit || passing == end) return failing;
     failing = passing;
-    passing = std::max(2 * passing, floor);
+    passing = direction < 0 ? std::max(2 * passing, end) : std::min(2 * passing, end);
   }
-  while (failing - passing > resolution) {
+  while (std::abs(failing - passing) > resolution) {
     const double middle = 0.5 * (failing + passing);
-    (clipped_at(middle) <= limit ? passing : failing) = middle;
+    (clipped_at(middle).within(limit) ? passing : failing) = middle;
   }
   return passing;
 }
@@ -34,26 +40,28 @@ std::vector<uint16_t> codes_of(const Image& display, int bits) {
   return codes;
 }
 
-// The share of pixels the enhancement clipped at full scale. Clipping at black (a darkening
-// operator's) does not shrink with the exposure, so it is left to the audit.
-double clipped_share(const std::vector<uint16_t>& stimulus, const std::vector<uint16_t>& reference, int bits) {
+// The shares of pixels the enhancement clipped at full scale and at black.
+Clipped clipped_shares(const std::vector<uint16_t>& stimulus, const std::vector<uint16_t>& reference, int bits) {
   const uint16_t top = uint16_t((1u << bits) - 1u);
-  size_t clipped = 0;
+  size_t white = 0, black = 0;
   for (size_t p = 0; 3 * p < stimulus.size(); ++p) {
     const uint16_t *s = &stimulus[3 * p], *r = &reference[3 * p];
-    bool at_top = false;
-    for (int k = 0; k < 3; ++k) at_top |= s[k] == top && r[k] != top;
-    clipped += at_top && clipped_by_enhancement(s, r, top);
+    if (!clipped_by_enhancement(s, r, top)) continue;
+    bool at_top = false, at_zero = false;
+    for (int k = 0; k < 3; ++k) at_top |= s[k] == top && r[k] != top, at_zero |= s[k] == 0 && r[k] != 0;
+    white += at_top;
+    black += at_zero && !at_top;
   }
-  return stimulus.empty() ? 0.0 : double(clipped) / double(stimulus.size() / 3);
+  const double n = std::max<double>(1.0, double(stimulus.size() / 3));
+  return {double(white) / n, double(black) / n};
 }
 
 }  // namespace
 
-double largest_clipped_share(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
-                             bool hold_mean) {
+Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
+                        bool hold_mean) {
   const std::vector<uint16_t> reference = codes_of(view->display, view->bits);
-  double largest = 0;
+  Clipped largest;
   for (size_t use = 0; use < view->uses.size(); ++use) {
     const MethodUse& u = view->uses[use];
     if (!u.method->enhances()) continue;
@@ -63,7 +71,8 @@ double largest_clipped_share(const std::shared_ptr<const View>& view, const std:
     for (double lambda : lambdas) {
       Image display = prepared->compose(lambda).display;
       if (hold_mean) display = hold_mean_lightness(*view, display).display;
-      largest = std::max(largest, clipped_share(codes_of(display, view->bits), reference, view->bits));
+      const Clipped c = clipped_shares(codes_of(display, view->bits), reference, view->bits);
+      largest = {std::max(largest.white, c.white), std::max(largest.black, c.black)};
     }
   }
   return largest;

@@ -49,6 +49,12 @@ Manifest manifest_header(const Experiment& e) {
   m.seed = e.seed;
   m.bits = e.bits;
   m.lambda_grid = {e.lambda.min, e.lambda.max, e.lambda.step, e.lambda.count()};
+  if (e.screen) {
+    m.viewing.pixels_per_degree = e.screen->pixels_per_degree();
+    m.viewing.width_mm = e.screen->width_mm;
+    m.viewing.width_px = e.screen->width_px;
+    m.viewing.distance_mm = e.screen->distance_mm;
+  }
   return m;
 }
 
@@ -318,6 +324,16 @@ void SetGenerator::record(ManifestEntry entry, bool is_new) {
   progress_.update(double(++finished_) / double(std::max<size_t>(total_, 1)));
 }
 
+// The display a reference was made for, so that the audit decodes the set as it will be shown: its
+// encoding, a measured table's rows, and a calibrated display's luminance range.
+void record_display(ManifestEntry& entry, const Display& display) {
+  entry.extra["display_encoding"] = display.encoding.describe();
+  if (display.encoding.kind() == DisplayEncoding::Kind::lut)
+    entry.extra["display_lut"] = {{"codes", display.encoding.lut_codes()}, {"luminances", display.encoding.lut_luminances()}};
+  if (display.luminance_cd_m2)
+    entry.extra["luminance_cd_m2"] = {{"black", display.luminance_cd_m2->first}, {"white", display.luminance_cd_m2->second}};
+}
+
 void SetGenerator::write_reference(const SetUnit& u, const View& view, const View* moved) {
   const std::string rel = reference_path(e_, u.scene, u.frame);
   if (done_.count(rel)) return record(done_.at(rel), false);
@@ -327,7 +343,7 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
   entry.scene = e_.scenes[u.scene].name;
   entry.method = kReferenceMethod;
   if (u.frame >= 0) entry.frame = ManifestEntry::Frame{u.frame, e_.scenes[u.scene].fps};
-  entry.extra["display_encoding"] = view.scene->display.encoding.describe();
+  record_display(entry, view.scene->display);
   if (e_.headroom) entry.extra["exposure_stops"] = round_to(view.scene->display.exposure_stops, 4);
   record_noise(entry, view, NoiseModel{}, view.display);
   if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits, e_.congruence_options);
@@ -359,11 +375,11 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       if (done_.count(rel)) return record(done_.at(rel), false);
       auto tc = Clock::now();
       Composed c = prepared->compose(e_.lambda.value(l));
-      const std::optional<double> offset = e_.hold_mean ? std::optional(hold_mean(*view, c)) : std::nullopt;
+      const double offset = e_.hold_mean ? hold_mean(*view, c) : 0.0;
       compose_seconds_.fetch_add(since(tc));
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
-      if (offset) entry.extra["mean_offset"] = round_to(*offset, 4);
+      if (e_.hold_mean) entry.extra["mean_offset"] = round_to(offset, 4);
       if (e_.headroom) entry.extra["exposure_stops"] = round_to(view->scene->display.exposure_stops, 4);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
@@ -417,9 +433,9 @@ std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePla
   const double stops = headroom_stops(
       [&](double stops) {
         auto view = at(stops);
-        const double share = largest_clipped_share(view, extremes, options_.jobs, e_.hold_mean);
-        if (share <= e_.max_clipped && (!kept || stops > kept_stops)) kept = view, kept_stops = stops;
-        return share;
+        const Clipped clipped = largest_clipped(view, extremes, options_.jobs, e_.hold_mean);
+        if (clipped.within(e_.max_clipped) && (!kept || std::abs(stops) < std::abs(kept_stops))) kept = view, kept_stops = stops;
+        return clipped;
       },
       e_.max_clipped);
   return kept && kept_stops == stops ? kept : at(stops);

@@ -12,12 +12,13 @@
 namespace countershade::testing {
 
 // Writes the experiment (with `adjust` as its "adjust" object, when given) and generates the
-// set into dir/set; returns the manifest's path.
+// set into dir/set; returns the manifest's path. `extra`: more top-level keys of the experiment, each followed by a comma.
 inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string& adjust = "",
-                                           int width = 96, int height = 72, double lambda_step = 0.4) {
+                                           int width = 96, int height = 72, double lambda_step = 0.4,
+                                           const std::string& extra = "") {
   write_file(dir / "cube.json", kLitCubeScene);
   std::string text = R"({
-    "version": 1, "name": "tiny", "seed": 5,
+    "version": 1, "name": "tiny", "seed": 5, )" + extra + R"(
     "lambda": {"min": 0, "max": 2, "step": )" + format_value(lambda_step) + R"(},
     "scenes": [{"name": "front", "file": "cube.json", "width": )" + std::to_string(width) + R"(, "height": )" +
                      std::to_string(height) + R"(},

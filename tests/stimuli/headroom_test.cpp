@@ -21,12 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(Headroom, TheSearchFindsTheHighestExposureWithinTheLimit) {
-  // A share that falls linearly as the exposure drops: within 0.01 from −1.0 stops down.
+TEST(Headroom, TheSearchFindsTheExposureClosestToZeroWithinTheLimit) {
+  // White clipping that falls linearly as the exposure drops: within 0.01 from −1.0 stops down.
   int calls = 0;
   auto linear = [&](double stops) {
     ++calls;
-    return std::max(0.0, 0.05 + 0.04 * stops);
+    return Clipped{std::max(0.0, 0.05 + 0.04 * stops), 0.0};
   };
   const double stops = headroom_stops(linear, 0.01);
   EXPECT_LE(stops, -1.0);
@@ -34,12 +34,25 @@ TEST(Headroom, TheSearchFindsTheHighestExposureWithinTheLimit) {
   EXPECT_LE(calls, 10);
   // Already within the limit: no change, one look.
   calls = 0;
-  EXPECT_EQ(headroom_stops([&](double) { return ++calls, 0.005; }, 0.01), 0.0);
+  EXPECT_EQ(headroom_stops([&](double) { return ++calls, Clipped{0.005, 0.004}; }, 0.01), 0.0);
   EXPECT_EQ(calls, 1);
-  // A share that does not fall with the exposure (clipping at black): no change is worth making.
-  EXPECT_EQ(headroom_stops([](double) { return 0.2; }, 0.01), 0.0);
+  // A share that does not fall with the exposure: no change is worth making.
+  EXPECT_EQ(headroom_stops([](double) { return Clipped{0.2, 0.0}; }, 0.01), 0.0);
+  EXPECT_EQ(headroom_stops([](double) { return Clipped{0.0, 0.2}; }, 0.01), 0.0);
   // One that falls but never far enough: the floor's neighbour, where it gave up.
-  EXPECT_EQ(headroom_stops([](double stops) { return 0.5 + 0.01 * stops; }, 0.01, 0.05, -2), -1.0);
+  EXPECT_EQ(headroom_stops([](double stops) { return Clipped{0.5 + 0.01 * stops, 0.0}; }, 0.01, 0.05, -2), -1.0);
+  // Black clipping that falls as the exposure rises: within 0.01 from +0.6 stops up.
+  const double up = headroom_stops([](double stops) { return Clipped{0.0, std::max(0.0, 0.016 - 0.01 * stops)}; }, 0.01);
+  EXPECT_GE(up, 0.6);
+  EXPECT_LE(up, 0.65);
+  // Going down against white clipping must not clip black instead: the search stops at the first
+  // step that puts black over the limit, without going deeper (dark renders are the dearest).
+  calls = 0;
+  EXPECT_EQ(headroom_stops([&](double stops) { return ++calls, Clipped{0.02 + 0.02 * stops, 0.005 - 0.04 * stops}; }, 0.01),
+            0.0);
+  EXPECT_EQ(calls, 2);
+  // Both ends over the limit: no exposure helps one without the other.
+  EXPECT_EQ(headroom_stops([](double stops) { return Clipped{0.02 + stops, 0.02 - stops}; }, 0.01), 0.0);
 }
 
 // A bright cube under usm3d up to λ = 3: the top of the grid clips more than 1 % of the image

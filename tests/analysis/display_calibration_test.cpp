@@ -1,0 +1,104 @@
+// Display calibration: the gamma fits of every gun against R psyphy's and the least-squares optima
+// of PsychoPy's models (tests/reference/display), the lookup table a scene reads back, and the
+// refusal of bad readings.
+
+#include <gtest/gtest.h>
+
+#include "analysis/display_calibration.h"
+#include "core/json_reader.h"
+#include "render/scene.h"
+#include "test_util.h"
+
+namespace countershade::analysis {
+namespace {
+
+namespace fs = std::filesystem;
+
+const GammaFit& model(const std::vector<GammaFit>& fits, const std::string& name) {
+  for (const GammaFit& f : fits)
+    if (f.model == name) return f;
+  throw std::runtime_error("no fit " + name);
+}
+
+void expect_relative(double got, double expected, double tolerance, const std::string& what) {
+  EXPECT_LE(std::abs(got - expected), tolerance * std::abs(expected)) << what << ": " << got << " against " << expected;
+}
+
+// Every gun and model: each parameter within 1e-6 relative, the rss within 1e-8 relative, the
+// standard errors of psyphy's model within 1e-6 relative.
+TEST(DisplayCalibration, EveryGunsFitsMatchTheReference) {
+  const GunReadings guns = read_photometer_readings(testing::reference_path("display/calibration_rgb.csv"), 8);
+  const nlohmann::json expected = parse_json_file(testing::reference_path("display/calibration_rgb.expected.json"));
+  ASSERT_EQ(guns.size(), 4u);
+  for (const auto& [gun, readings] : guns) {
+    const std::vector<GammaFit> fits = fit_gamma_models(readings);
+    const auto& e = expected["guns"][gun];
+    const GammaFit& psyphy = model(fits, "psyphy");
+    for (const char* p : {"Blev", "k", "gamm"}) {
+      expect_relative(psyphy.params.at(p), e["ss_calib"][p], 1e-6, gun + " psyphy " + p);
+      expect_relative(psyphy.se.at(p), e["ss_calib"]["se"][p], 1e-6, gun + " psyphy se " + p);
+    }
+    expect_relative(psyphy.rss, e["ss_calib"]["rss"], 1e-8, gun + " psyphy rss");
+    const std::pair<const char*, const char*> models[] = {
+        {"psychopy-eq1", "eq1"}, {"psychopy-eq2", "eq2"}, {"pelli-zhang", "eq4"}};
+    for (const auto& [ours, theirs] : models) {
+      const GammaFit& f = model(fits, ours);
+      const auto& r = e["psychopy"][theirs];
+      for (const auto& [name, value] : f.params) expect_relative(value, r[name], 1e-6, gun + " " + ours + " " + name);
+      expect_relative(f.rss, r["rss"], 1e-8, gun + " " + ours + " rss");
+    }
+  }
+}
+
+TEST(DisplayCalibration, TheLookupTableRoundTripsEveryCodeValueInAScene) {
+  testing::TempDir dir;
+  const auto r = testing::run_cli("calibrate " + testing::reference_path("display/calibration_rgb.csv").string() +
+                                  " -o " + (dir / "lab.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"lab.lut.csv", "lab-R.svg", "lab-W.svg"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
+  const nlohmann::json display = parse_json_file(dir / "lab.json");
+  EXPECT_EQ(display["lookup_table_from"], "W, psyphy fit");
+  const nlohmann::json expected = parse_json_file(testing::reference_path("display/calibration_rgb.expected.json"));
+  expect_relative(display["fits"]["W"]["psyphy"]["gamm"], expected["guns"]["W"]["ss_calib"]["gamm"], 1e-6, "W gamm");
+  testing::write_file(dir / "scene.json", R"({"version": 1,
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 30, "width": 8, "height": 8},
+    "display": {"calibration": "lab.json"},
+    "objects": [{"shape": {"type": "sphere"}}], "lights": [{"type": "ambient", "radiance": 1}]})");
+  const Scene scene = load_scene(dir / "scene.json");
+  ASSERT_TRUE(scene.display.luminance_cd_m2);
+  const auto& w = expected["guns"]["W"]["ss_calib"];
+  expect_relative(scene.display.luminance_cd_m2->first, w["Blev"], 1e-6, "black");
+  expect_relative(scene.display.luminance_cd_m2->second, w["Blev"].get<double>() + w["k"].get<double>(), 1e-6, "white");
+  int wrong = 0;
+  for (int code = 0; code <= 255; ++code) {
+    const double value = code / 255.0;
+    wrong += scene.display.encoding.encode(scene.display.encoding.decode(value)) != value;
+  }
+  EXPECT_EQ(wrong, 0);
+  // Relative luminance at half scale is (0.5^γ): the table follows the fit, not a default gamma.
+  const double gamm = w["gamm"];
+  EXPECT_NEAR(scene.display.encoding.decode(128 / 255.0), std::pow(128 / 255.0, gamm), 1e-9);
+}
+
+TEST(DisplayCalibration, BadReadingsAreRefusedInOneLine) {
+  testing::TempDir dir;
+  auto refused = [&](const std::string& csv, const std::string& expected, const std::string& flags = "") {
+    testing::write_file(dir / "r.csv", csv);
+    const auto r = testing::run_cli("calibrate " + (dir / "r.csv").string() + " -o " + (dir / "d.json").string() + flags);
+    EXPECT_EQ(r.exit_code, 2) << csv << r.output;
+    EXPECT_EQ(testing::count_lines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "d.json"));
+  };
+  const std::string header = "gun,code_value,lum_cd_m2\n";
+  refused(header + "W,0,1\nW,85,10\nW,170,8\nW,255,50\n", "gun W: luminance does not rise with the level");
+  refused(header + "W,0,1\nW,128,10\nW,255,50\n", "gun W: 3 readings; at least 4 are needed");
+  refused(header + "W,0,-1\nW,85,10\nW,170,20\nW,255,50\n", "line 2: lum_cd_m2: a luminance cannot be negative");
+  refused(header + "W,0,1\nW,85,10\nW,170,20\nW,256,50\n", "line 5: code_value: 256 is not a level from 0 to 255");
+  refused(header + "W,0,1\nW,85,10\nW,170,20\nW,1023,50\n", "code_value: 1023 is not a level from 0 to 511", " --bits 9");
+  refused(header + "X,0,1\n", "gun: expected R, G, B or W, got 'X'");
+  refused("gun,level,lum\nW,0,1\n", "expected the columns gun, lum_cd_m2 and one of code_value or gl");
+}
+
+}  // namespace
+}  // namespace countershade::analysis
