@@ -41,7 +41,10 @@ double minimize_1d(const Objective& f, double lo, double hi) {
 
 double rss_of(const std::vector<Reading>& r, const std::function<double(double)>& model) {
   double sum = 0;
-  for (const Reading& p : r) sum += (model(p.level) - p.luminance) * (model(p.level) - p.luminance);
+  for (const Reading& p : r) {
+    const double residual = model(p.level) - p.luminance;
+    sum += residual * residual;
+  }
   return sum;
 }
 

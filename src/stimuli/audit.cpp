@@ -67,13 +67,16 @@ Decoded decode(const std::filesystem::path& file, const DisplayEncoding& encodin
 
 // `range`: a calibrated display's black and white (cd/m²), for the mean luminance.
 void lightness_statistics(const Decoded& d, const std::optional<std::pair<double, double>>& range, StimulusAudit& out) {
-  double sum = 0, squares = 0, relative = 0;
-  for (const Lab& lab : d.lab) sum += lab.L, relative += lab_to_xyz(lab).y;
+  double sum = 0, squares = 0;
+  for (const Lab& lab : d.lab) sum += lab.L;
   const double n = double(d.lab.size()), mean = sum / n;
   for (const Lab& lab : d.lab) squares += (lab.L - mean) * (lab.L - mean);
   out.mean_lightness = mean;
   out.rms_contrast = std::sqrt(squares / n);
-  if (range) out.mean_luminance_cd_m2 = range->first + (relative / n) * (range->second - range->first);
+  if (!range) return;  // the relative luminance only where a calibration gives it a scale
+  double relative = 0;
+  for (const Lab& lab : d.lab) relative += lab_to_xyz(lab).y;
+  out.mean_luminance_cd_m2 = range->first + (relative / n) * (range->second - range->first);
 }
 
 // A calibrated display's luminance range, as the scene's reference entry records it.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/display_calibration.h"
+#include "core/image.h"
 #include "core/json_reader.h"
 #include "render/scene.h"
 #include "test_util.h"
@@ -78,6 +79,40 @@ TEST(DisplayCalibration, TheLookupTableRoundTripsEveryCodeValueInAScene) {
   // Relative luminance at half scale is (0.5^γ): the table follows the fit, not a default gamma.
   const double gamm = w["gamm"];
   EXPECT_NEAR(scene.display.encoding.decode(128 / 255.0), std::pow(128 / 255.0, gamm), 1e-9);
+}
+
+// A set made for the calibrated display decodes with its table, and the audit gives each image's
+// mean luminance: black + mean relative luminance (Rec. 709 weights of the decoded channels) ×
+// (white − black), computed here from the PNG.
+TEST(DisplayCalibration, TheAuditReportsMeanLuminanceOnACalibratedDisplay) {
+  testing::TempDir dir;
+  ASSERT_EQ(testing::run_cli("calibrate " + testing::reference_path("display/calibration_rgb.csv").string() + " -o " +
+                             (dir / "lab.json").string()).exit_code, 0);
+  testing::write_file(dir / "scene.json", R"({"version": 1,
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 30, "width": 32, "height": 24},
+    "render": {"spp": 2}, "display": {"calibration": "lab.json"},
+    "objects": [{"shape": {"type": "sphere"}}], "lights": [{"type": "directional", "direction": [1, 1, 1], "irradiance": 1}]})");
+  testing::write_file(dir / "e.json", R"({"version": 1, "lambda": {"min": 0, "max": 1, "step": 1},
+    "scenes": [{"name": "ball", "file": "scene.json"}], "methods": [{"method": "usm2d", "sigma_px": [2]}]})");
+  ASSERT_EQ(testing::run_cli("stimuli " + (dir / "e.json").string() + " -o " + (dir / "set").string()).exit_code, 0);
+  ASSERT_EQ(testing::run_cli("audit " + (dir / "set/manifest.json").string() + " -o " + (dir / "audit").string()).exit_code, 0);
+  const nlohmann::json audit = parse_json_file(dir / "audit/audit.json");
+  const Scene scene = load_scene(dir / "scene.json");
+  const auto [black, white] = *scene.display.luminance_cd_m2;
+  int checked = 0;
+  for (const auto& s : audit["stimuli"]) {
+    const Image image = read_image(dir / "set" / s["file"].get<std::string>());
+    double y = 0;
+    for (size_t p = 0; p < image.pixels.size() / 3; ++p) {
+      const float* c = &image.pixels[3 * p];
+      y += 0.2126 * scene.display.encoding.decode(c[0]) + 0.7152 * scene.display.encoding.decode(c[1]) +
+           0.0722 * scene.display.encoding.decode(c[2]);
+    }
+    const double expected = black + y / double(image.pixels.size() / 3) * (white - black);
+    EXPECT_NEAR(s["mean_luminance_cd_m2"].get<double>(), expected, 1e-3 * expected) << s["file"];
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3);
 }
 
 TEST(DisplayCalibration, BadReadingsAreRefusedInOneLine) {
