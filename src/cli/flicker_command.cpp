@@ -19,7 +19,7 @@ namespace countershade::cli {
 namespace {
 
 struct FlickerArgs {
-  std::string scene, frames, csv, maps, object, without;
+  std::string scene, frames, csv, maps, object, without, on, near, component = "layer";
   MethodArgs method;
   std::optional<int> width, height, spp, threads;
   int bits = 8;
@@ -46,11 +46,16 @@ void run(FlickerArgs& args, const CLI::App* cmd) {
   if (args.spp) base.settings.spp = *args.spp;
   m.method->check_scene(base, *m.parameters);
   const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
+  const Scene whole = base;  // with the object --without leaves out: it gives --near's region
   if (!args.without.empty()) remove_object(base, args.without);
   args.options.object = named_object(base, args.object, "--object");
+  args.options.on = named_object(whole, args.on, "--on");
+  args.options.near = named_object(whole, args.near, "--near");
+  if (!args.without.empty() && args.options.has_region()) args.options.region_scene = &whole;
   FlickerTable table(args.options);
   Progress progress("flicker");
-  const FlickerRender render{m.method, m.parameters, args.method.lambda, args.bits, args.threads.value_or(0)};
+  FlickerRender render{m.method, m.parameters, args.method.lambda, args.bits, args.threads.value_or(0)};
+  if (args.component == "mask") render.component = FlickerComponent::mask;
   measure_rendered_flicker(
       base, first, last, render, args.options,
       [&](int frame, const FlickerFrame& a, const FlickerFrame&, const PlainChange& plain, const PairFlicker& pair) {
@@ -62,7 +67,7 @@ void run(FlickerArgs& args, const CLI::App* cmd) {
   if (table.pixels() == 0)  // an RMS over nothing would read as perfect coherence
     throw InputError(args.scene + ": no surface point is seen in two consecutive frames, so there is no flicker to measure");
   if (!args.csv.empty()) write_text_atomically(args.csv, table.csv());
-  progress.finish(table.summary(args.object));
+  progress.finish(table.summary(args.object, args.component));
 }
 
 // The measures beyond the layer's RMS (FlickerOptions).
@@ -80,6 +85,13 @@ void add_measure_options(CLI::App* cmd, FlickerArgs& args) {
                   "neither a change of the scene (a moving shadow) nor the resampling disturbs (CSV columns "
                   "flicker_stable_lstar, stable_pixels)")
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--on", args.on,
+                  "Also the RMS over this object's pixels (of the earlier frame of each pair); with --near, only those "
+                  "near that object (CSV columns region_lstar, plain_region_lstar, region_pixels)");
+  cmd->add_option("--near", args.near, "Also the RMS over the pixels within --within pixels of this object's (itself excluded)");
+  cmd->add_option("--within", args.options.within_px, "The distance for --near, in pixels")
+      ->check(CLI::Range(1.0, 4096.0))
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -90,6 +102,11 @@ void add_flicker_command(CLI::App& app) {
       "flicker", "Measure how an enhancement changes between the frames of an animated scene, in L* per frame.");
   cmd->add_option("scene", args->scene, "Scene description with an animation (docs/scene-format.md)")->required();
   add_method_options(cmd, args->method, "Enhancement method");
+  cmd->add_option("--component", args->component,
+                  "What is measured: the enhancement's layer (enhanced − plain L*), or the method's mask, the low-pass "
+                  "signal M of U = S + λ(S − M) (depth-usm: 100·ΔD; docs/enhancement-methods.md, \"Mask flicker\")")
+      ->check(CLI::IsMember({"layer", "mask"}))
+      ->capture_default_str();
   cmd->add_option("--frames", args->frames, "Frames A:B (default: all)");
   cmd->add_option("--csv", args->csv, "Write frame, flicker, the plain render's reprojection error and pixels per pair");
   cmd->add_option("--maps", args->maps,
@@ -111,7 +128,8 @@ void add_flicker_command(CLI::App& app) {
   cmd->callback([cmd, args] { run(*args, cmd); });
   cmd->footer(method_parameters_help() +
               "\nExample:\n"
-              "  countershade flicker orbit.json --method usm2d --sigma-px 3 --lambda 1 --csv usm2d.csv");
+              "  countershade flicker orbit.json --method usm2d --sigma-px 3 --lambda 1 --csv usm2d.csv\n"
+              "  countershade flicker occluder.json --method usm3d --sigma 0.05 --component mask --on floor --near stick");
 }
 
 }  // namespace countershade::cli

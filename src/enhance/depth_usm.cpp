@@ -160,6 +160,13 @@ std::vector<float> contrast_enhanced(const View& view, const DepthUsmParameters&
 }
 
 // The paper's operators on display RGB.
+// The importance layer as depth-usm's mask: 100·ΔD, so that its flicker reads on the scale of L*.
+std::vector<float> importance_mask(const SpatialImportance& si) {
+  std::vector<float> m(si.importance.pixels.size());
+  for (size_t i = 0; i < m.size(); ++i) m[i] = 100.0f * si.importance.pixels[i];
+  return m;
+}
+
 class DepthUsmRgb final : public PreparedEnhancement {
  public:
   DepthUsmRgb(std::shared_ptr<const View> view, const DepthUsmParameters& p, SpatialImportance si, nlohmann::json record,
@@ -184,6 +191,7 @@ class DepthUsmRgb final : public PreparedEnhancement {
     return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};
   }
   NoiseModel noise(double lambda) const override { return lambda_noise(*view_, change_noise_, lambda); }
+  std::vector<float> mask() const override { return importance_mask(si_); }
 
  private:
   // Writes I + a·min(ΔD, 0) + b·max(ΔD, 0), clipped to [0,1], into `result`; returns the clipped
@@ -360,8 +368,10 @@ class DepthUsmMethod final : public EnhancementMethod {
     LightnessChange change = lab_change(view, p, si, enhanced);
     std::vector<std::pair<std::string, Image>> aux = {
         {"depth_normalized", si.depth}, {"depth_blurred", si.blurred}, {"spatial_importance", si.importance}};
-    return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record), std::move(aux),
-                                               context.threads, plain_noise(context));
+    auto prepared = std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record), std::move(aux),
+                                                        context.threads, plain_noise(context));
+    prepared->set_mask([importance = importance_mask(si)] { return importance; });
+    return prepared;
   }
 };
 

@@ -199,6 +199,12 @@ std::vector<std::pair<std::string, Image>> LightnessPrepared::auxiliary() const 
   return out;
 }
 
+std::vector<float> LightnessPrepared::mask() const {
+  if (mask_) return mask_();
+  if (change_.kind == LightnessChange::Kind::detail) return {change_.smooth.begin(), change_.smooth.end()};
+  return {};
+}
+
 NoiseFunction plain_noise(const PrepareContext& context) {
   return [view = context.view, change = context.change_noise](double lambda) { return lambda_noise(*view, change, lambda); };
 }

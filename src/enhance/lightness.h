@@ -84,6 +84,10 @@ class LightnessPrepared final : public PreparedEnhancement {
   nlohmann::json parameters() const override { return parameters_; }
   std::vector<std::pair<std::string, Image>> auxiliary() const override;
   NoiseModel noise(double lambda) const override { return noise_ ? noise_(lambda) : NoiseModel{}; }
+  // The mask set by set_mask; else, for a `detail` change, its smooth plane; else none.
+  std::vector<float> mask() const override;
+  // The method's low-pass signal M (PreparedEnhancement::mask), made when asked for.
+  void set_mask(std::function<std::vector<float>()> mask) { mask_ = std::move(mask); }
   const LightnessChange& change() const { return change_; }
 
  private:
@@ -93,6 +97,7 @@ class LightnessPrepared final : public PreparedEnhancement {
   std::vector<std::pair<std::string, Image>> auxiliary_;
   int threads_;
   NoiseFunction noise_;
+  std::function<std::vector<float>()> mask_;
 };
 
 }  // namespace countershade

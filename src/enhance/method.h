@@ -80,6 +80,10 @@ class PreparedEnhancement {
   virtual std::vector<std::pair<std::string, Image>> auxiliary() const { return {}; }
   // How the stimulus of strength λ amplifies the view's sampling noise.
   virtual NoiseModel noise(double /*lambda*/) const { return {}; }
+  // The low-pass signal M of a method that writes U = S + λ·(S − M), per pixel of the view in L*
+  // (docs/enhancement-methods.md, "Mask flicker"); depth-usm gives its importance layer ΔD
+  // instead, as 100·ΔD. Empty: the method subtracts no low-pass signal.
+  virtual std::vector<float> mask() const { return {}; }
 };
 
 // What prepare() may use: the view, this method's surface stage and fields, and a way to render

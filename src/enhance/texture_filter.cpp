@@ -95,10 +95,10 @@ class FilteredTextureStage final : public SurfaceStage {
 class FilteredTextures final : public PreparedEnhancement {
  public:
   FilteredTextures(const PrepareContext& context, std::shared_ptr<const std::vector<FilteredPyramid>> pyramids,
-                   std::shared_ptr<const TexelWeights> weights, nlohmann::json parameters)
+                   std::shared_ptr<const TexelWeights> weights, nlohmann::json parameters, bool unsharp)
       : view_(context.view), render_again_(context.render_again), threads_(context.threads),
         pyramids_(std::move(pyramids)), weights_(std::move(weights)), parameters_(std::move(parameters)),
-        noise_(plain_noise(context)) {}
+        noise_(plain_noise(context)), unsharp_(unsharp) {}
 
   Composed compose(double lambda) const override {
     if (lambda == 0) return {view_->display, 0};
@@ -112,6 +112,16 @@ class FilteredTextures final : public PreparedEnhancement {
   }
   nlohmann::json parameters() const override { return parameters_; }
   NoiseModel noise(double lambda) const override { return noise_(lambda); }
+  // The texture's unsharp masking at λ = −1 is its low-pass G*L in L*: the view rendered with it
+  // is the low-pass of the texture as rendered.
+  std::vector<float> mask() const override {
+    if (!unsharp_) return {};
+    const Image low_pass = compose(-1.0).display;
+    const LabPixels lab = display_to_lab(low_pass, view_->encoding);
+    std::vector<float> m(lab.size());
+    for (size_t i = 0; i < m.size(); ++i) m[i] = float(lab[i].L);
+    return m;
+  }
 
  private:
   // The view's radiance with every texel its samples read changed to its value at λ.
@@ -143,6 +153,7 @@ class FilteredTextures final : public PreparedEnhancement {
   std::shared_ptr<const TexelWeights> weights_;  // null: every λ renders again
   nlohmann::json parameters_;
   NoiseFunction noise_;
+  bool unsharp_;  // the filter is unsharp masking: it has a mask
 };
 
 // Every distinct texture of the scene's materials.
@@ -252,9 +263,17 @@ class TextureFilterMethod final : public EnhancementMethod {
         lightness_detail(view_signal_lightness(view), view.width(), view.height(), p.filter, Borders::clamp, context.threads);
     LightnessChange change;
     change.amount.assign(detail.begin(), detail.end());
-    return std::make_unique<LightnessPrepared>(context.view, std::move(change), describe(p),
-                                               std::vector<std::pair<std::string, Image>>{}, context.threads,
-                                               plain_noise(context));
+    auto prepared = std::make_unique<LightnessPrepared>(context.view, std::move(change), describe(p),
+                                                        std::vector<std::pair<std::string, Image>>{}, context.threads,
+                                                        plain_noise(context));
+    if (p.filter.kind == FilterKind::unsharp)  // the detail is S − G*S, so M = S − detail
+      prepared->set_mask([view = context.view, detail] {
+        const std::span<const float> S = view_signal_lightness(*view);
+        std::vector<float> m(S.size());
+        for (size_t i = 0; i < m.size(); ++i) m[i] = S[i] - detail[i];
+        return m;
+      });
+    return prepared;
   }
 
   std::unique_ptr<PreparedEnhancement> prepare_textures(const PrepareContext& context,
@@ -273,7 +292,8 @@ class TextureFilterMethod final : public EnhancementMethod {
       const View& view = *context.view;
       weights = view.memo.get<TexelWeights>("texel-weights", [&] { return TexelWeights::of_view(view, plain, context.threads); });
     }
-    return std::make_unique<FilteredTextures>(context, std::move(pyramids), std::move(weights), std::move(parameters));
+    return std::make_unique<FilteredTextures>(context, std::move(pyramids), std::move(weights), std::move(parameters),
+                                              p.filter.kind == FilterKind::unsharp);
   }
 };
 

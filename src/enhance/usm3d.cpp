@@ -226,6 +226,7 @@ struct CoverageContrast {
   PixelDoubles contrast;
   std::vector<double> gain;
   std::vector<float> smooth_noise;  // per unit λ: |g|·coverage·(the smoothed signal's L* error)
+  std::vector<float> mask;          // M = L*(Y − D), so that C = L*(Y) − M; L*(Y) off the surface
 };
 
 CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface,
@@ -237,11 +238,14 @@ CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface
   out.contrast.assign(n, 0.0);
   out.gain.assign(n, 0.0);
   out.smooth_noise.assign(n, 0.0f);
+  out.mask.resize(n);
   const std::vector<float>& smooth_luminance = *fields[0];
   const std::vector<float>& gain = *fields[1];
   for (size_t p = 0; p < n; ++p) {
+    out.mask[p] = float(cielab_lightness(r.luminance[p]));
     if (!(r.coverage[p] > 0)) continue;
     out.contrast[p] = coverage_contrast(r.luminance[p], r.surface_luminance[p], smooth_luminance[p]);
+    out.mask[p] -= float(out.contrast[p]);
     out.gain[p] = double(gain[p]) / double(r.coverage[p]);
     if (g.object[p] < 0) continue;
     const SurfacePoint centre = surface_point(*view.scene, unsigned(g.object[p]), unsigned(g.triangle[p]),
@@ -354,9 +358,11 @@ class Usm3dMethod final : public EnhancementMethod {
     NoiseFunction noise = [view = context.view, change = context.change_noise, pixels](double lambda) {
       return lambda_noise(*view, change, lambda, pixels->smooth_noise);
     };
-    return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
-                                               std::vector<std::pair<std::string, Image>>{}, context.threads,
-                                               std::move(noise));
+    auto prepared = std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
+                                                        std::vector<std::pair<std::string, Image>>{}, context.threads,
+                                                        std::move(noise));
+    prepared->set_mask([pixels] { return pixels->mask; });
+    return prepared;
   }
 };
 

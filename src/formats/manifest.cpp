@@ -230,21 +230,22 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
 
 namespace {
 
-// A stimulus's congruence map (entry.extra["congruence_map"]: file and sha256), where it has one.
-void check_congruence_map(const fs::path& dir, const ManifestEntry& s, std::set<fs::path>& listed,
-                          std::vector<std::string>& problems) {
-  if (!s.extra.contains("congruence_map")) return;
-  const OrderedJson& map = s.extra["congruence_map"];
-  if (!map.is_object() || !map.contains("file") || !map["file"].is_string() || !map.contains("sha256")) {
-    problems.push_back(s.file + ": congruence_map needs a file and a sha256");
+// A file a stimulus names in entry.extra[key] as {"file", "sha256"}: its congruence map, or the
+// method's mask of a sequence frame (several entries may name one mask; it is checked once).
+void check_named_file(const fs::path& dir, const ManifestEntry& s, const char* key, std::set<fs::path>& listed,
+                      std::vector<std::string>& problems) {
+  if (!s.extra.contains(key)) return;
+  const OrderedJson& named = s.extra[key];
+  if (!named.is_object() || !named.contains("file") || !named["file"].is_string() || !named.contains("sha256")) {
+    problems.push_back(s.file + ": " + key + " needs a file and a sha256");
     return;
   }
-  const std::string rel = map["file"].get<std::string>();
+  const std::string rel = named["file"].get<std::string>();
   const fs::path file = resolve_in_set(dir, rel);
-  listed.insert(fs::weakly_canonical(file));
+  if (!listed.insert(fs::weakly_canonical(file)).second) return;
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) problems.push_back(rel + ": missing");
-  else if (sha256_file(file) != map["sha256"]) problems.push_back(rel + ": sha256 differs from the manifest");
+  else if (sha256_file(file) != named["sha256"]) problems.push_back(rel + ": sha256 differs from the manifest");
 }
 
 }  // namespace
@@ -264,7 +265,8 @@ std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
     }
     if (s.size && fs::file_size(file) != s.size) problems.push_back(s.file + ": size differs from the manifest");
     if (sha256_file(file) != s.sha256) problems.push_back(s.file + ": sha256 differs from the manifest");
-    check_congruence_map(dir, s, listed, problems);
+    check_named_file(dir, s, "congruence_map", listed, problems);
+    check_named_file(dir, s, "mask", listed, problems);
   }
   for (const auto& video : manifest.videos) {
     const std::string rel = video["file"].get<std::string>();

@@ -32,6 +32,11 @@ Ray CameraRays::ray(double x, double y) const {
   return {camera_.eye, glm::normalize(forward_ + sx * right_ + sy * up_)};
 }
 
+glm::dvec3 CameraRays::point_at_depth(double x, double y, double depth) const {
+  const Ray r = ray(x, y);
+  return r.origin + r.direction * (depth / glm::dot(r.direction, forward_));
+}
+
 glm::dvec2 CameraRays::film_position(const glm::dvec3& p) const {
   const glm::dvec3 d = p - camera_.eye;
   const double depth = camera_.orthographic ? 1.0 : glm::dot(d, forward_);

@@ -32,6 +32,9 @@ class CameraRays {
   Ray ray(double x, double y) const;
   // Linear eye depth of a world point: distance along the viewing direction.
   double eye_depth(const glm::dvec3& p) const;
+  // The world point on the ray through film position (x, y) at linear eye depth `depth` (a depth
+  // buffer's value): the point a pixel sees.
+  glm::dvec3 point_at_depth(double x, double y, double depth) const;
   // Unit direction from a surface point towards the viewer.
   glm::dvec3 towards_viewer(const glm::dvec3& p) const;
   // Film position (x, y) in pixels of a world point in front of the camera: the inverse of ray().

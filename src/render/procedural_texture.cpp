@@ -45,4 +45,13 @@ TextureLevel checker_noise(const CheckerNoise& spec) {
   return level;
 }
 
+TextureLevel stripes(const Stripes& spec) {
+  const int n = spec.size;
+  TextureLevel level{n, n, std::vector<glm::vec3>(size_t(n) * size_t(n))};
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      level.texels[size_t(y) * size_t(n) + size_t(x)] = glm::vec3(float((x * spec.stripes / n) % 2 ? spec.dark : spec.light));
+  return level;
+}
+
 }  // namespace countershade

@@ -306,7 +306,7 @@ class SceneLoader {
   }
 
   std::shared_ptr<const Texture> procedural_texture(const JsonObject& o) {
-    o.choice("pattern", "checker-noise", {"checker-noise"});
+    if (o.choice("pattern", "checker-noise", {"checker-noise", "stripes"}) == "stripes") return stripe_texture(o);
     CheckerNoise spec;
     spec.size = int(o.integer_in("size", 1024, 8, 8192));
     spec.squares = int(o.integer_in("squares", 16, 2, 1024));
@@ -315,6 +315,17 @@ class SceneLoader {
     spec.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
     o.finish();
     return std::make_shared<const Texture>(checker_noise(spec));
+  }
+
+  std::shared_ptr<const Texture> stripe_texture(const JsonObject& o) {
+    Stripes spec;
+    spec.size = int(o.integer_in("size", 1024, 8, 8192));
+    spec.stripes = int(o.integer_in("stripes", 16, 2, 1024));
+    if (spec.stripes % 2 != 0 || spec.stripes > spec.size) o.fail("stripes", "must be even and at most the size, so that the pattern tiles");
+    spec.light = o.number_in("light", 0.6, 0.0, 1.0);
+    spec.dark = o.number_in("dark", 0.15, 0.0, 1.0);
+    o.finish();
+    return std::make_shared<const Texture>(stripes(spec));
   }
 
   Material material(const JsonObject& o) {

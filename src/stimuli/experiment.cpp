@@ -148,6 +148,15 @@ ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& ba
     scene.frames = frame_range(s.string("frames"), animated, 0, s.file() + ": " + s.key_path("frames"));
     scene.fps = animated.animation->fps;
   }
+  if (s.has("edge_probe")) {
+    const JsonObject probe = s.object("edge_probe");
+    scene.probe_edges_x = probe.numbers("edges_x");
+    probe.finish();
+    if (scene.probe_edges_x.empty() || !std::is_sorted(scene.probe_edges_x.begin(), scene.probe_edges_x.end()) ||
+        std::adjacent_find(scene.probe_edges_x.begin(), scene.probe_edges_x.end()) != scene.probe_edges_x.end())
+      s.fail("edge_probe", "edges_x must list at least one world x, in increasing order");
+    if (scene.frames) s.fail("edge_probe", "applies to still scenes only");
+  }
   return scene;
 }
 

@@ -42,6 +42,9 @@ struct ExperimentScene {
   // A sequence: frames A … B of the scene's animation, each a stimulus of its own (unset: a still).
   std::optional<std::pair<int, int>> frames;
   double fps = 0;  // the animation's frame rate, for sequences
+  // An edge probe ("edge_probe": {"edges_x": [...]}, still scenes): the world x of the stripe
+  // edges whose halo widths each stimulus records against depth (stimuli/scale_against_depth.h).
+  std::vector<double> probe_edges_x;
   bool is_sequence() const { return frames.has_value(); }
 };
 

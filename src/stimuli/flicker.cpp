@@ -7,6 +7,8 @@
 #include "core/error.h"
 #include "core/gaussian.h"
 #include "enhance/lightness.h"
+#include "render/ray_tracer.h"
+#include "render/renderer.h"
 #include "render/scene_animation.h"
 
 namespace countershade {
@@ -49,11 +51,20 @@ RenderedFrame render_frame(const Scene& base, int index, const FlickerRender& re
   f.view = render_view(scene, plan, view_options);
   const auto prepared = render.method->prepare(make_use_context(f.view, 0, render.threads), *render.parameters);
   const Image enhanced = prepared->compose(render.lambda).display;
-  out.layer = enhancement_layer(*f.view, enhanced);
+  out.layer = render.component == FlickerComponent::mask ? prepared->mask() : enhancement_layer(*f.view, enhanced);
+  if (out.layer.empty())
+    throw InputError("--component mask: " + render.method->name() +
+                     " subtracts no low-pass signal, so it has no mask (usm3d, usm2d, depth-usm and texture-filter "
+                     "with filter unsharp have one)");
   out.plain = view_lightness(*f.view);
   f.layer = out.layer;
   f.plain = out.plain;
   if (options.object >= 0) f.levels = level_layers(*f.view, enhanced);
+  if (options.has_region() && options.region_scene)
+    f.region = region_pixels(
+        *geometry_view(std::make_shared<const Scene>(scene_at(*options.region_scene, base.animation->time_of(index))),
+                       render.threads),
+        options);
   if (options.scale_px > 0) {
     f.layer_at_scale = blurred(f.layer, *f.view, options.scale_px);
     f.plain_at_scale = blurred(f.plain, *f.view, options.scale_px);
@@ -92,7 +103,67 @@ ObjectChange object_change(const std::vector<float>& largest, const std::vector<
   return out;
 }
 
+// For every pixel, the squared distance to the nearest pixel of `object` (large where it has none):
+// per row the distance along it, then the nearest over the rows within `radius`.
+std::vector<double> squared_distance_to(const View& view, int object, int radius) {
+  const int w = view.width(), h = view.height();
+  const double far = 1e18;
+  std::vector<double> along(size_t(w) * h, far), out(size_t(w) * h, far);
+  for (int y = 0; y < h; ++y) {
+    double* row = along.data() + size_t(y) * w;
+    for (int pass = 0; pass < 2; ++pass) {  // left to right, then right to left
+      double d = far;
+      for (int k = 0; k < w; ++k) {
+        const int x = pass ? w - 1 - k : k;
+        d = view.object_at(size_t(y) * w + x) == object ? 0.0 : d + 1.0;
+        row[x] = std::min(row[x], d);
+      }
+    }
+  }
+  for (int y = 0; y < h; ++y)
+    for (int dy = -radius; dy <= radius; ++dy) {
+      if (y + dy < 0 || y + dy >= h) continue;
+      for (int x = 0; x < w; ++x) {
+        const double a = along[size_t(y + dy) * w + x];
+        out[size_t(y) * w + x] = std::min(out[size_t(y) * w + x], a * a + double(dy) * dy);
+      }
+    }
+  return out;
+}
+
+// The RMS of `differences` over the counted pixels (not NaN) of `region`.
+Reprojection rms_in(const std::vector<float>& differences, const std::vector<char>& region) {
+  Reprojection out;
+  double sum = 0;
+  for (size_t i = 0; i < differences.size(); ++i)
+    if (region[i] && !std::isnan(differences[i])) sum += double(differences[i]) * differences[i], ++out.pixels;
+  out.rms = out.pixels ? std::sqrt(sum / double(out.pixels)) : 0.0;
+  return out;
+}
+
 }  // namespace
+
+std::vector<char> region_pixels(const View& view, const FlickerOptions& o) {
+  const size_t n = size_t(view.width()) * view.height();
+  std::vector<char> in(n, 1);
+  const int radius = int(std::ceil(o.within_px));
+  const std::vector<double> d2 = o.near >= 0 ? squared_distance_to(view, o.near, radius) : std::vector<double>{};
+  for (size_t i = 0; i < n; ++i) {
+    if (o.on >= 0 && view.object_at(i) != o.on) in[i] = 0;
+    if (o.near >= 0 && (d2[i] > o.within_px * o.within_px || view.object_at(i) == o.near)) in[i] = 0;
+  }
+  return in;
+}
+
+std::shared_ptr<const View> geometry_view(std::shared_ptr<const Scene> scene, int threads) {
+  auto view = std::make_shared<View>();
+  const RayTracer tracer(*scene);
+  view->render.gbuffer = render_gbuffer(*scene, tracer, threads);
+  view->depth = view->render.gbuffer.depth;
+  view->display = Image(scene->camera.width, scene->camera.height, 1);
+  view->scene = std::move(scene);
+  return view;
+}
 
 PlainChange plain_change(const FlickerFrame& a, const FlickerFrame& b, const CarryPoint& carry) {
   PlainChange out;
@@ -109,6 +180,11 @@ PairFlicker pair_flicker(const FlickerFrame& a, const FlickerFrame& b, const Car
     out.plain_at_scale = reprojection_rms(*a.view, a.plain_at_scale, *b.view, b.plain_at_scale, carry).rms;
   }
   if (options.stable > 0) out.stable = rms_where_stable(out.differences, plain.differences, options.stable);
+  if (options.has_region()) {
+    const std::vector<char> region = a.region.empty() ? region_pixels(*a.view, options) : a.region;
+    out.region = rms_in(out.differences, region);
+    out.plain_region = rms_in(plain.differences, region);
+  }
   if (options.object < 0) return out;
   const std::vector<float> largest = object_largest_change(a, b, carry, options.object);
   out.object = object_change(largest, plain.differences, std::nullopt);

@@ -27,6 +27,7 @@ struct FlickerFrame {
   // and the layer and plain L* blurred (FlickerOptions::scale_px).
   std::array<std::vector<float>, 3> levels;
   std::vector<float> layer_at_scale, plain_at_scale;
+  std::vector<char> region;  // FlickerOptions' region when given by another scene (empty: from `view`)
 };
 
 // The measures beyond the layer's RMS.
@@ -34,7 +35,23 @@ struct FlickerOptions {
   double scale_px = 0;  // > 0: also the layers blurred with a Gaussian of this σ in pixels
   double stable = 0;    // > 0: also over the pixels whose plain L* reprojects within this many L*
   int object = -1;      // ≥ 0: also how much the enhancement of this object's pixels changes
+  // A region of the earlier frame (when `on` or `near` is ≥ 0): the pixels of object `on` (any
+  // object when −1) within `within_px` of a pixel of object `near` (anywhere when −1). The RMS of
+  // the layer and of the plain L* are then also taken over it, e.g. a floor beside an occluder.
+  int on = -1, near = -1;
+  double within_px = 40;
+  // The scene whose geometry gives the region (null: each frame's own), e.g. the scene with an
+  // occluder that the measured one leaves out, so that both measure the same pixels.
+  const Scene* region_scene = nullptr;
+  bool has_region() const { return on >= 0 || near >= 0; }
 };
+
+// The pixels of FlickerOptions' region in `view` (1: in it).
+std::vector<char> region_pixels(const View& view, const FlickerOptions& options);
+
+// A frame's geometry as a View without pixels (depth, objects, camera): what the reprojection
+// and the region read.
+std::shared_ptr<const View> geometry_view(std::shared_ptr<const Scene> scene, int threads);
 
 // How much the enhancement of one object's pixels changes between two frames, in levels of 8-bit
 // output (at any bit depth): per pixel the largest change over the three channels.
@@ -58,9 +75,14 @@ struct PairFlicker {
   Reprojection stable;             // FlickerOptions::stable
   double at_scale = 0, plain_at_scale = 0;  // FlickerOptions::scale_px
   ObjectChange object, object_stable;       // FlickerOptions::object (object_stable: with stable)
+  Reprojection region, plain_region;        // FlickerOptions' region: the layer's and the plain L*'s
 };
 PairFlicker pair_flicker(const FlickerFrame& a, const FlickerFrame& b, const CarryPoint& carry,
                          const PlainChange& plain, const FlickerOptions& options);
+
+// What is measured of a method: its layer (enhanced − plain L*) or its mask
+// (PreparedEnhancement::mask, the low-pass signal the layer is taken against).
+enum class FlickerComponent { layer, mask };
 
 // What the `flicker` command renders: one method at one λ, frames at a bit depth.
 struct FlickerRender {
@@ -69,6 +91,7 @@ struct FlickerRender {
   double lambda = 1;
   int bits = 8;
   int threads = 0;
+  FlickerComponent component = FlickerComponent::layer;
 };
 
 // Per frame pair, the pair's frame number, both frames, the plain change and its measures.

@@ -1,5 +1,6 @@
 #include "stimuli/flicker_figures.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -15,10 +16,12 @@ double flicker_of(const ManifestEntry& s) { return s.extra["flicker"].get<double
 
 void write_table(const std::filesystem::path& path, const Experiment& e, const std::vector<const ManifestEntry*>& entries) {
   std::ostringstream csv;
-  csv << "scene,condition,lambda,frame,flicker_lstar,pixels,flicker_stable_lstar,stable_pixels\n";
+  csv << "scene,condition,lambda,frame,flicker_lstar,pixels,flicker_stable_lstar,stable_pixels,mask_flicker_lstar,"
+         "mask_pixels\n";
   for (const ManifestEntry* s : entries)
     csv << condition_columns(e, *s) << s->frame->index << ',' << format_value(flicker_of(*s)) << ','
-        << s->extra.value("flicker_pixels", 0) << ',' << optional_figure_columns(*s, "flicker_stable") << '\n';
+        << s->extra.value("flicker_pixels", 0) << ',' << optional_figure_columns(*s, "flicker_stable") << ','
+        << optional_figure_columns(*s, "mask_flicker") << '\n';
   write_text_atomically(path, csv.str());
 }
 
@@ -28,6 +31,10 @@ struct FlickerFigure {
   const char* key;
   std::string title, y_label;
 };
+
+// The masks' flicker: one plot per scene, since a mask does not depend on λ.
+const FlickerFigure kMaskFigure{"mask_flicker", "mask flicker",
+                                "RMS change of the method's mask (its low-pass signal M) per frame"};
 
 FlickerFigure flicker_figure(bool stable) {
   if (!stable) return {"flicker", "flicker", "RMS change of enhanced minus plain L* per frame"};
@@ -54,6 +61,19 @@ void write_plot(const std::filesystem::path& path, const Experiment& e, const st
   plot.write(path);
 }
 
+// The mask flicker of every condition with a mask, read at the first nonzero λ (every λ's entry
+// holds the same figure); none where no condition has a mask.
+void write_mask_plot(const std::filesystem::path& dir, const Experiment& e, const std::string& scene,
+                     const std::vector<const ManifestEntry*>& entries) {
+  int first = -1;
+  for (int l = 0; l < e.lambda.count() && first < 0; ++l)
+    if (e.lambda.value(l) != 0) first = l;
+  const bool any = std::any_of(entries.begin(), entries.end(), [&](const ManifestEntry* s) {
+    return s->scene == scene && s->extra.contains(kMaskFigure.key);
+  });
+  if (first >= 0 && any) write_plot(dir / ("flicker-mask-" + scene + ".svg"), e, scene, first, entries, kMaskFigure);
+}
+
 }  // namespace
 
 void write_flicker_figures(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
@@ -71,6 +91,7 @@ void write_flicker_figures(const Experiment& e, const std::filesystem::path& dir
                                    format_value(e.lambda.value(l)) + ".svg";
           write_plot(dir / name, e, scene.name, l, entries, flicker_figure(stable));
         }
+    write_mask_plot(dir, e, scene.name, entries);
   }
 }
 

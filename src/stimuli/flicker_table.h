@@ -15,13 +15,13 @@ class FlickerTable {
   void add(int frame, const PlainChange& plain, const PairFlicker& pair);
   const std::string& csv() const { return csv_; }
   size_t pixels() const { return pixels_; }  // over every pair: 0 means nothing was measured
-  // `object`: the name of FlickerOptions::object.
-  std::string summary(const std::string& object) const;
+  // `object`: the name of FlickerOptions::object; `component`: what was measured ("layer", "mask").
+  std::string summary(const std::string& object, const std::string& component = "layer") const;
 
  private:
   const FlickerOptions& o_;
   std::string csv_;
-  double mean_[6] = {};  // sums over pairs: layer, plain, both at scale, stable, stable share
+  double mean_[8] = {};  // sums over pairs: layer, plain, both at scale, stable, stable share, region, plain there
   ObjectChange object_, object_stable_;  // the worst pair's
   int pairs_ = 0;
   size_t pixels_ = 0;

@@ -100,8 +100,7 @@ Reprojection reprojection_rms(const View& first, std::span<const float> first_va
     for (int x = 0; x < first.width(); ++x) {
       if (!interior(first, x, y)) continue;
       const size_t i = size_t(y) * size_t(first.width()) + size_t(x);
-      const Ray ray = a.ray(x + 0.5, y + 0.5);
-      glm::dvec3 p = ray.origin + ray.direction * (double(first.depth[i]) / glm::dot(ray.direction, a.forward()));
+      glm::dvec3 p = a.point_at_depth(x + 0.5, y + 0.5, first.depth[i]);
       const int object = first.object_at(i);
       if (carry) p = carry(p, object);
       double value;

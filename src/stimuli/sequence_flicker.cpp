@@ -8,10 +8,9 @@
 #include "core/number_format.h"
 #include "core/parallel.h"
 #include "enhance/lightness.h"
-#include "render/ray_tracer.h"
-#include "render/renderer.h"
 #include "render/scene_animation.h"
 #include "stimuli/flicker.h"
+#include "stimuli/mask_file.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
@@ -27,21 +26,16 @@ Sequences sequences_of(const std::string& scene, std::vector<ManifestEntry>& ent
   return out;
 }
 
-// A frame's geometry as a View without pixels: what the reprojection reads.
-std::shared_ptr<const View> geometry_view(std::shared_ptr<const Scene> scene, int threads) {
-  auto view = std::make_shared<View>();
-  const RayTracer tracer(*scene);
-  view->render.gbuffer = render_gbuffer(*scene, tracer, threads);
-  view->depth = view->render.gbuffer.depth;
-  view->display = Image(scene->camera.width, scene->camera.height, 1);
-  view->scene = std::move(scene);
-  return view;
-}
-
 struct FrameLayers {
   std::shared_ptr<const View> geometry;
   std::map<std::string, std::vector<float>> layers;  // sequence folder → its layer at this frame
+  std::map<std::string, std::vector<float>> masks;   // mask file → the mask (one per method and σ)
 };
+
+// The mask file a sequence's frame names (empty: none).
+std::string mask_of(const ManifestEntry& entry) {
+  return entry.extra.contains("mask") ? entry.extra["mask"]["file"].get<std::string>() : std::string();
+}
 
 class FlickerMeter {
  public:
@@ -54,6 +48,8 @@ class FlickerMeter {
   std::vector<float> lightness(const ManifestEntry& entry) const;
   FrameLayers layers_at(const Sequences& sequences, int frame) const;
   void measure_pair(Sequences& sequences, const FrameLayers& previous, const FrameLayers& current, int frame) const;
+  void record_mask_flicker(Sequences& sequences, const std::vector<std::string>& folders, const FrameLayers& previous,
+                           const FrameLayers& current, const CarryPoint& carry, int frame) const;
 
   const Experiment& e_;
   fs::path dir_;
@@ -90,6 +86,9 @@ FrameLayers FlickerMeter::layers_at(const Sequences& sequences, int frame) const
     }
   });
   for (size_t k = 0; k < folders.size(); ++k) out.layers[folders[k]] = std::move(layers[k]);
+  for (const std::string& folder : folders)
+    if (const std::string mask = mask_of(*sequences.at(folder).at(frame)); !mask.empty() && !out.masks.count(mask))
+      out.masks[mask] = read_mask(dir_ / mask);
   return out;
 }
 
@@ -120,6 +119,7 @@ void FlickerMeter::measure_pair(Sequences& sequences, const FrameLayers& previou
   std::vector<std::string> folders;
   for (const auto& [folder, layer] : current.layers)
     if (folder != reference_ && previous.layers.count(folder)) folders.push_back(folder);
+  record_mask_flicker(sequences, folders, previous, current, carry, frame);
   FlickerOptions options;
   options.stable = kStableTolerance;
   parallel_ranges(folders.size(), threads_, [&](size_t begin, size_t end) {
@@ -132,6 +132,25 @@ void FlickerMeter::measure_pair(Sequences& sequences, const FrameLayers& previou
       entry->extra["flicker_stable_pixels"] = pair.stable.pixels;
     }
   });
+}
+
+// The mask flicker of every condition that has a mask in both frames: the reprojection of the
+// flicker applied to the mask (docs/enhancement-methods.md, "Mask flicker"), measured once per
+// method and σ and recorded in each of its λ's entries.
+void FlickerMeter::record_mask_flicker(Sequences& sequences, const std::vector<std::string>& folders,
+                                       const FrameLayers& previous, const FrameLayers& current, const CarryPoint& carry,
+                                       int frame) const {
+  std::map<std::string, Reprojection> measured;  // mask file of this frame → its change
+  for (const std::string& folder : folders) {
+    ManifestEntry& entry = *sequences.at(folder).at(frame);
+    const std::string mask = mask_of(entry), before = mask_of(*sequences.at(folder).at(frame - 1));
+    if (mask.empty() || before.empty()) continue;
+    if (!measured.count(mask))
+      measured[mask] = reprojection_rms(*previous.geometry, previous.masks.at(before), *current.geometry,
+                                        current.masks.at(mask), carry);
+    entry.extra["mask_flicker"] = round_to(measured[mask].rms, 4);
+    entry.extra["mask_flicker_pixels"] = measured[mask].pixels;
+  }
 }
 
 void FlickerMeter::measure(Sequences& sequences) const {

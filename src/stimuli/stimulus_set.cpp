@@ -21,7 +21,10 @@
 #include "stimuli/congruence.h"
 #include "stimuli/coherence_figures.h"
 #include "stimuli/congruence_figures.h"
+#include "stimuli/depth_scale_figures.h"
 #include "stimuli/headroom.h"
+#include "stimuli/mask_file.h"
+#include "stimuli/scale_against_depth.h"
 #include "stimuli/mean_hold.h"
 #include "stimuli/flicker_figures.h"
 #include "enhance/lightness.h"
@@ -180,6 +183,32 @@ void record_coherence(ManifestEntry& entry, const View& view, const std::vector<
   entry.extra["coherence_stable_pixels"] = stable.pixels;
 }
 
+// A sequence's frame keeps the method's mask, for its mask flicker (stimuli/sequence_flicker.h):
+// its manifest record, or null for a still or a method without one.
+nlohmann::json write_frame_mask(const fs::path& dir, const Experiment& e, const SetUnit& u,
+                                const PreparedEnhancement& prepared, const View& view) {
+  if (u.frame < 0) return nullptr;
+  const std::vector<float> mask = prepared.mask();
+  return mask.empty() ? nlohmann::json() : write_mask(dir, mask_path(e, u), mask, view.width(), view.height());
+}
+
+// The halo widths of an edge probe's stimulus against depth, and their log-log slope
+// (stimuli/scale_against_depth.h).
+void record_halo_widths(ManifestEntry& entry, const View& view, const std::vector<float>& layer,
+                        const std::vector<double>& edges_x) {
+  const std::vector<HaloSample> samples = halo_samples({view.scene->camera, view.depth, layer}, edges_x);
+  nlohmann::json edge = nlohmann::json::array(), depth = nlohmann::json::array(), width = nlohmann::json::array();
+  for (const HaloSample& s : samples) {
+    edge.push_back(s.edge_x);
+    depth.push_back(round_to(s.depth, 4));
+    width.push_back(round_to(s.width_px, 3));
+  }
+  entry.extra["halo_widths"] = {{"edge_x", edge}, {"depth", depth}, {"width_px", width}};
+  const DepthSlope slope = depth_slope(samples);
+  entry.extra["depth_slope"] = std::isfinite(slope.slope) ? nlohmann::json(round_to(slope.slope, 4)) : nlohmann::json();
+  entry.extra["depth_slope_samples"] = slope.samples;
+}
+
 // The plain render's own change per pixel under the dolly (empty without one).
 std::vector<float> plain_differences(const View& view, const View* moved) {
   std::vector<float> differences;
@@ -237,6 +266,7 @@ void finish_set(const Experiment& e, const fs::path& dir, Manifest& manifest,
   if (e.congruence) write_congruence_figures(e, dir, manifest, options.contact_sheets);
   write_coherence_figures(e, dir, manifest);
   write_flicker_figures(e, dir, manifest);
+  write_depth_scale_figures(e, dir, manifest);
 }
 
 class SetGenerator {
@@ -367,6 +397,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
     prepared = m.method->prepare(context(view), *m.parameters[u.sigma]);
     if (moved) prepared_moved = m.method->prepare(context(moved), *m.parameters[u.sigma]);
   });
+  const nlohmann::json mask = write_frame_mask(dir_, e_, u, *prepared, *view);
   prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();
   run_with_threads(options_.jobs, [&] {
@@ -380,6 +411,9 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);
       if (e_.hold_mean) entry.extra["mean_offset"] = round_to(offset, 4);
+      if (!mask.is_null()) entry.extra["mask"] = mask;
+      if (!e_.scenes[u.scene].probe_edges_x.empty())
+        record_halo_widths(entry, *view, enhancement_layer(*view, c.display), e_.scenes[u.scene].probe_edges_x);
       if (e_.headroom) entry.extra["exposure_stops"] = round_to(view->scene->display.exposure_stops, 4);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);

@@ -14,6 +14,7 @@
 #include "stimuli/perspective_coherence.h"
 #include "stimuli/stimulus_set.h"
 #include "stimuli/set_test_util.h"
+#include "stimuli/surface_values.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -37,16 +38,7 @@ std::shared_ptr<const View> ground_view(const fs::path& file, double dolly) {
 
 // A value per pixel from the world point the pixel sees.
 std::vector<float> attached(const View& v, const std::function<double(const glm::dvec3&)>& f) {
-  const CameraRays rays(v.scene->camera);
-  std::vector<float> out(v.depth.size(), 0.0f);
-  for (int y = 0; y < v.height(); ++y)
-    for (int x = 0; x < v.width(); ++x) {
-      const size_t i = size_t(y) * size_t(v.width()) + size_t(x);
-      if (!std::isfinite(v.depth[i])) continue;
-      const Ray r = rays.ray(x + 0.5, y + 0.5);
-      out[i] = float(f(r.origin + r.direction * (double(v.depth[i]) / glm::dot(r.direction, rays.forward()))));
-    }
-  return out;
+  return testing::surface_values(v, [&](const glm::dvec3& p, int) { return f(p); });
 }
 
 std::vector<float> screen_fixed(const View& v) {
