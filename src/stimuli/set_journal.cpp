@@ -89,14 +89,16 @@ std::map<std::string, ManifestEntry> verified_earlier_images(const fs::path& set
   return done;
 }
 
-void remove_interrupted_writes(const fs::path& dir) {
-  // A run killed while writing leaves its temporary file (".<name>.tmp-<pid>-<n>.<ext>", see
-  // write_atomically) behind; finished images never have that form.
+void remove_interrupted_writes(const fs::path& dir, const std::function<bool(const std::string& file)>& mine) {
+  // A run killed while writing leaves its temporary file (".<stem>.tmp-<pid>-<n><ext>", see
+  // write_atomically) beside the file it was writing; finished files never have that form.
   std::vector<fs::path> leftovers;
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos)
-      leftovers.push_back(entry.path());
+    const std::string name = entry.path().filename().string();
+    const size_t tmp = name.find(".tmp-");
+    if (!entry.is_regular_file() || name.size() < 2 || name[0] != '.' || tmp == std::string::npos) continue;
+    const fs::path target = fs::relative(entry.path().parent_path(), dir) / (name.substr(1, tmp - 1) + entry.path().extension().string());
+    if (!mine || mine(target.lexically_normal().generic_string())) leftovers.push_back(entry.path());
   }
   for (const auto& p : leftovers) fs::remove(p);
 }

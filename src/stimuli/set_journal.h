@@ -4,6 +4,7 @@
 // matches. Its first line names the experiment it belongs to.
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -32,7 +33,10 @@ std::map<std::string, ManifestEntry> verified_earlier_images(const std::filesyst
                                                              const std::filesystem::path& manifest,
                                                              const std::string& experiment_sha256);
 
-// Removes the temporary files of writes that an interruption cut short.
-void remove_interrupted_writes(const std::filesystem::path& dir);
+// Removes the temporary files of writes that an interruption cut short, of the files (paths
+// relative to `dir`) that `mine` accepts: a shard leaves alone those of the shards that may be
+// running beside it in the same folder.
+void remove_interrupted_writes(const std::filesystem::path& dir,
+                               const std::function<bool(const std::string& file)>& mine = {});
 
 }  // namespace countershade

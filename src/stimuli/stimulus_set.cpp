@@ -278,6 +278,7 @@ class SetGenerator {
 
  private:
   void prepare_folder();
+  void remove_own_interrupted_writes(const std::vector<SetUnit>& units) const;
   std::vector<SetUnit> shard_units() const;
   std::vector<std::string> files_of(const SetUnit& unit) const;
   bool all_done(const Shot& shot) const;
@@ -285,6 +286,9 @@ class SetGenerator {
   void make_shot(const Shot& shot, const ScenePlan& plan);
   std::shared_ptr<const View> headroom_view(size_t scene, const ScenePlan& plan, const ViewOptions& options);
   void write_reference(const SetUnit& unit, const View& view, const View* moved);
+  // The method prepared for a grid of λ (each composed from the view's own samples).
+  std::unique_ptr<PreparedEnhancement> prepare_for_grid(const ExperimentMethod& m, const SetUnit& u,
+                                                        const std::shared_ptr<const View>& view, size_t use) const;
   // `plain`: the plain render's own change per pixel under the dolly (with `moved`).
   void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view,
                        const std::shared_ptr<const View>& moved, const std::vector<float>& plain, size_t use);
@@ -317,10 +321,21 @@ void SetGenerator::prepare_folder() {
     throw_input_error(dir_.string(), "already holds a stimulus set (" +
                                          (has_manifest ? manifest_path_ : journal_path_).filename().string() +
                                          "); use --resume to finish it or choose a new folder");
-  if (options_.resume) {
+  if (options_.resume)
     done_ = verified_earlier_images(dir_, journal_path_, manifest_path_, e_.sha256);  // refuses another experiment's set
-    remove_interrupted_writes(dir_);
+}
+
+// The temporary files an interrupted run of this part left: every one in a run of the whole set;
+// in a shard only those of its own files, since other shards may be writing beside it.
+void SetGenerator::remove_own_interrupted_writes(const std::vector<SetUnit>& units) const {
+  if (options_.shards == 1) return remove_interrupted_writes(dir_);
+  std::set<std::string> own;
+  for (const SetUnit& u : units) {
+    for (const std::string& file : files_of(u)) own.insert(file), own.insert("congruence/" + file);
+    if (!u.is_reference() && u.frame >= 0) own.insert(mask_path(e_, u));
   }
+  own.insert(manifest_path_.filename().string());
+  remove_interrupted_writes(dir_, [&](const std::string& file) { return own.count(file) > 0; });
 }
 
 std::vector<SetUnit> SetGenerator::shard_units() const {
@@ -383,21 +398,24 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
   record(std::move(entry), true);
 }
 
+std::unique_ptr<PreparedEnhancement> SetGenerator::prepare_for_grid(const ExperimentMethod& m, const SetUnit& u,
+                                                                  const std::shared_ptr<const View>& view,
+                                                                  size_t use) const {
+  PrepareContext c = make_use_context(view, use, options_.jobs);
+  c.compose_from_samples = true;  // a grid of λ
+  return m.method->prepare(c, *m.parameters[u.sigma]);
+}
+
 void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view,
                                    const std::shared_ptr<const View>& moved, const std::vector<float>& plain, size_t use) {
   const ExperimentMethod& m = e_.methods[size_t(u.method)];
   auto tp = Clock::now();
   std::unique_ptr<PreparedEnhancement> prepared, prepared_moved;
-  auto context = [&](const std::shared_ptr<const View>& v) {
-    PrepareContext c = make_use_context(v, use, options_.jobs);
-    c.compose_from_samples = true;  // a grid of λ
-    return c;
-  };
   run_with_threads(options_.jobs, [&] {
-    prepared = m.method->prepare(context(view), *m.parameters[u.sigma]);
-    if (moved) prepared_moved = m.method->prepare(context(moved), *m.parameters[u.sigma]);
+    prepared = prepare_for_grid(m, u, view, use);
+    if (moved) prepared_moved = prepare_for_grid(m, u, moved, use);
   });
-  const nlohmann::json mask = write_frame_mask(dir_, e_, u, *prepared, *view);
+  const nlohmann::json mask = options_.masks ? write_frame_mask(dir_, e_, u, *prepared, *view) : nlohmann::json();
   prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();
   run_with_threads(options_.jobs, [&] {
@@ -514,6 +532,7 @@ GenerateReport SetGenerator::run() {
   // Every scene is loaded (and so checked) before anything renders.
   for (size_t s = 0; s < e_.scenes.size(); ++s) scenes_.push_back(set_scene(e_, s));
   const std::vector<SetUnit> units = shard_units();
+  if (options_.resume) remove_own_interrupted_writes(units);
   for (const auto& u : units) total_ += files_of(u).size();
   journal_ = std::make_unique<SetJournal>(journal_path_, e_.sha256);
   for (size_t s = 0; s < e_.scenes.size(); ++s) {
@@ -560,8 +579,16 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir, const F
     shards[m.shard->first] = std::move(m);
   }
   if (!count) throw_input_error(dir.string(), "no shard manifests (manifest.shard-I-of-N.json) to merge");
+  std::string missing;
   for (int i = 1; i <= count; ++i)
-    if (!shards.count(i)) throw_input_error(dir.string(), "shard " + std::to_string(i) + " of " + std::to_string(count) + " is missing");
+    if (!shards.count(i)) missing += (missing.empty() ? "" : ",") + std::to_string(i);
+  if (!missing.empty())
+    throw_input_error(dir.string(), (missing.find(',') == std::string::npos ? "shard " + missing + " of " + std::to_string(count) + " has"
+                                                                             : "shards " + missing + " of " + std::to_string(count) + " have") +
+                                        " not finished (no manifest.shard-I-of-" + std::to_string(count) + ".json); run " +
+                                        (missing.find(',') == std::string::npos ? "it" : "them") +
+                                        " again (with Slurm: sbatch --array=" + missing +
+                                        " " + (dir / "slurm" / "array.sbatch").string() + "), then merge; nothing was written");
   Manifest manifest = manifest_header(e);
   std::string started = "9999", finished = "0000";
   for (auto& [i, m] : shards) {

@@ -18,6 +18,9 @@ struct GenerateOptions {
   int shard = 1, shards = 1;  // this run's part, I of N
   bool resume = false;
   bool contact_sheets = true;
+  // Keep each sequence frame's method mask and record its mask flicker (false: neither, to save
+  // the files or to measure what they cost).
+  bool masks = true;
 };
 
 struct GenerateReport {
