@@ -64,6 +64,34 @@ void BM_SmoothIgea(benchmark::State& state) {
 }
 BENCHMARK(BM_SmoothIgea)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// n = 1000 steps on igea (2 threads), iterated and by the Chebyshev expansion, alternated in one
+// run: the time of each and their ratio, and the largest difference relative to the range.
+void BM_SmoothIgeaSchemes(benchmark::State& state) {
+  const TriangleMesh& mesh = igea_mesh();
+  const VertexAdjacency adj = adjacency_from_triangles(mesh.vertex_count(), mesh.triangles);
+  const Components comps = connected_components(adj);
+  const std::vector<int> steps(comps.count, 1000);
+  std::vector<double> signal(mesh.vertex_count());
+  SampleStream random(1, 0, 0, 0);
+  for (double& v : signal) v = 100.0 * random.next();
+  double seconds[2] = {0, 0}, largest = 0;
+  for (auto _ : state) {
+    std::vector<double> out[2] = {signal, signal};
+    for (int scheme = 0; scheme < 2; ++scheme) {
+      auto t0 = std::chrono::steady_clock::now();
+      smooth_over_rings(adj, comps.label, steps, out[scheme], scheme ? SmoothingScheme::chebyshev : SmoothingScheme::iterate, 2);
+      seconds[scheme] += seconds_since(t0);
+    }
+    for (size_t v = 0; v < signal.size(); ++v) largest = std::max(largest, std::abs(out[0][v] - out[1][v]) / 100.0);
+  }
+  const double runs = double(state.iterations());
+  state.counters["iterate_ms"] = 1e3 * seconds[0] / runs;
+  state.counters["chebyshev_ms"] = 1e3 * seconds[1] / runs;
+  state.counters["speedup"] = seconds[0] / seconds[1];
+  state.counters["max_diff/range"] = largest;
+}
+BENCHMARK(BM_SmoothIgeaSchemes)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
 // igea under the sky at 1024×768 with a fixed 16 spp (4 per vertex point), so both renders take
 // the same samples.
 std::shared_ptr<const Scene> igea_scene() {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "enhance/method.h"
+#include "mesh/smoothing.h"
 #include "mesh/surface_graph.h"
 
 namespace countershade {
@@ -19,6 +20,7 @@ struct SmoothingWidth {
   std::optional<double> sigma;    // world units
   std::optional<int> iterations;  // instead of σ
   bool adapt = true;              // gain √(1 + Var)
+  SmoothingScheme scheme = SmoothingScheme::iterate;
 };
 
 // The per-vertex quantities of one object for one σ.

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "mesh/chebyshev_smoothing.h"
 
 namespace countershade {
 
@@ -55,6 +56,13 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
     });
     values.swap(next);
   }
+}
+
+void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                       const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
+                       int threads) {
+  if (scheme == SmoothingScheme::chebyshev) return chebyshev_smooth(adjacency, label, iterations, values, threads);
+  laplacian_smooth(adjacency, label, iterations, values, threads);
 }
 
 std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values) {

@@ -26,6 +26,16 @@ int iterations_for_sigma(double sigma, double mean_edge_length);
 void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                       const std::vector<int>& iterations, std::vector<double>& values, int threads = 0);
 
+// How the n steps are taken: one product with the 1-ring average per step, or the truncated
+// Chebyshev expansion of the n-th power (mesh/chebyshev_smoothing.h: O(√n) products, within
+// 1e-7 of the signal's range of the steps).
+enum class SmoothingScheme { iterate, chebyshev };
+
+// laplacian_smooth or chebyshev_smooth, by `scheme`.
+void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                       const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
+                       int threads = 0);
+
 // Population variance of `values` over {i} ∪ N(i), per vertex.
 std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values);
 
