@@ -9,10 +9,12 @@
 #include <map>
 #include <sstream>
 
+#include "core/code_quantizer.h"
 #include "core/color.h"
 #include "core/display.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/lightness_kernels.h"
 #include "core/number_format.h"
 #include "enhance/lightness.h"
 #include "formats/manifest.h"
@@ -120,6 +122,72 @@ void compare_with_reference(const Decoded& d, const Decoded& reference, Stimulus
   out.clipped_fraction = double(clipped) / double(n);
   out.delta_e_mean = sum / double(n);
   out.delta_e_p99 = percentile99(std::move(differences), n);
+}
+
+// A 16-bit image's codes rounded to 8 bits, as values in [0,1].
+Image rounded_to_8_bits(const Decoded& d) {
+  Image image(d.width, d.height, 3, Image::Uninitialized{});
+  for (size_t i = 0; i < d.codes.size(); ++i) image.pixels[i] = float(std::lround(d.codes[i] * 255.0 / 65535.0)) / 255.0f;
+  return image;
+}
+
+// The share of a 16-bit stimulus's ideal change that an 8-bit set of the same render loses
+// (StimulusAudit::quantisation_loss). That set holds the reference rounded to 8 bits and composes
+// each stimulus on it, as the generator does: the reference's L* plus the change Δ, with hue and
+// chroma kept, rounded to 8-bit codes. Δ is the 16-bit set's own, L*₁₆ − L*₁₆(reference).
+std::optional<double> quantisation_loss(const Decoded& d, const Decoded& reference, const DisplayEncoding& encoding) {
+  if (d.bits != 16) return std::nullopt;
+  const Image base = rounded_to_8_bits(reference);
+  const LabPixels base_lab = display_to_lab(base, encoding, 8);
+  const size_t n = base_lab.size();
+  std::vector<double> delta(n);
+  for (size_t p = 0; p < n; ++p) delta[p] = d.lab[p].L - reference.lab[p].L;
+  Image composed(d.width, d.height, 3, Image::Uninitialized{});
+  const LightnessComposer composer(CodeQuantizer::shared(encoding, 8), 8);
+  for (size_t first = 0; first < n; first += 64) {
+    const size_t count = std::min<size_t>(64, n - first);
+    composer.compose(base_lab.data() + first, base.pixels.data() + 3 * first, delta.data() + first, count,
+                     composed.pixels.data() + 3 * first);
+  }
+  const LabPixels lab = display_to_lab(composed, encoding, 8);
+  double ideal = 0, error = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const double rounded = lab[p].L - base_lab[p].L;
+    ideal += delta[p] * delta[p];
+    error += (rounded - delta[p]) * (rounded - delta[p]);
+  }
+  if (!(ideal > 0)) return std::nullopt;
+  return std::sqrt(error / ideal);
+}
+
+// Every measure of one stimulus (or reference) against its reference.
+void measure(const Decoded& d, const Decoded& reference, const std::optional<std::pair<double, double>>& range,
+             const DisplayEncoding& encoding, StimulusAudit& s) {
+  lightness_statistics(d, range, s);
+  compare_with_reference(d, reference, s);
+  if (!s.reference) s.quantisation_loss = quantisation_loss(d, reference, encoding);
+}
+
+// A note per condition whose change 8 bits would lose more than kQuantisationWarning of, naming
+// the λ range where they would.
+void add_quantisation_notes(AuditReport& report) {
+  for (const AuditCondition& c : audit_conditions(report)) {
+    std::optional<double> first, last;
+    double worst = 0;
+    for (const StimulusAudit* s : c.stimuli) {
+      if (!s->quantisation_loss || *s->quantisation_loss <= kQuantisationWarning) continue;
+      if (!first) first = s->lambda;
+      last = s->lambda;
+      worst = std::max(worst, *s->quantisation_loss);
+    }
+    if (!first) continue;
+    std::ostringstream note;
+    note << c.scene << " " << c.name << ": at 8 bits more than " << 100 * kQuantisationWarning
+         << " % of the change would be lost at lambda " << format_value(*first)
+         << (*last != *first ? " to " + format_value(*last) : std::string()) << " (up to " << std::lround(100 * worst)
+         << " %); show these stimuli at 16 bits with dithering or on a 10-bit display";
+    report.notes.push_back(note.str());
+  }
 }
 
 // The render an entry belongs to: its scene and, in a sequence, its frame.
@@ -244,13 +312,13 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
       const Decoded& d = e.is_reference() ? reference->second : own;
       if (d.width != reference->second.width || d.height != reference->second.height || d.bits != reference->second.bits)
         throw_input_error(e.file, "differs in size or bit depth from its scene's reference");
-      lightness_statistics(d, ranges.at(e.scene), s);
-      compare_with_reference(d, reference->second, s);
+      measure(d, reference->second, ranges.at(e.scene), encodings.at(e.scene), s);
       report.stimuli[i] = std::move(s);
       if (options.progress) options.progress(double(++done) / double(manifest.stimuli.size()));
     });
   });
   set_drifts(report);
+  add_quantisation_notes(report);
   add_audit_checks(report, manifest);
   return report;
 }

@@ -41,7 +41,14 @@ struct StimulusAudit {
   double delta_e_mean = 0, delta_e_p99 = 0, changed_fraction = 0;  // against the reference
   std::optional<double> noise_rms, noise_p99;
   std::optional<bool> noise_met;
+  // 16-bit sets: the share of the ideal change (L* against the reference, RMS over the image) that
+  // the same stimulus and reference rounded to 8 bits would lose: RMS(ΔL*₈ − ΔL*₁₆) / RMS(ΔL*₁₆).
+  // None at 8 bits (no ideal to compare with) and where nothing changes.
+  std::optional<double> quantisation_loss;
 };
+
+// The λ steps of a condition where more than this share of the change is lost at 8 bits get a note.
+inline constexpr double kQuantisationWarning = 0.25;
 
 struct AuditCheck {
   std::string check, scene, condition;  // condition empty: the whole scene or set

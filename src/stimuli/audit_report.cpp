@@ -20,8 +20,9 @@ using json = nlohmann::ordered_json;
 
 json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
-// `luminance`: the set has a scene on a calibrated display, so every row gets the column.
-json stimulus_json(const StimulusAudit& s, bool luminance) {
+// `luminance`: the set has a scene on a calibrated display, so every row gets the column;
+// `quantisation`: the set is 16-bit, so every row gets the share 8 bits would lose.
+json stimulus_json(const StimulusAudit& s, bool luminance, bool quantisation) {
   json out = {{"file", s.file},
           {"scene", s.scene},
           {"condition", s.reference ? "reference" : s.condition},
@@ -36,6 +37,7 @@ json stimulus_json(const StimulusAudit& s, bool luminance) {
           {"noise_rms", optional_number(s.noise_rms)},
           {"noise_p99", optional_number(s.noise_p99)}};
   if (luminance) out["mean_luminance_cd_m2"] = optional_number(s.mean_luminance_cd_m2);
+  if (quantisation) out["quantisation_loss"] = optional_number(s.quantisation_loss);
   return out;
 }
 
@@ -49,7 +51,8 @@ json report_json(const AuditReport& r) {
                              {"detail", c.detail}});
   out["stimuli"] = json::array();
   const bool luminance = std::any_of(r.stimuli.begin(), r.stimuli.end(), [](const StimulusAudit& s) { return s.mean_luminance_cd_m2.has_value(); });
-  for (const auto& s : r.stimuli) out["stimuli"].push_back(stimulus_json(s, luminance));
+  const bool quantisation = std::any_of(r.stimuli.begin(), r.stimuli.end(), [](const StimulusAudit& s) { return s.quantisation_loss.has_value(); });
+  for (const auto& s : r.stimuli) out["stimuli"].push_back(stimulus_json(s, luminance, quantisation));
   out["notes"] = r.notes;
   return out;
 }
@@ -138,6 +141,10 @@ std::string condition_plots(const AuditCondition& c, const AuditLimits& limits) 
                       [](const StimulusAudit& s, const StimulusAudit&) { return s.delta_e_p99; }, std::nullopt);
   out += measure_plot(c, "pixels changed", "%",
                       [](const StimulusAudit& s, const StimulusAudit&) { return 100 * s.changed_fraction; }, std::nullopt);
+  if (std::any_of(c.stimuli.begin(), c.stimuli.end(), [](const StimulusAudit* s) { return s->quantisation_loss.has_value(); }))
+    out += measure_plot(c, "change lost at 8 bits", "%",
+                        [](const StimulusAudit& s, const StimulusAudit&) { return 100 * s.quantisation_loss.value_or(0.0); },
+                        PlotLimit{100 * kQuantisationWarning});
   if (c.stimuli.front()->noise_rms)
     out += measure_plot(c, "estimated sampling noise (RMS)", "L*",
                         [](const StimulusAudit& s, const StimulusAudit&) { return s.noise_rms.value_or(0.0); }, std::nullopt);
