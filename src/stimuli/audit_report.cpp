@@ -1,6 +1,7 @@
 #include "stimuli/audit_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -108,6 +109,7 @@ std::string measure_plot(const AuditCondition& c, const std::string& title, cons
   series.color = plot_color(0);
   for (const auto* s : c.stimuli) {
     const double v = value(*s, *c.reference);
+    if (std::isnan(v)) continue;  // no value at this λ (e.g. nothing changed to lose)
     if (!series.x.empty() && series.x.back() == s->lambda) {  // another frame at this λ
       if (std::abs(v) > std::abs(series.y.back())) series.y.back() = v;
       continue;
@@ -116,7 +118,7 @@ std::string measure_plot(const AuditCondition& c, const std::string& title, cons
     series.y.push_back(v);
   }
   plot.series.push_back(series);
-  if (limit)
+  if (limit && !series.x.empty())
     for (double sign : {1.0, -1.0}) {
       if (sign < 0 && !limit->two_sided) continue;
       const double y = sign * limit->value;
@@ -143,7 +145,7 @@ std::string condition_plots(const AuditCondition& c, const AuditLimits& limits) 
                       [](const StimulusAudit& s, const StimulusAudit&) { return 100 * s.changed_fraction; }, std::nullopt);
   if (std::any_of(c.stimuli.begin(), c.stimuli.end(), [](const StimulusAudit* s) { return s->quantisation_loss.has_value(); }))
     out += measure_plot(c, "change lost at 8 bits", "%",
-                        [](const StimulusAudit& s, const StimulusAudit&) { return 100 * s.quantisation_loss.value_or(0.0); },
+                        [](const StimulusAudit& s, const StimulusAudit&) { return 100 * s.quantisation_loss.value_or(NAN); },
                         PlotLimit{100 * kQuantisationWarning});
   if (c.stimuli.front()->noise_rms)
     out += measure_plot(c, "estimated sampling noise (RMS)", "L*",
