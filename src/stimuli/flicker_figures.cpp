@@ -30,11 +30,12 @@ void write_table(const std::filesystem::path& path, const Experiment& e, const s
 struct FlickerFigure {
   const char* key;
   std::string title, y_label;
+  bool per_lambda = true;  // false: the same at every λ (the title names none)
 };
 
 // The masks' flicker: one plot per scene, since a mask does not depend on λ.
-const FlickerFigure kMaskFigure{"mask_flicker", "mask flicker",
-                                "RMS change of the method's mask (its low-pass signal M) per frame"};
+const FlickerFigure kMaskFigure{"mask_flicker", "mask flicker (the low-pass signal M; the same at every lambda)",
+                                "RMS change of M per frame (L*)", false};
 
 FlickerFigure flicker_figure(bool stable) {
   if (!stable) return {"flicker", "flicker", "RMS change of enhanced minus plain L* per frame"};
@@ -46,7 +47,8 @@ FlickerFigure flicker_figure(bool stable) {
 void write_plot(const std::filesystem::path& path, const Experiment& e, const std::string& scene, int l,
                 const std::vector<const ManifestEntry*>& entries, const FlickerFigure& figure) {
   LinePlot plot;
-  plot.title = e.name + ", " + scene + ": " + figure.title + " at lambda " + format_value(e.lambda.value(l));
+  plot.title = e.name + ", " + scene + ": " + figure.title;
+  if (figure.per_lambda) plot.title += " at lambda " + format_value(e.lambda.value(l));
   plot.x_label = "frame";
   plot.y_label = figure.y_label;
   plot.width = 960;
