@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/method_options.h"
@@ -46,12 +47,14 @@ void run(FlickerArgs& args, const CLI::App* cmd) {
   if (args.spp) base.settings.spp = *args.spp;
   m.method->check_scene(base, *m.parameters);
   const auto [first, last] = frame_range(args.frames, base, 1, "--frames");
-  const Scene whole = base;  // with the object --without leaves out: it gives --near's region
-  if (!args.without.empty()) remove_object(base, args.without);
+  // With --without, the scene as it was keeps the object that --near's region is measured around.
+  std::optional<Scene> whole;
+  if (!args.without.empty()) whole = base, remove_object(base, args.without);
+  const Scene& full = whole ? *whole : base;
   args.options.object = named_object(base, args.object, "--object");
-  args.options.on = named_object(whole, args.on, "--on");
-  args.options.near = named_object(whole, args.near, "--near");
-  if (!args.without.empty() && args.options.has_region()) args.options.region_scene = &whole;
+  args.options.on = named_object(full, args.on, "--on");
+  args.options.near = named_object(full, args.near, "--near");
+  if (whole && args.options.has_region()) args.options.region_scene = &*whole;
   FlickerTable table(args.options);
   Progress progress("flicker");
   FlickerRender render{m.method, m.parameters, args.method.lambda, args.bits, args.threads.value_or(0)};

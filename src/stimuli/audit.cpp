@@ -27,6 +27,10 @@ struct Decoded {
   int width = 0, height = 0, bits = 8;
   std::vector<uint16_t> codes;  // 3 per pixel
   LabPixels lab;
+  // A 16-bit reference rounded to 8 bits, and its CIELAB: what every stimulus of its scene is
+  // composed on to measure the quantisation loss (made once per reference).
+  Image at_8_bits;
+  LabPixels lab_at_8_bits;
 };
 
 // The display encoding a reference entry records ("srgb", "gamma 2.2", or a measured table with its
@@ -137,8 +141,8 @@ Image rounded_to_8_bits(const Decoded& d) {
 // chroma kept, rounded to 8-bit codes. Δ is the 16-bit set's own, L*₁₆ − L*₁₆(reference).
 std::optional<double> quantisation_loss(const Decoded& d, const Decoded& reference, const DisplayEncoding& encoding) {
   if (d.bits != 16) return std::nullopt;
-  const Image base = rounded_to_8_bits(reference);
-  const LabPixels base_lab = display_to_lab(base, encoding, 8);
+  const Image& base = reference.at_8_bits;
+  const LabPixels& base_lab = reference.lab_at_8_bits;
   const size_t n = base_lab.size();
   std::vector<double> delta(n);
   for (size_t p = 0; p < n; ++p) delta[p] = d.lab[p].L - reference.lab[p].L;
@@ -209,7 +213,12 @@ std::map<std::pair<std::string, int>, Decoded> decoded_references(const Manifest
   for (const auto& e : manifest.stimuli)
     if (e.is_reference()) {
       encodings.emplace(e.scene, encoding_of(e, notes));
-      references.emplace(shot_of(e), decode(resolve_in_set(dir, e.file), encodings.at(e.scene)));
+      Decoded d = decode(resolve_in_set(dir, e.file), encodings.at(e.scene));
+      if (d.bits == 16) {
+        d.at_8_bits = rounded_to_8_bits(d);
+        d.lab_at_8_bits = display_to_lab(d.at_8_bits, encodings.at(e.scene), 8);
+      }
+      references.emplace(shot_of(e), std::move(d));
     }
   return references;
 }
