@@ -1,5 +1,6 @@
 // `countershade simulate`: synthetic observers writing the responses CSV (for tests and for
-// planning the sample size of a study).
+// planning the sample size of a study), or a forced-choice procedure replayed on a given answer
+// sequence (`--procedure` with `--responses`).
 
 #include <cmath>
 #include <cstdio>
@@ -7,17 +8,41 @@
 
 #include "analysis/simulate.h"
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "forced_choice/replay.h"
 #include "formats/responses.h"
 
 namespace countershade::cli {
+namespace {
+
+// Prints the summary (JSON) on stdout, so that a script can read the final estimate.
+void replay(const std::string& procedure, const std::string& responses, const std::string& output) {
+  const auto spec = forced_choice::read_procedure_file(procedure);
+  const auto answers = forced_choice::read_binary_responses(responses);
+  const auto result = forced_choice::replay_procedure(spec, answers);
+  write_text_atomically(output, result.csv);
+  std::printf("%s\n", result.summary.dump(2).c_str());
+  const size_t left = result.summary["responses_left"].get<size_t>();
+  std::fprintf(stderr, "simulate: wrote %s (%zu trials%s)\n", output.c_str(), answers.size() - left,
+               left ? (", " + std::to_string(left) + " responses left after the procedure finished").c_str() : "");
+}
+
+}  // namespace
 
 void add_simulate_command(CLI::App& app) {
   auto d = std::make_shared<analysis::SimulationDesign>();
   auto output = std::make_shared<std::string>();
   auto seed = std::make_shared<long long>(1);
-  CLI::App* cmd = app.add_subcommand("simulate", "Synthetic observers with known thresholds -> responses CSV.");
-  cmd->add_option("-o,--output", *output, "Responses CSV to write")->required();
+  auto procedure = std::make_shared<std::string>();
+  auto answers = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand(
+      "simulate", "Synthetic observers with known thresholds -> responses CSV; or a procedure replayed on given answers.");
+  CLI::Option* output_option = cmd->add_option("-o,--output", *output, "CSV to write")->required();
+  auto* procedure_option = cmd->add_option("--procedure", *procedure, "Replay this staircase or QUEST file (docs/forced-choice.md)");
+  auto* answers_option = cmd->add_option("--responses", *answers, "With --procedure: a CSV with a 0/1 'response' column, one row per trial");
+  procedure_option->needs(answers_option);
+  answers_option->needs(procedure_option);
   cmd->add_option("--subjects", d->subjects, "Number of observers")->check(CLI::Range(3, 100000))->capture_default_str();
   cmd->add_option("--repetitions", d->repetitions, "Answers per cell")->check(CLI::Range(1, 100))->capture_default_str();
   cmd->add_option("--lambda-min", d->lambda_min, "First value of the λ grid")->check(within(0.0, kLargestLambda))->capture_default_str();
@@ -31,7 +56,11 @@ void add_simulate_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--seed", *seed, "Random seed")->capture_default_str();
   cmd->add_option("--method", d->method, "The method column (one analysis block)")->capture_default_str();
+  for (CLI::Option* design : cmd->get_options())
+    if (design != procedure_option && design != answers_option && design != output_option && design != cmd->get_help_ptr())
+      design->excludes(procedure_option);
   cmd->callback([=] {
+    if (!procedure->empty()) return replay(*procedure, *answers, *output);
     d->seed = uint64_t(*seed);
     if (!(d->lambda_max >= d->lambda_min + d->lambda_step))
       throw InputError("--lambda-max: must be at least one step above --lambda-min");
@@ -47,7 +76,9 @@ void add_simulate_command(CLI::App& app) {
     std::fprintf(stderr, "simulate: wrote %s (%zu responses from %d observers)\n", output->c_str(), responses.size(),
                  d->subjects);
   });
-  cmd->footer("Example:\n  countershade simulate -o sim.csv --subjects 30 && countershade analyze sim.csv -o sim-report");
+  cmd->footer(
+      "Examples:\n  countershade simulate -o sim.csv --subjects 30 && countershade analyze sim.csv -o sim-report\n"
+      "  countershade simulate --procedure quest.json --responses answers.csv -o quest-trials.csv");
 }
 
 }  // namespace countershade::cli
