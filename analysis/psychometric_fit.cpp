@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include <Eigen/Dense>
-#include <boost/math/special_functions/erf.hpp>
 
 #include "analysis/psychometric_solver.h"
 #include "core/error.h"
@@ -29,32 +27,6 @@ const char* psychometric_model_name(PsychometricModel model) {
 }
 
 namespace {
-
-// F⁻¹(p): the η where the base function reaches p.
-double inverse_base(PsychometricModel model, double p) {
-  switch (model) {
-    case PsychometricModel::weibull: return std::log(-std::log1p(-p));
-    case PsychometricModel::log_logistic: return std::log(p / (1 - p));
-    case PsychometricModel::log_normal: return -std::sqrt(2.0) * boost::math::erfc_inv(2 * p);
-  }
-  return 0;
-}
-
-// Cells sorted by λ, equal λ merged, each checked.
-std::vector<BinomialCell> merged(std::vector<BinomialCell> cells) {
-  std::map<double, BinomialCell> by_lambda;
-  for (const BinomialCell& c : cells) {
-    if (!(c.lambda > 0) || !std::isfinite(c.lambda)) throw InputError("psychometric fit: λ must be above 0");
-    if (c.n <= 0 || c.k < 0 || c.k > c.n) throw InputError("psychometric fit: a cell needs 0 ≤ k ≤ n and n > 0");
-    BinomialCell& m = by_lambda[c.lambda];
-    m.lambda = c.lambda;
-    m.k += c.k;
-    m.n += c.n;
-  }
-  std::vector<BinomialCell> out;
-  for (const auto& [lambda, c] : by_lambda) out.push_back(c);
-  return out;
-}
 
 // Standard errors of b0, b1 and of ln threshold from the inverse expected information.
 void standard_errors(PsychometricFit& fit, const CellData& data) {
@@ -103,7 +75,7 @@ void compare_with_steepest(PsychometricFit& fit, const CellData& data) {
 PsychometricFit fit_psychometric(std::vector<BinomialCell> cells, const PsychometricOptions& options) {
   PsychometricFit fit;
   fit.options = options;
-  const CellData data(merged(std::move(cells)));
+  const CellData data(merge_cells(std::move(cells)));
   fit.n_cells = data.size();
   for (const BinomialCell& c : data.cells) fit.n_trials += c.n;
   if (data.size() < 2) throw InputError("psychometric fit: needs trials at two λ values at least");

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 
 #include <Eigen/Dense>
 #include <boost/math/special_functions/erf.hpp>
+
+#include "core/error.h"
 
 namespace countershade::analysis {
 
@@ -31,6 +34,33 @@ BaseValue base_value(PsychometricModel model, double eta) {
   }
   return {0, 1, 0, 0};
 }
+
+// F⁻¹(p): the η where the base function reaches p.
+double inverse_base(PsychometricModel model, double p) {
+  switch (model) {
+    case PsychometricModel::weibull: return std::log(-std::log1p(-p));
+    case PsychometricModel::log_logistic: return std::log(p / (1 - p));
+    case PsychometricModel::log_normal: return -std::sqrt(2.0) * boost::math::erfc_inv(2 * p);
+  }
+  return 0;
+}
+
+// Cells sorted by λ, equal λ merged, each checked.
+std::vector<BinomialCell> merge_cells(std::vector<BinomialCell> cells) {
+  std::map<double, BinomialCell> by_lambda;
+  for (const BinomialCell& c : cells) {
+    if (!(c.lambda > 0) || !std::isfinite(c.lambda)) throw InputError("psychometric fit: λ must be above 0");
+    if (c.n <= 0 || c.k < 0 || c.k > c.n) throw InputError("psychometric fit: a cell needs 0 ≤ k ≤ n and n > 0");
+    BinomialCell& m = by_lambda[c.lambda];
+    m.lambda = c.lambda;
+    m.k += c.k;
+    m.n += c.n;
+  }
+  std::vector<BinomialCell> out;
+  for (const auto& [lambda, c] : by_lambda) out.push_back(c);
+  return out;
+}
+
 
 namespace {
 
@@ -199,9 +229,7 @@ CoefficientStart starting_coefficients(const CellData& data, const PsychometricO
   for (size_t i = 0; i < data.size(); ++i) {
     const double n = double(data.cells[i].n), p = (double(data.cells[i].k) + 0.5) / (n + 1);
     const double F = std::clamp((p - o.guess) / (1 - o.guess), 0.05, 0.95);
-    const double y = o.model == PsychometricModel::weibull ? std::log(-std::log1p(-F))
-                     : o.model == PsychometricModel::log_logistic ? std::log(F / (1 - F))
-                                                                   : -std::sqrt(2.0) * boost::math::erfc_inv(2 * F);
+    const double y = inverse_base(o.model, F);
     sw += n, sx += n * data.x[i], sy += n * y, sxx += n * data.x[i] * data.x[i], sxy += n * data.x[i] * y;
   }
   const double spread = sxx - sx * sx / sw;

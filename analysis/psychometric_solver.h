@@ -11,6 +11,12 @@
 
 namespace countershade::analysis {
 
+// F⁻¹(p): the η where the base function reaches p (F⁻¹(1/2) is the threshold's η).
+double inverse_base(PsychometricModel model, double p);
+
+// Cells sorted by λ with equal λ merged; λ ≤ 0 or k outside [0, n] is an InputError.
+std::vector<BinomialCell> merge_cells(std::vector<BinomialCell> cells);
+
 // Cells sorted by λ, with x = ln λ.
 struct CellData {
   explicit CellData(std::vector<BinomialCell> c);
