@@ -53,7 +53,7 @@ Refit refit_once(const PsychometricFit& fit, const CellData& data, SampleStream&
   const CellData sample(std::move(drawn));
   const CoefficientStart from{fit.intercept, fit.slope};
   const LapseSolution s = fit.options.free_lapse ? solve_free_lapse(sample, fit.options, from)
-                                                 : solve_fixed_lapse(sample, fit.options, from);
+                                                 : solve_fixed_lapse(sample, fit.options, from, 0.0, 1e-9);
   Refit r;
   r.deviance = s.deviance;
   if (s.converged && std::isfinite(s.slope) && s.slope != 0) {

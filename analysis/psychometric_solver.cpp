@@ -14,14 +14,18 @@
 namespace countershade::analysis {
 
 CellData::CellData(std::vector<BinomialCell> c) : cells(std::move(c)) {
-  for (const BinomialCell& cell : cells) x.push_back(std::log(cell.lambda));
+  for (const BinomialCell& cell : cells) {
+    x.push_back(std::log(cell.lambda));
+    const double k = double(cell.k), n = double(cell.n);
+    saturated_nll -= (k > 0 ? k * std::log(k / n) : 0) + (n - k > 0 ? (n - k) * std::log((n - k) / n) : 0);
+  }
 }
 
 BaseValue base_value(PsychometricModel model, double eta) {
   switch (model) {
     case PsychometricModel::weibull: {
       const double e = std::exp(eta), survive = std::exp(-e), f = e * survive;
-      return {-std::expm1(-e), survive, f, f * (1 - e)};
+      return {e < 1e-3 ? -std::expm1(-e) : 1 - survive, survive, f, f * (1 - e)};  // expm1 only where 1 − e^−e cancels
     }
     case PsychometricModel::log_logistic: {
       const double F = 1 / (1 + std::exp(-eta)), Fc = 1 / (1 + std::exp(eta)), f = F * Fc;
@@ -78,52 +82,47 @@ CellProbability cell_probability(PsychometricModel model, double guess, double l
   return {guess + a * b.F, a * b.Fc + lapse, a * b.f, a * b.df};
 }
 
-double negative_log_likelihood(const CellData& data, const PsychometricOptions& o, double b0, double b1, double lapse) {
+// −ln L and its derivatives in (b0, b1) at one point, in one pass over the cells.
+struct Evaluation {
   double nll = 0;
-  for (size_t i = 0; i < data.size(); ++i) {
-    const CellProbability p = cell_probability(o.model, o.guess, lapse, b0 + b1 * data.x[i]);
-    const double k = double(data.cells[i].k), n = double(data.cells[i].n);
-    nll -= (k > 0 ? k * std::log(std::max(p.psi, kTiny)) : 0) + (n - k > 0 ? (n - k) * std::log(std::max(p.q, kTiny)) : 0);
-  }
-  return std::isfinite(nll) ? nll : std::numeric_limits<double>::infinity();
-}
-
-struct Derivatives {
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
   Eigen::Matrix2d observed = Eigen::Matrix2d::Zero(), expected = Eigen::Matrix2d::Zero();
 };
 
-Derivatives derivatives(const CellData& data, const PsychometricOptions& o, double b0, double b1, double lapse) {
-  Derivatives d;
+Evaluation evaluate(const CellData& data, const PsychometricOptions& o, double b0, double b1, double lapse) {
+  Evaluation e;
   for (size_t i = 0; i < data.size(); ++i) {
     const CellProbability p = cell_probability(o.model, o.guess, lapse, b0 + b1 * data.x[i]);
     const double k = double(data.cells[i].k), n = double(data.cells[i].n);
     const double psi = std::max(p.psi, kTiny), q = std::max(p.q, kTiny);
+    e.nll -= (k > 0 ? k * std::log(psi) : 0) + (n - k > 0 ? (n - k) * std::log(q) : 0);
     const double first = -k / psi + (n - k) / q, second = k / (psi * psi) + (n - k) / (q * q);
     const Eigen::Vector2d z(1.0, data.x[i]);
-    d.gradient += first * p.dpsi * z;
-    d.observed += (second * p.dpsi * p.dpsi + first * p.d2psi) * z * z.transpose();
-    d.expected += n * p.dpsi * p.dpsi / (psi * q) * z * z.transpose();
+    e.gradient += first * p.dpsi * z;
+    e.observed += (second * p.dpsi * p.dpsi + first * p.d2psi) * z * z.transpose();
+    e.expected += n * p.dpsi * p.dpsi / (psi * q) * z * z.transpose();
   }
-  return d;
+  if (!std::isfinite(e.nll)) e.nll = std::numeric_limits<double>::infinity();
+  return e;
 }
 
 // Fisher scoring (R glm's iteration) while far from the optimum, Newton steps with the observed
 // information near it, each step halved until the likelihood does not fall.
-LapseSolution solve_coefficients(const CellData& data, const PsychometricOptions& o, double lapse, CoefficientStart start) {
+LapseSolution solve_coefficients(const CellData& data, const PsychometricOptions& o, double lapse, CoefficientStart start,
+                                 double tolerance) {
   LapseSolution s{start.intercept, start.slope, lapse};
-  double nll = negative_log_likelihood(data, o, s.intercept, s.slope, lapse);
+  Evaluation e = evaluate(data, o, s.intercept, s.slope, lapse);
   bool near = false;
   for (int iteration = 0; iteration < 300; ++iteration) {
-    const Derivatives d = derivatives(data, o, s.intercept, s.slope, lapse);
-    const bool newton = near && d.observed.determinant() > 0 && d.observed(0, 0) > 0;
-    const Eigen::Matrix2d& m = newton ? d.observed : d.expected;
+    const bool newton = near && e.observed.determinant() > 0 && e.observed(0, 0) > 0;
+    const Eigen::Matrix2d& m = newton ? e.observed : e.expected;
     if (!(m.determinant() > 0)) break;
-    const Eigen::Vector2d step = -m.inverse() * d.gradient;
-    double t = 1, next = nll;
+    const Eigen::Vector2d step = -m.inverse() * e.gradient;
+    double t = 1;
+    Evaluation next;
     for (; t > 1e-12; t *= 0.5) {
-      next = negative_log_likelihood(data, o, s.intercept + t * step[0], s.slope + t * step[1], lapse);
-      if (next <= nll + 1e-13 * std::abs(nll)) break;
+      next = evaluate(data, o, s.intercept + t * step[0], s.slope + t * step[1], lapse);
+      if (next.nll <= e.nll + 1e-13 * std::abs(e.nll)) break;
     }
     if (t <= 1e-12) {  // no step lowers the likelihood any more: at the optimum's rounding floor
       s.converged = near;
@@ -131,16 +130,16 @@ LapseSolution solve_coefficients(const CellData& data, const PsychometricOptions
     }
     s.intercept += t * step[0];
     s.slope += t * step[1];
-    nll = next;
+    e = next;
     const double size = std::abs(t * step[0]) + std::abs(t * step[1]);
     if (!std::isfinite(s.slope) || std::abs(s.slope) > 1e6) break;
     near = near || size < 1e-4 * (1 + std::abs(s.intercept) + std::abs(s.slope));
-    if (size <= 1e-13 * (1 + std::abs(s.intercept) + std::abs(s.slope))) {
+    if (size <= tolerance * (1 + std::abs(s.intercept) + std::abs(s.slope))) {
       s.converged = true;
       break;
     }
   }
-  s.deviance = 2 * nll;  // up to the saturated model's constant; callers use it to compare only
+  s.deviance = 2 * (e.nll - data.saturated_nll);
   return s;
 }
 
@@ -239,10 +238,8 @@ CoefficientStart starting_coefficients(const CellData& data, const PsychometricO
 }
 
 LapseSolution solve_fixed_lapse(const CellData& data, const PsychometricOptions& options, CoefficientStart start,
-                                double lapse) {
-  LapseSolution s = solve_coefficients(data, options, lapse, start);
-  s.deviance = likelihood_terms(data, options, s.intercept, s.slope, lapse).deviance;
-  return s;
+                                double lapse, double tolerance) {
+  return solve_coefficients(data, options, lapse, start, tolerance);
 }
 
 // The deviance profiled over ℓ on a 0.0025 grid, each point started from its neighbour's

@@ -23,6 +23,7 @@ struct CellData {
   size_t size() const { return cells.size(); }
   std::vector<BinomialCell> cells;
   std::vector<double> x;
+  double saturated_nll = 0;  // −ln L of the saturated model: deviance = 2·(−ln L − this)
 };
 
 // F(η), 1 − F(η) (computed without cancellation), F'(η) and F''(η).
@@ -62,8 +63,10 @@ struct LapseSolution {
   int profile_minima = 1;
   bool converged = false;
 };
+// `tolerance`: the last step's size relative to the coefficients; the bootstrap's refits need less
+// than the reported fit.
 LapseSolution solve_fixed_lapse(const CellData& data, const PsychometricOptions& options, CoefficientStart start,
-                                double lapse = 0);
+                                double lapse = 0, double tolerance = 1e-13);
 LapseSolution solve_free_lapse(const CellData& data, const PsychometricOptions& options, CoefficientStart start);
 
 }  // namespace countershade::analysis

@@ -1,7 +1,9 @@
 #include "analysis/report.h"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "analysis/figures.h"
@@ -165,14 +167,16 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
 
 }  // namespace
 
-void write_outputs(const std::vector<BlockResults>& results, const std::filesystem::path& dir, bool figures) {
+void write_outputs(const std::vector<BlockResults>& results, const std::filesystem::path& dir, bool figures,
+                   const json& extra) {
   json all;
   if (results.size() == 1) {
     all = results[0].json;
-  } else {
+  } else if (!results.empty()) {
     all["methods"] = json::array();
     for (const auto& b : results) all["methods"].push_back(b.json);
   }
+  for (const auto& [key, value] : extra.items()) all[key] = value;
   write_text(dir / "results.json", all.dump(2) + "\n");
   for (const auto& b : results) {
     std::filesystem::path out = results.size() == 1 ? dir : dir / b.method;
@@ -193,6 +197,34 @@ void write_outputs(const std::vector<BlockResults>& results, const std::filesyst
     write_text(out / "dendrogram.svg", dendrogram);
     write_text(out / "report.html", report_html(b, fig12, fig13, fits, dendrogram));
   }
+}
+
+namespace {
+
+// A file name from text in a data file: only letters, digits, '.', '_' and '-' survive, so the
+// name can never leave the output folder.
+std::string figure_file_name(const std::string& scene, std::set<std::string>& taken) {
+  std::string safe;
+  for (unsigned char c : scene) safe += std::isalnum(c) || c == '.' || c == '_' || c == '-' ? char(c) : '_';
+  std::string name = "psychometric-" + safe + ".svg";
+  for (int i = 2; taken.count(name); ++i) name = "psychometric-" + safe + "-" + std::to_string(i) + ".svg";
+  taken.insert(name);
+  return name;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> write_forced_choice_outputs(const ForcedChoiceResults& results,
+                                                                            const std::filesystem::path& dir, bool figures) {
+  write_text(dir / "psychometric_fits.csv", psychometric_fits_csv(results));
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!figures) return files;
+  std::set<std::string> taken;
+  for (const auto& [scene, svg] : psychometric_figures(results)) {
+    files.push_back({scene, figure_file_name(scene, taken)});
+    write_text(dir / files.back().second, svg);
+  }
+  return files;
 }
 
 }  // namespace countershade::analysis

@@ -50,6 +50,10 @@ PlotFrame plot_frame(const LinePlot& plot) {
       f.y0 = std::min(f.y0, s.y[i]);
       f.y1 = std::max(f.y1, s.y[i]);
     }
+  for (const ErrorBar& e : plot.error_bars) {
+    f.y0 = std::min(f.y0, e.low);
+    f.y1 = std::max(f.y1, e.high);
+  }
   if (f.x0 > f.x1) f.x0 = 0, f.x1 = 1, f.y0 = 0, f.y1 = 1;
   const double pad = 0.05 * (f.y1 - f.y0 > 0 ? f.y1 - f.y0 : 1.0);
   f.y0 -= pad;
@@ -114,7 +118,11 @@ std::string LinePlot::to_svg() const {
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << xml_escape(title) << "</text>\n";
   plot_axes(svg, *this, f);
-  for (size_t k = 0; k < series.size(); ++k) plot_series(svg, series[k], k, f);
+  for (const ErrorBar& e : error_bars)
+    svg << "<line x1=\"" << f.px(e.x) << "\" y1=\"" << f.py(e.low) << "\" x2=\"" << f.px(e.x) << "\" y2=\"" << f.py(e.high)
+        << "\" stroke=\"" << e.color << "\" stroke-width=\"1.2\"/>\n";
+  size_t row = 0;  // legend rows: only labelled series take one
+  for (const PlotSeries& s : series) plot_series(svg, s, s.label.empty() ? row : row++, f);
   svg << "</svg>\n";
   return svg.str();
 }

@@ -15,9 +15,16 @@ struct PlotSeries {
   bool points = false;  // a marker at each point and no line (measurements)
 };
 
+// A vertical interval at x (a confidence interval around a measurement).
+struct ErrorBar {
+  double x = 0, low = 0, high = 0;
+  std::string color = "#1f77b4";
+};
+
 struct LinePlot {
   std::string title, x_label, y_label;
   std::vector<PlotSeries> series;
+  std::vector<ErrorBar> error_bars;
   int width = 640, height = 400;
 
   std::string to_svg() const;
