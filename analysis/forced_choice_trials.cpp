@@ -50,6 +50,7 @@ ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns
   if (t.subject.empty()) throw_input_error(where, "subject: empty");
   if (t.scene.empty()) throw_input_error(where, "scene: empty");
   if (c.has("label")) t.label = field("label");
+  else if (c.has("method")) t.label = field("method");  // the app's forced-choice CSV
   t.sigma = number_field(field("sigma"), where, "sigma");
   t.lambda = number_field(field("lambda"), where, "lambda");
   if (!(t.lambda > 0)) throw_input_error(where, "lambda: must be above 0 (a forced-choice trial shows some enhancement)");

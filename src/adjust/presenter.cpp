@@ -286,8 +286,8 @@ StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, cons
   layout.height = c.image_height;
   const int pair = 2 * c.image_width + o.gap_px;
   layout.fits = pair + 2 * m.side <= k.fw && c.image_height + m.top + m.bottom <= k.fh;
-  layout.left_x = (k.fw - pair) / 2;
-  layout.right_x = layout.left_x + c.image_width + o.gap_px;
+  layout.left_x = c.centred ? (k.fw - c.image_width) / 2 : (k.fw - pair) / 2;
+  layout.right_x = c.centred ? layout.left_x : layout.left_x + c.image_width + o.gap_px;
   layout.y = m.top + std::max(0, (k.fh - m.top - m.bottom - c.image_height) / 2);
   const float centre = float(k.ww) / 2;
   if (layout.fits) {
@@ -296,7 +296,7 @@ StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, cons
                        ImVec2(float(x + c.image_width) / k.scale, float(layout.y + c.image_height) / k.scale));
     };
     quad(c.left_texture, layout.left_x);
-    quad(c.right_texture, layout.right_x);
+    if (!c.centred) quad(c.right_texture, layout.right_x);
   } else {
     centred_text(k.front, "The window is too small to show the images at 1:1 scale. Please enlarge it.", centre,
                  float(k.wh) / 2, k.wrap, k.text);
@@ -358,7 +358,7 @@ StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::pat
   k.line = ImGui::GetFontSize() * 1.35f;
 
   StimulusLayout layout;
-  if (c.left_texture && c.right_texture) layout = draw_stimuli(c, options_, k);
+  if (c.left_texture && (c.right_texture || c.centred)) layout = draw_stimuli(c, options_, k);
   if (!c.message.empty()) draw_message(c, k);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -48,6 +48,7 @@ struct WindowEvent {
 // What one frame shows.
 struct FrameContent {
   unsigned left_texture = 0, right_texture = 0;  // 0: no images
+  bool centred = false;  // one image (left_texture) in the middle, as a temporal interval shows it
   int image_width = 0, image_height = 0;
   std::string header;    // top line, e.g. "Trial 3 of 24"
   std::string question;  // the question text above the images

@@ -23,6 +23,7 @@ void add_analyze_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_stimuli_command(CLI::App& app);
 void add_adjust_command(CLI::App& app);
+void add_choose_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
 void add_audit_command(CLI::App& app);
 void add_congruence_command(CLI::App& app);

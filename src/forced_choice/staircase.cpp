@@ -40,8 +40,8 @@ void Staircase::step(bool up) {
   counter_ = 0;
 }
 
-bool Staircase::add_response(bool correct) {
-  const double shown = next_;
+bool Staircase::add_response(bool correct, std::optional<double> shown_value) {
+  const double shown = shown_value.value_or(next_);
   intensities_.push_back(shown);
   const bool same_as_before = !responses_.empty() && responses_.back() == correct;
   responses_.push_back(correct);

@@ -29,8 +29,10 @@ class Staircase {
 
   // The intensity of the next trial.
   double next_intensity() const { return next_; }
-  // Records the answer to a trial shown at next_intensity(); returns whether it was a reversal.
-  bool add_response(bool correct);
+  // Records the answer to a trial shown at next_intensity(), or at `shown` where the display could
+  // only show a nearby value (StairHandler's addResponse with an intensity): the shown value is
+  // recorded, and the staircase steps on from its own. Returns whether it was a reversal.
+  bool add_response(bool correct, std::optional<double> shown = std::nullopt);
   bool finished() const { return finished_; }
 
   const StaircaseRules& rules() const { return rules_; }

@@ -1,6 +1,7 @@
 #include "stimuli/experiment.h"
 
 #include "adjust/study.h"
+#include "forced_choice/choice_config.h"
 #include "stimuli/audit.h"
 
 #include <algorithm>
@@ -263,6 +264,7 @@ Experiment load_experiment(const std::filesystem::path& path) {
   // The adjustment procedure: parsed now as `adjust` will parse it, so a typo fails here, not
   // in front of the first participant.
   if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
+  if (root.has("forced_choice")) forced_choice::parse_choice_config(root.raw("forced_choice"), path.string(), "forced_choice");
   // The audit's limits, checked now; headroom keeps to its clipping limit.
   if (root.has("audit")) e.max_clipped = read_audit_limits(root.object("audit")).max_clipped;
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));

@@ -1,0 +1,31 @@
+#include "adjust/image_decode.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+
+namespace countershade::adjust {
+
+std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
+  auto in = OIIO::ImageInput::open(image.file.string());
+  if (!in) throw_input_error(image.file.string(), "cannot read the image");
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width != image.width || spec.height != image.height)
+    throw_input_error(image.file.string(), "the image size differs from the manifest");
+  const int n = spec.nchannels;
+  if (n < 1 || n > 4) throw_input_error(image.file.string(), "unsupported channel count " + std::to_string(n));
+  std::vector<uint8_t> raw(size_t(spec.width) * size_t(spec.height) * size_t(n));
+  if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::UINT8, raw.data()))
+    throw_input_error(image.file.string(), "cannot decode: " + in->geterror());
+  std::vector<uint8_t> rgba(size_t(spec.width) * size_t(spec.height) * 4, 255);
+  for (size_t p = 0; p < size_t(spec.width) * size_t(spec.height); ++p) {
+    const uint8_t* s = &raw[p * size_t(n)];
+    uint8_t* d = &rgba[p * 4];
+    if (n <= 2) d[0] = d[1] = d[2] = s[0];
+    else d[0] = s[0], d[1] = s[1], d[2] = s[2];
+    // Alpha is ignored on purpose: stimuli are shown opaque, exactly as their RGB values.
+  }
+  return rgba;
+}
+
+}  // namespace countershade::adjust

@@ -1,0 +1,90 @@
+#include "forced_choice/choice_config.h"
+
+#include "core/error.h"
+#include "core/json_reader.h"
+
+namespace countershade::forced_choice {
+
+const char* layout_name(Layout layout) { return layout == Layout::spatial ? "spatial" : "temporal"; }
+
+const char* procedure_kind_name(ProcedureKind kind) {
+  switch (kind) {
+    case ProcedureKind::constant: return "constant";
+    case ProcedureKind::staircase: return "staircase";
+    case ProcedureKind::quest: return "quest";
+  }
+  return "?";
+}
+
+namespace {
+
+std::vector<ConditionSelection> selections(const JsonObject& o, const std::string& key) {
+  std::vector<ConditionSelection> out;
+  if (!o.has(key)) return out;
+  for (const auto& s : o.objects(key)) {
+    out.push_back({s.string("scene"), s.string("method"), s.number("sigma")});
+    s.finish();
+  }
+  return out;
+}
+
+void read_procedure_block(const JsonObject& p, ChoiceConfig& c) {
+  c.procedure_source = p.value();
+  p.string("type");
+  const std::string type = p.choice("type", "", {"constant", "staircase", "quest"});
+  if (type == "constant") {
+    c.kind = ProcedureKind::constant;
+    c.levels = p.numbers("lambdas");
+    if (c.levels.empty()) p.fail("lambdas", "must list at least one λ");
+    for (double l : c.levels)
+      if (!(l > 0)) p.fail("lambdas", "every λ must be above 0");
+    c.repetitions = int(p.integer_in("repetitions", 20, 1, 10000));
+    p.finish();
+    return;
+  }
+  c.kind = type == "staircase" ? ProcedureKind::staircase : ProcedureKind::quest;
+  c.adaptive = read_procedure(p);
+  if (c.kind == ProcedureKind::quest) c.trials = c.adaptive.n_trials > 0 ? c.adaptive.n_trials : 40;
+  p.finish();
+  if (c.kind == ProcedureKind::quest) Quest check(c.adaptive.quest, p.file() + ": " + p.path());
+}
+
+}  // namespace
+
+ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file, const std::string& path) {
+  ChoiceConfig c;
+  JsonObject o(value, file, path);
+  c.n_afc = int(o.integer_in("n_afc", 2, 2, 4));
+  if (c.n_afc != 2) o.fail("n_afc", "the app shows two alternatives (spatial or temporal 2AFC); 3 and 4 are analysed but not shown yet");
+  c.layout = o.choice("layout", "spatial", {"spatial", "temporal"}) == "temporal" ? Layout::temporal : Layout::spatial;
+  c.interval_frames = int(o.integer_in("interval_frames", 30, 1, 6000));
+  c.blank_frames = int(o.integer_in("blank_frames", 30, 0, 6000));
+  c.feedback_frames = int(o.integer_in("feedback_frames", 0, 0, 600));
+  c.question = o.string_or("question", c.question);
+  c.welcome = o.string_or("welcome", c.welcome);
+  c.max_trials = int(o.integer_in("max_trials", 200, 1, 100000));
+  c.conditions = selections(o, "conditions");
+  c.practice_conditions = selections(o, "practice_conditions");
+  c.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
+  if (o.has("seed")) c.seed = uint64_t(o.integer_in("seed", 1, 0, 1ll << 53));
+  read_procedure_block(o.object("procedure"), c);
+  o.finish();
+  return c;
+}
+
+nlohmann::ordered_json ChoiceConfig::to_json() const {
+  nlohmann::ordered_json j = {{"n_afc", n_afc},
+                              {"layout", layout_name(layout)},
+                              {"interval_frames", interval_frames},
+                              {"blank_frames", blank_frames},
+                              {"feedback_frames", feedback_frames},
+                              {"question", question},
+                              {"procedure", procedure_source},
+                              {"max_trials", max_trials},
+                              {"practice_trials", practice_trials}};
+  if (kind == ProcedureKind::quest) j["trials"] = trials;
+  if (seed) j["seed"] = *seed;
+  return j;
+}
+
+}  // namespace countershade::forced_choice

@@ -1,0 +1,56 @@
+#pragma once
+// The forced-choice study as the app runs it (docs/forced-choice.md): an experiment's
+// "forced_choice" block or a file of its own. n alternatives (the app shows n = 2), a spatial
+// (left/right) or temporal (two intervals) layout, the question, optional feedback, and the
+// procedure that picks each condition's λ: constant stimuli, a staircase or QUEST.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "forced_choice/procedure_spec.h"
+
+namespace countershade::forced_choice {
+
+enum class Layout { spatial, temporal };
+const char* layout_name(Layout layout);
+
+enum class ProcedureKind { constant, staircase, quest };
+const char* procedure_kind_name(ProcedureKind kind);
+
+struct ConditionSelection {
+  std::string scene, method;
+  double sigma = 0;
+};
+
+struct ChoiceConfig {
+  int n_afc = 2;
+  Layout layout = Layout::spatial;
+  int interval_frames = 30, blank_frames = 30;  // temporal layout: each interval, and the blank between
+  int feedback_frames = 0;                      // 0: no feedback
+  std::string question = "Which image is enhanced?";
+  std::string welcome =
+      "Two images of the same scene are shown. One of them is enhanced. Press Left if it is the first "
+      "(left) one and Right if it is the second (right) one. Press Esc at any time to pause.\n\nPress Enter to begin.";
+  ProcedureKind kind = ProcedureKind::quest;
+  ProcedureSpec adaptive;           // staircase or QUEST (QUEST intensities are log10 λ)
+  std::vector<double> levels;       // constant stimuli: the λ shown
+  int repetitions = 20;             // constant stimuli: trials per level
+  int trials = 40;                  // QUEST: trials per condition
+  int max_trials = 200;             // any procedure: a condition ends after this many trials
+  std::vector<ConditionSelection> conditions;           // empty: every condition of the set
+  std::vector<ConditionSelection> practice_conditions;  // empty: conditions whose images change with λ
+  int practice_trials = 0;
+  std::optional<uint64_t> seed;
+  nlohmann::json procedure_source;  // the procedure block as written, for the session's record
+
+  nlohmann::ordered_json to_json() const;
+};
+
+// Reads the block; every bad value is an InputError naming `file` and the key path.
+ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file, const std::string& path);
+
+}  // namespace countershade::forced_choice

@@ -1,0 +1,65 @@
+#pragma once
+// What a forced-choice session writes (docs/data-formats.md, "Forced-choice trials"):
+//   SUBJECT_sNN.forced-choice.csv   one row per trial, appended with one write() and fsync'd
+//                                   before the next trial appears;
+//   SUBJECT_sNN.forced-choice.json  the sidecar: configuration, seed, set, and one entry per run.
+// A new session never overwrites a file; a resume replays the rows through the session's
+// ChoiceRun, checking each against what the run would have shown, so a resumed session goes on
+// exactly where it stopped, with the procedures in the same state.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "adjust/session_run.h"
+#include "adjust/study.h"
+#include "core/append_file.h"
+#include "forced_choice/choice_run.h"
+
+namespace countershade::forced_choice {
+
+// The CSV's columns, in order.
+const std::vector<std::string>& choice_columns();
+
+struct ChoiceFiles {
+  std::filesystem::path csv, sidecar;
+};
+ChoiceFiles choice_files(const std::filesystem::path& dir, const std::string& subject, int session);
+
+class ChoiceRecorder {
+ public:
+  struct Identity {
+    std::string subject;
+    int session = 1;
+    uint64_t seed = 1;
+  };
+
+  // New session: creates both files (neither may exist). Resume: both must exist and the
+  // sidecar's seed and configuration must be this session's; the rows are replayed into `run`.
+  ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& config, const Identity& who,
+                 const std::filesystem::path& dir, bool resume, ChoiceRun& run);
+
+  // Appends the trial's row and fsyncs it before returning.
+  void record(const ChoiceTrial& trial, int response, bool correct, double rt_s);
+  adjust::SessionRun& current_run() { return run_; }
+  int rows() const { return rows_; }
+  const ChoiceFiles& files() const { return files_; }
+  // Writes the sidecar, with each condition's procedure state after the last recorded trial.
+  void save(const ChoiceRun& run);
+
+ private:
+  void replay(ChoiceRun& run);
+
+  const adjust::Study& study_;
+  const ChoiceConfig& config_;
+  Identity who_;
+  ChoiceFiles files_;
+  AppendOnlyFile csv_;
+  nlohmann::ordered_json sidecar_;
+  adjust::SessionRun run_;
+  int rows_ = 0;
+};
+
+}  // namespace countershade::forced_choice

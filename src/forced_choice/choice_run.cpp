@@ -1,0 +1,135 @@
+#include "forced_choice/choice_run.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "core/error.h"
+#include "core/random.h"
+
+namespace countershade::forced_choice {
+namespace {
+
+// Streams of the session seed, apart from the procedures' own.
+enum : uint64_t { kStreamCondition = 301, kStreamTarget = 302, kStreamPractice = 303 };
+
+bool matches(const ConditionSelection& s, const adjust::Condition& c) {
+  return s.scene == c.scene && s.method == c.method && std::abs(s.sigma - c.sigma) < 1e-12;
+}
+
+std::vector<int> select(const adjust::Study& study, const std::vector<ConditionSelection>& wanted, const std::string& key) {
+  std::vector<int> out;
+  for (size_t w = 0; w < wanted.size(); ++w) {
+    const auto& c = study.conditions;
+    const auto it = std::find_if(c.begin(), c.end(), [&](const adjust::Condition& x) { return matches(wanted[w], x); });
+    if (it == c.end())
+      throw_input_error("forced_choice." + key + "[" + std::to_string(w) + "]",
+                        "no condition " + wanted[w].scene + " / " + wanted[w].method + " / σ " + std::to_string(wanted[w].sigma) +
+                            " in the set");
+    out.push_back(int(it - c.begin()));
+  }
+  return out;
+}
+
+ChoiceGrid grid_of(const adjust::Study& study, int condition) {
+  ChoiceGrid g;
+  const int size = int(study.condition_images[size_t(condition)].size()) - 1;
+  for (int i = 0; i < size; ++i)
+    if (study.lambda(i) > 0) {
+      g.lambdas.push_back(study.lambda(i));
+      g.indices.push_back(i);
+    }
+  return g;
+}
+
+// The target of a condition's k-th trial (0-based): every block of n trials shows each position
+// once, in a seeded order.
+int balanced_target(uint64_t seed, int condition, int k, int n) {
+  std::vector<int> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  SampleStream random(seed, kStreamTarget, uint64_t(condition), uint64_t(k / n));
+  for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[std::min(size_t(random.next() * double(i)), i - 1)]);
+  return order[size_t(k % n)];
+}
+
+}  // namespace
+
+bool ChoiceRun::changes_with_lambda(const adjust::Study& study, int condition) {
+  const auto& stimuli = study.condition_images[size_t(condition)];
+  const std::string& reference = study.image_of(stimuli[0]).sha256;
+  return std::any_of(stimuli.begin() + 1, stimuli.end(), [&](int s) { return study.image_of(s).sha256 != reference; });
+}
+
+ChoiceRun::ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uint64_t seed)
+    : study_(study), config_(config), seed_(seed) {
+  conditions_ = select(study, config.conditions, "conditions");
+  if (conditions_.empty()) conditions_.resize(study.conditions.size()), std::iota(conditions_.begin(), conditions_.end(), 0);
+  practice_conditions_ = select(study, config.practice_conditions, "practice_conditions");
+  if (practice_conditions_.empty())
+    for (int c : conditions_)
+      if (changes_with_lambda(study, c)) practice_conditions_.push_back(c);
+  if (config.practice_trials > 0 && practice_conditions_.empty())
+    throw_input_error("forced_choice.practice_trials", "no condition's images change with λ, so practice would show nothing to find");
+  for (int c : conditions_) grids_.push_back(grid_of(study, c));
+  for (size_t i = 0; i < conditions_.size(); ++i) {
+    const auto& c = study.conditions[size_t(conditions_[i])];
+    const std::string where = "forced_choice (condition " + c.scene + " / " + c.method + ")";
+    procedures_.push_back(std::make_unique<ConditionProcedure>(config, grids_[i], hash_combine(seed, uint64_t(conditions_[i])), where));
+  }
+  current_ = plan_next();
+}
+
+int ChoiceRun::slot_of(int condition) const {
+  return int(std::find(conditions_.begin(), conditions_.end(), condition) - conditions_.begin());
+}
+
+// Practice trials show the largest λ of a practice condition: the easiest case of the task.
+ChoiceTrial ChoiceRun::practice_trial(int k) const {
+  SampleStream random(seed_, kStreamPractice, uint64_t(k), 0);
+  ChoiceTrial t;
+  t.practice = true;
+  t.condition = practice_conditions_[std::min(size_t(random.next() * double(practice_conditions_.size())), practice_conditions_.size() - 1)];
+  const ChoiceGrid grid = grid_of(study_, t.condition);
+  t.intensity = {grid.lambdas.back(), grid.lambdas.size() - 1};
+  t.lambda_index = grid.indices.back();
+  t.lambda = grid.lambdas.back();
+  t.target = random.next() < 0.5 ? 0 : 1;
+  return t;
+}
+
+std::optional<ChoiceTrial> ChoiceRun::plan_next() const {
+  if (practice_done_ < config_.practice_trials) return practice_trial(practice_done_);
+  std::vector<size_t> open;
+  for (size_t i = 0; i < procedures_.size(); ++i)
+    if (!procedures_[i]->finished()) open.push_back(i);
+  if (open.empty()) return std::nullopt;
+  SampleStream random(seed_, kStreamCondition, uint64_t(real_done_), 0);
+  const size_t slot = open[std::min(size_t(random.next() * double(open.size())), open.size() - 1)];
+  ChoiceTrial t;
+  t.number = real_done_ + 1;
+  t.condition = conditions_[slot];
+  t.condition_trial = procedures_[slot]->trials() + 1;
+  t.intensity = procedures_[slot]->next();
+  t.lambda_index = grids_[slot].indices[t.intensity.grid];
+  t.lambda = grids_[slot].lambdas[t.intensity.grid];
+  t.target = balanced_target(seed_, t.condition, t.condition_trial - 1, config_.n_afc);
+  return t;
+}
+
+bool ChoiceRun::answer(int response) {
+  const ChoiceTrial t = *current_;
+  const bool correct = response == t.target;
+  if (t.practice) {
+    ++practice_done_;
+  } else {
+    procedures_[size_t(slot_of(t.condition))]->record(t.intensity, correct);
+    ++real_done_;
+  }
+  current_ = plan_next();
+  return correct;
+}
+
+nlohmann::ordered_json ChoiceRun::procedure_state(int condition) const {
+  return procedures_[size_t(slot_of(condition))]->state();
+}
+
+}  // namespace countershade::forced_choice

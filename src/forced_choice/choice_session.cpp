@@ -1,0 +1,349 @@
+#include "forced_choice/choice_session.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+
+#include <tbb/parallel_for.h>
+
+#include "adjust/image_decode.h"
+#include "adjust/input_script.h"
+#include "adjust/presenter.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/json_reader.h"
+#include "core/time.h"
+#include "forced_choice/choice_observer.h"
+#include "forced_choice/choice_recorder.h"
+#include "forced_choice/choice_run.h"
+
+namespace countershade::forced_choice {
+
+namespace fs = std::filesystem;
+using adjust::FrameContent;
+using adjust::InputEvent;
+using adjust::Key;
+using adjust::RunEnd;
+using json = nlohmann::ordered_json;
+
+namespace {
+
+std::atomic<int> g_signal{0};
+void on_signal(int signal) { g_signal = signal; }
+
+// The configuration: --procedure, else the experiment's "forced_choice" block.
+ChoiceConfig load_config(const ChoiceSessionOptions& o) {
+  if (o.config) return parse_choice_config(parse_json_file(*o.config), o.config->string(), "");
+  const nlohmann::json manifest = parse_json_file(o.manifest);
+  if (!manifest.contains("experiment") || !manifest["experiment"].contains("forced_choice"))
+    throw_input_error(o.manifest.string(), "experiment.forced_choice: missing (add the block to the experiment, or pass --procedure FILE)");
+  return parse_choice_config(manifest["experiment"]["forced_choice"], o.manifest.string(), "experiment.forced_choice");
+}
+
+adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study) {
+  adjust::DisplayOptions d;
+  d.fullscreen = o.fullscreen;
+  d.monitor = o.monitor;
+  d.stimulus_width = study.max_width();
+  d.stimulus_height = study.max_height();
+  d.gap_px = study.config.gap_px;
+  d.surround = study.config.surround;
+  d.font_px = study.config.font_px;
+  d.title = "countershade choose: " + study.set_name;
+  d.frame_clock = o.frame_clock;
+  d.pixels_per_degree = study.pixels_per_degree;
+  d.distance_mm = study.distance_mm;
+  return d;
+}
+
+enum class Phase { instructions, trial, feedback, practice_done, paused, finished };
+
+// The event loop: key events drive the run, answers go to the recorder, each frame is drawn.
+class ChoiceLoop {
+ public:
+  ChoiceLoop(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config, ChoiceRun& run,
+             ChoiceRecorder& recorder, adjust::Presenter& presenter)
+      : o_(o), study_(study), config_(config), run_(run), recorder_(recorder), presenter_(presenter) {
+    if (o.script) script_ = adjust::parse_key_script(*o.script);
+    if (o.observer) observer_ = parse_choice_observer(*o.observer);
+  }
+
+  RunEnd run() {
+    preload();
+    if (end_) return *end_;
+    t0_ = presenter_.now();
+    while (!end_) {
+      const double now = presenter_.now() - t0_;
+      take_input(now);
+      if (end_) break;
+      advance(now);
+      draw_frame(now);
+      if (o_.script && !observer_ && next_script_ == script_.size() && !end_) end_ = RunEnd::script_ended;
+    }
+    return *end_;
+  }
+
+ private:
+  void preload() {
+    const double start = presenter_.now();
+    texture_.resize(study_.images.size());
+    for (size_t first = 0; first < study_.images.size() && !end_; first += 8) {
+      const size_t last = std::min(first + 8, study_.images.size());
+      std::vector<std::vector<uint8_t>> pixels(last - first);
+      tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = adjust::decode_rgba(study_.images[i]); });
+      for (size_t i = first; i < last; ++i)
+        texture_[i] = presenter_.upload_texture(pixels[i - first], study_.images[i].width, study_.images[i].height);
+      FrameContent loading;
+      loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study_.images.size());
+      loading.progress = double(last) / double(study_.images.size());
+      presenter_.draw(loading);
+      for (const auto& e : presenter_.poll_events())
+        if (e.kind == adjust::WindowEvent::Kind::close) end_ = RunEnd::closed;
+    }
+    recorder_.current_run().preload = adjust::Preload{study_.images.size(), presenter_.now() - start};
+    recorder_.save(run_);
+  }
+
+  void take_input(double now) {
+    for (const auto& w : presenter_.poll_events()) {
+      if (w.kind == adjust::WindowEvent::Kind::close) end_ = RunEnd::closed;
+      if (w.kind == adjust::WindowEvent::Kind::press) press(w.key, w.time_s - t0_);
+      if (w.kind == adjust::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(now);
+    }
+    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_) scripted(script_[next_script_++]);
+    if (observer_) observe(now);
+    if (g_signal) end_ = g_signal == SIGTERM ? RunEnd::terminated : RunEnd::interrupted;
+  }
+
+  void scripted(const InputEvent& e) {
+    if (e.kind == InputEvent::Kind::screenshot) screenshot_due_ = true;
+    if (e.kind == InputEvent::Kind::close) end_ = RunEnd::closed;
+    if (e.kind == InputEvent::Kind::press) press(e.key, e.time_s);
+  }
+
+  // The simulated observer: Enter on every message screen, an answer once one is allowed.
+  void observe(double now) {
+    if (now < phase_since_ + observer_->delay_s) return;
+    if (phase_ == Phase::trial && answer_allowed(now)) {
+      const ChoiceTrial& t = *run_.current();
+      const int response = observer_->respond(t.number, practice_index_, t.lambda, t.target, config_.n_afc);
+      press(response == 0 ? Key::left : Key::right, now);
+    } else if (phase_ == Phase::instructions || phase_ == Phase::practice_done || phase_ == Phase::finished) {
+      press(Key::enter, now);
+    }
+  }
+
+  // When the answer keys count: a spatial trial at once, a temporal one after the second interval.
+  double answer_from() const {
+    return config_.layout == Layout::spatial ? phase_since_
+                                             : phase_since_ + (2 * config_.interval_frames + config_.blank_frames) / presenter_.refresh_hz();
+  }
+  bool answer_allowed(double now) const { return now + 1e-9 >= answer_from(); }
+
+  void enter_phase(Phase phase, double now) {
+    phase_ = phase;
+    phase_since_ = now;
+  }
+
+  void pause(double now) {
+    paused_from_ = phase_;
+    enter_phase(Phase::paused, now);
+    recorder_.current_run().pauses.push_back({now, 0});
+  }
+
+  void press(Key key, double now) {
+    switch (phase_) {
+      case Phase::instructions: if (key == Key::enter) next_trial(now); break;
+      case Phase::practice_done: if (key == Key::enter) next_trial(now); break;
+      case Phase::feedback: break;
+      case Phase::finished: if (key == Key::enter || key == Key::escape) end_ = RunEnd::completed; break;
+      case Phase::paused: resume_or_quit(key, now); break;
+      case Phase::trial:
+        if (key == Key::escape) pause(now);
+        else if ((key == Key::left || key == Key::right) && answer_allowed(now)) answer(key == Key::left ? 0 : 1, now);
+        break;
+    }
+  }
+
+  void resume_or_quit(Key key, double now) {
+    if (key == Key::quit) {
+      recorder_.current_run().pauses.back().quit = true;
+      end_ = RunEnd::quit;
+    } else if (key == Key::enter) {
+      recorder_.current_run().pauses.back().seconds = now - recorder_.current_run().pauses.back().at_s;
+      enter_phase(paused_from_, now);  // a paused trial starts again from its beginning
+      recorder_.save(run_);
+    }
+  }
+
+  void answer(int response, double now) {
+    const ChoiceTrial t = *run_.current();
+    const bool was_practice = t.practice;
+    const bool correct = run_.answer(response);
+    if (!was_practice) recorder_.record(t, response, correct, now - answer_from());
+    else ++practice_index_;
+    last_correct_ = correct;
+    feedback_after_practice_ = was_practice;
+    recorder_.save(run_);
+    if (config_.feedback_frames > 0) return enter_phase(Phase::feedback, now);
+    after_answer(was_practice, now);
+  }
+
+  void after_answer(bool was_practice, double now) {
+    if (was_practice && !run_.in_practice()) return enter_phase(Phase::practice_done, now);
+    next_trial(now);
+  }
+
+  void next_trial(double now) {
+    enter_phase(run_.finished() ? Phase::finished : Phase::trial, now);
+  }
+
+  void advance(double now) {
+    if (phase_ == Phase::feedback && now >= phase_since_ + config_.feedback_frames / presenter_.refresh_hz())
+      after_answer(feedback_after_practice_, now);
+  }
+
+  // The images of the current trial: (reference, enhanced) frames at `t`.
+  std::pair<unsigned, unsigned> trial_textures(double t) const {
+    const ChoiceTrial& trial = *run_.current();
+    const auto& stimuli = study_.condition_images[size_t(trial.condition)];
+    const int reference = study_.stimuli[size_t(stimuli[0])].frame_at(t);
+    const int enhanced = study_.stimuli[size_t(stimuli[size_t(1 + trial.lambda_index)])].frame_at(t);
+    return {texture_[size_t(reference)], texture_[size_t(enhanced)]};
+  }
+
+  FrameContent trial_content(double t) const {
+    FrameContent c;
+    const ChoiceTrial& trial = *run_.current();
+    const auto [reference, enhanced] = trial_textures(t);
+    c.image_width = study_.width(trial.condition);
+    c.image_height = study_.height(trial.condition);
+    c.header = trial.practice ? "Practice" : "Trial " + std::to_string(trial.number);
+    c.question = config_.question;
+    if (config_.layout == Layout::spatial) {
+      c.left_texture = trial.target == 0 ? enhanced : reference;
+      c.right_texture = trial.target == 0 ? reference : enhanced;
+      c.hint = "Left: the left image    Right: the right image    Esc: pause";
+      return c;
+    }
+    const double frames = (t - phase_since_) * presenter_.refresh_hz();
+    const int interval = frames < config_.interval_frames ? 0
+                         : frames < config_.interval_frames + config_.blank_frames ? -1
+                         : frames < 2 * config_.interval_frames + config_.blank_frames ? 1 : 2;
+    if (interval == 0 || interval == 1) {
+      c.centred = true;
+      c.left_texture = trial.target == interval ? enhanced : reference;
+      c.hint = interval == 0 ? "First interval" : "Second interval";
+    } else if (interval == 2) {
+      c.message = config_.question + "\n\nLeft: the first interval    Right: the second interval";
+    }
+    return c;
+  }
+
+  FrameContent frame_content(double t) const {
+    FrameContent c;
+    switch (phase_) {
+      case Phase::instructions: c.message = o_.resume ? "Welcome back. The session continues where it stopped.\n\nPress Enter to continue." : config_.welcome; break;
+      case Phase::trial: return trial_content(t);
+      case Phase::feedback: c.message = last_correct_ ? "Correct" : "Wrong"; break;
+      case Phase::practice_done: c.message = "The practice trials are over. The study itself begins now.\n\nPress Enter to continue."; break;
+      case Phase::paused: c.message = "Paused.\n\nPress Enter to resume, or Q to quit and save."; break;
+      case Phase::finished: c.message = "Thank you. All answers are saved.\n\nPress Enter to close."; break;
+    }
+    return c;
+  }
+
+  void draw_frame(double now) {
+    fs::path shot;
+    if (screenshot_due_ && o_.screenshot) {
+      const fs::path& base = *o_.screenshot;
+      shot = screenshots_ == 0 ? base
+                               : base.parent_path() / (base.stem().string() + "-" + std::to_string(screenshots_ + 1) + base.extension().string());
+    }
+    const FrameContent content = frame_content(now);
+    const adjust::StimulusLayout layout = presenter_.draw(content, shot);
+    if (!shot.empty()) describe_screenshot(shot, content, layout, now);
+    presenter_.pace();
+  }
+
+  void describe_screenshot(const fs::path& shot, const FrameContent& content, const adjust::StimulusLayout& layout, double t) {
+    json info = {{"phase", int(phase_)}};
+    if (phase_ == Phase::trial && (content.left_texture || content.right_texture)) {
+      const ChoiceTrial& trial = *run_.current();
+      info["trial"] = trial.number;
+      info["target"] = trial.target;
+      auto file_of = [&](unsigned texture) {
+        for (size_t i = 0; i < texture_.size(); ++i)
+          if (texture_[i] == texture) return study_.images[i].relative;
+        return std::string();
+      };
+      info["left"] = {{"x", layout.left_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height}, {"file", file_of(content.left_texture)}};
+      if (!content.centred)
+        info["right"] = {{"x", layout.right_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height}, {"file", file_of(content.right_texture)}};
+      info["interval"] = content.centred ? content.hint : "";
+    }
+    (void)t;
+    write_text_atomically(shot.string() + ".json", info.dump(2) + "\n");
+    ++screenshots_;
+    screenshot_due_ = false;
+  }
+
+  const ChoiceSessionOptions& o_;
+  const adjust::Study& study_;
+  const ChoiceConfig& config_;
+  ChoiceRun& run_;
+  ChoiceRecorder& recorder_;
+  adjust::Presenter& presenter_;
+  std::vector<InputEvent> script_;
+  std::optional<ChoiceObserver> observer_;
+  std::vector<unsigned> texture_;
+  std::optional<RunEnd> end_;
+  Phase phase_ = Phase::instructions, paused_from_ = Phase::trial;
+  double t0_ = 0, phase_since_ = 0;
+  size_t next_script_ = 0;
+  bool screenshot_due_ = false, last_correct_ = false, feedback_after_practice_ = false;
+  int screenshots_ = 0, practice_index_ = 0;
+};
+
+}  // namespace
+
+int run_choice_session(const ChoiceSessionOptions& o) {
+  adjust::check_subject_id(o.subject);
+  if (o.session < 1 || o.session > 99) throw_input_error("--session", "must be between 1 and 99");
+  if (o.script && o.observer) throw_input_error("--observer", "cannot be combined with --script");
+  if (o.observer) parse_choice_observer(*o.observer);
+  if (o.script) adjust::parse_key_script(*o.script);
+  const adjust::Study study = adjust::load_study(o.manifest, std::nullopt);
+  const ChoiceConfig config = load_config(o);
+  adjust::verify_study_images(study);
+  const uint64_t seed = adjust::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
+  ChoiceRun run(study, config, seed);
+  std::error_code ec;
+  if (!o.resume) fs::create_directories(o.sessions_dir, ec);
+  ChoiceRecorder recorder(study, config, {o.subject, o.session, seed}, o.sessions_dir, o.resume, run);
+  if (run.finished()) {
+    recorder.current_run().end = RunEnd::already_complete;
+    recorder.save(run);
+    std::printf("%s session %d is already complete: %d trials in %s\n", o.subject.c_str(), o.session, recorder.rows(),
+                recorder.files().csv.string().c_str());
+    return 0;
+  }
+  auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study));
+  recorder.current_run().display = presenter->display_info();
+  g_signal = 0;
+  auto term = std::signal(SIGTERM, on_signal), interrupt = std::signal(SIGINT, on_signal);
+  ChoiceLoop loop(o, study, config, run, recorder, *presenter);
+  const RunEnd end = loop.run();
+  std::signal(SIGTERM, term);
+  std::signal(SIGINT, interrupt);
+  recorder.current_run().end = end;
+  recorder.current_run().ended_utc = utc_timestamp();
+  recorder.save(run);
+  presenter.reset();
+  std::printf("%s session %d: %s; %d trials recorded in %s\n", o.subject.c_str(), o.session, adjust::run_end_name(end),
+              recorder.rows(), recorder.files().csv.string().c_str());
+  return 0;
+}
+
+}  // namespace countershade::forced_choice

@@ -1,0 +1,168 @@
+// The forced-choice app end to end: the real binary in a real window on a private Xvfb server,
+// driven by a key script, the simulated observer and SIGKILL.
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "../adjust/tiny_set.h"
+#include "../adjust/x_display.h"
+#include "core/image.h"
+#include "formats/responses.h"
+#include "forced_choice/quest.h"
+
+namespace countershade::forced_choice {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kQuest =
+    R"({"type": "quest", "tGuess": -0.3, "tGuessSd": 1, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01, "gamma": 0.5,
+        "grain": 0.01, "range": 4, "nTrials": )";
+
+// A set over λ 0 … 2 in steps of 0.1 with a forced-choice block.
+fs::path make_set(const testing::TempDir& dir, const std::string& block) {
+  return testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block + ",");
+}
+
+std::vector<std::string> choose_args(const fs::path& manifest, const fs::path& sessions, std::vector<std::string> extra) {
+  std::vector<std::string> args = {COUNTERSHADE_BINARY, "choose", manifest.string(), "--subject", "P01", "--sessions", sessions.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+CsvTable trials_of(const fs::path& sessions) {
+  const fs::path csv = sessions / "P01_s01.forced-choice.csv";
+  return parse_csv(testing::read_file(csv), csv.string());
+}
+
+// Every row against an independent replay: QUEST (checked against Psychtoolbox) updated with the
+// log10 of each λ shown; the λ shown is the grid's nearest to 10^(recommendation); the answer is
+// the script's key; targets are balanced in pairs.
+TEST(ChoiceGui, AScriptedQuestSessionWritesTheExpectedRows) {
+  testing::TempDir dir;
+  const auto manifest = make_set(dir, R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
+                                          "procedure": )" + std::string(kQuest) + "10}}");
+  std::string script = "300 enter\n";
+  const std::string keys[] = {"left", "right", "right", "left", "left", "right", "left", "left", "right", "right"};
+  for (const auto& k : keys) script += "100 " + k + "\n";
+  testing::write_file(dir / "keys.txt", script);
+  testing::XvfbServer x;
+  testing::Child app(choose_args(manifest, dir / "sessions", {"--script", (dir / "keys.txt").string(), "--frame-clock"}),
+                     x.display(), (dir / "log.txt").string());
+  ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
+  const CsvTable table = trials_of(dir / "sessions");
+  ASSERT_EQ(table.rows.size(), 11u) << testing::read_file(dir / "log.txt");
+  Quest quest({-0.3, 1, 0.82, 3.5, 0.01, 0.5, 0.01, 4.0});
+  for (size_t r = 1; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    const double requested = std::pow(10.0, quest.quantile());
+    EXPECT_NEAR(std::stod(row[8]), requested, 1e-8) << "trial " << r;
+    const double nearest = std::clamp(std::round(requested / 0.1) * 0.1, 0.1, 2.0);
+    EXPECT_NEAR(std::stod(row[6]), nearest, 1e-9) << "trial " << r;
+    EXPECT_EQ(std::stoi(row[7]), int(std::lround(nearest / 0.1))) << "trial " << r;
+    const int response = keys[r - 1] == "left" ? 0 : 1;
+    EXPECT_EQ(std::stoi(row[12]), response) << "trial " << r;
+    EXPECT_EQ(row[13], std::stoi(row[11]) == response ? "1" : "0") << "trial " << r;
+    quest.update(std::log10(std::stod(row[6])), row[13] == "1");
+    if (r % 2 == 0) {
+      EXPECT_NE(table.rows[r][11], table.rows[r - 1][11]) << "targets balanced in pairs";
+    }
+  }
+}
+
+json final_states(const fs::path& sessions) {
+  return json::parse(testing::read_file(sessions / "P01_s01.forced-choice.json"))["procedures"];
+}
+
+// The rows without the columns that depend on the clock (rt_ms, time_utc).
+std::vector<std::vector<std::string>> timeless(const CsvTable& table) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& row : table.rows) rows.push_back({row.begin(), row.begin() + 14});
+  for (auto& row : rows) row.push_back(table.rows[&row - &rows[0]][15]);
+  return rows;
+}
+
+// Ten SIGKILLs at random moments, each followed by --resume: the trials equal an uninterrupted
+// run's row for row (none lost, none repeated), and so does every QUEST's final state.
+TEST(ChoiceGui, KilledSessionsResumeWithTheSameTrialsAndQuestState) {
+  testing::TempDir dir;
+  const auto manifest = make_set(dir, R"({"procedure": )" + std::string(kQuest) + "12}}");
+  testing::XvfbServer x;
+  const std::vector<std::string> observer = {"--observer", "weibull:0.4,3,11"};
+  testing::Child whole(choose_args(manifest, dir / "whole", observer), x.display(), (dir / "whole.txt").string());
+  ASSERT_EQ(whole.wait(300), 0) << testing::read_file(dir / "whole.txt");
+
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> kill_after(0.3, 2.0);
+  int kills = 0;
+  for (int launch = 0; launch < 40; ++launch) {
+    std::vector<std::string> extra = observer;
+    if (fs::exists(dir / "killed/P01_s01.forced-choice.json")) extra.push_back("--resume");
+    testing::Child app(choose_args(manifest, dir / "killed", extra), x.display(), (dir / "killed.txt").string());
+    if (kills < 10 && app.wait(kill_after(random)) == -1) {
+      app.kill_hard();
+      ++kills;
+      continue;
+    }
+    ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "killed.txt");
+    if (testing::read_file(dir / "killed.txt").find("completed;") != std::string::npos) break;
+  }
+  EXPECT_EQ(kills, 10);
+  const CsvTable killed = trials_of(dir / "killed"), uninterrupted = trials_of(dir / "whole");
+  EXPECT_EQ(killed.rows.size(), 1u + 4u * 12u);  // 2 scenes × 2 σ, 12 QUEST trials each
+  EXPECT_EQ(timeless(killed), timeless(uninterrupted));
+  EXPECT_EQ(final_states(dir / "killed"), final_states(dir / "whole"));
+  const json sidecar = json::parse(testing::read_file(dir / "killed/P01_s01.forced-choice.json"));
+  int interrupted = 0;
+  for (const auto& run : sidecar["runs"]) interrupted += run["end"] == "interrupted";
+  EXPECT_GE(interrupted, 8);  // a kill before the run registered itself leaves no entry
+  EXPECT_EQ(sidecar["runs"].back()["end"], "completed");
+}
+
+// Temporal 2AFC: a screenshot in each interval shows that interval's stimulus pixel for pixel,
+// centred on the uniform surround; one interval is the reference, the other the enhanced image.
+TEST(ChoiceGui, TheScreenshotsShowBothIntervalsPixelExact) {
+  testing::TempDir dir;
+  const auto manifest = make_set(dir, R"({"layout": "temporal", "interval_frames": 30, "blank_frames": 30,
+      "conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
+      "procedure": {"type": "constant", "lambdas": [1.5], "repetitions": 2}})");
+  // Enter at 0.3 s starts the trial; interval 1 spans 0–0.5 s of it, the blank 0.5–1 s, interval 2 1–1.5 s.
+  testing::write_file(dir / "keys.txt", "300 enter\n250 screenshot\n1000 screenshot\n600 left\n300 close\n");
+  testing::XvfbServer x;
+  testing::Child app(choose_args(manifest, dir / "sessions",
+                                 {"--script", (dir / "keys.txt").string(), "--frame-clock", "--screenshot", (dir / "shot.png").string()}),
+                     x.display(), (dir / "log.txt").string());
+  ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
+  std::set<std::string> shown;
+  for (const char* name : {"shot.png", "shot-2.png"}) {
+    const json info = json::parse(testing::read_file(dir / (std::string(name) + ".json")));
+    ASSERT_TRUE(info.contains("left")) << name << ": " << info.dump();
+    EXPECT_EQ(info["interval"], std::string(name) == "shot.png" ? "First interval" : "Second interval");
+    const Image shot = read_image(dir / name);
+    const Image stimulus = read_image(dir / "set" / info["left"]["file"].get<std::string>());
+    const int x0 = info["left"]["x"], y0 = info["left"]["y"];
+    EXPECT_EQ(x0, (shot.width - stimulus.width) / 2) << "centred";
+    long differing = 0;
+    for (int y = 0; y < stimulus.height; ++y)
+      for (int xx = 0; xx < stimulus.width; ++xx)
+        for (int c = 0; c < 3; ++c)
+          differing += std::lround(stimulus.at(xx, y, c) * 255) != std::lround(shot.at(x0 + xx, y0 + y, c) * 255);
+    EXPECT_EQ(differing, 0) << name;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(std::lround(shot.at(x0 - 20, y0 + 5, c) * 255), 128) << "surround";
+    shown.insert(info["left"]["file"].get<std::string>());
+  }
+  EXPECT_EQ(shown.size(), 2u);
+  EXPECT_TRUE(shown.count("front/reference.png"));
+  const CsvTable table = trials_of(dir / "sessions");
+  ASSERT_EQ(table.rows.size(), 2u);
+  EXPECT_EQ(table.rows[1][6], "1.5");
+  EXPECT_EQ(table.rows[1][10], "temporal");
+}
+
+}  // namespace
+}  // namespace countershade::forced_choice
