@@ -385,6 +385,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   collect_design(b, rows);
   // Dividing by a subject's own λ_Low needs it positive; the group mean does not.
   const CellTable means = subject_means(b, rows, options.normalization == JndNormalization::subject);
+  b.lambda_means = means;
   const size_t n = b.subjects.size();
   if (n < 3) {
     const std::string example =

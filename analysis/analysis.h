@@ -68,6 +68,7 @@ struct BlockResults {
   std::vector<double> sigmas;
   std::vector<Exclusion> excluded;
   CellTable jnd;  // JND per included subject, scene, σ and question
+  CellTable lambda_means;  // the same subjects' mean answers in λ (repetitions averaged)
   std::vector<AnovaRow> anova, anova_best_sigma;
   Dendrogram dendrogram;
   std::vector<int> cluster_labels;  // per included subject

@@ -25,7 +25,7 @@ std::vector<ForcedChoiceTrial> simulate_forced_choice(const ForcedChoiceDesign& 
   const double guess = 1.0 / d.n_afc;
   for (int s = 0; s < d.subjects; ++s) {
     char name[16];
-    std::snprintf(name, sizeof name, "S%02d", s + 1);
+    std::snprintf(name, sizeof name, "S%03d", s + 1);
     for (size_t c = 0; c < d.conditions.size(); ++c) {
       const SimulatedCondition& condition = d.conditions[c];
       SampleStream random(d.seed, 7, uint64_t(s), c);
@@ -34,7 +34,7 @@ std::vector<ForcedChoiceTrial> simulate_forced_choice(const ForcedChoiceDesign& 
         const double F = base_value(d.model, condition.beta * std::log(lambda / alpha)).F;
         const double psi = guess + (1 - guess - d.lapse) * F;
         for (int r = 0; r < d.trials_per_level; ++r)
-          trials.push_back({name, condition.scene, "", condition.sigma, lambda, random.next() < psi, d.n_afc, false});
+          trials.push_back({name, condition.scene, d.method, condition.sigma, lambda, random.next() < psi, d.n_afc, false});
       }
     }
   }

@@ -27,10 +27,11 @@ struct ForcedChoiceDesign {
   double subject_sd = 0;  // SD of ln α over subjects
   PsychometricModel model = PsychometricModel::weibull;
   uint64_t seed = 1;
+  std::string method;  // the trials' label (the app writes the condition's method)
 };
 
-// Trials in a fixed order (subject, condition, level, repetition); the same design gives the
-// same answers.
+// Trials in a fixed order (subject S001…, condition, level, repetition); the same design gives
+// the same answers.
 std::vector<ForcedChoiceTrial> simulate_forced_choice(const ForcedChoiceDesign& design);
 
 // The λ where the base function is 1/2: the threshold a fit should recover.

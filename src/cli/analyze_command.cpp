@@ -8,6 +8,7 @@
 
 #include "analysis/analysis.h"
 #include "analysis/forced_choice_analysis.h"
+#include "analysis/method_comparison.h"
 #include "analysis/report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -74,6 +75,11 @@ void run(const AnalyzeArgs& args) {
     extra["forced_choice"] = analysis::forced_choice_json(*fc);
     for (const auto& [scene, file] : analysis::write_forced_choice_outputs(*fc, args.output, !args.no_figures))
       extra["forced_choice"]["figures"][scene] = file;
+  }
+  if (fc && !results.empty()) {
+    const auto comparison = analysis::compare_methods(results, *fc);
+    extra["adjustment_vs_forced_choice"] = analysis::comparison_json(comparison);
+    write_text_atomically(fs::path(args.output) / "adjustment_vs_forced_choice.csv", analysis::comparison_csv(comparison));
   }
   analysis::write_outputs(results, args.output, !args.no_figures, extra);
   std::fprintf(stderr, "analyze: wrote %s/results.json (%zu method block%s%s)\n", args.output.c_str(), results.size(),

@@ -52,7 +52,9 @@ void read_procedure_block(const JsonObject& p, ChoiceConfig& c) {
 }  // namespace
 
 ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file, const std::string& path) {
+  if (!value.is_object()) throw_input_error(file + (path.empty() ? "" : ": " + path), "expected a JSON object");
   ChoiceConfig c;
+  c.source = file + ": " + (path.empty() ? "" : path + ".");
   JsonObject o(value, file, path);
   c.n_afc = int(o.integer_in("n_afc", 2, 2, 4));
   if (c.n_afc != 2) o.fail("n_afc", "the app shows two alternatives (spatial or temporal 2AFC); 3 and 4 are analysed but not shown yet");

@@ -46,6 +46,7 @@ struct ChoiceConfig {
   int practice_trials = 0;
   std::optional<uint64_t> seed;
   nlohmann::json procedure_source;  // the procedure block as written, for the session's record
+  std::string source;               // "FILE: KEY PATH." of the block, to name it in messages
 
   nlohmann::ordered_json to_json() const;
 };

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/random.h"
 
 namespace countershade::forced_choice {
@@ -16,13 +17,14 @@ bool matches(const ConditionSelection& s, const adjust::Condition& c) {
   return s.scene == c.scene && s.method == c.method && std::abs(s.sigma - c.sigma) < 1e-12;
 }
 
-std::vector<int> select(const adjust::Study& study, const std::vector<ConditionSelection>& wanted, const std::string& key) {
+std::vector<int> select(const adjust::Study& study, const std::vector<ConditionSelection>& wanted, const std::string& source,
+                        const std::string& key) {
   std::vector<int> out;
   for (size_t w = 0; w < wanted.size(); ++w) {
     const auto& c = study.conditions;
     const auto it = std::find_if(c.begin(), c.end(), [&](const adjust::Condition& x) { return matches(wanted[w], x); });
     if (it == c.end())
-      throw_input_error("forced_choice." + key + "[" + std::to_string(w) + "]",
+      throw_input_error(source + key + "[" + std::to_string(w) + "]",
                         "no condition " + wanted[w].scene + " / " + wanted[w].method + " / σ " + std::to_string(wanted[w].sigma) +
                             " in the set");
     out.push_back(int(it - c.begin()));
@@ -61,19 +63,23 @@ bool ChoiceRun::changes_with_lambda(const adjust::Study& study, int condition) {
 
 ChoiceRun::ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uint64_t seed)
     : study_(study), config_(config), seed_(seed) {
-  conditions_ = select(study, config.conditions, "conditions");
+  conditions_ = select(study, config.conditions, config.source, "conditions");
   if (conditions_.empty()) conditions_.resize(study.conditions.size()), std::iota(conditions_.begin(), conditions_.end(), 0);
-  practice_conditions_ = select(study, config.practice_conditions, "practice_conditions");
+  practice_conditions_ = select(study, config.practice_conditions, config.source, "practice_conditions");
   if (practice_conditions_.empty())
     for (int c : conditions_)
       if (changes_with_lambda(study, c)) practice_conditions_.push_back(c);
   if (config.practice_trials > 0 && practice_conditions_.empty())
-    throw_input_error("forced_choice.practice_trials", "no condition's images change with λ, so practice would show nothing to find");
+    throw_input_error(config.source + "practice_trials", "no condition's images change with λ, so practice would show nothing to find");
   for (int c : conditions_) grids_.push_back(grid_of(study, c));
   for (size_t i = 0; i < conditions_.size(); ++i) {
     const auto& c = study.conditions[size_t(conditions_[i])];
-    const std::string where = "forced_choice (condition " + c.scene + " / " + c.method + ")";
-    procedures_.push_back(std::make_unique<ConditionProcedure>(config, grids_[i], hash_combine(seed, uint64_t(conditions_[i])), where));
+    try {
+      procedures_.push_back(std::make_unique<ConditionProcedure>(config, grids_[i], hash_combine(seed, uint64_t(conditions_[i])),
+                                                                 config.source + "procedure"));
+    } catch (const InputError& e) {  // which condition's grid it is
+      throw InputError(std::string(e.what()) + " (condition " + c.scene + " / " + c.method + " / σ " + format_value(c.sigma) + ")");
+    }
   }
   current_ = plan_next();
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/random.h"
 
 namespace countershade::forced_choice {
@@ -21,14 +22,15 @@ namespace {
 size_t on_grid(const ChoiceGrid& grid, double lambda, const std::string& where) {
   const size_t i = grid.nearest(lambda);
   if (std::abs(grid.lambdas[i] - lambda) > 1e-9)
-    throw_input_error(where, "λ " + std::to_string(lambda) + " is not on the set's λ grid");
+    throw_input_error(where, "λ " + format_value(lambda) + " is not on the set's λ grid (" + format_value(grid.lambdas.front()) +
+                                 " to " + format_value(grid.lambdas.back()) + ")");
   return i;
 }
 
 std::vector<size_t> constant_order(const ChoiceConfig& c, const ChoiceGrid& grid, uint64_t seed, const std::string& where) {
   std::vector<size_t> order;
   for (double lambda : c.levels) {
-    const size_t point = on_grid(grid, lambda, where + ".procedure.lambdas");
+    const size_t point = on_grid(grid, lambda, where + ".lambdas");
     for (int r = 0; r < c.repetitions; ++r) order.push_back(point);
   }
   SampleStream random(seed, 211, 0, 0);  // Fisher–Yates from the condition's own stream
@@ -49,10 +51,9 @@ ConditionProcedure::ConditionProcedure(const ChoiceConfig& config, const ChoiceG
       quest_.emplace(config.adaptive.quest, where);
       const double lo = std::log10(grid.lambdas.front()), hi = std::log10(grid.lambdas.back());
       if (quest_->highest() < lo || quest_->lowest() > hi)
-        throw_input_error(where + ".procedure.range",
-                          "QUEST's thresholds (log10 λ " + std::to_string(quest_->lowest()) + " to " +
-                              std::to_string(quest_->highest()) + ") exclude the set's λ grid (log10 λ " +
-                              std::to_string(lo) + " to " + std::to_string(hi) + ")");
+        throw_input_error(where + ".range", "QUEST's thresholds (log10 λ " + format_value(round_to(quest_->lowest(), 3)) + " to " +
+                                                format_value(round_to(quest_->highest(), 3)) + ") exclude the set's λ grid (log10 λ " +
+                                                format_value(round_to(lo, 3)) + " to " + format_value(round_to(hi, 3)) + ")");
       break;
     }
   }
