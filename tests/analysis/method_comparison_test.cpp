@@ -48,7 +48,8 @@ TEST(MethodComparison, PairsEachSubjectsLambdaLowWithTheirThreshold) {
   for (size_t i = 0; i < c.subjects.size(); ++i) {
     EXPECT_NEAR(c.lambda_low[i], low[c.subjects[i]] / count[c.subjects[i]], 1e-12) << c.subjects[i];
     for (const PsychometricRow& row : fits.rows) {
-      if (!row.pooled && row.subject == c.subjects[i]) EXPECT_EQ(c.threshold[i], row.fit.threshold);
+      if (row.pooled || row.subject != c.subjects[i]) continue;
+      EXPECT_EQ(c.threshold[i], row.fit.threshold);
     }
     differences.push_back(std::log(c.lambda_low[i] / c.threshold[i]));
   }
