@@ -65,14 +65,17 @@ std::vector<Trial> real_trials(size_t n, const PlanSettings& s) {
 
 // The practice trials: conditions in a seeded order, sides alternating when counterbalanced.
 std::vector<Trial> practice_trials(const std::vector<Condition>& conditions, const PlanSettings& s) {
-  std::vector<int> pick(conditions.size());
-  std::iota(pick.begin(), pick.end(), 0);
+  std::vector<int> pick = s.practice_conditions;
+  if (pick.empty()) {
+    pick.resize(conditions.size());
+    std::iota(pick.begin(), pick.end(), 0);
+  }
   seeded_shuffle(pick, s.seed, kStreamPractice);
   std::vector<Trial> practice;
   for (int p = 0; p < s.practice_trials; ++p) {
     Trial t;
     t.practice = true;
-    t.condition = pick[size_t(p) % conditions.size()];
+    t.condition = pick[size_t(p) % pick.size()];
     t.side = s.side == Side::counterbalanced ? (p % 2 == 0 ? Side::left : Side::right) : s.side;
     for (int q = 0; q < kQuestionCount; ++q)
       t.start_index[q] = draw_start(conditions[size_t(t.condition)], s, (1ull << 40) + uint64_t(p), q);

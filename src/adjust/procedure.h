@@ -45,6 +45,9 @@ struct PlanSettings {
   Side side = Side::counterbalanced;
   StartMode start = StartMode::random;
   int practice_trials = 0;
+  // The conditions practice may show (indices); empty: every condition. A study fills it with
+  // those whose images change with λ, so practice always has something to find.
+  std::vector<int> practice_conditions;
 };
 
 // The full trial list of a session: practice trials first, then every condition × repetition in a

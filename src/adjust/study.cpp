@@ -29,6 +29,10 @@ nlohmann::ordered_json StudyConfig::to_json() const {
   j["practice_trials"] = plan.practice_trials;
   auto& c = j["conditions"] = nlohmann::ordered_json::array();
   for (const auto& s : conditions) c.push_back({{"scene", s.scene}, {"method", s.method}, {"sigma", s.sigma}});
+  if (!practice_conditions.empty()) {  // only when named, so the record of older sessions stays the same
+    auto& p = j["practice_conditions"] = nlohmann::ordered_json::array();
+    for (const auto& s : practice_conditions) p.push_back({{"scene", s.scene}, {"method", s.method}, {"sigma", s.sigma}});
+  }
   j["repeat"] = {{"delay_ms", timing.repeat_delay_s * 1000}, {"interval_ms", timing.repeat_interval_s * 1000}};
   j["surround"] = surround;
   j["gap_px"] = gap_px;
@@ -75,12 +79,13 @@ StudyConfig parse_study_config(const nlohmann::json& value, const std::string& f
   c.plan.side = side == "left" ? Side::left : side == "right" ? Side::right : Side::counterbalanced;
   c.plan.start = o.choice("start", "random", {"random", "zero"}) == "zero" ? StartMode::zero : StartMode::random;
   c.plan.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
-  if (o.has("conditions"))
-    for (const auto& s : o.objects("conditions")) {
-      StudyConfig::Selection sel{s.string("scene"), s.string("method"), s.number("sigma")};
-      s.finish();
-      c.conditions.push_back(sel);
-    }
+  for (const char* key : {"conditions", "practice_conditions"})
+    if (o.has(key))
+      for (const auto& s : o.objects(key)) {
+        StudyConfig::Selection sel{s.string("scene"), s.string("method"), s.number("sigma")};
+        s.finish();
+        (std::string(key) == "conditions" ? c.conditions : c.practice_conditions).push_back(sel);
+      }
   if (o.has("repeat")) read_repeat(o.object("repeat"), c.timing);
   c.surround = int(o.integer_in("surround", 128, 0, 255));
   c.gap_px = int(o.integer_in("gap_px", 48, 0, 4096));
@@ -270,6 +275,34 @@ class StudyBuilder {
 
 }  // namespace
 
+bool Study::changes_with_lambda(int condition) const {
+  const auto& stimuli = condition_images[size_t(condition)];
+  const std::string& reference = image_of(stimuli[0]).sha256;
+  return std::any_of(stimuli.begin() + 1, stimuli.end(), [&](int s) { return image_of(s).sha256 != reference; });
+}
+
+namespace {
+
+// The named practice conditions, or every condition whose images change with λ.
+void choose_practice_conditions(Study& study, const std::string& where) {
+  auto& chosen = study.config.plan.practice_conditions;
+  const auto& named = study.config.practice_conditions;
+  for (size_t n = 0; n < named.size(); ++n) {
+    const auto it = std::find_if(study.conditions.begin(), study.conditions.end(), [&](const Condition& c) {
+      return c.scene == named[n].scene && c.method == named[n].method && c.sigma == named[n].sigma;
+    });
+    if (it == study.conditions.end())
+      throw_input_error(where + "practice_conditions[" + std::to_string(n) + "]", "not a condition of this study");
+    chosen.push_back(int(it - study.conditions.begin()));
+  }
+  for (int c = 0; named.empty() && c < int(study.conditions.size()); ++c)
+    if (study.changes_with_lambda(c)) chosen.push_back(c);
+  if (chosen.empty() && study.config.plan.practice_trials > 0)
+    throw_input_error(where + "practice_trials", "no condition's images change with λ, so practice would show nothing to adjust");
+}
+
+}  // namespace
+
 Study load_study(const fs::path& manifest_path, const std::optional<fs::path>& config_file) {
   Study study;
   study.manifest_path = manifest_path;
@@ -290,6 +323,7 @@ Study load_study(const fs::path& manifest_path, const std::optional<fs::path>& c
   for (const auto& key : index.order)
     if (selected(study.config.conditions, key)) builder.add_condition(key, index);
   if (study.conditions.empty()) builder.fail("stimuli", "no condition with a λ grid (the set has only reference images)");
+  choose_practice_conditions(study, config_file ? config_file->string() + ": " : mfile + ": experiment.adjust.");
   return study;
 }
 

@@ -43,6 +43,8 @@ struct StudyConfig {
     double sigma = 0;
   };
   std::vector<Selection> conditions;
+  // Conditions practice trials show; empty: those whose images change with λ.
+  std::vector<Selection> practice_conditions;
   Instructions text;
   RepeatTiming timing;
   int surround = 128;    // grey level of the background, 0–255 (display values, no gamma change)
@@ -102,6 +104,9 @@ struct Study {
   int height(int condition) const { return image_of(condition_images[size_t(condition)][0]).height; }
   int max_width() const;
   int max_height() const;
+  // Whether any of a condition's images differs from its reference (a control whose images do
+  // not change with λ teaches nothing in practice).
+  bool changes_with_lambda(int condition) const;
 };
 
 // Loads the manifest and the configuration (`config_file`, else the experiment's "adjust" object,

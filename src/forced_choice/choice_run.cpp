@@ -55,12 +55,6 @@ int balanced_target(uint64_t seed, int condition, int k, int n) {
 
 }  // namespace
 
-bool ChoiceRun::changes_with_lambda(const adjust::Study& study, int condition) {
-  const auto& stimuli = study.condition_images[size_t(condition)];
-  const std::string& reference = study.image_of(stimuli[0]).sha256;
-  return std::any_of(stimuli.begin() + 1, stimuli.end(), [&](int s) { return study.image_of(s).sha256 != reference; });
-}
-
 ChoiceRun::ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uint64_t seed)
     : study_(study), config_(config), seed_(seed) {
   conditions_ = select(study, config.conditions, config.source, "conditions");
@@ -68,7 +62,7 @@ ChoiceRun::ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uin
   practice_conditions_ = select(study, config.practice_conditions, config.source, "practice_conditions");
   if (practice_conditions_.empty())
     for (int c : conditions_)
-      if (changes_with_lambda(study, c)) practice_conditions_.push_back(c);
+      if (study.changes_with_lambda(c)) practice_conditions_.push_back(c);
   if (config.practice_trials > 0 && practice_conditions_.empty())
     throw_input_error(config.source + "practice_trials", "no condition's images change with λ, so practice would show nothing to find");
   for (int c : conditions_) grids_.push_back(grid_of(study, c));

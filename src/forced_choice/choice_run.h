@@ -42,8 +42,6 @@ class ChoiceRun {
   bool in_practice() const { return current_ && current_->practice; }
   const std::vector<int>& conditions() const { return conditions_; }
   nlohmann::ordered_json procedure_state(int condition) const;
-  // Whether a condition's images change with λ (a practice trial needs something to see).
-  static bool changes_with_lambda(const adjust::Study& study, int condition);
 
  private:
   std::optional<ChoiceTrial> plan_next() const;

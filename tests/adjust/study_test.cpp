@@ -203,3 +203,52 @@ TEST(AdjustObserver, AnswersAreTheFirstGridValueAtOrAboveItsLatentThresholds) {
 
 }  // namespace
 }  // namespace countershade::adjust
+
+namespace countershade::adjust {
+namespace {
+
+// A set with one enhanced condition and one whose images never change (method "none").
+std::filesystem::path make_set_with_control(const testing::TempDir& dir, const std::string& adjust) {
+  testing::write_file(dir / "cube.json", testing::kLitCubeScene);
+  testing::write_file(dir / "experiment.json", R"({"version": 1, "name": "control", "seed": 3,
+      "lambda": {"min": 0, "max": 1, "step": 0.5},
+      "scenes": [{"name": "front", "file": "cube.json", "width": 48, "height": 36}],
+      "methods": [{"method": "usm3d", "sigma_fraction": [0.05]}, {"method": "none"}],
+      "adjust": )" + adjust + "}");
+  GenerateOptions options;
+  options.contact_sheets = false;
+  generate_stimulus_set(load_experiment(dir / "experiment.json"), dir / "set", options);
+  return dir / "set" / "manifest.json";
+}
+
+// Practice shows only conditions whose images change with λ, unless the experiment names others;
+// a study with nothing to practise on refuses practice trials.
+TEST(AdjustStudy, PracticeNeverShowsAConditionWhoseImagesDoNotChange) {
+  testing::TempDir dir;
+  const Study study = load_study(make_set_with_control(dir, R"({"practice_trials": 6})"), std::nullopt);
+  ASSERT_EQ(study.conditions.size(), 2u);
+  int control = -1;
+  for (int c = 0; c < 2; ++c)
+    if (!study.changes_with_lambda(c)) control = c;
+  ASSERT_GE(control, 0) << "the none method's images equal the reference";
+  PlanSettings settings = study.config.plan;
+  const auto plan = plan_trials(study.conditions, settings);
+  int practice = 0;
+  for (const Trial& t : plan)
+    if (t.practice) {
+      ++practice;
+      EXPECT_NE(t.condition, control);
+    }
+  EXPECT_EQ(practice, 6);
+
+  testing::TempDir named;
+  const Study chosen = load_study(
+      make_set_with_control(named, R"({"practice_trials": 2, "practice_conditions": [{"scene": "front", "method": "none", "sigma": 0}]})"),
+      std::nullopt);
+  for (const Trial& t : plan_trials(chosen.conditions, chosen.config.plan)) {
+    if (t.practice) EXPECT_FALSE(chosen.changes_with_lambda(t.condition));
+  }
+}
+
+}  // namespace
+}  // namespace countershade::adjust
