@@ -61,7 +61,13 @@ std::vector<MethodComparison> compare_methods(const std::vector<BlockResults>& a
       for (const PsychometricRow& row : fc.rows) {
         if (row.pooled || row.scene != pooled.scene || row.label != pooled.label || row.sigma != pooled.sigma) continue;
         const auto it = low.find(row.subject);
-        if (it == low.end() || !(it->second > 0) || !row.fit.well_defined) continue;
+        // A threshold needs a finite maximum of the likelihood, not a well-pinned slope: QUEST
+        // places its trials near the threshold, where the slope is the least constrained.
+        if (it == low.end() || !(it->second > 0)) continue;
+        if (!row.fit.converged || !std::isfinite(row.fit.threshold)) {
+          c.without_threshold.push_back(row.subject);
+          continue;
+        }
         c.subjects.push_back(row.subject);
         c.lambda_low.push_back(it->second);
         c.threshold.push_back(row.fit.threshold);
@@ -78,6 +84,7 @@ json comparison_json(const std::vector<MethodComparison>& rows) {
   json out = json::array();
   for (const MethodComparison& c : rows)
     out.push_back({{"scene", c.scene}, {"method", c.method}, {"sigma", c.sigma}, {"n_subjects", c.subjects.size()},
+                   {"subjects_without_threshold", c.without_threshold},
                    {"geometric_mean_lambda_low", number_or_null(c.geometric_mean_low)},
                    {"geometric_mean_threshold", number_or_null(c.geometric_mean_threshold)},
                    {"mean_log_ratio", number_or_null(c.mean_log_ratio)}, {"t", number_or_null(c.t)},

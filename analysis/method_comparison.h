@@ -18,6 +18,7 @@ struct MethodComparison {
   std::string scene, method;
   double sigma = 0;
   std::vector<std::string> subjects;       // those with both measures
+  std::vector<std::string> without_threshold;  // with both, but a forced-choice fit with no finite maximum
   std::vector<double> lambda_low, threshold;  // per subject
   double geometric_mean_low = 0, geometric_mean_threshold = 0;
   double mean_log_ratio = 0;  // mean of ln(λ_Low / threshold)
