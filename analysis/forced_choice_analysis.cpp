@@ -104,7 +104,7 @@ std::vector<std::pair<std::string, std::string>> psychometric_figures(const Forc
     if (row.pooled && (out.empty() || out.back().first != row.scene)) out.push_back({row.scene, ""});
   for (auto& [scene, svg] : out) {
     LinePlot plot;
-    plot.title = "Proportion correct: " + scene + " (pooled over subjects; 95 % binomial intervals)";
+    plot.title = "Proportion correct: " + scene + " (pooled; 95 % intervals where a λ has 5 trials or more)";
     plot.x_label = "λ";
     plot.y_label = "proportion correct";
     plot.width = 760;
@@ -117,7 +117,7 @@ std::vector<std::pair<std::string, std::string>> psychometric_figures(const Forc
         const auto [lo, hi] = binomial_interval(cell.k, cell.n);
         data.x.push_back(cell.lambda);
         data.y.push_back(double(cell.k) / double(cell.n));
-        plot.error_bars.push_back({cell.lambda, lo, hi, c});
+        if (cell.n >= 5) plot.error_bars.push_back({cell.lambda, lo, hi, c});  // fewer: an interval of nearly [0, 1]
       }
       PlotSeries curve{"", {}, {}, c};
       const double lo = row.cells.front().lambda, hi = row.cells.back().lambda;

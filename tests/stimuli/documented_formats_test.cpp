@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adjust/study.h"
+#include "forced_choice/choice_config.h"
 #include "render/scene.h"
 #include "stimuli/experiment.h"
 #include "test_util.h"
@@ -78,6 +79,15 @@ TEST(DocumentedFormats, TheProcedureExampleParses) {
   EXPECT_EQ(config.plan.practice_trials, 2);
   ASSERT_EQ(config.conditions.size(), 1u);
   EXPECT_EQ(config.conditions[0].method, "usm3d");
+}
+
+TEST(DocumentedFormats, TheForcedChoiceExampleParses) {
+  const auto blocks = json_blocks(source_dir() / "docs/forced-choice.md");
+  ASSERT_EQ(blocks.size(), 1u);
+  const auto config = forced_choice::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
+  EXPECT_EQ(config.kind, forced_choice::ProcedureKind::quest);
+  EXPECT_EQ(config.trials, 40);
+  EXPECT_EQ(config.practice_trials, 2);
 }
 
 }  // namespace
