@@ -22,7 +22,8 @@ struct KeyName {
 };
 constexpr KeyName kKeyNames[] = {{Key::up, "up"},       {Key::down, "down"},           {Key::left, "left"},
                                  {Key::right, "right"}, {Key::enter, "enter"},         {Key::backspace, "backspace"},
-                                 {Key::escape, "escape"}, {Key::quit, "q"}};
+                                 {Key::escape, "escape"}, {Key::quit, "q"},       {Key::one, "1"},
+                                 {Key::two, "2"},       {Key::three, "3"},             {Key::four, "4"}};
 
 // A normal deviate from two counter-based uniforms (Box–Muller).
 double normal(SampleStream& s) {
@@ -82,7 +83,7 @@ void add_action(const std::string& action, std::istringstream& words, double tim
   const auto key = key_from_name(action);
   if (!key)
     throw_input_error(where, "unknown action '" + action +
-                                 "' (expected up, down, left, right, enter, backspace, escape, q, hold, screenshot or close)");
+                                 "' (expected up, down, left, right, enter, backspace, escape, q, 1 to 4, hold, screenshot or close)");
   events.push_back({time_s, InputEvent::Kind::press, *key});
   events.push_back({time_s + kTapSeconds, InputEvent::Kind::release, *key});
 }

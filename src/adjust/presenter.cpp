@@ -46,6 +46,14 @@ std::optional<Key> key_of(int glfw_key) {
     case GLFW_KEY_BACKSPACE: return Key::backspace;
     case GLFW_KEY_ESCAPE: return Key::escape;
     case GLFW_KEY_Q: return Key::quit;
+    case GLFW_KEY_1:
+    case GLFW_KEY_KP_1: return Key::one;
+    case GLFW_KEY_2:
+    case GLFW_KEY_KP_2: return Key::two;
+    case GLFW_KEY_3:
+    case GLFW_KEY_KP_3: return Key::three;
+    case GLFW_KEY_4:
+    case GLFW_KEY_KP_4: return Key::four;
     default: return std::nullopt;
   }
 }
@@ -62,9 +70,22 @@ float centred_text(ImDrawList* list, const char* text, float centre_x, float top
 
 }  // namespace
 
+DisplayOptions study_display(const Study& study, const std::string& app) {
+  DisplayOptions display;
+  display.stimulus_width = study.max_width();
+  display.stimulus_height = study.max_height();
+  display.gap_px = study.config.gap_px;
+  display.surround = study.config.surround;
+  display.font_px = study.config.font_px;
+  display.title = "countershade " + app + ": " + study.set_name;
+  display.pixels_per_degree = study.pixels_per_degree;
+  display.distance_mm = study.distance_mm;
+  return display;
+}
+
 void Presenter::required_size(const DisplayOptions& o, int* width, int* height) {
   Margins m = margins_for(o);
-  *width = 2 * o.stimulus_width + o.gap_px + 2 * m.side;
+  *width = o.columns * o.stimulus_width + (o.columns - 1) * o.gap_px + 2 * m.side;
   *height = o.stimulus_height + m.top + m.bottom;
 }
 
@@ -277,26 +298,34 @@ struct Canvas {
   ImDrawList *back = nullptr, *front = nullptr;
 };
 
-// The two stimuli side by side at 1:1 (or a request to enlarge the window), the header and
-// question above them, the hint below.
+// The images a frame shows, left to right: its row, or the left and right pair, or the one
+// centred image.
+std::vector<unsigned> stimulus_row(const FrameContent& c) {
+  if (!c.row.empty()) return c.row;
+  if (c.centred) return {c.left_texture};
+  return {c.left_texture, c.right_texture};
+}
+
+// The stimuli side by side at 1:1 (or a request to enlarge the window), the header and question
+// above them, the hint below.
 StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, const Canvas& k) {
   const Margins m = margins_for(o);
+  const std::vector<unsigned> row = stimulus_row(c);
   StimulusLayout layout;
   layout.width = c.image_width;
   layout.height = c.image_height;
-  const int pair = 2 * c.image_width + o.gap_px;
-  layout.fits = pair + 2 * m.side <= k.fw && c.image_height + m.top + m.bottom <= k.fh;
-  layout.left_x = c.centred ? (k.fw - c.image_width) / 2 : (k.fw - pair) / 2;
-  layout.right_x = c.centred ? layout.left_x : layout.left_x + c.image_width + o.gap_px;
+  const int n = int(row.size()), span = n * c.image_width + (n - 1) * o.gap_px;
+  layout.fits = span + 2 * m.side <= k.fw && c.image_height + m.top + m.bottom <= k.fh;
+  for (int i = 0; i < n; ++i) layout.xs.push_back((k.fw - span) / 2 + i * (c.image_width + o.gap_px));
+  layout.left_x = layout.xs.front();
+  layout.right_x = layout.xs.back();
   layout.y = m.top + std::max(0, (k.fh - m.top - m.bottom - c.image_height) / 2);
   const float centre = float(k.ww) / 2;
   if (layout.fits) {
-    auto quad = [&](unsigned tex, int x) {
-      k.back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(tex)), ImVec2(float(x) / k.scale, float(layout.y) / k.scale),
-                       ImVec2(float(x + c.image_width) / k.scale, float(layout.y + c.image_height) / k.scale));
-    };
-    quad(c.left_texture, layout.left_x);
-    if (!c.centred) quad(c.right_texture, layout.right_x);
+    for (int i = 0; i < n; ++i)
+      k.back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(row[size_t(i)])),
+                       ImVec2(float(layout.xs[size_t(i)]) / k.scale, float(layout.y) / k.scale),
+                       ImVec2(float(layout.xs[size_t(i)] + c.image_width) / k.scale, float(layout.y + c.image_height) / k.scale));
   } else {
     centred_text(k.front, "The window is too small to show the images at 1:1 scale. Please enlarge it.", centre,
                  float(k.wh) / 2, k.wrap, k.text);
@@ -358,7 +387,7 @@ StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::pat
   k.line = ImGui::GetFontSize() * 1.35f;
 
   StimulusLayout layout;
-  if (c.left_texture && (c.right_texture || c.centred)) layout = draw_stimuli(c, options_, k);
+  if (!c.row.empty() || (c.left_texture && (c.right_texture || c.centred))) layout = draw_stimuli(c, options_, k);
   if (!c.message.empty()) draw_message(c, k);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

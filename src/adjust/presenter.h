@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adjust/procedure.h"
+#include "adjust/study.h"
 
 struct GLFWwindow;
 struct GLFWmonitor;
@@ -24,6 +25,7 @@ struct DisplayOptions {
   bool fullscreen = false;
   int monitor = 0;
   int stimulus_width = 0, stimulus_height = 0;  // the largest stimulus of the study
+  int columns = 2;  // stimuli side by side (3 or 4 for a spatial forced choice among as many)
   int gap_px = 48;
   int surround = 128;
   double font_px = 22;
@@ -37,6 +39,10 @@ struct DisplayOptions {
   std::optional<double> pixels_per_degree, distance_mm, monitor_width_mm;
 };
 
+// The display a study needs: its largest stimulus, its surround, gap and font, and the set's
+// pixels per degree; the window's title names `app` and the set.
+DisplayOptions study_display(const Study& study, const std::string& app);
+
 // A key or window event from GLFW, with its time on glfwGetTime()'s clock.
 struct WindowEvent {
   enum class Kind { press, release, focus_lost, focus_gained, close };
@@ -49,6 +55,7 @@ struct WindowEvent {
 struct FrameContent {
   unsigned left_texture = 0, right_texture = 0;  // 0: no images
   bool centred = false;  // one image (left_texture) in the middle, as a temporal interval shows it
+  std::vector<unsigned> row;  // several images side by side, left to right (instead of left/right)
   int image_width = 0, image_height = 0;
   std::string header;    // top line, e.g. "Trial 3 of 24"
   std::string question;  // the question text above the images
@@ -60,6 +67,7 @@ struct FrameContent {
 // Where the stimuli of the last frame were drawn, in framebuffer pixels from the top-left.
 struct StimulusLayout {
   int left_x = 0, right_x = 0, y = 0, width = 0, height = 0;
+  std::vector<int> xs;  // every image's left edge, left to right
   bool fits = true;
 };
 

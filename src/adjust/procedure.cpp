@@ -241,6 +241,10 @@ std::optional<Answer> Procedure::press(Key key, double time_s) {
       paused_at_ = time_s;
       return std::nullopt;
     case Key::quit:
+    case Key::one:
+    case Key::two:
+    case Key::three:
+    case Key::four:
       return std::nullopt;
   }
   return std::nullopt;

@@ -55,7 +55,8 @@ struct PlanSettings {
 // balances the first side over the conditions. The same settings always give the same plan.
 std::vector<Trial> plan_trials(const std::vector<Condition>& conditions, const PlanSettings& settings);
 
-enum class Key { up, down, left, right, enter, backspace, escape, quit };
+// one … four: the number keys (top row or keypad), for forced-choice answers.
+enum class Key { up, down, left, right, enter, backspace, escape, quit, one, two, three, four };
 
 // A confirmed answer, returned by the procedure for the recorder to write.
 struct Answer {

@@ -108,18 +108,10 @@ void check_sessions_dir(const SessionOptions& o) {
 }
 
 DisplayOptions display_options(const SessionOptions& o, const Study& study) {
-  DisplayOptions display;
+  DisplayOptions display = study_display(study, "adjust");
   display.fullscreen = o.fullscreen;
   display.monitor = o.monitor;
-  display.stimulus_width = study.max_width();
-  display.stimulus_height = study.max_height();
-  display.gap_px = study.config.gap_px;
-  display.surround = study.config.surround;
-  display.font_px = study.config.font_px;
-  display.title = "countershade adjust: " + study.set_name;
   display.frame_clock = o.frame_clock;
-  display.pixels_per_degree = study.pixels_per_degree;
-  display.distance_mm = study.distance_mm;
   display.monitor_width_mm = o.monitor_width_mm;
   return display;
 }

@@ -57,7 +57,6 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   c.source = file + ": " + (path.empty() ? "" : path + ".");
   JsonObject o(value, file, path);
   c.n_afc = int(o.integer_in("n_afc", 2, 2, 4));
-  if (c.n_afc != 2) o.fail("n_afc", "the app shows two alternatives (spatial or temporal 2AFC); 3 and 4 are analysed but not shown yet");
   c.layout = o.choice("layout", "spatial", {"spatial", "temporal"}) == "temporal" ? Layout::temporal : Layout::spatial;
   c.interval_frames = int(o.integer_in("interval_frames", 30, 1, 6000));
   c.blank_frames = int(o.integer_in("blank_frames", 30, 0, 6000));
@@ -72,6 +71,21 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   read_procedure_block(o.object("procedure"), c);
   o.finish();
   return c;
+}
+
+std::string ChoiceConfig::answer_keys() const {
+  return n_afc == 2 ? "Left/Right or 1/2" : "1 to " + std::to_string(n_afc);
+}
+
+std::string ChoiceConfig::welcome_text() const {
+  if (!welcome.empty()) return welcome;
+  const std::string n = n_afc == 2 ? "Two" : n_afc == 3 ? "Three" : "Four";
+  const std::string shown = layout == Layout::spatial ? "side by side" : "one after the other";
+  const std::string keys = n_afc == 2 ? (layout == Layout::spatial ? "Press Left for the left one and Right for the right one"
+                                                                   : "Press Left for the first and Right for the second")
+                                      : "Press its number (1 is the " + std::string(layout == Layout::spatial ? "leftmost" : "first") + ")";
+  return n + " images of the same scene are shown " + shown + "; one of them is enhanced. " + keys +
+         ". Press Esc at any time to pause.\n\nPress Enter to begin.";
 }
 
 nlohmann::ordered_json ChoiceConfig::to_json() const {

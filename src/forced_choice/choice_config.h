@@ -1,8 +1,8 @@
 #pragma once
 // The forced-choice study as the app runs it (docs/forced-choice.md): an experiment's
-// "forced_choice" block or a file of its own. n alternatives (the app shows n = 2), a spatial
-// (left/right) or temporal (two intervals) layout, the question, optional feedback, and the
-// procedure that picks each condition's λ: constant stimuli, a staircase or QUEST.
+// "forced_choice" block or a file of its own. n = 2 to 4 alternatives, side by side (spatial) or
+// one after the other (temporal), the question, optional feedback, and the procedure that picks
+// each condition's λ: constant stimuli, a staircase or QUEST.
 
 #include <cstdint>
 #include <optional>
@@ -32,9 +32,8 @@ struct ChoiceConfig {
   int interval_frames = 30, blank_frames = 30;  // temporal layout: each interval, and the blank between
   int feedback_frames = 0;                      // 0: no feedback
   std::string question = "Which image is enhanced?";
-  std::string welcome =
-      "Two images of the same scene are shown. One of them is enhanced. Press Left if it is the first "
-      "(left) one and Right if it is the second (right) one. Press Esc at any time to pause.\n\nPress Enter to begin.";
+  // Empty: a text that fits the layout and the number of alternatives (welcome_text()).
+  std::string welcome;
   ProcedureKind kind = ProcedureKind::quest;
   ProcedureSpec adaptive;           // staircase or QUEST (QUEST intensities are log10 λ)
   std::vector<double> levels;       // constant stimuli: the λ shown
@@ -49,6 +48,9 @@ struct ChoiceConfig {
   std::string source;               // "FILE: KEY PATH." of the block, to name it in messages
 
   nlohmann::ordered_json to_json() const;
+  std::string welcome_text() const;
+  // The keys that answer, for the hint under the images: "Left/Right" or "1 to 4".
+  std::string answer_keys() const;
 };
 
 // Reads the block; every bad value is an InputError naming `file` and the key path.

@@ -92,7 +92,7 @@ ChoiceTrial ChoiceRun::practice_trial(int k) const {
   t.intensity = {grid.lambdas.back(), grid.lambdas.size() - 1};
   t.lambda_index = grid.indices.back();
   t.lambda = grid.lambdas.back();
-  t.target = random.next() < 0.5 ? 0 : 1;
+  t.target = std::min(int(random.next() * config_.n_afc), config_.n_afc - 1);
   return t;
 }
 

@@ -41,23 +41,27 @@ ChoiceConfig load_config(const ChoiceSessionOptions& o) {
   return parse_choice_config(manifest["experiment"]["forced_choice"], o.manifest.string(), "experiment.forced_choice");
 }
 
-adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study) {
-  adjust::DisplayOptions d;
+adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config) {
+  adjust::DisplayOptions d = adjust::study_display(study, "choose");
+  d.columns = config.layout == Layout::spatial ? config.n_afc : 1;
   d.fullscreen = o.fullscreen;
   d.monitor = o.monitor;
-  d.stimulus_width = study.max_width();
-  d.stimulus_height = study.max_height();
-  d.gap_px = study.config.gap_px;
-  d.surround = study.config.surround;
-  d.font_px = study.config.font_px;
-  d.title = "countershade choose: " + study.set_name;
   d.frame_clock = o.frame_clock;
-  d.pixels_per_degree = study.pixels_per_degree;
-  d.distance_mm = study.distance_mm;
   return d;
 }
 
 enum class Phase { instructions, trial, feedback, practice_done, paused, finished };
+
+constexpr Key kNumberKeys[] = {Key::one, Key::two, Key::three, Key::four};
+
+// The alternative a key chooses (0-based), if it chooses one: a number key up to n, and with two
+// alternatives also Left and Right.
+std::optional<int> chosen(Key key, int n) {
+  for (int i = 0; i < n; ++i)
+    if (key == kNumberKeys[i]) return i;
+  if (n == 2 && (key == Key::left || key == Key::right)) return key == Key::left ? 0 : 1;
+  return std::nullopt;
+}
 
 // The event loop: key events drive the run, answers go to the recorder, each frame is drawn.
 class ChoiceLoop {
@@ -128,16 +132,16 @@ class ChoiceLoop {
     if (phase_ == Phase::trial && answer_allowed(now)) {
       const ChoiceTrial& t = *run_.current();
       const int response = observer_->respond(t.number, practice_index_, t.lambda, t.target, config_.n_afc);
-      press(response == 0 ? Key::left : Key::right, now);
+      press(kNumberKeys[response], now);
     } else if (phase_ == Phase::instructions || phase_ == Phase::practice_done || phase_ == Phase::finished) {
       press(Key::enter, now);
     }
   }
 
-  // When the answer keys count: a spatial trial at once, a temporal one after the second interval.
+  // When the answer keys count: a spatial trial at once, a temporal one after its last interval.
   double answer_from() const {
-    return config_.layout == Layout::spatial ? phase_since_
-                                             : phase_since_ + (2 * config_.interval_frames + config_.blank_frames) / presenter_.refresh_hz();
+    const int frames = config_.n_afc * config_.interval_frames + (config_.n_afc - 1) * config_.blank_frames;
+    return config_.layout == Layout::spatial ? phase_since_ : phase_since_ + frames / presenter_.refresh_hz();
   }
   bool answer_allowed(double now) const { return now + 1e-9 >= answer_from(); }
 
@@ -161,7 +165,7 @@ class ChoiceLoop {
       case Phase::paused: resume_or_quit(key, now); break;
       case Phase::trial:
         if (key == Key::escape) pause(now);
-        else if ((key == Key::left || key == Key::right) && answer_allowed(now)) answer(key == Key::left ? 0 : 1, now);
+        else if (const auto choice = chosen(key, config_.n_afc); choice && answer_allowed(now)) answer(*choice, now);
         break;
     }
   }
@@ -222,29 +226,37 @@ class ChoiceLoop {
     c.header = trial.practice ? "Practice" : "Trial " + std::to_string(trial.number);
     c.question = config_.question;
     if (config_.layout == Layout::spatial) {
-      c.left_texture = trial.target == 0 ? enhanced : reference;
-      c.right_texture = trial.target == 0 ? reference : enhanced;
-      c.hint = "Left: the left image    Right: the right image    Esc: pause";
+      for (int i = 0; i < config_.n_afc; ++i) c.row.push_back(i == trial.target ? enhanced : reference);
+      c.hint = config_.answer_keys() + ": choose    Esc: pause";
       return c;
     }
-    const double frames = (t - phase_since_) * presenter_.refresh_hz();
-    const int interval = frames < config_.interval_frames ? 0
-                         : frames < config_.interval_frames + config_.blank_frames ? -1
-                         : frames < 2 * config_.interval_frames + config_.blank_frames ? 1 : 2;
-    if (interval == 0 || interval == 1) {
+    const int interval = interval_at((t - phase_since_) * presenter_.refresh_hz());
+    if (interval >= 0 && interval < config_.n_afc) {
       c.centred = true;
       c.left_texture = trial.target == interval ? enhanced : reference;
-      c.hint = interval == 0 ? "First interval" : "Second interval";
-    } else if (interval == 2) {
-      c.message = config_.question + "\n\nLeft: the first interval    Right: the second interval";
+      c.hint = "Interval " + std::to_string(interval + 1) + " of " + std::to_string(config_.n_afc);
+    } else if (interval == config_.n_afc) {
+      c.message = config_.question + "\n\n" + config_.answer_keys() + ": the interval (" +
+                  (config_.n_afc == 2 ? "Left or 1 the first, Right or 2 the second" : "1 the first") + ")";
     }
     return c;
+  }
+
+  // Which interval a temporal trial shows `frames` after it began: 0 … n − 1, −1 in a blank, n
+  // once all are shown.
+  int interval_at(double frames) const {
+    const int period = config_.interval_frames + config_.blank_frames;
+    const int k = int(frames) / period;
+    if (k >= config_.n_afc || (k == config_.n_afc - 1 && frames >= k * period + config_.interval_frames)) return config_.n_afc;
+    return frames - k * period < config_.interval_frames ? k : -1;
   }
 
   FrameContent frame_content(double t) const {
     FrameContent c;
     switch (phase_) {
-      case Phase::instructions: c.message = o_.resume ? "Welcome back. The session continues where it stopped.\n\nPress Enter to continue." : config_.welcome; break;
+      case Phase::instructions:
+        c.message = o_.resume ? "Welcome back. The session continues where it stopped.\n\nPress Enter to continue." : config_.welcome_text();
+        break;
       case Phase::trial: return trial_content(t);
       case Phase::feedback: c.message = last_correct_ ? "Correct" : "Wrong"; break;
       case Phase::practice_done: c.message = "The practice trials are over. The study itself begins now.\n\nPress Enter to continue."; break;
@@ -269,7 +281,7 @@ class ChoiceLoop {
 
   void describe_screenshot(const fs::path& shot, const FrameContent& content, const adjust::StimulusLayout& layout, double t) {
     json info = {{"phase", int(phase_)}};
-    if (phase_ == Phase::trial && (content.left_texture || content.right_texture)) {
+    if (phase_ == Phase::trial && (content.left_texture || !content.row.empty())) {
       const ChoiceTrial& trial = *run_.current();
       info["trial"] = trial.number;
       info["target"] = trial.target;
@@ -278,9 +290,11 @@ class ChoiceLoop {
           if (texture_[i] == texture) return study_.images[i].relative;
         return std::string();
       };
-      info["left"] = {{"x", layout.left_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height}, {"file", file_of(content.left_texture)}};
-      if (!content.centred)
-        info["right"] = {{"x", layout.right_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height}, {"file", file_of(content.right_texture)}};
+      const std::vector<unsigned> shown = content.centred ? std::vector<unsigned>{content.left_texture} : content.row;
+      info["images"] = json::array();
+      for (size_t i = 0; i < shown.size() && i < layout.xs.size(); ++i)
+        info["images"].push_back({{"x", layout.xs[i]}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
+                                  {"file", file_of(shown[i])}});
       info["interval"] = content.centred ? content.hint : "";
     }
     (void)t;
@@ -329,7 +343,7 @@ int run_choice_session(const ChoiceSessionOptions& o) {
                 recorder.files().csv.string().c_str());
     return 0;
   }
-  auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study));
+  auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study, config));
   recorder.current_run().display = presenter->display_info();
   g_signal = 0;
   auto term = std::signal(SIGTERM, on_signal), interrupt = std::signal(SIGINT, on_signal);

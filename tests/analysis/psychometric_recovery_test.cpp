@@ -11,14 +11,19 @@
 namespace countershade::analysis {
 namespace {
 
+// One simulated observer's cells: Weibull α = 0.3, β = 3, 8 levels × 40 trials.
+std::vector<BinomialCell> simulated_cells(uint64_t seed) {
+  ForcedChoiceDesign design;
+  design.conditions = {{"scene", 0.01, 0.3, 3.0, {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4}}};
+  design.subjects = 1;
+  design.seed = seed;
+  return aggregate_cells(simulate_forced_choice(design)).begin()->second.pooled;
+}
+
 int coverage(double guess, double truth) {
   int covered = 0;
   for (int study = 0; study < 100; ++study) {
-    ForcedChoiceDesign design;
-    design.conditions = {{"scene", 0.01, 0.3, 3.0, {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4}}};
-    design.subjects = 1;
-    design.seed = uint64_t(1000 + study);
-    const auto cells = aggregate_cells(simulate_forced_choice(design)).begin()->second.pooled;
+    const auto cells = simulated_cells(uint64_t(1000 + study));
     PsychometricFit fit = fit_psychometric(cells, {PsychometricModel::weibull, guess, false});
     bootstrap_psychometric(fit, cells, 1000, uint64_t(study));
     covered += fit.ci_low <= truth && truth <= fit.ci_high;
@@ -38,11 +43,7 @@ TEST(PsychometricRecovery, TheDevianceOfTheTrueModelIsNotRejected) {
   // Under the generating model the bootstrap p-value is roughly uniform: about 5 of 100 below 0.05.
   int rejected = 0;
   for (int study = 0; study < 100; ++study) {
-    ForcedChoiceDesign design;
-    design.conditions = {{"scene", 0.01, 0.3, 3.0, {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4}}};
-    design.subjects = 1;
-    design.seed = uint64_t(5000 + study);
-    const auto cells = aggregate_cells(simulate_forced_choice(design)).begin()->second.pooled;
+    const auto cells = simulated_cells(uint64_t(5000 + study));
     PsychometricFit fit = fit_psychometric(cells, {PsychometricModel::weibull, 0.5, false});
     bootstrap_psychometric(fit, cells, 500, uint64_t(study));
     rejected += fit.p_deviance < 0.05;

@@ -27,7 +27,7 @@ TEST(ChoiceConfig, ProceduresThatCannotWorkAreOneLineAndExitTwo) {
       {R"({"procedure": {"type": "quest", "tGuess": 5, "tGuessSd": 1, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01, "gamma": 0.5, "range": 4}})",
        "procedure.range"},
       {R"({"procedure": {"type": "constant", "lambdas": [0.25]}})", "procedure.lambdas"},
-      {R"({"n_afc": 3, "procedure": {"type": "constant", "lambdas": [0.2]}})", "n_afc"},
+      {R"({"n_afc": 5, "procedure": {"type": "constant", "lambdas": [0.2]}})", "n_afc"},
       {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "practice_trials": 2,
            "practice_conditions": [{"scene": "nowhere", "method": "usm3d", "sigma": 0.03}]})", "practice_conditions[0]"},
   };

@@ -124,6 +124,20 @@ TEST(ChoiceGui, KilledSessionsResumeWithTheSameTrialsAndQuestState) {
   EXPECT_EQ(sidecar["runs"].back()["end"], "completed");
 }
 
+// Pixels of a stimulus (`image`: its file, position and size in a screenshot's record) that differ
+// from the screenshot.
+long pixels_differing(const Image& shot, const json& image, const fs::path& set) {
+  const Image stimulus = read_image(set / image["file"].get<std::string>());
+  EXPECT_EQ(stimulus.width, image["width"].get<int>());
+  const int x0 = image["x"], y0 = image["y"];
+  long differing = 0;
+  for (int y = 0; y < stimulus.height; ++y)
+    for (int x = 0; x < stimulus.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        differing += std::lround(stimulus.at(x, y, c) * 255) != std::lround(shot.at(x0 + x, y0 + y, c) * 255);
+  return differing;
+}
+
 // Temporal 2AFC: a screenshot in each interval shows that interval's stimulus pixel for pixel,
 // centred on the uniform surround; one interval is the reference, the other the enhanced image.
 TEST(ChoiceGui, TheScreenshotsShowBothIntervalsPixelExact) {
@@ -141,20 +155,15 @@ TEST(ChoiceGui, TheScreenshotsShowBothIntervalsPixelExact) {
   std::set<std::string> shown;
   for (const char* name : {"shot.png", "shot-2.png"}) {
     const json info = json::parse(testing::read_file(dir / (std::string(name) + ".json")));
-    ASSERT_TRUE(info.contains("left")) << name << ": " << info.dump();
-    EXPECT_EQ(info["interval"], std::string(name) == "shot.png" ? "First interval" : "Second interval");
+    ASSERT_EQ(info["images"].size(), 1u) << name << ": " << info.dump();
+    EXPECT_EQ(info["interval"], std::string(name) == "shot.png" ? "Interval 1 of 2" : "Interval 2 of 2");
     const Image shot = read_image(dir / name);
-    const Image stimulus = read_image(dir / "set" / info["left"]["file"].get<std::string>());
-    const int x0 = info["left"]["x"], y0 = info["left"]["y"];
-    EXPECT_EQ(x0, (shot.width - stimulus.width) / 2) << "centred";
-    long differing = 0;
-    for (int y = 0; y < stimulus.height; ++y)
-      for (int xx = 0; xx < stimulus.width; ++xx)
-        for (int c = 0; c < 3; ++c)
-          differing += std::lround(stimulus.at(xx, y, c) * 255) != std::lround(shot.at(x0 + xx, y0 + y, c) * 255);
-    EXPECT_EQ(differing, 0) << name;
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(std::lround(shot.at(x0 - 20, y0 + 5, c) * 255), 128) << "surround";
-    shown.insert(info["left"]["file"].get<std::string>());
+    const json& image = info["images"][0];
+    EXPECT_EQ(image["x"].get<int>(), (shot.width - image["width"].get<int>()) / 2) << "centred";
+    EXPECT_EQ(pixels_differing(shot, image, dir / "set"), 0) << name;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(std::lround(shot.at(image["x"].get<int>() - 20, image["y"].get<int>() + 5, c) * 255), 128) << "surround";
+    shown.insert(image["file"].get<std::string>());
   }
   EXPECT_EQ(shown.size(), 2u);
   EXPECT_TRUE(shown.count("front/reference.png"));
@@ -162,6 +171,38 @@ TEST(ChoiceGui, TheScreenshotsShowBothIntervalsPixelExact) {
   ASSERT_EQ(table.rows.size(), 2u);
   EXPECT_EQ(table.rows[1][6], "1.5");
   EXPECT_EQ(table.rows[1][10], "temporal");
+}
+
+// Spatial 3AFC: three images in a row, pixel exact, the enhanced one where the record says; the
+// number keys answer, and each row records the key's position.
+TEST(ChoiceGui, ThreeAlternativesInARowAnsweredWithNumberKeys) {
+  testing::TempDir dir;
+  const auto manifest = make_set(dir, R"({"n_afc": 3, "conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
+      "procedure": {"type": "constant", "lambdas": [2], "repetitions": 3}})");
+  testing::write_file(dir / "keys.txt", "300 enter\n100 screenshot\n100 1\n100 2\n100 3\n200 enter\n");
+  testing::XvfbServer x;
+  testing::Child app(choose_args(manifest, dir / "sessions",
+                                 {"--script", (dir / "keys.txt").string(), "--frame-clock", "--screenshot", (dir / "shot.png").string()}),
+                     x.display(), (dir / "log.txt").string());
+  ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
+  const json info = json::parse(testing::read_file(dir / "shot.png.json"));
+  ASSERT_EQ(info["images"].size(), 3u) << info.dump();
+  const Image shot = read_image(dir / "shot.png");
+  for (int i = 0; i < 3; ++i) {
+    const json& image = info["images"][size_t(i)];
+    EXPECT_EQ(pixels_differing(shot, image, dir / "set"), 0) << i;
+    EXPECT_EQ(image["file"] == "front/reference.png", i != info["target"].get<int>()) << i;
+  }
+  const CsvTable table = trials_of(dir / "sessions");
+  ASSERT_EQ(table.rows.size(), 4u) << testing::read_file(dir / "log.txt");
+  std::set<std::string> targets;
+  for (size_t r = 1; r < 4; ++r) {
+    EXPECT_EQ(table.rows[r][9], "3");
+    EXPECT_EQ(table.rows[r][12], std::to_string(r - 1)) << "the key pressed";
+    EXPECT_EQ(table.rows[r][13], table.rows[r][11] == table.rows[r][12] ? "1" : "0");
+    targets.insert(table.rows[r][11]);
+  }
+  EXPECT_EQ(targets.size(), 3u) << "each position once in a block of three";
 }
 
 }  // namespace
