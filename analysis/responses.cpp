@@ -87,6 +87,7 @@ class ResponseRows {
       throw_input_error(where(r, "question"), "unknown question '" + text(r, "question") + "' (expected low, high or best)");
     resp.question = *question;
     if (column_.count("method")) resp.method = text(r, "method");
+    resp.browser = column_.count("device_pixel_ratio") > 0;
     read_grid(r, resp);
     return resp;
   }

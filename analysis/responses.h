@@ -18,6 +18,7 @@ struct Response {
   int lambda_index = -1;   // the answer's index on its grid; -1 when the column is absent
   double lambda_max = 0;   // the top of the grid the observer could reach; 0 when absent
   std::string source;      // "file:line", for messages
+  bool browser = false;    // from a web-exported study (the file has the browser's columns)
 };
 
 std::vector<Response> read_responses(const std::filesystem::path& path);

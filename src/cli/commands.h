@@ -24,6 +24,7 @@ void add_simulate_command(CLI::App& app);
 void add_stimuli_command(CLI::App& app);
 void add_adjust_command(CLI::App& app);
 void add_choose_command(CLI::App& app);
+void add_export_web_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
 void add_audit_command(CLI::App& app);
 void add_congruence_command(CLI::App& app);

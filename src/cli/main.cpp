@@ -25,6 +25,7 @@ void add_commands(CLI::App& app) {
   add_stimuli_command(app);
   add_adjust_command(app);
   add_choose_command(app);
+  add_export_web_command(app);
   add_methods_command(app);
   add_audit_command(app);
   add_congruence_command(app);

@@ -1,0 +1,33 @@
+#pragma once
+// A stimulus set as a self-contained static web study (docs/online-study.md): jsPsych and
+// countershade's adjustment plugin, the set's images (checked against the manifest first) and
+// the study file the plugin plans from, so that a browser runs the app's procedure with the app's
+// plan and writes the app's responses rows.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "adjust/study.h"
+
+namespace countershade::adjust {
+
+struct WebExportOptions {
+  std::filesystem::path output;
+  std::filesystem::path assets;   // holds node_modules/ (jsPsych) and web/ (the plugin)
+  std::optional<std::string> post_url;
+  bool chinrest = false;
+  std::string title;
+};
+
+// What the plugin reads (study.js): the set, the plan's inputs, the texts, and per condition its
+// λ grid (as the app writes the numbers) and image files.
+nlohmann::ordered_json web_study(const Study& study, const WebExportOptions& options);
+
+// Writes the folder; returns the number of images copied. Throws InputError for a set that
+// cannot be exported (missing or altered images, sequences) or missing assets.
+size_t export_web_study(const Study& study, const WebExportOptions& options);
+
+}  // namespace countershade::adjust

@@ -1,0 +1,61 @@
+// The page of an exported study: asks for the participant's id (or takes ?subject=…&session=…),
+// checks the browser (window size, refresh rate), optionally measures the screen with the virtual
+// chinrest (recorded, never used to rescale), runs the adjustment session and offers the CSV.
+
+import { CountershadeAdjustPlugin } from "./plugin-adjust.js";
+
+const study = window.COUNTERSHADE_STUDY;
+const SUBJECT = /^[A-Za-z0-9_-]{1,64}$/;
+
+function askSubject() {
+  return new Promise((resolve) => {
+    const form = document.createElement("form");
+    const label = document.createElement("label");
+    label.textContent = "Participant id (letters, digits, '-', '_'): ";
+    const input = document.createElement("input");
+    input.name = "subject";
+    const go = document.createElement("button");
+    go.textContent = "Start";
+    form.append(label, input, go);
+    document.body.appendChild(form);
+    form.addEventListener("submit", (e) => {
+      e.preventDefault();
+      if (!SUBJECT.test(input.value)) return void (label.textContent = "Please use only letters, digits, '-' and '_': ");
+      form.remove();
+      resolve(input.value);
+    });
+    input.focus();
+  });
+}
+
+function offerCsv(csv, subject, session) {
+  const link = document.createElement("a");
+  link.href = URL.createObjectURL(new Blob([csv], { type: "text/csv" }));
+  link.download = `${subject}_s${String(session).padStart(2, "0")}.csv`;
+  link.textContent = "Download the answers (CSV)";
+  link.id = "countershade-download";
+  const p = document.createElement("p");
+  p.textContent = "Thank you. All answers are saved. ";
+  p.appendChild(link);
+  document.body.appendChild(p);
+}
+
+async function start() {
+  document.title = study.title;
+  const params = new URLSearchParams(window.location.search);
+  const subject = SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject();
+  const session = Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));
+  const jsPsych = window.initJsPsych({});
+  const environment = {};
+  const timeline = [{
+    type: window.jsPsychBrowserCheck,
+    skip_features: ["webcam", "microphone"],
+    on_finish: (data) => Object.assign(environment, { refresh_hz: data.vsync_rate, device_pixel_ratio: window.devicePixelRatio }),
+  }];
+  if (study.chinrest) timeline.push({ type: window.jsPsychVirtualChinrest, resize_units: "none" });
+  timeline.push({ type: CountershadeAdjustPlugin, study, subject, session, environment,
+                  on_finish: (data) => offerCsv(data.csv, subject, session) });
+  await jsPsych.run(timeline);
+}
+
+start();

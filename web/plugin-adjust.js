@@ -1,0 +1,228 @@
+// countershade's adjustment trial as a jsPsych 8 plugin (docs/online-study.md). One trial runs a
+// whole session: the app's plan for the subject and seed, the app's procedure and key repeat, the
+// images at 1:1 device pixels, every answer stored before the next question appears, and a reload
+// resuming at the first unanswered question.
+
+import { planTrials, sessionSeed } from "./plan.js";
+import { Procedure } from "./procedure.js";
+import { SessionStore } from "./store.js";
+
+const KEYS = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: "right", Enter: "enter",
+               Backspace: "backspace", Escape: "escape", q: "q", Q: "q" };
+
+// The smallest step in device pixels that is a whole number of CSS pixels at this ratio: an image
+// placed on it starts exactly on a device pixel (Chromium rounds an image's position to whole CSS
+// pixels at some ratios, measured at 1.25 and 2).
+function deviceSnap(dpr) {
+  for (let n = 1; n <= 64; ++n) {
+    const css = n / dpr;
+    if (Math.abs(css - Math.round(css)) < 1e-9) return n;
+  }
+  return 1;
+}
+
+// Where the two images go, in device pixels, or null when the window is too small for 1:1.
+export function layout(study, condition, innerWidth, innerHeight, dpr) {
+  const W = Math.round(innerWidth * dpr), H = Math.round(innerHeight * dpr);
+  const { width: w, height: h } = condition;
+  const line = study.font_px * 1.35 * dpr;
+  const side = Math.ceil(study.font_px * dpr), top = Math.ceil(line * 4.5), bottom = Math.ceil(line * 2.5);
+  const pair = 2 * w + study.gap_px;
+  if (pair + 2 * side > W || h + top + bottom > H) return null;
+  const snap = deviceSnap(dpr);
+  const down = (x) => Math.floor(x / snap) * snap;
+  const left = down((W - pair) / 2);
+  const right = Math.ceil((left + w + study.gap_px) / snap) * snap;
+  if (right + w + side > W) return null;
+  const y = down(top + Math.max(0, (H - top - bottom - h) / 2));
+  return { left, right, y, width: w, height: h, dpr };
+}
+
+function element(tag, style, parent) {
+  const e = document.createElement(tag);
+  Object.assign(e.style, style);
+  parent.appendChild(e);
+  return e;
+}
+
+class AdjustSession {
+  constructor(root, study, subject, session, environment) {
+    this.study = study;
+    this.subject = subject;
+    this.session = session;
+    this.environment = environment;
+    const gridSizes = study.conditions.map((c) => c.grid.length);
+    const seed = sessionSeed(BigInt(study.seed), subject, session);
+    this.plan = planTrials(gridSizes, { seed, repetitions: study.repetitions, side: study.side, start: study.start,
+                                        practiceTrials: study.practice_trials, practiceConditions: study.practice_conditions });
+    this.procedure = new Procedure(gridSizes, this.plan, study.timing);
+    this.store = new SessionStore(window.localStorage, `countershade:${study.set.sha256}:${subject}:${session}`, study.post_url);
+    this.resumed = this.store.rows.length > 0;
+    if (this.resumed) this.procedure.resume(this.store.answered());
+    this.ignoredRepeats = 0;
+    this.build(root);
+  }
+
+  build(root) {
+    const grey = `rgb(${this.study.surround},${this.study.surround},${this.study.surround})`;
+    const ink = this.study.surround >= 128 ? "#141414" : "#ebebeb";
+    this.page = element("div", { position: "fixed", inset: "0", background: grey, color: ink, overflow: "hidden",
+                                 fontFamily: "sans-serif", fontSize: `${this.study.font_px}px`, textAlign: "center" }, root);
+    const text = (top) => element("div", { position: "absolute", left: "10%", width: "80%", top, whiteSpace: "pre-wrap" }, this.page);
+    this.header = text("0px");
+    this.question = text("0px");
+    this.hint = text("0px");
+    this.message = text("40%");
+    this.images = [0, 1].map(() => element("img", { position: "absolute", imageRendering: "pixelated", display: "none" }, this.page));
+    this.bar = element("div", { position: "absolute", left: "30%", width: "40%", top: "55%", height: "10px", border: `1px solid ${ink}`, display: "none" }, this.page);
+    this.fill = element("div", { height: "100%", width: "0%", background: ink }, this.bar);
+  }
+
+  async preload() {
+    const files = [...new Set(this.study.conditions.flatMap((c) => [c.reference, ...c.images]))];
+    this.decoded = new Map();
+    this.bar.style.display = "block";
+    let done = 0;
+    for (const file of files) {
+      const img = new Image();
+      img.src = file;
+      await img.decode();
+      this.decoded.set(file, img);
+      this.fill.style.width = `${(100 * ++done) / files.length}%`;
+      this.message.textContent = `Loading the stimuli: ${done} of ${files.length}`;
+    }
+    this.bar.style.display = "none";
+  }
+
+  keyDown(e) {
+    const key = KEYS[e.key];
+    if (!key) return;
+    e.preventDefault();
+    if (e.repeat) return void ++this.ignoredRepeats; // the browser's repeat: the procedure times its own
+    const now = this.now();
+    const answer = this.procedure.press(key, now);
+    if (answer) this.record(answer);
+    if (this.procedure.phase === "finished" && key === "enter" && !answer && this.finishedShown) this.end("completed");
+    if (this.procedure.phase === "quit") this.end("quit");
+  }
+
+  record(answer) {
+    const trial = this.plan[answer.trialIndex];
+    if (trial.practice) return;
+    const c = this.study.conditions[trial.condition];
+    this.store.add({
+      subject: this.subject, scene: c.scene, sigma: c.sigma, question: answer.question, lambda: c.grid[answer.lambdaIndex],
+      method: c.method, lambda_step: this.study.lambda_step, lambda_index: answer.lambdaIndex, lambda_max: c.lambda_max,
+      start_index: answer.startIndex, repetition: trial.repetition, session: this.session, trial: trial.number, side: trial.side,
+      n_keypresses: answer.keypresses, rt_ms: (answer.rt * 1000).toFixed(1), revision: answer.revision,
+      timestamp_utc: new Date().toISOString(), stimulus_set: this.study.set.sha256, app_version: this.study.app_version, sequence: "",
+      device_pixel_ratio: window.devicePixelRatio, window_width: window.innerWidth, window_height: window.innerHeight,
+      refresh_hz: this.environment.refresh_hz ?? "", user_agent: navigator.userAgent,
+      plan_index: answer.trialIndex, question_index: ["low", "high", "best"].indexOf(answer.question),
+    });
+  }
+
+  now() {
+    return (performance.now() - this.t0) / 1000;
+  }
+
+  showImages(place, files) {
+    this.images.forEach((img, i) => {
+      if (!place) return void (img.style.display = "none");
+      const src = this.decoded.get(files[i]).src;
+      if (img.getAttribute("src") !== src) img.setAttribute("src", src);
+      Object.assign(img.style, { display: "block", left: `${(i === 0 ? place.left : place.right) / place.dpr}px`, top: `${place.y / place.dpr}px`,
+                                 width: `${place.width / place.dpr}px`, height: `${place.height / place.dpr}px` });
+    });
+  }
+
+  draw() {
+    const p = this.procedure, texts = this.study.texts;
+    const messages = { instructions: this.resumed ? texts.resume : texts.welcome, practice_done: texts.practice_done,
+                       paused: texts.paused, finished: texts.finished, quit: "" };
+    if (p.phase !== "question") {
+      this.showImages(null);
+      [this.header, this.question, this.hint].forEach((e) => (e.textContent = ""));
+      this.message.textContent = messages[p.phase];
+      this.finishedShown = p.phase === "finished";
+      return;
+    }
+    const trial = p.currentTrial, c = this.study.conditions[trial.condition];
+    const place = layout(this.study, c, window.innerWidth, window.innerHeight, window.devicePixelRatio);
+    if (!place) {
+      this.showImages(null);
+      this.message.textContent = "The window is too small to show the images at their true size. Please enlarge it, or set the browser's zoom to 100 %.";
+      return;
+    }
+    const enhanced = c.images[p.index];
+    this.showImages(place, trial.side === "left" ? [enhanced, c.reference] : [c.reference, enhanced]);
+    this.message.textContent = "";
+    const top = place.y / place.dpr, line = this.study.font_px * 1.35;
+    this.header.style.top = `${top - 3.2 * line}px`;
+    this.question.style.top = `${top - 1.9 * line}px`;
+    this.hint.style.top = `${top + place.height / place.dpr + 0.8 * line}px`;
+    this.header.textContent = trial.practice ? texts.practice : `Trial ${trial.number} of ${p.realTrialCount}`;
+    this.question.textContent = texts.questions[p.question];
+    this.hint.textContent = texts.keys_hint;
+    window.countershadeShown = { trial: trial.number, question: p.question, lambda_index: p.index, side: trial.side,
+                                 left: { x: place.left, y: place.y, file: trial.side === "left" ? enhanced : c.reference },
+                                 right: { x: place.right, y: place.y, file: trial.side === "left" ? c.reference : enhanced } };
+  }
+
+  frame() {
+    if (this.ended) return;
+    this.procedure.tick(this.now());
+    this.draw();
+    requestAnimationFrame(() => this.frame());
+  }
+
+  run() {
+    return new Promise(async (resolve) => {
+      this.resolve = resolve;
+      await this.preload();
+      this.t0 = performance.now();
+      this.onKeyDown = (e) => this.keyDown(e);
+      this.onKeyUp = (e) => KEYS[e.key] && this.procedure.release(KEYS[e.key], this.now());
+      document.addEventListener("keydown", this.onKeyDown);
+      document.addEventListener("keyup", this.onKeyUp);
+      this.frame();
+    });
+  }
+
+  end(how) {
+    this.ended = true;
+    document.removeEventListener("keydown", this.onKeyDown);
+    document.removeEventListener("keyup", this.onKeyUp);
+    this.resolve({ end: how, answers: this.store.rows.length, csv: this.store.csv(), browser_repeats_ignored: this.ignoredRepeats });
+  }
+}
+
+export class CountershadeAdjustPlugin {
+  static info = {
+    name: "countershade-adjust",
+    version: "1.0.0",
+    parameters: {
+      study: { type: window.jsPsychModule?.ParameterType.OBJECT, default: undefined },
+      subject: { type: window.jsPsychModule?.ParameterType.STRING, default: undefined },
+      session: { type: window.jsPsychModule?.ParameterType.INT, default: 1 },
+      environment: { type: window.jsPsychModule?.ParameterType.OBJECT, default: {} },
+    },
+    data: {
+      end: { type: window.jsPsychModule?.ParameterType.STRING },
+      answers: { type: window.jsPsychModule?.ParameterType.INT },
+      csv: { type: window.jsPsychModule?.ParameterType.STRING },
+    },
+  };
+
+  constructor(jsPsych) {
+    this.jsPsych = jsPsych;
+  }
+
+  async trial(displayElement, trial) {
+    const session = new AdjustSession(displayElement, trial.study, trial.subject, trial.session, trial.environment);
+    window.countershadeSession = session;
+    const result = await session.run();
+    displayElement.innerHTML = "";
+    this.jsPsych.finishTrial(result);
+  }
+}

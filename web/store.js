@@ -1,0 +1,85 @@
+// Where a browser session keeps its answers: every row goes to localStorage before the next
+// question appears, so a reload resumes at the first unanswered question; with a post URL each
+// row is also sent to the server, in order, and sent again until the server acknowledges it.
+
+const COLUMNS = [
+  "subject", "scene", "sigma", "question", "lambda", "method", "lambda_step", "lambda_index", "lambda_max",
+  "start_index", "repetition", "session", "trial", "side", "n_keypresses", "rt_ms", "revision", "timestamp_utc",
+  "stimulus_set", "app_version", "sequence",
+  // the browser's own columns (docs/data-formats.md)
+  "device_pixel_ratio", "window_width", "window_height", "refresh_hz", "user_agent",
+];
+export { COLUMNS };
+
+// One CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
+export function csvField(value) {
+  const text = String(value);
+  return /[",\r\n]/.test(text) ? `"${text.replaceAll('"', '""')}"` : text;
+}
+export const csvLine = (fields) => fields.map(csvField).join(",") + "\n";
+
+export class SessionStore {
+  constructor(storage, key, postUrl = null, fetchImpl = globalThis.fetch?.bind(globalThis)) {
+    this.storage = storage;
+    this.key = key;
+    this.postUrl = postUrl;
+    this.fetch = fetchImpl;
+    const saved = JSON.parse(storage.getItem(key) ?? "null");
+    this.rows = saved?.rows ?? [];   // every row: an object by column
+    this.posted = saved?.posted ?? 0; // rows the server has acknowledged
+    this.sending = false;
+  }
+
+  save() {
+    this.storage.setItem(this.key, JSON.stringify({ rows: this.rows, posted: this.posted }));
+  }
+
+  // Keeps the row (synchronously, before returning) and starts sending what is not acknowledged.
+  add(row) {
+    this.rows.push(row);
+    this.save();
+    this.flush();
+  }
+
+  // The latest answer to each (plan index, question): what a resume needs.
+  answered() {
+    const out = new Map();
+    for (const row of this.rows) out.set(`${row.plan_index},${row.question_index}`, { lambdaIndex: Number(row.lambda_index), revision: Number(row.revision) });
+    return out;
+  }
+
+  csv() {
+    return csvLine(COLUMNS) + this.rows.map((row) => csvLine(COLUMNS.map((c) => row[c] ?? ""))).join("");
+  }
+
+  // Sends the rows in order, one at a time, each until the server answers 2xx; retries after a
+  // second on failure.
+  async flush() {
+    if (!this.postUrl || this.sending) return;
+    this.sending = true;
+    try {
+      while (this.posted < this.rows.length) {
+        const row = this.rows[this.posted];
+        let ok = false;
+        try {
+          const response = await this.fetch(this.postUrl, {
+            method: "POST",
+            headers: { "Content-Type": "text/csv" },
+            body: csvLine(COLUMNS) + csvLine(COLUMNS.map((c) => row[c] ?? "")),
+          });
+          ok = response.ok;
+        } catch {
+          ok = false;
+        }
+        if (ok) {
+          ++this.posted;
+          this.save();
+        } else {
+          await new Promise((resolve) => setTimeout(resolve, this.retryMs ?? 1000));
+        }
+      }
+    } finally {
+      this.sending = false;
+    }
+  }
+}

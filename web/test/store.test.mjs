@@ -1,0 +1,47 @@
+// The browser's answer store without a browser: rows kept synchronously, CSV as RFC 4180, and a
+// server that refuses the first two POSTs of every row still ends with every row once, in order.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+
+import { SessionStore, csvField } from "../store.js";
+
+class MemoryStorage {
+  constructor() {
+    this.items = new Map();
+  }
+  getItem(k) {
+    return this.items.has(k) ? this.items.get(k) : null;
+  }
+  setItem(k, v) {
+    this.items.set(k, String(v));
+  }
+}
+
+test("text from a file is quoted, never split", () => {
+  assert.equal(csvField('a,"b"'), '"a,""b"""');
+  assert.equal(csvField("<script>x</script>"), "<script>x</script>");
+});
+
+test("every row reaches a refusing server exactly once, in order", async () => {
+  const received = [];
+  const attempts = new Map();
+  const fetch = async (url, { body }) => {
+    const row = body.split("\n")[1];
+    attempts.set(row, (attempts.get(row) ?? 0) + 1);
+    if (attempts.get(row) <= 2) return { ok: false };
+    received.push(row);
+    return { ok: true };
+  };
+  const storage = new MemoryStorage();
+  const store = new SessionStore(storage, "k", "http://localhost/collect", fetch);
+  store.retryMs = 1;
+  for (let i = 0; i < 5; ++i) store.add({ subject: "P01", trial: i + 1, question: "low", lambda_index: i, revision: 0, plan_index: i, question_index: 0 });
+  while (store.posted < 5) await new Promise((r) => setTimeout(r, 5));
+  assert.equal(received.length, 5);
+  assert.deepEqual(received.map((r) => r.split(",")[12]), ["1", "2", "3", "4", "5"]);
+  const reloaded = new SessionStore(storage, "k", null);
+  assert.equal(reloaded.rows.length, 5, "kept across a reload");
+  assert.equal(reloaded.posted, 5);
+  assert.deepEqual(reloaded.answered().get("3,0"), { lambdaIndex: 3, revision: 0 });
+});

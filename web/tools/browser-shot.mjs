@@ -1,0 +1,52 @@
+// Opens an exported study in Debian's headless Chromium (through puppeteer-core, never a
+// downloaded browser) at a device scale factor, starts the session, steps λ up twice and writes
+// a screenshot of the trial with what the page says it shows (for the pixel test).
+//   node web/tools/browser-shot.mjs STUDY_DIR DPR OUT.png
+
+import { createServer } from "node:http";
+import { readFile, writeFile } from "node:fs/promises";
+import { extname, join, normalize } from "node:path";
+
+import puppeteer from "puppeteer-core";
+
+const [dir, dpr, out] = process.argv.slice(2);
+const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".png": "image/png" };
+
+// A static file server for the study folder on a free loopback port.
+export function serve(root) {
+  const server = createServer(async (req, res) => {
+    const asked = normalize(decodeURIComponent(new URL(req.url, "http://x").pathname)).replace(/^(\.\.[/\\])+/, "");
+    const path = asked === "/" ? "index.html" : asked;
+    try {
+      const body = await readFile(join(root, path));
+      res.writeHead(200, { "Content-Type": TYPES[extname(path)] ?? "application/octet-stream" });
+      res.end(body);
+    } catch {
+      res.writeHead(404);
+      res.end();
+    }
+  });
+  return new Promise((resolve) => server.listen(0, "127.0.0.1", () => resolve(server)));
+}
+
+const server = await serve(dir);
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium-headless-shell",
+  args: ["--no-sandbox", "--force-color-profile=srgb"],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 900, height: 600, deviceScaleFactor: Number(dpr) });
+  await page.goto(`http://127.0.0.1:${server.address().port}/?subject=P01`);
+  await page.waitForFunction(() => window.countershadeSession?.t0 !== undefined, { timeout: 60000 });
+  await page.keyboard.press("Enter");
+  for (const key of ["ArrowUp", "ArrowUp"]) await page.keyboard.press(key);
+  await page.waitForFunction(() => window.countershadeShown?.lambda_index !== undefined);
+  await new Promise((r) => setTimeout(r, 200));
+  const shown = await page.evaluate(() => window.countershadeShown);
+  await page.screenshot({ path: out });
+  await writeFile(`${out}.json`, JSON.stringify({ ...shown, device_pixel_ratio: Number(dpr) }, null, 1));
+} finally {
+  await browser.close();
+  server.close();
+}

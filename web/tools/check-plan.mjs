@@ -1,0 +1,33 @@
+// Checks the browser's plan against the app's: reads the cases a test wrote (the app's plans from
+// src/adjust/procedure.cpp) and exits 1 naming the first row that differs.
+
+import { readFileSync } from "node:fs";
+
+import { planTrials, sessionSeed } from "../plan.js";
+
+const cases = JSON.parse(readFileSync(process.argv[2], "utf8"));
+let rows = 0;
+for (const [n, c] of cases.entries()) {
+  const seed = sessionSeed(BigInt(c.study_seed), c.subject, c.session);
+  if (seed.toString() !== c.session_seed) {
+    console.log(`case ${n}: session seed ${seed} where the app has ${c.session_seed}`);
+    process.exit(1);
+  }
+  const plan = planTrials(c.grid_sizes, { seed, repetitions: c.repetitions, side: c.side, start: c.start,
+                                          practiceTrials: c.practice_trials, practiceConditions: c.practice_conditions });
+  if (plan.length !== c.plan.length) {
+    console.log(`case ${n}: ${plan.length} trials where the app has ${c.plan.length}`);
+    process.exit(1);
+  }
+  for (const [i, t] of plan.entries()) {
+    const a = c.plan[i];
+    const same = t.number === a.number && t.practice === a.practice && t.condition === a.condition &&
+                 t.repetition === a.repetition && t.side === a.side && t.start.join() === a.start.join();
+    if (!same) {
+      console.log(`case ${n} row ${i}: browser ${JSON.stringify(t)}, app ${JSON.stringify(a)}`);
+      process.exit(1);
+    }
+    ++rows;
+  }
+}
+console.log(`${cases.length} plans, ${rows} rows: the same as the app's`);
