@@ -403,7 +403,7 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   for (const auto& e : b.excluded) out["excluded_subjects"].push_back({{"subject", e.subject}, {"reason", e.reason}});
   out["lambda_step"] = b.lambda_step;
   out["jnd_normalization"] = jnd_normalization_name(options.normalization);
-  out["browser_answers"] = std::count_if(rows.begin(), rows.end(), [](const Response* r) { return r->browser; });
+  b.browser_answers = size_t(std::count_if(rows.begin(), rows.end(), [](const Response* r) { return r->browser; }));
   if (!method.empty()) out["method"] = method;
   add_descriptives(b);
   add_anovas(b);

@@ -63,6 +63,7 @@ class CellTable {
 // Everything computed for one method block, kept for tables, figures and the report.
 struct BlockResults {
   std::string method;  // "" when the CSV has no method column
+  size_t browser_answers = 0;  // from a web-exported study (for the report; results.json does not differ)
   double lambda_step = 0;
   std::vector<std::string> subjects, scenes, warnings;  // subjects: included, sorted
   std::vector<double> sigmas;

@@ -112,8 +112,8 @@ void report_head(std::ostringstream& h, const BlockResults& b) {
     << "<h1>Adjustment study analysis" << (b.method.empty() ? "" : ": " + xml_escape(b.method)) << "</h1>\n"
     << "<p>" << r["n_subjects"] << " subjects analysed; JND normalisation: " << r["jnd_normalization"].get<std::string>()
     << "; λ grid step " << r["lambda_step"] << ".</p>\n";
-  if (r.value("browser_answers", 0) > 0)
-    h << "<p>" << r["browser_answers"] << " answers came from a browser (a web-exported study): their display was "
+  if (b.browser_answers > 0)
+    h << "<p>" << b.browser_answers << " answers came from a browser (a web-exported study): their display was "
       << "not calibrated, and the CSV's device_pixel_ratio, window and user_agent columns describe it.</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>";

@@ -45,6 +45,8 @@ async function start() {
   const params = new URLSearchParams(window.location.search);
   const subject = SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject();
   const session = Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));
+  // ?observer=simulated:SEED: the app's simulated observer answers (pilots and tests).
+  const observer = /^simulated:(\d{1,15})$/.exec(params.get("observer") ?? "")?.[1] ?? null;
   const jsPsych = window.initJsPsych({});
   const environment = {};
   const timeline = [{
@@ -53,7 +55,7 @@ async function start() {
     on_finish: (data) => Object.assign(environment, { refresh_hz: data.vsync_rate, device_pixel_ratio: window.devicePixelRatio }),
   }];
   if (study.chinrest) timeline.push({ type: window.jsPsychVirtualChinrest, resize_units: "none" });
-  timeline.push({ type: CountershadeAdjustPlugin, study, subject, session, environment,
+  timeline.push({ type: CountershadeAdjustPlugin, study, subject, session, environment, observer,
                   on_finish: (data) => offerCsv(data.csv, subject, session) });
   await jsPsych.run(timeline);
 }

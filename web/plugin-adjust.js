@@ -3,6 +3,7 @@
 // images at 1:1 device pixels, every answer stored before the next question appears, and a reload
 // resuming at the first unanswered question.
 
+import { SimulatedObserver } from "./observer.js";
 import { planTrials, sessionSeed } from "./plan.js";
 import { Procedure } from "./procedure.js";
 import { SessionStore } from "./store.js";
@@ -46,7 +47,7 @@ function element(tag, style, parent) {
 }
 
 class AdjustSession {
-  constructor(root, study, subject, session, environment) {
+  constructor(root, study, subject, session, environment, observer) {
     this.study = study;
     this.subject = subject;
     this.session = session;
@@ -57,9 +58,11 @@ class AdjustSession {
                                         practiceTrials: study.practice_trials, practiceConditions: study.practice_conditions });
     this.procedure = new Procedure(gridSizes, this.plan, study.timing);
     this.store = new SessionStore(window.localStorage, `countershade:${study.set.sha256}:${subject}:${session}`, study.post_url);
+    this.store.flush(); // rows a reload left unsent
     this.resumed = this.store.rows.length > 0;
     if (this.resumed) this.procedure.resume(this.store.answered());
     this.ignoredRepeats = 0;
+    if (observer != null) this.observer = new SimulatedObserver(observer, study.conditions);
     this.build(root);
   }
 
@@ -99,10 +102,14 @@ class AdjustSession {
     if (!key) return;
     e.preventDefault();
     if (e.repeat) return void ++this.ignoredRepeats; // the browser's repeat: the procedure times its own
-    const now = this.now();
+    this.press(key, this.now());
+  }
+
+  press(key, now) {
+    const finished = this.procedure.phase === "finished";
     const answer = this.procedure.press(key, now);
     if (answer) this.record(answer);
-    if (this.procedure.phase === "finished" && key === "enter" && !answer && this.finishedShown) this.end("completed");
+    if (finished && (key === "enter" || key === "escape")) this.end("completed");
     if (this.procedure.phase === "quit") this.end("quit");
   }
 
@@ -144,7 +151,6 @@ class AdjustSession {
       this.showImages(null);
       [this.header, this.question, this.hint].forEach((e) => (e.textContent = ""));
       this.message.textContent = messages[p.phase];
-      this.finishedShown = p.phase === "finished";
       return;
     }
     const trial = p.currentTrial, c = this.study.conditions[trial.condition];
@@ -171,6 +177,10 @@ class AdjustSession {
 
   frame() {
     if (this.ended) return;
+    const key = this.observer?.act(this.procedure, this.now());
+    if (key) this.press(key, this.now());
+    if (this.observer && this.procedure.phase === "finished") this.end("completed"); // as the app's automated runs end
+    if (this.ended) return;
     this.procedure.tick(this.now());
     this.draw();
     requestAnimationFrame(() => this.frame());
@@ -193,7 +203,9 @@ class AdjustSession {
     this.ended = true;
     document.removeEventListener("keydown", this.onKeyDown);
     document.removeEventListener("keyup", this.onKeyUp);
-    this.resolve({ end: how, answers: this.store.rows.length, csv: this.store.csv(), browser_repeats_ignored: this.ignoredRepeats });
+    const result = { end: how, answers: this.store.rows.length, csv: this.store.csv(), browser_repeats_ignored: this.ignoredRepeats };
+    window.countershadeResult = result;
+    this.resolve(result);
   }
 }
 
@@ -206,6 +218,7 @@ export class CountershadeAdjustPlugin {
       subject: { type: window.jsPsychModule?.ParameterType.STRING, default: undefined },
       session: { type: window.jsPsychModule?.ParameterType.INT, default: 1 },
       environment: { type: window.jsPsychModule?.ParameterType.OBJECT, default: {} },
+      observer: { type: window.jsPsychModule?.ParameterType.STRING, default: null },
     },
     data: {
       end: { type: window.jsPsychModule?.ParameterType.STRING },
@@ -219,7 +232,7 @@ export class CountershadeAdjustPlugin {
   }
 
   async trial(displayElement, trial) {
-    const session = new AdjustSession(displayElement, trial.study, trial.subject, trial.session, trial.environment);
+    const session = new AdjustSession(displayElement, trial.study, trial.subject, trial.session, trial.environment, trial.observer);
     window.countershadeSession = session;
     const result = await session.run();
     displayElement.innerHTML = "";

@@ -28,6 +28,7 @@ export class SessionStore {
     this.rows = saved?.rows ?? [];   // every row: an object by column
     this.posted = saved?.posted ?? 0; // rows the server has acknowledged
     this.sending = false;
+    this.backoff = 0;
   }
 
   save() {
@@ -52,8 +53,8 @@ export class SessionStore {
     return csvLine(COLUMNS) + this.rows.map((row) => csvLine(COLUMNS.map((c) => row[c] ?? ""))).join("");
   }
 
-  // Sends the rows in order, one at a time, each until the server answers 2xx; retries after a
-  // second on failure.
+  // Sends the rows in order, one at a time, each until the server answers 2xx; after a failure it
+  // waits 200 ms, doubling up to 5 s while the server keeps failing.
   async flush() {
     if (!this.postUrl || this.sending) return;
     this.sending = true;
@@ -74,8 +75,10 @@ export class SessionStore {
         if (ok) {
           ++this.posted;
           this.save();
+          this.backoff = 0;
         } else {
-          await new Promise((resolve) => setTimeout(resolve, this.retryMs ?? 1000));
+          this.backoff = Math.min(5000, this.backoff ? 2 * this.backoff : (this.retryMs ?? 200));
+          await new Promise((resolve) => setTimeout(resolve, this.backoff));
         }
       }
     } finally {

@@ -25,6 +25,7 @@ const std::vector<std::pair<std::string, std::string>> kAssets = {
     {"web/plan.js", "countershade/plan.js"},
     {"web/procedure.js", "countershade/procedure.js"},
     {"web/store.js", "countershade/store.js"},
+    {"web/observer.js", "countershade/observer.js"},
     {"web/plugin-adjust.js", "countershade/plugin-adjust.js"},
     {"web/main.js", "countershade/main.js"},
     {"web/index.html", "index.html"},
@@ -40,13 +41,15 @@ json condition_json(const Study& study, int c) {
   const Condition& condition = study.conditions[size_t(c)];
   const auto& stimuli = study.condition_images[size_t(c)];
   auto image_of = [&](int stimulus) { return image_name(size_t(study.stimuli[size_t(stimulus)].frames[0])); };
-  json grid = json::array(), images = json::array();
+  json grid = json::array(), values = json::array(), images = json::array();
   for (size_t k = 1; k < stimuli.size(); ++k) {
-    grid.push_back(format_value(study.lambda(int(k) - 1)));
+    grid.push_back(format_value(study.lambda(int(k) - 1)));  // as the app writes it
+    values.push_back(study.lambda(int(k) - 1));              // as the app computes with it
     images.push_back(image_of(stimuli[k]));
   }
   return {{"scene", condition.scene}, {"method", condition.method}, {"sigma", format_value(condition.sigma)},
-          {"grid", grid}, {"lambda_max", format_value(study.lambda_max(c))}, {"reference", image_of(stimuli[0])},
+          {"sigma_value", condition.sigma}, {"grid", grid}, {"grid_values", values},
+          {"lambda_max", format_value(study.lambda_max(c))}, {"reference", image_of(stimuli[0])},
           {"images", images}, {"width", study.width(c)}, {"height", study.height(c)}};
 }
 

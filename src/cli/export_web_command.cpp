@@ -27,8 +27,9 @@ std::string assets_folder(const ExportArgs& a) {
 
 void run(const ExportArgs& a) {
   check_output_folder(a.output);
-  if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 && a.post_url.rfind("https://", 0) != 0)
-    throw_input_error("--post-url", "must start with http:// or https://");
+  if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 && a.post_url.rfind("https://", 0) != 0 &&
+      a.post_url.rfind("/", 0) != 0)
+    throw_input_error("--post-url", "must start with http://, https:// or / (a path on the server that hosts the study)");
   const adjust::Study study = adjust::load_study(a.manifest, std::nullopt);
   adjust::WebExportOptions o;
   o.output = a.output;
@@ -48,7 +49,8 @@ void add_export_web_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("export-web", "Export a stimulus set as a static jsPsych adjustment study for browsers.");
   cmd->add_option("manifest", a->manifest, "The stimulus set's manifest.json")->required();
   cmd->add_option("-o,--output", a->output, "The study folder to write")->required();
-  cmd->add_option("--post-url", a->post_url, "Also send every answer to this URL (POST, one CSV row), retried until acknowledged");
+  cmd->add_option("--post-url", a->post_url,
+                  "Also send every answer to this URL or /path on the hosting server (POST, one CSV row), retried until acknowledged");
   cmd->add_flag("--chinrest", a->chinrest, "Add jsPsych's virtual chinrest (recorded only: the page is never rescaled)");
   cmd->add_option("--title", a->title, "The page title (default: the set's name)");
   cmd->add_option("--assets", a->assets, "The folder with node_modules/ and web/ (default: the source tree)");

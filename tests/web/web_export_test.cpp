@@ -11,6 +11,11 @@
 #include "adjust/procedure.h"
 #include "adjust/study.h"
 #include "core/image.h"
+#include "formats/responses.h"
+#include "../adjust/x_display.h"
+
+#include <random>
+#include <set>
 
 namespace countershade::adjust {
 namespace {
@@ -18,7 +23,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string node(const std::string& arguments) { return "cd " + testing::source_dir().string() + " && node " + arguments; }
+// A Node.js command run from the source tree (where node_modules/ is); `environment`: VAR=value …
+std::string node(const std::string& arguments, const std::string& environment = "") {
+  return "cd " + testing::source_dir().string() + " && " + environment + " node " + arguments;
+}
 
 json plan_case(const std::vector<int>& grid_sizes, PlanSettings s, uint64_t study_seed, const std::string& subject, int session) {
   std::vector<Condition> conditions;
@@ -88,6 +96,92 @@ TEST(WebExport, BothStimuliArePixelExactAtEveryDeviceScaleFactor) {
       EXPECT_EQ(differing, 0) << "device scale factor " << dpr << ", " << side << " at " << x0 << "," << y0;
     }
   }
+}
+
+// The rows of a responses CSV without the columns that depend on the clock or the browser.
+std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
+  const CsvTable table = parse_csv(testing::read_file(csv), csv.string());
+  std::vector<std::string> keep = response_columns();
+  std::erase_if(keep, [](const std::string& c) { return c == "rt_ms" || c == "timestamp_utc"; });
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& row : table.rows) {
+    std::vector<std::string> kept;
+    for (const std::string& c : keep) {
+      const auto at = std::find(table.rows[0].begin(), table.rows[0].end(), c) - table.rows[0].begin();
+      kept.push_back(size_t(at) < row.size() ? row[size_t(at)] : "?");
+    }
+    rows.push_back(kept);
+  }
+  return rows;
+}
+
+// The app's session of the simulated observer `seed`, on the frame clock, into `sessions`.
+void app_session(const fs::path& manifest, const fs::path& sessions, const std::string& subject, int seed) {
+  testing::XvfbServer x;
+  testing::Child app({COUNTERSHADE_BINARY, "adjust", manifest.string(), "--subject", subject, "--sessions", sessions.string(),
+                      "--observer", "simulated:" + std::to_string(seed), "--frame-clock"},
+                     x.display(), (sessions.parent_path() / "app-log.txt").string());
+  ASSERT_EQ(app.wait(300), 0) << testing::read_file(sessions.parent_path() / "app-log.txt");
+}
+
+// The browser's session of the same observer (reloading after the given numbers of answers);
+// returns the CSV the page offers; the rows its server accepted are in CSV.posted.
+fs::path browser_session(const fs::path& study, const fs::path& out, const std::string& subject, int seed,
+                         const std::string& reloads = "", int refuse = 0) {
+  const fs::path csv = out / (subject + "_s01.csv");
+  const auto run = testing::run_program(
+      "bash -c", "'" + node("web/tools/browser-session.mjs " + study.string() + " " + subject + " " + std::to_string(seed) + " " +
+                                csv.string() + " " + reloads,
+                            "REFUSE=" + std::to_string(refuse)) + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return csv;
+}
+
+// A simulated observer answers in the browser exactly as in the app: the same rows apart from the
+// clock's columns and the browser's, and so the same results.json.
+TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --post-url /collect").exit_code, 0);
+  fs::create_directories(dir / "browser");
+  std::string app_csvs, browser_csvs;
+  for (int s = 1; s <= 3; ++s) {
+    const std::string subject = "P0" + std::to_string(s);
+    app_session(manifest, dir / "app", subject, s);
+    const fs::path csv = browser_session(dir / "web", dir / "browser", subject, s);
+    const auto app_rows = comparable_rows(dir / "app" / (subject + "_s01.csv"));
+    EXPECT_EQ(app_rows.size(), 13u);
+    EXPECT_EQ(comparable_rows(csv), app_rows) << subject;
+    EXPECT_EQ(testing::read_file(csv.string() + ".posted").size() > 0, true);
+    app_csvs += " " + (dir / "app" / (subject + "_s01.csv")).string();
+    browser_csvs += " " + csv.string();
+  }
+  ASSERT_EQ(testing::run_cli("analyze" + app_csvs + " -o " + (dir / "app-report").string() + " --no-figures").exit_code, 0);
+  const auto browser = testing::run_cli("analyze" + browser_csvs + " -o " + (dir / "browser-report").string());
+  ASSERT_EQ(browser.exit_code, 0) << browser.output;
+  EXPECT_EQ(testing::read_file(dir / "app-report/results.json"), testing::read_file(dir / "browser-report/results.json"));
+  EXPECT_NE(testing::read_file(dir / "browser-report/report.html").find("36 answers came from a browser"), std::string::npos);
+}
+
+// Ten reloads at random moments lose and repeat no answer, and a server that refuses the first two
+// POSTs of every row still receives every row exactly once, in order.
+TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir, R"({"repetitions": 2})");
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --post-url /collect").exit_code, 0);
+  std::mt19937 random(46);
+  std::set<int> points;
+  while (points.size() < 10) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
+  std::string reloads;
+  for (int p : points) reloads += std::to_string(p) + " ";
+  fs::create_directories(dir / "browser");
+  const fs::path csv = browser_session(dir / "web", dir / "browser", "P09", 9, reloads, 2);
+  app_session(manifest, dir / "app", "P09", 9);
+  const auto rows = comparable_rows(csv);
+  EXPECT_EQ(rows.size(), 1u + 24u);
+  EXPECT_EQ(rows, comparable_rows(dir / "app/P09_s01.csv"));
+  const std::string table = testing::read_file(csv);
+  EXPECT_EQ(testing::read_file(csv.string() + ".posted"), table.substr(table.find('\n') + 1));
 }
 
 TEST(WebExport, ASetWithAMissingOrAlteredImageIsRefused) {

@@ -3,31 +3,13 @@
 // a screenshot of the trial with what the page says it shows (for the pixel test).
 //   node web/tools/browser-shot.mjs STUDY_DIR DPR OUT.png
 
-import { createServer } from "node:http";
-import { readFile, writeFile } from "node:fs/promises";
-import { extname, join, normalize } from "node:path";
+import { writeFile } from "node:fs/promises";
 
 import puppeteer from "puppeteer-core";
 
-const [dir, dpr, out] = process.argv.slice(2);
-const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".png": "image/png" };
+import { serve } from "./static-server.mjs";
 
-// A static file server for the study folder on a free loopback port.
-export function serve(root) {
-  const server = createServer(async (req, res) => {
-    const asked = normalize(decodeURIComponent(new URL(req.url, "http://x").pathname)).replace(/^(\.\.[/\\])+/, "");
-    const path = asked === "/" ? "index.html" : asked;
-    try {
-      const body = await readFile(join(root, path));
-      res.writeHead(200, { "Content-Type": TYPES[extname(path)] ?? "application/octet-stream" });
-      res.end(body);
-    } catch {
-      res.writeHead(404);
-      res.end();
-    }
-  });
-  return new Promise((resolve) => server.listen(0, "127.0.0.1", () => resolve(server)));
-}
+const [dir, dpr, out] = process.argv.slice(2);
 
 const server = await serve(dir);
 const browser = await puppeteer.launch({

@@ -1,0 +1,39 @@
+// Runs a whole session of an exported study in Debian's headless Chromium with the simulated
+// observer, optionally reloading the page at given moments, and writes the CSV the page offers.
+// The server also takes the study's POSTs to /collect, refusing the first two attempts at every
+// row ($REFUSE to change that), and writes the rows it accepted, in order, to OUT.csv.posted.
+//   node web/tools/browser-session.mjs STUDY_DIR SUBJECT SEED OUT.csv [RELOAD_AFTER_ANSWERS...]
+
+import { writeFile } from "node:fs/promises";
+
+import puppeteer from "puppeteer-core";
+
+import { serve } from "./static-server.mjs";
+
+const [dir, subject, seed, out, ...reloads] = process.argv.slice(2);
+const posted = [];
+const server = await serve(dir, (row) => posted.push(row), Number(process.env.REFUSE ?? 2));
+const browser = await puppeteer.launch({ executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium-headless-shell",
+                                         args: ["--no-sandbox", "--force-color-profile=srgb"] });
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
+  const url = `http://127.0.0.1:${server.address().port}/?subject=${subject}&observer=simulated:${seed}`;
+  await page.goto(url);
+  // Reload after the given numbers of stored answers: the page must resume where it stopped.
+  for (const after of reloads.map(Number)) {
+    await page.waitForFunction((n) => (window.countershadeSession?.store.rows.length ?? 0) >= n || window.countershadeResult,
+                               { timeout: 120000, polling: 5 }, after);
+    await page.reload();
+  }
+  await page.waitForFunction(() => window.countershadeResult, { timeout: 300000 });
+  await writeFile(out, await page.evaluate(() => window.countershadeResult.csv));
+  // Every row sent before the page is closed (the store retries each refused POST after a second).
+  await page.waitForFunction(() => !window.countershadeSession?.store.postUrl ||
+                             window.countershadeSession.store.posted === window.countershadeSession.store.rows.length,
+                             { timeout: 300000, polling: 50 });
+  await writeFile(`${out}.posted`, posted.join("\n") + (posted.length ? "\n" : ""));
+} finally {
+  await browser.close();
+  server.close();
+}

@@ -1,0 +1,42 @@
+// A static file server for a study folder on a free loopback port, for the browser tests (any
+// static server does for a real study).
+
+import { createServer } from "node:http";
+import { readFile } from "node:fs/promises";
+import { extname, join, normalize } from "node:path";
+
+const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".png": "image/png" };
+
+// A static file server for the study folder on a free loopback port. With `collect`, it also
+// takes POSTs to /collect: it refuses the first `refuse` attempts at each row (HTTP 503) and
+// passes each row it accepts to collect(row).
+export function serve(root, collect = null, refuse = 0) {
+  const attempts = new Map();
+  const server = createServer(async (req, res) => {
+    if (req.method === "POST" && collect) {
+      let body = "";
+      for await (const chunk of req) body += chunk;
+      const row = body.split("\n")[1];
+      attempts.set(row, (attempts.get(row) ?? 0) + 1);
+      if (attempts.get(row) <= refuse) {
+        res.writeHead(503);
+        return void res.end();
+      }
+      collect(row);
+      res.writeHead(200);
+      return void res.end();
+    }
+    const asked = normalize(decodeURIComponent(new URL(req.url, "http://x").pathname)).replace(/^(\.\.[/\\])+/, "");
+    const path = asked === "/" ? "index.html" : asked;
+    try {
+      const body = await readFile(join(root, path));
+      res.writeHead(200, { "Content-Type": TYPES[extname(path)] ?? "application/octet-stream" });
+      res.end(body);
+    } catch {
+      res.writeHead(404);
+      res.end();
+    }
+  });
+  return new Promise((resolve) => server.listen(0, "127.0.0.1", () => resolve(server)));
+}
+
