@@ -81,20 +81,36 @@ class AdjustSession {
     this.fill = element("div", { height: "100%", width: "0%", background: ink }, this.bar);
   }
 
-  async preload() {
-    const files = [...new Set(this.study.conditions.flatMap((c) => [c.reference, ...c.images]))];
-    this.decoded = new Map();
-    this.bar.style.display = "block";
-    let done = 0;
-    for (const file of files) {
-      const img = new Image();
-      img.src = file;
-      await img.decode();
-      this.decoded.set(file, img);
-      this.fill.style.width = `${(100 * ++done) / files.length}%`;
-      this.message.textContent = `Loading the stimuli: ${done} of ${files.length}`;
+  // Decodes one condition's images (once); shows a progress bar while the session waits for them.
+  loadCondition(condition) {
+    if (!this.loading.has(condition)) {
+      const c = this.study.conditions[condition];
+      const files = [c.reference, ...c.images];
+      const started = performance.now();
+      let done = 0;
+      this.loading.set(condition, Promise.all(files.map(async (file) => {
+        const img = new Image();
+        img.src = file;
+        await img.decode();
+        this.decoded.set(file, img);
+        this.progress = { condition, done: ++done, total: files.length };
+      })).then(() => {
+        this.loaded.add(condition);
+        this.loadSeconds[condition] = (performance.now() - started) / 1000; // for bench/web
+      }));
     }
-    this.bar.style.display = "none";
+    return this.loading.get(condition);
+  }
+
+  // The conditions in the order the plan needs them from the current trial on, each loaded in turn
+  // in the background, so the next trial's images are usually ready before it starts.
+  async loadAhead() {
+    const order = [...new Set(this.plan.slice(this.procedure.trial).map((t) => t.condition))];
+    for (const c of order) await this.loadCondition(c);
+  }
+
+  ready() {
+    return this.loaded.has(this.procedure.currentTrial.condition);
   }
 
   keyDown(e) {
@@ -102,6 +118,7 @@ class AdjustSession {
     if (!key) return;
     e.preventDefault();
     if (e.repeat) return void ++this.ignoredRepeats; // the browser's repeat: the procedure times its own
+    if (this.procedure.phase === "question" && !this.ready()) return; // a λ step never waits for an image
     this.press(key, this.now());
   }
 
@@ -149,11 +166,22 @@ class AdjustSession {
                        paused: texts.paused, finished: texts.finished, quit: "" };
     if (p.phase !== "question") {
       this.showImages(null);
+      this.bar.style.display = "none";
       [this.header, this.question, this.hint].forEach((e) => (e.textContent = ""));
       this.message.textContent = messages[p.phase];
       return;
     }
     const trial = p.currentTrial, c = this.study.conditions[trial.condition];
+    if (!this.ready()) {
+      this.loadCondition(trial.condition);
+      this.showImages(null);
+      const { done, total } = this.progress?.condition === trial.condition ? this.progress : { done: 0, total: 1 + c.images.length };
+      this.bar.style.display = "block";
+      this.fill.style.width = `${(100 * done) / total}%`;
+      this.message.textContent = `Loading the stimuli: ${done} of ${total}`;
+      return;
+    }
+    this.bar.style.display = "none";
     const place = layout(this.study, c, window.innerWidth, window.innerHeight, window.devicePixelRatio);
     if (!place) {
       this.showImages(null);
@@ -177,7 +205,8 @@ class AdjustSession {
 
   frame() {
     if (this.ended) return;
-    const key = this.observer?.act(this.procedure, this.now());
+    const waiting = this.procedure.phase === "question" && !this.ready();
+    const key = waiting ? null : this.observer?.act(this.procedure, this.now());
     if (key) this.press(key, this.now());
     if (this.observer && this.procedure.phase === "finished") this.end("completed"); // as the app's automated runs end
     if (this.ended) return;
@@ -187,9 +216,13 @@ class AdjustSession {
   }
 
   run() {
-    return new Promise(async (resolve) => {
+    return new Promise((resolve) => {
       this.resolve = resolve;
-      await this.preload();
+      this.decoded = new Map();
+      this.loading = new Map();
+      this.loaded = new Set();
+      this.loadSeconds = {};
+      this.loadAhead().catch((error) => (this.message.textContent = `A stimulus could not be loaded: ${error.message}`));
       this.t0 = performance.now();
       this.onKeyDown = (e) => this.keyDown(e);
       this.onKeyUp = (e) => KEYS[e.key] && this.procedure.release(KEYS[e.key], this.now());

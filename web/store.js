@@ -54,7 +54,7 @@ export class SessionStore {
   }
 
   // Sends the rows in order, one at a time, each until the server answers 2xx; after a failure it
-  // waits 200 ms, doubling up to 5 s while the server keeps failing.
+  // waits 100 ms, doubling up to 5 s while the server keeps failing.
   async flush() {
     if (!this.postUrl || this.sending) return;
     this.sending = true;
@@ -77,7 +77,7 @@ export class SessionStore {
           this.save();
           this.backoff = 0;
         } else {
-          this.backoff = Math.min(5000, this.backoff ? 2 * this.backoff : (this.retryMs ?? 200));
+          this.backoff = Math.min(5000, this.backoff ? 2 * this.backoff : (this.retryMs ?? 100));
           await new Promise((resolve) => setTimeout(resolve, this.backoff));
         }
       }

@@ -167,7 +167,7 @@ TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
 // POSTs of every row still receives every row exactly once, in order.
 TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   testing::TempDir dir;
-  const fs::path manifest = testing::make_tiny_set(dir, R"({"repetitions": 2})");
+  const fs::path manifest = testing::make_tiny_set(dir, R"({"repetitions": 2})");  // 24 answers
   ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --post-url /collect").exit_code, 0);
   std::mt19937 random(46);
   std::set<int> points;
@@ -182,6 +182,21 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   EXPECT_EQ(rows, comparable_rows(dir / "app/P09_s01.csv"));
   const std::string table = testing::read_file(csv);
   EXPECT_EQ(testing::read_file(csv.string() + ".posted"), table.substr(table.find('\n') + 1));
+}
+
+// Text from the set goes into the page as text: markup in an instruction shows as written and no
+// script in it runs.
+TEST(WebExport, MarkupInTheSetsTextsShowsAsText) {
+  testing::TempDir dir;
+  const std::string welcome = "<b>bold</b><script>window.injected = 1</script> & \\u2028";
+  const fs::path manifest = testing::make_tiny_set(dir, R"({"instructions": {"welcome": ")" + welcome + R"("}})");
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string()).exit_code, 0);
+  const auto run = testing::run_program("bash -c", "'" + node("web/tools/browser-welcome.mjs " + (dir / "web").string()) + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const json page = json::parse(run.output);
+  EXPECT_EQ(page["text"], "<b>bold</b><script>window.injected = 1</script> & \u2028");
+  EXPECT_TRUE(page["injected"].is_null());
+  EXPECT_EQ(page["bold"], 0);
 }
 
 TEST(WebExport, ASetWithAMissingOrAlteredImageIsRefused) {

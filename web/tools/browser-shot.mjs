@@ -18,10 +18,11 @@ const browser = await puppeteer.launch({
 });
 try {
   const page = await browser.newPage();
-  await page.setViewport({ width: 900, height: 600, deviceScaleFactor: Number(dpr) });
+  await page.setViewport({ width: Number(process.env.WIDTH ?? 900), height: Number(process.env.HEIGHT ?? 600), deviceScaleFactor: Number(dpr) });
   await page.goto(`http://127.0.0.1:${server.address().port}/?subject=P01`);
   await page.waitForFunction(() => window.countershadeSession?.t0 !== undefined, { timeout: 60000 });
   await page.keyboard.press("Enter");
+  await page.waitForFunction(() => window.countershadeSession.ready(), { timeout: 60000 });
   for (const key of ["ArrowUp", "ArrowUp"]) await page.keyboard.press(key);
   await page.waitForFunction(() => window.countershadeShown?.lambda_index !== undefined);
   await new Promise((r) => setTimeout(r, 200));
