@@ -54,7 +54,9 @@ async function start() {
     skip_features: ["webcam", "microphone"],
     on_finish: (data) => Object.assign(environment, { refresh_hz: data.vsync_rate, device_pixel_ratio: window.devicePixelRatio }),
   }];
-  if (study.chinrest) timeline.push({ type: window.jsPsychVirtualChinrest, resize_units: "none" });
+  if (study.chinrest)
+    timeline.push({ type: window.jsPsychVirtualChinrest, resize_units: "none",
+                    on_finish: (data) => Object.assign(environment, { css_px_per_mm: data.px2mm, viewing_distance_mm: data.view_dist_mm }) });
   timeline.push({ type: CountershadeAdjustPlugin, study, subject, session, environment, observer,
                   on_finish: (data) => offerCsv(data.csv, subject, session) });
   await jsPsych.run(timeline);

@@ -142,6 +142,7 @@ class AdjustSession {
       timestamp_utc: new Date().toISOString(), stimulus_set: this.study.set.sha256, app_version: this.study.app_version, sequence: "",
       device_pixel_ratio: window.devicePixelRatio, window_width: window.innerWidth, window_height: window.innerHeight,
       refresh_hz: this.environment.refresh_hz ?? "", user_agent: navigator.userAgent,
+      css_px_per_mm: this.environment.css_px_per_mm ?? "", viewing_distance_mm: this.environment.viewing_distance_mm ?? "",
       plan_index: answer.trialIndex, question_index: ["low", "high", "best"].indexOf(answer.question),
     });
   }

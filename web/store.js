@@ -8,6 +8,8 @@ const COLUMNS = [
   "stimulus_set", "app_version", "sequence",
   // the browser's own columns (docs/data-formats.md)
   "device_pixel_ratio", "window_width", "window_height", "refresh_hz", "user_agent",
+  // the virtual chinrest's estimates, with --chinrest (empty otherwise)
+  "css_px_per_mm", "viewing_distance_mm",
 ];
 export { COLUMNS };
 
