@@ -1,6 +1,7 @@
 #include "adjust/image_decode.h"
 
 #include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 
@@ -26,6 +27,25 @@ std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
     // Alpha is ignored on purpose: stimuli are shown opaque, exactly as their RGB values.
   }
   return rgba;
+}
+
+std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study) {
+  std::vector<unsigned> textures(study.images.size());
+  bool closed = false;
+  for (size_t first = 0; first < study.images.size() && !closed; first += 8) {
+    const size_t last = std::min(first + 8, study.images.size());
+    std::vector<std::vector<uint8_t>> pixels(last - first);
+    tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = decode_rgba(study.images[i]); });
+    for (size_t i = first; i < last; ++i)
+      textures[i] = presenter.upload_texture(pixels[i - first], study.images[i].width, study.images[i].height);
+    FrameContent loading;
+    loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study.images.size());
+    loading.progress = double(last) / double(study.images.size());
+    presenter.draw(loading);
+    for (const auto& e : presenter.poll_events()) closed |= e.kind == WindowEvent::Kind::close;
+  }
+  if (closed) return std::nullopt;
+  return textures;
 }
 
 }  // namespace countershade::adjust

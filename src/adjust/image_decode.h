@@ -2,13 +2,20 @@
 // Stimuli as the app's textures take them: 8-bit RGBA, checked against the manifest's size.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "adjust/presenter.h"
 #include "adjust/study.h"
 
 namespace countershade::adjust {
 
 // Decodes an 8-bit stimulus into RGBA; the size must be the manifest's. Throws InputError.
 std::vector<uint8_t> decode_rgba(const StimulusImage& image);
+
+// Every image of the study as a texture, decoded in parallel and uploaded in batches of eight,
+// with a progress bar. Returns the textures (by image index), or nothing when the window was
+// closed meanwhile.
+std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study);
 
 }  // namespace countershade::adjust

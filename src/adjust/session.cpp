@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <memory>
 
-#include <tbb/parallel_for.h>
 
 #include "adjust/image_decode.h"
 #include "adjust/input_script.h"
@@ -161,24 +160,12 @@ class SessionLoop {
   }
 
  private:
-  // Every stimulus as a texture, decoding in parallel and uploading in batches, with a progress bar.
+  // Every stimulus as a texture, with a progress bar.
   void preload() {
     const double start = presenter_.now();
-    texture_.resize(study_.images.size());
-    const size_t batch = 8;
-    for (size_t first = 0; first < study_.images.size() && !end_; first += batch) {
-      const size_t last = std::min(first + batch, study_.images.size());
-      std::vector<std::vector<uint8_t>> pixels(last - first);
-      tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = decode_rgba(study_.images[i]); });
-      for (size_t i = first; i < last; ++i)
-        texture_[i] = presenter_.upload_texture(pixels[i - first], study_.images[i].width, study_.images[i].height);
-      FrameContent loading;
-      loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study_.images.size());
-      loading.progress = double(last) / double(study_.images.size());
-      presenter_.draw(loading);
-      for (const auto& e : presenter_.poll_events())
-        if (e.kind == WindowEvent::Kind::close) end_ = RunEnd::closed;
-    }
+    auto textures = preload_textures(presenter_, study_);
+    if (textures) texture_ = std::move(*textures);
+    else end_ = RunEnd::closed;
     recorder_.run().preload = Preload{study_.images.size(), presenter_.now() - start};
     recorder_.save();
   }
