@@ -3,11 +3,17 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>
 
+#include <limits>
+
 #include "core/error.h"
 
 namespace countershade::adjust {
 
-std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
+namespace {
+
+// Decodes into RGBA of type T (read as `type`); grey images fill R, G and B.
+template <typename T>
+std::vector<T> decode_as(const StimulusImage& image, OIIO::TypeDesc type) {
   auto in = OIIO::ImageInput::open(image.file.string());
   if (!in) throw_input_error(image.file.string(), "cannot read the image");
   const OIIO::ImageSpec& spec = in->spec();
@@ -15,13 +21,13 @@ std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
     throw_input_error(image.file.string(), "the image size differs from the manifest");
   const int n = spec.nchannels;
   if (n < 1 || n > 4) throw_input_error(image.file.string(), "unsupported channel count " + std::to_string(n));
-  std::vector<uint8_t> raw(size_t(spec.width) * size_t(spec.height) * size_t(n));
-  if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::UINT8, raw.data()))
+  std::vector<T> raw(size_t(spec.width) * size_t(spec.height) * size_t(n));
+  if (!in->read_image(0, 0, 0, n, type, raw.data()))
     throw_input_error(image.file.string(), "cannot decode: " + in->geterror());
-  std::vector<uint8_t> rgba(size_t(spec.width) * size_t(spec.height) * 4, 255);
+  std::vector<T> rgba(size_t(spec.width) * size_t(spec.height) * 4, std::numeric_limits<T>::max());
   for (size_t p = 0; p < size_t(spec.width) * size_t(spec.height); ++p) {
-    const uint8_t* s = &raw[p * size_t(n)];
-    uint8_t* d = &rgba[p * 4];
+    const T* s = &raw[p * size_t(n)];
+    T* d = &rgba[p * 4];
     if (n <= 2) d[0] = d[1] = d[2] = s[0];
     else d[0] = s[0], d[1] = s[1], d[2] = s[2];
     // Alpha is ignored on purpose: stimuli are shown opaque, exactly as their RGB values.
@@ -29,15 +35,28 @@ std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
   return rgba;
 }
 
+}  // namespace
+
+std::vector<uint8_t> decode_rgba(const StimulusImage& image) { return decode_as<uint8_t>(image, OIIO::TypeDesc::UINT8); }
+
+std::vector<uint16_t> decode_rgba16(const StimulusImage& image) {
+  return decode_as<uint16_t>(image, OIIO::TypeDesc::UINT16);
+}
+
 std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study) {
   std::vector<unsigned> textures(study.images.size());
   bool closed = false;
   for (size_t first = 0; first < study.images.size() && !closed; first += 8) {
     const size_t last = std::min(first + 8, study.images.size());
-    std::vector<std::vector<uint8_t>> pixels(last - first);
-    tbb::parallel_for(first, last, [&](size_t i) { pixels[i - first] = decode_rgba(study.images[i]); });
+    std::vector<std::vector<uint8_t>> pixels8(last - first);
+    std::vector<std::vector<uint16_t>> pixels16(last - first);
+    tbb::parallel_for(first, last, [&](size_t i) {
+      if (study.bits == 16) pixels16[i - first] = decode_rgba16(study.images[i]);
+      else pixels8[i - first] = decode_rgba(study.images[i]);
+    });
     for (size_t i = first; i < last; ++i)
-      textures[i] = presenter.upload_texture(pixels[i - first], study.images[i].width, study.images[i].height);
+      textures[i] = study.bits == 16 ? presenter.upload_texture16(pixels16[i - first], study.images[i].width, study.images[i].height)
+                                     : presenter.upload_texture(pixels8[i - first], study.images[i].width, study.images[i].height);
     FrameContent loading;
     loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study.images.size());
     loading.progress = double(last) / double(study.images.size());

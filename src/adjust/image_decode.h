@@ -1,5 +1,6 @@
 #pragma once
-// Stimuli as the app's textures take them: 8-bit RGBA, checked against the manifest's size.
+// Stimuli as the app's textures take them: 8- or 16-bit RGBA (the set's depth), checked against
+// the manifest's size.
 
 #include <cstdint>
 #include <optional>
@@ -10,8 +11,9 @@
 
 namespace countershade::adjust {
 
-// Decodes an 8-bit stimulus into RGBA; the size must be the manifest's. Throws InputError.
+// Decodes a stimulus into 8-bit (or 16-bit) RGBA; the size must be the manifest's. Throws InputError.
 std::vector<uint8_t> decode_rgba(const StimulusImage& image);
+std::vector<uint16_t> decode_rgba16(const StimulusImage& image);
 
 // Every image of the study as a texture, decoded in parallel and uploaded in batches of eight,
 // with a progress bar. Returns the textures (by image index), or nothing when the window was

@@ -2,7 +2,9 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
+#include <GL/glext.h>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -14,6 +16,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "adjust/deep_stimulus.h"
 #include "core/error.h"
 #include "core/visual_angle.h"
 #include "core/image.h"
@@ -80,6 +83,7 @@ DisplayOptions study_display(const Study& study, const std::string& app) {
   display.title = "countershade " + app + ": " + study.set_name;
   display.pixels_per_degree = study.pixels_per_degree;
   display.distance_mm = study.distance_mm;
+  display.stimulus_bits = study.bits;
   return display;
 }
 
@@ -94,6 +98,7 @@ Presenter::Presenter(const DisplayOptions& options) : options_(options) {
   required_size(options, &need_w, &need_h);
   create_window(open_monitor(need_w, need_h), need_w, need_h);
   start_imgui();
+  if (options.stimulus_bits == 16) choose_output_path();
   text_rgb_ = options.surround >= 128 ? 0.08f : 0.92f;
 }
 
@@ -164,6 +169,10 @@ void Presenter::create_window(GLFWmonitor* monitor, int need_w, int need_h) {
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);  // display values go to the screen unchanged
   glfwWindowHint(GLFW_SAMPLES, 0);
+  // A 16-bit study asks for 10 bits per channel; GLFW gives the closest the display has.
+  const bool ten = options_.stimulus_bits == 16 && (options_.output_path.automatic || options_.output_path.path == OutputPath::ten_bit);
+  for (int hint : {GLFW_RED_BITS, GLFW_GREEN_BITS, GLFW_BLUE_BITS}) glfwWindowHint(hint, ten ? 10 : 8);
+  glfwWindowHint(GLFW_ALPHA_BITS, ten ? 2 : 8);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_FALSE);
   int win_w = std::max(need_w, std::min(1280, screen_w_)), win_h = std::max(need_h, std::min(800, screen_h_));
@@ -203,16 +212,41 @@ void Presenter::start_imgui() {
   ImGui_ImplOpenGL3_Init("#version 330 core");
 }
 
-Presenter::~Presenter() {
+// The 16-bit path: ten-bit where the framebuffer has 10 bits and a read-back of every level
+// confirms them (a driver may report bits it does not keep), else the dither.
+void Presenter::choose_output_path() {
+  const GLenum sizes[3] = {GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
+                           GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE};
+  for (int c = 0; c < 3; ++c) glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_BACK_LEFT, sizes[c], &framebuffer_bits_[c]);
+  deep_ = std::make_unique<DeepStimulusRenderer>();
+  const OutputPathChoice& choice = options_.output_path;
+  if (choice.automatic || choice.path == OutputPath::ten_bit) {
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window_, &fw, &fh);
+    ten_bit_read_back_ = ten_bit_read_back_holds(*deep_, fh);
+  }
+  path_ = choice.automatic ? (*ten_bit_read_back_ ? OutputPath::ten_bit : OutputPath::dither) : choice.path;
+  if (path_ == OutputPath::ten_bit && !*ten_bit_read_back_) {
+    close_window();
+    throw_input_error("--output-path", "ten-bit: this display's framebuffer has " + std::to_string(framebuffer_bits_[0]) +
+                                           " bits per channel and does not read back 10-bit levels (use auto or dither)");
+  }
+}
+
+void Presenter::close_window() {
   if (!window_) return;
   glfwMakeContextCurrent(window_);
   if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+  deep_.reset();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   glfwDestroyWindow(window_);
   glfwTerminate();
+  window_ = nullptr;
 }
+
+Presenter::~Presenter() { close_window(); }
 
 nlohmann::ordered_json Presenter::display_info() const {
   int ww = 0, wh = 0, fw = 0, fh = 0;
@@ -232,23 +266,32 @@ nlohmann::ordered_json Presenter::display_info() const {
           {"fullscreen", options_.fullscreen},
           {"window", {ww, wh}},
           {"framebuffer", {fw, fh}},
-          {"surround", options_.surround}};
+          {"surround", options_.surround},
+          {"output", output_info()}};
+}
+
+nlohmann::ordered_json Presenter::output_info() const {
+  nlohmann::ordered_json out = {{"stimulus_bits", options_.stimulus_bits},
+                                {"path", output_path_name(path_)},
+                                {"framebuffer_bits", framebuffer_bits_}};
+  if (ten_bit_read_back_) out["ten_bit_read_back"] = *ten_bit_read_back_;
+  if (path_ == OutputPath::dither) out["dither_seed"] = options_.dither_seed;
+  return out;
 }
 
 unsigned Presenter::upload_texture(const std::vector<uint8_t>& rgba, int width, int height) {
-  GLuint id = 0;
-  glGenTextures(1, &id);
-  glBindTexture(GL_TEXTURE_2D, id);
+  const unsigned id = new_nearest_texture();
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   if (glGetError() != GL_NO_ERROR) throw std::runtime_error("cannot upload a stimulus texture (out of GPU memory?)");
   textures_.push_back(id);
   return id;
+}
+
+unsigned Presenter::upload_texture16(const std::vector<uint16_t>& rgba, int width, int height) {
+  if (!deep_) throw std::logic_error("a 16-bit texture in an 8-bit study");
+  textures_.push_back(DeepStimulusRenderer::upload(rgba, width, height));
+  return textures_.back();
 }
 
 void Presenter::key_callback(GLFWwindow* w, int key, int, int action, int) {
@@ -308,7 +351,8 @@ std::vector<unsigned> stimulus_row(const FrameContent& c) {
 
 // The stimuli side by side at 1:1 (or a request to enlarge the window), the header and question
 // above them, the hint below.
-StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, const Canvas& k) {
+// 16-bit stimuli are not ImGui images (`imgui_images` false): the presenter draws them itself.
+StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, const Canvas& k, bool imgui_images) {
   const Margins m = margins_for(o);
   const std::vector<unsigned> row = stimulus_row(c);
   StimulusLayout layout;
@@ -321,12 +365,12 @@ StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, cons
   layout.right_x = layout.xs.back();
   layout.y = m.top + std::max(0, (k.fh - m.top - m.bottom - c.image_height) / 2);
   const float centre = float(k.ww) / 2;
-  if (layout.fits) {
+  if (layout.fits && imgui_images) {
     for (int i = 0; i < n; ++i)
       k.back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(row[size_t(i)])),
                        ImVec2(float(layout.xs[size_t(i)]) / k.scale, float(layout.y) / k.scale),
                        ImVec2(float(layout.xs[size_t(i)] + c.image_width) / k.scale, float(layout.y + c.image_height) / k.scale));
-  } else {
+  } else if (!layout.fits) {
     centred_text(k.front, "The window is too small to show the images at 1:1 scale. Please enlarge it.", centre,
                  float(k.wh) / 2, k.wrap, k.text);
   }
@@ -350,18 +394,17 @@ void draw_message(const FrameContent& c, const Canvas& k) {
   k.front->AddRectFilled(p0, ImVec2(p0.x + bw * float(std::clamp(c.progress, 0.0, 1.0)), p1.y), k.text);
 }
 
-// The back buffer as drawn, to a PNG (OpenGL rows run bottom-up).
-void write_screenshot(const std::filesystem::path& file, int fw, int fh) {
-  glFinish();
-  std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+// The back buffer as drawn, to a PNG: 8 bits, or 16 where the framebuffer has more than 8 (a
+// 10-bit level l is written as round(l · 65535 / 1023), so it reads back exactly).
+void write_screenshot(const std::filesystem::path& file, int fw, int fh, bool deep) {
   glReadBuffer(GL_BACK);
-  glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  const std::vector<uint16_t> rgba = read_back_rgba16({0, 0, fw, fh, fh});
   Image shot(fw, fh, 3);
-  for (int y = 0; y < fh; ++y)
-    for (int x = 0; x < fw * 3; ++x)
-      shot.pixels[size_t(y) * size_t(fw) * 3 + size_t(x)] = float(rgb[size_t(fh - 1 - y) * size_t(fw) * 3 + size_t(x)]) / 255.0f;
-  write_image(file, shot);
+  for (size_t p = 0; p < size_t(fw) * size_t(fh); ++p)
+    for (size_t c = 0; c < 3; ++c) shot.pixels[p * 3 + c] = float(rgba[p * 4 + c]) / 65535.0f;
+  ImageWriteOptions options;
+  options.png_bits = deep ? 16 : 8;
+  write_image(file, shot, options);
 }
 
 }  // namespace
@@ -387,13 +430,23 @@ StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::pat
   k.line = ImGui::GetFontSize() * 1.35f;
 
   StimulusLayout layout;
-  if (!c.row.empty() || (c.left_texture && (c.right_texture || c.centred))) layout = draw_stimuli(c, options_, k);
+  if (!c.row.empty() || (c.left_texture && (c.right_texture || c.centred))) {
+    layout = draw_stimuli(c, options_, k, !deep_);
+    if (deep_ && layout.fits) draw_deep_stimuli(stimulus_row(c), layout, k.fh);
+  }
   if (!c.message.empty()) draw_message(c, k);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (!screenshot.empty()) write_screenshot(screenshot, k.fw, k.fh);
+  if (!screenshot.empty()) write_screenshot(screenshot, k.fw, k.fh, framebuffer_bits_[0] > 8);
+  ++frames_drawn_;
   glfwSwapBuffers(window_);
   return layout;
+}
+
+void Presenter::draw_deep_stimuli(const std::vector<unsigned>& row, const StimulusLayout& layout, int fb_height) {
+  for (size_t i = 0; i < row.size(); ++i)
+    deep_->draw(row[i], {layout.xs[i], layout.y, layout.width, layout.height, fb_height}, path_, frames_drawn_,
+                options_.dither_seed);
 }
 
 void Presenter::pace() {

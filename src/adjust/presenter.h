@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "adjust/fine_levels.h"
 #include "adjust/procedure.h"
 #include "adjust/study.h"
 
@@ -20,6 +22,8 @@ struct GLFWwindow;
 struct GLFWmonitor;
 
 namespace countershade::adjust {
+
+class DeepStimulusRenderer;
 
 struct DisplayOptions {
   bool fullscreen = false;
@@ -37,6 +41,11 @@ struct DisplayOptions {
   // The set's pixels per degree at its viewing distance: the monitor must give the same within 2 %.
   // Its width in mm comes from GLFW (the monitor's EDID) unless `monitor_width_mm` is given.
   std::optional<double> pixels_per_degree, distance_mm, monitor_width_mm;
+  // 16-bit stimuli reach the screen through a 10-bit framebuffer (used only after a read-back
+  // confirms it) or a seeded dither to 8 bits (adjust/fine_levels.h).
+  int stimulus_bits = 8;
+  OutputPathChoice output_path;
+  uint32_t dither_seed = 0;
 };
 
 // The display a study needs: its largest stimulus, its surround, gap and font, and the set's
@@ -85,10 +94,19 @@ class Presenter {
 
   // GL renderer and version, screen size and refresh rate, window and framebuffer sizes.
   nlohmann::ordered_json display_info() const;
+  // The stimuli's bits, the output path and the framebuffer's bits; the read-back check's result
+  // and the dither seed where they apply.
+  nlohmann::ordered_json output_info() const;
   double refresh_hz() const { return refresh_hz_; }
 
   // Uploads an 8-bit RGBA image as a nearest-neighbour texture; returns its id.
   unsigned upload_texture(const std::vector<uint8_t>& rgba, int width, int height);
+  // Uploads a 16-bit RGBA image (a 16-bit study only); drawn through the output path.
+  unsigned upload_texture16(const std::vector<uint16_t>& rgba, int width, int height);
+  // How stimuli reach the framebuffer: 8-bit for 8-bit studies; ten-bit or dither for 16-bit ones.
+  OutputPath output_path() const { return path_; }
+  // Frames drawn since the window opened (the loading screens included): the next frame's dither index.
+  uint32_t frames_drawn() const { return frames_drawn_; }
 
   // Events since the last call. GLFW_REPEAT is dropped on purpose: the procedure times repeats.
   std::vector<WindowEvent> poll_events();
@@ -119,6 +137,11 @@ class Presenter {
   bool timer_pacing_ = false;
   long repeats_ignored_ = 0;
   float text_rgb_ = 0;
+  std::unique_ptr<DeepStimulusRenderer> deep_;  // 16-bit studies only
+  OutputPath path_ = OutputPath::eight_bit;
+  std::optional<bool> ten_bit_read_back_;  // the check's result, where it ran
+  int framebuffer_bits_[3] = {8, 8, 8};
+  uint32_t frames_drawn_ = 0;  // the dither's frame index
 
   // The constructor's steps: GLFW and the monitor (its size checked against the need_w × need_h
   // pixels the stimuli need), the window with its OpenGL context, Dear ImGui.
@@ -126,6 +149,9 @@ class Presenter {
   void check_visual_angle(GLFWmonitor* monitor, int width_px) const;
   void create_window(GLFWmonitor* monitor, int need_w, int need_h);
   void start_imgui();
+  void choose_output_path();
+  void close_window();
+  void draw_deep_stimuli(const std::vector<unsigned>& row, const StimulusLayout& layout, int fb_height);
 
   static void key_callback(GLFWwindow* w, int key, int scancode, int action, int mods);
   static void focus_callback(GLFWwindow* w, int focused);

@@ -106,12 +106,14 @@ void check_sessions_dir(const SessionOptions& o) {
     throw_input_error(o.sessions_dir.string(), "the sessions folder is not writable");
 }
 
-DisplayOptions display_options(const SessionOptions& o, const Study& study) {
+DisplayOptions display_options(const SessionOptions& o, const Study& study, uint64_t session_seed) {
   DisplayOptions display = study_display(study, "adjust");
   display.fullscreen = o.fullscreen;
   display.monitor = o.monitor;
   display.frame_clock = o.frame_clock;
   display.monitor_width_mm = o.monitor_width_mm;
+  display.output_path = o.output_path;
+  display.dither_seed = o.dither_seed.value_or(uint32_t(session_seed));
   return display;
 }
 
@@ -288,7 +290,8 @@ class SessionLoop {
 
   // The screenshot's sidecar: what was on screen and where.
   void describe_screenshot(const fs::path& shot, const StimulusLayout& layout, double t) const {
-    OrderedJson info = {{"frame", frame_}, {"phase", int(procedure_.phase())}};
+    // output_frame: the frame index the dither used (16-bit sets), counted from the window's first frame.
+    OrderedJson info = {{"frame", frame_}, {"output_frame", presenter_.frames_drawn() - 1}, {"phase", int(procedure_.phase())}};
     if (procedure_.phase() == Procedure::Phase::question) {
       const Trial& trial = procedure_.trial();
       const auto [reference, enhanced] = question_images(t);
@@ -360,9 +363,10 @@ class SessionLoop {
 };
 
 // Opens the window; a failure is recorded, and a new session without answers leaves no files.
-std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& study, SessionRecorder& recorder) {
+std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& study, SessionRecorder& recorder,
+                                       uint64_t session_seed) {
   try {
-    return std::make_unique<Presenter>(display_options(o, study));
+    return std::make_unique<Presenter>(display_options(o, study, session_seed));
   } catch (...) {
     recorder.run().end = RunEnd::display_failed;
     recorder.save();
@@ -418,7 +422,7 @@ int run_session(const SessionOptions& o) {
                 total_questions, total_questions, recorder.files().csv.string().c_str());
     return 0;
   }
-  std::unique_ptr<Presenter> presenter = open_window(o, study, recorder);
+  std::unique_ptr<Presenter> presenter = open_window(o, study, recorder, settings.seed);
   recorder.run().display = presenter->display_info();
   const RunEnd end = run_loop(o, study, procedure, recorder, *presenter, std::move(inputs));
   recorder.run().end = end;

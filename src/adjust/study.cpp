@@ -121,9 +121,10 @@ namespace {
 // The λ grid and the seed the study takes from the set.
 void read_grid(Study& study, const Manifest& manifest, const std::string& mfile) {
   auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
-  if (manifest.bits != 8)
-    fail("bits", "the adjustment app shows 8-bit stimuli; this set has " + std::to_string(manifest.bits) +
-                     "-bit images (generate it with \"output\": {\"bits\": 8})");
+  if (manifest.bits != 8 && manifest.bits != 16)
+    fail("bits", "the apps show 8- or 16-bit PNG stimuli; this set has " + std::to_string(manifest.bits) +
+                     "-bit images (generate it with \"output\": {\"bits\": 8} or 16)");
+  study.bits = manifest.bits;
   study.manifest_seed = manifest.seed;
   if (manifest.viewing.pixels_per_degree) {
     study.pixels_per_degree = manifest.viewing.pixels_per_degree;

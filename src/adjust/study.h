@@ -81,6 +81,7 @@ struct Study {
   std::string manifest_sha256;   // identifies the stimulus set in the responses
   std::string set_name;
   uint64_t manifest_seed = 1;
+  int bits = 8;  // the PNGs' bits per channel: 8, or 16 (shown through a 10-bit framebuffer or dithered)
   double lambda_min = 0, lambda_step = 0.05;
   // The set's screen (manifest `viewing`): its pixels per degree and viewing distance, which the
   // monitor must match.

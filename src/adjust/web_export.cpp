@@ -60,6 +60,11 @@ json texts_json(const Instructions& t) {
 }
 
 void check_exportable(const Study& study) {
+  // A browser shows a 16-bit PNG at 8 bits, rounded as it likes, with no dither or 10-bit check.
+  if (study.bits != 8)
+    throw_input_error(study.manifest_path.string() + ": bits",
+                      "a 16-bit set cannot be exported for the web (browsers show 8 bits); make the set with "
+                      "\"output\": {\"bits\": 8}, or run it in the app");
   for (const Stimulus& s : study.stimuli)
     if (s.fps > 0)
       throw_input_error(study.manifest_path.string(), "a set of sequences cannot be exported for the web yet (stills only)");

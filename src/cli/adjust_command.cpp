@@ -4,6 +4,7 @@
 
 #include "adjust/session.h"
 #include "cli/commands.h"
+#include "cli/display_flags.h"
 
 namespace countershade::cli {
 
@@ -44,6 +45,7 @@ void add_adjust_command(CLI::App& app) {
                   "The monitor's visible width in mm, where it misreports its size (a set with a screen is shown only "
                   "if the monitor's pixels per degree match the set's within 2 %)")
       ->check(CLI::Range(1.0, 1e5));
+  add_output_path_flags(cmd, o->output_path, o->dither_seed);
   add_automation_options(cmd, *o, *script, *screenshot, *observer);
   cmd->callback([=] {
     adjust::SessionOptions run = *o;

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/display_flags.h"
 #include "core/error.h"
 #include "forced_choice/choice_session.h"
 
@@ -45,6 +46,7 @@ void add_choose_command(CLI::App& app) {
   cmd->add_option("--script", a->script, "Timed key events instead of a person (tests, demos)");
   cmd->add_option("--screenshot", a->screenshot, "PNG written at each 'screenshot' line of the script");
   cmd->add_option("--observer", a->observer, "A simulated observer answers from a Weibull: weibull:ALPHA,BETA,SEED");
+  add_output_path_flags(cmd, o->output_path, o->dither_seed);
   cmd->add_flag("--frame-clock", o->frame_clock,
                 "With --script or --observer: time advances one refresh period per frame and frames are not paced");
   cmd->callback([a] { run(*a); });

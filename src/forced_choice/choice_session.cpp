@@ -39,12 +39,15 @@ ChoiceConfig load_config(const ChoiceSessionOptions& o) {
   return parse_choice_config(manifest["experiment"]["forced_choice"], o.manifest.string(), "experiment.forced_choice");
 }
 
-adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config) {
+adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config,
+                                       uint64_t session_seed) {
   adjust::DisplayOptions d = adjust::study_display(study, "choose");
   d.columns = config.layout == Layout::spatial ? config.n_afc : 1;
   d.fullscreen = o.fullscreen;
   d.monitor = o.monitor;
   d.frame_clock = o.frame_clock;
+  d.output_path = o.output_path;
+  d.dither_seed = o.dither_seed.value_or(uint32_t(session_seed));
   return d;
 }
 
@@ -330,7 +333,7 @@ int run_choice_session(const ChoiceSessionOptions& o) {
                 recorder.files().csv.string().c_str());
     return 0;
   }
-  auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study, config));
+  auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study, config, seed));
   recorder.current_run().display = presenter->display_info();
   g_signal = 0;
   auto term = std::signal(SIGTERM, on_signal), interrupt = std::signal(SIGINT, on_signal);

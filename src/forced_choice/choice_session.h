@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "adjust/fine_levels.h"
+
 namespace countershade::forced_choice {
 
 struct ChoiceSessionOptions {
@@ -22,6 +24,8 @@ struct ChoiceSessionOptions {
   std::optional<std::filesystem::path> screenshot;
   std::optional<std::string> observer;  // "weibull:ALPHA,BETA,SEED"
   bool frame_clock = false;
+  adjust::OutputPathChoice output_path;   // 16-bit sets: --output-path
+  std::optional<uint32_t> dither_seed;     // default: the session seed
 };
 
 // Returns 0 when the run ended normally. Bad input throws InputError before any window opens.

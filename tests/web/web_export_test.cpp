@@ -217,5 +217,16 @@ TEST(WebExport, ASetWithAMissingOrAlteredImageIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "web/study.js"));
 }
 
+// A browser shows 8 bits: a 16-bit set is refused rather than shown rounded without a word.
+TEST(WebExport, ASixteenBitSetIsRefused) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir, "", 96, 72, 0.4, R"("output": {"bits": 16},)");
+  const auto run = testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("16-bit"), std::string::npos) << run.output;
+  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "web"));
+}
+
 }  // namespace
 }  // namespace countershade::adjust

@@ -1,0 +1,57 @@
+#include "adjust/fine_levels.h"
+
+namespace countershade::adjust {
+
+const char* output_path_name(OutputPath path) {
+  switch (path) {
+    case OutputPath::eight_bit: return "8-bit";
+    case OutputPath::ten_bit: return "ten-bit";
+    case OutputPath::dither: return "dither";
+  }
+  return "?";
+}
+
+std::optional<OutputPathChoice> parse_output_path(const std::string& text) {
+  if (text == "auto") return OutputPathChoice{};
+  if (text == "ten-bit") return OutputPathChoice{false, OutputPath::ten_bit};
+  if (text == "dither") return OutputPathChoice{false, OutputPath::dither};
+  return std::nullopt;
+}
+
+namespace {
+
+// A 32-bit integer hash with good avalanche (the "lowbias32" constants), cheap on a GPU.
+uint32_t mix(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+}  // namespace
+
+uint32_t dither_threshold(uint32_t x, uint32_t y, uint32_t frame, uint32_t seed) {
+  const uint32_t h = mix(x + mix(y + mix(seed)));
+  const uint32_t stratum = ((h >> 26) + frame * 37u) & 63u;
+  const uint32_t position = (stratum << 10) | (h & 1023u);  // 0 .. 65535
+  return (position * 65535u) >> 16;                            // 0 .. 65534
+}
+
+const char* const kFineLevelsGlsl = R"(
+uint mix_bits(uint x) {
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return x;
+}
+uint dither_threshold(uint x, uint y, uint frame, uint seed) {
+  uint h = mix_bits(x + mix_bits(y + mix_bits(seed)));
+  uint stratum = ((h >> 26) + frame * 37u) & 63u;
+  uint position = (stratum << 10) | (h & 1023u);
+  return (position * 65535u) >> 16;
+}
+uvec3 ten_bit_level(uvec3 v) { return (v * 1023u + 32767u) / 65535u; }
+uvec3 dither_level(uvec3 v, uint threshold) { return (v * 255u + threshold) / 65535u; }
+)";
+
+}  // namespace countershade::adjust

@@ -1,0 +1,45 @@
+#pragma once
+// How a 16-bit stimulus reaches a framebuffer with fewer levels per channel. The definitions here
+// are the reference the GPU path is tested against: the shader in deep_stimulus.cpp computes the
+// same integers (its GLSL is kFineLevelsGlsl below, kept next to the C++ it mirrors).
+//
+//   ten-bit  a 10-bit framebuffer, each channel at its nearest 10-bit level;
+//   dither   8 bits with a seeded spatio-temporal dither: each frame a pixel shows one of the two
+//            8-bit levels around its 16-bit value, chosen so that over any 64 consecutive frames
+//            the mean is within 1/64 of a level of the value;
+//   8-bit    an 8-bit set shown as it is.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace countershade::adjust {
+
+enum class OutputPath { eight_bit, ten_bit, dither };
+
+const char* output_path_name(OutputPath path);
+
+// What the user may ask for: a path, or "auto" (ten-bit where a read-back confirms it, else dither).
+struct OutputPathChoice {
+  bool automatic = true;
+  OutputPath path = OutputPath::dither;
+};
+// Parses "auto", "ten-bit" or "dither"; nothing for anything else.
+std::optional<OutputPathChoice> parse_output_path(const std::string& text);
+
+// The nearest 10-bit level of a 16-bit value: round(v · 1023 / 65535).
+inline uint32_t ten_bit_level(uint32_t v16) { return (v16 * 1023u + 32767u) / 65535u; }
+
+// The dither's threshold for image pixel (x, y) at a frame, in [0, 65535). A pixel's 64 strata are
+// visited once in every 64 consecutive frames (stride 37, coprime with 64), at a random phase and
+// with a random offset inside the stratum, both from a hash of the pixel and the seed.
+uint32_t dither_threshold(uint32_t x, uint32_t y, uint32_t frame, uint32_t seed);
+
+// The 8-bit level the dither shows: floor((v · 255 + threshold) / 65535). Its mean over thresholds
+// spread evenly over [0, 65535) is v · 255 / 65535, the 16-bit value in 8-bit levels.
+inline uint32_t dither_level(uint32_t v16, uint32_t threshold) { return (v16 * 255u + threshold) / 65535u; }
+
+// The functions above in GLSL 3.30 (uint arithmetic wraps as C++'s uint32_t does).
+extern const char* const kFineLevelsGlsl;
+
+}  // namespace countershade::adjust
