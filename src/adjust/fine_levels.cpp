@@ -50,8 +50,10 @@ uint dither_threshold(uint x, uint y, uint frame, uint seed) {
   uint position = (stratum << 10) | (h & 1023u);
   return (position * 65535u) >> 16;
 }
-uvec3 ten_bit_level(uvec3 v) { return (v * 1023u + 32767u) / 65535u; }
-uvec3 dither_level(uvec3 v, uint threshold) { return (v * 255u + threshold) / 65535u; }
+// n / 65535 for n < 2^26 without a division, which a software rasteriser runs lane by lane.
+uvec3 over_65535(uvec3 n) { return (n + 1u + (n >> 16)) >> 16; }
+uvec3 ten_bit_level(uvec3 v) { return over_65535(v * 1023u + 32767u); }
+uvec3 dither_level(uvec3 v, uint threshold) { return over_65535(v * 255u + threshold); }
 )";
 
 }  // namespace countershade::adjust
