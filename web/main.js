@@ -40,6 +40,24 @@ function offerCsv(csv, subject, session) {
   document.body.appendChild(p);
 }
 
+// The virtual chinrest, measured once per session: kept in localStorage, so a reload resumes
+// without measuring again. The page is never rescaled (resize_units "none").
+function chinrest(key, environment) {
+  const saved = JSON.parse(window.localStorage.getItem(key) ?? "null");
+  if (saved) {
+    Object.assign(environment, saved);
+    return [];
+  }
+  return [{
+    type: window.jsPsychVirtualChinrest, resize_units: "none",
+    on_finish: (data) => {
+      const measured = { css_px_per_mm: data.px2mm, viewing_distance_mm: data.view_dist_mm };
+      window.localStorage.setItem(key, JSON.stringify(measured));
+      Object.assign(environment, measured);
+    },
+  }];
+}
+
 async function start() {
   document.title = study.title;
   const params = new URLSearchParams(window.location.search);
@@ -54,9 +72,7 @@ async function start() {
     skip_features: ["webcam", "microphone"],
     on_finish: (data) => Object.assign(environment, { refresh_hz: data.vsync_rate, device_pixel_ratio: window.devicePixelRatio }),
   }];
-  if (study.chinrest)
-    timeline.push({ type: window.jsPsychVirtualChinrest, resize_units: "none",
-                    on_finish: (data) => Object.assign(environment, { css_px_per_mm: data.px2mm, viewing_distance_mm: data.view_dist_mm }) });
+  if (study.chinrest) timeline.push(...chinrest(`countershade-chinrest:${study.set.sha256}:${subject}:${session}`, environment));
   timeline.push({ type: CountershadeAdjustPlugin, study, subject, session, environment, observer,
                   on_finish: (data) => offerCsv(data.csv, subject, session) });
   await jsPsych.run(timeline);

@@ -14,6 +14,7 @@
 #include "formats/responses.h"
 #include "../adjust/x_display.h"
 
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -182,6 +183,39 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   EXPECT_EQ(rows, comparable_rows(dir / "app/P09_s01.csv"));
   const std::string table = testing::read_file(csv);
   EXPECT_EQ(testing::read_file(csv.string() + ".posted"), table.substr(table.find('\n') + 1));
+}
+
+// The virtual chinrest, gone through as a participant would (a card dragged larger, five
+// blind-spot runs): every row records the px/mm and viewing distance that its formulas give from
+// what the participant did, the page is never rescaled, and a reload does not ask again.
+TEST(WebExport, TheChinrestIsRecordedInEveryRowAndNotAskedForAgainAfterAReload) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --chinrest").exit_code, 0);
+  const fs::path csv = dir / "chinrest.csv";
+  const auto run = testing::run_program(
+      "bash -c", "'" + node("web/tools/browser-chinrest.mjs " + (dir / "web").string() + " 5 " + csv.string()) + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const json page = json::parse(run.output);
+  EXPECT_FALSE(page["asked_again"].get<bool>());
+  EXPECT_EQ(page["transform"], "");
+  // The plugin's definitions: a credit card is 85.6 mm wide; the blind spot lies 13.5° from fixation.
+  auto round2 = [](double v) { return std::round(v * 100) / 100; };
+  const double px_per_mm = round2(page["card_px"].get<double>() / 85.6);
+  double ball = 0;
+  for (const auto& x : page["ball_x"]) ball += x.get<double>() / double(page["ball_x"].size());
+  const double distance = (page["square_x"].get<double>() - round2(ball)) / px_per_mm / std::tan(13.5 * M_PI / 180);
+  ASSERT_GT(distance, 0);
+  const auto table = parse_csv(testing::read_file(csv), csv.string());
+  ASSERT_EQ(table.rows.size(), 1u + 12u);  // four conditions × three questions
+  const auto& header = table.rows[0];
+  const size_t mm = size_t(std::find(header.begin(), header.end(), "css_px_per_mm") - header.begin());
+  const size_t view = size_t(std::find(header.begin(), header.end(), "viewing_distance_mm") - header.begin());
+  ASSERT_LT(view, header.size());
+  for (size_t r = 1; r < table.rows.size(); ++r) {
+    EXPECT_DOUBLE_EQ(std::stod(table.rows[r][mm]), px_per_mm) << r;
+    EXPECT_NEAR(std::stod(table.rows[r][view]), distance, 0.01) << r;
+  }
 }
 
 // Text from the set goes into the page as text: markup in an instruction shows as written and no
