@@ -343,6 +343,9 @@ class Usm3dMethod final : public EnhancementMethod {
       VertexNeed need;
       need.noise = gain > 0 ? allowed * std::sqrt(6.0 * n) / gain : scene.settings.noise.target;
       need.rings = int(std::ceil(3.0 * std::sqrt(widest / 2.0))) + 1;
+      // n smoothing steps (or a Chebyshev expansion of degree ≤ n) reach n rings; the gain's
+      // 1-ring variance reaches one.
+      need.support = std::max(widest, 1);
       needs.push_back(need);
     }
     return needs;

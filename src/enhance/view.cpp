@@ -92,6 +92,8 @@ std::vector<VertexNeed> vertex_needs(const Scene& scene, const ViewPlan& plan) {
       if (!strictest[o]) strictest[o] = own[o];
       strictest[o]->noise = std::min(strictest[o]->noise, own[o].noise);
       strictest[o]->rings = std::max(strictest[o]->rings, own[o].rings);
+      const int a = strictest[o]->support, b = own[o].support;
+      strictest[o]->support = a < 0 || b < 0 ? -1 : std::max(a, b);
     }
   }
   std::vector<VertexNeed> needs;  // the budget's target where no method says otherwise

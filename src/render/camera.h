@@ -39,6 +39,9 @@ class CameraRays {
   glm::dvec3 towards_viewer(const glm::dvec3& p) const;
   // Film position (x, y) in pixels of a world point in front of the camera: the inverse of ray().
   glm::dvec2 film_position(const glm::dvec3& p) const;
+  // False only when no primary ray can hit the triangle abc: its corners all lie beyond one side
+  // of the view (left, right, top, bottom, or behind the eye). True may still be unseen.
+  bool may_see(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const;
   // The camera's basis: right, up (both on the film) and the viewing direction.
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& up() const { return up_; }

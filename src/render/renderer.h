@@ -97,10 +97,14 @@ struct RenderResult {
 
 // What the methods need of one object's vertex signal: the L* standard error its relevant
 // vertices must reach, and how far around the visible surface (in rings of the welded 1-ring
-// graph) a vertex is relevant. Other vertices take the first round's samples only.
+// graph) a vertex is relevant. Other shaded vertices take the first round's samples only.
 struct VertexNeed {
   double noise = 0.5;
   int rings = 0;
+  // How many rings the method's use of the signal reaches (its smoothing's support): a vertex
+  // farther than this, and than `rings` + 1, from every triangle the camera may see cannot change
+  // a pixel, and is not shaded (its value is 0). −1: every vertex is shaded.
+  int support = -1;
 };
 
 struct RenderOptions {

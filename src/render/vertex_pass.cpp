@@ -56,27 +56,35 @@ Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc) {
 // One object, one side: its points, their sums, and the rounds.
 class ObjectSide {
  public:
-  ObjectSide(const VertexPassInput& in, unsigned object, bool back, uint64_t vertex_offset, uint64_t triangle_offset)
-      : in_(in), object_(object), back_(back), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
+  ObjectSide(const VertexPassInput& in, unsigned object, bool back, uint64_t vertex_offset, uint64_t triangle_offset,
+             std::vector<uint8_t> needed)
+      : in_(in), object_(object), back_(back), needed_(std::move(needed)), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
         variants_(vertex_variants(mesh_, corners_)), own_(variants_.entries.size()),
         ring_(mesh_.triangle_count() * size_t(std::max(in.ring_samples, 0))), rays_(in.scene.camera),
         vertex_count_(mesh_.vertex_count(), 0),
         triangle_count_(mesh_.triangle_count(), 0), vertex_offset_(vertex_offset), triangle_offset_(triangle_offset) {}
 
-  // Samples every point up to the counts its vertex (or triangle) asks for.
+  // Samples every point of a needed vertex, and of a triangle with a needed corner, up to the
+  // counts its vertex (or triangle) asks for.
   void sample(const std::vector<uint32_t>& vertex_target, const std::vector<uint32_t>& triangle_target, RayCounts& rays) {
     parallel_ranges(mesh_.vertex_count(), in_.threads, [&](size_t begin, size_t end) {
       RayCounts counts;
-      for (size_t v = begin; v < end; ++v) sample_vertex(v, vertex_target[v], counts);
+      for (size_t v = begin; v < end; ++v)
+        if (needed_[v]) sample_vertex(v, vertex_target[v], counts);
       add(rays, counts);
     }, 256);
     if (ring_.empty()) return;
     parallel_ranges(mesh_.triangle_count(), in_.threads, [&](size_t begin, size_t end) {
       RayCounts counts;
-      for (size_t t = begin; t < end; ++t) sample_triangle(t, triangle_target[t], counts);
+      for (size_t t = begin; t < end; ++t) {
+        const glm::uvec3& c = mesh_.triangles[t];
+        if (needed_[c.x] || needed_[c.y] || needed_[c.z]) sample_triangle(t, triangle_target[t], counts);
+      }
       add(rays, counts);
     }, 256);
   }
+
+  bool needed(size_t v) const { return needed_[v]; }
 
   // The vertex's value from replicate r (or from all samples with r = -1).
   glm::dvec3 value(size_t v, int r) const {
@@ -155,6 +163,7 @@ class ObjectSide {
   const VertexPassInput& in_;
   unsigned object_;
   bool back_;
+  std::vector<uint8_t> needed_;  // per vertex: whether any pixel can depend on its value
   const TriangleMesh& mesh_;
   VertexCorners corners_;
   Variants variants_;
@@ -167,8 +176,9 @@ class ObjectSide {
 // The squared L* error of every vertex, pooled: the larger of its own and its 1-ring's mean.
 std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& surface, double exposure) {
   const size_t nv = side.mesh().vertex_count();
-  std::vector<double> variance(nv);
+  std::vector<double> variance(nv, 0.0);
   for (size_t v = 0; v < nv; ++v) {
+    if (!side.needed(v)) continue;  // unshaded (and no refined vertex pools it)
     const double L0 = cielab_lightness(display_luminance(side.value(v, 0), exposure));
     const double L1 = cielab_lightness(display_luminance(side.value(v, 1), exposure));
     variance[v] = 0.25 * (L0 - L1) * (L0 - L1);
@@ -184,15 +194,17 @@ std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& 
   return surface.to_vertices(pooled);
 }
 
-// The vertices within `rings` of a triangle that a pixel centre sees from this side.
-std::vector<uint8_t> relevant_vertices(const GBuffer& g, unsigned object, bool back, const Object& o, int rings) {
+// Per vertex: whether it lies within `rings` (of the welded 1-ring graph) of a vertex of a
+// triangle for which `seed` holds.
+template <typename Seed>
+std::vector<uint8_t> near_triangles(const Object& o, int rings, Seed seed) {
   const SurfaceGraph& surface = o.surface;
   std::vector<uint8_t> near(surface.point_count(), 0);
   std::vector<uint32_t> frontier;
-  for (size_t p = 0; p < g.object.size(); ++p) {
-    if (g.object[p] != int32_t(object) || bool(g.back[p]) != back) continue;
-    const glm::uvec3& t = o.mesh.triangles[size_t(g.triangle[p])];
-    for (uint32_t v : {t.x, t.y, t.z})
+  for (size_t t = 0; t < o.mesh.triangle_count(); ++t) {
+    if (!seed(t)) continue;
+    const glm::uvec3& c = o.mesh.triangles[t];
+    for (uint32_t v : {c.x, c.y, c.z})
       if (!near[surface.point_of[v]]) {
         near[surface.point_of[v]] = 1;
         frontier.push_back(surface.point_of[v]);
@@ -213,6 +225,27 @@ std::vector<uint8_t> relevant_vertices(const GBuffer& g, unsigned object, bool b
   return out;
 }
 
+// The vertices within `rings` of a triangle that a pixel centre sees from this side.
+std::vector<uint8_t> relevant_vertices(const GBuffer& g, unsigned object, bool back, const Object& o, int rings) {
+  std::vector<uint8_t> seen(o.mesh.triangle_count(), 0);
+  for (size_t p = 0; p < g.object.size(); ++p)
+    if (g.object[p] == int32_t(object) && bool(g.back[p]) == back) seen[size_t(g.triangle[p])] = 1;
+  return near_triangles(o, rings, [&](size_t t) { return seen[t] != 0; });
+}
+
+// The vertices whose values can reach a pixel: within the need's support of a triangle that a
+// primary ray may hit, and one ring further than the refinement looks, so that every vertex the
+// refinement weighs is shaded exactly as if all were. Every vertex without a support.
+std::vector<uint8_t> needed_vertices(const VertexPassInput& in, const Object& o, const VertexNeed& need) {
+  if (need.support < 0) return std::vector<uint8_t>(o.mesh.vertex_count(), 1);
+  const CameraRays camera(in.scene.camera);
+  const auto& p = o.mesh.positions;
+  return near_triangles(o, std::max(need.support, need.rings) + 1, [&](size_t t) {
+    const glm::uvec3& c = o.mesh.triangles[t];
+    return camera.may_see(p[c.x], p[c.y], p[c.z]);
+  });
+}
+
 // Samples one side of one object to its need (or its fixed count); returns the values and errors.
 void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<uint8_t>& relevant, const SurfaceGraph& surface,
                  double target, RayCounts& rays, std::vector<glm::vec3>& values, std::vector<float>& noise) {
@@ -230,7 +263,7 @@ void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<
     if (fixed) break;
     for (size_t v = 0; v < variance.size(); ++v) {
       const uint32_t count = side.vertex_samples()[v];
-      if (!relevant[v] || variance[v] <= target * target || count >= max) continue;
+      if (!relevant[v] || !side.needed(v) || variance[v] <= target * target || count >= max) continue;
       vertex_target[v] = std::min(2 * count, max);
       for (uint32_t i = side.corners().offsets[v]; i < side.corners().offsets[v + 1]; ++i) {
         const size_t t = side.corners().corners[i] / 3;
@@ -239,9 +272,10 @@ void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<
       more = true;
     }
   }
-  values.resize(variance.size());
-  noise.resize(variance.size());
+  values.assign(variance.size(), glm::vec3(0.0f));
+  noise.assign(variance.size(), 0.0f);
   for (size_t v = 0; v < variance.size(); ++v) {
+    if (!side.needed(v)) continue;  // no pixel depends on it
     values[v] = glm::vec3(side.value(v, -1));
     noise[v] = float(std::sqrt(variance[v]));
   }
@@ -265,11 +299,13 @@ VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
     const Object& object = in.scene.objects[o];
     for (bool back : {false, true}) {
       if (back && !(o < in.back.size() && in.back[o])) continue;
-      ObjectSide side(in, o, back, vertex_offset, triangle_offset);
       const VertexNeed need = in.needs.at(o);
+      ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed_vertices(in, object, need));
       sample_side(in, side, relevant_vertices(in.gbuffer, o, back, object, need.rings), object.surface, need.noise,
                   counts, back ? signal.back[o] : signal.front[o], back ? signal.back_noise[o] : signal.front_noise[o]);
-      for (uint32_t c : side.vertex_samples()) {
+      for (size_t v = 0; v < side.vertex_samples().size(); ++v) {
+        if (!side.needed(v)) continue;
+        const uint32_t c = side.vertex_samples()[v];
         signal.samples.min = std::min(signal.samples.min, c);
         signal.samples.max = std::max(signal.samples.max, c);
         total += c;

@@ -10,6 +10,10 @@
 // The signal is shaded for the side of the surface the pixels show: the front of every vertex,
 // and the back as well for objects that the camera sees from behind somewhere.
 //
+// Only what can reach a pixel is shaded: with a support (VertexNeed::support), the vertices within
+// it of a triangle that some primary ray may hit (the view's frustum, tested exactly per triangle),
+// and their incident triangles' points. The rest keep the value 0, which no pixel reads.
+//
 // Like the pixels, every point's samples form two replicates. With a noise budget, sampling goes
 // in rounds: a relevant vertex (near the visible surface) whose L* error (pooled over its 1-ring)
 // exceeds its object's target doubles the samples of its own points and of its triangles'

@@ -155,7 +155,8 @@ TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
 }
 
 // usm3d's vertex signal is tied to the surface: with a fixed sample count, a diffuse scene seen
-// from two cameras gives every vertex the same radiance, so a static point does not shimmer.
+// from two cameras gives every vertex that both shade the same radiance, so a static point does
+// not shimmer.
 TEST(SceneAnimation, TheVertexSignalOfAStaticDiffuseSceneDoesNotDependOnTheCamera) {
   testing::TempDir dir;
   const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
@@ -166,7 +167,19 @@ TEST(SceneAnimation, TheVertexSignalOfAStaticDiffuseSceneDoesNotDependOnTheCamer
   const ViewPlan plan = plan_for("usm3d", {{"sigma", 0.1}}, 1.0);
   const auto va = render_view(std::make_shared<Scene>(a), plan, {}), vb = render_view(std::make_shared<Scene>(b), plan, {});
   ASSERT_EQ(va->render.vertices.front.size(), 2u);
-  for (size_t o = 0; o < 2; ++o) EXPECT_EQ(va->render.vertices.front[o], vb->render.vertices.front[o]) << "object " << o;
+  // Vertices that no pixel of a view can depend on are not shaded in it (value 0); every vertex
+  // both views shade has the same value.
+  for (size_t o = 0; o < 2; ++o) {
+    const auto &fa = va->render.vertices.front[o], &fb = vb->render.vertices.front[o];
+    ASSERT_EQ(fa.size(), fb.size());
+    size_t compared = 0;
+    for (size_t v = 0; v < fa.size(); ++v) {
+      if (fa[v] == glm::vec3(0.0f) || fb[v] == glm::vec3(0.0f)) continue;
+      EXPECT_EQ(fa[v], fb[v]) << "object " << o << " vertex " << v;
+      ++compared;
+    }
+    EXPECT_GT(compared, fa.size() / 2) << "object " << o;
+  }
 }
 
 TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {

@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "enhance/usm3d.h"
+#include "render/camera.h"
 #include "render/shading.h"
 #include "test_util.h"
 
@@ -237,6 +239,60 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
   EXPECT_EQ(one.vertices.front_noise, two.vertices.front_noise);
   EXPECT_GT(one.sampling.pixels.max, one.sampling.pixels.min) << "the soft shadow should need more samples";
   EXPECT_TRUE(one.sampling.budget_met) << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
+}
+
+// The vertex pass shades only what can reach a pixel: vertices within the smoothing's support
+// (and one ring past the refinement's) of a triangle in view. On a large, finely divided ground
+// most of it lies outside the view; the smoothed signal and the gain at every vertex of a triangle
+// in view are still exactly those of shading every vertex, with a fixed count and with the budget.
+TEST(Renderer, TheVertexPassSkipsWhatNoPixelCanDependOnWithoutChangingWhatOneDoes) {
+  testing::TempDir dir;
+  Scene scene = scene_from(dir, R"({
+    "version": 1,
+    "camera": {"eye": [0.3, 0.8, 1.6], "target": [0, 0.3, 0], "fov": 35, "width": 40, "height": 30},
+    "render": {"seed": 3},
+    "objects": [
+      {"shape": {"type": "plane", "size": 10, "subdivisions": 60}},
+      {"shape": {"type": "sphere", "radius": 0.3, "subdivisions": 3}, "transform": {"translate": [0, 0.3, 0]}}
+    ],
+    "lights": [{"type": "point", "position": [1, 3, 1], "intensity": 8, "radius": 0.3, "samples": 1}]
+  })");
+  RayTracer tracer(scene);
+  constexpr int kSupport = 4;
+  for (std::optional<int> spp : {std::optional<int>(8), std::optional<int>()}) {
+    scene.settings.spp = spp;
+    auto run = [&](int support) {
+      RenderOptions options;
+      options.vertex_radiance = true;
+      options.ring_samples = 3;
+      options.vertex_needs.assign(scene.objects.size(), VertexNeed{0.3, 2, support});
+      return render(scene, tracer, options);
+    };
+    const RenderResult culled = run(kSupport), all = run(-1);
+    size_t skipped = 0;  // ground vertices left unshaded (value 0)
+    for (size_t v = 0; v < all.vertices.front[0].size(); ++v)
+      skipped += culled.vertices.front[0][v] == glm::vec3(0.0f) && all.vertices.front[0][v] != glm::vec3(0.0f);
+    EXPECT_GT(skipped, all.vertices.front[0].size() / 2) << "most of the ground is out of view";
+    const CameraRays camera(scene.camera);
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+      const Object& object = scene.objects[o];
+      SmoothingWidth width;
+      width.iterations = kSupport;
+      const SurfaceContrast a = surface_contrast(object, culled.vertices.front[o], scene.display, width);
+      const SurfaceContrast b = surface_contrast(object, all.vertices.front[o], scene.display, width);
+      size_t compared = 0;
+      for (const glm::uvec3& t : object.mesh.triangles) {
+        const auto& p = object.mesh.positions;
+        if (!camera.may_see(p[t.x], p[t.y], p[t.z])) continue;
+        for (uint32_t v : {t.x, t.y, t.z}) {
+          ASSERT_EQ(a.smooth_lightness[v], b.smooth_lightness[v]) << "object " << o << " vertex " << v;
+          ASSERT_EQ(a.gain_factor[v], b.gain_factor[v]) << "object " << o << " vertex " << v;
+          ++compared;
+        }
+      }
+      EXPECT_GT(compared, 0u);
+    }
+  }
 }
 
 // A vertex placed on the ray through the centre pixel of an odd-sized orthographic view
