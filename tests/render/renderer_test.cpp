@@ -241,6 +241,30 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
   EXPECT_TRUE(one.sampling.budget_met) << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
 }
 
+// The smoothed signal and the gain of two renders' vertex signals agree exactly at every vertex of
+// a triangle in view.
+void expect_same_smoothing_in_view(const Scene& scene, const RenderResult& a, const RenderResult& b, int iterations) {
+  const CameraRays camera(scene.camera);
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const Object& object = scene.objects[o];
+    SmoothingWidth width;
+    width.iterations = iterations;
+    const SurfaceContrast sa = surface_contrast(object, a.vertices.front[o], scene.display, width);
+    const SurfaceContrast sb = surface_contrast(object, b.vertices.front[o], scene.display, width);
+    size_t compared = 0;
+    for (const glm::uvec3& t : object.mesh.triangles) {
+      const auto& p = object.mesh.positions;
+      if (!camera.may_see(p[t.x], p[t.y], p[t.z])) continue;
+      for (uint32_t v : {t.x, t.y, t.z}) {
+        ASSERT_EQ(sa.smooth_lightness[v], sb.smooth_lightness[v]) << "object " << o << " vertex " << v;
+        ASSERT_EQ(sa.gain_factor[v], sb.gain_factor[v]) << "object " << o << " vertex " << v;
+        ++compared;
+      }
+    }
+    EXPECT_GT(compared, 0u);
+  }
+}
+
 // The vertex pass shades only what can reach a pixel: vertices within the smoothing's support
 // (and one ring past the refinement's) of a triangle in view. On a large, finely divided ground
 // most of it lies outside the view; the smoothed signal and the gain at every vertex of a triangle
@@ -273,25 +297,7 @@ TEST(Renderer, TheVertexPassSkipsWhatNoPixelCanDependOnWithoutChangingWhatOneDoe
     for (size_t v = 0; v < all.vertices.front[0].size(); ++v)
       skipped += culled.vertices.front[0][v] == glm::vec3(0.0f) && all.vertices.front[0][v] != glm::vec3(0.0f);
     EXPECT_GT(skipped, all.vertices.front[0].size() / 2) << "most of the ground is out of view";
-    const CameraRays camera(scene.camera);
-    for (size_t o = 0; o < scene.objects.size(); ++o) {
-      const Object& object = scene.objects[o];
-      SmoothingWidth width;
-      width.iterations = kSupport;
-      const SurfaceContrast a = surface_contrast(object, culled.vertices.front[o], scene.display, width);
-      const SurfaceContrast b = surface_contrast(object, all.vertices.front[o], scene.display, width);
-      size_t compared = 0;
-      for (const glm::uvec3& t : object.mesh.triangles) {
-        const auto& p = object.mesh.positions;
-        if (!camera.may_see(p[t.x], p[t.y], p[t.z])) continue;
-        for (uint32_t v : {t.x, t.y, t.z}) {
-          ASSERT_EQ(a.smooth_lightness[v], b.smooth_lightness[v]) << "object " << o << " vertex " << v;
-          ASSERT_EQ(a.gain_factor[v], b.gain_factor[v]) << "object " << o << " vertex " << v;
-          ++compared;
-        }
-      }
-      EXPECT_GT(compared, 0u);
-    }
+    expect_same_smoothing_in_view(scene, culled, all, kSupport);
   }
 }
 
