@@ -99,8 +99,11 @@ TEST(ScaleAgainstDepth, ASyntheticHaloOfKnownWidthIsMeasuredAtThreeDepths) {
   EXPECT_NEAR(depth_slope(samples).slope, -1.0, 0.03);
   const std::vector<HaloSample> fixed = halo_samples({view->scene->camera, view->depth, screen_layer(*view, 4.0)}, kEdges, 1);
   EXPECT_NEAR(depth_slope(fixed).slope, 0.0, 0.03);
-  for (const HaloSample& s : fixed)
-    if (s.edge_x == 0 && s.depth < 8) EXPECT_NEAR(s.width_px, 4.0, 0.2) << s.depth;
+  for (const HaloSample& s : fixed) {
+    if (s.edge_x == 0 && s.depth < 8) {
+      EXPECT_NEAR(s.width_px, 4.0, 0.2) << s.depth;
+    }
+  }
 }
 
 TEST(ScaleAgainstDepth, AProbeSetRecordsWidthsAndSlopesAndPlotsThem) {
