@@ -23,6 +23,8 @@ const char* output_path_name(OutputPath path);
 struct OutputPathChoice {
   bool automatic = true;
   OutputPath path = OutputPath::dither;
+  // Whether the 10-bit framebuffer is asked for, and its read-back checked.
+  bool may_use_ten_bit() const { return automatic || path == OutputPath::ten_bit; }
 };
 // Parses "auto", "ten-bit" or "dither"; nothing for anything else.
 std::optional<OutputPathChoice> parse_output_path(const std::string& text);

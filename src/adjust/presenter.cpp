@@ -170,7 +170,7 @@ void Presenter::create_window(GLFWmonitor* monitor, int need_w, int need_h) {
   glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);  // display values go to the screen unchanged
   glfwWindowHint(GLFW_SAMPLES, 0);
   // A 16-bit study asks for 10 bits per channel; GLFW gives the closest the display has.
-  const bool ten = options_.stimulus_bits == 16 && (options_.output_path.automatic || options_.output_path.path == OutputPath::ten_bit);
+  const bool ten = options_.stimulus_bits == 16 && options_.output_path.may_use_ten_bit();
   for (int hint : {GLFW_RED_BITS, GLFW_GREEN_BITS, GLFW_BLUE_BITS}) glfwWindowHint(hint, ten ? 10 : 8);
   glfwWindowHint(GLFW_ALPHA_BITS, ten ? 2 : 8);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
@@ -220,7 +220,7 @@ void Presenter::choose_output_path() {
   for (int c = 0; c < 3; ++c) glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_BACK_LEFT, sizes[c], &framebuffer_bits_[c]);
   deep_ = std::make_unique<DeepStimulusRenderer>();
   const OutputPathChoice& choice = options_.output_path;
-  if (choice.automatic || choice.path == OutputPath::ten_bit) {
+  if (choice.may_use_ten_bit()) {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window_, &fw, &fh);
     ten_bit_read_back_ = ten_bit_read_back_holds(*deep_, fh);
