@@ -1,6 +1,9 @@
 // Where a browser session keeps its answers: every row goes to localStorage before the next
 // question appears, so a reload resumes at the first unanswered question; with a post URL each
 // row is also sent to the server, in order, and sent again until the server acknowledges it.
+// A reload can come after the server has taken a row but before the page has heard so; the row is
+// then sent again. Each POST carries an Idempotency-Key header naming the session and the row's
+// place in it, the same on every attempt, so the server keeps the first and acknowledges repeats.
 
 const COLUMNS = [
   "subject", "scene", "sigma", "question", "lambda", "method", "lambda_step", "lambda_index", "lambda_max",
@@ -55,6 +58,12 @@ export class SessionStore {
     return csvLine(COLUMNS) + this.rows.map((row) => csvLine(COLUMNS.map((c) => row[c] ?? ""))).join("");
   }
 
+  // The Idempotency-Key of row `index`: the session's storage key (URI-encoded: a header holds
+  // ASCII only, and a subject ID need not) and the index.
+  rowKey(index) {
+    return `${encodeURIComponent(this.key)}:${index}`;
+  }
+
   // Sends the rows in order, one at a time, each until the server answers 2xx; after a failure it
   // waits 100 ms, doubling up to 5 s while the server keeps failing.
   async flush() {
@@ -67,7 +76,7 @@ export class SessionStore {
         try {
           const response = await this.fetch(this.postUrl, {
             method: "POST",
-            headers: { "Content-Type": "text/csv" },
+            headers: { "Content-Type": "text/csv", "Idempotency-Key": this.rowKey(this.posted) },
             body: csvLine(COLUMNS) + csvLine(COLUMNS.map((c) => row[c] ?? "")),
           });
           ok = response.ok;

@@ -1,5 +1,6 @@
-// The browser's answer store without a browser: rows kept synchronously, CSV as RFC 4180, and a
-// server that refuses the first two POSTs of every row still ends with every row once, in order.
+// The browser's answer store without a browser: rows kept synchronously, CSV as RFC 4180, a
+// server that refuses the first two POSTs of every row still ends with every row once, in order,
+// and a row sent again after a reload carries the key the server deduplicates by.
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -44,4 +45,24 @@ test("every row reaches a refusing server exactly once, in order", async () => {
   assert.equal(reloaded.rows.length, 5, "kept across a reload");
   assert.equal(reloaded.posted, 5);
   assert.deepEqual(reloaded.answered().get("3,0"), { lambdaIndex: 3, revision: 0 });
+});
+
+test("a row whose acknowledgement a reload cut off goes again under the same Idempotency-Key", async () => {
+  const keys = [];
+  const storage = new MemoryStorage();
+  // The server takes the row, but the page is gone before it hears so: posted stays 0.
+  const lost = new SessionStore(storage, "countershade:abc:Zoë 1:1", "http://localhost/collect", (url, { headers }) => {
+    keys.push(headers["Idempotency-Key"]);
+    return new Promise(() => {});
+  });
+  lost.add({ subject: "Zoë 1", trial: 1, question: "low", lambda_index: 2, revision: 0, plan_index: 0, question_index: 0 });
+  const resumed = new SessionStore(storage, "countershade:abc:Zoë 1:1", "http://localhost/collect", async (url, { headers }) => {
+    keys.push(headers["Idempotency-Key"]);
+    return { ok: true };
+  });
+  resumed.add({ subject: "Zoë 1", trial: 2, question: "high", lambda_index: 4, revision: 0, plan_index: 0, question_index: 1 });
+  while (resumed.posted < 2) await new Promise((r) => setTimeout(r, 5));
+  assert.deepEqual(keys, ["countershade%3Aabc%3AZo%C3%AB%201%3A1:0", "countershade%3Aabc%3AZo%C3%AB%201%3A1:0",
+                          "countershade%3Aabc%3AZo%C3%AB%201%3A1:1"]);
+  assert.ok(keys.every((k) => /^[\x21-\x7e]+$/.test(k)), "a header value of visible ASCII");
 });

@@ -8,21 +8,29 @@ import { extname, join, normalize } from "node:path";
 const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".png": "image/png" };
 
 // A static file server for the study folder on a free loopback port. With `collect`, it also
-// takes POSTs to /collect: it refuses the first `refuse` attempts at each row (HTTP 503) and
-// passes each row it accepts to collect(row).
+// takes POSTs to /collect as docs/online-study.md asks of a server: it refuses the first `refuse`
+// attempts at each row (HTTP 503), passes each row it accepts to collect(row), and acknowledges a
+// repeated Idempotency-Key without collecting again. A repeat whose row differs from the first,
+// or a POST without a key, is collected as an "ERROR" line, which fails the tests' comparison.
 export function serve(root, collect = null, refuse = 0) {
   const attempts = new Map();
+  const taken = new Map(); // Idempotency-Key → the row taken under it
   const server = createServer(async (req, res) => {
     if (req.method === "POST" && collect) {
       let body = "";
       for await (const chunk of req) body += chunk;
       const row = body.split("\n")[1];
+      const key = req.headers["idempotency-key"];
       attempts.set(row, (attempts.get(row) ?? 0) + 1);
       if (attempts.get(row) <= refuse) {
         res.writeHead(503);
         return void res.end();
       }
-      collect(row);
+      if (!key || (taken.has(key) && taken.get(key) !== row)) collect(`ERROR ${key ?? "no key"}: ${row}`);
+      else if (!taken.has(key)) {
+        taken.set(key, row);
+        collect(row);
+      }
       res.writeHead(200);
       return void res.end();
     }
