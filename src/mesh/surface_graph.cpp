@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -23,36 +22,64 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   return v;
 }
 
-// Groups of vertices within `tolerance` (transitively), numbered by their lowest vertex.
+// Cell coordinates of a point in a grid of cells `cell` wide, as 64-bit integers, clamped so
+// that far or non-finite points cannot overflow the conversion (they only share cells then,
+// which costs comparisons, not correctness).
+glm::i64vec3 cell_of(const glm::dvec3& p, double cell) {
+  const glm::dvec3 c = glm::clamp(glm::floor(p / cell), glm::dvec3(-0x1p62), glm::dvec3(0x1p62));
+  return glm::i64vec3(std::isnan(c.x) ? 0 : c.x, std::isnan(c.y) ? 0 : c.y, std::isnan(c.z) ? 0 : c.z);
+}
+
+// The vertices inserted so far, by grid cell: a flat hash table of chains (head per bucket, next
+// per vertex). Cells that share a bucket share a chain; the distance test sorts them out.
+class CellTable {
+ public:
+  explicit CellTable(size_t vertices) : next_(vertices, kNone) {
+    size_t buckets = 1;
+    while (buckets < 2 * vertices) buckets *= 2;
+    head_.assign(buckets, kNone);
+  }
+  template <typename Visit>
+  void for_each_in(const glm::i64vec3& c, const Visit& visit) const {
+    for (uint32_t v = head_[bucket(c)]; v != kNone; v = next_[v]) visit(v);
+  }
+  void insert(const glm::i64vec3& c, uint32_t v) {
+    uint32_t& head = head_[bucket(c)];
+    next_[v] = head;
+    head = v;
+  }
+
+ private:
+  static constexpr uint32_t kNone = UINT32_MAX;
+  size_t bucket(const glm::i64vec3& c) const {
+    const uint64_t key = (uint64_t(c.x) * 73856093u) ^ (uint64_t(c.y) * 19349663u) ^ (uint64_t(c.z) * 83492791u);
+    return size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & (head_.size() - 1);
+  }
+  std::vector<uint32_t> head_, next_;
+};
+
+// Groups of vertices within `tolerance` (transitively), numbered by their lowest vertex. Cells
+// are 2·tolerance wide, so the points within tolerance of p lie in at most two cells per axis:
+// those holding p − tolerance and p + tolerance.
 std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions, double tolerance) {
   const size_t n = positions.size();
   std::vector<uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
   const double cell = tolerance > 0 ? 2.0 * tolerance : 1.0;
-  auto key_of = [&](const glm::i64vec3& c) {
-    return (uint64_t(c.x) * 73856093u) ^ (uint64_t(c.y) * 19349663u) ^ (uint64_t(c.z) * 83492791u);
-  };
-  // Cell coordinates as 64-bit integers, clamped so that far or non-finite points cannot overflow
-  // the conversion (they only share cells then, which costs comparisons, not correctness).
-  auto cell_of = [&](const glm::vec3& p) {
-    const glm::dvec3 c = glm::clamp(glm::floor(glm::dvec3(p) / cell), glm::dvec3(-0x1p62), glm::dvec3(0x1p62));
-    return glm::i64vec3(std::isnan(c.x) ? 0 : c.x, std::isnan(c.y) ? 0 : c.y, std::isnan(c.z) ? 0 : c.z);
-  };
-  std::unordered_multimap<uint64_t, uint32_t> grid;
-  grid.reserve(n);
+  CellTable table(n);
   for (uint32_t v = 0; v < n; ++v) {
-    const glm::i64vec3 c = cell_of(positions[v]);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          auto range = grid.equal_range(key_of(c + glm::i64vec3(dx, dy, dz)));
-          for (auto it = range.first; it != range.second; ++it)
-            if (glm::length(glm::dvec3(positions[it->second]) - glm::dvec3(positions[v])) <= tolerance) {
-              const uint32_t a = find_root(parent, it->second), b = find_root(parent, v);
+    const glm::dvec3 p(positions[v]);
+    const glm::i64vec3 lo = cell_of(p - tolerance, cell), hi = cell_of(p + tolerance, cell);
+    for (int64_t z = lo.z; z <= hi.z; ++z)
+      for (int64_t y = lo.y; y <= hi.y; ++y)
+        for (int64_t x = lo.x; x <= hi.x; ++x)
+          table.for_each_in({x, y, z}, [&](uint32_t w) {
+            if (glm::length(glm::dvec3(positions[w]) - p) <= tolerance) {
+              const uint32_t a = find_root(parent, w), b = find_root(parent, v);
               parent[std::max(a, b)] = std::min(a, b);
             }
-        }
-    grid.emplace(key_of(c), v);
+          });
+    table.insert(cell_of(p, cell), v);
   }
   for (uint32_t v = 0; v < n; ++v) parent[v] = find_root(parent, v);
   return parent;  // each vertex's lowest-index partner
