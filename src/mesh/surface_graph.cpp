@@ -69,7 +69,9 @@ std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions, double toler
   CellTable table(n);
   for (uint32_t v = 0; v < n; ++v) {
     const glm::dvec3 p(positions[v]);
-    const glm::i64vec3 lo = cell_of(p - tolerance, cell), hi = cell_of(p + tolerance, cell);
+    // A hair wider than the tolerance, so that rounding in p ± tolerance cannot drop a cell.
+    const double reach = tolerance * (1 + 1e-9);
+    const glm::i64vec3 lo = cell_of(p - reach, cell), hi = cell_of(p + reach, cell);
     for (int64_t z = lo.z; z <= hi.z; ++z)
       for (int64_t y = lo.y; y <= hi.y; ++y)
         for (int64_t x = lo.x; x <= hi.x; ++x)

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <cmath>
 
 #include "enhance/usm3d.h"
@@ -32,6 +34,29 @@ TriangleMesh split_along_seam(const TriangleMesh& welded, std::vector<uint32_t>*
       if ((*copy_of)[t[c]] != UINT32_MAX) t[c] = (*copy_of)[t[c]];
   }
   return split;
+}
+
+// Pairs of points in random directions at 0.999 and 1.001 tolerances apart, anywhere in the grid
+// of cells (across cell corners too): the first pairs are one surface point, the second are not.
+TEST(SurfaceGraph, WeldingJoinsPointsWithinTheToleranceAndNoOthers) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> anywhere(-1, 1);
+  std::normal_distribution<float> direction(0, 1);
+  const double tolerance = 1e-3;
+  for (double apart : {0.999, 1.001}) {
+    std::vector<glm::vec3> positions;
+    std::vector<std::pair<uint32_t, uint32_t>> edges;
+    for (int k = 0; k < 2000; ++k) {
+      const glm::vec3 p(anywhere(random), anywhere(random), anywhere(random));
+      const glm::vec3 d = glm::normalize(glm::vec3(direction(random), direction(random), direction(random)));
+      positions.push_back(p);
+      positions.push_back(glm::vec3(glm::dvec3(p) + apart * tolerance * glm::dvec3(d)));
+    }
+    const SurfaceGraph g = surface_graph(positions, edges, tolerance);
+    size_t joined = 0;
+    for (size_t k = 0; k < positions.size(); k += 2) joined += g.point_of[k] == g.point_of[k + 1];
+    EXPECT_EQ(joined, apart < 1 ? 2000u : 0u) << apart;
+  }
 }
 
 TEST(SurfaceGraph, ASeamDoesNotStopTheSmoothing) {
