@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "mesh/chebyshev_smoothing.h"
+#include "mesh/vertex_order.h"
 
 namespace countershade {
 
@@ -58,11 +59,26 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
   }
 }
 
+namespace {
+
+void smooth_in_given_order(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                           const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
+                           int threads) {
+  if (scheme == SmoothingScheme::chebyshev) return chebyshev_smooth(adjacency, label, iterations, values, threads);
+  laplacian_smooth(adjacency, label, iterations, values, threads);
+}
+
+}  // namespace
+
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                        const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
                        int threads) {
-  if (scheme == SmoothingScheme::chebyshev) return chebyshev_smooth(adjacency, label, iterations, values, threads);
-  laplacian_smooth(adjacency, label, iterations, values, threads);
+  if (adjacency.vertex_count() <= kReorderAbove)
+    return smooth_in_given_order(adjacency, label, iterations, values, scheme, threads);
+  const std::vector<uint32_t> order = breadth_first_order(adjacency);
+  std::vector<double> local = gathered(values, order);
+  smooth_in_given_order(renumbered(adjacency, order), gathered(label, order), iterations, local, scheme, threads);
+  scatter(local, order, values);
 }
 
 std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values) {

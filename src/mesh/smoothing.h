@@ -31,7 +31,13 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
 // 1e-7 of the signal's range of the steps).
 enum class SmoothingScheme { iterate, chebyshev };
 
-// laplacian_smooth or chebyshev_smooth, by `scheme`.
+// Above this many vertices smooth_over_rings works in breadth-first order (mesh/vertex_order.h):
+// the arrays outgrow the caches, and the renumbering (a few passes over the graph) pays for itself
+// within a few steps. The result is the same to the bit in either order.
+inline constexpr size_t kReorderAbove = 200000;
+
+// laplacian_smooth or chebyshev_smooth, by `scheme`, in breadth-first order above kReorderAbove
+// vertices.
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                        const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
                        int threads = 0);
