@@ -74,7 +74,7 @@ struct Usm3dParameters final : MethodParameters {
   bool adapt = true;
   int ring_samples = 3;
   std::optional<double> refine;  // split mesh edges longer than this first
-  SmoothingScheme scheme = SmoothingScheme::iterate;
+  SmoothingScheme scheme = SmoothingScheme::chebyshev;
 };
 
 // σ in world units (absolute, or a fraction of the scene diagonal); 0 with explicit iterations.
@@ -278,8 +278,9 @@ class Usm3dMethod final : public EnhancementMethod {
             {"adapt", "true", "adaptive gain √(1+Var) (--no-adapt: constant gain λ·w)"},
             {"ring_samples", "3", "anti-aliasing samples per incident triangle for the vertex signal (0 = off)"},
             {"refine", "", "split mesh edges longer than this world length before rendering"},
-            {"smoothing", "iterate",
-             "iterate (n 1-ring steps) | chebyshev (the same n steps in O(√n) products, within 1e-7 of the signal's range)"}};
+            {"smoothing", "chebyshev",
+             "chebyshev (the n 1-ring steps in O(√n) products, within 1e-7 of the signal's range) | iterate (one product "
+             "per step)"}};
   }
 
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
@@ -290,7 +291,7 @@ class Usm3dMethod final : public EnhancementMethod {
     p->adapt = bag.boolean("adapt", true);
     p->ring_samples = int(bag.integer_in("ring_samples", 3, 0, 64));
     p->refine = bag.optional_number("refine");
-    if (bag.choice("smoothing", "iterate", {"iterate", "chebyshev"}) == "chebyshev") p->scheme = SmoothingScheme::chebyshev;
+    if (bag.choice("smoothing", "chebyshev", {"chebyshev", "iterate"}) == "iterate") p->scheme = SmoothingScheme::iterate;
     bag.finish(name());
     const int given = int(p->sigma.has_value()) + int(p->sigma_fraction.has_value()) + int(p->iterations.has_value());
     if (given != 1)

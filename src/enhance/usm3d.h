@@ -20,7 +20,7 @@ struct SmoothingWidth {
   std::optional<double> sigma;    // world units
   std::optional<int> iterations;  // instead of σ
   bool adapt = true;              // gain √(1 + Var)
-  SmoothingScheme scheme = SmoothingScheme::iterate;
+  SmoothingScheme scheme = SmoothingScheme::chebyshev;
 };
 
 // The per-vertex quantities of one object for one σ.
