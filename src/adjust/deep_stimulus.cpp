@@ -23,7 +23,7 @@ void main() {
 const char* const kFragmentMain = R"(
 uniform usampler2D image;
 uniform ivec2 top_left;  // the image's top-left pixel in window coordinates (x, and y of its top row)
-uniform int mode;        // 0: the nearest 10-bit level; 1: dithered to 8 bits
+uniform int mode;        // 0: the nearest 10-bit level; 1: dithered to 8 bits; 2: pseudo-grey
 uniform uint frame;
 uniform uint seed;
 out vec4 colour;
@@ -32,6 +32,8 @@ void main() {
   uvec3 v = texelFetch(image, ivec2(p), 0).rgb;
   if (mode == 0)
     colour = vec4(vec3(ten_bit_level(v)) / 1023.0, 1.0);
+  else if (mode == 2)
+    colour = vec4(vec3(pseudo_grey_levels((v.r + v.g + v.b + 1u) / 3u)) / 255.0, 1.0);  // pseudo_grey_value
   else
     colour = vec4(vec3(dither_level(v, dither_threshold(p.x, p.y, frame, seed))) / 255.0, 1.0);
 }
@@ -118,7 +120,7 @@ void DeepStimulusRenderer::draw(unsigned texture, const PixelRect& r, OutputPath
   glViewport(r.x, bottom, r.width, r.height);
   glUseProgram(program_);
   glUniform2i(top_left_, r.x, r.framebuffer_height - r.y - 1);
-  glUniform1i(mode_, path == OutputPath::ten_bit ? 0 : 1);
+  glUniform1i(mode_, path == OutputPath::ten_bit ? 0 : path == OutputPath::pseudo_grey ? 2 : 1);
   glUniform1ui(frame_, frame);
   glUniform1ui(seed_, seed);
   glActiveTexture(GL_TEXTURE0);

@@ -7,6 +7,7 @@ const char* output_path_name(OutputPath path) {
     case OutputPath::eight_bit: return "8-bit";
     case OutputPath::ten_bit: return "ten-bit";
     case OutputPath::dither: return "dither";
+    case OutputPath::pseudo_grey: return "pseudo-grey";
   }
   return "?";
 }
@@ -15,6 +16,7 @@ std::optional<OutputPathChoice> parse_output_path(const std::string& text) {
   if (text == "auto") return OutputPathChoice{};
   if (text == "ten-bit") return OutputPathChoice{false, OutputPath::ten_bit};
   if (text == "dither") return OutputPathChoice{false, OutputPath::dither};
+  if (text == "pseudo-grey") return OutputPathChoice{false, OutputPath::pseudo_grey};
   return std::nullopt;
 }
 
@@ -50,10 +52,16 @@ uint dither_threshold(uint x, uint y, uint frame, uint seed) {
   uint position = (stratum << 10) | (h & 1023u);
   return (position * 65535u) >> 16;
 }
-// n / 65535 for n < 2^26 without a division, which a software rasteriser runs lane by lane.
+// n / 65535 without a division, which a software rasteriser runs lane by lane; exact for every n
+// the functions below pass (every 16-bit value is checked against the C++ in the tests).
 uvec3 over_65535(uvec3 n) { return (n + 1u + (n >> 16)) >> 16; }
 uvec3 ten_bit_level(uvec3 v) { return over_65535(v * 1023u + 32767u); }
 uvec3 dither_level(uvec3 v, uint threshold) { return over_65535(v * 255u + threshold); }
+uvec3 pseudo_grey_levels(uint v) {
+  uint i = over_65535(uvec3(v * 4080u + 32767u)).x;
+  uvec3 boost = (uvec3(0xC1E0u, 0xFE00u, 0x399Cu) >> (i & 15u)) & 1u;
+  return min(uvec3(i >> 4) + boost, uvec3(255u));
+}
 )";
 
 }  // namespace countershade::adjust

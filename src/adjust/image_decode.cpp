@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "core/error.h"
@@ -41,6 +42,30 @@ std::vector<uint8_t> decode_rgba(const StimulusImage& image) { return decode_as<
 
 std::vector<uint16_t> decode_rgba16(const StimulusImage& image) {
   return decode_as<uint16_t>(image, OIIO::TypeDesc::UINT16);
+}
+
+namespace {
+
+// Pseudo-grey shows one grey per pixel: a pixel whose R, G and B lie further apart than
+// kAchromaticSpread has a colour it cannot show.
+void require_achromatic_image(const StimulusImage& image, const std::vector<uint16_t>& rgba) {
+  for (size_t p = 0; p < rgba.size() / 4; ++p) {
+    const uint16_t* c = &rgba[p * 4];
+    if (std::max({c[0], c[1], c[2]}) - std::min({c[0], c[1], c[2]}) <= int(kAchromaticSpread)) continue;
+    throw_input_error(image.file.string(), "--output-path pseudo-grey shows achromatic stimuli only, but pixel (" +
+                                               std::to_string(p % size_t(image.width)) + ", " +
+                                               std::to_string(p / size_t(image.width)) + ") has R, G, B = " +
+                                               std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
+                                               std::to_string(c[2]) + " (use dither or ten-bit)");
+  }
+}
+
+}  // namespace
+
+void require_achromatic_images(const Study& study, const OutputPathChoice& path) {
+  if (study.bits != 16 || path.automatic || path.path != OutputPath::pseudo_grey) return;
+  tbb::parallel_for(size_t(0), study.images.size(),
+                    [&](size_t i) { require_achromatic_image(study.images[i], decode_rgba16(study.images[i])); });
 }
 
 std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "adjust/fine_levels.h"
 #include "adjust/presenter.h"
 #include "adjust/study.h"
 
@@ -14,6 +15,11 @@ namespace countershade::adjust {
 // Decodes a stimulus into 8-bit (or 16-bit) RGBA; the size must be the manifest's. Throws InputError.
 std::vector<uint8_t> decode_rgba(const StimulusImage& image);
 std::vector<uint16_t> decode_rgba16(const StimulusImage& image);
+
+// With `--output-path pseudo-grey` and a 16-bit set: every image must be achromatic (R, G and B
+// within kAchromaticSpread codes at every pixel); throws InputError naming the first image and
+// pixel that is not. Run before a window opens or a session file is written.
+void require_achromatic_images(const Study& study, const OutputPathChoice& path);
 
 // Every image of the study as a texture, decoded in parallel and uploaded in batches of eight,
 // with a progress bar. Returns the textures (by image index), or nothing when the window was

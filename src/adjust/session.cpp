@@ -406,6 +406,7 @@ int run_session(const SessionOptions& o) {
   CheckedInputs inputs = check_inputs(o);
   Study study = load_study(o.manifest, o.config);
   verify_study_images(study);
+  require_achromatic_images(study, o.output_path);
   PlanSettings settings = study.config.plan;
   settings.seed = session_seed(study.config.seed.value_or(study.manifest_seed), o.subject, o.session);
   const std::vector<Trial> plan = plan_trials(study.conditions, settings);

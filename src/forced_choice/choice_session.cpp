@@ -321,6 +321,7 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   const adjust::Study study = adjust::load_study(o.manifest, std::nullopt);
   const ChoiceConfig config = load_config(o);
   adjust::verify_study_images(study);
+  adjust::require_achromatic_images(study, o.output_path);
   const uint64_t seed = adjust::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
   ChoiceRun run(study, config, seed);
   std::error_code ec;

@@ -12,6 +12,7 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -161,6 +162,33 @@ TEST(DeepOutput, DitheredFramesAreTheReferencesAndAverageToTheSixteenBitValue) {
     for (size_t c = 0; c < 3; ++c)
       worst = std::max(worst, std::abs(sum[p * 3 + c] / 64 - s.rgba[p * 4 + c] * 255.0 / 65535.0));
   EXPECT_LT(worst, 0.02) << "the worst pixel's 64-frame mean, in 8-bit levels";
+  glDeleteTextures(1, &texture);
+}
+
+// Every 16-bit grey value, drawn in pseudo-grey into an 8-bit framebuffer, reads back as the C++
+// reference's three levels; odd values have green one code up (a near-grey pixel of a render),
+// which the mean of the three rounds away.
+TEST(DeepOutput, PseudoGreyDrawsEverySixteenBitGreyAsTheReferenceLevels) {
+  GlContext gl;
+  Framebuffer fb(GL_RGBA8, 256, 256);
+  ASSERT_TRUE(fb.complete());
+  std::vector<uint16_t> ramp(256 * 256 * 4);
+  for (uint32_t v = 0; v < 65536; ++v)
+    for (int c = 0; c < 4; ++c) ramp[v * 4 + c] = uint16_t(c == 3 ? 65535 : c == 1 ? std::min(v + (v & 1), 65535u) : v);
+  DeepStimulusRenderer renderer;
+  const unsigned texture = DeepStimulusRenderer::upload(ramp, 256, 256);
+  const PixelRect where{0, 0, 256, 256, 256};
+  renderer.draw(texture, where, OutputPath::pseudo_grey, 0, 0);
+  const std::vector<uint16_t> back = read_back_rgba16(where);
+  const uint32_t masks[3] = {kPseudoGreyRed, kPseudoGreyGreen, kPseudoGreyBlue};
+  long differing = 0, tilted = 0;
+  for (uint32_t v = 0; v < 65536; ++v) {
+    const uint32_t grey = pseudo_grey_value(ramp[v * 4], ramp[v * 4 + 1], ramp[v * 4 + 2]);
+    for (int c = 0; c < 3; ++c) differing += back[v * 4 + c] / 257u != pseudo_grey_level(grey, masks[c]);
+    tilted += back[v * 4] != back[v * 4 + 1] || back[v * 4 + 1] != back[v * 4 + 2];
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(tilted, 50000);  // most values are shown between two greys
   glDeleteTextures(1, &texture);
 }
 

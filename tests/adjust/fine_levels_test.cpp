@@ -74,10 +74,45 @@ TEST(FineLevels, TheDitherPatternIsSpatiallyEvenAndChangesEveryFrameAndWithTheSe
   EXPECT_LT(same_other_seed, kSide * kSide / 1000);
 }
 
+// The boost table as Psychtoolbox's CreatePseudoGrayLUT lists it (slots counted from 0), written
+// out here apart from the masks in fine_levels.h.
+constexpr int kBoost[16][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 1},
+                               {1, 0, 1}, {0, 1, 0}, {0, 1, 0}, {0, 1, 1}, {0, 1, 1}, {0, 1, 1}, {1, 1, 0}, {1, 1, 0}};
+
+// Bit stealing: Psychtoolbox's table, its 1786 levels, and every 16-bit grey value shown within
+// 0.14 + 1/32 of a level when the guns weigh 0.30, 0.59 and 0.11 (the weights the table is built
+// for): the worst slot is 4 (a quarter of a step shown as blue's 0.11), and the index's rounding
+// adds half a sixteenth. The nearest 8-bit level can be half a level off.
+TEST(FineLevels, PseudoGreyIsPsychtoolboxsTableAndSplitsEachLevelInSeven) {
+  const uint32_t masks[3] = {kPseudoGreyRed, kPseudoGreyGreen, kPseudoGreyBlue};
+  for (uint32_t slot = 0; slot < 16; ++slot)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(int((masks[c] >> slot) & 1u), kBoost[slot][c]) << slot << " " << c;
+  std::set<uint32_t> triplets;
+  double worst = 0, previous = -1;
+  bool monotonic = true;
+  for (uint32_t v = 0; v <= 65535; ++v) {
+    const uint32_t r = pseudo_grey_level(v, kPseudoGreyRed), g = pseudo_grey_level(v, kPseudoGreyGreen),
+                   b = pseudo_grey_level(v, kPseudoGreyBlue);
+    triplets.insert(r << 16 | g << 8 | b);
+    const double shown = 0.30 * r + 0.59 * g + 0.11 * b;
+    worst = std::max(worst, std::abs(shown - v * 255.0 / 65535.0));
+    monotonic = monotonic && shown >= previous;
+    previous = shown;
+  }
+  EXPECT_EQ(triplets.size(), 1786u);
+  EXPECT_TRUE(monotonic);
+  EXPECT_LE(worst, 0.14 + 1.0 / 32);
+  EXPECT_GT(worst, 0.14);
+  EXPECT_EQ(pseudo_grey_level(65535, kPseudoGreyGreen), 255u);
+  EXPECT_EQ(pseudo_grey_level(257 * 77, kPseudoGreyRed), 77u);  // an 8-bit level is its own grey
+}
+
 TEST(FineLevels, OutputPathsParseByName) {
   EXPECT_TRUE(parse_output_path("auto")->automatic);
   EXPECT_EQ(parse_output_path("ten-bit")->path, OutputPath::ten_bit);
   EXPECT_EQ(parse_output_path("dither")->path, OutputPath::dither);
+  EXPECT_EQ(parse_output_path("pseudo-grey")->path, OutputPath::pseudo_grey);
+  EXPECT_FALSE(parse_output_path("pseudo-grey")->may_use_ten_bit());
   EXPECT_FALSE(parse_output_path("10bit"));
   EXPECT_STREQ(output_path_name(OutputPath::ten_bit), "ten-bit");
 }

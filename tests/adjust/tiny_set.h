@@ -11,12 +11,10 @@
 
 namespace countershade::testing {
 
-// Writes the experiment (with `adjust` as its "adjust" object, when given) and generates the
-// set into dir/set; returns the manifest's path. `extra`: more top-level keys of the experiment, each followed by a comma.
-inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string& adjust = "",
-                                           int width = 96, int height = 72, double lambda_step = 0.4,
-                                           const std::string& extra = "") {
-  write_file(dir / "cube.json", kLitCubeScene);
+// make_tiny_set on the scene already written to dir/cube.json.
+inline std::filesystem::path make_tiny_set_of(const TempDir& dir, const std::string& extra = "",
+                                              const std::string& adjust = "", int width = 96, int height = 72,
+                                              double lambda_step = 0.4) {
   std::string text = R"({
     "version": 1, "name": "tiny", "seed": 5, )" + extra + R"(
     "lambda": {"min": 0, "max": 2, "step": )" + format_value(lambda_step) + R"(},
@@ -30,6 +28,16 @@ inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string
   options.contact_sheets = false;
   generate_stimulus_set(load_experiment(experiment_file), dir / "set", options);
   return dir / "set" / "manifest.json";
+}
+
+// Writes the lit cube scene and the experiment (with `adjust` as its "adjust" object, when given)
+// and generates the set into dir/set; returns the manifest's path. `extra`: more top-level keys
+// of the experiment, each followed by a comma.
+inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string& adjust = "",
+                                           int width = 96, int height = 72, double lambda_step = 0.4,
+                                           const std::string& extra = "") {
+  write_file(dir / "cube.json", kLitCubeScene);
+  return make_tiny_set_of(dir, extra, adjust, width, height, lambda_step);
 }
 
 // A set of sequences for the playback tests: the orbiting box, all 4 frames at the given size,
