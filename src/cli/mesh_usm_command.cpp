@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "enhance/usm3d.h"
 #include "mesh/surface_graph.h"
 #include "mesh/colored_mesh.h"
@@ -63,9 +64,15 @@ size_t apply_contrast(std::vector<glm::dvec3>& colors, const std::vector<Lab>& l
   return clipped;
 }
 
+// The share of a large mesh's run done after each step (reading and building the connectivity
+// take about a third, smoothing a fifth, writing the rest: docs/performance.md, "Large meshes").
+constexpr double kRead = 0.35, kSmoothed = 0.7, kComposed = 0.75;
+
 void run(const MeshUsmArgs& args) {
   check_arguments(args);
+  Progress progress("mesh-usm");
   ColoredMeshFile mesh = ColoredMeshFile::read(args.input);
+  progress.update(kRead);
   std::vector<glm::dvec3> colors = mesh.colors();
   std::vector<Lab> lab(colors.size());
   std::vector<double> lightness(colors.size());
@@ -79,12 +86,15 @@ void run(const MeshUsmArgs& args) {
   const std::vector<glm::vec3> positions = mesh.positions();
   const SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), positions,
                                               lightness, {}, width);
+  progress.update(kSmoothed);
   const size_t clipped = apply_contrast(colors, lab, sc, args.lambda);
   mesh.set_colors(colors);
+  progress.update(kComposed);
   mesh.write(fs::path(args.output));
   const int most = *std::max_element(sc.iterations.begin(), sc.iterations.end());
-  std::fprintf(stderr, "mesh-usm: wrote %s (%zu vertices, %u components, up to %d iterations, %zu clipped vertices)\n",
-               args.output.c_str(), colors.size(), sc.components.count, most, clipped);
+  progress.finish("wrote " + args.output + " (" + std::to_string(colors.size()) + " vertices, " +
+                  std::to_string(sc.components.count) + " components, up to " + std::to_string(most) + " iterations, " +
+                  std::to_string(clipped) + " clipped vertices)");
 }
 
 }  // namespace
