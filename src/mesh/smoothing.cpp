@@ -73,7 +73,8 @@ void smooth_in_given_order(const VertexAdjacency& adjacency, const std::vector<u
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                        const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
                        int threads) {
-  if (adjacency.vertex_count() <= kReorderAbove)
+  const int most = iterations.empty() ? 0 : *std::max_element(iterations.begin(), iterations.end());
+  if (adjacency.vertex_count() <= kReorderAbove || most < kReorderSteps)
     return smooth_in_given_order(adjacency, label, iterations, values, scheme, threads);
   const std::vector<uint32_t> order = breadth_first_order(adjacency);
   std::vector<double> local = gathered(values, order);

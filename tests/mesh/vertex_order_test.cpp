@@ -58,9 +58,9 @@ TEST(VertexOrder, SmoothingInBreadthFirstOrderGivesTheSameBitsAsTheGivenOrder) {
   for (double& v : signal) v = std::uniform_real_distribution<double>(0, 100)(random);
   for (SmoothingScheme scheme : {SmoothingScheme::iterate, SmoothingScheme::chebyshev}) {
     std::vector<double> given = signal, reordered = signal;
-    if (scheme == SmoothingScheme::iterate) laplacian_smooth(grid.adjacency, grid.label, {40}, given, 2);
-    else chebyshev_smooth(grid.adjacency, grid.label, {40}, given, 2);
-    smooth_over_rings(grid.adjacency, grid.label, {40}, reordered, scheme, 2);
+    if (scheme == SmoothingScheme::iterate) laplacian_smooth(grid.adjacency, grid.label, {kReorderSteps}, given, 2);
+    else chebyshev_smooth(grid.adjacency, grid.label, {kReorderSteps}, given, 2);
+    smooth_over_rings(grid.adjacency, grid.label, {kReorderSteps}, reordered, scheme, 2);
     EXPECT_EQ(given, reordered);
     EXPECT_NE(given, signal);
   }
