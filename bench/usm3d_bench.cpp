@@ -69,8 +69,14 @@ void BM_SmoothIgea(benchmark::State& state) {
 }
 BENCHMARK(BM_SmoothIgea)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// n = 1000 steps on igea (2 threads), iterated and by the Chebyshev expansion, alternated in one
-// run: the time of each and their ratio, and the largest difference relative to the range.
+// `count` random 8-bit levels (a fixed stream).
+std::vector<uint8_t> random_levels(size_t count) {
+  std::vector<uint8_t> grey(count);
+  SampleStream random(1, 0, 0, 0);
+  for (uint8_t& g : grey) g = uint8_t(255.0 * random.next());
+  return grey;
+}
+
 // igea's 1-ring graph with n = 1000 steps for its components, and a random signal of 8-bit levels.
 struct IgeaSmoothing {
   VertexAdjacency adj = adjacency_from_triangles(igea_mesh().vertex_count(), igea_mesh().triangles);
@@ -78,15 +84,10 @@ struct IgeaSmoothing {
   std::vector<int> steps = std::vector<int>(comps.count, 1000);
   std::vector<uint8_t> grey = random_levels(igea_mesh().vertex_count());
   std::vector<double> signal = std::vector<double>(grey.begin(), grey.end());
-
-  static std::vector<uint8_t> random_levels(size_t count) {
-    std::vector<uint8_t> grey(count);
-    SampleStream random(1, 0, 0, 0);
-    for (uint8_t& g : grey) g = uint8_t(255.0 * random.next());
-    return grey;
-  }
 };
 
+// n = 1000 steps on igea (2 threads), iterated and by the Chebyshev expansion, alternated in one
+// run: the time of each and their ratio, and the largest difference relative to the range.
 void BM_SmoothIgeaSchemes(benchmark::State& state) {
   const auto [adj, comps, steps, grey, signal] = IgeaSmoothing();
   double seconds[2] = {0, 0}, largest = 0;
@@ -136,11 +137,6 @@ void BM_SmoothAgainstFaceScatter(benchmark::State& state) {
 }
 BENCHMARK(BM_SmoothAgainstFaceScatter)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
-// Locality (mesh/vertex_order.h): n = 100 iterated steps at 2 threads on igea cut into 9 triangles
-// each (1.2 M vertices, bench/subdivided_mesh.h), in three vertex orders: the file's, a random
-// shuffle (the worst a scan's order can be) and breadth first. Nanoseconds per vertex per step.
-// Arg 0: the subdivision's order, 1: shuffled; each run smooths the order as given and then
-// through smooth_over_rings, which renumbers (its time includes the renumbering).
 // The share of ring entries more than 8192 indices from their vertex.
 double far_share(const VertexAdjacency& adj) {
   size_t far = 0;
@@ -149,6 +145,11 @@ double far_share(const VertexAdjacency& adj) {
   return double(far) / double(adj.neighbours.size());
 }
 
+// Locality (mesh/vertex_order.h): n = 100 iterated steps at 2 threads on igea cut into 9 triangles
+// each (1.2 M vertices, bench/subdivided_mesh.h), in three vertex orders: the file's, a random
+// shuffle (the worst a scan's order can be) and breadth first. Nanoseconds per vertex per step.
+// Arg 0: the subdivision's order, 1: shuffled; each run smooths the order as given and then
+// through smooth_over_rings, which renumbers (its time includes the renumbering).
 void BM_SmoothLocality(benchmark::State& state) {
   static const bench::Subdivided fine = bench::subdivide(igea_mesh(), 3);
   std::vector<uint32_t> order(fine.positions.size());
@@ -157,9 +158,8 @@ void BM_SmoothLocality(benchmark::State& state) {
   const VertexAdjacency adj = renumbered(adjacency_from_triangles(order.size(), fine.triangles), order);
   const Components comps = connected_components(adj);
   const std::vector<int> steps(comps.count, 100);
-  std::vector<double> signal(order.size());
-  SampleStream random(1, 0, 0, 0);
-  for (double& v : signal) v = 100.0 * random.next();
+  const std::vector<uint8_t> grey = random_levels(order.size());
+  const std::vector<double> signal(grey.begin(), grey.end());
   double seconds[2] = {0, 0};
   bool same = true;
   for (auto _ : state) {

@@ -57,8 +57,8 @@ Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc) {
 class ObjectSide {
  public:
   ObjectSide(const VertexPassInput& in, unsigned object, bool back, uint64_t vertex_offset, uint64_t triangle_offset,
-             std::vector<uint8_t> needed)
-      : in_(in), object_(object), back_(back), needed_(std::move(needed)), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
+             const std::vector<uint8_t>& needed)
+      : in_(in), object_(object), back_(back), needed_(needed), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
         variants_(vertex_variants(mesh_, corners_)), own_(variants_.entries.size()),
         ring_(mesh_.triangle_count() * size_t(std::max(in.ring_samples, 0))), rays_(in.scene.camera),
         vertex_count_(mesh_.vertex_count(), 0),
@@ -163,7 +163,7 @@ class ObjectSide {
   const VertexPassInput& in_;
   unsigned object_;
   bool back_;
-  std::vector<uint8_t> needed_;  // per vertex: whether any pixel can depend on its value
+  const std::vector<uint8_t>& needed_;  // per vertex: whether any pixel can depend on its value
   const TriangleMesh& mesh_;
   VertexCorners corners_;
   Variants variants_;
@@ -297,10 +297,11 @@ VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
   signal.samples.min = UINT32_MAX;
   for (unsigned o = 0; o < objects; ++o) {
     const Object& object = in.scene.objects[o];
+    const VertexNeed need = in.needs.at(o);
+    const std::vector<uint8_t> needed = needed_vertices(in, object, need);  // the same for both sides
     for (bool back : {false, true}) {
       if (back && !(o < in.back.size() && in.back[o])) continue;
-      const VertexNeed need = in.needs.at(o);
-      ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed_vertices(in, object, need));
+      ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed);
       sample_side(in, side, relevant_vertices(in.gbuffer, o, back, object, need.rings), object.surface, need.noise,
                   counts, back ? signal.back[o] : signal.front[o], back ? signal.back_noise[o] : signal.front_noise[o]);
       for (size_t v = 0; v < side.vertex_samples().size(); ++v) {
