@@ -39,7 +39,7 @@ struct RenderArgs {
   MethodArgs method;
   std::optional<int> width, height, spp, threads;
   std::optional<long long> seed;
-  std::optional<double> exposure, noise;
+  std::optional<double> exposure, black_level, noise;
   int bits = 8;
   std::string aux;
   std::string frames;     // "A:B": frames of the scene's animation
@@ -95,6 +95,7 @@ std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderReq
   }
   if (args.seed) scene->settings.seed = uint64_t(*args.seed);
   if (args.exposure) scene->display.exposure_stops = *args.exposure;
+  if (args.black_level) scene->display.black_level = *args.black_level;
   return scene;
 }
 
@@ -199,6 +200,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "Random seed; the same seed gives byte-identical output")
       ->check(CLI::Range(0ll, 1ll << 53));
   cmd->add_option("--exposure", args->exposure, "Override the exposure in stops")->check(CLI::Range(-30.0, 30.0));
+  cmd->add_option("--black-level", args->black_level, "Override the display's black level (share of full scale)")
+      ->check(CLI::Range(0.0, 0.5));
   cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth")->check(CLI::IsMember({8, 16}))->capture_default_str();
   cmd->add_option("--frames", args->frames,
                   "Render frames A:B of the scene's animation, numbered into OUT (OUT-0000.png, ...)");

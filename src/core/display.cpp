@@ -87,11 +87,9 @@ double DisplayEncoding::decode(double code) const {
   return 0.0;
 }
 
-Image encode_for_display(const Image& radiance, double exposure_stops, const DisplayEncoding& encoding) {
+Image encode_for_display(const Image& radiance, const Exposure& exposure, const DisplayEncoding& encoding) {
   Image out(radiance.width, radiance.height, radiance.channels, Image::Uninitialized{});
-  const double scale = std::exp2(exposure_stops);
-  for (size_t i = 0; i < radiance.pixels.size(); ++i)
-    out.pixels[i] = float(encoding.encode(double(radiance.pixels[i]) * scale));
+  for (size_t i = 0; i < radiance.pixels.size(); ++i) out.pixels[i] = float(encoding.encode(exposure(radiance.pixels[i])));
   return out;
 }
 

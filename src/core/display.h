@@ -2,6 +2,7 @@
 // Display encoding: how linear, exposed radiance becomes the code values stored in a stimulus,
 // and back. The inverse is what CIELAB conversions of stimuli use.
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,17 @@ class DisplayEncoding {
   std::vector<double> codes_, luminances_;
 };
 
-// Exposure (2^stops) and display encoding, per channel: linear radiance -> code values in [0,1].
-Image encode_for_display(const Image& radiance, double exposure_stops, const DisplayEncoding& encoding);
+// How linear radiance becomes the display's linear light, per channel: scaled by the exposure
+// (2^stops), clamped to full scale, and lifted by the black level, the share of full scale that
+// radiance 0 shows. A black level leaves an enhancement room below the image's darkest pixel, as
+// the exposure leaves it room above the brightest (an experiment's "headroom").
+struct Exposure {
+  double scale = 1.0;
+  double black = 0.0;
+  double operator()(double radiance) const { return black + (1.0 - black) * std::clamp(radiance * scale, 0.0, 1.0); }
+};
+
+// Exposure and display encoding, per channel: linear radiance -> code values in [0,1].
+Image encode_for_display(const Image& radiance, const Exposure& exposure, const DisplayEncoding& encoding);
 
 }  // namespace countershade

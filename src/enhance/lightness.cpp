@@ -25,9 +25,7 @@ std::vector<float> view_lightness(const View& view) {
   return L;
 }
 
-double exposure_scale(const Display& display) { return std::exp2(display.exposure_stops); }
-
-double display_lightness(const glm::dvec3& radiance, double exposure) {
+double display_lightness(const glm::dvec3& radiance, const Exposure& exposure) {
   return cielab_lightness(display_luminance(radiance, exposure));
 }
 
@@ -35,7 +33,7 @@ namespace {
 
 std::vector<float> radiance_lightness(const View& view) {
   const Image& radiance = view.render.radiance;
-  const double exposure = exposure_scale(view.scene->display);
+  const Exposure exposure = view.scene->display.exposure();
   std::vector<float> L(view.lab.size());
   parallel_ranges(
       L.size(), 0,

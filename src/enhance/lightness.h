@@ -25,13 +25,8 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
                          PixelVector* lightness = nullptr);
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
 
-// The display's exposure as a factor on radiance, 2^exposure_stops: computed once per image, not
-// per pixel.
-double exposure_scale(const Display& display);
-
-// CIELAB L* of a linear radiance as the display shows it: exposed by `exposure` (exposure_scale),
-// clamped per channel.
-double display_lightness(const glm::dvec3& radiance, double exposure);
+// CIELAB L* of a linear radiance as the display shows it (Display::exposure(), per channel).
+double display_lightness(const glm::dvec3& radiance, const Exposure& exposure);
 
 // The L* plane of the view's own (plain) image.
 std::vector<float> view_lightness(const View& view);

@@ -61,7 +61,7 @@ SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
                                  const Display& display, const SmoothingWidth& width) {
   std::vector<double> lightness(object.mesh.vertex_count());
-  const double exposure = exposure_scale(display);
+  const Exposure exposure = display.exposure();
   for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], exposure);
   return surface_contrast(object.surface, object.mesh.positions, std::move(lightness), object.importance, width);
 }

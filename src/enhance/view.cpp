@@ -18,11 +18,10 @@ void quantize_in_place(Image& image, int bits) {
 namespace {
 
 // encode_for_display and then quantize_in_place, in one pass without a pow() per channel.
-Image quantized_display(const Image& radiance, double exposure_stops, const DisplayEncoding& encoding, int bits) {
+Image quantized_display(const Image& radiance, const Exposure& exposure, const DisplayEncoding& encoding, int bits) {
   const CodeQuantizer& quantizer = CodeQuantizer::shared(encoding, bits);
-  const double scale = std::exp2(exposure_stops);
   Image out(radiance.width, radiance.height, radiance.channels, Image::Uninitialized{});
-  for (size_t i = 0; i < radiance.pixels.size(); ++i) out.pixels[i] = quantizer.value(double(radiance.pixels[i]) * scale);
+  for (size_t i = 0; i < radiance.pixels.size(); ++i) out.pixels[i] = quantizer.value(exposure(radiance.pixels[i]));
   return out;
 }
 
@@ -33,7 +32,7 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
   auto view = std::make_shared<View>();
   view->encoding = scene->display.encoding;
   view->bits = bits;
-  view->display = quantized_display(render.radiance, scene->display.exposure_stops, view->encoding, bits);
+  view->display = quantized_display(render.radiance, scene->display.exposure(), view->encoding, bits);
   if (lab) view->lab = display_to_lab(view->display, view->encoding, bits, &view->lightness);
   view->depth = render.gbuffer.depth;
   view->render = std::move(render);

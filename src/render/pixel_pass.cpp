@@ -56,7 +56,7 @@ class PixelSampler {
   PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record, const GBuffer& gbuffer,
                SampleObserver* observer = nullptr)
       : in_(in), sums_(sums), record_(record), gbuffer_(gbuffer), observer_(observer), rays_(in.scene.camera),
-        width_(in.scene.camera.width), exposure_(std::exp2(in.scene.display.exposure_stops)),
+        width_(in.scene.camera.width), exposure_(in.scene.display.exposure()),
         fixed_spp_(in.scene.settings.spp.value_or(0)) {}
 
   // Takes samples [count, target) of a pixel.
@@ -169,7 +169,7 @@ class PixelSampler {
   SampleObserver* observer_;  // null: nobody watches
   CameraRays rays_;
   int width_;
-  double exposure_;
+  Exposure exposure_;
   int fixed_spp_;
 };
 
@@ -192,7 +192,7 @@ struct ReplicateSpread {
 };
 
 // The products of one pixel's replicate differences into `out` (pixel p).
-void pixel_spread(const Sums& sums, const PixelRequest& request, double exposure, size_t p, std::vector<double>* fields,
+void pixel_spread(const Sums& sums, const PixelRequest& request, const Exposure& exposure, size_t p, std::vector<double>* fields,
                   ReplicateSpread& out) {
   PixelMeans means[2];
   for (int r = 0; r < 2; ++r) {
@@ -218,7 +218,7 @@ void pixel_spread(const Sums& sums, const PixelRequest& request, double exposure
   }
 }
 
-ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request, double exposure, int threads) {
+ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request, const Exposure& exposure, int threads) {
   const size_t n = sums.count.size(), changes = request.changes.size();
   ReplicateSpread out{std::vector<double>(n, 0.0), std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0)),
                       std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0))};
@@ -293,7 +293,7 @@ class AdaptiveSampling {
   static double seconds_since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   }
-  double exposure() const { return std::exp2(in_.scene.display.exposure_stops); }
+  Exposure exposure() const { return in_.scene.display.exposure(); }
 
   void sample_round(const std::vector<uint32_t>& active, const std::vector<uint32_t>& target) {
     keep_log_within_limit(target);

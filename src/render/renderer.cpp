@@ -88,9 +88,9 @@ GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads)
   return centre_pass(scene, tracer, threads, rays);
 }
 
-double display_luminance(const glm::dvec3& radiance, double exposure_scale) {
+double display_luminance(const glm::dvec3& radiance, const Exposure& exposure) {
   glm::dvec3 c;
-  for (int i = 0; i < 3; ++i) c[i] = std::clamp(radiance[i] * exposure_scale, 0.0, 1.0);
+  for (int i = 0; i < 3; ++i) c[i] = exposure(radiance[i]);
   return luminance_of(c);
 }
 

@@ -162,8 +162,8 @@ GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads 
 // over the triangle's area.
 glm::dvec3 triangle_sample_barycentrics(int j, int k);
 
-// The display luminance of linear radiance: exposed, clamped to [0,1] per channel, Y of sRGB
-// primaries. L* of a pixel or a vertex is the CIELAB lightness of it.
-double display_luminance(const glm::dvec3& radiance, double exposure_scale);
+// The display luminance of linear radiance: exposed (clamped to [0,1] and lifted by the black
+// level) per channel, Y of sRGB primaries. L* of a pixel or a vertex is the CIELAB lightness of it.
+double display_luminance(const glm::dvec3& radiance, const Exposure& exposure);
 
 }  // namespace countershade

@@ -125,6 +125,7 @@ class SceneLoader {
   Display display(const JsonObject& o) {
     Display d;
     d.exposure_stops = o.number_in("exposure", 0.0, -30.0, 30.0);
+    d.black_level = o.number_in("black_level", 0.0, 0.0, 0.5);
     if (o.has("calibration")) {
       if (o.has("encoding") || o.has("lut") || o.has("gamma"))
         o.fail("calibration", "a calibrated display takes its encoding from the calibration; give no encoding, lut or gamma");

@@ -3,6 +3,7 @@
 // JSON file (docs/scene-format.md); every error names the file and the key path.
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -77,11 +78,14 @@ struct AmbientLight {
 
 struct Display {
   double exposure_stops = 0;
+  double black_level = 0;  // share of full scale shown at radiance 0 (Exposure::black)
   DisplayEncoding encoding = DisplayEncoding::srgb();
   std::optional<glm::dvec3> background;  // linear radiance where camera rays miss; overrides env
   // A photometer-calibrated display (`calibration`, docs/display.md): the luminance of code 0
   // and of full scale, in cd/m².
   std::optional<std::pair<double, double>> luminance_cd_m2;
+
+  Exposure exposure() const { return {std::exp2(exposure_stops), black_level}; }
 };
 
 // How many samples an image takes. By default a noise budget: every pixel is sampled until the

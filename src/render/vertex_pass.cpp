@@ -174,7 +174,7 @@ class ObjectSide {
 };
 
 // The squared L* error of every vertex, pooled: the larger of its own and its 1-ring's mean.
-std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& surface, double exposure) {
+std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& surface, const Exposure& exposure) {
   const size_t nv = side.mesh().vertex_count();
   std::vector<double> variance(nv, 0.0);
   for (size_t v = 0; v < nv; ++v) {
@@ -250,7 +250,7 @@ std::vector<uint8_t> needed_vertices(const VertexPassInput& in, const Object& o,
 void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<uint8_t>& relevant, const SurfaceGraph& surface,
                  double target, RayCounts& rays, std::vector<glm::vec3>& values, std::vector<float>& noise) {
   const RenderSettings& settings = in.scene.settings;
-  const double exposure = std::exp2(in.scene.display.exposure_stops);
+  const Exposure exposure = in.scene.display.exposure();
   const std::optional<int> fixed = settings.fixed_vertex_spp();
   const uint32_t max = uint32_t(fixed.value_or(settings.noise.max_spp));
   std::vector<uint32_t> vertex_target(side.mesh().vertex_count(), uint32_t(fixed.value_or(2)));

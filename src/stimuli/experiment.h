@@ -86,8 +86,9 @@ struct Experiment {
   // Every stimulus gets its reference's mean L* by a uniform offset of its object pixels
   // (stimuli/mean_hold.h): a study-design option on top of the methods.
   bool hold_mean = false;
-  // Each still scene's exposure is lowered, for all its stimuli alike, until no condition clips
-  // more than `max_clipped` (the audit's limit) at the grid's extremes (stimuli/headroom.h).
+  // Each still scene's exposure is lowered and its black level raised, for all its stimuli alike,
+  // until no condition clips more than `max_clipped` (the audit's limit) at the grid's extremes
+  // (stimuli/headroom.h).
   bool headroom = false;
   double max_clipped = 0.01;
   // The screen the study is shown on ("screen"): its pixels per degree turn sizes and σ given in

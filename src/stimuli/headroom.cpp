@@ -10,26 +10,51 @@
 
 namespace countershade {
 
-double headroom_stops(const ClippedAt& clipped_at, double limit, double resolution, double floor, double ceiling) {
-  const Clipped start = clipped_at(0.0);
-  // Within the limit, nothing to do; over it at both ends, no exposure helps one without the other.
-  if (start.within(limit) || (start.white > limit && start.black > limit)) return 0.0;
-  const double direction = start.white > limit ? -1.0 : 1.0, end = direction < 0 ? floor : ceiling;
-  auto leading = [&](const Clipped& c) { return direction < 0 ? c.white : c.black; };  // the share the move is after
-  auto other = [&](const Clipped& c) { return direction < 0 ? c.black : c.white; };
-  double share = leading(start), failing = 0.0, passing = 0.25 * direction;
-  for (Clipped c; !(c = clipped_at(passing)).within(limit); share = leading(c)) {
-    // A share that does not fall as the exposure moves, or the other end now over the limit
-    // (moving on would only add to it): nothing to gain.
-    if (leading(c) >= share || other(c) > limit || passing == end) return failing;
+namespace {
+
+// A setting tried and what the conditions clip at it.
+struct Tried {
+  double value = 0;
+  Clipped clipped;
+};
+
+// The share a search is after: white clipping alone, or both ends together.
+double share_of(const Clipped& c, bool total) { return total ? c.total() : c.white; }
+
+// One setting's search from `start` (the setting at 0) against white clipping or the total. With
+// `guard_white`, a step that clips more white than the start and more than the limit ends it.
+Tried search_setting(const std::function<Clipped(double)>& at, const Tried& start, const HeadroomSearch& search,
+                     bool total, double limit, bool guard_white) {
+  auto spoils_white = [&](const Clipped& c) { return guard_white && c.white > std::max(limit, start.clipped.white); };
+  auto passes = [&](const Clipped& c) { return share_of(c, total) <= limit && !spoils_white(c); };
+  Tried failing = start, passing{search.first, at(search.first)};
+  while (!passes(passing.clipped)) {
+    // A share that does not fall as the setting moves, white spoilt, or the end: nothing to gain.
+    const bool stalled = share_of(passing.clipped, total) >= share_of(failing.clipped, total);
+    if (stalled || spoils_white(passing.clipped) || passing.value == search.end) return failing;
     failing = passing;
-    passing = direction < 0 ? std::max(2 * passing, end) : std::min(2 * passing, end);
+    const double next = search.first > 0 ? std::min(2 * passing.value, search.end) : std::max(2 * passing.value, search.end);
+    passing = {next, at(next)};
   }
-  while (std::abs(failing - passing) > resolution) {
-    const double middle = 0.5 * (failing + passing);
-    (clipped_at(middle).within(limit) ? passing : failing) = middle;
+  while (std::abs(failing.value - passing.value) > search.resolution) {
+    const double middle = 0.5 * (failing.value + passing.value);
+    const Tried tried{middle, at(middle)};
+    (passes(tried.clipped) ? passing : failing) = tried;
   }
   return passing;
+}
+
+}  // namespace
+
+Headroom find_headroom(const ClippedAt& clipped_at, double limit, const HeadroomSearch& exposure,
+                       const HeadroomSearch& black_level) {
+  Tried stops{0.0, clipped_at({})};
+  if (stops.clipped.white > limit)
+    stops = search_setting([&](double s) { return clipped_at({s, 0.0}); }, stops, exposure, false, limit, false);
+  Tried black{0.0, stops.clipped};
+  if (black.clipped.total() > limit && black.clipped.black > 0)
+    black = search_setting([&](double b) { return clipped_at({stops.value, b}); }, black, black_level, true, limit, true);
+  return {stops.value, black.value};
 }
 
 namespace {

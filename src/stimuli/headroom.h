@@ -1,11 +1,11 @@
 #pragma once
 // Headroom against clipping (an experiment's "headroom"). At the top of a λ grid a method may push
 // bright pixels past the display's white, or dark detail below its black, and clip them, a
-// confound the audit flags. A study designer who needs a set that passes moves the scene's
-// exposure, for all its stimuli alike: down against white clipping, up against black clipping.
-// This finds how far, by rendering the scene again, just far enough that no condition clips more
-// than the audit's limit at the grid's extremes.
-
+// confound the audit flags. A study designer who needs a set that passes changes the scene's
+// display, for all its stimuli alike: a lower exposure leaves room above the brightest pixel, a
+// black level (Exposure::black) room below the darkest. This finds how much of each, by rendering
+// the scene again, just enough that no condition clips more than the audit's limit at the grid's
+// extremes.
 #include <functional>
 #include <memory>
 #include <vector>
@@ -14,24 +14,41 @@
 
 namespace countershade {
 
-// The largest shares of pixels that a scene's conditions clip, at full scale and at black.
+// The largest shares of pixels that a scene's conditions clip, at full scale and at black. The
+// audit's limit is on a condition's share at both ends together, which their sum bounds.
 struct Clipped {
   double white = 0, black = 0;
-  bool within(double limit) const { return white <= limit && black <= limit; }
+  double total() const { return white + black; }
+  bool within(double limit) const { return total() <= limit; }
 };
 
-// What the conditions clip at an exposure change of `stops`: white clipping must not rise as the
-// exposure falls, nor black clipping as it rises.
-using ClippedAt = std::function<Clipped(double stops)>;
+// A change of the scene's display.
+struct Headroom {
+  double exposure_stops = 0;  // added to the scene's exposure
+  double black_level = 0;     // the scene's black level
+};
 
-// The exposure change closest to 0 at which both shares are within `limit`: 0 when that already
-// holds, or when both ends clip too much; else down when white clips too much, up when black does,
-// by doubling steps of 0.25, 0.5, 1 … stops and then bisecting to `resolution` stops. Where a step
-// does not lower the share it is after, puts the other end over the limit, or reaches `floor`
-// (`ceiling`), the search gives up and returns the last exposure it tried before that step (the
-// limit is then not met; the audit says so).
-double headroom_stops(const ClippedAt& clipped_at, double limit, double resolution = 0.05, double floor = -8,
-                      double ceiling = 4);
+// What the conditions clip under a change of the display: white clipping must not rise as the
+// exposure falls, nor black clipping as the black level rises.
+using ClippedAt = std::function<Clipped(const Headroom&)>;
+
+// How a search moves one setting away from 0: steps of `first`, 2·first, 4·first … toward `end`
+// until one passes, then halving to `resolution`.
+struct HeadroomSearch {
+  double first, end, resolution;
+};
+inline constexpr HeadroomSearch kExposureSearch{-0.25, -8.0, 0.05};          // stops
+inline constexpr HeadroomSearch kBlackLevelSearch{1.0 / 64, 0.5, 1.0 / 256};  // share of full scale
+
+// The smallest change that clips within `limit`. First the exposure, lowered only as far as
+// white clipping alone needs; then, at that exposure, the black level, raised until both ends
+// together are within the limit (a black level clips no white: lifting the dark end compresses the
+// lightness scale, so methods that work in L* clip less at white too). Each search gives up where
+// a step does not lower the share it is after, where the black level clips more white than
+// before and more than the limit, or at its end, and keeps the last setting it tried before that
+// step (the limit is then not met; the audit says so).
+Headroom find_headroom(const ClippedAt& clipped_at, double limit, const HeadroomSearch& exposure = kExposureSearch,
+                       const HeadroomSearch& black_level = kBlackLevelSearch);
 
 // The largest shares of the view's pixels that any of its enhancing uses clips at full scale and
 // at black (a channel at the top code or at 0 where the view's own image has not) at any of

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -379,6 +380,12 @@ void record_display(ManifestEntry& entry, const Display& display) {
     entry.extra["luminance_cd_m2"] = {{"black", display.luminance_cd_m2->first}, {"white", display.luminance_cd_m2->second}};
 }
 
+// The display the experiment's headroom settled on: the scene's exposure and black level.
+void record_headroom(const Scene& scene, ManifestEntry& entry) {
+  entry.extra["exposure_stops"] = round_to(scene.display.exposure_stops, 4);
+  entry.extra["black_level"] = round_to(scene.display.black_level, 6);
+}
+
 void SetGenerator::write_reference(const SetUnit& u, const View& view, const View* moved) {
   const std::string rel = reference_path(e_, u.scene, u.frame);
   if (done_.count(rel)) return record(done_.at(rel), false);
@@ -389,7 +396,7 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
   entry.method = kReferenceMethod;
   if (u.frame >= 0) entry.frame = ManifestEntry::Frame{u.frame, e_.scenes[u.scene].fps};
   record_display(entry, view.scene->display);
-  if (e_.headroom) entry.extra["exposure_stops"] = round_to(view.scene->display.exposure_stops, 4);
+  if (e_.headroom) record_headroom(*view.scene, entry);
   record_noise(entry, view, NoiseModel{}, view.display);
   if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits, e_.congruence_options);
   if (moved) record_coherence(entry, view, view_lightness(view), *moved, view_lightness(*moved));
@@ -432,7 +439,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       if (!mask.is_null()) entry.extra["mask"] = mask;
       if (!e_.scenes[u.scene].probe_edges_x.empty())
         record_halo_widths(entry, *view, enhancement_layer(*view, c.display), e_.scenes[u.scene].probe_edges_x);
-      if (e_.headroom) entry.extra["exposure_stops"] = round_to(view->scene->display.exposure_stops, 4);
+      if (e_.headroom) record_headroom(*view->scene, entry);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
       if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
       if (moved)
@@ -471,26 +478,31 @@ void SetGenerator::make_shot(const Shot& shot, const ScenePlan& plan) {
   }
 }
 
-// The still scene's view at the exposure the experiment's headroom settles on: each exposure the
-// search tries is a render of its own, and the view of the one it returns is kept.
+// The still scene's view under the display change the experiment's headroom settles on. Each
+// change the search tries is a render of its own; the last one is kept, since the search mostly
+// settles on the change it tried last.
 std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePlan& plan, const ViewOptions& options) {
   const std::vector<double> extremes = {e_.lambda.value(0), e_.lambda.value(e_.lambda.count() - 1)};
-  std::shared_ptr<const View> kept;
-  double kept_stops = 0;
-  auto at = [&](double stops) {
+  std::shared_ptr<const View> last;
+  Headroom last_change;
+  int renders = 0;
+  auto at = [&](const Headroom& change) {
     auto scene = std::make_shared<Scene>(*scenes_[s]);
-    scene->display.exposure_stops += stops;
-    return render_view(scene, plan.plan, options);
+    scene->display.exposure_stops += change.exposure_stops;
+    scene->display.black_level = std::max(scene->display.black_level, change.black_level);
+    last_change = change;
+    ++renders;
+    return last = render_view(scene, plan.plan, options);
   };
-  const double stops = headroom_stops(
-      [&](double stops) {
-        auto view = at(stops);
-        const Clipped clipped = largest_clipped(view, extremes, options_.jobs, e_.hold_mean);
-        if (clipped.within(e_.max_clipped) && (!kept || std::abs(stops) < std::abs(kept_stops))) kept = view, kept_stops = stops;
-        return clipped;
-      },
+  const Headroom change = find_headroom(
+      [&](const Headroom& change) { return largest_clipped(at(change), extremes, options_.jobs, e_.hold_mean); },
       e_.max_clipped);
-  return kept && kept_stops == stops ? kept : at(stops);
+  if (last_change.exposure_stops != change.exposure_stops || last_change.black_level != change.black_level) at(change);
+  // The search's renders are the set's slowest part; say what they settled on.
+  std::fprintf(stderr, "stimuli %s: headroom for %s: exposure %+.2f stops, black level %.4f (%d renders)\n",
+               e_.name.c_str(), e_.scenes[s].name.c_str(), last->scene->display.exposure_stops,
+               last->scene->display.black_level, renders);
+  return last;
 }
 
 void SetGenerator::finish() {

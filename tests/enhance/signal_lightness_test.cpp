@@ -42,7 +42,7 @@ TEST(SignalLightness, IsTheLightnessOfTheRenderBeforeQuantisation) {
   size_t off_code = 0;
   for (size_t i = 0; i < signal.size(); ++i) {
     const float* c = &view->render.radiance.pixels[3 * i];
-    EXPECT_NEAR(signal[i], cielab_lightness(display_luminance({c[0], c[1], c[2]}, 1.0)), 1e-4) << i;
+    EXPECT_NEAR(signal[i], cielab_lightness(display_luminance({c[0], c[1], c[2]}, Exposure{})), 1e-4) << i;
     largest = std::max(largest, std::abs(double(signal[i]) - quantised[i]));
     off_code += signal[i] != quantised[i];
   }

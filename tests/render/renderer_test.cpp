@@ -173,7 +173,7 @@ TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
   auto png_bytes = [&](int threads, const std::string& name) {
     RenderOptions options;
     options.threads = threads;
-    Image display = encode_for_display(render(scene, tracer, options).radiance, scene.display.exposure_stops, scene.display.encoding);
+    Image display = encode_for_display(render(scene, tracer, options).radiance, scene.display.exposure(), scene.display.encoding);
     write_image(dir / name, display);
     return testing::read_file(dir / name);
   };
