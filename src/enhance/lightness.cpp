@@ -162,7 +162,8 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
   return lab;
 }
 
-Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads) {
+Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads,
+                           const LightnessOffset* offset) {
   const CodeQuantizer& quantizer = CodeQuantizer::shared(view.encoding, view.bits);
   const LightnessComposer composer(quantizer, view.bits);
   Composed out;
@@ -179,6 +180,8 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
         for (size_t first = begin; first < end; first += kBlock) {
           const size_t count = std::min(kBlock, end - first);
           block_delta(change, signal, first, count, lambda, delta);
+          if (offset)
+            for (size_t i = 0; i < count; ++i) delta[i] += offset->offset * offset->where[first + i];
           local += composer.compose(view.lab.data() + first, in + 3 * first, delta, count, result + 3 * first);
         }
         clipped += local;

@@ -56,9 +56,16 @@ struct LightnessChange {
   PixelVector smooth;          // detail: per pixel
 };
 
-// Applies the change at strength λ to the view's stimulus. Pixels whose Δ is 0 keep their code
-// values exactly, so λ = 0 reproduces the view bit for bit.
-Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0);
+// A uniform L* offset on some pixels, composed with a change (PreparedEnhancement::compose_offset).
+struct LightnessOffset {
+  double offset = 0;
+  std::span<const double> where;  // per pixel: 1 where the offset applies, 0 elsewhere
+};
+
+// Applies the change at strength λ (and the offset, if any) to the view's stimulus. Pixels whose
+// Δ is 0 keep their code values exactly, so λ = 0 reproduces the view bit for bit.
+Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0,
+                           const LightnessOffset* offset = nullptr);
 
 // The sampling noise of the stimulus of strength λ (PreparedEnhancement::noise).
 using NoiseFunction = std::function<NoiseModel(double lambda)>;
@@ -76,6 +83,10 @@ class LightnessPrepared final : public PreparedEnhancement {
         auxiliary_(std::move(auxiliary)), threads_(threads), noise_(std::move(noise)) {}
 
   Composed compose(double lambda) const override { return compose_lightness(*view_, change_, lambda, threads_); }
+  std::optional<Composed> compose_offset(double lambda, double offset, std::span<const double> where) const override {
+    const LightnessOffset uniform{offset, where};
+    return compose_lightness(*view_, change_, lambda, threads_, &uniform);
+  }
   nlohmann::json parameters() const override { return parameters_; }
   std::vector<std::pair<std::string, Image>> auxiliary() const override;
   NoiseModel noise(double lambda) const override { return noise_ ? noise_(lambda) : NoiseModel{}; }

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -74,6 +75,14 @@ class PreparedEnhancement {
   virtual ~PreparedEnhancement() = default;
   // The enhanced stimulus for strength λ.
   virtual Composed compose(double lambda) const = 0;
+  // The stimulus for strength λ with `offset` L* more on every pixel where `where` is 1 (0
+  // elsewhere), composed and quantised once: a study design's mean hold (stimuli/mean_hold.h)
+  // moves each pixel before its rounding, not whole codes after it. Empty for methods that do not
+  // compose in lightness; the caller then offsets the composed stimulus.
+  virtual std::optional<Composed> compose_offset(double /*lambda*/, double /*offset*/,
+                                                 std::span<const double> /*where*/) const {
+    return std::nullopt;
+  }
   // Parameters worth recording (e.g. smoothing iterations per object), as JSON.
   virtual nlohmann::json parameters() const { return nlohmann::json::object(); }
   // Intermediate images a researcher may want to inspect (name without extension, image).

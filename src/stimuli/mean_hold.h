@@ -7,8 +7,12 @@
 // kept), until the mean L* of the image as written equals the reference's.
 
 #include <cstddef>
+#include <functional>
+#include <optional>
+#include <span>
 
 #include "core/image.h"
+#include "enhance/method.h"
 #include "enhance/view.h"
 
 namespace countershade {
@@ -16,14 +20,22 @@ namespace countershade {
 struct HeldMean {
   Image display;          // the stimulus with its offset, code values of the view's bit depth
   double offset = 0;      // the L* offset δ applied to every object pixel
-  size_t clipped_pixels = 0;  // pixels the offset clipped (L' outside [0, 100] or a channel outside [0, 1])
+  size_t clipped_pixels = 0;  // clipped pixels (L' outside [0, 100] or a channel outside [0, 1]), the stimulus's own included
 };
 
-// `display`: a stimulus of `view` (code values at view.bits). Object pixels are those with a
+// The stimulus composed again with an L* offset on the pixels `where` marks, before its one
+// quantisation (PreparedEnhancement::compose_offset); empty when its method cannot.
+using OffsetComposer = std::function<std::optional<Composed>(double offset, std::span<const double> where)>;
+
+// `stimulus`: a stimulus of `view` (code values at view.bits) and its clipped pixels. Object pixels are those with a
 // finite, positive depth (every pixel when the view has no depth). The offset is found to within
 // `tolerance` L* of the reference's mean, measured over the whole image decoded from its codes (as
-// the audit measures drift); a stimulus equal to the view's image is returned unchanged.
-HeldMean hold_mean_lightness(const View& view, const Image& display, double tolerance = 0.005);
+// the audit measures drift); a stimulus equal to the view's image is returned unchanged. With
+// `recompose`, each offset tried is composed by the method with the stimulus (quantised once),
+// else added to the stimulus's codes: then each uniform face moves by whole codes at once, and
+// on flat-shaded scenes the mean moves in steps that can exceed a tenth of an L*.
+HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double tolerance = 0.005,
+                             const OffsetComposer& recompose = {});
 
 // The mean L* of a display image of code values at `bits`, decoded with `encoding`.
 double mean_lightness(const Image& display, const DisplayEncoding& encoding, int bits);

@@ -150,11 +150,14 @@ void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& mode
                         {"max", sampling.pixels.max}};
 }
 
-// The stimulus with its reference's mean L* (the experiment's hold_mean); returns the L* offset.
-double hold_mean(const View& view, Composed& c) {
-  HeldMean held = hold_mean_lightness(view, c.display);
+// The stimulus of strength λ with its reference's mean L* (the experiment's hold_mean), the
+// offset composed by the method where it can; returns the L* offset.
+double hold_mean(const View& view, const PreparedEnhancement& prepared, double lambda, Composed& c) {
+  HeldMean held = hold_mean_lightness(view, c, 0.005, [&](double offset, std::span<const double> where) {
+    return prepared.compose_offset(lambda, offset, where);
+  });
   c.display = std::move(held.display);
-  c.clipped_pixels += held.clipped_pixels;
+  c.clipped_pixels = held.clipped_pixels;
   return held.offset;
 }
 
@@ -431,7 +434,7 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       if (done_.count(rel)) return record(done_.at(rel), false);
       auto tc = Clock::now();
       Composed c = prepared->compose(e_.lambda.value(l));
-      const double offset = e_.hold_mean ? hold_mean(*view, c) : 0.0;
+      const double offset = e_.hold_mean ? hold_mean(*view, *prepared, e_.lambda.value(l), c) : 0.0;
       compose_seconds_.fetch_add(since(tc));
       auto te = Clock::now();
       ManifestEntry entry = stimulus_entry(e_, u, l, c, parameters);

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "core/image.h"
+#include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "stimuli/audit.h"
 #include "stimuli/experiment.h"
@@ -73,7 +74,7 @@ TEST(MeanHold, AnEnhancedImageGetsItsReferencesMeanByOneOffsetOnItsObject) {
       enhanced.pixels[3 * p + size_t(c)] = std::min(1.0f, enhanced.pixels[3 * p + size_t(c)] + 20.0f / 255.0f);
   const double target = reference_mean(view->display);
   ASSERT_GT(std::abs(reference_mean(enhanced) - target), 0.3) << "the enhancement must move the mean to test anything";
-  const HeldMean held = hold_mean_lightness(*view, enhanced);
+  const HeldMean held = hold_mean_lightness(*view, {enhanced, 0});
   EXPECT_NEAR(reference_mean(held.display), target, 0.05);
   EXPECT_NEAR(mean_lightness(held.display, view->encoding, 8), target, 0.05);
   size_t object = 0;
@@ -94,9 +95,42 @@ TEST(MeanHold, AnEnhancedImageGetsItsReferencesMeanByOneOffsetOnItsObject) {
   }
   EXPECT_GT(object, 1000u);
   // The reference itself, and a stimulus equal to it, stay as they are.
-  const HeldMean same = hold_mean_lightness(*view, view->display);
+  const HeldMean same = hold_mean_lightness(*view, {view->display, 0});
   EXPECT_EQ(same.display.pixels, view->display.pixels);
   EXPECT_EQ(same.offset, 0.0);
+}
+
+// A flat face (one grey code over half the image) under a change that brightens it by a gentle
+// ramp, 0 to 0.5 L* across it: the enhanced face has two codes, and an offset on those codes
+// moves each part of it by a whole code at once, so the mean can only be held to 0.08 L* (found
+// here; 0.07–0.08 for greys from 100 to 200). Composed with the method's change before the one
+// rounding, the offset moves the face pixel by pixel along the ramp, and the mean is held to
+// within its tolerance.
+TEST(MeanHold, TheOffsetComposedBeforeRoundingHoldsAFlatFaceFinerThanWholeCodes) {
+  const int w = 64, h = 48;
+  Image display(w, h, 3);
+  std::vector<float> depth(size_t(w) * h, INFINITY);
+  LightnessChange ramp;
+  ramp.amount.assign(size_t(w) * h, 0.0);
+  PixelDoubles where(size_t(w) * h, 0.0);
+  for (size_t i = 0; i < depth.size(); ++i) {
+    const bool object = int(i % w) < w / 2;
+    for (int c = 0; c < 3; ++c) display.pixels[3 * i + size_t(c)] = object ? 128.0f / 255.0f : 40.0f / 255.0f;
+    if (object) depth[i] = 1.0f, ramp.amount[i] = 0.5 * double(i % w) / double(w / 2 - 1), where[i] = 1.0;
+  }
+  const auto view = make_image_view(display, depth, DisplayEncoding::srgb(), 8);
+  const LightnessPrepared prepared(view, ramp, nlohmann::json::object(), {}, 1);
+  const double target = reference_mean(view->display);
+  const double lambda = 1.0;
+  const Composed enhanced = prepared.compose(lambda);
+  const HeldMean on_codes = hold_mean_lightness(*view, enhanced);
+  const HeldMean composed = hold_mean_lightness(*view, enhanced, 0.005, [&](double offset, std::span<const double> at) {
+    return prepared.compose_offset(lambda, offset, at);
+  });
+  EXPECT_GT(std::abs(reference_mean(on_codes.display) - target), 0.05);
+  EXPECT_LT(std::abs(reference_mean(composed.display) - target), 0.01);
+  // The held stimulus is the method's own composition at the offset it records: rounded once.
+  EXPECT_EQ(composed.display.pixels, prepared.compose_offset(lambda, composed.offset, where)->display.pixels);
 }
 
 // A set of the lit cube under usm3d up to λ = 3 drifts without hold_mean and not with it; every
