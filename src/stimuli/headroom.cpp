@@ -86,7 +86,7 @@ Clipped clipped_shares(const std::vector<uint16_t>& stimulus, const std::vector<
 Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
                         bool hold_mean) {
   const std::vector<uint16_t> reference = codes_of(view->display, view->bits);
-  Clipped largest;
+  Clipped largest{0, 0, 0};
   for (size_t use = 0; use < view->uses.size(); ++use) {
     const MethodUse& u = view->uses[use];
     if (!u.method->enhances()) continue;
@@ -100,7 +100,7 @@ Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vect
                     return prepared->compose_offset(lambda, offset, where);
                   }).display;
       const Clipped c = clipped_shares(codes_of(display, view->bits), reference, view->bits);
-      largest = {std::max(largest.white, c.white), std::max(largest.black, c.black)};
+      largest = {std::max(largest.white, c.white), std::max(largest.black, c.black), std::max(largest.total(), c.total())};
     }
   }
   return largest;

@@ -14,18 +14,19 @@
 
 namespace countershade {
 
-// The largest shares of pixels that a scene's conditions clip, at full scale and at black. The
-// audit's limit is on a condition's share at both ends together, which their sum bounds.
+// The largest shares of pixels that a scene's conditions clip, at full scale and at black, and
+// at both ends together: the share the audit limits, one condition's at one λ. Where that is not
+// measured (both < 0), the sum of the two ends bounds it.
 struct Clipped {
-  double white = 0, black = 0;
-  double total() const { return white + black; }
+  double white = 0, black = 0, both = -1;
+  double total() const { return both >= 0 ? both : white + black; }
   bool within(double limit) const { return total() <= limit; }
 };
 
 // A change of the scene's display.
 struct Headroom {
   double exposure_stops = 0;  // added to the scene's exposure
-  double black_level = 0;     // the scene's black level
+  double black_level = 0;     // added to the scene's black level
 };
 
 // What the conditions clip under a change of the display: white clipping must not rise as the

@@ -492,7 +492,7 @@ std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePla
   auto at = [&](const Headroom& change) {
     auto scene = std::make_shared<Scene>(*scenes_[s]);
     scene->display.exposure_stops += change.exposure_stops;
-    scene->display.black_level = std::max(scene->display.black_level, change.black_level);
+    scene->display.black_level = std::min(0.5, scene->display.black_level + change.black_level);
     last_change = change;
     ++renders;
     return last = render_view(scene, plan.plan, options);

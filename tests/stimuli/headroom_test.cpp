@@ -77,6 +77,10 @@ TEST(Headroom, TheSearchRaisesTheBlackLevelAgainstBlackAtTheExposureItChose) {
     if (h.black_level > 0) {
       EXPECT_EQ(h.exposure_stops, found.exposure_stops);
     }
+  // The limit is on one condition's share at both ends together: measured, it decides; else the
+  // sum of the two ends' largest shares (perhaps from different conditions) bounds it.
+  EXPECT_TRUE((Clipped{0.008, 0.008, 0.009}).within(0.01));
+  EXPECT_FALSE((Clipped{0.008, 0.008}).within(0.01));
   // A black level that clips white beyond the limit (more than at the start) ends the search
   // where it stood.
   auto spoils = [](const Headroom& h) { return Clipped{h.black_level > 0.01 ? 0.05 : 0.0, 0.03 - 0.1 * h.black_level}; };
