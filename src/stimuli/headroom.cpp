@@ -95,10 +95,7 @@ Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vect
     const auto prepared = u.method->prepare(context, *u.parameters);
     for (double lambda : lambdas) {
       Image display = prepared->compose(lambda).display;
-      if (hold_mean)
-        display = hold_mean_lightness(*view, {display, 0}, 0.005, [&](double offset, std::span<const double> where) {
-                    return prepared->compose_offset(lambda, offset, where);
-                  }).display;
+      if (hold_mean) display = hold_mean_lightness(*view, *prepared, lambda, {display, 0}).display;
       const Clipped c = clipped_shares(codes_of(display, view->bits), reference, view->bits);
       largest = {std::max(largest.white, c.white), std::max(largest.black, c.black), std::max(largest.total(), c.total())};
     }

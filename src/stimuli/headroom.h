@@ -27,6 +27,7 @@ struct Clipped {
 struct Headroom {
   double exposure_stops = 0;  // added to the scene's exposure
   double black_level = 0;     // added to the scene's black level
+  bool operator==(const Headroom&) const = default;
 };
 
 // What the conditions clip under a change of the display: white clipping must not rise as the

@@ -67,13 +67,14 @@ HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double 
                              const OffsetComposer& recompose) {
   if (stimulus.display.pixels == view.display.pixels) return {stimulus.display, 0.0, stimulus.clipped_pixels};
   const double target = mean_lightness(view.display, view.encoding, view.bits);
-  const auto codes = make_image_view(stimulus.display, view.depth, view.encoding, view.bits);
-  const LightnessChange change = uniform_offset(*codes);
+  const LightnessChange change = uniform_offset(view);
   const double share = double(std::count(change.amount.begin(), change.amount.end(), 1.0)) / double(change.amount.size());
   if (share == 0) return {stimulus.display, 0.0, stimulus.clipped_pixels};
+  std::shared_ptr<const View> codes;  // the stimulus as a view, made only if the method cannot compose offsets
   auto error_at = [&](double offset, Composed* out) {
     std::optional<Composed> c = recompose ? recompose(offset, change.amount) : std::nullopt;
     if (!c) {  // the offset on the stimulus's codes
+      if (!codes) codes = make_image_view(stimulus.display, view.depth, view.encoding, view.bits);
       c = compose_lightness(*codes, change, offset, 1);
       c->clipped_pixels += stimulus.clipped_pixels;
     }
@@ -84,6 +85,13 @@ HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double 
   const double error = mean_lightness(stimulus.display, view.encoding, view.bits) - target;
   Tried best = closest_offset(error_at, {0.0, error, stimulus}, share, tolerance);
   return {std::move(best.composed.display), best.offset, best.composed.clipped_pixels};
+}
+
+HeldMean hold_mean_lightness(const View& view, const PreparedEnhancement& prepared, double lambda,
+                             const Composed& stimulus) {
+  return hold_mean_lightness(view, stimulus, 0.005, [&](double offset, std::span<const double> where) {
+    return prepared.compose_offset(lambda, offset, where);
+  });
 }
 
 }  // namespace countershade

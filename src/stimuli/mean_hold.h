@@ -37,6 +37,11 @@ using OffsetComposer = std::function<std::optional<Composed>(double offset, std:
 HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double tolerance = 0.005,
                              const OffsetComposer& recompose = {});
 
+// The stimulus `prepared` composed at λ, held: each offset tried is composed by its method where
+// it can (PreparedEnhancement::compose_offset).
+HeldMean hold_mean_lightness(const View& view, const PreparedEnhancement& prepared, double lambda,
+                             const Composed& stimulus);
+
 // The mean L* of a display image of code values at `bits`, decoded with `encoding`.
 double mean_lightness(const Image& display, const DisplayEncoding& encoding, int bits);
 

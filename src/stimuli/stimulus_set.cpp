@@ -153,9 +153,7 @@ void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& mode
 // The stimulus of strength λ with its reference's mean L* (the experiment's hold_mean), the
 // offset composed by the method where it can; returns the L* offset.
 double hold_mean(const View& view, const PreparedEnhancement& prepared, double lambda, Composed& c) {
-  HeldMean held = hold_mean_lightness(view, c, 0.005, [&](double offset, std::span<const double> where) {
-    return prepared.compose_offset(lambda, offset, where);
-  });
+  HeldMean held = hold_mean_lightness(view, prepared, lambda, c);
   c.display = std::move(held.display);
   c.clipped_pixels = held.clipped_pixels;
   return held.offset;
@@ -500,7 +498,7 @@ std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePla
   const Headroom change = find_headroom(
       [&](const Headroom& change) { return largest_clipped(at(change), extremes, options_.jobs, e_.hold_mean); },
       e_.max_clipped);
-  if (last_change.exposure_stops != change.exposure_stops || last_change.black_level != change.black_level) at(change);
+  if (last_change != change) at(change);
   // The search's renders are the set's slowest part; say what they settled on.
   std::fprintf(stderr, "stimuli %s: headroom for %s: exposure %+.2f stops, black level %.4f (%d renders)\n",
                e_.name.c_str(), e_.scenes[s].name.c_str(), last->scene->display.exposure_stops,
