@@ -20,22 +20,26 @@ void main() {
 )";
 
 // The image pixel under each fragment, counted from the image's top-left as the reference does.
+// MODE, one program per path: 0 the nearest 10-bit level, 1 dithered to 8 bits, 2 pseudo-grey (a
+// software rasteriser runs every branch of a uniform `if` at some cost, a #if costs nothing).
 const char* const kFragmentMain = R"(
-uniform usampler2D image;
+uniform sampler2D image;  // the top half: each channel's high byte; the bottom half: its low byte
 uniform ivec2 top_left;  // the image's top-left pixel in window coordinates (x, and y of its top row)
-uniform int mode;        // 0: the nearest 10-bit level; 1: dithered to 8 bits; 2: pseudo-grey
 uniform uint frame;
-uniform uint seed;
+uniform uint seed_mix;   // dither_seed_mix(seed), hashed once per frame rather than per pixel
 out vec4 colour;
 void main() {
   uvec2 p = uvec2(int(gl_FragCoord.x) - top_left.x, top_left.y - int(gl_FragCoord.y));
-  uvec3 v = texelFetch(image, ivec2(p), 0).rgb;
-  if (mode == 0)
-    colour = vec4(vec3(ten_bit_level(v)) / 1023.0, 1.0);
-  else if (mode == 2)
-    colour = vec4(vec3(pseudo_grey_levels((v.r + v.g + v.b + 1u) / 3u)) / 255.0, 1.0);  // pseudo_grey_value
-  else
-    colour = vec4(vec3(dither_level(v, dither_threshold(p.x, p.y, frame, seed))) / 255.0, 1.0);
+  int low = textureSize(image, 0).y / 2;
+  uvec3 v = uvec3(texelFetch(image, ivec2(p), 0).rgb * 255.0 + 0.5) * 256u +
+            uvec3(texelFetch(image, ivec2(p) + ivec2(0, low), 0).rgb * 255.0 + 0.5);
+#if MODE == 0
+  colour = vec4(vec3(ten_bit_level(v)) / 1023.0, 1.0);
+#elif MODE == 2
+  colour = vec4(vec3(pseudo_grey_levels((v.r + v.g + v.b + 1u) / 3u)) / 255.0, 1.0);  // pseudo_grey_value
+#else
+  colour = vec4(vec3(dither_level(v, dither_threshold(p.x, p.y, frame, seed_mix))) / 255.0, 1.0);
+#endif
 }
 )";
 
@@ -57,31 +61,37 @@ unsigned compile(GLenum kind, const std::string& source) {
 
 }  // namespace
 
-DeepStimulusRenderer::DeepStimulusRenderer() {
+DeepStimulusRenderer::Program DeepStimulusRenderer::link(int mode) {
   const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, std::string("#version 330 core\n") + kFineLevelsGlsl + kFragmentMain);
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, "#version 330 core\n#define MODE " + std::to_string(mode) + "\n" +
+                                                    kFineLevelsGlsl + kFragmentMain);
+  Program p;
+  p.id = glCreateProgram();
+  glAttachShader(p.id, vs);
+  glAttachShader(p.id, fs);
+  glLinkProgram(p.id);
   glDeleteShader(vs);
   glDeleteShader(fs);
   GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+  glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
   if (!ok) throw std::runtime_error("the 16-bit stimulus shader does not link");
-  top_left_ = glGetUniformLocation(program_, "top_left");
-  mode_ = glGetUniformLocation(program_, "mode");
-  frame_ = glGetUniformLocation(program_, "frame");
-  seed_ = glGetUniformLocation(program_, "seed");
-  glUseProgram(program_);
-  glUniform1i(glGetUniformLocation(program_, "image"), 0);
+  p.top_left = glGetUniformLocation(p.id, "top_left");
+  p.frame = glGetUniformLocation(p.id, "frame");
+  p.seed_mix = glGetUniformLocation(p.id, "seed_mix");
+  glUseProgram(p.id);
+  glUniform1i(glGetUniformLocation(p.id, "image"), 0);
   glUseProgram(0);
+  return p;
+}
+
+DeepStimulusRenderer::DeepStimulusRenderer() {
+  for (int mode = 0; mode < 3; ++mode) programs_[mode] = link(mode);
   glGenVertexArrays(1, &vertex_array_);
 }
 
 DeepStimulusRenderer::~DeepStimulusRenderer() {
   glDeleteVertexArrays(1, &vertex_array_);
-  glDeleteProgram(program_);
+  for (const Program& p : programs_) glDeleteProgram(p.id);
 }
 
 unsigned new_nearest_texture() {
@@ -97,10 +107,18 @@ unsigned new_nearest_texture() {
 }
 
 unsigned DeepStimulusRenderer::upload(const std::vector<uint16_t>& rgba, int width, int height) {
-  // Integer textures are never filtered; nearest is also what makes them complete.
+  // Two 8-bit halves rather than one 16-bit integer texture: a software rasteriser (Mesa's
+  // llvmpipe) fetches two 8-bit texels faster than one of 64 bits, and the two bytes give the same
+  // code exactly (docs/performance.md, "Adjustment app").
+  const size_t layer = size_t(width) * size_t(height) * 4;
+  std::vector<uint8_t> bytes(2 * layer);
+  for (size_t i = 0; i < layer && i < rgba.size(); ++i) {
+    bytes[i] = uint8_t(rgba[i] >> 8);
+    bytes[layer + i] = uint8_t(rgba[i] & 0xFFu);
+  }
   const GLuint id = new_nearest_texture();
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16UI, width, height, 0, GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, rgba.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, 2 * height, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
   if (glGetError() != GL_NO_ERROR) {
     glDeleteTextures(1, &id);
     throw std::runtime_error("cannot upload a 16-bit stimulus texture (out of GPU memory?)");
@@ -118,11 +136,11 @@ void DeepStimulusRenderer::draw(unsigned texture, const PixelRect& r, OutputPath
   glDisable(GL_FRAMEBUFFER_SRGB);
   const int bottom = r.framebuffer_height - r.y - r.height;
   glViewport(r.x, bottom, r.width, r.height);
-  glUseProgram(program_);
-  glUniform2i(top_left_, r.x, r.framebuffer_height - r.y - 1);
-  glUniform1i(mode_, path == OutputPath::ten_bit ? 0 : path == OutputPath::pseudo_grey ? 2 : 1);
-  glUniform1ui(frame_, frame);
-  glUniform1ui(seed_, seed);
+  const Program& p = programs_[path == OutputPath::ten_bit ? 0 : path == OutputPath::pseudo_grey ? 2 : 1];
+  glUseProgram(p.id);
+  glUniform2i(p.top_left, r.x, r.framebuffer_height - r.y - 1);
+  glUniform1ui(p.frame, frame);
+  glUniform1ui(p.seed_mix, dither_seed_mix(seed));
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture);
   glBindVertexArray(vertex_array_);

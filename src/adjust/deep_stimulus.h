@@ -1,8 +1,9 @@
 #pragma once
-// 16-bit stimuli on screen: GL_RGBA16UI textures, drawn at 1:1 by a shader that quantises each
-// pixel for the framebuffer, exactly as adjust/fine_levels.h defines it (the nearest 10-bit level,
-// or the seeded dither to 8 bits). Integer textures keep the 16-bit codes exact up to the shader,
-// so its output is reproducible to the bit and testable against the C++ reference.
+// 16-bit stimuli on screen: each code's high and low bytes in the two halves of an 8-bit texture,
+// drawn at 1:1 by a shader that joins them and quantises each pixel for the framebuffer, exactly
+// as adjust/fine_levels.h defines it (the nearest 10-bit level, or the seeded dither to 8 bits).
+// The bytes keep the 16-bit codes exact up to the shader, so its output is reproducible to the bit
+// and testable against the C++ reference.
 
 #include <cstdint>
 #include <vector>
@@ -30,7 +31,8 @@ class DeepStimulusRenderer {
   DeepStimulusRenderer(const DeepStimulusRenderer&) = delete;
   DeepStimulusRenderer& operator=(const DeepStimulusRenderer&) = delete;
 
-  // A 16-bit RGBA image (rows top to bottom) as an integer texture; the caller deletes it.
+  // A 16-bit RGBA image (rows top to bottom) as an 8-bit texture twice its height, the high bytes
+  // above the low ones; the caller deletes it.
   static unsigned upload(const std::vector<uint16_t>& rgba, int width, int height);
 
   // Draws the texture into the bound draw framebuffer through `path` (ten_bit or dither); `frame`
@@ -38,8 +40,14 @@ class DeepStimulusRenderer {
   void draw(unsigned texture, const PixelRect& where, OutputPath path, uint32_t frame, uint32_t seed) const;
 
  private:
-  unsigned program_ = 0, vertex_array_ = 0;
-  int top_left_ = -1, mode_ = -1, frame_ = -1, seed_ = -1;
+  struct Program {
+    unsigned id = 0;
+    int top_left = -1, frame = -1, seed_mix = -1;
+  };
+  static Program link(int mode);  // the program of one path (kFragmentMain's MODE)
+
+  Program programs_[3];
+  unsigned vertex_array_ = 0;
 };
 
 // The bound read framebuffer's pixels in `where`, as 16-bit RGBA (rows top to bottom). A channel

@@ -34,8 +34,10 @@ uint32_t mix(uint32_t x) {
 
 }  // namespace
 
+uint32_t dither_seed_mix(uint32_t seed) { return mix(seed); }
+
 uint32_t dither_threshold(uint32_t x, uint32_t y, uint32_t frame, uint32_t seed) {
-  const uint32_t h = mix(x + mix(y + mix(seed)));
+  const uint32_t h = mix(x + mix(y + dither_seed_mix(seed)));
   const uint32_t stratum = ((h >> 26) + frame * 37u) & 63u;
   const uint32_t position = (stratum << 10) | (h & 1023u);  // 0 .. 65535
   return (position * 65535u) >> 16;                            // 0 .. 65534
@@ -46,8 +48,8 @@ uint mix_bits(uint x) {
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
   return x;
 }
-uint dither_threshold(uint x, uint y, uint frame, uint seed) {
-  uint h = mix_bits(x + mix_bits(y + mix_bits(seed)));
+uint dither_threshold(uint x, uint y, uint frame, uint seed_mix) {  // seed_mix: dither_seed_mix(seed)
+  uint h = mix_bits(x + mix_bits(y + seed_mix));
   uint stratum = ((h >> 26) + frame * 37u) & 63u;
   uint position = (stratum << 10) | (h & 1023u);
   return (position * 65535u) >> 16;

@@ -40,6 +40,9 @@ inline uint32_t ten_bit_level(uint32_t v16) { return (v16 * 1023u + 32767u) / 65
 // visited once in every 64 consecutive frames (stride 37, coprime with 64), at a random phase and
 // with a random offset inside the stratum, both from a hash of the pixel and the seed.
 uint32_t dither_threshold(uint32_t x, uint32_t y, uint32_t frame, uint32_t seed);
+// The part of the threshold's hash that depends on the seed alone (the GLSL dither_threshold takes
+// it in place of the seed, computed once per frame).
+uint32_t dither_seed_mix(uint32_t seed);
 
 // The 8-bit level the dither shows: floor((v · 255 + threshold) / 65535). Its mean over thresholds
 // spread evenly over [0, 65535) is v · 255 / 65535, the 16-bit value in 8-bit levels.
