@@ -534,6 +534,9 @@ NoiseBudget read_noise_budget(const JsonObject& o) {
   b.max_spp = int(o.integer_in("max_spp", b.max_spp, b.min_spp, 65536));
   if (b.min_spp % 2) o.fail("min_spp", "must be even (the samples form two replicates)");
   b.time_limit_s = o.number_in("time_limit", 0.0, 0.0, 1e7);
+  const std::string allocation = o.string_or("allocation", "pixel");
+  if (allocation != "pixel" && allocation != "image") o.fail("allocation", "expected \"pixel\" or \"image\"");
+  b.allocation = allocation == "image" ? NoiseAllocation::image : NoiseAllocation::pixel;
   o.finish();
   return b;
 }

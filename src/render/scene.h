@@ -91,8 +91,13 @@ struct Display {
 // How many samples an image takes. By default a noise budget: every pixel is sampled until the
 // standard error of its L* meets the target (see render/pixel_pass.h). A fixed count is there for
 // those who want one.
+// Where the noise budget's target applies: at every pixel, or to the image's RMS (pixel_pass.cpp,
+// stopping_threshold).
+enum class NoiseAllocation { pixel, image };
+
 struct NoiseBudget {
   double target = 0.5;       // RMS sampling noise of the written image, in L*
+  NoiseAllocation allocation = NoiseAllocation::pixel;
   double p99 = 2.0;          // the 99th percentile of its per-pixel error, in L*
   int min_spp = 16, max_spp = 4096;
   double time_limit_s = 0;   // 0: none. When it stops the sampling the image is not reproducible.

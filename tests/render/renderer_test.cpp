@@ -207,14 +207,13 @@ TEST(Renderer, AFixedCountRenderWithoutItsNoiseEstimateGivesTheSamePixels) {
   for (float n : without.noise) ASSERT_EQ(n, 0.0f);
 }
 
-// Adaptive sampling decides per pixel and per vertex how many samples to take; those decisions,
-// like the samples, must not depend on how the work is split over threads.
-TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
-  testing::TempDir dir;
-  Scene scene = scene_from(dir, R"({
+// A sphere on a plane under a point light with a radius (a soft shadow) and ambient occlusion, at
+// `size` pixels, with `render` as its render block.
+Scene soft_shadow_scene(const testing::TempDir& dir, const std::string& size, const std::string& render) {
+  return scene_from(dir, R"({
     "version": 1,
-    "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], "width": 48, "height": 36},
-    "render": {"seed": 7},
+    "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], )" + size + R"(},
+    "render": )" + render + R"(,
     "objects": [
       {"shape": {"type": "plane", "size": 4, "subdivisions": 8}},
       {"shape": {"type": "sphere", "radius": 0.4, "subdivisions": 3}, "transform": {"translate": [0, 0.4, 0]}}
@@ -224,6 +223,13 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
       {"type": "ambient", "radiance": 0.1, "occlusion_distance": 0.5, "samples": 1}
     ]
   })");
+}
+
+// Adaptive sampling decides per pixel and per vertex how many samples to take; those decisions,
+// like the samples, must not depend on how the work is split over threads.
+TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
+  testing::TempDir dir;
+  Scene scene = soft_shadow_scene(dir, R"("width": 48, "height": 36)", R"({"seed": 7})");
   RayTracer tracer(scene);
   auto run = [&](int threads) {
     RenderOptions options;
@@ -239,6 +245,31 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
   EXPECT_EQ(one.vertices.front_noise, two.vertices.front_noise);
   EXPECT_GT(one.sampling.pixels.max, one.sampling.pixels.min) << "the soft shadow should need more samples";
   EXPECT_TRUE(one.sampling.budget_met) << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
+}
+
+// A noise budget over the image rather than every pixel: the pixels whose noise costs most samples
+// (the soft shadow, the occluded corners) carry more of it, so the render takes fewer samples; its
+// RMS estimate stays within the target (with its tenth in hand), and no pixel's passes the p99
+// bound over 2.576.
+TEST(Renderer, ANoiseBudgetOverTheImageTakesFewerSamplesForTheSameRms) {
+  testing::TempDir dir;
+  auto scene_with = [&](const std::string& allocation) {
+    return soft_shadow_scene(dir, R"("width": 64, "height": 48)",
+                             R"({"seed": 7, "noise": {"target": 0.5, "allocation": ")" + allocation + R"("}})");
+  };
+  const auto rms = [](const std::vector<float>& v) {
+    double sum = 0;
+    for (float x : v) sum += double(x) * x;
+    return std::sqrt(sum / double(v.size()));
+  };
+  const Scene per_pixel = scene_with("pixel"), per_image = scene_with("image");
+  const RenderResult a = render(per_pixel, RayTracer(per_pixel), {}), b = render(per_image, RayTracer(per_image), {});
+  EXPECT_LT(b.sampling.pixels.mean, 0.8 * a.sampling.pixels.mean);
+  EXPECT_LE(rms(a.noise), 0.5);
+  EXPECT_LE(rms(b.noise), 0.5);
+  EXPECT_GT(rms(b.noise), rms(a.noise));
+  EXPECT_GT(*std::max_element(b.noise.begin(), b.noise.end()), 0.6) << "some pixel carries more than the target";
+  EXPECT_TRUE(b.sampling.budget_met);
 }
 
 // The smoothed signal and the gain of two renders' vertex signals agree exactly at every vertex of

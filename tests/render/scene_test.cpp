@@ -53,6 +53,10 @@ TEST(Scene, ReadsTheNoiseBudgetOrAFixedCount) {
   EXPECT_EQ(budget.settings.noise.min_spp, 8);
   EXPECT_EQ(budget.settings.noise.max_spp, 512);
   EXPECT_EQ(budget.settings.noise.time_limit_s, 60.0);
+  EXPECT_EQ(budget.settings.noise.allocation, NoiseAllocation::pixel);  // the default: every pixel meets the target
+  auto over_image = load_scene(testing::write_file(
+      dir / "image.json", variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"allocation\": \"image\"}}")));
+  EXPECT_EQ(over_image.settings.noise.allocation, NoiseAllocation::image);
   auto fixed = load_scene(testing::write_file(
       dir / "fixed.json", variant("\"version\": 1", "\"version\": 1, \"render\": {\"spp\": 12, \"sampler\": \"independent\"}")));
   EXPECT_EQ(fixed.settings.spp, 12);
@@ -136,6 +140,8 @@ TEST(Scene, BadInputNamesFileAndKeyPath) {
        "render.noise.target: "},
       {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"min_spp\": 64, \"max_spp\": 32}}"),
        "render.noise.max_spp: "},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"allocation\": \"pixels\"}}"),
+       "render.noise.allocation: expected \"pixel\" or \"image\""},
       {variant("\"version\": 1", "\"version\": 1, \"render\": {\"sampler\": \"independent\"}"),
        "render.sampler: the independent sampler takes a fixed spp"},
   };
