@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "core/color.h"
 #include "core/display.h"
@@ -61,14 +63,10 @@ class CodeLightness {
   }
   uint32_t code(float value) const { return uint32_t(std::lround(std::clamp(double(value), 0.0, 1.0) * levels_)); }
 
-  CodeSteps steps(const float* rgb) const {
+  CodeSteps steps(const uint32_t k[3]) const {
     const auto& w = color_constants::kRgbToXyz[1];
-    uint32_t k[3];
     double y = 0;
-    for (int c = 0; c < 3; ++c) {
-      k[c] = code(rgb[c]);
-      y += w[c] * linear_[k[c]];
-    }
+    for (int c = 0; c < 3; ++c) y += w[c] * linear_[k[c]];
     CodeSteps out{{0, 0, 0}, k[0] == k[1] && k[1] == k[2]};
     for (int c = 0; c < 3; ++c) {
       const uint32_t lo = k[c] > 0 ? k[c] - 1 : k[c], hi = k[c] < levels_ ? k[c] + 1 : k[c];
@@ -90,6 +88,26 @@ double lightness_step(const CodeSteps& s) {
   if (s.grey) return std::abs(s.step[0] + s.step[1] + s.step[2]);
   return std::sqrt(s.step[0] * s.step[0] + s.step[1] * s.step[1] + s.step[2] * s.step[2]);
 }
+
+// lightness_step of each pixel's codes, remembered for the last codes seen in each of 4096 slots:
+// neighbouring pixels mostly hold the same codes, and a step costs six cube roots.
+class StepCache {
+ public:
+  explicit StepCache(const CodeLightness& codes) : codes_(codes), slots_(kSlots, {UINT64_MAX, 0.0}) {}
+  double operator()(const float* rgb) {
+    uint32_t k[3];
+    for (int c = 0; c < 3; ++c) k[c] = codes_.code(rgb[c]);
+    const uint64_t key = uint64_t(k[0]) | uint64_t(k[1]) << 16 | uint64_t(k[2]) << 32;
+    auto& slot = slots_[size_t((key * 0x9E3779B97F4A7C15ull) >> 52)];
+    if (slot.first != key) slot = {key, lightness_step(codes_.steps(k))};
+    return slot.second;
+  }
+
+ private:
+  static constexpr size_t kSlots = 4096;  // the hash's top 12 bits
+  const CodeLightness& codes_;
+  std::vector<std::pair<uint64_t, double>> slots_;
+};
 
 }  // namespace
 
@@ -125,9 +143,10 @@ std::vector<float> stimulus_noise(const View& view, const NoiseModel& model, con
   std::vector<float> sigma(n, 0.0f);
   if (before.size() != n) return sigma;  // an external image: no estimate
   const CodeLightness codes(view.encoding, view.bits);
+  StepCache step(codes);
   for (size_t p = 0; p < n; ++p) {
     const double s = before[p];
-    const double q = lightness_step(codes.steps(&written.pixels[3 * p]));
+    const double q = step(&written.pixels[3 * p]);
     sigma[p] = float(q > 0 ? q * quantized_noise_steps(s / q) : s);
   }
   return sigma;
