@@ -35,6 +35,8 @@ class LightnessComposer {
 // CIELAB of `count` linear RGB pixels given as three planes, and optionally their L* as floats.
 // Streaming stores where `out` is 16-byte aligned: the caller fences (_mm_sfence) before reading.
 void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness);
+// L* alone of `count` linear RGB pixels: the values linear_to_lab_block gives.
+void linear_to_lightness_block(const double* r, const double* g, const double* b, size_t count, double* lightness);
 
 // The codes (code / levels) of n values, and whether every value is exactly its code's value.
 bool exact_codes(const float* values, size_t n, float levels, int32_t* code);

@@ -162,6 +162,22 @@ LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, 
   return lab;
 }
 
+double mean_display_lightness(const Image& display, const DisplayEncoding& encoding, int bits) {
+  const LinearDecoder decode(encoding, bits);
+  PixelDoubles lightness(size_t(display.width) * display.height);  // every element is written below
+  parallel_blocks(lightness.size(), 0, [&](size_t begin, size_t end) {
+    alignas(64) double linear[3][kBlock];
+    for (size_t first = begin; first < end; first += kBlock) {
+      const size_t count = std::min(kBlock, end - first);
+      decode.decode_rgb(display.pixels.data() + 3 * first, count, linear[0], linear[1], linear[2]);
+      linear_to_lightness_block(linear[0], linear[1], linear[2], count, lightness.data() + first);
+    }
+  });
+  double sum = 0;  // in pixel order, whatever the threads
+  for (double L : lightness) sum += L;
+  return lightness.empty() ? 0.0 : sum / double(lightness.size());
+}
+
 Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads,
                            const LightnessOffset* offset) {
   const CodeQuantizer& quantizer = CodeQuantizer::shared(view.encoding, view.bits);

@@ -24,6 +24,9 @@ namespace countershade {
 LabPixels display_to_lab(const Image& display, const DisplayEncoding& encoding, int bits = 0,
                          PixelVector* lightness = nullptr);
 Lab display_pixel_to_lab(const float* rgb, const DisplayEncoding& encoding);
+// The mean L* of a display-encoded image: the mean of display_to_lab's L*, bit for bit, without
+// computing a* and b*.
+double mean_display_lightness(const Image& display, const DisplayEncoding& encoding, int bits = 0);
 
 // CIELAB L* of a linear radiance as the display shows it (Display::exposure(), per channel).
 double display_lightness(const glm::dvec3& radiance, const Exposure& exposure);

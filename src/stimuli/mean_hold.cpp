@@ -8,10 +8,7 @@
 namespace countershade {
 
 double mean_lightness(const Image& display, const DisplayEncoding& encoding, int bits) {
-  const LabPixels lab = display_to_lab(display, encoding, bits);
-  double sum = 0;
-  for (const Lab& p : lab) sum += p.L;
-  return lab.empty() ? 0.0 : sum / double(lab.size());
+  return mean_display_lightness(display, encoding, bits);
 }
 
 namespace {
