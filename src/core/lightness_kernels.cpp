@@ -291,6 +291,16 @@ template <typename D>
   for (size_t i = 0; i < kDoubles; i += 2) _mm_stream_pd(o + i, _mm_loadu_pd(d + i));
 }
 
+// Lanes of R, G and B from three planes, from pixel k on.
+template <typename D>
+[[gnu::always_inline]] inline RgbLanes<D> load_rgb_lanes(const double* r, const double* g, const double* b, size_t k) {
+  RgbLanes<D> out;
+  std::memcpy(&out.r, r + k, sizeof out.r);
+  std::memcpy(&out.g, g + k, sizeof out.g);
+  std::memcpy(&out.b, b + k, sizeof out.b);
+  return out;
+}
+
 // linear_rgb_to_lab on the lanes of D at once (eight or four pixels), lane by lane the operations
 // of the scalar code in core/color.
 template <typename D, typename I>
@@ -299,10 +309,8 @@ template <typename D, typename I>
   using namespace color_constants;
   constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
-    D R, G, B;
-    std::memcpy(&R, r + k, sizeof R);
-    std::memcpy(&G, g + k, sizeof G);
-    std::memcpy(&B, b + k, sizeof B);
+    const RgbLanes<D> p = load_rgb_lanes<D>(r, g, b, k);
+    const D &R = p.r, &G = p.g, &B = p.b;
     const D X = kRgbToXyz[0][0] * R + kRgbToXyz[0][1] * G + kRgbToXyz[0][2] * B;
     const D Y = kRgbToXyz[1][0] * R + kRgbToXyz[1][1] * G + kRgbToXyz[1][2] * B;
     const D Z = kRgbToXyz[2][0] * R + kRgbToXyz[2][1] * G + kRgbToXyz[2][2] * B;
@@ -340,11 +348,8 @@ template <typename D, typename I>
   using namespace color_constants;
   constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
-    D R, G, B;
-    std::memcpy(&R, r + k, sizeof R);
-    std::memcpy(&G, g + k, sizeof G);
-    std::memcpy(&B, b + k, sizeof B);
-    const D Y = kRgbToXyz[1][0] * R + kRgbToXyz[1][1] * G + kRgbToXyz[1][2] * B;
+    const RgbLanes<D> p = load_rgb_lanes<D>(r, g, b, k);
+    const D Y = kRgbToXyz[1][0] * p.r + kRgbToXyz[1][1] * p.g + kRgbToXyz[1][2] * p.b;
     const D L = 116.0 * lab_f_lanes<D, I>(Y * kInverseWhite[1]) - 16.0;
     std::memcpy(lightness + k, &L, sizeof L);
   }
