@@ -186,9 +186,6 @@ class DepthUsmRgb final : public PreparedEnhancement {
     }
     return out;
   }
-  std::optional<Composed> compose_offset(double lambda, double offset, std::span<const double> where) const override {
-    return offset_unrounded(*view_, compose(lambda), offset, where);
-  }
   nlohmann::json parameters() const override { return record_; }
   std::vector<std::pair<std::string, Image>> auxiliary() const override {
     return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};

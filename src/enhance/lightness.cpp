@@ -206,20 +206,6 @@ Composed compose_lightness(const View& view, const LightnessChange& change, doub
   return out;
 }
 
-Composed offset_unrounded(const View& like, Composed unrounded, double offset, std::span<const double> where) {
-  View pixels;  // the unrounded stimulus as a view: its own L*, not that of its rounded codes
-  pixels.encoding = like.encoding;
-  pixels.bits = like.bits;
-  pixels.display = std::move(unrounded.display);
-  pixels.lab = display_to_lab(pixels.display, pixels.encoding, pixels.bits);
-  LightnessChange uniform;  // Δ = offset where `where` is 1: composed at λ = offset
-  uniform.amount.assign(where.begin(), where.end());
-  Composed out = compose_lightness(pixels, uniform, offset);
-  quantize_in_place(out.display, like.bits);  // pixels the offset leaves (Δ = 0) keep the method's values
-  out.clipped_pixels += unrounded.clipped_pixels;
-  return out;
-}
-
 std::vector<std::pair<std::string, Image>> LightnessPrepared::auxiliary() const {
   std::vector<std::pair<std::string, Image>> out = auxiliary_;
   if (change_.kind == LightnessChange::Kind::detail) {

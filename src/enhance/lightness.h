@@ -70,12 +70,6 @@ struct LightnessOffset {
 Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0,
                            const LightnessOffset* offset = nullptr);
 
-// A stimulus a method composed in display code values without rounding them (`unrounded`), with
-// `offset` L* more where `where` is 1, through the same lightness-only rule, then rounded once to
-// `like`'s bit depth: the mean hold of methods that compose in RGB (PreparedEnhancement::compose_offset).
-// The clipped pixels are the method's and the offset's.
-Composed offset_unrounded(const View& like, Composed unrounded, double offset, std::span<const double> where);
-
 // The sampling noise of the stimulus of strength λ (PreparedEnhancement::noise).
 using NoiseFunction = std::function<NoiseModel(double lambda)>;
 

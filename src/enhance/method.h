@@ -78,7 +78,8 @@ class PreparedEnhancement {
   // The stimulus for strength λ with `offset` L* more on every pixel where `where` is 1 (0
   // elsewhere), composed and quantised once: a study design's mean hold (stimuli/mean_hold.h)
   // moves each pixel before its rounding, not whole codes after it. Empty for methods that do not
-  // compose in lightness; the caller then offsets the composed stimulus.
+  // compose in lightness; the caller then offsets the composed stimulus (before its rounding, if
+  // the method leaves that to the writer).
   virtual std::optional<Composed> compose_offset(double /*lambda*/, double /*offset*/,
                                                  std::span<const double> /*where*/) const {
     return std::nullopt;

@@ -42,12 +42,12 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
 }
 
 std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding,
-                                            int bits) {
+                                            int bits, bool round) {
   auto view = std::make_shared<View>();
   view->encoding = encoding;
   view->bits = bits;
   view->display = std::move(display);
-  quantize_in_place(view->display, bits);
+  if (round) quantize_in_place(view->display, bits);
   view->lab = display_to_lab(view->display, encoding, bits, &view->lightness);
   view->depth = std::move(depth);
   return view;

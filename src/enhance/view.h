@@ -106,9 +106,10 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
                                       RenderResult render, int bits = 8, bool lab = true);
 
 // The View of an external image (display-encoded code values, 3 channels) with an optional
-// depth map of the same size.
+// depth map of the same size, rounded to `bits` unless `round` is false (a stimulus a method has
+// not rounded yet, seen with its own L*).
 std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding,
-                                            int bits);
+                                            int bits, bool round = true);
 
 // Applies the request's scene changes (mesh refinement) before the scene is rendered.
 void apply_request(Scene& scene, const RenderRequest& request);

@@ -7,10 +7,6 @@
 
 namespace countershade {
 
-double mean_lightness(const Image& display, const DisplayEncoding& encoding, int bits) {
-  return mean_display_lightness(display, encoding, bits);
-}
-
 namespace {
 
 bool is_object(const View& view, size_t i) {
@@ -67,23 +63,24 @@ Tried closest_offset(const std::function<double(double, Composed*)>& error_at, T
 HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double tolerance,
                              const OffsetComposer& recompose) {
   if (stimulus.display.pixels == view.display.pixels) return {stimulus.display, 0.0, stimulus.clipped_pixels};
-  const double target = mean_lightness(view.display, view.encoding, view.bits);
+  const double target = mean_display_lightness(view.display, view.encoding, view.bits);
   const LightnessChange change = uniform_offset(view);
   const double share = double(std::count(change.amount.begin(), change.amount.end(), 1.0)) / double(change.amount.size());
   if (share == 0) return {stimulus.display, 0.0, stimulus.clipped_pixels};
-  std::shared_ptr<const View> codes;  // the stimulus as a view, made only if the method cannot compose offsets
+  std::shared_ptr<const View> own;  // the stimulus as a view, made only if the method cannot compose offsets
   auto error_at = [&](double offset, Composed* out) {
     std::optional<Composed> c = recompose ? recompose(offset, change.amount) : std::nullopt;
-    if (!c) {  // the offset on the stimulus's codes
-      if (!codes) codes = make_image_view(stimulus.display, view.depth, view.encoding, view.bits);
-      c = compose_lightness(*codes, change, offset, 1);
+    if (!c) {  // the offset on the stimulus as its method composed it (unrounded, for RGB operators)
+      if (!own) own = make_image_view(stimulus.display, view.depth, view.encoding, view.bits, false);
+      c = compose_lightness(*own, change, offset, 1);
+      quantize_in_place(c->display, view.bits);  // the pixels the offset leaves keep the method's values until here
       c->clipped_pixels += stimulus.clipped_pixels;
     }
-    const double error = mean_lightness(c->display, view.encoding, view.bits) - target;
+    const double error = mean_display_lightness(c->display, view.encoding, view.bits) - target;
     if (out) *out = std::move(*c);
     return error;
   };
-  const double error = mean_lightness(stimulus.display, view.encoding, view.bits) - target;
+  const double error = mean_display_lightness(stimulus.display, view.encoding, view.bits) - target;
   Tried best = closest_offset(error_at, {0.0, error, stimulus}, share, tolerance);
   return {std::move(best.composed.display), best.offset, best.composed.clipped_pixels};
 }

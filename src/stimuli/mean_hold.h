@@ -27,13 +27,14 @@ struct HeldMean {
 // quantisation (PreparedEnhancement::compose_offset); empty when its method cannot.
 using OffsetComposer = std::function<std::optional<Composed>(double offset, std::span<const double> where)>;
 
-// `stimulus`: a stimulus of `view` (code values at view.bits) and its clipped pixels. Object pixels are those with a
-// finite, positive depth (every pixel when the view has no depth). The offset is found to within
-// `tolerance` L* of the reference's mean, measured over the whole image decoded from its codes (as
-// the audit measures drift); a stimulus equal to the view's image is returned unchanged. With
-// `recompose`, each offset tried is composed by the method with the stimulus (quantised once),
-// else added to the stimulus's codes: then each uniform face moves by whole codes at once, and
-// on flat-shaded scenes the mean moves in steps that can exceed a tenth of an L*.
+// `stimulus`: a stimulus of `view` as its method composed it (code values, rounded to view.bits
+// or not yet: RGB operators leave that to the writer) and its clipped pixels. Object pixels are
+// those with a finite, positive depth (every pixel when the view has no depth). The offset is
+// found to within `tolerance` L* of the reference's mean, measured over the whole image decoded
+// from its codes (as the audit measures drift); a stimulus equal to the view's image is returned
+// unchanged. With `recompose`, each offset tried is composed by the method with its change;
+// else it is added to the stimulus as given. Either way the result is rounded once; a stimulus
+// given already rounded rounds twice, and its uniform faces move by whole codes.
 HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double tolerance = 0.005,
                              const OffsetComposer& recompose = {});
 
@@ -41,8 +42,5 @@ HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double 
 // it can (PreparedEnhancement::compose_offset).
 HeldMean hold_mean_lightness(const View& view, const PreparedEnhancement& prepared, double lambda,
                              const Composed& stimulus);
-
-// The mean L* of a display image of code values at `bits`, decoded with `encoding`.
-double mean_lightness(const Image& display, const DisplayEncoding& encoding, int bits);
 
 }  // namespace countershade

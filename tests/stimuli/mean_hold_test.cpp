@@ -86,7 +86,7 @@ TEST(MeanHold, AnEnhancedImageGetsItsReferencesMeanByOneOffsetOnItsObject) {
   ASSERT_GT(std::abs(reference_mean(enhanced) - target), 0.3) << "the enhancement must move the mean to test anything";
   const HeldMean held = hold_mean_lightness(*view, {enhanced, 0});
   EXPECT_NEAR(reference_mean(held.display), target, 0.05);
-  EXPECT_NEAR(mean_lightness(held.display, view->encoding, 8), target, 0.05);
+  EXPECT_NEAR(mean_display_lightness(held.display, view->encoding, 8), target, 0.05);
   size_t object = 0;
   for (size_t p = 0; p < view->depth.size(); ++p) {
     const float* before = &enhanced.pixels[3 * p];
@@ -152,8 +152,8 @@ TEST(MeanHold, TheOffsetComposedBeforeRoundingHoldsAFlatFaceFinerThanWholeCodes)
 
 // The same flat face under a method that composes in display RGB without rounding (as depth-usm's
 // operators do): a ramp of 0 to 1.25 codes added to every channel. The offset goes onto its
-// unrounded values, so the mean holds as finely as for a lightness method; at offset 0 the result
-// is the method's stimulus rounded, byte for byte.
+// unrounded values, so the mean holds as finely as for a lightness method, and the result is
+// rounded once.
 TEST(MeanHold, AnRgbMethodsUnroundedStimulusTakesTheOffsetBeforeItsRounding) {
   const int w = 64, h = 48;
   Image display(w, h, 3);
@@ -171,12 +171,12 @@ TEST(MeanHold, AnRgbMethodsUnroundedStimulusTakesTheOffsetBeforeItsRounding) {
       unrounded.display.pixels[3 * i + size_t(c)] += float(1.25 * double(i % w) / double(w / 2 - 1) / 255.0);
   Composed rounded = unrounded;
   quantize_in_place(rounded.display, 8);
-  EXPECT_EQ(offset_unrounded(*view, unrounded, 0.0, where).display.pixels, rounded.display.pixels);
   const double target = reference_mean(view->display);
   const HeldMean on_codes = hold_mean_lightness(*view, rounded);
-  const HeldMean composed = hold_mean_lightness(*view, rounded, 0.005, [&](double offset, std::span<const double> at) {
-    return offset_unrounded(*view, unrounded, offset, at);
-  });
+  const HeldMean composed = hold_mean_lightness(*view, unrounded);
+  Image as_codes = composed.display;  // what the mean hold gives is rounded to codes
+  quantize_in_place(as_codes, 8);
+  EXPECT_EQ(as_codes.pixels, composed.display.pixels);
   EXPECT_LT(std::abs(reference_mean(composed.display) - target), 0.01);
   // Every face pixel is rounded once from its unrounded value plus the offset: within half a code
   // (under 0.2 L* here), where the offset on the rounded codes lands up to a whole code off.
@@ -214,9 +214,7 @@ TEST(MeanHold, TheSearchFindsTheOffsetBetweenTwoFlatGreysThresholds) {
   quantize_in_place(rounded.display, 8);
   const double target = reference_mean(view->display);
   ASSERT_LT(reference_mean(rounded.display) - target, -0.05) << "the patch must move the mean past the bound";
-  const HeldMean held = hold_mean_lightness(*view, rounded, 0.005, [&](double offset, std::span<const double> at) {
-    return offset_unrounded(*view, unrounded, offset, at);
-  });
+  const HeldMean held = hold_mean_lightness(*view, unrounded);
   EXPECT_LT(std::abs(reference_mean(held.display) - target), 0.05);
   // Between the thresholds: of the flat greys' channels, some have moved a code and some not.
   size_t moved = 0, flat = 0;
