@@ -68,7 +68,7 @@ void BM_ShadowRays(benchmark::State& state) {
   for (auto _ : state) {
     for (const auto& [p, n] : points) {
       SampleStream random(1, kDomainPixel, i++, 0);
-      glm::dvec3 d = sample_cosine_hemisphere(n, random.next(), random.next());
+      glm::dvec3 d = sample_cosine_hemisphere(TangentFrame(n), random.next(), random.next());
       blocked += tracer.occluded(p + n * tracer.epsilon(), d, tracer.epsilon(), 1e30);
     }
     count += int64_t(points.size());

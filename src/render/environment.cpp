@@ -46,6 +46,15 @@ EnvironmentMap::EnvironmentMap(const Image& image) : width_(image.width), height
       texels_[size_t(y) * width_ + x] = c;
     }
   build_distribution();
+  find_constant_rows();
+}
+
+void EnvironmentMap::find_constant_rows() {
+  rows_.clear();
+  for (int y = 0; y < height_; ++y)
+    for (int x = 1; x < width_; ++x)
+      if (texel(x, y) != texel(0, y)) return;
+  for (int y = 0; y < height_; ++y) rows_.push_back(texel(0, y));
 }
 
 EnvironmentMap EnvironmentMap::constant(const glm::dvec3& radiance) {
@@ -55,6 +64,7 @@ EnvironmentMap EnvironmentMap::constant(const glm::dvec3& radiance) {
       for (int k = 0; k < 3; ++k) image.at(x, y, k) = float(radiance[k]);
   EnvironmentMap map(image);
   for (auto& t : map.texels_) t = radiance;  // keep double precision
+  map.find_constant_rows();
   return map;
 }
 
@@ -127,6 +137,12 @@ glm::dvec3 EnvironmentMap::radiance_at(double u, double v) const {
 }
 
 glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& d) const {
+  if (!rows_.empty()) {  // linear between rows, as the bilinear lookup of equal columns
+    const double fy = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi * height_ - 0.5;
+    const int y0 = int(std::floor(fy));
+    const double ty = fy - y0;
+    return (1 - ty) * rows_[size_t(std::clamp(y0, 0, height_ - 1))] + ty * rows_[size_t(std::clamp(y0 + 1, 0, height_ - 1))];
+  }
   const glm::dvec2 uv = equirect_coordinates(d);
   return radiance_at(uv.x, uv.y);
 }

@@ -43,12 +43,16 @@ class EnvironmentMap {
  private:
   EnvironmentMap() = default;
   void build_distribution();
+  void find_constant_rows();
   const glm::dvec3& texel(int x, int y) const { return texels_[size_t(y) * width_ + x]; }
   glm::dvec3 radiance_at(double u, double v) const;
   double pdf_of_texel(size_t index, double sin_theta) const;
 
   int width_ = 0, height_ = 0;
   std::vector<glm::dvec3> texels_;
+  // One radiance per row where every row is constant (a sky, a constant map): a lookup then
+  // interpolates between rows only, and needs no azimuth (atan2) at all.
+  std::vector<glm::dvec3> rows_;
   std::vector<double> probability_;  // per texel, sums to 1
   std::vector<double> alias_threshold_;
   std::vector<uint32_t> alias_;

@@ -476,7 +476,10 @@ class SceneLoader {
     if (sources != 1) o.fail("", "an environment needs exactly one of 'file', 'sky' or 'constant'");
     l.map = environment_map(o);
     l.scale = o.number_in("scale", 1.0, 0.0, 1e9);
-    l.importance_sampling = o.choice("sampling", "importance", {"importance", "cosine"}) == "importance";
+    const std::string sampling = o.choice("sampling", "importance", {"importance", "cosine", "cosine+specular"});
+    l.sampling = sampling == "importance" ? EnvironmentSampling::importance
+                 : sampling == "cosine"   ? EnvironmentSampling::cosine
+                                          : EnvironmentSampling::cosine_and_specular;
     l.samples = int(o.integer_in("samples", 4, 1, 4096));
     l.visible_to_camera = o.boolean_or("visible", true);
     scene.environment = l;

@@ -61,10 +61,15 @@ struct PointLight {
   int samples = 1;
 };
 
+// How an environment's directions are drawn: in proportion to the map's radiance, cosine-weighted
+// over the hemisphere, or cosine-weighted mixed with the material's specular lobe (a quarter of
+// the samples, render/specular_lobe.h).
+enum class EnvironmentSampling { importance, cosine, cosine_and_specular };
+
 struct EnvironmentLight {
   std::shared_ptr<const EnvironmentMap> map;
   double scale = 1.0;
-  bool importance_sampling = true;  // false: cosine-weighted hemisphere sampling
+  EnvironmentSampling sampling = EnvironmentSampling::importance;
   int samples = 4;                  // rays per shading sample
   bool visible_to_camera = true;    // camera rays that miss see the environment
 };

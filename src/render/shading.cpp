@@ -10,44 +10,18 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/fast_math.h"
+#include "render/specular_lobe.h"
 
 namespace countershade {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-void orthonormal_basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
-  // Duff et al. 2017, branchless ONB.
-  double sign = std::copysign(1.0, n.z);
-  double a = -1.0 / (sign + n.z);
-  double c = n.x * n.y * a;
-  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
-
 // Light samples per shading point: a delta light needs one, an area light its `samples`.
 int samples_per_point(const DirectionalLight& light) { return light.angular_radius_deg > 0 ? light.samples : 1; }
 int samples_per_point(const PointLight& light) { return light.radius > 0 ? light.samples : 1; }
 
 }  // namespace
-
-glm::dvec3 sample_cone(const glm::dvec3& axis, double cos_max, double u1, double u2) {
-  double cos_theta = 1.0 - u1 * (1.0 - cos_max);
-  double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  double sin_phi, cos_phi;
-  sincos_turns(u2, sin_phi, cos_phi);
-  glm::dvec3 t, b;
-  orthonormal_basis(axis, t, b);
-  return glm::normalize(sin_theta * cos_phi * t + sin_theta * sin_phi * b + cos_theta * axis);
-}
-
-glm::dvec3 sample_cosine_hemisphere(const glm::dvec3& n, double u1, double u2) {
-  double r = std::sqrt(u1), sin_phi, cos_phi;
-  sincos_turns(u2, sin_phi, cos_phi);
-  glm::dvec3 t, b;
-  orthonormal_basis(n, t, b);
-  return glm::normalize(r * cos_phi * t + r * sin_phi * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n);
-}
 
 SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1, double b2) {
   const TriangleMesh& mesh = scene.objects[object].mesh;
@@ -146,6 +120,7 @@ struct Shader::Context {
   glm::dvec3 origin;                 // where its shadow rays start (shadow_origin)
   ShadowAnswers* answers = nullptr;  // recorded or replayed shadow answers
   LightSampleRecord* lights;         // the next light sample to draw
+  glm::dvec3 wo{0.0};                // towards the viewer (the specular lobe's samples need it)
 };
 
 size_t Shader::count_light_samples(const Scene& scene) {
@@ -201,6 +176,12 @@ glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& ligh
   return plain + fade * (hooked - plain);
 }
 
+std::vector<TangentFrame> Shader::light_frames(const Scene& scene) {
+  std::vector<TangentFrame> frames;
+  for (const auto& light : scene.directional_lights) frames.emplace_back(light.direction);
+  return frames;
+}
+
 std::vector<Shader::DarkSideRay> Shader::dark_side_rays(const Scene& scene) {
   std::vector<DarkSideRay> rays;
   for (const auto& light : scene.directional_lights)
@@ -233,15 +214,17 @@ bool Shader::dark_side_open(const ShadingInputs& s, const ShadingRecord& r, cons
 }
 
 void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
+  const TangentFrame* frame = light_frames_.data();
   for (const auto& light : scene_.directional_lights) {
     double cos_max = std::cos(glm::radians(light.angular_radius_deg));
     const int samples = samples_per_point(light);
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
-      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(light.direction, cos_max, u.x, u.y) : light.direction;
+      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(*frame, cos_max, u.x, u.y) : light.direction;
       // Without shadows the light reaches every point that faces it (distance 0: no shadow ray).
       draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
     }
+    ++frame;
   }
 }
 
@@ -271,21 +254,29 @@ void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const 
 void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   if (!scene_.environment) return;
   const EnvironmentLight& env = *scene_.environment;
-  const glm::dvec3& n = c.normal;
+  const Material& material = scene_.objects[c.point.object].material;
+  // With cosine+specular, the last quarter of the samples (at least one) come from the lobe.
+  const bool mixed = env.sampling == EnvironmentSampling::cosine_and_specular && has_specular_lobe(material);
+  const TangentFrame frame(c.normal);  // shared by the samples drawn around the normal
+  const int from_lobe = mixed ? std::max(1, env.samples / 4) : 0;
   for (int s = 0; s < env.samples; ++s) {
     const glm::dvec2 u = random.next2d();
-    const double u1 = u.x, u2 = u.y;
     glm::dvec3 wi, Le(0.0);
-    double pdf;
-    if (env.importance_sampling) {
-      auto sample = env.map->sample(u1, u2, random.next1d());
+    double pdf = 0;
+    if (env.sampling == EnvironmentSampling::importance) {
+      auto sample = env.map->sample(u.x, u.y, random.next1d());
       wi = sample.direction;
       pdf = sample.pdf;
       Le = sample.radiance;
     } else {
-      wi = sample_cosine_hemisphere(n, u1, u2);
-      pdf = std::max(glm::dot(n, wi), 0.0) / kPi;
-      if (pdf > 0) Le = env.map->radiance(wi);
+      const std::optional<glm::dvec3> drawn =
+          s < env.samples - from_lobe ? sample_cosine_hemisphere(frame, u.x, u.y)
+                                      : sample_specular_lobe(material, frame, c.wo, u.x, u.y);
+      if (drawn) {
+        wi = *drawn;
+        pdf = mixture_pdf(c, material, wi, env.samples, from_lobe);
+        if (pdf > 0) Le = env.map->radiance(wi);
+      }
     }
     if (pdf <= 0) {
       *c.lights++ = LightSampleRecord{};
@@ -295,13 +286,24 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   }
 }
 
+double Shader::mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi, int samples,
+                           int from_lobe) {
+  // The balance heuristic over all the samples: each one divided by the share-weighted density of
+  // both strategies (the cosine's alone without a lobe).
+  const double cosine = std::max(glm::dot(c.normal, wi), 0.0) / kPi;
+  if (from_lobe == 0) return cosine;
+  const double lobe = specular_lobe_pdf(material, c.normal, c.wo, wi);
+  return ((samples - from_lobe) * cosine + from_lobe * lobe) / samples;
+}
+
 double Shader::ambient_open(const Context& c, Sampler& random, RayCounts& counts) const {
   const AmbientLight& ambient = scene_.ambient;
   if (ambient.radiance == glm::dvec3(0.0) || ambient.distance <= 0) return 1.0;
   int unoccluded = 0;
+  const TangentFrame frame(c.normal);
   for (int s = 0; s < ambient.samples; ++s) {
     const glm::dvec2 u = random.next2d();
-    glm::dvec3 wi = sample_cosine_hemisphere(c.normal, u.x, u.y);
+    glm::dvec3 wi = sample_cosine_hemisphere(frame, u.x, u.y);
     if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
   }
   return double(unoccluded) / ambient.samples;
@@ -315,7 +317,7 @@ void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_si
   record.back = two_sided && glm::dot(point.geometric_normal, wo) < 0;
   record.albedo = albedo(point);
   Context c{point, record.shading_normal(point), record.geometric_normal(point), shadow_origin(scene_, point, record.back),
-            answers, lights};
+            answers, lights, wo};
   directional(c, random, counts);
   point_lights(c, random, counts);
   environment(c, random, counts);

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/sampler.h"
+#include "render/directions.h"
 #include "render/hooks.h"
 #include "render/ray_tracer.h"
 #include "render/scene.h"
@@ -89,7 +90,8 @@ class Shader {
   Shader(const Scene& scene, const RayTracer& tracer, const ShadingHook* shading_hook = nullptr,
          const TextureHook* texture_hook = nullptr)
       : scene_(scene), tracer_(tracer), shading_hook_(shading_hook), texture_hook_(texture_hook),
-        light_samples_(count_light_samples(scene)), dark_side_rays_(dark_side_rays(scene)) {}
+        light_samples_(count_light_samples(scene)), dark_side_rays_(dark_side_rays(scene)),
+        light_frames_(light_frames(scene)) {}
 
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
   // from behind its front face is shaded as the back face (open meshes, planes from below).
@@ -131,6 +133,8 @@ class Shader {
   void directional(Context& c, Sampler& random, RayCounts& counts) const;
   void point_lights(Context& c, Sampler& random, RayCounts& counts) const;
   void environment(Context& c, Sampler& random, RayCounts& counts) const;
+  static double mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi, int samples,
+                            int from_lobe);
   double ambient_open(const Context& c, Sampler& random, RayCounts& counts) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
   // `distance` away (0: no shadow ray): whether it arrives.
@@ -152,6 +156,7 @@ class Shader {
   // side could be lit: the shadow ray it would need, per sample index in drawing order.
   enum class DarkSideRay : uint8_t { never, none, to_infinity, to_point };
   static std::vector<DarkSideRay> dark_side_rays(const Scene& scene);
+  static std::vector<TangentFrame> light_frames(const Scene& scene);
   // What this shader does with light sample k if it did not arrive: leave it dark (it faces the
   // normal and is shadowed, or the hook does not shade the dark side), reflect it through the hook
   // as it is (its light casts no shadows), or trace the hook's direction first.
@@ -175,11 +180,7 @@ class Shader {
   const TextureHook* texture_hook_;
   size_t light_samples_;
   std::vector<DarkSideRay> dark_side_rays_;
+  std::vector<TangentFrame> light_frames_;  // one per directional light, around its direction
 };
-
-// Unit vector in the cone of half-angle `max_angle` around `axis`, uniform over the cap.
-glm::dvec3 sample_cone(const glm::dvec3& axis, double cos_max, double u1, double u2);
-// Cosine-weighted direction in the hemisphere around `n`.
-glm::dvec3 sample_cosine_hemisphere(const glm::dvec3& n, double u1, double u2);
 
 }  // namespace countershade

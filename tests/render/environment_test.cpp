@@ -52,6 +52,30 @@ TEST(Environment, ImportanceSamplingIsUnbiasedAndConsistent) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(estimate[c], reference[c], 0.01 * reference[c]) << c;
 }
 
+// A map whose rows are each one colour (a sky) is looked up between rows only; the radiance is
+// the bilinear lookup's, which the same map with one far texel changed still takes.
+TEST(Environment, AMapOfConstantRowsGivesTheBilinearRadiance) {
+  SkyParameters sky;
+  sky.zenith = {0.1, 0.2, 2.0};
+  const EnvironmentMap rows = EnvironmentMap::sky(sky, 64, 32);
+  Image image(64, 32, 3);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const glm::dvec3 c = rows.radiance(equirect_direction((x + 0.5) / 64, (y + 0.5) / 32));
+      for (int k = 0; k < 3; ++k) image.at(x, y, k) = float(c[k]);
+    }
+  const EnvironmentMap same_rows(image);
+  image.at(0, 31, 0) += 0.5f;  // one texel at the nadir: the map is no longer row-constant
+  const EnvironmentMap bilinear(image);
+  SampleStream random(3, 0, 0, 0);
+  for (int i = 0; i < 2000; ++i) {
+    const glm::dvec3 d = equirect_direction(random.next(), 0.9 * random.next());
+    const glm::dvec3 a = same_rows.radiance(d), b = bilinear.radiance(d);
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(a[k], b[k], 1e-12 * (1 + b[k])) << i;
+  }
+  EXPECT_NE(same_rows.radiance(equirect_direction(0.0, 0.999))[0], bilinear.radiance(equirect_direction(0.0, 0.999))[0]);
+}
+
 TEST(Environment, ConstantMapIntegratesToFourPi) {
   EnvironmentMap map = EnvironmentMap::constant(glm::dvec3(2.0));
   EXPECT_NEAR(integrate(map).x, 8 * kPi, 1e-3);
