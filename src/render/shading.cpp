@@ -72,9 +72,7 @@ glm::dvec3 specular_brdf(const ShadingInputs& s, const glm::dvec3& wi) {
   if (m.specular == SpecularModel::blinn_phong)  // energy-normalised Blinn–Phong lobe
     return m.specular_color * ((m.shininess + 8.0) / (8.0 * kPi)) * std::pow(n_h, m.shininess);
   // Cook–Torrance: GGX distribution, separable Smith masking, Schlick Fresnel.
-  double a2 = std::pow(m.roughness, 4.0);
-  double d_denominator = n_h * n_h * (a2 - 1.0) + 1.0;
-  double D = a2 / (kPi * d_denominator * d_denominator);
+  const double a2 = ggx_alpha2(m), D = ggx_distribution(a2, n_h);
   auto g1 = [a2](double c) { return 2.0 * c / (c + std::sqrt(a2 + (1.0 - a2) * c * c)); };
   double G = g1(n_wi) * g1(n_wo);
   double w_h = std::max(glm::dot(s.wo, h), 0.0);
@@ -255,9 +253,9 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   if (!scene_.environment) return;
   const EnvironmentLight& env = *scene_.environment;
   const Material& material = scene_.objects[c.point.object].material;
+  const TangentFrame frame(c.normal);  // shared by the samples drawn around the normal
   // With cosine+specular, the last quarter of the samples (at least one) come from the lobe.
   const bool mixed = env.sampling == EnvironmentSampling::cosine_and_specular && has_specular_lobe(material);
-  const TangentFrame frame(c.normal);  // shared by the samples drawn around the normal
   const int from_lobe = mixed ? std::max(1, env.samples / 4) : 0;
   for (int s = 0; s < env.samples; ++s) {
     const glm::dvec2 u = random.next2d();

@@ -6,21 +6,16 @@
 
 #include <glm/geometric.hpp>
 
-
 namespace countershade {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// GGX's α² as specular_brdf takes it (α = roughness²).
-double ggx_alpha2(const Material& m) { return std::pow(m.roughness, 4.0); }
-
 // The density of a half vector at cos θh = c over solid angle.
 double half_vector_pdf(const Material& m, double c) {
   if (c <= 0) return 0.0;
   if (m.specular == SpecularModel::blinn_phong) return (m.shininess + 1.0) / (2.0 * kPi) * std::pow(c, m.shininess);
-  const double a2 = ggx_alpha2(m), d = c * c * (a2 - 1.0) + 1.0;
-  return a2 / (kPi * d * d) * c;
+  return ggx_distribution(ggx_alpha2(m), c) * c;
 }
 
 // cos θh for a uniform u, by inverting the half vector's distribution.
@@ -31,6 +26,13 @@ double half_vector_cosine(const Material& m, double u) {
 }
 
 }  // namespace
+
+double ggx_alpha2(const Material& m) { return std::pow(m.roughness, 4.0); }
+
+double ggx_distribution(double alpha2, double cos_h) {
+  const double d = cos_h * cos_h * (alpha2 - 1.0) + 1.0;
+  return alpha2 / (kPi * d * d);
+}
 
 bool has_specular_lobe(const Material& m) { return m.specular != SpecularModel::none; }
 

@@ -15,6 +15,11 @@
 
 namespace countershade {
 
+// GGX's α² for a material as the shader takes it (α = roughness²), and its distribution of half
+// vectors D at cos θh = `cos_h`: shared by the BRDF and the lobe's sampling density.
+double ggx_alpha2(const Material& m);
+double ggx_distribution(double alpha2, double cos_h);
+
 // Whether a material has a lobe to sample (a specular model).
 bool has_specular_lobe(const Material& m);
 
