@@ -111,7 +111,7 @@ class SceneLoader {
     RenderSettings s;
     if (o.has("spp") && o.has("noise")) o.fail("noise", "give either a fixed spp or a noise budget, not both");
     if (o.has("spp")) s.spp = int(o.integer_in("spp", 16, 1, 65536));
-    if (o.has("vertex_spp")) s.vertex_spp = int(o.integer_in("vertex_spp", 4, 1, 65536));
+    if (o.has("vertex_spp")) s.vertex_spp = int(o.integer_in("vertex_spp", 4, 2, 65536));
     if (o.has("noise")) s.noise = read_noise_budget(o.object("noise"));
     s.sampling = o.choice("sampler", "sobol", {"sobol", "independent"}) == "sobol" ? SamplingMode::sobol
                                                                                 : SamplingMode::independent;

@@ -116,10 +116,10 @@ struct RenderSettings {
   uint64_t seed = 1;
 
   // The fixed count per vertex: vertex_spp, or with a fixed spp a quarter of it (the smoothing
-  // averages many vertices); none under the budget.
+  // averages many vertices) and at least 2 (one per replicate); none under the budget.
   std::optional<int> fixed_vertex_spp() const {
     if (vertex_spp) return vertex_spp;
-    if (spp) return std::max(1, *spp / 4);
+    if (spp) return std::max(2, *spp / 4);
     return std::nullopt;
   }
 };

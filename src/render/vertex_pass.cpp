@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <tuple>
+#include <utility>
 
 #include "core/color.h"
 #include "core/parallel.h"
@@ -15,30 +17,31 @@ namespace {
 
 constexpr uint64_t kBackDomain = 16;  // added to a domain for the back side
 
-// Replicate sums of radiance at one shading point.
+// Replicate sums of radiance at one shading point, and how many samples each holds.
 struct PointSums {
   glm::dvec3 sum[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
-  uint32_t count = 0;
+  uint32_t n[2] = {0, 0};
+  bool has(int r) const { return r < 0 ? n[0] + n[1] > 0 : n[r] > 0; }
+  // The mean of replicate r, or of every sample with r = -1.
   glm::dvec3 mean(int r) const {
-    const uint32_t k = r == 0 ? (count + 1) / 2 : count / 2;
-    return k ? sum[r] / double(k) : glm::dvec3(0.0);
+    if (r < 0) return has(r) ? (sum[0] + sum[1]) / double(n[0] + n[1]) : glm::dvec3(0.0);
+    return n[r] ? sum[r] / double(n[r]) : glm::dvec3(0.0);
   }
-  glm::dvec3 total_mean() const { return count ? (sum[0] + sum[1]) / double(count) : glm::dvec3(0.0); }
 };
 
-// The distinct shading variants of each vertex: a representative corner and how many corners
-// share its normal and UV.
+// The distinct shading variants of each needed vertex (none for the rest): a representative
+// corner and how many corners share its normal and UV.
 struct Variants {
   std::vector<uint32_t> offsets;                       // #V + 1
   std::vector<std::pair<uint32_t, uint32_t>> entries;  // (corner, count)
 };
 
-Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc) {
+Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc, const std::vector<uint8_t>& needed) {
   Variants out;
   out.offsets.push_back(0);
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
     const size_t first = out.entries.size();
-    for (uint32_t i = vc.offsets[v]; i < vc.offsets[v + 1]; ++i) {
+    for (uint32_t i = vc.offsets[v]; needed[v] && i < vc.offsets[v + 1]; ++i) {
       const uint32_t corner = vc.corners[i];
       auto same = [&](const std::pair<uint32_t, uint32_t>& e) {
         return mesh.corner_normals[e.first] == mesh.corner_normals[corner] &&
@@ -53,16 +56,34 @@ Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc) {
   return out;
 }
 
+constexpr uint32_t kNoSlot = UINT32_MAX;
+
+// Where each triangle's ring points are kept: only the triangles with a needed corner have them
+// (on a large ground plane most are out of view). Returns the slots and their count.
+std::pair<std::vector<uint32_t>, size_t> ring_slots(const TriangleMesh& mesh, const std::vector<uint8_t>& needed) {
+  std::vector<uint32_t> slot(mesh.triangle_count(), kNoSlot);
+  uint32_t count = 0;
+  for (size_t t = 0; t < slot.size(); ++t) {
+    const glm::uvec3& c = mesh.triangles[t];
+    if (needed[c.x] || needed[c.y] || needed[c.z]) slot[t] = count++;
+  }
+  return {std::move(slot), count};
+}
+
 // One object, one side: its points, their sums, and the rounds.
 class ObjectSide {
  public:
   ObjectSide(const VertexPassInput& in, unsigned object, bool back, uint64_t vertex_offset, uint64_t triangle_offset,
              const std::vector<uint8_t>& needed)
       : in_(in), object_(object), back_(back), needed_(needed), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
-        variants_(vertex_variants(mesh_, corners_)), own_(variants_.entries.size()),
-        ring_(mesh_.triangle_count() * size_t(std::max(in.ring_samples, 0))), rays_(in.scene.camera),
-        vertex_count_(mesh_.vertex_count(), 0),
-        triangle_count_(mesh_.triangle_count(), 0), vertex_offset_(vertex_offset), triangle_offset_(triangle_offset) {}
+        variants_(vertex_variants(mesh_, corners_, needed)), own_(variants_.entries.size()), k_(std::max(in.ring_samples, 0)),
+        rays_(in.scene.camera), vertex_count_(mesh_.vertex_count(), 0), triangle_count_(mesh_.triangle_count(), 0),
+        vertex_offset_(vertex_offset), triangle_offset_(triangle_offset) {
+    if (k_ == 0) return;
+    size_t slots = 0;
+    std::tie(ring_slot_, slots) = ring_slots(mesh_, needed);
+    ring_.resize(slots * size_t(k_));
+  }
 
   // Samples every point of a needed vertex, and of a triangle with a needed corner, up to the
   // counts its vertex (or triangle) asks for.
@@ -76,34 +97,37 @@ class ObjectSide {
     if (ring_.empty()) return;
     parallel_ranges(mesh_.triangle_count(), in_.threads, [&](size_t begin, size_t end) {
       RayCounts counts;
-      for (size_t t = begin; t < end; ++t) {
-        const glm::uvec3& c = mesh_.triangles[t];
-        if (needed_[c.x] || needed_[c.y] || needed_[c.z]) sample_triangle(t, triangle_target[t], counts);
-      }
+      for (size_t t = begin; t < end; ++t)
+        if (ring_slot_[t] != kNoSlot) sample_triangle(t, triangle_target[t], counts);
       add(rays, counts);
     }, 256);
   }
 
   bool needed(size_t v) const { return needed_[v]; }
 
-  // The vertex's value from replicate r (or from all samples with r = -1).
+  // The vertex's value from replicate r (or from all samples with r = -1): the mean over its own
+  // point (which always holds both) and its ring points, of those that hold samples of r.
   glm::dvec3 value(size_t v, int r) const {
     glm::dvec3 own(0.0);
     double weight = 0;
     for (uint32_t i = variants_.offsets[v]; i < variants_.offsets[v + 1]; ++i) {
       const double count = variants_.entries[i].second;
-      own += count * (r < 0 ? own_[i].total_mean() : own_[i].mean(r));
+      own += count * own_[i].mean(r);
       weight += count;
     }
     own = weight > 0 ? own / weight : own;
-    const int k = std::max(in_.ring_samples, 0);
-    if (k == 0) return own;
+    if (k_ == 0) return own;
     glm::dvec3 ring(0.0);
+    double points = 0;
     for (uint32_t i = corners_.offsets[v]; i < corners_.offsets[v + 1]; ++i) {
-      const size_t t = corners_.corners[i] / 3;
-      for (int j = 0; j < k; ++j) ring += r < 0 ? ring_[t * k + j].total_mean() : ring_[t * k + j].mean(r);
+      const uint32_t slot = ring_slot_[corners_.corners[i] / 3];  // every triangle of a needed vertex has one
+      for (int j = 0; j < k_; ++j)
+        if (ring_[size_t(slot) * k_ + j].has(r)) {
+          ring += ring_[size_t(slot) * k_ + j].mean(r);
+          points += 1.0;
+        }
     }
-    return (own + ring) / (1.0 + double(k) * double(corners_.offsets[v + 1] - corners_.offsets[v]));
+    return (own + ring) / (1.0 + points);
   }
 
   const std::vector<uint32_t>& vertex_samples() const { return vertex_count_; }
@@ -125,15 +149,17 @@ class ObjectSide {
     return sp;
   }
 
-  void shade(const SurfacePoint& sp, uint64_t domain, uint64_t index, uint32_t from, uint32_t to, PointSums& sums,
-             RayCounts& counts) const {
+  // Samples [first + from, first + to) of a point's stream.
+  void shade(const SurfacePoint& sp, uint64_t domain, uint64_t index, uint32_t first, uint32_t from, uint32_t to,
+             PointSums& sums, RayCounts& counts) const {
     const RenderSettings& settings = in_.scene.settings;
     const glm::dvec3 wo = rays_.towards_viewer(sp.position);
-    for (uint32_t s = from; s < to; ++s) {
+    for (uint32_t s = first + from; s < first + to; ++s) {
       Sampler sampler(settings.sampling, settings.seed, domain + (back_ ? kBackDomain : 0), index, s);
-      sums.sum[Sampler::replicate(s)] += in_.shader.radiance(sp, wo, false, sampler, counts);
+      const int r = Sampler::replicate(s);
+      sums.sum[r] += in_.shader.radiance(sp, wo, false, sampler, counts);
+      ++sums.n[r];
     }
-    sums.count = std::max(sums.count, to);
   }
 
   void sample_vertex(size_t v, uint32_t target, RayCounts& counts) {
@@ -142,7 +168,7 @@ class ObjectSide {
       const uint32_t corner = variants_.entries[i].first, c = corner % 3;
       SurfacePoint sp = surface_point(in_.scene, object_, corner / 3, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0);
       sp.position = mesh_.positions[v];  // exactly the vertex, not a barycentric round-off
-      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]), vertex_count_[v],
+      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]), 0, vertex_count_[v],
             target, own_[i], counts);
     }
     vertex_count_[v] = target;
@@ -150,12 +176,14 @@ class ObjectSide {
 
   void sample_triangle(size_t t, uint32_t target, RayCounts& counts) {
     if (target <= triangle_count_[t]) return;
-    const int k = in_.ring_samples;
-    for (int j = 0; j < k; ++j) {
-      const glm::dvec3 b = triangle_sample_barycentrics(j, k);
+    for (int j = 0; j < k_; ++j) {
+      const glm::dvec3 b = triangle_sample_barycentrics(j, k_);
       const SurfacePoint sp = surface_point(in_.scene, object_, unsigned(t), b.y, b.z);
-      shade(oriented(sp), kDomainTriangle, (triangle_offset_ + t) * uint64_t(k) + uint64_t(j), triangle_count_[t],
-            target, ring_[t * k + j], counts);
+      // An odd count starts every other point in the second replicate, so that a vertex's ring
+      // points fill both (one sample each, at a fixed count, fills them with alternate points).
+      const uint64_t point = (triangle_offset_ + t) * uint64_t(k_) + uint64_t(j);
+      shade(oriented(sp), kDomainTriangle, point, target % 2 ? uint32_t(point % 2) : 0, triangle_count_[t], target,
+            ring_[size_t(ring_slot_[t]) * k_ + j], counts);
     }
     triangle_count_[t] = target;
   }
@@ -167,22 +195,28 @@ class ObjectSide {
   const TriangleMesh& mesh_;
   VertexCorners corners_;
   Variants variants_;
-  std::vector<PointSums> own_, ring_;
+  std::vector<PointSums> own_;
+  int k_;                            // ring points per triangle
+  std::vector<uint32_t> ring_slot_;  // per triangle (with k > 0)
+  std::vector<PointSums> ring_;      // k per slot
   CameraRays rays_;
   std::vector<uint32_t> vertex_count_, triangle_count_;
   uint64_t vertex_offset_, triangle_offset_;
 };
 
 // The squared L* error of every vertex, pooled: the larger of its own and its 1-ring's mean.
-std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& surface, const Exposure& exposure) {
+std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& surface, const Exposure& exposure,
+                                    int threads) {
   const size_t nv = side.mesh().vertex_count();
   std::vector<double> variance(nv, 0.0);
-  for (size_t v = 0; v < nv; ++v) {
-    if (!side.needed(v)) continue;  // unshaded (and no refined vertex pools it)
-    const double L0 = cielab_lightness(display_luminance(side.value(v, 0), exposure));
-    const double L1 = cielab_lightness(display_luminance(side.value(v, 1), exposure));
-    variance[v] = 0.25 * (L0 - L1) * (L0 - L1);
-  }
+  parallel_ranges(nv, threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      if (!side.needed(v)) continue;  // unshaded (and no refined vertex pools it)
+      const double L0 = cielab_lightness(display_luminance(side.value(v, 0), exposure));
+      const double L1 = cielab_lightness(display_luminance(side.value(v, 1), exposure));
+      variance[v] = 0.25 * (L0 - L1) * (L0 - L1);
+    }
+  }, 1024);
   const std::vector<double> points = surface.to_points(variance);
   std::vector<double> pooled(points.size());
   for (size_t p = 0; p < points.size(); ++p) {
@@ -234,16 +268,23 @@ std::vector<uint8_t> relevant_vertices(const GBuffer& g, unsigned object, bool b
 }
 
 // The vertices whose values can reach a pixel: within the need's support of a triangle that a
-// primary ray may hit, and one ring further than the refinement looks, so that every vertex the
-// refinement weighs is shaded exactly as if all were. Every vertex without a support.
+// primary ray may hit, and one ring further (the error pools over a 1-ring), or as far as the
+// refinement looks when there is one (under a budget), so that every vertex the refinement weighs
+// is shaded exactly as if all were. Every vertex without a support.
 std::vector<uint8_t> needed_vertices(const VertexPassInput& in, const Object& o, const VertexNeed& need) {
   if (need.support < 0) return std::vector<uint8_t>(o.mesh.vertex_count(), 1);
   const CameraRays camera(in.scene.camera);
   const auto& p = o.mesh.positions;
-  return near_triangles(o, std::max(need.support, need.rings) + 1, [&](size_t t) {
-    const glm::uvec3& c = o.mesh.triangles[t];
-    return camera.may_see(p[c.x], p[c.y], p[c.z]);
-  });
+  const bool refined = !in.scene.settings.fixed_vertex_spp();
+  std::vector<uint8_t> in_view(o.mesh.triangle_count());
+  parallel_ranges(in_view.size(), in.threads, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const glm::uvec3& c = o.mesh.triangles[t];
+      in_view[t] = camera.may_see(p[c.x], p[c.y], p[c.z]);
+    }
+  }, 4096);
+  return near_triangles(o, (refined ? std::max(need.support, need.rings) : need.support) + 1,
+                        [&](size_t t) { return in_view[t] != 0; });
 }
 
 // Samples one side of one object to its need (or its fixed count); returns the values and errors.
@@ -254,11 +295,13 @@ void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<
   const std::optional<int> fixed = settings.fixed_vertex_spp();
   const uint32_t max = uint32_t(fixed.value_or(settings.noise.max_spp));
   std::vector<uint32_t> vertex_target(side.mesh().vertex_count(), uint32_t(fixed.value_or(2)));
-  std::vector<uint32_t> triangle_target(side.mesh().triangle_count(), vertex_target.empty() ? 2 : vertex_target[0]);
+  // At a fixed count a ring point takes half of it: a vertex averages its own point with about 6k
+  // ring points, so its value still holds several times its own point's samples.
+  std::vector<uint32_t> triangle_target(side.mesh().triangle_count(), fixed ? uint32_t(std::max(1, *fixed / 2)) : 2);
   std::vector<double> variance;
   for (bool more = true; more;) {
     side.sample(vertex_target, triangle_target, rays);
-    variance = pooled_variance(side, surface, exposure);
+    variance = pooled_variance(side, surface, exposure, in.threads);
     more = false;
     if (fixed) break;
     for (size_t v = 0; v < variance.size(); ++v) {
@@ -274,10 +317,24 @@ void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<
   }
   values.assign(variance.size(), glm::vec3(0.0f));
   noise.assign(variance.size(), 0.0f);
-  for (size_t v = 0; v < variance.size(); ++v) {
-    if (!side.needed(v)) continue;  // no pixel depends on it
-    values[v] = glm::vec3(side.value(v, -1));
-    noise[v] = float(std::sqrt(variance[v]));
+  parallel_ranges(variance.size(), in.threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      if (!side.needed(v)) continue;  // no pixel depends on it
+      values[v] = glm::vec3(side.value(v, -1));
+      noise[v] = float(std::sqrt(variance[v]));
+    }
+  }, 1024);
+}
+
+// Adds a side's per-vertex counts to the minimum, the maximum and the sum over points.
+void count_samples(const ObjectSide& side, SampleCounts& samples, double& total, double& points) {
+  for (size_t v = 0; v < side.vertex_samples().size(); ++v) {
+    if (!side.needed(v)) continue;
+    const uint32_t c = side.vertex_samples()[v];
+    samples.min = std::min(samples.min, c);
+    samples.max = std::max(samples.max, c);
+    total += c;
+    points += 1;
   }
 }
 
@@ -302,16 +359,12 @@ VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
     for (bool back : {false, true}) {
       if (back && !(o < in.back.size() && in.back[o])) continue;
       ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed);
-      sample_side(in, side, relevant_vertices(in.gbuffer, o, back, object, need.rings), object.surface, need.noise,
-                  counts, back ? signal.back[o] : signal.front[o], back ? signal.back_noise[o] : signal.front_noise[o]);
-      for (size_t v = 0; v < side.vertex_samples().size(); ++v) {
-        if (!side.needed(v)) continue;
-        const uint32_t c = side.vertex_samples()[v];
-        signal.samples.min = std::min(signal.samples.min, c);
-        signal.samples.max = std::max(signal.samples.max, c);
-        total += c;
-        points += 1;
-      }
+      const bool refined = !in.scene.settings.fixed_vertex_spp();  // only a refinement asks what is relevant
+      const std::vector<uint8_t> relevant = refined ? relevant_vertices(in.gbuffer, o, back, object, need.rings)
+                                                    : std::vector<uint8_t>();
+      sample_side(in, side, relevant, object.surface, need.noise, counts, back ? signal.back[o] : signal.front[o],
+                  back ? signal.back_noise[o] : signal.front_noise[o]);
+      count_samples(side, signal.samples, total, points);
     }
     vertex_offset += object.mesh.vertex_count();
     triangle_offset += object.mesh.triangle_count();

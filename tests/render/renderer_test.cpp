@@ -247,6 +247,45 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
   EXPECT_TRUE(one.sampling.budget_met) << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
 }
 
+// The vertex signal's error estimate (from its two replicates) against the spread of the signal
+// between seeds, at fixed counts: --spp 8 with ring points (a vertex takes 2 samples, each ring point
+// 1, the ring points split between the replicates point by point), --spp 16 (4 and 2), and --spp 4
+// without (2 per vertex, the least: with one, a replicate would be empty). The estimate pools the
+// 1-ring and counts the ring's spatial variation as error, so it may run high, but not low and not
+// far off (1.2-1.25 times the spread here).
+TEST(Renderer, TheVertexErrorEstimateAtAFixedCountFollowsTheSpreadBetweenSeeds) {
+  testing::TempDir dir;
+  constexpr int kSeeds = 12;
+  for (auto [spp, ring] : {std::pair{8, 3}, std::pair{16, 3}, std::pair{4, 0}}) {
+    Scene scene = soft_shadow_scene(dir, R"("width": 32, "height": 24)", R"({"spp": )" + std::to_string(spp) + "}");
+    RayTracer tracer(scene);
+    const Exposure exposure = scene.display.exposure();
+    const size_t nv = scene.objects[1].mesh.vertex_count();  // the sphere
+    std::vector<double> sum(nv, 0.0), sum2(nv, 0.0), estimate(nv, 0.0);
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      scene.settings.seed = uint64_t(seed);
+      RenderOptions options;
+      options.vertex_radiance = true;
+      options.ring_samples = ring;
+      const RenderResult result = render(scene, tracer, options);
+      for (size_t v = 0; v < nv; ++v) {
+        const double L = cielab_lightness(display_luminance(glm::dvec3(result.vertices.front[1][v]), exposure));
+        sum[v] += L;
+        sum2[v] += L * L;
+        estimate[v] += result.vertices.front_noise[1][v] * result.vertices.front_noise[1][v] / kSeeds;
+      }
+    }
+    double spread = 0, estimated = 0;  // mean squares over the vertices
+    for (size_t v = 0; v < nv; ++v) {
+      spread += (sum2[v] - sum[v] * sum[v] / kSeeds) / (kSeeds - 1) / double(nv);
+      estimated += estimate[v] / double(nv);
+    }
+    const double ratio = std::sqrt(estimated / spread);
+    EXPECT_GT(ratio, 0.8) << "spp " << spp << ", ring " << ring << ": RMS spread " << std::sqrt(spread);
+    EXPECT_LT(ratio, 2.0) << "spp " << spp << ", ring " << ring << ": RMS spread " << std::sqrt(spread);
+  }
+}
+
 // A noise budget over the image rather than every pixel: the pixels whose noise costs most samples
 // (the soft shadow, the occluded corners) carry more of it, so the render takes fewer samples; its
 // RMS estimate stays within the target (with its tenth in hand), and no pixel's passes the p99
