@@ -106,10 +106,11 @@ class ObjectSide {
   bool needed(size_t v) const { return needed_[v]; }
 
   // The vertex's value from replicate r (or from all samples with r = -1): the mean over its own
-  // point (which always holds both) and its ring points, of those that hold samples of r.
+  // point and its ring points, of those that hold samples of r.
   glm::dvec3 value(size_t v, int r) const {
     glm::dvec3 own(0.0);
     double weight = 0;
+    const bool has_own = variants_.offsets[v] < variants_.offsets[v + 1] && own_[variants_.offsets[v]].has(r);
     for (uint32_t i = variants_.offsets[v]; i < variants_.offsets[v + 1]; ++i) {
       const double count = variants_.entries[i].second;
       own += count * own_[i].mean(r);
@@ -127,7 +128,8 @@ class ObjectSide {
           points += 1.0;
         }
     }
-    return (own + ring) / (1.0 + points);
+    const double all = (has_own ? 1.0 : 0.0) + points;
+    return all > 0 ? (own + ring) / all : own;
   }
 
   const std::vector<uint32_t>& vertex_samples() const { return vertex_count_; }
@@ -168,8 +170,9 @@ class ObjectSide {
       const uint32_t corner = variants_.entries[i].first, c = corner % 3;
       SurfacePoint sp = surface_point(in_.scene, object_, corner / 3, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0);
       sp.position = mesh_.positions[v];  // exactly the vertex, not a barycentric round-off
-      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]), 0, vertex_count_[v],
-            target, own_[i], counts);
+      // Like ring points, a single sample goes to one replicate or the other by turns.
+      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]),
+            target == 1 ? uint32_t((vertex_offset_ + v) % 2) : 0, vertex_count_[v], target, own_[i], counts);
     }
     vertex_count_[v] = target;
   }
@@ -179,10 +182,10 @@ class ObjectSide {
     for (int j = 0; j < k_; ++j) {
       const glm::dvec3 b = triangle_sample_barycentrics(j, k_);
       const SurfacePoint sp = surface_point(in_.scene, object_, unsigned(t), b.y, b.z);
-      // An odd count starts every other point in the second replicate, so that a vertex's ring
-      // points fill both (one sample each, at a fixed count, fills them with alternate points).
+      // A single sample goes to one replicate or the other by turns, so that a vertex's points,
+      // one sample each, fill both.
       const uint64_t point = (triangle_offset_ + t) * uint64_t(k_) + uint64_t(j);
-      shade(oriented(sp), kDomainTriangle, point, target % 2 ? uint32_t(point % 2) : 0, triangle_count_[t], target,
+      shade(oriented(sp), kDomainTriangle, point, target == 1 ? uint32_t(point % 2) : 0, triangle_count_[t], target,
             ring_[size_t(ring_slot_[t]) * k_ + j], counts);
     }
     triangle_count_[t] = target;
@@ -294,10 +297,11 @@ void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<
   const Exposure exposure = in.scene.display.exposure();
   const std::optional<int> fixed = settings.fixed_vertex_spp();
   const uint32_t max = uint32_t(fixed.value_or(settings.noise.max_spp));
-  std::vector<uint32_t> vertex_target(side.mesh().vertex_count(), uint32_t(fixed.value_or(2)));
-  // At a fixed count a ring point takes half of it: a vertex averages its own point with about 6k
-  // ring points, so its value still holds several times its own point's samples.
-  std::vector<uint32_t> triangle_target(side.mesh().triangle_count(), fixed ? uint32_t(std::max(1, *fixed / 2)) : 2);
+  // At a fixed count c with ring points every point takes c/2 (at least 1): a vertex averages about
+  // 6k + 1 of them, so its value still holds several times c samples.
+  const uint32_t per_point = fixed ? uint32_t(in.ring_samples > 0 ? std::max(1, *fixed / 2) : *fixed) : 2;
+  std::vector<uint32_t> vertex_target(side.mesh().vertex_count(), per_point);
+  std::vector<uint32_t> triangle_target(side.mesh().triangle_count(), per_point);
   std::vector<double> variance;
   for (bool more = true; more;) {
     side.sample(vertex_target, triangle_target, rays);

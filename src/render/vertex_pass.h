@@ -17,9 +17,10 @@
 // Like the pixels, every point's samples form two replicates. With a noise budget, sampling goes
 // in rounds: a relevant vertex (near the visible surface) whose L* error (pooled over its 1-ring)
 // exceeds its object's target doubles the samples of its own points and of its triangles'
-// points. A fixed count c takes one round: c for a vertex's own points and c/2 (at least 1) for
-// ring points, of which a vertex averages about 6k. A ring point with an odd count starts in the
-// first or the second replicate by turns, so that with one sample each the ring points fill both.
+// points. A fixed count c takes one round: c for every vertex without ring points, and with them
+// c/2 (at least 1) for every point, of which a vertex averages about 6k + 1. A point with one
+// sample puts it in the first or the second replicate by turns, so that a vertex's points fill
+// both.
 
 #include <functional>
 #include <vector>
