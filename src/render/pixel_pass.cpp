@@ -14,13 +14,12 @@
 #include "core/parallel.h"
 #include "core/random.h"
 #include "render/camera.h"
+#include "render/camera_samples.h"
 #include "render/ray_differentials.h"
 #include "render/record_replay.h"
 
 namespace countershade {
 namespace {
-
-constexpr int kTile = 16;
 
 // Running sums per pixel and replicate: radiance, display luminances, coverage and fields.
 struct Sums {
@@ -38,18 +37,6 @@ struct Sums {
   std::vector<uint32_t> count;
   double samples(int r, size_t p) const { return double(r == 0 ? (count[p] + 1) / 2 : count[p] / 2); }
 };
-
-// Latin-hypercube positions for `spp` samples in the unit pixel (the independent sampler's).
-void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dvec2>& out) {
-  out.resize(size_t(spp));
-  SampleStream random(seed, kDomainCamera, pixel, 0);
-  std::vector<int> permutation(static_cast<size_t>(spp));
-  for (int i = 0; i < spp; ++i) permutation[size_t(i)] = i;
-  for (int i = spp - 1; i > 0; --i)
-    std::swap(permutation[size_t(i)], permutation[size_t(std::min(i, int(random.next() * (i + 1))))]);
-  for (int i = 0; i < spp; ++i)
-    out[size_t(i)] = {(i + random.next()) / spp, (permutation[size_t(i)] + random.next()) / spp};
-}
 
 class PixelSampler {
  public:
@@ -74,9 +61,7 @@ class PixelSampler {
     if (in_.replay && in_.replay->has_shading(pixel, s)) return replay_shading(pixel, s);
     const RenderSettings& settings = in_.scene.settings;
     Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
-    glm::dvec2 offset(0.5);
-    if (settings.sampling == SamplingMode::independent) offset = lhs[s];
-    else if (fixed_spp_ != 1) offset = sampler.next2d();
+    const glm::dvec2 offset = sample_position(settings, sampler, lhs, s);
     const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
     const Ray ray = rays_.ray(x + offset.x, y + offset.y);
     ShadowAnswers answers;
@@ -141,14 +126,16 @@ class PixelSampler {
   }
 
   // The camera ray's hit: read back from the replayed log where it holds the sample (with its
-  // shadow answers), else traced (and recorded when the render keeps a log).
+  // shadow answers), else traced (or read from the samples traced ahead) and recorded when the
+  // render keeps a log.
   std::optional<Hit> camera_hit(size_t pixel, uint32_t s, const Ray& ray, RayCounts& counts, ShadowAnswers& answers) const {
     if (in_.replay && in_.replay->has(pixel, s)) {
       answers = in_.replay->answers(pixel, s);
       return in_.replay->hit(pixel, s);
     }
     ++counts.primary;
-    auto hit = in_.tracer.intersect(ray.origin, ray.direction);
+    auto hit = in_.camera_hits && s < in_.camera_hits->spp() ? in_.camera_hits->hit(pixel, s)
+                                                            : in_.tracer.intersect(ray.origin, ray.direction);
     if (record_) {
       record_->record_hit(pixel, s, hit);
       answers.record = record_->answers_to_record(pixel);
@@ -172,17 +159,6 @@ class PixelSampler {
   Exposure exposure_;
   int fixed_spp_;
 };
-
-// Pixel indices tile by tile, so that neighbouring samples share caches.
-std::vector<uint32_t> tile_order(int width, int height) {
-  std::vector<uint32_t> order;
-  order.reserve(size_t(width) * height);
-  for (int ty = 0; ty < height; ty += kTile)
-    for (int tx = 0; tx < width; tx += kTile)
-      for (int y = ty; y < std::min(ty + kTile, height); ++y)
-        for (int x = tx; x < std::min(tx + kTile, width); ++x) order.push_back(uint32_t(y * width + x));
-  return order;
-}
 
 // Per pixel, the products of the replicates' differences: (ΔL)²/4 estimates Var(L), ΔL·Δc/4
 // Cov(L, c) and (Δc)²/4 Var(c), for every requested change c.

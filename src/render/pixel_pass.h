@@ -18,6 +18,8 @@
 
 namespace countershade {
 
+class CameraHits;
+
 struct PixelPassInput {
   const Scene& scene;
   const RayTracer& tracer;
@@ -28,6 +30,7 @@ struct PixelPassInput {
   TraceLog* record = nullptr;        // keeps every sample's ray answers (render/trace_log.h)
   const TraceLog* replay = nullptr;  // reads back those it holds instead of tracing them
   bool estimate_noise = true;        // false: a fixed count skips the noise estimate (noise stays 0)
+  const CameraHits* camera_hits = nullptr;  // the camera samples' hits, traced ahead (render/camera_samples.h)
 };
 
 // Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.

@@ -11,6 +11,7 @@
 #include "core/color.h"
 #include "core/parallel.h"
 #include "render/camera.h"
+#include "render/camera_samples.h"
 #include "render/pixel_pass.h"
 #include "render/record_replay.h"
 #include "render/shading.h"
@@ -108,11 +109,16 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   const TraceLog* replay = replayable(options.replay_trace.get(), scene);
   if (auto replayed = from_records_alone(scene, shader, replay, options)) return std::move(*replayed);
   result.gbuffer = replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
+  std::shared_ptr<const CameraHits> camera_hits;
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;
     needs.resize(scene.objects.size(), VertexNeed{scene.settings.noise.target, 1});
-    VertexPassInput in{scene,  tracer, shader, result.gbuffer, options.ring_samples,
-                       seen_from_behind(result.gbuffer, scene.objects.size()), std::move(needs), options.threads};
+    // With a fixed count the camera samples are known before the pixels: their hits say exactly
+    // which triangles the pixels read (the pixel pass reuses them, so no ray is traced twice).
+    if (!replay) camera_hits = trace_camera_samples(scene, tracer, options.threads);
+    VertexPassInput in{scene, tracer, shader, result.gbuffer, options.ring_samples,
+                       seen_from_behind(result.gbuffer, scene.objects.size()), std::move(needs), options.threads,
+                       camera_hits.get()};
     result.vertices = vertex_pass(in, &result.rays);
   }
   PixelRequest request;
@@ -120,7 +126,7 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   std::shared_ptr<TraceLog> record;
   if (options.record_trace) record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit, shader.light_samples());
   pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(), replay,
-              options.estimate_noise},
+              options.estimate_noise, camera_hits.get()},
              result);
   if (record && !record->abandoned()) {
     record->gbuffer = result.gbuffer;

@@ -270,22 +270,31 @@ std::vector<uint8_t> relevant_vertices(const GBuffer& g, unsigned object, bool b
   return near_triangles(o, rings, [&](size_t t) { return seen[t] != 0; });
 }
 
-// The vertices whose values can reach a pixel: within the need's support of a triangle that a
-// primary ray may hit, and one ring further (the error pools over a 1-ring), or as far as the
-// refinement looks when there is one (under a budget), so that every vertex the refinement weighs
-// is shaded exactly as if all were. Every vertex without a support.
-std::vector<uint8_t> needed_vertices(const VertexPassInput& in, const Object& o, const VertexNeed& need) {
-  if (need.support < 0) return std::vector<uint8_t>(o.mesh.vertex_count(), 1);
+// Per triangle of an object: whether a camera sample hits it (when the samples were traced ahead)
+// or may hit it (it meets the view's frustum).
+std::vector<uint8_t> triangles_in_view(const VertexPassInput& in, unsigned object) {
+  if (in.camera_hits) return in.camera_hits->triangles_hit(object);
+  const TriangleMesh& mesh = in.scene.objects[object].mesh;
   const CameraRays camera(in.scene.camera);
-  const auto& p = o.mesh.positions;
-  const bool refined = !in.scene.settings.fixed_vertex_spp();
-  std::vector<uint8_t> in_view(o.mesh.triangle_count());
+  std::vector<uint8_t> in_view(mesh.triangle_count());
   parallel_ranges(in_view.size(), in.threads, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
-      const glm::uvec3& c = o.mesh.triangles[t];
-      in_view[t] = camera.may_see(p[c.x], p[c.y], p[c.z]);
+      const glm::uvec3& c = mesh.triangles[t];
+      in_view[t] = camera.may_see(mesh.positions[c.x], mesh.positions[c.y], mesh.positions[c.z]);
     }
   }, 4096);
+  return in_view;
+}
+
+// The vertices whose values can reach a pixel: within the need's support of a triangle in view,
+// and one ring further (the error pools over a 1-ring), or as far as the refinement looks when
+// there is one (under a budget), so that every vertex the refinement weighs is shaded exactly as
+// if all were. Every vertex without a support.
+std::vector<uint8_t> needed_vertices(const VertexPassInput& in, unsigned object, const VertexNeed& need) {
+  const Object& o = in.scene.objects[object];
+  if (need.support < 0) return std::vector<uint8_t>(o.mesh.vertex_count(), 1);
+  const bool refined = !in.scene.settings.fixed_vertex_spp();
+  const std::vector<uint8_t> in_view = triangles_in_view(in, object);
   return near_triangles(o, (refined ? std::max(need.support, need.rings) : need.support) + 1,
                         [&](size_t t) { return in_view[t] != 0; });
 }
@@ -359,7 +368,7 @@ VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
   for (unsigned o = 0; o < objects; ++o) {
     const Object& object = in.scene.objects[o];
     const VertexNeed need = in.needs.at(o);
-    const std::vector<uint8_t> needed = needed_vertices(in, object, need);  // the same for both sides
+    const std::vector<uint8_t> needed = needed_vertices(in, o, need);  // the same for both sides
     for (bool back : {false, true}) {
       if (back && !(o < in.back.size() && in.back[o])) continue;
       ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed);

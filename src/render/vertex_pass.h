@@ -11,8 +11,9 @@
 // and the back as well for objects that the camera sees from behind somewhere.
 //
 // Only what can reach a pixel is shaded: with a support (VertexNeed::support), the vertices within
-// it of a triangle that some primary ray may hit (the view's frustum, tested exactly per triangle),
-// and their incident triangles' points. The rest keep the value 0, which no pixel reads.
+// it of a triangle that some camera sample hits (known with a fixed count, render/camera_samples.h)
+// or may hit (under a budget: the view's frustum, tested exactly per triangle), and their incident
+// triangles' points. The rest keep the value 0, which no pixel reads.
 //
 // Like the pixels, every point's samples form two replicates. With a noise budget, sampling goes
 // in rounds: a relevant vertex (near the visible surface) whose L* error (pooled over its 1-ring)
@@ -25,6 +26,7 @@
 #include <functional>
 #include <vector>
 
+#include "render/camera_samples.h"
 #include "render/renderer.h"
 #include "render/shading.h"
 
@@ -39,6 +41,7 @@ struct VertexPassInput {
   std::vector<bool> back;          // per object: also shade the back
   std::vector<VertexNeed> needs;   // per object
   int threads = 0;
+  const CameraHits* camera_hits = nullptr;  // with a fixed count: which triangles the camera samples hit
 };
 
 VertexSignal vertex_pass(const VertexPassInput& input, RayCounts* rays = nullptr);

@@ -9,6 +9,7 @@
 
 #include "enhance/usm3d.h"
 #include "render/camera.h"
+#include "render/camera_samples.h"
 #include "render/shading.h"
 #include "test_util.h"
 
@@ -312,19 +313,23 @@ TEST(Renderer, ANoiseBudgetOverTheImageTakesFewerSamplesForTheSameRms) {
 }
 
 // The smoothed signal and the gain of two renders' vertex signals agree exactly at every vertex of
-// a triangle in view.
-void expect_same_smoothing_in_view(const Scene& scene, const RenderResult& a, const RenderResult& b, int iterations) {
+// a triangle a pixel can read: one that a camera sample hits (a fixed count), or that meets the
+// view's frustum (a budget).
+void expect_same_smoothing_in_view(const Scene& scene, const RayTracer& tracer, const RenderResult& a,
+                                   const RenderResult& b, int iterations) {
   const CameraRays camera(scene.camera);
-  for (size_t o = 0; o < scene.objects.size(); ++o) {
+  const std::shared_ptr<const CameraHits> hits = trace_camera_samples(scene, tracer, 2);
+  for (unsigned o = 0; o < scene.objects.size(); ++o) {
     const Object& object = scene.objects[o];
     SmoothingWidth width;
     width.iterations = iterations;
     const SurfaceContrast sa = surface_contrast(object, a.vertices.front[o], scene.display, width);
     const SurfaceContrast sb = surface_contrast(object, b.vertices.front[o], scene.display, width);
     size_t compared = 0;
-    for (const glm::uvec3& t : object.mesh.triangles) {
+    for (size_t i = 0; i < object.mesh.triangle_count(); ++i) {
+      const glm::uvec3& t = object.mesh.triangles[i];
       const auto& p = object.mesh.positions;
-      if (!camera.may_see(p[t.x], p[t.y], p[t.z])) continue;
+      if (hits ? !hits->triangles_hit(o)[i] : !camera.may_see(p[t.x], p[t.y], p[t.z])) continue;
       for (uint32_t v : {t.x, t.y, t.z}) {
         ASSERT_EQ(sa.smooth_lightness[v], sb.smooth_lightness[v]) << "object " << o << " vertex " << v;
         ASSERT_EQ(sa.gain_factor[v], sb.gain_factor[v]) << "object " << o << " vertex " << v;
@@ -336,9 +341,10 @@ void expect_same_smoothing_in_view(const Scene& scene, const RenderResult& a, co
 }
 
 // The vertex pass shades only what can reach a pixel: vertices within the smoothing's support
-// (and one ring past the refinement's) of a triangle in view. On a large, finely divided ground
-// most of it lies outside the view; the smoothed signal and the gain at every vertex of a triangle
-// in view are still exactly those of shading every vertex, with a fixed count and with the budget.
+// (and one ring past it, or past the refinement's) of a triangle in view. On a large, finely divided
+// ground most of it lies outside the view; the smoothed signal and the gain at every vertex of a
+// triangle in view are still exactly those of shading every vertex, with a fixed count and with the
+// budget.
 TEST(Renderer, TheVertexPassSkipsWhatNoPixelCanDependOnWithoutChangingWhatOneDoes) {
   testing::TempDir dir;
   Scene scene = scene_from(dir, R"({
@@ -367,7 +373,7 @@ TEST(Renderer, TheVertexPassSkipsWhatNoPixelCanDependOnWithoutChangingWhatOneDoe
     for (size_t v = 0; v < all.vertices.front[0].size(); ++v)
       skipped += culled.vertices.front[0][v] == glm::vec3(0.0f) && all.vertices.front[0][v] != glm::vec3(0.0f);
     EXPECT_GT(skipped, all.vertices.front[0].size() / 2) << "most of the ground is out of view";
-    expect_same_smoothing_in_view(scene, culled, all, kSupport);
+    expect_same_smoothing_in_view(scene, tracer, culled, all, kSupport);
   }
 }
 

@@ -1,0 +1,82 @@
+#include "render/camera_samples.h"
+
+#include <algorithm>
+
+#include "core/parallel.h"
+#include "core/random.h"
+#include "render/camera.h"
+
+namespace countershade {
+
+constexpr uint64_t kMaxHitBytes = uint64_t(128) << 20;
+constexpr int kTile = 16;
+
+std::vector<uint32_t> tile_order(int width, int height) {
+  std::vector<uint32_t> order;
+  order.reserve(size_t(width) * height);
+  for (int ty = 0; ty < height; ty += kTile)
+    for (int tx = 0; tx < width; tx += kTile)
+      for (int y = ty; y < std::min(ty + kTile, height); ++y)
+        for (int x = tx; x < std::min(tx + kTile, width); ++x) order.push_back(uint32_t(y * width + x));
+  return order;
+}
+
+void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dvec2>& out) {
+  out.resize(size_t(spp));
+  SampleStream random(seed, kDomainCamera, pixel, 0);
+  std::vector<int> permutation(static_cast<size_t>(spp));
+  for (int i = 0; i < spp; ++i) permutation[size_t(i)] = i;
+  for (int i = spp - 1; i > 0; --i)
+    std::swap(permutation[size_t(i)], permutation[size_t(std::min(i, int(random.next() * (i + 1))))]);
+  for (int i = 0; i < spp; ++i)
+    out[size_t(i)] = {(i + random.next()) / spp, (permutation[size_t(i)] + random.next()) / spp};
+}
+
+glm::dvec2 sample_position(const RenderSettings& settings, Sampler& sampler, const std::vector<glm::dvec2>& lhs,
+                           uint32_t s) {
+  if (settings.sampling == SamplingMode::independent) return lhs[s];
+  if (settings.spp.value_or(0) == 1) return glm::dvec2(0.5);
+  return sampler.next2d();
+}
+
+CameraHits::CameraHits(size_t pixels, uint32_t spp, size_t objects, const Scene& scene)
+    : spp_(spp), samples_(std::make_unique_for_overwrite<Traced[]>(pixels * spp)), count_(pixels * spp), seen_(objects) {
+  for (size_t o = 0; o < objects; ++o) seen_[o].assign(scene.objects[o].mesh.triangle_count(), 0);
+}
+
+std::optional<Hit> CameraHits::hit(size_t pixel, uint32_t s) const {
+  const Traced& traced = samples_[pixel * spp_ + s];
+  if (traced.object < 0) return std::nullopt;
+  return Hit{unsigned(traced.object), traced.triangle, traced.b1, traced.b2, 0.0};
+}
+
+std::shared_ptr<const CameraHits> trace_camera_samples(const Scene& scene, const RayTracer& tracer, int threads) {
+  const RenderSettings& settings = scene.settings;
+  const int width = scene.camera.width;
+  const size_t pixels = size_t(width) * size_t(scene.camera.height);
+  if (!settings.spp || pixels * uint64_t(*settings.spp) * sizeof(CameraHits::Traced) > kMaxHitBytes) return nullptr;
+  const uint32_t spp = uint32_t(*settings.spp);
+  auto hits = std::make_shared<CameraHits>(pixels, spp, scene.objects.size(), scene);
+  const CameraRays rays(scene.camera);
+  const std::vector<uint32_t> order = tile_order(width, scene.camera.height);  // the pixel pass's order
+  parallel_ranges(order.size(), threads, [&](size_t begin, size_t end) {
+    std::vector<glm::dvec2> lhs;
+    for (size_t i = begin; i < end; ++i) {
+      const size_t pixel = order[i];
+      if (settings.sampling == SamplingMode::independent) latin_hypercube(settings.seed, pixel, int(spp), lhs);
+      for (uint32_t s = 0; s < spp; ++s) {
+        Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
+        const glm::dvec2 offset = sample_position(settings, sampler, lhs, s);
+        const Ray ray = rays.ray(int(pixel % size_t(width)) + offset.x, int(pixel / size_t(width)) + offset.y);
+        const std::optional<Hit> hit = tracer.intersect(ray.origin, ray.direction);
+        hits->samples_[pixel * spp + s] = hit ? CameraHits::Traced{int32_t(hit->object), hit->triangle, float(hit->b1), float(hit->b2)}
+                                              : CameraHits::Traced{-1, 0, 0.0f, 0.0f};
+      }
+    }
+  }, 64);
+  for (size_t i = 0; i < hits->count_; ++i)
+    if (hits->samples_[i].object >= 0) hits->seen_[size_t(hits->samples_[i].object)][hits->samples_[i].triangle] = 1;
+  return hits;
+}
+
+}  // namespace countershade
