@@ -114,8 +114,10 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
     std::vector<VertexNeed> needs = options.vertex_needs;
     needs.resize(scene.objects.size(), VertexNeed{scene.settings.noise.target, 1});
     // With a fixed count the camera samples are known before the pixels: their hits say exactly
-    // which triangles the pixels read (the pixel pass reuses them, so no ray is traced twice).
-    if (!replay) camera_hits = trace_camera_samples(scene, tracer, options.threads);
+    // which triangles the pixels read (the pixel pass reuses them, so no ray is traced twice). It
+    // pays with ring points, k shadings a triangle; drawing the samples twice costs about what
+    // it saves on vertices alone (bunny-sky, docs/performance.md).
+    if (!replay && options.ring_samples > 0) camera_hits = trace_camera_samples(scene, tracer, options.threads);
     VertexPassInput in{scene, tracer, shader, result.gbuffer, options.ring_samples,
                        seen_from_behind(result.gbuffer, scene.objects.size()), std::move(needs), options.threads,
                        camera_hits.get()};

@@ -23,9 +23,9 @@ Scene two_objects(const testing::TempDir& dir, const std::string& render) {
   })"));
 }
 
-// A render that traces its camera samples ahead (one with a vertex signal at a fixed count) gives
-// the pixels of one that traces them in the pixel pass: the same positions, for Sobol sampling, the
-// independent sampler's Latin hypercubes and the single centre sample.
+// A render that traces its camera samples ahead (one with a ring-sampled vertex signal at a fixed
+// count) gives the pixels of one that traces them in the pixel pass: the same positions, for Sobol
+// sampling, the independent sampler's Latin hypercubes and the single centre sample.
 TEST(CameraSamples, TheHitsTracedAheadAreThePixelPassOwn) {
   testing::TempDir dir;
   for (const char* settings : {R"({"spp": 8})", R"({"spp": 5, "sampler": "independent"})", R"({"spp": 1})"}) {
@@ -33,7 +33,8 @@ TEST(CameraSamples, TheHitsTracedAheadAreThePixelPassOwn) {
     const RayTracer tracer(scene);
     ASSERT_NE(trace_camera_samples(scene, tracer, 2), nullptr) << settings;
     RenderOptions with;
-    with.vertex_radiance = true;  // traces the samples ahead
+    with.vertex_radiance = true;  // with ring points, traces the samples ahead
+    with.ring_samples = 3;
     with.vertex_needs.assign(scene.objects.size(), VertexNeed{0.3, 2, 3});
     const RenderResult ahead = render(scene, tracer, with), plain = render(scene, tracer, RenderOptions{});
     EXPECT_EQ(ahead.radiance.pixels, plain.radiance.pixels) << settings;
