@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/color.h"
 #include "core/image.h"
+#include "core/parallel.h"
 #include "core/random.h"
 #include "enhance/lightness.h"
 #include "enhance/stimulus_noise.h"
@@ -233,7 +234,7 @@ struct CoverageContrast {
 };
 
 CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface,
-                                   const std::vector<const std::vector<float>*>& fields) {
+                                   const std::vector<const std::vector<float>*>& fields, int threads) {
   const RenderResult& r = view.render;
   const GBuffer& g = r.gbuffer;
   const size_t n = r.luminance.size();
@@ -244,20 +245,22 @@ CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface
   out.mask.resize(n);
   const std::vector<float>& smooth_luminance = *fields[0];
   const std::vector<float>& gain = *fields[1];
-  for (size_t p = 0; p < n; ++p) {
-    out.mask[p] = float(cielab_lightness(r.luminance[p]));
-    if (!(r.coverage[p] > 0)) continue;
-    out.contrast[p] = coverage_contrast(r.luminance[p], r.surface_luminance[p], smooth_luminance[p]);
-    out.mask[p] -= float(out.contrast[p]);
-    out.gain[p] = double(gain[p]) / double(r.coverage[p]);
-    if (g.object[p] < 0) continue;
-    const SurfacePoint centre = surface_point(*view.scene, unsigned(g.object[p]), unsigned(g.triangle[p]),
-                                              g.barycentrics[p].x, g.barycentrics[p].y);
-    const double error = surface.interpolate(centre, g.back[p] != 0, [](const ObjectSurface& o, bool back, uint32_t v) {
-      return double(o.noise_of(back)[v]);
-    });
-    out.smooth_noise[p] = float(std::abs(out.gain[p]) * r.coverage[p] * error);
-  }
+  parallel_ranges(n, threads, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) {
+      out.mask[p] = float(cielab_lightness(r.luminance[p]));
+      if (!(r.coverage[p] > 0)) continue;
+      out.contrast[p] = coverage_contrast(r.luminance[p], r.surface_luminance[p], smooth_luminance[p]);
+      out.mask[p] -= float(out.contrast[p]);
+      out.gain[p] = double(gain[p]) / double(r.coverage[p]);
+      if (g.object[p] < 0) continue;
+      const SurfacePoint centre = surface_point(*view.scene, unsigned(g.object[p]), unsigned(g.triangle[p]),
+                                                g.barycentrics[p].x, g.barycentrics[p].y);
+      const double error = surface.interpolate(centre, g.back[p] != 0, [](const ObjectSurface& o, bool back, uint32_t v) {
+        return double(o.noise_of(back)[v]);
+      });
+      out.smooth_noise[p] = float(std::abs(out.gain[p]) * r.coverage[p] * error);
+    }
+  }, 4096);
   return out;
 }
 
@@ -359,7 +362,7 @@ class Usm3dMethod final : public EnhancementMethod {
     const auto* stage = dynamic_cast<const Usm3dStage*>(context.stage.get());
     if (!stage || context.fields.size() != 2)
       throw std::logic_error("usm3d: the view was not rendered for these parameters (render it for a plan with them)");
-    auto pixels = std::make_shared<const CoverageContrast>(coverage_contrast(*context.view, *stage->surface(), context.fields));
+    auto pixels = std::make_shared<const CoverageContrast>(coverage_contrast(*context.view, *stage->surface(), context.fields, context.threads));
     LightnessChange change;
     change.amount = pixels->contrast;
     change.gain = pixels->gain;
