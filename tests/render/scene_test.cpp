@@ -62,6 +62,8 @@ TEST(Scene, ReadsTheNoiseBudgetOrAFixedCount) {
   EXPECT_EQ(fixed.settings.spp, 12);
   EXPECT_EQ(fixed.settings.fixed_vertex_spp(), 3);  // a quarter, unless vertex_spp says otherwise
   EXPECT_EQ(fixed.settings.sampling, SamplingMode::independent);
+  fixed.settings.spp = 4;
+  EXPECT_EQ(fixed.settings.fixed_vertex_spp(), 2) << "one sample for each of the two replicates, at least";
 }
 
 TEST(Scene, RelativePathsResolveAgainstTheSceneFile) {
@@ -137,6 +139,8 @@ TEST(Scene, BadInputNamesFileAndKeyPath) {
       {variant("\"target\": [0, 0, 0]", "\"target\": [0, 0, 5]"), "camera.target: must differ from eye"},
       {variant("\"version\": 1", "\"version\": 1, \"render\": {\"spp\": 4, \"noise\": {}}"),
        "render.noise: give either a fixed spp or a noise budget, not both"},
+      {variant("\"version\": 1", "\"version\": 1, \"render\": {\"spp\": 4, \"vertex_spp\": 1}"),
+       "render.vertex_spp: must be in [2, 65536], got 1"},
       {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"min_spp\": 5}}"),
        "render.noise.min_spp: must be even"},
       {variant("\"version\": 1", "\"version\": 1, \"render\": {\"noise\": {\"target\": 0}}"),
