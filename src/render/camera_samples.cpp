@@ -39,24 +39,19 @@ glm::dvec2 sample_position(const RenderSettings& settings, Sampler& sampler, con
   return sampler.next2d();
 }
 
-CameraHits::CameraHits(size_t pixels, uint32_t spp, size_t objects, const Scene& scene)
-    : spp_(spp), samples_(std::make_unique_for_overwrite<Traced[]>(pixels * spp)), count_(pixels * spp), seen_(objects) {
-  for (size_t o = 0; o < objects; ++o) seen_[o].assign(scene.objects[o].mesh.triangle_count(), 0);
-}
-
-std::optional<Hit> CameraHits::hit(size_t pixel, uint32_t s) const {
-  const Traced& traced = samples_[pixel * spp_ + s];
-  if (traced.object < 0) return std::nullopt;
-  return Hit{unsigned(traced.object), traced.triangle, traced.b1, traced.b2, 0.0};
+CameraHits::CameraHits(size_t pixels, uint32_t spp, const Scene& scene)
+    : spp_(spp), samples_(std::make_unique_for_overwrite<PackedHit[]>(pixels * spp)), count_(pixels * spp),
+      seen_(scene.objects.size()) {
+  for (size_t o = 0; o < seen_.size(); ++o) seen_[o].assign(scene.objects[o].mesh.triangle_count(), 0);
 }
 
 std::shared_ptr<const CameraHits> trace_camera_samples(const Scene& scene, const RayTracer& tracer, int threads) {
   const RenderSettings& settings = scene.settings;
   const int width = scene.camera.width;
   const size_t pixels = size_t(width) * size_t(scene.camera.height);
-  if (!settings.spp || pixels * uint64_t(*settings.spp) * sizeof(CameraHits::Traced) > kMaxHitBytes) return nullptr;
+  if (!settings.spp || pixels * uint64_t(*settings.spp) * sizeof(PackedHit) > kMaxHitBytes) return nullptr;
   const uint32_t spp = uint32_t(*settings.spp);
-  auto hits = std::make_shared<CameraHits>(pixels, spp, scene.objects.size(), scene);
+  auto hits = std::make_shared<CameraHits>(pixels, spp, scene);
   const CameraRays rays(scene.camera);
   const std::vector<uint32_t> order = tile_order(width, scene.camera.height);  // the pixel pass's order
   parallel_ranges(order.size(), threads, [&](size_t begin, size_t end) {
@@ -68,9 +63,7 @@ std::shared_ptr<const CameraHits> trace_camera_samples(const Scene& scene, const
         Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
         const glm::dvec2 offset = sample_position(settings, sampler, lhs, s);
         const Ray ray = rays.ray(int(pixel % size_t(width)) + offset.x, int(pixel / size_t(width)) + offset.y);
-        const std::optional<Hit> hit = tracer.intersect(ray.origin, ray.direction);
-        hits->samples_[pixel * spp + s] = hit ? CameraHits::Traced{int32_t(hit->object), hit->triangle, float(hit->b1), float(hit->b2)}
-                                              : CameraHits::Traced{-1, 0, 0.0f, 0.0f};
+        hits->samples_[pixel * spp + s] = PackedHit::of(tracer.intersect(ray.origin, ray.direction));
       }
     }
   }, 64);

@@ -34,22 +34,17 @@ glm::dvec2 sample_position(const RenderSettings& settings, Sampler& sampler, con
 
 class CameraHits {
  public:
-  CameraHits(size_t pixels, uint32_t spp, size_t objects, const Scene& scene);
+  CameraHits(size_t pixels, uint32_t spp, const Scene& scene);
 
   uint32_t spp() const { return spp_; }
-  std::optional<Hit> hit(size_t pixel, uint32_t s) const;
+  std::optional<Hit> hit(size_t pixel, uint32_t s) const { return samples_[pixel * spp_ + s].unpack(); }
   // Per triangle of an object: whether some camera sample hits it (from either side).
   const std::vector<uint8_t>& triangles_hit(unsigned object) const { return seen_[object]; }
 
  private:
   friend std::shared_ptr<const CameraHits> trace_camera_samples(const Scene&, const RayTracer&, int);
-  struct Traced {  // left uninitialised: the tracing writes every one
-    int32_t object;  // -1: the ray hit nothing
-    uint32_t triangle;
-    float b1, b2;  // the tracer's single-precision barycentrics
-  };
   uint32_t spp_;
-  std::unique_ptr<Traced[]> samples_;       // pixel-major
+  std::unique_ptr<PackedHit[]> samples_;    // pixel-major, left uninitialised: the tracing writes each
   size_t count_;
   std::vector<std::vector<uint8_t>> seen_;  // [object][triangle]
 };

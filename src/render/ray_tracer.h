@@ -19,6 +19,22 @@ struct Hit {
   double t = 0;
 };
 
+// A camera ray's hit as a render keeps it for later (16 bytes): the barycentrics in single
+// precision, as `intersect` rounds them, so that the unpacked hit is the traced one (but for t,
+// which no one reading it back uses). No initialisers: large arrays of them are filled, not reset.
+struct PackedHit {
+  int32_t object;  // -1: the ray hit nothing
+  uint32_t triangle;
+  float b1, b2;
+  static PackedHit of(const std::optional<Hit>& hit) {
+    return hit ? PackedHit{int32_t(hit->object), hit->triangle, float(hit->b1), float(hit->b2)} : PackedHit{-1, 0, 0, 0};
+  }
+  std::optional<Hit> unpack() const {
+    if (object < 0) return std::nullopt;
+    return Hit{unsigned(object), triangle, b1, b2, 0.0};
+  }
+};
+
 // Per-thread ray counts, summed by the caller (keeps atomics out of the hot loop).
 struct RayCounts {
   uint64_t primary = 0, shadow = 0;

@@ -20,12 +20,7 @@ void TraceLog::record_hit(size_t pixel, uint32_t sample, const std::optional<Hit
   if (sample != p.hits.size()) throw std::logic_error("TraceLog: samples recorded out of order");
   TracedHit traced;
   traced.first_answer = uint32_t(p.answers.size());
-  if (hit) {
-    traced.object = int32_t(hit->object);
-    traced.triangle = hit->triangle;
-    traced.b1 = float(hit->b1);
-    traced.b2 = float(hit->b2);
-  }
+  traced.hit = PackedHit::of(hit);
   p.hits.push_back(traced);
 }
 

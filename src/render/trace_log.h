@@ -27,9 +27,7 @@ namespace countershade {
 
 // One camera sample's hit as the tracer reported it, and where its shadow answers start.
 struct TracedHit {
-  int32_t object = -1;  // -1: the ray hit nothing
-  uint32_t triangle = 0;
-  float b1 = 0, b2 = 0;  // the tracer's single-precision barycentrics
+  PackedHit hit{-1, 0, 0, 0};
   uint32_t first_answer = 0;
   uint32_t shaded = 0;  // its shading record (a hit) or background (a miss), while the log keeps them
 };
@@ -64,11 +62,7 @@ class TraceLog {
 
   // Replaying: whether sample `sample` of `pixel` was recorded; its hit and its answers.
   bool has(size_t pixel, uint32_t sample) const { return !abandoned_ && sample < pixels_[pixel].hits.size(); }
-  std::optional<Hit> hit(size_t pixel, uint32_t sample) const {
-    const TracedHit& traced = pixels_[pixel].hits[sample];
-    if (traced.object < 0) return std::nullopt;
-    return Hit{unsigned(traced.object), traced.triangle, traced.b1, traced.b2, 0.0};
-  }
+  std::optional<Hit> hit(size_t pixel, uint32_t sample) const { return pixels_[pixel].hits[sample].hit.unpack(); }
   ShadowAnswers answers(size_t pixel, uint32_t sample) const;
   // Whether the sample's shading was kept; a hit's record and light samples, or the background a
   // miss saw. (Defined here, as `hit` is: a replay calls them for every sample.)

@@ -151,11 +151,14 @@ class ObjectSide {
     return sp;
   }
 
-  // Samples [first + from, first + to) of a point's stream.
-  void shade(const SurfacePoint& sp, uint64_t domain, uint64_t index, uint32_t first, uint32_t from, uint32_t to,
+  // Samples [from, to) of a point's stream. A point of one sample takes it from the first or the
+  // second replicate by turns (`turn`, the point's number), so that a vertex's points, one sample
+  // each, fill both replicates.
+  void shade(const SurfacePoint& sp, uint64_t domain, uint64_t index, uint64_t turn, uint32_t from, uint32_t to,
              PointSums& sums, RayCounts& counts) const {
     const RenderSettings& settings = in_.scene.settings;
     const glm::dvec3 wo = rays_.towards_viewer(sp.position);
+    const uint32_t first = to == 1 ? uint32_t(turn % 2) : 0;
     for (uint32_t s = first + from; s < first + to; ++s) {
       Sampler sampler(settings.sampling, settings.seed, domain + (back_ ? kBackDomain : 0), index, s);
       const int r = Sampler::replicate(s);
@@ -170,9 +173,8 @@ class ObjectSide {
       const uint32_t corner = variants_.entries[i].first, c = corner % 3;
       SurfacePoint sp = surface_point(in_.scene, object_, corner / 3, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0);
       sp.position = mesh_.positions[v];  // exactly the vertex, not a barycentric round-off
-      // Like ring points, a single sample goes to one replicate or the other by turns.
-      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]),
-            target == 1 ? uint32_t((vertex_offset_ + v) % 2) : 0, vertex_count_[v], target, own_[i], counts);
+      shade(oriented(sp), kDomainVertex, hash_combine(vertex_offset_ + v, i - variants_.offsets[v]), vertex_offset_ + v,
+            vertex_count_[v], target, own_[i], counts);
     }
     vertex_count_[v] = target;
   }
@@ -182,11 +184,9 @@ class ObjectSide {
     for (int j = 0; j < k_; ++j) {
       const glm::dvec3 b = triangle_sample_barycentrics(j, k_);
       const SurfacePoint sp = surface_point(in_.scene, object_, unsigned(t), b.y, b.z);
-      // A single sample goes to one replicate or the other by turns, so that a vertex's points,
-      // one sample each, fill both.
       const uint64_t point = (triangle_offset_ + t) * uint64_t(k_) + uint64_t(j);
-      shade(oriented(sp), kDomainTriangle, point, target == 1 ? uint32_t(point % 2) : 0, triangle_count_[t], target,
-            ring_[size_t(ring_slot_[t]) * k_ + j], counts);
+      shade(oriented(sp), kDomainTriangle, point, point, triangle_count_[t], target, ring_[size_t(ring_slot_[t]) * k_ + j],
+            counts);
     }
     triangle_count_[t] = target;
   }
