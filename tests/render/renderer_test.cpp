@@ -251,9 +251,9 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
 // The vertex signal's error estimate (from its two replicates) against the spread of the signal
 // between seeds, at fixed counts: --spp 8 with ring points (each of a vertex's points takes 1
 // sample, the points split between the replicates by turns), --spp 16 (2 per point), and --spp 4
-// without ring points (2 per vertex, the least: with one, a replicate would be empty). The estimate pools the
-// 1-ring and counts the ring's spatial variation as error, so it may run high, but not low and not
-// far off (1.2-1.26 times the spread here).
+// without ring points (2 per vertex, the least: with one, a replicate would be empty). The
+// estimate pools the 1-ring and counts the ring's spatial variation as error, so it may run high,
+// but not low and not far off (1.2-1.26 times the spread here).
 TEST(Renderer, TheVertexErrorEstimateAtAFixedCountFollowsTheSpreadBetweenSeeds) {
   testing::TempDir dir;
   constexpr int kSeeds = 12;
