@@ -33,7 +33,7 @@ std::vector<int> component_iterations(const SurfaceGraph& surface, const std::ve
 
 SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
                                  std::vector<double> lightness, const std::vector<float>& importance,
-                                 const SmoothingWidth& width) {
+                                 const SmoothingWidth& width, int threads) {
   const VertexAdjacency& adjacency = surface.adjacency;
   const size_t n = surface.point_count();
   SurfaceContrast out;
@@ -41,18 +41,20 @@ SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<
   out.iterations = component_iterations(surface, positions, width);
   const std::vector<double> point_lightness = surface.to_points(lightness);
   std::vector<double> smooth = point_lightness;
-  smooth_over_rings(adjacency, out.components.label, out.iterations, smooth, width.scheme);
+  smooth_over_rings(adjacency, out.components.label, out.iterations, smooth, width.scheme, threads);
 
   std::vector<double> variance(n, 0.0);
   if (width.adapt) {
     std::vector<double> unit(n);
     for (size_t p = 0; p < n; ++p) unit[p] = point_lightness[p] / 100.0;  // Var in L*/100 units
-    variance = one_ring_variance(adjacency, unit);
+    variance = one_ring_variance(adjacency, unit, threads);
   }
   std::vector<double> weight(importance.begin(), importance.end());
   if (!weight.empty()) weight = surface.to_points(weight);
   std::vector<double> gain(n);
-  for (size_t p = 0; p < n; ++p) gain[p] = (weight.empty() ? 1.0 : weight[p]) * std::sqrt(1.0 + variance[p]);
+  parallel_ranges(n, threads, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) gain[p] = (weight.empty() ? 1.0 : weight[p]) * std::sqrt(1.0 + variance[p]);
+  }, 4096);
   out.lightness = std::move(lightness);
   out.smooth_lightness = surface.to_vertices(smooth);
   out.gain_factor = surface.to_vertices(gain);
@@ -60,11 +62,13 @@ SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<
 }
 
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const SmoothingWidth& width) {
+                                 const Display& display, const SmoothingWidth& width, int threads) {
   std::vector<double> lightness(object.mesh.vertex_count());
   const Exposure exposure = display.exposure();
-  for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = display_lightness(vertex_radiance[v], exposure);
-  return surface_contrast(object.surface, object.mesh.positions, std::move(lightness), object.importance, width);
+  parallel_ranges(lightness.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) lightness[v] = display_lightness(vertex_radiance[v], exposure);
+  }, 4096);
+  return surface_contrast(object.surface, object.mesh.positions, std::move(lightness), object.importance, width, threads);
 }
 
 namespace {
@@ -100,16 +104,20 @@ int largest_component_iterations(const SurfaceContrast& sc) { return sc.iteratio
 // smoothing is linear, so it is estimated by smoothing a few random-sign copies of the errors
 // and taking their mean square (each vertex's estimate is rough; over pixels it is accurate).
 std::vector<float> smoothed_noise(const Object& object, const SurfaceContrast& sc, const std::vector<float>& noise,
-                                  SmoothingScheme scheme) {
+                                  SmoothingScheme scheme, int threads) {
   constexpr int kProbes = 4;
   const SurfaceGraph& surface = object.surface;
   const std::vector<double> sigma = surface.to_points(std::vector<double>(noise.begin(), noise.end()));
   std::vector<double> sum(sigma.size(), 0.0);
   for (int probe = 0; probe < kProbes; ++probe) {
     std::vector<double> z(sigma.size());
-    for (size_t p = 0; p < z.size(); ++p) z[p] = (mix64(hash_combine(uint64_t(probe), p)) & 1 ? 1.0 : -1.0) * sigma[p];
-    smooth_over_rings(surface.adjacency, sc.components.label, sc.iterations, z, scheme);
-    for (size_t p = 0; p < z.size(); ++p) sum[p] += z[p] * z[p] / kProbes;
+    parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t p = begin; p < end; ++p) z[p] = (mix64(hash_combine(uint64_t(probe), p)) & 1 ? 1.0 : -1.0) * sigma[p];
+    }, 4096);
+    smooth_over_rings(surface.adjacency, sc.components.label, sc.iterations, z, scheme, threads);
+    parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t p = begin; p < end; ++p) sum[p] += z[p] * z[p] / kProbes;
+    }, 4096);
   }
   for (double& v : sum) v = std::sqrt(v);
   const std::vector<double> per_vertex = surface.to_vertices(sum);
@@ -185,7 +193,7 @@ class Usm3dStage final : public SurfaceStage {
 };
 
 std::shared_ptr<const Usm3dSurface> smooth_surfaces(const Scene& scene, const VertexSignal& signal,
-                                                    const Usm3dParameters& p) {
+                                                    const Usm3dParameters& p, int threads) {
   auto out = std::make_shared<Usm3dSurface>();
   out->scene = &scene;
   out->sigma = resolve_sigma(p, scene);
@@ -196,10 +204,10 @@ std::shared_ptr<const Usm3dSurface> smooth_surfaces(const Scene& scene, const Ve
     surface.has_back = !signal.back[o].empty();
     for (int side = 0; side < (surface.has_back ? 2 : 1); ++side) {
       const auto& radiance = side ? signal.back[o] : signal.front[o];
-      surface.side[side] = surface_contrast(scene.objects[o], radiance, scene.display, width);
+      surface.side[side] = surface_contrast(scene.objects[o], radiance, scene.display, width, threads);
       surface.smooth_noise[side] =
           smoothed_noise(scene.objects[o], surface.side[side], side ? signal.back_noise[o] : signal.front_noise[o],
-                         p.scheme);
+                         p.scheme, threads);
     }
     out->iterations[scene.objects[o].name] = largest_component_iterations(surface.side[0]);
   }
@@ -321,7 +329,7 @@ class Usm3dMethod final : public EnhancementMethod {
     if (context.render.vertices.front.size() != context.scene.objects.size())
       throw std::logic_error("usm3d: the view was rendered without vertex radiance");
     return std::make_shared<Usm3dStage>(
-        smooth_surfaces(context.scene, context.render.vertices, parameters_as<Usm3dParameters>(parameters)));
+        smooth_surfaces(context.scene, context.render.vertices, parameters_as<Usm3dParameters>(parameters), context.threads));
   }
 
   std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const override {

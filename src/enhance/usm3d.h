@@ -37,10 +37,10 @@ struct SurfaceContrast {
 // at one point of the surface (a seam) share its values.
 SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
                                  std::vector<double> lightness, const std::vector<float>& importance,
-                                 const SmoothingWidth& width);
+                                 const SmoothingWidth& width, int threads = 0);
 
 // The same for a rendered object, from the display lightness of its vertex radiance.
 SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const SmoothingWidth& width);
+                                 const Display& display, const SmoothingWidth& width, int threads = 0);
 
 }  // namespace countershade

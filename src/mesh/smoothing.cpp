@@ -61,10 +61,24 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
 
 namespace {
 
+// Whether the truncated expansion takes fewer products than the steps themselves: degree K costs
+// K + 1 products, so for small n (K = n below about 20 steps, where nothing is truncated) plain
+// steps compute the same operator more cheaply.
+bool expansion_pays(const std::vector<int>& iterations) {
+  size_t products = 0;
+  int most = 0;
+  for (int n : iterations) {
+    products = std::max(products, power_chebyshev_coefficients(n).size());
+    most = std::max(most, n);
+  }
+  return products < size_t(most);
+}
+
 void smooth_in_given_order(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                            const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
                            int threads) {
-  if (scheme == SmoothingScheme::chebyshev) return chebyshev_smooth(adjacency, label, iterations, values, threads);
+  if (scheme == SmoothingScheme::chebyshev && expansion_pays(iterations))
+    return chebyshev_smooth(adjacency, label, iterations, values, threads);
   laplacian_smooth(adjacency, label, iterations, values, threads);
 }
 
@@ -82,18 +96,20 @@ void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint3
   scatter(local, order, values);
 }
 
-std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values) {
-  const size_t n = adjacency.vertex_count();
-  std::vector<double> variance(n, 0.0);
-  for (size_t v = 0; v < n; ++v) {
-    auto ring = adjacency.of(v);
-    double count = double(ring.size() + 1), mean = values[v];
-    for (uint32_t w : ring) mean += values[w];
-    mean /= count;
-    double sq = (values[v] - mean) * (values[v] - mean);
-    for (uint32_t w : ring) sq += (values[w] - mean) * (values[w] - mean);
-    variance[v] = sq / count;
-  }
+std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values,
+                                      int threads) {
+  std::vector<double> variance(adjacency.vertex_count(), 0.0);
+  parallel_ranges(variance.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      auto ring = adjacency.of(v);
+      double count = double(ring.size() + 1), mean = values[v];
+      for (uint32_t w : ring) mean += values[w];
+      mean /= count;
+      double sq = (values[v] - mean) * (values[v] - mean);
+      for (uint32_t w : ring) sq += (values[w] - mean) * (values[w] - mean);
+      variance[v] = sq / count;
+    }
+  }, 4096);
   return variance;
 }
 

@@ -46,7 +46,8 @@ void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint3
                        int threads = 0);
 
 // Population variance of `values` over {i} ∪ N(i), per vertex.
-std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values);
+std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values,
+                                      int threads = 0);
 
 // Mean edge length of each component (each undirected edge counted once).
 std::vector<double> component_mean_edge_length(const std::vector<glm::vec3>& positions,

@@ -37,18 +37,18 @@ glm::dvec3 CameraRays::point_at_depth(double x, double y, double depth) const {
   return r.origin + r.direction * (depth / glm::dot(r.direction, forward_));
 }
 
-bool CameraRays::may_see(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const {
-  // Each corner's bits: which of the five half-spaces that bound what rays reach it lies outside.
-  // The sides are widened by a relative 1e-6 so that rounding never culls a triangle at the edge.
+unsigned CameraRays::outside(const glm::dvec3& p) const {
+  // Which of the five half-spaces that bound what rays reach the point lies outside. The sides are
+  // widened by a relative 1e-6 so that rounding never culls a triangle at the edge.
   constexpr double kSlack = 1 + 1e-6;
-  auto outside = [&](const glm::dvec3& p) {
-    const glm::dvec3 d = p - camera_.eye;
-    const double z = glm::dot(d, forward_), x = glm::dot(d, right_), y = glm::dot(d, up_);
-    const double w = kSlack * (camera_.orthographic ? half_width_ : half_width_ * z);
-    const double h = kSlack * (camera_.orthographic ? half_height_ : half_height_ * z);
-    return unsigned(x < -w) | unsigned(x > w) << 1 | unsigned(y < -h) << 2 | unsigned(y > h) << 3 |
-           unsigned(z < 0) << 4;
-  };
+  const glm::dvec3 d = p - camera_.eye;
+  const double z = glm::dot(d, forward_), x = glm::dot(d, right_), y = glm::dot(d, up_);
+  const double w = kSlack * (camera_.orthographic ? half_width_ : half_width_ * z);
+  const double h = kSlack * (camera_.orthographic ? half_height_ : half_height_ * z);
+  return unsigned(x < -w) | unsigned(x > w) << 1 | unsigned(y < -h) << 2 | unsigned(y > h) << 3 | unsigned(z < 0) << 4;
+}
+
+bool CameraRays::may_see(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const {
   return (outside(a) & outside(b) & outside(c)) == 0;
 }
 

@@ -42,6 +42,9 @@ class CameraRays {
   // False only when no primary ray can hit the triangle abc: its corners all lie beyond one side
   // of the view (left, right, top, bottom, or behind the eye). True may still be unseen.
   bool may_see(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const;
+  // The sides of the view a point lies beyond, one bit each: may_see is false exactly when the
+  // corners' bits share one.
+  unsigned outside(const glm::dvec3& p) const;
   // The camera's basis: right, up (both on the film) and the viewing direction.
   const glm::dvec3& right() const { return right_; }
   const glm::dvec3& up() const { return up_; }

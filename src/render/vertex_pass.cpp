@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <tuple>
 #include <utility>
@@ -36,23 +37,43 @@ struct Variants {
   std::vector<std::pair<uint32_t, uint32_t>> entries;  // (corner, count)
 };
 
-Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc, const std::vector<uint8_t>& needed) {
-  Variants out;
-  out.offsets.push_back(0);
-  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const size_t first = out.entries.size();
-    for (uint32_t i = vc.offsets[v]; needed[v] && i < vc.offsets[v + 1]; ++i) {
-      const uint32_t corner = vc.corners[i];
-      auto same = [&](const std::pair<uint32_t, uint32_t>& e) {
-        return mesh.corner_normals[e.first] == mesh.corner_normals[corner] &&
-               (!mesh.has_uvs() || mesh.corner_uvs[e.first] == mesh.corner_uvs[corner]);
-      };
-      auto it = std::find_if(out.entries.begin() + long(first), out.entries.end(), same);
-      if (it != out.entries.end()) ++it->second;
-      else out.entries.emplace_back(corner, 1);
+Variants vertex_variants(const TriangleMesh& mesh, const VertexCorners& vc, const std::vector<uint8_t>& needed,
+                         int threads) {
+  // Each vertex's variants go first into its own corners' slots (at most one per corner), in
+  // parallel, then are packed.
+  struct Entry {
+    uint32_t corner, count;
+  };
+  const size_t nv = mesh.vertex_count();
+  const auto slots = std::make_unique_for_overwrite<Entry[]>(vc.corners.size());  // only needed ones are touched
+  std::vector<uint32_t> count(nv, 0);
+  parallel_ranges(nv, threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      if (!needed[v]) continue;
+      Entry* first = slots.get() + vc.offsets[v];
+      for (uint32_t i = vc.offsets[v]; i < vc.offsets[v + 1]; ++i) {
+        const uint32_t corner = vc.corners[i];
+        auto same = [&](const Entry& e) {
+          return mesh.corner_normals[e.corner] == mesh.corner_normals[corner] &&
+                 (!mesh.has_uvs() || mesh.corner_uvs[e.corner] == mesh.corner_uvs[corner]);
+        };
+        Entry* it = std::find_if(first, first + count[v], same);
+        if (it != first + count[v]) ++it->count;
+        else first[count[v]++] = {corner, 1};
+      }
     }
-    out.offsets.push_back(uint32_t(out.entries.size()));
-  }
+  }, 1024);
+  Variants out;
+  out.offsets.assign(nv + 1, 0);
+  for (size_t v = 0; v < nv; ++v) out.offsets[v + 1] = out.offsets[v] + count[v];
+  out.entries.resize(out.offsets[nv]);
+  parallel_ranges(nv, threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v)
+      for (uint32_t i = 0; i < count[v]; ++i) {
+        const Entry& e = slots[vc.offsets[v] + i];
+        out.entries[out.offsets[v] + i] = {e.corner, e.count};
+      }
+  }, 1024);
   return out;
 }
 
@@ -76,7 +97,7 @@ class ObjectSide {
   ObjectSide(const VertexPassInput& in, unsigned object, bool back, uint64_t vertex_offset, uint64_t triangle_offset,
              const std::vector<uint8_t>& needed)
       : in_(in), object_(object), back_(back), needed_(needed), mesh_(in.scene.objects[object].mesh), corners_(vertex_corners(mesh_)),
-        variants_(vertex_variants(mesh_, corners_, needed)), own_(variants_.entries.size()), k_(std::max(in.ring_samples, 0)),
+        variants_(vertex_variants(mesh_, corners_, needed, in.threads)), own_(variants_.entries.size()), k_(std::max(in.ring_samples, 0)),
         rays_(in.scene.camera), vertex_count_(mesh_.vertex_count(), 0), triangle_count_(mesh_.triangle_count(), 0),
         vertex_offset_(vertex_offset), triangle_offset_(triangle_offset) {
     if (k_ == 0) return;
@@ -222,12 +243,14 @@ std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& 
   }, 1024);
   const std::vector<double> points = surface.to_points(variance);
   std::vector<double> pooled(points.size());
-  for (size_t p = 0; p < points.size(); ++p) {
-    double ring = 0;
-    for (uint32_t q : surface.adjacency.of(p)) ring += points[q];
-    const size_t n = surface.adjacency.of(p).size();
-    pooled[p] = std::max(points[p], n ? ring / double(n) : 0.0);
-  }
+  parallel_ranges(points.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) {
+      double ring = 0;
+      for (uint32_t q : surface.adjacency.of(p)) ring += points[q];
+      const size_t n = surface.adjacency.of(p).size();
+      pooled[p] = std::max(points[p], n ? ring / double(n) : 0.0);
+    }
+  }, 4096);
   return surface.to_vertices(pooled);
 }
 
@@ -276,11 +299,15 @@ std::vector<uint8_t> triangles_in_view(const VertexPassInput& in, unsigned objec
   if (in.camera_hits) return in.camera_hits->triangles_hit(object);
   const TriangleMesh& mesh = in.scene.objects[object].mesh;
   const CameraRays camera(in.scene.camera);
+  std::vector<uint8_t> outside(mesh.vertex_count());  // each vertex once, not once per triangle
+  parallel_ranges(outside.size(), in.threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) outside[v] = uint8_t(camera.outside(mesh.positions[v]));
+  }, 4096);
   std::vector<uint8_t> in_view(mesh.triangle_count());
   parallel_ranges(in_view.size(), in.threads, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
       const glm::uvec3& c = mesh.triangles[t];
-      in_view[t] = camera.may_see(mesh.positions[c.x], mesh.positions[c.y], mesh.positions[c.z]);
+      in_view[t] = (outside[c.x] & outside[c.y] & outside[c.z]) == 0;
     }
   }, 4096);
   return in_view;
@@ -339,15 +366,38 @@ void sample_side(const VertexPassInput& in, ObjectSide& side, const std::vector<
   }, 1024);
 }
 
-// Adds a side's per-vertex counts to the minimum, the maximum and the sum over points.
-void count_samples(const ObjectSide& side, SampleCounts& samples, double& total, double& points) {
-  for (size_t v = 0; v < side.vertex_samples().size(); ++v) {
-    if (!side.needed(v)) continue;
-    const uint32_t c = side.vertex_samples()[v];
-    samples.min = std::min(samples.min, c);
-    samples.max = std::max(samples.max, c);
-    total += c;
-    points += 1;
+// The least, the most and the sum of the per-vertex sample counts over the needed vertices.
+struct CountTally {
+  uint32_t min = UINT32_MAX, max = 0;
+  double total = 0, points = 0;
+
+  void add(const ObjectSide& side) {
+    for (size_t v = 0; v < side.vertex_samples().size(); ++v) {
+      if (!side.needed(v)) continue;
+      const uint32_t c = side.vertex_samples()[v];
+      min = std::min(min, c);
+      max = std::max(max, c);
+      total += c;
+      points += 1;
+    }
+  }
+};
+
+// Both sides of one object (the back where the camera sees it): their values, errors and counts.
+void object_signal(const VertexPassInput& in, unsigned o, uint64_t vertex_offset, uint64_t triangle_offset,
+                   VertexSignal& signal, RayCounts& counts, CountTally& tally) {
+  const Object& object = in.scene.objects[o];
+  const VertexNeed need = in.needs.at(o);
+  const std::vector<uint8_t> needed = needed_vertices(in, o, need);  // the same for both sides
+  for (bool back : {false, true}) {
+    if (back && !(o < in.back.size() && in.back[o])) continue;
+    ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed);
+    const bool refined = !in.scene.settings.fixed_vertex_spp();  // only a refinement asks what is relevant
+    const std::vector<uint8_t> relevant = refined ? relevant_vertices(in.gbuffer, o, back, object, need.rings)
+                                                  : std::vector<uint8_t>();
+    sample_side(in, side, relevant, object.surface, need.noise, counts, back ? signal.back[o] : signal.front[o],
+                back ? signal.back_noise[o] : signal.front_noise[o]);
+    tally.add(side);
   }
 }
 
@@ -362,29 +412,15 @@ VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
   signal.front_noise.resize(objects);
   signal.back_noise.resize(objects);
   RayCounts counts;
+  CountTally tally;
   uint64_t vertex_offset = 0, triangle_offset = 0;
-  double total = 0, points = 0;
-  signal.samples.min = UINT32_MAX;
   for (unsigned o = 0; o < objects; ++o) {
-    const Object& object = in.scene.objects[o];
-    const VertexNeed need = in.needs.at(o);
-    const std::vector<uint8_t> needed = needed_vertices(in, o, need);  // the same for both sides
-    for (bool back : {false, true}) {
-      if (back && !(o < in.back.size() && in.back[o])) continue;
-      ObjectSide side(in, o, back, vertex_offset, triangle_offset, needed);
-      const bool refined = !in.scene.settings.fixed_vertex_spp();  // only a refinement asks what is relevant
-      const std::vector<uint8_t> relevant = refined ? relevant_vertices(in.gbuffer, o, back, object, need.rings)
-                                                    : std::vector<uint8_t>();
-      sample_side(in, side, relevant, object.surface, need.noise, counts, back ? signal.back[o] : signal.front[o],
-                  back ? signal.back_noise[o] : signal.front_noise[o]);
-      count_samples(side, signal.samples, total, points);
-    }
-    vertex_offset += object.mesh.vertex_count();
-    triangle_offset += object.mesh.triangle_count();
+    object_signal(in, o, vertex_offset, triangle_offset, signal, counts, tally);
+    vertex_offset += in.scene.objects[o].mesh.vertex_count();
+    triangle_offset += in.scene.objects[o].mesh.triangle_count();
   }
-  signal.samples.mean = points ? total / points : 0.0;
-  if (!points) signal.samples.min = 0;
   if (rays) *rays += counts;
+  signal.samples = {tally.points ? tally.min : 0, tally.max, tally.points ? tally.total / tally.points : 0.0};
   signal.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return signal;
 }

@@ -77,6 +77,30 @@ TEST(ChebyshevSmoothing, ComponentsKeepTheirOwnStepCounts) {
   EXPECT_NEAR(values[6], 42.0, 1e-5);  // no neighbours: kept
 }
 
+// Below about 20 steps the expansion keeps every term (degree n, n + 1 products), so the scheme
+// takes the n plain steps instead: the very same numbers. From there on it expands.
+TEST(ChebyshevSmoothing, ShortSmoothingsTakeThePlainSteps) {
+  const TriangleMesh mesh = load_mesh(testing::mesh_path("stanford-bunny.obj"));
+  const VertexAdjacency adjacency = adjacency_from_triangles(mesh.vertex_count(), mesh.triangles);
+  const Components components = connected_components(adjacency);
+  std::vector<double> signal(mesh.vertex_count());
+  for (size_t v = 0; v < signal.size(); ++v) signal[v] = 50.0 + 10.0 * std::sin(3000.0 * mesh.positions[v].x);
+  for (int n : {1, 9, 20, 40}) {
+    const std::vector<int> steps(components.count, n);
+    std::vector<double> plain = signal, chosen = signal, expanded = signal;
+    laplacian_smooth(adjacency, components.label, steps, plain, 2);
+    chebyshev_smooth(adjacency, components.label, steps, expanded, 2);
+    smooth_over_rings(adjacency, components.label, steps, chosen, SmoothingScheme::chebyshev, 2);
+    const bool expands = power_chebyshev_coefficients(n).size() < size_t(n);
+    EXPECT_EQ(expands, n >= 40) << n;
+    EXPECT_EQ(chosen, expands ? expanded : plain) << n;
+    // Past one step the two differ in rounding, so the comparison above tells them apart.
+    if (n > 1) {
+      EXPECT_NE(expanded, plain) << n;
+    }
+  }
+}
+
 // usm3d's per-vertex steps take the scheme from its width (`smoothing` in experiments).
 TEST(ChebyshevSmoothing, Usm3dSmoothsTheSameEitherWay) {
   const TriangleMesh mesh = load_mesh(testing::mesh_path("stanford-bunny.obj"));
