@@ -82,7 +82,8 @@ std::string check_output(const RenderArgs& args, bool enhanced) {
 }
 
 std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderRequest& request) {
-  auto scene = std::make_shared<Scene>(load_scene(args.scene));
+  // Only methods that work on the scene's surfaces need its surface graphs (a refinement rebuilds them).
+  auto scene = std::make_shared<Scene>(load_scene(args.scene, request.scene && !request.refine_edge_length));
   apply_request(*scene, request);
   resize(scene->camera, args.width, args.height);
   if (args.spp) scene->settings.spp = *args.spp;

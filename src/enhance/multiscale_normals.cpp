@@ -61,6 +61,7 @@ MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, 
     : scene_(std::move(shared_scene)), sigma1_(sigma1), scales_(scales), vertex_normals_(scene_->objects.size()),
       iterations_(scene_->objects.size()) {
   const Scene& scene = *scene_;
+  require_surface_graphs(scene, "multiscale normals");
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& object = scene.objects[o];
     const SurfaceGraph& surface = object.surface;

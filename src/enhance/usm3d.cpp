@@ -194,6 +194,7 @@ class Usm3dStage final : public SurfaceStage {
 
 std::shared_ptr<const Usm3dSurface> smooth_surfaces(const Scene& scene, const VertexSignal& signal,
                                                     const Usm3dParameters& p, int threads) {
+  require_surface_graphs(scene, "usm3d");
   auto out = std::make_shared<Usm3dSurface>();
   out->scene = &scene;
   out->sigma = resolve_sigma(p, scene);

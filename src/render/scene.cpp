@@ -4,17 +4,21 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <tbb/task_group.h>
 
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "core/number_format.h"
 #include "core/image.h"
+#include "core/parallel.h"
 #include "core/json_reader.h"
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
@@ -35,7 +39,8 @@ namespace {
 
 class SceneLoader {
  public:
-  explicit SceneLoader(const fs::path& path) : path_(path), base_(path.parent_path()) {}
+  SceneLoader(const fs::path& path, bool surface_graphs)
+      : path_(path), base_(path.parent_path()), surface_graphs_(surface_graphs) {}
 
   Scene load() {
     nlohmann::json json = parse_json_file(path_);
@@ -49,7 +54,7 @@ class SceneLoader {
     scene.camera = camera(root.object("camera"));
     if (root.has("render")) scene.settings = settings(root.object("render"));
     if (root.has("display")) scene.display = display(root.object("display"));
-    for (const auto& o : root.objects("objects")) scene.objects.push_back(object(o));
+    objects(root.objects("objects"), scene);
     if (scene.objects.empty()) root.fail("objects", "a scene needs at least one object");
     std::vector<LightRef> light_refs;
     if (root.has("lights"))
@@ -65,6 +70,26 @@ class SceneLoader {
     fs::path p = o.string(key);
     if (p.empty()) o.fail(key, "empty path");
     return p.is_absolute() ? p : base_ / p;
+  }
+
+  // Reads the objects. Each one's surface graph (when asked for) is built on another core while
+  // the next objects are read: most of a load is reading meshes, one at a time.
+  void objects(const std::vector<JsonObject>& list, Scene& scene) {
+    scene.objects.reserve(list.size());  // the builds hold on to the meshes
+    std::vector<SurfaceGraph> graphs(list.size());
+    tbb::task_group builds;
+    try {
+      for (size_t i = 0; i < list.size(); ++i) {
+        scene.objects.push_back(object(list[i]));
+        const TriangleMesh* mesh = &scene.objects.back().mesh;
+        if (surface_graphs_) builds.run([&graphs, i, mesh] { graphs[i] = surface_graph(mesh->positions, mesh->triangles); });
+      }
+    } catch (...) {
+      builds.wait();
+      throw;
+    }
+    builds.wait();
+    for (size_t i = 0; i < list.size() && surface_graphs_; ++i) scene.objects[i].surface = std::move(graphs[i]);
   }
 
   static double positive(const JsonObject& o, const std::string& key, double fallback) {
@@ -408,7 +433,6 @@ class SceneLoader {
     compute_corner_normals(obj.mesh, crease);
     if (o.has("transform")) transform_mesh(obj.mesh, transform(o.object("transform")));
     check_world_positions(o, obj.mesh);
-    obj.surface = surface_graph(obj.mesh.positions, obj.mesh.triangles);
     o.finish();
     return obj;
   }
@@ -521,13 +545,27 @@ class SceneLoader {
   }
 
   fs::path path_, base_;
+  bool surface_graphs_;
   int object_count_ = 0;
   std::vector<std::pair<std::string, std::shared_ptr<const Texture>>> textures_;
 };
 
 }  // namespace
 
-Scene load_scene(const fs::path& path) { return SceneLoader(path).load(); }
+Scene load_scene(const fs::path& path, bool surface_graphs) { return SceneLoader(path, surface_graphs).load(); }
+
+void build_surface_graphs(Scene& scene, int threads) {
+  parallel_ranges(scene.objects.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t o = begin; o < end; ++o)
+      scene.objects[o].surface = surface_graph(scene.objects[o].mesh.positions, scene.objects[o].mesh.triangles);
+  });
+}
+
+void require_surface_graphs(const Scene& scene, const char* who) {
+  for (const Object& object : scene.objects)
+    if (object.surface.point_of.size() != object.mesh.vertex_count())
+      throw std::logic_error(std::string(who) + ": the scene was loaded without its surface graphs");
+}
 
 NoiseBudget read_noise_budget(const JsonObject& o) {
   NoiseBudget b;
@@ -569,10 +607,8 @@ size_t refine_scene(Scene& scene, double max_edge_length) {
     throw InputError("--refine " + format_value(max_edge_length) + ": splitting edges to that length would make about " +
                      format_value(double(std::llround(estimate))) + " triangles; the limit is 50000000 (choose a longer length)");
   size_t splits = 0;
-  for (auto& object : scene.objects) {
-    splits += refine_long_edges(object.mesh, max_edge_length, &object.importance);
-    object.surface = surface_graph(object.mesh.positions, object.mesh.triangles);
-  }
+  for (auto& object : scene.objects) splits += refine_long_edges(object.mesh, max_edge_length, &object.importance);
+  build_surface_graphs(scene);
   return splits;
 }
 

@@ -43,7 +43,7 @@ struct Object {
   TriangleMesh mesh;  // world space, corner normals filled
   Material material;
   std::vector<float> importance;  // per-vertex weight for 3D unsharp masking (default 1)
-  SurfaceGraph surface;           // welded points and their 1-ring, built once per mesh (load, refinement)
+  SurfaceGraph surface;           // welded points and their 1-ring (load_scene, refinement); may be left out
 };
 
 struct DirectionalLight {
@@ -139,7 +139,15 @@ struct Scene {
   BoundingBox bounds() const;
 };
 
-Scene load_scene(const std::filesystem::path& path);
+// With `surface_graphs`, each object's welded surface (Object::surface) is built as well: the
+// vertex signal and the methods that work on mesh surfaces need it; a plain render does not.
+Scene load_scene(const std::filesystem::path& path, bool surface_graphs = true);
+
+// Builds (or rebuilds, after the meshes changed) every object's surface graph, objects side by side.
+void build_surface_graphs(Scene& scene, int threads = 0);
+
+// Throws std::logic_error unless every object has its surface graph (`who` names the caller).
+void require_surface_graphs(const Scene& scene, const char* who);
 
 // A "noise" object: target, p99, min_spp, max_spp, time_limit (scene and experiment files).
 class JsonObject;

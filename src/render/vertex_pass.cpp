@@ -404,6 +404,7 @@ void object_signal(const VertexPassInput& in, unsigned o, uint64_t vertex_offset
 }  // namespace
 
 VertexSignal vertex_pass(const VertexPassInput& in, RayCounts* rays) {
+  require_surface_graphs(in.scene, "vertex pass");
   const auto start = std::chrono::steady_clock::now();
   VertexSignal signal;
   const size_t objects = in.scene.objects.size();

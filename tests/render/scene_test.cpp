@@ -42,6 +42,31 @@ TEST(Scene, LoadsMinimalSceneWithDefaults) {
   EXPECT_NEAR(scene.directional_lights[0].direction.y, std::sqrt(0.5), 1e-12);
 }
 
+// Every object's surface graph is built while the next objects are read; a plain render loads
+// without them, and what needs them says so instead of reading an empty graph.
+TEST(Scene, SurfaceGraphsAreBuiltOnRequest) {
+  testing::TempDir dir;
+  const std::string text = variant(
+      R"("objects": [)",
+      R"("objects": [{"name": "floor", "shape": {"type": "plane", "size": 4, "subdivisions": 30}},
+                     {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}},)");
+  const auto path = testing::write_file(dir / "s.json", text);
+  const Scene with = load_scene(path);
+  ASSERT_EQ(with.objects.size(), 3u);
+  for (const Object& object : with.objects) {
+    const SurfaceGraph expected = surface_graph(object.mesh.positions, object.mesh.triangles);
+    EXPECT_EQ(object.surface.point_of, expected.point_of) << object.name;
+    EXPECT_EQ(object.surface.adjacency.neighbours, expected.adjacency.neighbours) << object.name;
+    EXPECT_EQ(object.surface.components.label, expected.components.label) << object.name;
+  }
+  EXPECT_NO_THROW(require_surface_graphs(with, "test"));
+
+  const Scene without = load_scene(path, false);
+  EXPECT_EQ(without.objects[0].surface.point_count(), 0u);
+  EXPECT_THROW(require_surface_graphs(without, "test"), std::logic_error);
+  EXPECT_EQ(without.objects[2].mesh.positions, with.objects[2].mesh.positions);
+}
+
 TEST(Scene, ReadsTheNoiseBudgetOrAFixedCount) {
   testing::TempDir dir;
   auto budget = load_scene(testing::write_file(
