@@ -105,21 +105,23 @@ int largest_component_iterations(const SurfaceContrast& sc) { return sc.iteratio
 // and taking their mean square (each vertex's estimate is rough; over pixels it is accurate).
 std::vector<float> smoothed_noise(const Object& object, const SurfaceContrast& sc, const std::vector<float>& noise,
                                   SmoothingScheme scheme, int threads) {
-  constexpr int kProbes = 4;
+  constexpr int kProbes = 4;  // one per component of a dvec4: smoothed side by side
   const SurfaceGraph& surface = object.surface;
   const std::vector<double> sigma = surface.to_points(std::vector<double>(noise.begin(), noise.end()));
+  std::vector<glm::dvec4> z(sigma.size());
+  parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p)
+      for (int probe = 0; probe < kProbes; ++probe)
+        z[p][probe] = (mix64(hash_combine(uint64_t(probe), p)) & 1 ? 1.0 : -1.0) * sigma[p];
+  }, 4096);
+  smooth_over_rings(surface.adjacency, sc.components.label, sc.iterations, z, scheme, threads);
   std::vector<double> sum(sigma.size(), 0.0);
-  for (int probe = 0; probe < kProbes; ++probe) {
-    std::vector<double> z(sigma.size());
-    parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
-      for (size_t p = begin; p < end; ++p) z[p] = (mix64(hash_combine(uint64_t(probe), p)) & 1 ? 1.0 : -1.0) * sigma[p];
-    }, 4096);
-    smooth_over_rings(surface.adjacency, sc.components.label, sc.iterations, z, scheme, threads);
-    parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
-      for (size_t p = begin; p < end; ++p) sum[p] += z[p] * z[p] / kProbes;
-    }, 4096);
-  }
-  for (double& v : sum) v = std::sqrt(v);
+  parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) {
+      for (int probe = 0; probe < kProbes; ++probe) sum[p] += z[p][probe] * z[p][probe] / kProbes;
+      sum[p] = std::sqrt(sum[p]);
+    }
+  }, 4096);
   const std::vector<double> per_vertex = surface.to_vertices(sum);
   return std::vector<float>(per_vertex.begin(), per_vertex.end());
 }

@@ -23,18 +23,18 @@ double log_coefficient(int n, int k) {
 
 // One step of Clenshaw's recurrence, in place: b2[v] ← c(v)·values[v] + scale·(A·b1)[v] − b2[v],
 // with (A·b1)[v] the mean of b1 over v's neighbours (b1[v] itself for a vertex without any).
-template <typename Coefficient>
-void clenshaw_step(const VertexAdjacency& adjacency, const std::vector<double>& values, const std::vector<double>& b1,
-                   std::vector<double>& b2, double scale, const Coefficient& c, tbb::task_arena& arena) {
+template <typename T, typename Coefficient>
+void clenshaw_step(const VertexAdjacency& adjacency, const std::vector<T>& values, const std::vector<T>& b1,
+                   std::vector<T>& b2, double scale, const Coefficient& c, tbb::task_arena& arena) {
   const uint32_t* offsets = adjacency.offsets.data();
   const uint32_t* neighbours = adjacency.neighbours.data();
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, adjacency.vertex_count(), 4096), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t v = r.begin(); v != r.end(); ++v) {
         const uint32_t begin = offsets[v], end = offsets[v + 1];
-        double mean = b1[v];
+        T mean = b1[v];
         if (begin != end) {
-          double sum = 0.0;
+          T sum(0.0);
           for (uint32_t k = begin; k < end; ++k) sum += b1[neighbours[k]];
           mean = sum / double(end - begin);
         }
@@ -70,8 +70,12 @@ std::vector<double> power_chebyshev_coefficients(int n, double tail) {
   return c;
 }
 
-void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                      const std::vector<int>& iterations, std::vector<double>& values, int threads, double tail) {
+namespace {
+
+// chebyshev_smooth for one signal or four side by side (the same numbers in each).
+template <typename T>
+void clenshaw(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label, const std::vector<int>& iterations,
+              std::vector<T>& values, int threads, double tail) {
   const size_t count = adjacency.vertex_count();
   std::map<int, std::vector<double>> by_steps;  // one expansion per distinct step count
   size_t degree = 0;
@@ -83,7 +87,7 @@ void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
     return k < c.size() ? c[k] : 0.0;
   };
   // Clenshaw: b_k = c_k·v + 2A·b_{k+1} − b_{k+2}; the result is c_0·v + A·b_1 − b_2.
-  std::vector<double> b1(count, 0.0), b2(count, 0.0);
+  std::vector<T> b1(count, T(0.0)), b2(count, T(0.0));
   tbb::task_arena arena(worker_count(threads));
   for (size_t k = degree; k >= 1; --k) {
     clenshaw_step(adjacency, values, b1, b2, 2.0, [&](size_t v) { return c_of(v, k); }, arena);
@@ -91,6 +95,18 @@ void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
   }
   clenshaw_step(adjacency, values, b1, b2, 1.0, [&](size_t v) { return c_of(v, 0); }, arena);
   values.swap(b2);
+}
+
+}  // namespace
+
+void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                      const std::vector<int>& iterations, std::vector<double>& values, int threads, double tail) {
+  clenshaw(adjacency, label, iterations, values, threads, tail);
+}
+
+void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                      const std::vector<int>& iterations, std::vector<glm::dvec4>& values, int threads, double tail) {
+  clenshaw(adjacency, label, iterations, values, threads, tail);
 }
 
 }  // namespace countershade

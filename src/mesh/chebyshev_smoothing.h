@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "mesh/adjacency.h"
 
 namespace countershade {
@@ -25,6 +27,10 @@ std::vector<double> power_chebyshev_coefficients(int n, double tail = kChebyshev
 // recurrence. Deterministic: each vertex's sums run in a fixed order whatever the threads.
 void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                       const std::vector<int>& iterations, std::vector<double>& values, int threads = 0,
+                      double tail = kChebyshevTail);
+// Four signals at once: the same numbers as four calls, in one pass over the rings.
+void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                      const std::vector<int>& iterations, std::vector<glm::dvec4>& values, int threads = 0,
                       double tail = kChebyshevTail);
 
 }  // namespace countershade

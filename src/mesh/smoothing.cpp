@@ -29,18 +29,22 @@ int iterations_for_sigma(double sigma, double mean_edge_length) {
   return int(std::max(n, 1.0));
 }
 
-void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                      const std::vector<int>& iterations, std::vector<double>& values, int threads) {
+namespace {
+
+// laplacian_smooth for one signal or four side by side (the same numbers in each).
+template <typename T>
+void laplacian_steps(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                     const std::vector<int>& iterations, std::vector<T>& values, int threads) {
   const size_t n = adjacency.vertex_count();
   int most = 0;
   for (int it : iterations) most = std::max(most, it);
-  std::vector<double> next(values);
+  std::vector<T> next(values);
   const uint32_t* offsets = adjacency.offsets.data();
   const uint32_t* neighbours = adjacency.neighbours.data();
   tbb::task_arena arena(worker_count(threads));
   for (int step = 0; step < most; ++step) {
-    const double* src = values.data();
-    double* dst = next.data();
+    const T* src = values.data();
+    T* dst = next.data();
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t v = r.begin(); v != r.end(); ++v) {
@@ -49,7 +53,7 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
             dst[v] = src[v];
             continue;
           }
-          double sum = 0.0;
+          T sum(0.0);
           for (uint32_t k = begin; k < end; ++k) sum += src[neighbours[k]];
           dst[v] = sum / double(end - begin);
         }
@@ -57,6 +61,13 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
     });
     values.swap(next);
   }
+}
+
+}  // namespace
+
+void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                      const std::vector<int>& iterations, std::vector<double>& values, int threads) {
+  laplacian_steps(adjacency, label, iterations, values, threads);
 }
 
 namespace {
@@ -74,12 +85,25 @@ bool expansion_pays(const std::vector<int>& iterations) {
   return products < size_t(most);
 }
 
+template <typename T>
 void smooth_in_given_order(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                           const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
+                           const std::vector<int>& iterations, std::vector<T>& values, SmoothingScheme scheme,
                            int threads) {
   if (scheme == SmoothingScheme::chebyshev && expansion_pays(iterations))
     return chebyshev_smooth(adjacency, label, iterations, values, threads);
-  laplacian_smooth(adjacency, label, iterations, values, threads);
+  laplacian_steps(adjacency, label, iterations, values, threads);
+}
+
+template <typename T>
+void smooth_signals(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                    const std::vector<int>& iterations, std::vector<T>& values, SmoothingScheme scheme, int threads) {
+  const int most = iterations.empty() ? 0 : *std::max_element(iterations.begin(), iterations.end());
+  if (adjacency.vertex_count() <= kReorderAbove || most < kReorderSteps)
+    return smooth_in_given_order(adjacency, label, iterations, values, scheme, threads);
+  const std::vector<uint32_t> order = breadth_first_order(adjacency);
+  std::vector<T> local = gathered(values, order);
+  smooth_in_given_order(renumbered(adjacency, order), gathered(label, order), iterations, local, scheme, threads);
+  scatter(local, order, values);
 }
 
 }  // namespace
@@ -87,13 +111,13 @@ void smooth_in_given_order(const VertexAdjacency& adjacency, const std::vector<u
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                        const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
                        int threads) {
-  const int most = iterations.empty() ? 0 : *std::max_element(iterations.begin(), iterations.end());
-  if (adjacency.vertex_count() <= kReorderAbove || most < kReorderSteps)
-    return smooth_in_given_order(adjacency, label, iterations, values, scheme, threads);
-  const std::vector<uint32_t> order = breadth_first_order(adjacency);
-  std::vector<double> local = gathered(values, order);
-  smooth_in_given_order(renumbered(adjacency, order), gathered(label, order), iterations, local, scheme, threads);
-  scatter(local, order, values);
+  smooth_signals(adjacency, label, iterations, values, scheme, threads);
+}
+
+void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                       const std::vector<int>& iterations, std::vector<glm::dvec4>& values, SmoothingScheme scheme,
+                       int threads) {
+  smooth_signals(adjacency, label, iterations, values, scheme, threads);
 }
 
 std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values,

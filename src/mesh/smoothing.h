@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "mesh/adjacency.h"
 #include "mesh/triangle_mesh.h"
 
@@ -43,6 +45,11 @@ inline constexpr int kReorderSteps = 100;
 // vertices and from kReorderSteps steps (the most any component takes) on.
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
                        const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
+                       int threads = 0);
+// Four signals at once (each component of the vectors one): the same numbers as four calls, in
+// one pass over the rings per step.
+void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
+                       const std::vector<int>& iterations, std::vector<glm::dvec4>& values, SmoothingScheme scheme,
                        int threads = 0);
 
 // Population variance of `values` over {i} ∪ N(i), per vertex.

@@ -66,5 +66,30 @@ TEST(VertexOrder, SmoothingInBreadthFirstOrderGivesTheSameBitsAsTheGivenOrder) {
   }
 }
 
+// Four signals smoothed side by side (usm3d's noise probes) give each one's own numbers, in either
+// scheme, in breadth-first order as well as in the given one.
+TEST(VertexOrder, FourSignalsAtOnceGiveEachOnesOwnBits) {
+  const ShuffledGrid grid = shuffled_grid();
+  const size_t n = grid.adjacency.vertex_count();
+  std::mt19937 random(5);
+  std::vector<glm::dvec4> four(n);
+  for (glm::dvec4& v : four)
+    for (int c = 0; c < 4; ++c) v[c] = std::uniform_real_distribution<double>(-1, 1)(random);
+  for (SmoothingScheme scheme : {SmoothingScheme::iterate, SmoothingScheme::chebyshev})
+    for (int steps : {9, kReorderSteps}) {
+      std::vector<glm::dvec4> together = four;
+      smooth_over_rings(grid.adjacency, grid.label, {steps}, together, scheme, 2);
+      for (int c = 0; c < 4; ++c) {
+        std::vector<double> alone(n), from(n);
+        for (size_t v = 0; v < n; ++v) alone[v] = from[v] = four[v][c];
+        smooth_over_rings(grid.adjacency, grid.label, {steps}, alone, scheme, 2);
+        size_t same = 0;
+        for (size_t v = 0; v < n; ++v) same += together[v][c] == alone[v];
+        EXPECT_EQ(same, n) << "signal " << c << ", " << steps << " steps";
+        EXPECT_NE(alone, from);
+      }
+    }
+}
+
 }  // namespace
 }  // namespace countershade
