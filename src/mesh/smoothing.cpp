@@ -72,24 +72,17 @@ void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32
 
 namespace {
 
-// Whether the truncated expansion takes fewer products than the steps themselves: degree K costs
-// K + 1 products, so for small n (K = n below about 20 steps, where nothing is truncated) plain
-// steps compute the same operator more cheaply.
-bool expansion_pays(const std::vector<int>& iterations) {
-  size_t products = 0;
-  int most = 0;
-  for (int n : iterations) {
-    products = std::max(products, power_chebyshev_coefficients(n).size());
-    most = std::max(most, n);
-  }
-  return products < size_t(most);
-}
+// Whether the truncated expansion takes fewer products than the steps themselves, `most` being the
+// most steps any component takes (the degree grows with the steps): degree K costs K + 1 products,
+// so below about 22 steps, where nothing is truncated (K = n), the plain steps compute the same
+// operator more cheaply.
+bool expansion_pays(int most) { return power_chebyshev_coefficients(most).size() < size_t(most); }
 
 template <typename T>
 void smooth_in_given_order(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                           const std::vector<int>& iterations, std::vector<T>& values, SmoothingScheme scheme,
-                           int threads) {
-  if (scheme == SmoothingScheme::chebyshev && expansion_pays(iterations))
+                           const std::vector<int>& iterations, int most, std::vector<T>& values,
+                           SmoothingScheme scheme, int threads) {
+  if (scheme == SmoothingScheme::chebyshev && expansion_pays(most))
     return chebyshev_smooth(adjacency, label, iterations, values, threads);
   laplacian_steps(adjacency, label, iterations, values, threads);
 }
@@ -99,10 +92,10 @@ void smooth_signals(const VertexAdjacency& adjacency, const std::vector<uint32_t
                     const std::vector<int>& iterations, std::vector<T>& values, SmoothingScheme scheme, int threads) {
   const int most = iterations.empty() ? 0 : *std::max_element(iterations.begin(), iterations.end());
   if (adjacency.vertex_count() <= kReorderAbove || most < kReorderSteps)
-    return smooth_in_given_order(adjacency, label, iterations, values, scheme, threads);
+    return smooth_in_given_order(adjacency, label, iterations, most, values, scheme, threads);
   const std::vector<uint32_t> order = breadth_first_order(adjacency);
   std::vector<T> local = gathered(values, order);
-  smooth_in_given_order(renumbered(adjacency, order), gathered(label, order), iterations, local, scheme, threads);
+  smooth_in_given_order(renumbered(adjacency, order), gathered(label, order), iterations, most, local, scheme, threads);
   scatter(local, order, values);
 }
 

@@ -37,6 +37,8 @@ BoundingBox Scene::bounds() const {
 
 namespace {
 
+SurfaceGraph surface_of(const TriangleMesh& mesh) { return surface_graph(mesh.positions, mesh.triangles); }
+
 class SceneLoader {
  public:
   SceneLoader(const fs::path& path, bool surface_graphs)
@@ -82,14 +84,15 @@ class SceneLoader {
       for (size_t i = 0; i < list.size(); ++i) {
         scene.objects.push_back(object(list[i]));
         const TriangleMesh* mesh = &scene.objects.back().mesh;
-        if (surface_graphs_) builds.run([&graphs, i, mesh] { graphs[i] = surface_graph(mesh->positions, mesh->triangles); });
+        if (surface_graphs_) builds.run([&graphs, i, mesh] { graphs[i] = surface_of(*mesh); });
       }
     } catch (...) {
       builds.wait();
       throw;
     }
     builds.wait();
-    for (size_t i = 0; i < list.size() && surface_graphs_; ++i) scene.objects[i].surface = std::move(graphs[i]);
+    if (surface_graphs_)
+      for (size_t i = 0; i < list.size(); ++i) scene.objects[i].surface = std::move(graphs[i]);
   }
 
   static double positive(const JsonObject& o, const std::string& key, double fallback) {
@@ -556,8 +559,7 @@ Scene load_scene(const fs::path& path, bool surface_graphs) { return SceneLoader
 
 void build_surface_graphs(Scene& scene, int threads) {
   parallel_ranges(scene.objects.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t o = begin; o < end; ++o)
-      scene.objects[o].surface = surface_graph(scene.objects[o].mesh.positions, scene.objects[o].mesh.triangles);
+    for (size_t o = begin; o < end; ++o) scene.objects[o].surface = surface_of(scene.objects[o].mesh);
   });
 }
 
