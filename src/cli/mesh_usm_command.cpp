@@ -84,8 +84,8 @@ void run(const MeshUsmArgs& args) {
                              args.smoothing == "chebyshev" ? SmoothingScheme::chebyshev : SmoothingScheme::iterate};
   // The 1-ring of the triangulated mesh, as rendering sees it, with vertices welded at seams.
   const std::vector<glm::vec3> positions = mesh.positions();
-  const SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), positions,
-                                              lightness, {}, width);
+  const SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), lightness, {},
+                                              width);
   progress.update(kSmoothed);
   const size_t clipped = apply_contrast(colors, lab, sc, args.lambda);
   mesh.set_colors(colors);

@@ -65,9 +65,7 @@ MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, 
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& object = scene.objects[o];
     const SurfaceGraph& surface = object.surface;
-    std::vector<glm::vec3> points(surface.point_count());
-    for (size_t p = 0; p < points.size(); ++p) points[p] = object.mesh.positions[surface.first_vertex[p]];
-    const std::vector<double> edge = component_mean_edge_length(points, surface.adjacency, surface.components);
+    const std::vector<double>& edge = surface.mean_edge_length;
     std::vector<glm::dvec3> normals = point_normals(object);
     std::vector<int> done(edge.size(), 0);
     for (int k = 2; k <= scales; ++k) {

@@ -18,27 +18,22 @@ namespace countershade {
 namespace {
 
 // The smoothing iterations of every connected component.
-std::vector<int> component_iterations(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
-                                      const SmoothingWidth& width) {
+std::vector<int> component_iterations(const SurfaceGraph& surface, const SmoothingWidth& width) {
   if (width.iterations) return std::vector<int>(surface.components.count, *width.iterations);
-  std::vector<glm::vec3> points(surface.point_count());
-  for (size_t p = 0; p < points.size(); ++p) points[p] = positions[surface.first_vertex[p]];
   std::vector<int> iterations;
-  for (double h : component_mean_edge_length(points, surface.adjacency, surface.components))
-    iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
+  for (double h : surface.mean_edge_length) iterations.push_back(iterations_for_sigma(width.sigma.value_or(0.0), h));
   return iterations;
 }
 
 }  // namespace
 
-SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
-                                 std::vector<double> lightness, const std::vector<float>& importance,
-                                 const SmoothingWidth& width, int threads) {
+SurfaceContrast surface_contrast(const SurfaceGraph& surface, std::vector<double> lightness,
+                                 const std::vector<float>& importance, const SmoothingWidth& width, int threads) {
   const VertexAdjacency& adjacency = surface.adjacency;
   const size_t n = surface.point_count();
   SurfaceContrast out;
   out.components = surface.components;
-  out.iterations = component_iterations(surface, positions, width);
+  out.iterations = component_iterations(surface, width);
   const std::vector<double> point_lightness = surface.to_points(lightness);
   std::vector<double> smooth = point_lightness;
   smooth_over_rings(adjacency, out.components.label, out.iterations, smooth, width.scheme, threads);
@@ -68,7 +63,7 @@ SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::ve
   parallel_ranges(lightness.size(), threads, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) lightness[v] = display_lightness(vertex_radiance[v], exposure);
   }, 4096);
-  return surface_contrast(object.surface, object.mesh.positions, std::move(lightness), object.importance, width, threads);
+  return surface_contrast(object.surface, std::move(lightness), object.importance, width, threads);
 }
 
 namespace {
@@ -351,7 +346,7 @@ class Usm3dMethod final : public EnhancementMethod {
       for (float w : object.importance) weight = std::max(weight, double(std::abs(w)));
       // The largest component's smoothing: small loose parts would make the need of the whole
       // object needlessly strict.
-      const std::vector<int> iterations = component_iterations(object.surface, object.mesh.positions, width);
+      const std::vector<int> iterations = component_iterations(object.surface, width);
       const int n = iterations.empty() ? 1 : iterations[largest_component(object.surface.components)];
       const int widest = iterations.empty() ? 1 : *std::max_element(iterations.begin(), iterations.end());
       const double gain = max_abs_lambda * weight * std::sqrt(1.25);

@@ -35,8 +35,8 @@ struct SurfaceContrast {
 // Steps 3 and 5 of the method on any per-vertex lightness: smoothing over the welded surface per
 // connected component, and the gain factor w·√(1+Var) (importance may be empty: w = 1). Vertices
 // at one point of the surface (a seam) share its values.
-SurfaceContrast surface_contrast(const SurfaceGraph& surface, const std::vector<glm::vec3>& positions,
-                                 std::vector<double> lightness, const std::vector<float>& importance,
+SurfaceContrast surface_contrast(const SurfaceGraph& surface, std::vector<double> lightness,
+                                 const std::vector<float>& importance,
                                  const SmoothingWidth& width, int threads = 0);
 
 // The same for a rendered object, from the display lightness of its vertex radiance.

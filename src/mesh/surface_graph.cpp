@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/smoothing.h"
 #include "mesh/triangle_mesh.h"
 
 namespace countershade {
@@ -108,7 +109,14 @@ SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
   for (const auto& [a, b] : edges) point_edges.emplace_back(g.point_of[a], g.point_of[b]);
   g.adjacency = adjacency_from_edges(g.point_count(), point_edges);
   g.components = connected_components(g.adjacency);
+  measure_edges(g, positions);
   return g;
+}
+
+void measure_edges(SurfaceGraph& graph, const std::vector<glm::vec3>& positions) {
+  std::vector<glm::vec3> points(graph.point_count());
+  for (size_t p = 0; p < points.size(); ++p) points[p] = positions[graph.first_vertex[p]];
+  graph.mean_edge_length = component_mean_edge_length(points, graph.adjacency, graph.components);
 }
 
 SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
@@ -121,6 +129,11 @@ SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::v
 }
 
 std::vector<double> SurfaceGraph::to_points(const std::vector<double>& per_vertex) const {
+  if (point_count() == point_of.size()) {  // nothing welded: point p is vertex p
+    std::vector<double> out(per_vertex.size());
+    for (size_t v = 0; v < out.size(); ++v) out[v] = 0.0 + per_vertex[v];  // the sum's bits, -0 included
+    return out;
+  }
   std::vector<double> sum(point_count(), 0.0), count(point_count(), 0.0);
   for (size_t v = 0; v < per_vertex.size(); ++v) {
     sum[point_of[v]] += per_vertex[v];
@@ -131,6 +144,7 @@ std::vector<double> SurfaceGraph::to_points(const std::vector<double>& per_verte
 }
 
 std::vector<double> SurfaceGraph::to_vertices(const std::vector<double>& per_point) const {
+  if (point_count() == point_of.size()) return per_point;  // nothing welded
   std::vector<double> out(point_of.size());
   for (size_t v = 0; v < out.size(); ++v) out[v] = per_point[point_of[v]];
   return out;

@@ -19,6 +19,9 @@ struct SurfaceGraph {
   std::vector<uint32_t> first_vertex;  // #points: the lowest vertex at each point
   VertexAdjacency adjacency;           // the 1-ring of each point
   Components components;               // connected parts of the surface, per point
+  // Per component, the mean length of its edges at the positions the graph was built from (or
+  // last measured at: see measure_edges): what a width σ in world units becomes in steps.
+  std::vector<double> mean_edge_length;
 
   size_t point_count() const { return first_vertex.size(); }
   // Per-vertex values to per-point values (the mean of the vertices at a point), and back.
@@ -32,6 +35,10 @@ SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
                            const std::vector<std::pair<uint32_t, uint32_t>>& edges, double tolerance = -1);
 SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
                            double tolerance = -1);
+
+// Measures the graph's mean edge lengths again at new positions of its vertices (a moved or
+// scaled mesh keeps its graph, not its lengths).
+void measure_edges(SurfaceGraph& graph, const std::vector<glm::vec3>& positions);
 
 // The edges of polygons (vertex lists) after fan triangulation from their first vertex: the
 // polygon's sides and its diagonals (v0, v_i), as a triangulated mesh connects them.

@@ -129,7 +129,11 @@ Scene scene_at(const Scene& base, double time) {
   const Animation& a = *base.animation;
   move_camera(a.camera, time, scene.camera);
   for (const LightPath& l : a.lights) move_light(l, time, scene);
-  for (const ObjectPath& o : a.objects) transform_mesh(scene.objects[o.object].mesh, motion(o, time));
+  for (const ObjectPath& o : a.objects) {
+    Object& object = scene.objects[o.object];
+    transform_mesh(object.mesh, motion(o, time));
+    if (object.surface.point_count() != 0) measure_edges(object.surface, object.mesh.positions);
+  }
   return scene;
 }
 

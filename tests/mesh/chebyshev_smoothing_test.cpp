@@ -108,9 +108,9 @@ TEST(ChebyshevSmoothing, Usm3dSmoothsTheSameEitherWay) {
   std::vector<double> lightness(mesh.vertex_count());
   for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = 50 + 40 * std::sin(200.0 * mesh.positions[v].y);
   SmoothingWidth width{std::nullopt, 300, true};
-  const SurfaceContrast iterated = surface_contrast(surface, mesh.positions, lightness, {}, width);
+  const SurfaceContrast iterated = surface_contrast(surface, lightness, {}, width);
   width.scheme = SmoothingScheme::chebyshev;
-  const SurfaceContrast expanded = surface_contrast(surface, mesh.positions, lightness, {}, width);
+  const SurfaceContrast expanded = surface_contrast(surface, lightness, {}, width);
   double largest = 0, moved = 0;
   for (size_t v = 0; v < lightness.size(); ++v) {
     largest = std::max(largest, std::abs(expanded.smooth_lightness[v] - iterated.smooth_lightness[v]));

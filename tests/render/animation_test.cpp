@@ -82,6 +82,22 @@ TEST(SceneAnimation, ThePosedSceneMovesCameraLightsAndObjects) {
   EXPECT_EQ(end.objects[0].mesh.positions, base.objects[0].mesh.positions);  // the ground stays
 }
 
+// A scaled object keeps its surface graph, so the edge lengths that turn σ into steps are measured
+// again at its posed positions (a usm3d sequence smooths the grown box over fewer steps).
+TEST(SceneAnimation, AScaledObjectsEdgeLengthsAreMeasuredAgain) {
+  testing::TempDir dir;
+  const char* grow = R"({"duration": 1, "fps": 2,
+    "objects": [{"name": "box", "scale": {"times": [0, 1], "values": [[1, 1, 1], [2, 2, 2]]}}]})";
+  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", grow)));
+  const Scene end = scene_at(base, 1.0);
+  const std::vector<double>& before = base.objects[1].surface.mean_edge_length;
+  const std::vector<double>& after = end.objects[1].surface.mean_edge_length;
+  ASSERT_EQ(before.size(), 1u);
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_NEAR(after[0], 2 * before[0], 1e-6);
+  EXPECT_EQ(end.objects[0].surface.mean_edge_length, base.objects[0].surface.mean_edge_length);  // the ground stays
+}
+
 TEST(SceneAnimation, BadPathsNameTheKey) {
   testing::TempDir dir;
   auto error = [&](const std::string& animation) {
