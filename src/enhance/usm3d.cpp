@@ -105,9 +105,11 @@ std::vector<float> smoothed_noise(const Object& object, const SurfaceContrast& s
   const std::vector<double> sigma = surface.to_points(std::vector<double>(noise.begin(), noise.end()));
   std::vector<glm::dvec4> z(sigma.size());
   parallel_ranges(z.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p)
+    for (size_t p = begin; p < end; ++p) {
+      if (sigma[p] == 0) continue;  // a point without error (as unshaded ones are) adds 0 whatever its sign
       for (int probe = 0; probe < kProbes; ++probe)
         z[p][probe] = (mix64(hash_combine(uint64_t(probe), p)) & 1 ? 1.0 : -1.0) * sigma[p];
+    }
   }, 4096);
   smooth_over_rings(surface.adjacency, sc.components.label, sc.iterations, z, scheme, threads);
   std::vector<double> sum(sigma.size(), 0.0);
@@ -141,10 +143,14 @@ struct Usm3dSurface {
   // A per-vertex quantity of the side a point is seen from, interpolated at its barycentrics.
   template <class Get>
   double interpolate(const SurfacePoint& point, bool back, Get get) const {
-    const glm::uvec3& t = scene->objects[point.object].mesh.triangles[point.triangle];
-    const ObjectSurface& object = objects[point.object];
-    const double b0 = 1.0 - point.b1 - point.b2;
-    return b0 * get(object, back, t.x) + point.b1 * get(object, back, t.y) + point.b2 * get(object, back, t.z);
+    return interpolate(point.object, point.triangle, point.b1, point.b2, back, get);
+  }
+  template <class Get>
+  double interpolate(unsigned o, unsigned triangle, double b1, double b2, bool back, Get get) const {
+    const glm::uvec3& t = scene->objects[o].mesh.triangles[triangle];
+    const ObjectSurface& object = objects[o];
+    const double b0 = 1.0 - b1 - b2;
+    return b0 * get(object, back, t.x) + b1 * get(object, back, t.y) + b2 * get(object, back, t.z);
   }
 };
 
@@ -236,8 +242,17 @@ struct CoverageContrast {
   PixelDoubles contrast;
   std::vector<double> gain;
   std::vector<float> smooth_noise;  // per unit λ: |g|·coverage·(the smoothed signal's L* error)
-  std::vector<float> mask;          // M = L*(Y − D), so that C = L*(Y) − M; L*(Y) off the surface
 };
+
+// The mask M = L*(Y − D), so that C = L*(Y) − M; L*(Y) off the surface. Made only when a set
+// keeps masks.
+std::vector<float> contrast_mask(const RenderResult& r, const PixelDoubles& contrast, int threads) {
+  std::vector<float> mask(contrast.size());
+  parallel_ranges(mask.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t p = begin; p < end; ++p) mask[p] = float(cielab_lightness(r.luminance[p])) - float(contrast[p]);
+  }, 4096);
+  return mask;
+}
 
 CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface,
                                    const std::vector<const std::vector<float>*>& fields, int threads) {
@@ -248,22 +263,20 @@ CoverageContrast coverage_contrast(const View& view, const Usm3dSurface& surface
   out.contrast.assign(n, 0.0);
   out.gain.assign(n, 0.0);
   out.smooth_noise.assign(n, 0.0f);
-  out.mask.resize(n);
   const std::vector<float>& smooth_luminance = *fields[0];
   const std::vector<float>& gain = *fields[1];
   parallel_ranges(n, threads, [&](size_t begin, size_t end) {
     for (size_t p = begin; p < end; ++p) {
-      out.mask[p] = float(cielab_lightness(r.luminance[p]));
       if (!(r.coverage[p] > 0)) continue;
       out.contrast[p] = coverage_contrast(r.luminance[p], r.surface_luminance[p], smooth_luminance[p]);
-      out.mask[p] -= float(out.contrast[p]);
       out.gain[p] = double(gain[p]) / double(r.coverage[p]);
       if (g.object[p] < 0) continue;
-      const SurfacePoint centre = surface_point(*view.scene, unsigned(g.object[p]), unsigned(g.triangle[p]),
-                                                g.barycentrics[p].x, g.barycentrics[p].y);
-      const double error = surface.interpolate(centre, g.back[p] != 0, [](const ObjectSurface& o, bool back, uint32_t v) {
-        return double(o.noise_of(back)[v]);
-      });
+      // At the pixel centre's point: its barycentrics are all the interpolation reads.
+      const double error = surface.interpolate(unsigned(g.object[p]), unsigned(g.triangle[p]), double(g.barycentrics[p].x),
+                                               double(g.barycentrics[p].y), g.back[p] != 0,
+                                               [](const ObjectSurface& o, bool back, uint32_t v) {
+                                                 return double(o.noise_of(back)[v]);
+                                               });
       out.smooth_noise[p] = float(std::abs(out.gain[p]) * r.coverage[p] * error);
     }
   }, 4096);
@@ -380,7 +393,9 @@ class Usm3dMethod final : public EnhancementMethod {
     auto prepared = std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
                                                         std::vector<std::pair<std::string, Image>>{}, context.threads,
                                                         std::move(noise));
-    prepared->set_mask([pixels] { return pixels->mask; });
+    prepared->set_mask([pixels, view = context.view, threads = context.threads] {
+      return contrast_mask(view->render, pixels->contrast, threads);
+    });
     return prepared;
   }
 };
