@@ -242,9 +242,10 @@ std::vector<double> pooled_variance(const ObjectSide& side, const SurfaceGraph& 
     }
   }, 1024);
   const std::vector<double> points = surface.to_points(variance);
-  std::vector<double> pooled(points.size());
+  std::vector<double> pooled(points.size(), 0.0);
   parallel_ranges(points.size(), threads, [&](size_t begin, size_t end) {
     for (size_t p = begin; p < end; ++p) {
+      if (!side.needed(surface.first_vertex[p])) continue;  // a point's vertices are needed together
       double ring = 0;
       for (uint32_t q : surface.adjacency.of(p)) ring += points[q];
       const size_t n = surface.adjacency.of(p).size();
