@@ -1,6 +1,7 @@
 #include "render/camera_samples.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "core/parallel.h"
 #include "core/random.h"
@@ -59,16 +60,30 @@ std::shared_ptr<const CameraHits> trace_camera_samples(const Scene& scene, const
     for (size_t i = begin; i < end; ++i) {
       const size_t pixel = order[i];
       if (settings.sampling == SamplingMode::independent) latin_hypercube(settings.seed, pixel, int(spp), lhs);
-      for (uint32_t s = 0; s < spp; ++s) {
-        Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
-        const glm::dvec2 offset = sample_position(settings, sampler, lhs, s);
-        const Ray ray = rays.ray(int(pixel % size_t(width)) + offset.x, int(pixel / size_t(width)) + offset.y);
-        hits->samples_[pixel * spp + s] = PackedHit::of(tracer.intersect(ray.origin, ray.direction));
+      // A pixel's samples, a packet at a time: their rays nearly coincide, so they share the
+      // traversal (twice as fast as one by one on bunny-sky, docs/performance.md).
+      for (uint32_t first = 0; first < spp; first += RayTracer::kPacket) {
+        const int count = int(std::min<uint32_t>(RayTracer::kPacket, spp - first));
+        glm::dvec3 origins[RayTracer::kPacket], directions[RayTracer::kPacket];
+        std::optional<Hit> traced[RayTracer::kPacket];
+        for (int k = 0; k < count; ++k) {
+          Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, first + uint32_t(k));
+          const glm::dvec2 offset = sample_position(settings, sampler, lhs, first + uint32_t(k));
+          const Ray ray = rays.ray(int(pixel % size_t(width)) + offset.x, int(pixel / size_t(width)) + offset.y);
+          origins[k] = ray.origin;
+          directions[k] = ray.direction;
+        }
+        tracer.intersect_packet(count, origins, directions, traced);
+        for (int k = 0; k < count; ++k) {
+          const PackedHit packed = PackedHit::of(traced[k]);
+          hits->samples_[pixel * spp + first + uint32_t(k)] = packed;
+          // Every writer stores the same 1: relaxed stores keep the marks race-free.
+          if (packed.object >= 0)
+            std::atomic_ref<uint8_t>(hits->seen_[size_t(packed.object)][packed.triangle]).store(1, std::memory_order_relaxed);
+        }
       }
     }
   }, 64);
-  for (size_t i = 0; i < hits->count_; ++i)
-    if (hits->samples_[i].object >= 0) hits->seen_[size_t(hits->samples_[i].object)][hits->samples_[i].triangle] = 1;
   return hits;
 }
 

@@ -129,6 +129,43 @@ std::optional<Hit> RayTracer::intersect(const glm::dvec3& origin, const glm::dve
   return hit;
 }
 
+void RayTracer::intersect_packet(int count, const glm::dvec3* origins, const glm::dvec3* directions,
+                                 std::optional<Hit>* hits) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(32) RTCRayHit8 rh;
+  alignas(32) int valid[kPacket];
+  for (int i = 0; i < kPacket; ++i) {
+    const bool used = i < count;  // the unused lanes are switched off
+    valid[i] = used ? -1 : 0;
+    const glm::dvec3 o = used ? origins[i] : glm::dvec3(0.0), d = used ? directions[i] : glm::dvec3(0, 0, 1);
+    rh.ray.org_x[i] = float(o.x);
+    rh.ray.org_y[i] = float(o.y);
+    rh.ray.org_z[i] = float(o.z);
+    rh.ray.dir_x[i] = float(d.x);
+    rh.ray.dir_y[i] = float(d.y);
+    rh.ray.dir_z[i] = float(d.z);
+    rh.ray.tnear[i] = 0.0f;
+    rh.ray.tfar[i] = std::numeric_limits<float>::max();
+    rh.ray.mask[i] = 0xFFFFFFFF;
+    rh.ray.flags[i] = 0;
+    rh.ray.time[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, handles_->scene, &context, &rh);
+  for (int i = 0; i < count; ++i) {
+    if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+      hits[i] = std::nullopt;
+      continue;
+    }
+    Hit hit{rh.hit.geomID[i], rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i]};
+    refine(handles_->objects[hit.object], origins[i], directions[i], hit);  // as intersect does
+    hits[i] = hit;
+  }
+}
+
 bool RayTracer::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
                          double tfar) const {
   RTCIntersectContext context;

@@ -54,6 +54,12 @@ class RayTracer {
 
   std::optional<Hit> intersect(const glm::dvec3& origin, const glm::dvec3& direction,
                                double tnear = 0.0, double tfar = 1e30) const;
+  // Up to kPacket rays traced together (an Embree packet): hits[i] is what
+  // intersect(origins[i], directions[i]) gives, found faster when the rays run side by side (the
+  // samples of one pixel).
+  static constexpr int kPacket = 8;
+  void intersect_packet(int count, const glm::dvec3* origins, const glm::dvec3* directions,
+                        std::optional<Hit>* hits) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
                 double tfar) const;
 

@@ -109,15 +109,15 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   const TraceLog* replay = replayable(options.replay_trace.get(), scene);
   if (auto replayed = from_records_alone(scene, shader, replay, options)) return std::move(*replayed);
   result.gbuffer = replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
+  // With a fixed count the camera samples are known before the pixels: traced ahead in packets
+  // (a pixel's samples side by side), they cost less than tracing them one by one in the pixel
+  // pass, which reads them back, and their hits tell the vertex pass exactly which triangles the
+  // pixels read (bunny-sky, docs/performance.md).
   std::shared_ptr<const CameraHits> camera_hits;
+  if (!replay && options.trace_ahead) camera_hits = trace_camera_samples(scene, tracer, options.threads);
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;
     needs.resize(scene.objects.size(), VertexNeed{scene.settings.noise.target, 1});
-    // With a fixed count the camera samples are known before the pixels: their hits say exactly
-    // which triangles the pixels read (the pixel pass reuses them, so no ray is traced twice). It
-    // pays with ring points, k shadings a triangle; drawing the samples twice costs about what
-    // it saves on vertices alone (bunny-sky, docs/performance.md).
-    if (!replay && options.ring_samples > 0) camera_hits = trace_camera_samples(scene, tracer, options.threads);
     VertexPassInput in{scene, tracer, shader, result.gbuffer, options.ring_samples,
                        seen_from_behind(result.gbuffer, scene.objects.size()), std::move(needs), options.threads,
                        camera_hits.get()};

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 
+#include "render/camera.h"
 #include "render/renderer.h"
 #include "test_util.h"
 
@@ -23,23 +25,68 @@ Scene two_objects(const testing::TempDir& dir, const std::string& render) {
   })"));
 }
 
-// A render that traces its camera samples ahead (one with a ring-sampled vertex signal at a fixed
-// count) gives the pixels of one that traces them in the pixel pass: the same positions, for Sobol
-// sampling, the independent sampler's Latin hypercubes and the single centre sample.
+// A render that traces its camera samples ahead (every render at a fixed count: plain, and with a
+// ring-sampled vertex signal, whose vertex pass then shades fewer vertices) gives the pixels of one
+// that traces them in the pixel pass: the same positions, for Sobol sampling, the independent
+// sampler's Latin hypercubes and the single centre sample.
 TEST(CameraSamples, TheHitsTracedAheadAreThePixelPassOwn) {
   testing::TempDir dir;
-  for (const char* settings : {R"({"spp": 8})", R"({"spp": 5, "sampler": "independent"})", R"({"spp": 1})"}) {
+  for (const char* settings : {R"({"spp": 8})", R"({"spp": 5, "sampler": "independent"})", R"({"spp": 1})",
+                               R"({"spp": 11})"}) {
     const Scene scene = two_objects(dir, settings);
     const RayTracer tracer(scene);
     ASSERT_NE(trace_camera_samples(scene, tracer, 2), nullptr) << settings;
-    RenderOptions with;
-    with.vertex_radiance = true;  // with ring points, traces the samples ahead
-    with.ring_samples = 3;
-    with.vertex_needs.assign(scene.objects.size(), VertexNeed{0.3, 2, 3});
-    const RenderResult ahead = render(scene, tracer, with), plain = render(scene, tracer, RenderOptions{});
-    EXPECT_EQ(ahead.radiance.pixels, plain.radiance.pixels) << settings;
-    EXPECT_EQ(ahead.rays.primary, plain.rays.primary) << settings << ": every camera ray counted once";
+    RenderOptions rings;
+    rings.vertex_radiance = true;
+    rings.ring_samples = 3;
+    rings.vertex_needs.assign(scene.objects.size(), VertexNeed{0.3, 2, 3});
+    for (const RenderOptions& options : {RenderOptions{}, rings}) {
+      RenderOptions in_pixel_pass = options;
+      in_pixel_pass.trace_ahead = false;
+      const RenderResult ahead = render(scene, tracer, options), traced = render(scene, tracer, in_pixel_pass);
+      EXPECT_EQ(ahead.radiance.pixels, traced.radiance.pixels) << settings;
+      EXPECT_EQ(ahead.rays.primary, traced.rays.primary) << settings << ": every camera ray counted once";
+    }
   }
+}
+
+// A packet of rays finds each ray's own hit: the triangle and the barycentrics of the ray traced
+// alone, misses included, in full packets and in the last, partial one.
+TEST(CameraSamples, APacketHitsWhatItsRaysHitAlone) {
+  testing::TempDir dir;
+  const Scene scene = two_objects(dir, R"({"spp": 8})");
+  const RayTracer tracer(scene);
+  const CameraRays camera(scene.camera);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> x(-5.0, 45.0), y(-5.0, 35.0);  // some rays leave the frame
+  size_t hits = 0, misses = 0;
+  for (int packet = 0; packet < 200; ++packet) {
+    const int count = 1 + packet % RayTracer::kPacket;
+    glm::dvec3 origins[RayTracer::kPacket], directions[RayTracer::kPacket];
+    std::optional<Hit> together[RayTracer::kPacket];
+    for (int k = 0; k < count; ++k) {
+      const Ray ray = camera.ray(x(random), y(random));
+      origins[k] = ray.origin;
+      directions[k] = k % 5 == 4 ? -ray.direction : ray.direction;  // backwards: into the sky
+    }
+    tracer.intersect_packet(count, origins, directions, together);
+    for (int k = 0; k < count; ++k) {
+      const std::optional<Hit> alone = tracer.intersect(origins[k], directions[k]);
+      ASSERT_EQ(together[k].has_value(), alone.has_value()) << packet << " " << k;
+      if (!alone) {
+        ++misses;
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(together[k]->object, alone->object);
+      EXPECT_EQ(together[k]->triangle, alone->triangle);
+      EXPECT_EQ(together[k]->b1, alone->b1);
+      EXPECT_EQ(together[k]->b2, alone->b2);
+      EXPECT_EQ(together[k]->t, alone->t);
+    }
+  }
+  EXPECT_GT(hits, 300u);
+  EXPECT_GT(misses, 50u);
 }
 
 // With one sample per pixel, at its centre, the triangles hit are those the G-buffer's centre rays
