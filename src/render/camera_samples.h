@@ -2,10 +2,11 @@
 // Where a render's camera samples fall, and, for a render with a fixed count, every camera
 // sample's hit traced ahead of the pixel pass.
 //
-// The hits tell the vertex pass exactly which triangles some pixel reads, so that it shades no
-// vertex that only the view's frustum, not a camera ray, reaches (the back of a mesh, the ground
-// hidden behind it). The pixel pass then reads its camera rays' hits from them instead of tracing
-// them again: the same rays, traced once, give the same hits.
+// Traced a pixel's samples at a time, as ray packets, they cost less than the pixel pass tracing
+// them one by one; the pixel pass then reads its camera rays' hits from them (the same rays give
+// the same hits). They also tell the vertex pass exactly which triangles some pixel reads, so that
+// it shades no vertex that only the view's frustum, not a camera ray, reaches (the back of a mesh,
+// the ground hidden behind it).
 
 #include <cstdint>
 #include <memory>
