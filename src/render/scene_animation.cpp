@@ -132,7 +132,7 @@ Scene scene_at(const Scene& base, double time) {
   for (const ObjectPath& o : a.objects) {
     Object& object = scene.objects[o.object];
     transform_mesh(object.mesh, motion(o, time));
-    if (object.surface.point_count() != 0) measure_edges(object.surface, object.mesh.positions);
+    measure_edges(object.surface, object.mesh.positions);  // a scene without graphs has none to measure
   }
   return scene;
 }
