@@ -157,31 +157,63 @@ void check_guns(const GunReadings& guns, const std::string& file) {
 
 }  // namespace
 
+namespace {
+
+// The columns of a readings file; a level column may be missing (−1).
+struct ReadingColumns {
+  int gun = -1, lum = -1, code = -1, gl = -1;
+};
+
+// A level column's value on one row, checked against its range: code_value an integer from 0 to
+// `top`, gl a number from 0 to 1. Returned in [0, 1].
+double level_at(const std::vector<std::string>& row, int column, bool is_code, double top, int bits,
+                const std::string& where) {
+  const std::string name = is_code ? "code_value" : "gl";
+  const std::string& text = row[size_t(column)];
+  const double level = number_at(text, where, name);
+  if (level < 0 || level > top || (is_code && level != std::floor(level)))
+    throw_input_error(where, name + ": " + text + " is not a level from 0 to " +
+                                 (is_code ? std::to_string(int(top)) + " (--bits " + std::to_string(bits) + ")" : "1"));
+  return level / top;
+}
+
+// A row's level in [0, 1]: from code_value or gl, or from both when a photometer's export carries
+// both, which must then agree (gl = code_value / (2^bits − 1) within 1e-6).
+double row_level(const std::vector<std::string>& row, const ReadingColumns& c, int bits, const std::string& where) {
+  const double top = double((1u << bits) - 1u);
+  if (c.gl < 0) return level_at(row, c.code, true, top, bits, where);
+  const double gl = level_at(row, c.gl, false, 1.0, bits, where);
+  if (c.code < 0) return gl;
+  const double code = level_at(row, c.code, true, top, bits, where);
+  if (std::abs(gl - code) > 1e-6)
+    throw_input_error(where, "gl " + row[size_t(c.gl)] + " does not match code_value " + row[size_t(c.code)] + " (" +
+                                 row[size_t(c.code)] + "/" + std::to_string(int(top)) + " = " + std::to_string(code) +
+                                 " at --bits " + std::to_string(bits) + ")");
+  return code;
+}
+
+}  // namespace
+
 GunReadings read_photometer_readings(const std::filesystem::path& csv, int bits) {
   const std::string file = csv.string();
   const CsvTable table = parse_csv(read_file_bytes(csv), file);
   if (table.rows.empty()) throw_input_error(file, "empty file");
   const auto& header = table.rows[0];
-  const int gun = column_of(header, "gun"), lum = column_of(header, "lum_cd_m2");
-  const int code = column_of(header, "code_value"), gl = column_of(header, "gl");
-  if (gun < 0 || lum < 0 || (code < 0) == (gl < 0))
-    throw_input_error(file, "expected the columns gun, lum_cd_m2 and one of code_value or gl");
-  const double top = code >= 0 ? double((1u << bits) - 1u) : 1.0;
+  const ReadingColumns c{column_of(header, "gun"), column_of(header, "lum_cd_m2"), column_of(header, "code_value"),
+                         column_of(header, "gl")};
+  if (c.gun < 0 || c.lum < 0 || (c.code < 0 && c.gl < 0))
+    throw_input_error(file, "expected the columns gun, lum_cd_m2 and code_value or gl (or both)");
   GunReadings out;
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const std::string where = file + ": line " + std::to_string(table.lines[r]);
     if (row.size() != header.size()) throw_input_error(where, "expected " + std::to_string(header.size()) + " fields");
-    const std::string& g = row[size_t(gun)];
+    const std::string& g = row[size_t(c.gun)];
     if (g != "R" && g != "G" && g != "B" && g != "W") throw_input_error(where, "gun: expected R, G, B or W, got '" + g + "'");
-    const std::string level_name = code >= 0 ? "code_value" : "gl";
-    const double level = number_at(row[size_t(code >= 0 ? code : gl)], where, level_name);
-    if (level < 0 || level > top || (code >= 0 && level != std::floor(level)))
-      throw_input_error(where, level_name + ": " + row[size_t(code >= 0 ? code : gl)] + " is not a level from 0 to " +
-                                   (code >= 0 ? std::to_string(int(top)) + " (--bits " + std::to_string(bits) + ")" : "1"));
-    const double luminance = number_at(row[size_t(lum)], where, "lum_cd_m2");
+    const double level = row_level(row, c, bits, where);
+    const double luminance = number_at(row[size_t(c.lum)], where, "lum_cd_m2");
     if (luminance < 0) throw_input_error(where, "lum_cd_m2: a luminance cannot be negative");
-    out[g].push_back({level / top, luminance});
+    out[g].push_back({level, luminance});
   }
   for (auto& [g, readings] : out)
     std::sort(readings.begin(), readings.end(), [](const Reading& a, const Reading& b) { return a.level < b.level; });

@@ -132,7 +132,40 @@ TEST(DisplayCalibration, BadReadingsAreRefusedInOneLine) {
   refused(header + "W,0,1\nW,85,10\nW,170,20\nW,256,50\n", "line 5: code_value: 256 is not a level from 0 to 255");
   refused(header + "W,0,1\nW,85,10\nW,170,20\nW,1023,50\n", "code_value: 1023 is not a level from 0 to 511", " --bits 9");
   refused(header + "X,0,1\n", "gun: expected R, G, B or W, got 'X'");
-  refused("gun,level,lum\nW,0,1\n", "expected the columns gun, lum_cd_m2 and one of code_value or gl");
+  refused("gun,level,lum\nW,0,1\n", "expected the columns gun, lum_cd_m2 and code_value or gl (or both)");
+  const std::string both = "gun,code_value,gl,lum_cd_m2\n";
+  refused(both + "W,0,0,1\nW,85,0.333333,10\nW,170,0.5,20\nW,255,1,50\n",
+          "line 4: gl 0.5 does not match code_value 170 (170/255 = 0.666667 at --bits 8)");
+  refused(both + "W,0,0,1\nW,85,0.333333,10\nW,170,0.666667,20\nW,255,1.5,50\n", "line 5: gl: 1.5 is not a level from 0 to 1");
+}
+
+// Photometer exports often carry both code_value and gl: they are read when they agree, and give
+// the very readings code_value alone gives.
+TEST(DisplayCalibration, ReadingsWithBothCodeValueAndGlAgreeingAreRead) {
+  testing::TempDir dir;
+  const GunReadings reference = read_photometer_readings(testing::reference_path("display/calibration_rgb.csv"), 8);
+  std::string code_only = "gun,code_value,lum_cd_m2\n", both = "gun,code_value,gl,lum_cd_m2\n";
+  for (const auto& [gun, readings] : reference)
+    for (const Reading& r : readings) {
+      const int code = int(std::lround(r.level * 255));
+      char luminance[32], gl[32];
+      std::snprintf(luminance, sizeof luminance, "%.17g", r.luminance);
+      std::snprintf(gl, sizeof gl, "%.7f", code / 255.0);  // rounded as exports print it: within 1e-6
+      code_only += gun + "," + std::to_string(code) + "," + luminance + "\n";
+      both += gun + "," + std::to_string(code) + "," + gl + "," + luminance + "\n";
+    }
+  const GunReadings expected = read_photometer_readings(testing::write_file(dir / "code.csv", code_only), 8);
+  const GunReadings got = read_photometer_readings(testing::write_file(dir / "both.csv", both), 8);
+  ASSERT_EQ(got.size(), 4u);
+  ASSERT_EQ(got.size(), expected.size());
+  for (const auto& [gun, readings] : expected) {
+    ASSERT_EQ(got.at(gun).size(), readings.size()) << gun;
+    ASSERT_GE(readings.size(), 10u) << gun;
+    for (size_t i = 0; i < readings.size(); ++i) {
+      EXPECT_EQ(got.at(gun)[i].level, readings[i].level) << gun << " " << i;
+      EXPECT_EQ(got.at(gun)[i].luminance, readings[i].luminance) << gun << " " << i;
+    }
+  }
 }
 
 }  // namespace
