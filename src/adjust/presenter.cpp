@@ -203,7 +203,11 @@ void Presenter::start_imgui() {
   io.LogFilename = nullptr;
   ImFontConfig font_config;
   font_config.OversampleH = 2;
-  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options_.font_px), &font_config)) {
+  // Latin-1, Greek, general punctuation, arrows and mathematical operators: the study's texts
+  // may speak of λ, σ, ±, ≤, ×, ° and – (ImGui's default atlas has Latin-1 alone).
+  static const ImWchar kGlyphRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x205E,
+                                         0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options_.font_px), &font_config, kGlyphRanges)) {
     ImFontConfig fallback;
     fallback.SizePixels = float(options_.font_px);
     io.Fonts->AddFontDefault(&fallback);

@@ -52,7 +52,7 @@ void add_sheet_command(CLI::App& app) {
       ->check(CLI::Range(16, 4096))
       ->capture_default_str();
   cmd->callback([args] { run(*args); });
-  cmd->footer("\nExample:\n  countershade sheet plain.png=plain usm3d.png=\"usm3d, lambda 1\" -o compare.png --columns 2");
+  cmd->footer("\nExample:\n  countershade sheet plain.png=plain \"usm3d.png=usm3d, σ = 0.12, λ = 1\" -o compare.png --columns 2");
 }
 
 }  // namespace countershade::cli

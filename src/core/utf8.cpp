@@ -38,4 +38,27 @@ bool is_utf8(std::string_view text) {
   return true;
 }
 
+std::u32string decode_utf8(std::string_view text) {
+  std::u32string out;
+  for (size_t i = 0; i < text.size();) {
+    const uint8_t lead = uint8_t(text[i]);
+    if (lead < 0x80) {
+      out.push_back(lead);
+      ++i;
+      continue;
+    }
+    const size_t length = utf8_sequence(text, i);
+    if (length == 0) {
+      out.push_back(0xFFFD);
+      ++i;
+      continue;
+    }
+    char32_t c = lead & (0xFF >> (length + 1));
+    for (size_t k = 1; k < length; ++k) c = (c << 6) | (uint8_t(text[i + k]) & 0x3F);
+    out.push_back(c);
+    i += length;
+  }
+  return out;
+}
+
 }  // namespace countershade

@@ -2,6 +2,7 @@
 // Well-formed UTF-8 (RFC 3629): what the project's text outputs (JSON, HTML, messages) can carry.
 
 #include <cstddef>
+#include <string>
 #include <string_view>
 
 namespace countershade {
@@ -12,5 +13,8 @@ size_t utf8_sequence(std::string_view text, size_t at);
 
 // Whether every byte of `text` is ASCII or part of a well-formed sequence.
 bool is_utf8(std::string_view text);
+
+// The code points of `text`, U+FFFD for each byte that starts no well-formed sequence.
+std::u32string decode_utf8(std::string_view text);
 
 }  // namespace countershade

@@ -1,14 +1,12 @@
 #include "stimuli/contact_sheet.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
 
 #include "core/error.h"
 #include "core/number_format.h"
+#include "core/text.h"
 #include "stimuli/set_layout.h"
 
 namespace countershade {
@@ -29,6 +27,22 @@ Image thumbnail(const Image& in, int width) {
   return out;
 }
 
+// Copies `thumb` into `sheet` with its top-left at (x0, y0), within a tw × th cell.
+void place(Image& sheet, const Image& thumb, int x0, int y0, int tw, int th) {
+  for (int y = 0; y < std::min(th, thumb.height); ++y)
+    for (int x = 0; x < std::min(tw, thumb.width); ++x)
+      for (int c = 0; c < 3; ++c) sheet.at(x0 + x, y0 + y, c) = thumb.at(x, y, c);
+}
+
+// The widest caption or column label, in pixels.
+int widest_text(const std::vector<std::vector<ContactCell>>& cells, const std::vector<std::string>& column_labels) {
+  int widest = 0;
+  for (const auto& row : cells)
+    for (const ContactCell& cell : row) widest = std::max(widest, text_width(cell.caption, 12));
+  for (const auto& label : column_labels) widest = std::max(widest, text_width(label, 14));
+  return widest;
+}
+
 }  // namespace
 
 void write_contact_sheet(const std::filesystem::path& output, const std::string& title,
@@ -36,33 +50,27 @@ void write_contact_sheet(const std::filesystem::path& output, const std::string&
                          const std::vector<std::vector<ContactCell>>& cells, int thumbnail_width) {
   if (cells.empty() || cells[0].empty()) return;
   Image first = thumbnail(read_image(cells[0][0].file), thumbnail_width);
-  size_t longest_row = 0;  // row labels are about 8 px a character at 14 px
-  for (const auto& label : row_labels) longest_row = std::max(longest_row, label.size());
+  int longest_row = 0;
+  for (const auto& label : row_labels) longest_row = std::max(longest_row, text_width(label, 14));
   const int tw = first.width, th = first.height, gap = 8 + 16, top = 56;  // 16: the captions
-  const int left = longest_row == 0 ? 10 : std::max(110, 16 + 8 * int(longest_row));  // no row labels: no column for them
+  const int left = longest_row == 0 ? 10 : std::max(110, 24 + longest_row);  // no row labels: no column for them
   const int cols = int(column_labels.size()), rows = int(row_labels.size());
-  const int width = std::max(left + cols * (tw + gap), 20 + 10 * int(title.size())), height = top + rows * (th + gap);
-  OIIO::ImageBuf sheet(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT));
-  const float grey[3] = {0.5f, 0.5f, 0.5f}, ink[3] = {1.0f, 1.0f, 1.0f};
-  OIIO::ImageBufAlgo::fill(sheet, grey);
-  OIIO::ImageBufAlgo::render_text(sheet, 10, 24, title, 18, "DejaVuSans", ink);
-  for (int c = 0; c < cols; ++c)
-    OIIO::ImageBufAlgo::render_text(sheet, left + c * (tw + gap), top - 10, column_labels[size_t(c)], 14, "DejaVuSans", ink);
+  const int pitch = gap + std::max(tw, widest_text(cells, column_labels));  // a caption never runs into the next
+  const int width = std::max(left + cols * pitch, 20 + text_width(title, 18)), height = top + rows * (th + gap);
+  Image sheet(width, height, 3, 0.5f);
+  const float ink[3] = {1.0f, 1.0f, 1.0f};
+  draw_text(sheet, 10, 24, title, 18, ink);
+  for (int c = 0; c < cols; ++c) draw_text(sheet, left + c * pitch, top - 10, column_labels[size_t(c)], 14, ink);
   for (int r = 0; r < rows; ++r) {
-    OIIO::ImageBufAlgo::render_text(sheet, 8, top + r * (th + gap) + th / 2, row_labels[size_t(r)], 14, "DejaVuSans", ink);
+    draw_text(sheet, 8, top + r * (th + gap) + th / 2, row_labels[size_t(r)], 14, ink);
     for (int c = 0; c < cols && size_t(c) < cells[size_t(r)].size(); ++c) {  // a last row may be short
       const ContactCell& cell = cells[size_t(r)][size_t(c)];
-      Image t = r == 0 && c == 0 ? first : thumbnail(read_image(cell.file), thumbnail_width);
-      int x0 = left + c * (tw + gap), y0 = top + r * (th + gap);
-      for (int y = 0; y < std::min(th, t.height); ++y)
-        for (int x = 0; x < std::min(tw, t.width); ++x) sheet.setpixel(x0 + x, y0 + y, &t.pixels[t.index(x, y)], 3);
-      if (!cell.caption.empty())
-        OIIO::ImageBufAlgo::render_text(sheet, x0, y0 + th + 14, cell.caption, 12, "DejaVuSans", ink);
+      const int x0 = left + c * pitch, y0 = top + r * (th + gap);
+      place(sheet, r == 0 && c == 0 ? first : thumbnail(read_image(cell.file), thumbnail_width), x0, y0, tw, th);
+      if (!cell.caption.empty()) draw_text(sheet, x0, y0 + th + 14, cell.caption, 12, ink);
     }
   }
-  Image out(width, height, 3);
-  sheet.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, out.pixels.data());
-  write_image(output, out);
+  write_image(output, sheet);
 }
 
 namespace {
