@@ -161,7 +161,7 @@ std::string thumbnail_strip(const AuditCondition& c, const std::filesystem::path
   std::vector<std::string> columns;
   std::vector<ContactCell> row;
   for (const auto* s : picks) {
-    columns.push_back(s->reference ? "reference" : "lambda = " + format_value(s->lambda));
+    columns.push_back(s->reference ? "reference" : "λ = " + format_value(s->lambda));
     row.push_back({resolve_in_set(set_dir, s->file), ""});
   }
   write_contact_sheet(dir / name, c.scene + " - " + c.name, {""}, columns, {row}, 160);

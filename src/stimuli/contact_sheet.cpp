@@ -120,10 +120,10 @@ void write_set_contact_sheets(const Experiment& e, const std::filesystem::path& 
       if (picks.size() == 1 && sigmas == 1 && frames.size() == 1) continue;  // one image: nothing to compare
       std::vector<std::string> rows, cols;
       std::vector<std::vector<ContactCell>> cells;
-      for (int p : picks) cols.push_back("lambda = " + format_value(e.lambda.value(p)));  // ASCII: OIIO text
+      for (int p : picks) cols.push_back("λ = " + format_value(e.lambda.value(p)));
       for (size_t g = 0; g < sigmas; ++g)
         for (int f : frames) {
-          const std::string sigma = "sigma = " + format_value(e.methods[m].sigmas[g]);
+          const std::string sigma = "σ = " + format_value(e.methods[m].sigmas[g]);
           const std::string frame = "frame " + std::to_string(f);
           rows.push_back(f < 0 ? sigma : sigmas == 1 ? frame : sigma + ", " + frame);
           cells.emplace_back();
