@@ -218,11 +218,15 @@ std::shared_ptr<const Usm3dSurface> smooth_surfaces(const Scene& scene, const Ve
   return out;
 }
 
-// The per-pixel contrast, coverage-correct: C = L*(Y) − L*(Y − D), where Y is the mean display
-// luminance of all the pixel's samples and D the mean over its surface samples of their
-// luminance less the smoothed signal's (background samples add 0 to D). So a surface of uniform
-// radiance has D = 0 and C = 0 at every pixel, its silhouette included, and two objects never
-// exchange contrast at a shared edge.
+// The per-pixel contrast, coverage-correct: C = L*(Y) − L*(Y − D). Y is the pixel's display
+// luminance taken per surface: over each surface it sees (and the background), the share of its
+// samples there times the display luminance of their mean radiance. D is the same sum over the
+// surfaces of that luminance less the mean smoothed signal of the surface's samples. So Y − D is
+// the pixel with every surface replaced by its smooth signal: a surface of uniform radiance has
+// D = 0 and C = 0 at every pixel, its silhouette included, and two objects never exchange contrast
+// at a shared edge. The clamp at white applies to each surface's mean radiance, as it does to the
+// reference pixel and to each vertex's signal, so C does not depend on how unevenly the samples
+// spread the light (render/surface_sums.h).
 double coverage_contrast(double luminance, double surface_luminance, double smooth_luminance) {
   const double d = surface_luminance - smooth_luminance;
   return cielab_lightness(luminance) - cielab_lightness(std::max(luminance - d, 0.0));

@@ -17,24 +17,25 @@
 #include "render/camera_samples.h"
 #include "render/ray_differentials.h"
 #include "render/record_replay.h"
+#include "render/surface_sums.h"
 
 namespace countershade {
 namespace {
 
-// Running sums per pixel and replicate: radiance, display luminances, coverage and fields.
+// Running sums per pixel and replicate: radiance, coverage, fields, and the radiance of each
+// surface apart (render/surface_sums.h).
 struct Sums {
-  Sums(size_t n, size_t fields) : count(n, 0) {
+  Sums(size_t n, size_t fields) : count(n, 0), surfaces(n) {
     for (int r = 0; r < 2; ++r) {
       for (auto& c : rgb[r]) c.assign(n, 0.0);
-      y_all[r].assign(n, 0.0);
-      y_surface[r].assign(n, 0.0);
       hits[r].assign(n, 0.0);
       field[r].assign(fields, std::vector<double>(n, 0.0));
     }
   }
-  std::vector<double> rgb[2][3], y_all[2], y_surface[2], hits[2];
+  std::vector<double> rgb[2][3], hits[2];
   std::vector<std::vector<double>> field[2];  // [replicate][field][pixel]
   std::vector<uint32_t> count;
+  SurfaceSums surfaces;
   double samples(int r, size_t p) const { return double(r == 0 ? (count[p] + 1) / 2 : count[p] / 2); }
 };
 
@@ -43,7 +44,7 @@ class PixelSampler {
   PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record, const GBuffer& gbuffer,
                SampleObserver* observer = nullptr)
       : in_(in), sums_(sums), record_(record), gbuffer_(gbuffer), observer_(observer), rays_(in.scene.camera),
-        width_(in.scene.camera.width), exposure_(in.scene.display.exposure()),
+        width_(in.scene.camera.width),
         fixed_spp_(in.scene.settings.spp.value_or(0)) {}
 
   // Takes samples [count, target) of a pixel.
@@ -117,12 +118,9 @@ class PixelSampler {
       for (size_t f = 0; f < fields.size(); ++f) fields[f][pixel] += in_.request.fields[f]->value(*hit);
     }
     for (int c = 0; c < 3; ++c) sums_.rgb[r][c][pixel] += radiance[c];
-    const double y_display = display_luminance(radiance, exposure_);
-    sums_.y_all[r][pixel] += y_display;
-    if (hit) {
-      sums_.y_surface[r][pixel] += y_display;
-      sums_.hits[r][pixel] += 1.0;
-    }
+    if (hit) sums_.hits[r][pixel] += 1.0;
+    const uint32_t surface = hit ? SurfaceSums::surface_of(hit->point.object, hit->back) : SurfaceSums::kBackground;
+    sums_.surfaces.add(r, pixel, surface, radiance);
   }
 
   // The camera ray's hit: read back from the replayed log where it holds the sample (with its
@@ -156,7 +154,6 @@ class PixelSampler {
   SampleObserver* observer_;  // null: nobody watches
   CameraRays rays_;
   int width_;
-  Exposure exposure_;
   int fixed_spp_;
 };
 
@@ -175,7 +172,8 @@ void pixel_spread(const Sums& sums, const PixelRequest& request, const Exposure&
     const double k = sums.samples(r, p);
     const glm::dvec3 mean(sums.rgb[r][0][p] / k, sums.rgb[r][1][p] / k, sums.rgb[r][2][p] / k);
     for (size_t f = 0; f < fields[r].size(); ++f) fields[r][f] = sums.field[r][f][p] / k;
-    means[r] = {cielab_lightness(display_luminance(mean, exposure)), sums.y_all[r][p] / k, sums.y_surface[r][p] / k,
+    const SurfaceSums::Luminance y = sums.surfaces.weighted_luminance(r, p, exposure);
+    means[r] = {cielab_lightness(display_luminance(mean, exposure)), (y.surfaces + y.background) / k, y.surfaces / k,
                 sums.hits[r][p] / k, fields[r].data()};
   }
   const double dL = means[0].lightness - means[1].lightness;
@@ -404,8 +402,9 @@ class AdaptiveSampling {
       for (int c = 0; c < 3; ++c) result_.radiance.pixels[3 * p + c] = float((sums_.rgb[0][c][p] + sums_.rgb[1][c][p]) / k);
       for (size_t f = 0; f < result_.fields.size(); ++f)
         result_.fields[f][p] = float((sums_.field[0][f][p] + sums_.field[1][f][p]) / k);
-      result_.luminance[p] = both(sums_.y_all);
-      result_.surface_luminance[p] = both(sums_.y_surface);
+      const SurfaceSums::Luminance y = sums_.surfaces.weighted_luminance(-1, p, exposure());
+      result_.luminance[p] = float((y.surfaces + y.background) / k);
+      result_.surface_luminance[p] = float(y.surfaces / k);
       result_.coverage[p] = both(sums_.hits);
       result_.noise[p] = pooled_.LL.empty() ? 0.0f : float(std::sqrt(pooled_.LL[p]));
     }

@@ -83,9 +83,10 @@ struct RenderResult {
   GBuffer gbuffer;
   VertexSignal vertices;                   // when requested
   std::vector<std::vector<float>> fields;  // [field][pixel]: mean over the pixel's samples
-  // Per pixel, means over all samples of the display luminance (exposed, clamped to [0,1] per
-  // channel) of every sample, and of the samples that hit a surface (0 for the others), and the
-  // share of samples that hit a surface.
+  // Per pixel: the display luminance (exposed, clamped to [0,1] per channel) of each surface's
+  // mean radiance, weighted by the share of the pixel's samples on that surface and summed, over
+  // the surfaces and the background (`luminance`) and over the surfaces alone
+  // (`surface_luminance`); and the share of samples that hit a surface (render/surface_sums.h).
   std::vector<float> luminance, surface_luminance, coverage;
   std::vector<float> noise;      // per pixel: the standard error of its L*, pooled over 3×3 neighbours
   std::vector<ChangeNoise> change_noise;  // per requested change
