@@ -1,7 +1,8 @@
 // Exaggerated shading (Rusinkiewicz et al. 2006), in countershade's surface mode: the diffuse term
 // of every light sample is replaced by a half-Lambertian, multi-scale shading in which the light
-// grazes each coarser scale of the surface, so that detail at every scale shows. λ blends the
-// plain render (0) and exaggerated shading (1). Specular shading and cast shadows are the plain ones.
+// grazes each coarser scale of the surface, so that detail at every scale shows. The scales'
+// weights follow the paper's default k_i ∝ σ_i^−0.5. λ blends the plain render (0) and
+// exaggerated shading (1). Specular shading and cast shadows are the plain ones.
 // The half-Lambertian term has no dark side: behind the original light's terminator a point keeps
 // it wherever the light mirrored across its tangent plane is open (docs/enhancement-methods.md).
 
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "enhance/method.h"
 #include "enhance/multiscale_normals.h"
+#include "enhance/normal_field.h"
 #include "enhance/shading_method.h"
 #include "render/shading.h"
 
@@ -23,7 +25,7 @@ namespace {
 struct EsParameters final : MethodParameters {
   NormalScales normals;         // σ_1 and S
   double contrast = 2;          // a
-  std::vector<double> weights;  // k_1 … k_{S−1}, then k_b; they sum to 1
+  std::vector<double> weights;  // k_1 … k_{S−1}, then k_b; they sum to 1 (power_weights by default)
   double terminator_fade = 0;   // ShadingHook::terminator_band
 };
 
@@ -40,6 +42,29 @@ double exaggerated(const glm::dvec3* n, int scales, const glm::dvec3& light, con
     shade += p.weights[size_t(i)] * (0.5 + 0.5 * std::clamp(p.contrast * glm::dot(n[i], grazing), -1.0, 1.0));
   }
   return shade + p.weights.back() * (0.5 + 0.5 * glm::dot(n[scales - 1], light));
+}
+
+// k_i ∝ σ_i^P, i = 1 … S (the base coat last), σ_i = σ_1·1.7^(i−1), summing to 1. Rusinkiewicz et
+// al. give the pass of scale i the width of its finer normals and the base coat the next width;
+// countershade's finest normal is the unsmoothed one, so pass i takes the width σ_i that
+// separates it from the next. Either way the widths grow by 1.7 a scale, and the normalised
+// weights depend on that ratio alone.
+std::vector<double> power_weights(int scales, double power) {
+  std::vector<double> k(static_cast<size_t>(scales));
+  double sum = 0;
+  for (int i = 0; i < scales; ++i) sum += k[size_t(i)] = std::pow(kNormalScaleRatio, power * i);
+  for (double& w : k) w /= sum;
+  return k;
+}
+
+void check_weights(const ParameterBag& bag, const std::vector<double>& weights, int scales) {
+  if (weights.size() != size_t(scales)) bag.fail("weights", "needs " + std::to_string(scales) + " values");
+  double sum = 0;
+  for (double k : weights) {
+    if (!(k >= 0)) bag.fail("weights", "must not be negative");
+    sum += k;
+  }
+  if (std::abs(sum - 1) > 1e-9) bag.fail("weights", "must sum to 1");
 }
 
 class EsHook final : public ShadingHook {
@@ -81,7 +106,11 @@ class EsMethod final : public EnhancementMethod {
   std::vector<ParameterDoc> parameter_docs() const override {
     std::vector<ParameterDoc> docs = normal_scales_docs();
     docs.push_back({"contrast", "2", "the contrast a of each scale's term"});
-    docs.push_back({"weights", "all 1/S", "S weights k_1 … k_{S−1}, k_b (finest first, the base last); they must sum to 1"});
+    docs.push_back({"weight_power", "-0.5",
+                    "k_i ∝ σ_i^P over the scales' widths σ_1·1.7^(i−1), base last, summing to 1 (the paper's default "
+                    "−0.5; 0: equal weights)"});
+    docs.push_back({"weights", "", "S explicit weights k_1 … k_{S−1}, k_b (finest first, the base last) summing to 1, "
+                                   "in place of weight_power"});
     docs.push_back(terminator_fade_doc());
     return docs;
   }
@@ -91,17 +120,13 @@ class EsMethod final : public EnhancementMethod {
     p->normals = read_normal_scales(bag, sigma);
     const int scales = p->normals.scales;
     p->contrast = bag.number_in("contrast", 2.0, 0.0, 100.0);
-    p->weights = bag.numbers("weights", std::vector<double>(size_t(scales), 1.0 / scales));
+    if (bag.has("weights") && bag.has("weight_power")) bag.fail("weight_power", "give weights or weight_power, not both");
+    const double power = bag.number_in("weight_power", -0.5, -8.0, 8.0);
+    p->weights = bag.numbers("weights", power_weights(scales, power));
     p->terminator_fade = read_terminator_fade(bag);
     bag.finish(name());
     check_normal_scales(bag, p->normals, sigma);
-    if (p->weights.size() != size_t(scales)) bag.fail("weights", "needs " + std::to_string(scales) + " values");
-    double sum = 0;
-    for (double k : p->weights) {
-      if (!(k >= 0)) bag.fail("weights", "must not be negative");
-      sum += k;
-    }
-    if (std::abs(sum - 1) > 1e-9) bag.fail("weights", "must sum to 1");
+    check_weights(bag, p->weights, scales);
     return p;
   }
   RenderRequest request(const MethodParameters&) const override { return shading_request(); }

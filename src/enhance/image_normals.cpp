@@ -12,8 +12,6 @@
 namespace countershade {
 namespace {
 
-constexpr double kScaleRatio = 1.7;
-
 // One pass of the separable bilateral filter along x (step 1) or y (step = width): each object
 // pixel takes the normalised sum of the object pixels within 3σ on its line, weighted by the
 // spatial Gaussian and by a Gaussian of their depth difference relative to its own depth.
@@ -52,7 +50,7 @@ ImageNormals::ImageNormals(const View& view, double sigma1_px, int scales, doubl
   for (size_t i = 0; i < object_.size(); ++i) object_[i] = g.object[i] >= 0 && std::isfinite(view.depth[i]) && view.depth[i] > 0;
   std::vector<glm::vec3> across(g.normal.size());
   for (int k = 2; k <= scales; ++k) {
-    const double sigma = sigma1_px * std::pow(kScaleRatio, k - 2);
+    const double sigma = sigma1_px * std::pow(kNormalScaleRatio, k - 2);
     std::vector<glm::vec3> filtered(g.normal.size());
     bilateral_pass(g.normal, across, view.depth, object_, width_, height_, true, sigma, depth_tolerance, threads);
     bilateral_pass(across, filtered, view.depth, object_, width_, height_, false, sigma, depth_tolerance, threads);

@@ -14,8 +14,6 @@
 namespace countershade {
 namespace {
 
-constexpr double kScaleRatio = 1.7;
-
 // Area-weighted normals of the welded points (so seams and hard edges get one normal).
 std::vector<glm::dvec3> point_normals(const Object& object) {
   const SurfaceGraph& surface = object.surface;
@@ -69,7 +67,7 @@ MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, 
     std::vector<glm::dvec3> normals = point_normals(object);
     std::vector<int> done(edge.size(), 0);
     for (int k = 2; k <= scales; ++k) {
-      const double sigma = sigma1 * std::pow(kScaleRatio, k - 2);
+      const double sigma = sigma1 * std::pow(kNormalScaleRatio, k - 2);
       std::vector<int> target(edge.size()), more(edge.size());
       for (size_t c = 0; c < edge.size(); ++c) {
         target[c] = iterations_for_sigma(sigma, edge[c]);

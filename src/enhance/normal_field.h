@@ -9,6 +9,10 @@
 
 namespace countershade {
 
+// Each scale's smoothing width is the last one's times this: n_{k+1} is smoothed over
+// σ_k = σ_1·kNormalScaleRatio^(k−1), in world units or pixels by the mode.
+inline constexpr double kNormalScaleRatio = 1.7;
+
 class NormalScaleField {
  public:
   virtual ~NormalScaleField() = default;

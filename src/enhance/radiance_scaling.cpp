@@ -1,7 +1,9 @@
-// Radiance scaling (Vergne et al. 2010): each light sample's reflected radiance is multiplied by
-// σ(κ, δ), which raises the contrast of shading on convex parts and lowers the radiance of lit
-// concave parts, from a view-dependent curvature κ of the base view's normals. α = clamp(λ, 0, 1);
-// λ = 0 is the plain render. Shadows are the plain ones (the shading hook).
+// Radiance scaling (Vergne et al. 2010, 2011): each light sample's reflected radiance is multiplied
+// by σ(κ, δ), which raises the contrast of shading on convex parts and lowers it on concave ones,
+// from a view-dependent curvature κ of the base view's normals. α is the invariant point (a
+// reflectance δ = α is never scaled), γ the strength, scaled by λ: λ = 0 is the plain render and
+// λ = 1 the paper's setting (Mestres et al. 2021's Fig. 14: α = 0.5, γ = 4, isotropic curvature).
+// Shadows are the plain ones (the shading hook).
 
 #include <algorithm>
 #include <cmath>
@@ -19,14 +21,16 @@ namespace countershade {
 namespace {
 
 struct RsParameters final : MethodParameters {
-  double gamma = 1;  // γ: how strongly curvature scales
+  double alpha = 0.5;  // α: the invariant point
+  double gamma = 4;    // γ: how strongly curvature scales, at λ = 1
   double tau = 1;    // τ, pixels: the scale of κ = tanh(τ·curvature)
   double terminator_fade = 0;  // ShadingHook::terminator_band
 };
 
 }  // namespace
 
-// σ(κ, δ) = (α·e^{−γκ} + δ(1 − α(1 + e^{−γκ}))) / (α + δ(e^{−γκ} − α(1 + e^{−γκ}))); σ(0, δ) = 1.
+// σ(κ, δ) = (α·e^{−γκ} + δ(1 − α(1 + e^{−γκ}))) / (α + δ(e^{−γκ} − α(1 + e^{−γκ}))); σ(0, δ) = 1,
+// σ(κ, α) = 1.
 double radiance_scale(double kappa, double delta, double alpha, double gamma) {
   const double e = std::exp(-gamma * kappa);
   const double numerator = alpha * e + delta * (1 - alpha * (1 + e));
@@ -59,14 +63,17 @@ class RsMethod final : public EnhancementMethod {
  public:
   std::string name() const override { return "radiance-scaling"; }
   std::string summary() const override { return "radiance scaling: light scaled by view-dependent curvature (shading)"; }
-  MethodAxes axes() const override { return {"enhancement α = clamp(λ, 0, 1)", {}}; }
+  MethodAxes axes() const override { return {"strength λ·γ (0 = plain, 1 = the given γ)", {}}; }
   std::vector<ParameterDoc> parameter_docs() const override {
-    return {{"gamma", "1", "γ: how strongly curvature scales the light"},
+    return {{"alpha", "0.5", "α: the invariant point, the reflectance δ that is never scaled (in (0, 1))"},
+            {"gamma", "4", "γ: how strongly curvature scales the light at λ = 1"},
             curvature_tau_doc(), terminator_fade_doc()};
   }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<RsParameters>();
-    p->gamma = bag.number_in("gamma", 1.0, 0.0, 50.0);
+    p->alpha = bag.number("alpha", 0.5);
+    if (!(p->alpha > 0 && p->alpha < 1)) bag.fail("alpha", "the invariant point must lie in (0, 1)");
+    p->gamma = bag.number_in("gamma", 4.0, 0.0, 50.0);
     p->tau = read_curvature_tau(bag);
     p->terminator_fade = read_terminator_fade(bag);
     bag.finish(name());
@@ -79,11 +86,14 @@ class RsMethod final : public EnhancementMethod {
     const auto& p = parameters_as<RsParameters>(parameters);
     auto kappa = std::make_shared<const ViewCurvature>(*context.view, p.tau);
     auto hook_for = [p, kappa](double lambda) -> std::shared_ptr<const ShadingHook> {
-      const double alpha = std::clamp(lambda, 0.0, 1.0);
-      return alpha > 0 ? std::make_shared<RsHook>(kappa, alpha, p.gamma, p.terminator_fade) : nullptr;
+      const double gamma = lambda * p.gamma;
+      return gamma != 0 ? std::make_shared<RsHook>(kappa, p.alpha, gamma, p.terminator_fade) : nullptr;
     };
-    return std::make_unique<HookedRender>(
-        context, hook_for, nlohmann::json{{"gamma", p.gamma}, {"tau", p.tau}, {"terminator_fade", p.terminator_fade}});
+    return std::make_unique<HookedRender>(context, hook_for,
+                                          nlohmann::json{{"alpha", p.alpha},
+                                                         {"gamma", p.gamma},
+                                                         {"tau", p.tau},
+                                                         {"terminator_fade", p.terminator_fade}});
   }
 };
 

@@ -246,6 +246,33 @@ TEST(ExaggeratedShading, LambdaZeroIsPlainAndFullStrengthFlattensTheLitSide) {
   EXPECT_NE(testing::input_error_of([] { parse_method("exaggerated-shading", {{"sigma", 0.1}, {"weights", {0.5, 0.5}}}); })
                 .find("needs 3 values"),
             std::string::npos);
+  EXPECT_NE(testing::input_error_of([] {
+              parse_method("exaggerated-shading", {{"sigma", 0.1}, {"weights", {0.5, 0.3, 0.2}}, {"weight_power", 0.0}});
+            }).find("weight_power"),
+            std::string::npos);
+}
+
+// The scales' weights default to Rusinkiewicz et al.'s k_i ∝ σ_i^−0.5 over the widths
+// σ_i = σ_1·1.7^(i−1), the base coat last; weight_power 0 weighs them equally, and explicit
+// weights give the same image as the equal powers they spell out.
+TEST(ExaggeratedShading, TheWeightsFollowTheScalesWidthsToThePowerMinusAHalf) {
+  testing::TempDir dir;
+  const auto view = render_ball(dir, "[0, 0.5, 5]");
+  auto record_weights = [&](const nlohmann::json& parameters) {
+    return prepare_method("exaggerated-shading", view, parameters)->parameters()["weights"].get<std::vector<double>>();
+  };
+  const std::vector<double> defaults = record_weights({{"sigma", 0.15}, {"scales", 4}});
+  ASSERT_EQ(defaults.size(), 4u);
+  double sum = 0;
+  for (int i = 0; i < 4; ++i) sum += std::pow(0.15 * std::pow(1.7, i), -0.5);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(defaults[size_t(i)], std::pow(0.15 * std::pow(1.7, i), -0.5) / sum, 1e-12) << i;
+  EXPECT_GT(defaults[0], defaults[3]);  // the finest scale weighs most
+  for (double k : record_weights({{"sigma", 0.15}, {"scales", 4}, {"weight_power", 0.0}})) EXPECT_NEAR(k, 0.25, 1e-15);
+  const auto powered = prepare_method("exaggerated-shading", view, {{"sigma", 0.15}, {"scales", 4}});
+  const auto spelled = prepare_method("exaggerated-shading", view, {{"sigma", 0.15}, {"scales", 4}, {"weights", defaults}});
+  EXPECT_EQ(powered->compose(1.0).display.pixels, spelled->compose(1.0).display.pixels);
+  const auto equal = prepare_method("exaggerated-shading", view, {{"sigma", 0.15}, {"scales", 4}, {"weight_power", 0.0}});
+  EXPECT_NE(powered->compose(1.0).display.pixels, equal->compose(1.0).display.pixels);
 }
 
 // The light's terminator on a smooth ball is a smooth curve: neither the plain render nor a hook
@@ -315,6 +342,30 @@ TEST(RadianceScaling, TheScaleIsOneWithoutCurvatureAndMonotoneInIt) {
   }
   // Lit parts of concave places (κ < 0) get darker, as in the paper's figures.
   EXPECT_LT(radiance_scale(-0.8, 0.9, 0.8, 1.0), 1.0);
+  // α is the invariant point: a reflectance δ = α is never scaled, whatever κ and γ.
+  for (double alpha : {0.2, 0.5, 0.8})
+    for (double kappa : {-0.9, -0.3, 0.4, 1.0}) EXPECT_NEAR(radiance_scale(kappa, alpha, alpha, 4.0), 1.0, 1e-12);
+  // On convex parts (κ > 0) darker reflectances get darker and brighter ones brighter: contrast.
+  EXPECT_LT(radiance_scale(0.5, 0.2, 0.5, 4.0), 1.0);
+  EXPECT_GT(radiance_scale(0.5, 0.9, 0.5, 4.0), 1.0);
+}
+
+// Mestres et al.'s Fig. 14 settings are the defaults (α = 0.5, γ = 4), and λ scales γ: γ = 4 at
+// λ = 0.5 is γ = 2 at λ = 1, image for image. α outside (0, 1) is refused.
+TEST(RadianceScaling, TheDefaultsAreFigure14sAndLambdaScalesGamma) {
+  testing::TempDir dir;
+  const auto view = render_smooth_ball(dir);
+  const auto defaults = prepare_method("radiance-scaling", view, {{"tau", 10.0}});
+  const auto paper = prepare_method("radiance-scaling", view, {{"tau", 10.0}, {"alpha", 0.5}, {"gamma", 4.0}});
+  const auto half = prepare_method("radiance-scaling", view, {{"tau", 10.0}, {"alpha", 0.5}, {"gamma", 2.0}});
+  EXPECT_EQ(defaults->compose(1.0).display.pixels, paper->compose(1.0).display.pixels);
+  EXPECT_EQ(paper->compose(0.5).display.pixels, half->compose(1.0).display.pixels);
+  EXPECT_NE(paper->compose(1.0).display.pixels, half->compose(1.0).display.pixels);
+  const auto other_alpha = prepare_method("radiance-scaling", view, {{"tau", 10.0}, {"alpha", 0.2}});
+  EXPECT_NE(other_alpha->compose(1.0).display.pixels, paper->compose(1.0).display.pixels);
+  for (double alpha : {0.0, 1.0, -0.5})
+    EXPECT_NE(testing::input_error_of([&] { parse_method("radiance-scaling", {{"alpha", alpha}}); }).find("alpha"),
+              std::string::npos);
 }
 
 // A smooth ball is convex everywhere: its curvature is positive inside its outline.
@@ -415,6 +466,21 @@ TEST(LightWarping, LambdaZeroIsPlainAndAWarpChangesTheConvexBall) {
   for (float v : warped.pixels) ASSERT_TRUE(std::isfinite(v));
   EXPECT_NE(warped.pixels, view->display.pixels);
   EXPECT_NE(testing::input_error_of([] { parse_method("light-warping", {{"gamma", 1.0}}); }).find("gamma"), std::string::npos);
+}
+
+// The amount of warping α defaults to Mestres et al.'s Fig. 14 (16.62), and λ scales it: α at
+// λ = 0.5 is α/2 at λ = 1, image for image.
+TEST(LightWarping, TheAmountOfWarpingIsAlphaTimesLambda) {
+  testing::TempDir dir;
+  const auto view = render_smooth_ball(dir);
+  const auto defaults = prepare_method("light-warping", view, {{"tau", 10.0}});
+  const auto paper = prepare_method("light-warping", view, {{"tau", 10.0}, {"alpha", 16.62}});
+  const auto half = prepare_method("light-warping", view, {{"tau", 10.0}, {"alpha", 8.31}});
+  EXPECT_EQ(defaults->compose(0.3).display.pixels, paper->compose(0.3).display.pixels);
+  EXPECT_EQ(paper->compose(0.5).display.pixels, half->compose(1.0).display.pixels);
+  EXPECT_NE(paper->compose(1.0).display.pixels, half->compose(1.0).display.pixels);
+  EXPECT_NE(testing::input_error_of([] { parse_method("light-warping", {{"alpha", -1.0}}); }).find("alpha"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -275,7 +275,7 @@ TEST(Audit, ABrokenSetIsCaught) {
   EXPECT_EQ(testing::count_lines(refused.output), 1) << refused.output;
 }
 
-// Through a real set: radiance scaling clamps its strength at λ = 1, so a grid up to 2 repeats
+// Through a real set: exaggerated shading clamps its blend at λ = 1, so a grid up to 2 repeats
 // one image; usm3d on the same scene keeps changing.
 TEST(Audit, ARealSetWhoseMethodSaturatesIsFlagged) {
   testing::TempDir dir;
@@ -284,11 +284,11 @@ TEST(Audit, ARealSetWhoseMethodSaturatesIsFlagged) {
     "version": 1, "name": "saturation", "seed": 1,
     "lambda": {"min": 0, "max": 2, "step": 0.5},
     "scenes": [{"name": "ball", "file": ")" + scene.string() + R"(", "width": 64, "height": 48, "spp": 4}],
-    "methods": [{"method": "radiance-scaling"}, {"method": "usm3d", "sigma": [0.6]}]
+    "methods": [{"method": "exaggerated-shading", "sigma": [0.2]}, {"method": "usm3d", "sigma": [0.6]}]
   })");
   ASSERT_EQ(testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "set").string()).exit_code, 0);
   const AuditReport r = audit_stimulus_set(dir / "set/manifest.json");
-  EXPECT_EQ(failing(r, "every lambda step changes the image"), std::set<std::string>{"ball/radiance-scaling sigma 0"});
+  EXPECT_EQ(failing(r, "every lambda step changes the image"), std::set<std::string>{"ball/exaggerated-shading sigma 0.2"});
 }
 
 }  // namespace
