@@ -57,9 +57,15 @@ void SurfaceSums::add_luminance(const Group& g, const Exposure& exposure, Lumina
 SurfaceSums::Luminance SurfaceSums::weighted_luminance(int replicate, size_t pixel,
                                                        const Exposure& exposure) const {
   Luminance out;
-  // Most pixels see one surface in a replicate: nothing to merge.
+  // Most pixels see one surface in a replicate, the same in both: nothing to merge.
   if (replicate >= 0 && !has_more_[replicate][pixel]) {
     add_luminance(first_[replicate][pixel], exposure, out);
+    return out;
+  }
+  const Group &a = first_[0][pixel], &b = first_[1][pixel];
+  if (replicate < 0 && !has_more_[0][pixel] && !has_more_[1][pixel] &&
+      (b.count == 0 || a.surface == b.surface)) {
+    add_luminance({a.surface, a.count + b.count, a.radiance + b.radiance}, exposure, out);
     return out;
   }
   thread_local Groups groups;
