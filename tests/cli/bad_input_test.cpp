@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/image.h"
+#include "core/text.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -166,12 +167,13 @@ TEST(BadInput, OutputsAreCheckedBeforeAnythingIsWritten) {
 }
 
 // `sheet` puts the images in rows of --columns, thumbnails at a whole-factor shrink, a short last
-// row allowed: two 64-px images and one more in rows of two.
+// row allowed: two 64-px images and one more in rows of two. A caption wider than its thumbnail
+// widens every column, so that it never runs into the next one.
 TEST(SheetCommand, PlacesEveryImageInRowsAtItsThumbnailSize) {
   testing::TempDir dir;
   write_image(dir / "a.png", Image(64, 48, 3, 1.0f));
   write_image(dir / "b.png", Image(64, 48, 3, 0.0f));
-  const auto r = testing::run_cli("sheet " + (dir / "a.png").string() + "=white " + (dir / "b.png").string() + "=black " +
+  const auto r = testing::run_cli("sheet " + (dir / "a.png").string() + "=w " + (dir / "b.png").string() + "=k " +
                                   (dir / "a.png").string() + " -o " + (dir / "s.png").string() + " --columns 2 --width 32");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Image sheet = read_image(dir / "s.png");
@@ -182,6 +184,14 @@ TEST(SheetCommand, PlacesEveryImageInRowsAtItsThumbnailSize) {
   EXPECT_FLOAT_EQ(sheet.at(10 + 56 + 16, 56 + 12, 0), 0.0f);             // b, row 1
   EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 48 + 12, 0), 1.0f);             // a again, row 2
   EXPECT_NEAR(sheet.at(10 + 56 + 16, 56 + 48 + 12, 0), 0.5f, 1.0f / 255);  // nothing: the grey surround
+  const std::string caption = "usm3d, σ = 0.12, λ = 3";
+  const auto wide = testing::run_cli("sheet '" + (dir / "a.png").string() + "=" + caption + "' " +
+                                     (dir / "b.png").string() + " -o " + (dir / "w.png").string() + " --columns 2 --width 32");
+  ASSERT_EQ(wide.exit_code, 0) << wide.output;
+  const int pitch = 24 + text_width(caption, 12);
+  ASSERT_GT(pitch, 32 + 24);
+  EXPECT_EQ(read_image(dir / "w.png").width, 10 + 2 * pitch);
+  EXPECT_FLOAT_EQ(read_image(dir / "w.png").at(10 + pitch + 16, 56 + 12, 0), 0.0f);  // b, one pitch on
 }
 
 TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {

@@ -90,7 +90,8 @@ TEST(Text, WidthFollowsTheGlyphsAdvances) {
 // `sheet` captions in this field's characters: a caption of λ is not a caption of ';'.
 TEST(Text, SheetCaptionsKeepTheirCharacters) {
   testing::TempDir dir;
-  write_image(dir / "a.png", Image(40, 30, 3, 0.2f));
+  write_image(dir / "a.png",
+              Image(400, 30, 3, 0.2f));  // its thumbnail is wider than either caption
   auto sheet = [&](const std::string& caption, const std::string& name) {
     const auto r = testing::run_cli("sheet '" + (dir / "a.png").string() + "=" + caption + "' -o " +
                                     (dir / name).string());
