@@ -286,7 +286,7 @@ json fit_json(const BlockResults::FitEntry& entry, const AnalysisOptions& option
   json f = {{"scene", entry.scene},
             {"sigma", entry.sigma},
             {"question", question_name(entry.question)},
-            {"model", fit_model_name(options.model)},
+            {"model", threshold_model_name(options.model)},
             {"threshold", entry.fit.threshold},
             {"log_threshold", entry.fit.log_threshold},
             {"log_threshold_se", entry.fit.log_threshold_se},

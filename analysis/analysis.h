@@ -28,7 +28,7 @@ struct AnalysisOptions {
   JndNormalization normalization = JndNormalization::subject;
   std::optional<double> lambda_step;      // overrides the CSV's lambda_step column
   int clusters = 2;
-  FitModel model = FitModel::lognormal;
+  ThresholdModel model = ThresholdModel::log_normal;
   int bootstrap = 0;  // resamples per fit (0 = none)
   uint64_t seed = 1;
 };

@@ -204,7 +204,7 @@ std::string figure_fits(const BlockResults& r) {
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"10\"><rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << width / 2 << "\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">Fitted "
-      << (r.fits.empty() ? "" : fit_model_name(r.fits[0].fit.model))
+      << (r.fits.empty() ? "" : threshold_model_name(r.fits[0].fit.model))
       << " threshold distributions (lines; dashed: the threshold)</text>\n<text x=\"" << width / 2
       << "\" y=\"36\" text-anchor=\"middle\" font-size=\"11\">steps: the share of answers at or below λ</text>\n";
   for (size_t k = 0; k < r.fits.size(); ++k) {

@@ -24,30 +24,32 @@ using std::log;
 
 // Standard cumulative distribution of the model's reduced variable z.
 template <class T>
-T standard_cdf(FitModel model, const T& z) {
+T standard_cdf(ThresholdModel model, const T& z) {
   switch (model) {
-    case FitModel::lognormal: return T(0.5) * erfc(-z / T(std::numbers::sqrt2));
-    case FitModel::weibull: return T(1.0) - exp(-exp(z));  // minimum extreme value
-    case FitModel::logistic: return T(1.0) / (T(1.0) + exp(-z));
+    case ThresholdModel::log_normal: return T(0.5) * erfc(-z / T(std::numbers::sqrt2));
+    case ThresholdModel::weibull: return T(1.0) - exp(-exp(z));  // minimum extreme value
+    case ThresholdModel::logistic:
+    case ThresholdModel::log_logistic: return T(1.0) / (T(1.0) + exp(-z));
   }
   return z;
 }
 
-// Reduced variable of λ; lognormal and Weibull work on ln λ, logistic on λ itself.
+// Reduced variable of λ; every model but the logistic works on ln λ, the logistic on λ itself.
 template <class T>
-T reduced(FitModel model, double lambda, const T& location, const T& log_scale) {
-  T x = model == FitModel::logistic ? T(lambda) : T(std::log(lambda));
+T reduced(ThresholdModel model, double lambda, const T& location, const T& log_scale) {
+  T x = model == ThresholdModel::logistic ? T(lambda) : T(std::log(lambda));
   return (x - location) / exp(log_scale);
 }
 
 // The model's survival function 1 − F of the reduced variable, computed directly so that a far
 // right tail keeps its precision.
 template <class T>
-T standard_survival(FitModel model, const T& z) {
+T standard_survival(ThresholdModel model, const T& z) {
   switch (model) {
-    case FitModel::lognormal: return T(0.5) * erfc(z / T(std::numbers::sqrt2));
-    case FitModel::weibull: return exp(-exp(z));
-    case FitModel::logistic: return T(1.0) / (T(1.0) + exp(z));
+    case ThresholdModel::log_normal: return T(0.5) * erfc(z / T(std::numbers::sqrt2));
+    case ThresholdModel::weibull: return exp(-exp(z));
+    case ThresholdModel::logistic:
+    case ThresholdModel::log_logistic: return T(1.0) / (T(1.0) + exp(z));
   }
   return z;
 }
@@ -55,7 +57,7 @@ T standard_survival(FitModel model, const T& z) {
 // The probability of one answer's interval (lower, upper]: F(upper) − F(lower), with F(0) = 0
 // for every model (left-censoring) and F(∞) = 1 (right-censoring).
 template <class T>
-T interval_probability(FitModel model, const AnswerInterval& a, const T& location, const T& log_scale) {
+T interval_probability(ThresholdModel model, const AnswerInterval& a, const T& location, const T& log_scale) {
   const bool left = !(a.lower > 0), right = std::isinf(a.upper);
   if (left && right) return T(1.0);
   if (right) return standard_survival(model, reduced(model, a.lower, location, log_scale));
@@ -69,7 +71,7 @@ using AnswerCounts = std::map<AnswerInterval, double>;
 // One distinct interval with its count: residual √(2·count·(−ln P)), so the sum of squares is
 // −2 ln L and Ceres' minimum is the maximum-likelihood estimate.
 struct AnswerResidual {
-  AnswerResidual(FitModel model, AnswerInterval interval, double count) : model(model), interval(interval), count(count) {}
+  AnswerResidual(ThresholdModel model, AnswerInterval interval, double count) : model(model), interval(interval), count(count) {}
   template <class T>
   bool operator()(const T* const params, T* residual) const {
     T p = interval_probability(model, interval, params[0], params[1]);
@@ -77,12 +79,12 @@ struct AnswerResidual {
     residual[0] = sqrt(T(2.0 * count) * -log(p) + T(1e-300));
     return true;
   }
-  FitModel model;
+  ThresholdModel model;
   AnswerInterval interval;
   double count;
 };
 
-double negative_log_likelihood(FitModel model, const AnswerCounts& counts, const double* q) {
+double negative_log_likelihood(ThresholdModel model, const AnswerCounts& counts, const double* q) {
   double nll = 0;
   for (const auto& [interval, count] : counts)
     nll -= count * std::log(std::max(1e-300, interval_probability(model, interval, q[0], q[1])));
@@ -90,7 +92,7 @@ double negative_log_likelihood(FitModel model, const AnswerCounts& counts, const
 }
 
 // Gradient of −ln L by automatic differentiation.
-Eigen::Vector2d gradient(FitModel model, const AnswerCounts& counts, const double* q) {
+Eigen::Vector2d gradient(ThresholdModel model, const AnswerCounts& counts, const double* q) {
   using J = ceres::Jet<double, 2>;
   J location(q[0], 0), log_scale(q[1], 1), nll(0.0);
   for (const auto& [interval, count] : counts) nll -= J(count) * log(interval_probability(model, interval, location, log_scale));
@@ -98,7 +100,7 @@ Eigen::Vector2d gradient(FitModel model, const AnswerCounts& counts, const doubl
 }
 
 // The observed information: the Hessian of −ln L, by central differences of the exact gradient.
-Eigen::Matrix2d hessian(FitModel model, const AnswerCounts& counts, const double* q) {
+Eigen::Matrix2d hessian(ThresholdModel model, const AnswerCounts& counts, const double* q) {
   Eigen::Matrix2d h;
   for (int k = 0; k < 2; ++k) {
     double e = 1e-5 * std::max(1.0, std::abs(q[k]));
@@ -112,9 +114,9 @@ Eigen::Matrix2d hessian(FitModel model, const AnswerCounts& counts, const double
 
 // An interval's end on the model's scale, for bounds and starting values: its upper end, or its
 // lower end when it is open above.
-double model_scale_point(FitModel model, const AnswerInterval& a) {
+double model_scale_point(ThresholdModel model, const AnswerInterval& a) {
   const double x = std::isinf(a.upper) ? a.lower : a.upper;
-  return model == FitModel::logistic ? x : std::log(x);
+  return model == ThresholdModel::logistic ? x : std::log(x);
 }
 
 // The narrowest closed interval: the grid step, the natural unit of the logistic's scale. When
@@ -128,7 +130,7 @@ double narrowest_interval(const AnswerCounts& counts, double fallback) {
 
 // Minimises −ln L with Ceres within bounds around the answers; returns whether the solution is
 // usable.
-bool minimize(FitModel model, const AnswerCounts& counts, double* q) {
+bool minimize(ThresholdModel model, const AnswerCounts& counts, double* q) {
   ceres::Problem problem;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [interval, count] : counts) {
@@ -141,7 +143,7 @@ bool minimize(FitModel model, const AnswerCounts& counts, double* q) {
   const double narrowest = narrowest_interval(counts, std::exp(lo));
   problem.SetParameterLowerBound(q, 0, lo - 10.0);
   problem.SetParameterUpperBound(q, 0, hi + 10.0);
-  problem.SetParameterLowerBound(q, 1, std::log(1e-4 * (model == FitModel::logistic ? narrowest : 1.0)));
+  problem.SetParameterLowerBound(q, 1, std::log(1e-4 * (model == ThresholdModel::logistic ? narrowest : 1.0)));
   problem.SetParameterUpperBound(q, 1, std::log(100.0 * std::max(1.0, hi - lo + 1.0)));
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
@@ -165,7 +167,7 @@ bool minimize(FitModel model, const AnswerCounts& counts, double* q) {
 
 // Newton steps on the exact likelihood: the Gauss–Newton model of the square-root residuals
 // converges slowly near the optimum.
-void polish(FitModel model, const AnswerCounts& counts, double* q) {
+void polish(ThresholdModel model, const AnswerCounts& counts, double* q) {
   for (int it = 0; it < 20; ++it) {
     Eigen::Vector2d g = gradient(model, counts, q);
     Eigen::Matrix2d h = hessian(model, counts, q);
@@ -186,14 +188,15 @@ void polish(FitModel model, const AnswerCounts& counts, double* q) {
 
 // The log-threshold (the log-median) and its gradient with respect to (μ, ln σ), for the delta
 // method.
-std::pair<double, Eigen::Vector2d> log_median(FitModel model, double location, double scale) {
+std::pair<double, Eigen::Vector2d> log_median(ThresholdModel model, double location, double scale) {
   switch (model) {
-    case FitModel::lognormal: return {location, {1.0, 0.0}};
-    case FitModel::weibull: {  // median = exp(μ + σ ln ln 2)
+    case ThresholdModel::log_normal:
+    case ThresholdModel::log_logistic: return {location, {1.0, 0.0}};
+    case ThresholdModel::weibull: {  // median = exp(μ + σ ln ln 2)
       const double c = std::log(std::log(2.0));
       return {location + scale * c, {1.0, scale * c}};
     }
-    case FitModel::logistic: {  // median = μ on the λ scale
+    case ThresholdModel::logistic: {  // median = μ on the λ scale
       const double mu = std::max(location, 1e-300);
       return {std::log(mu), {1.0 / mu, 0.0}};
     }
@@ -201,7 +204,7 @@ std::pair<double, Eigen::Vector2d> log_median(FitModel model, double location, d
   return {location, {1.0, 0.0}};
 }
 
-Fit solve(const AnswerCounts& counts, FitModel model, const double* start) {
+Fit solve(const AnswerCounts& counts, ThresholdModel model, const double* start) {
   double q[2] = {start[0], start[1]};
   const bool usable = minimize(model, counts, q);
   polish(model, counts, q);
@@ -239,12 +242,12 @@ double draw_threshold(const Fit& fit, SampleStream& random) {
   const double u = std::clamp(random.next(), 1e-12, 1.0 - 1e-12);
   double z;
   switch (fit.model) {
-    case FitModel::lognormal: z = -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u); break;
-    case FitModel::weibull: z = std::log(-std::log(1.0 - u)); break;
+    case ThresholdModel::log_normal: z = -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u); break;
+    case ThresholdModel::weibull: z = std::log(-std::log(1.0 - u)); break;
     default: z = std::log(u / (1.0 - u));
   }
   const double v = fit.location + fit.scale * z;
-  return fit.model == FitModel::logistic ? v : std::exp(v);
+  return fit.model == ThresholdModel::logistic ? v : std::exp(v);
 }
 
 // The answer an observer with threshold t gives on the grid: the first value at or above t, at
@@ -261,22 +264,6 @@ AnswerInterval grid_answer(const AnswerGrid& grid, double t) {
 
 }  // namespace
 
-FitModel parse_fit_model(const std::string& name) {
-  if (name == "lognormal") return FitModel::lognormal;
-  if (name == "weibull") return FitModel::weibull;
-  if (name == "logistic") return FitModel::logistic;
-  throw InputError("--model: unknown model '" + name + "' (expected lognormal, weibull or logistic)");
-}
-
-const char* fit_model_name(FitModel model) {
-  switch (model) {
-    case FitModel::lognormal: return "lognormal";
-    case FitModel::weibull: return "weibull";
-    case FitModel::logistic: return "logistic";
-  }
-  return "?";
-}
-
 AnswerInterval answer_interval(double lambda, int index, double step, double top, bool* zero) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   const double tolerance = 1e-9 * step;
@@ -288,7 +275,7 @@ AnswerInterval answer_interval(double lambda, int index, double step, double top
   return a;
 }
 
-Fit fit_threshold(const std::vector<AnswerInterval>& answers, FitModel model) {
+Fit fit_threshold(const std::vector<AnswerInterval>& answers, ThresholdModel model) {
   if (answers.empty()) throw InputError("a threshold fit needs at least one answer");
   // Start from the moments of the answers on the model's scale.
   double sum = 0, sq = 0, n = 0;
@@ -300,13 +287,13 @@ Fit fit_threshold(const std::vector<AnswerInterval>& answers, FitModel model) {
   }
   const AnswerCounts counts = count_answers(answers);
   const double mean = sum / n, sd = std::sqrt(std::max(sq / n - mean * mean, 0.0));
-  const double start[2] = {mean, std::log(std::max(sd, model == FitModel::logistic ? narrowest_interval(counts, 1.0) : 0.05))};
+  const double start[2] = {mean, std::log(std::max(sd, model == ThresholdModel::logistic ? narrowest_interval(counts, 1.0) : 0.05))};
   return solve(counts, model, start);
 }
 
 double fit_cdf(const Fit& fit, double lambda) {
   if (lambda <= 0) return 0.0;
-  double x = fit.model == FitModel::logistic ? lambda : std::log(lambda);
+  double x = fit.model == ThresholdModel::logistic ? lambda : std::log(lambda);
   return standard_cdf(fit.model, (x - fit.location) / fit.scale);
 }
 

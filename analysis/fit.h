@@ -11,11 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "analysis/threshold_model.h"
+
 namespace countershade::analysis {
 
-enum class FitModel { lognormal, weibull, logistic };
-FitModel parse_fit_model(const std::string& name);  // throws InputError
-const char* fit_model_name(FitModel model);
 
 // Where an answer puts the threshold: (lower, upper]. lower = 0 is left-censored, upper = ∞
 // right-censored.
@@ -37,7 +36,7 @@ struct AnswerGrid {
 AnswerInterval answer_interval(double lambda, int index, double step, double top, bool* zero = nullptr);
 
 struct Fit {
-  FitModel model = FitModel::lognormal;
+  ThresholdModel model = ThresholdModel::log_normal;
   double location = 0, scale = 0;  // μ and σ of the model (log scale for lognormal and Weibull)
   double location_se = 0;
   double threshold = 0;      // the distribution's median, in λ units
@@ -52,7 +51,7 @@ struct Fit {
   int bootstrap = 0;
 };
 
-Fit fit_threshold(const std::vector<AnswerInterval>& answers, FitModel model);
+Fit fit_threshold(const std::vector<AnswerInterval>& answers, ThresholdModel model);
 
 // The model's cumulative distribution function at λ.
 double fit_cdf(const Fit& fit, double lambda);

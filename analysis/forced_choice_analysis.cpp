@@ -77,7 +77,7 @@ json forced_choice_json(const ForcedChoiceResults& r) {
                     {"deviance", f.deviance}, {"df", f.df}, {"aic", f.aic}, {"p_deviance", number_or_null(f.p_deviance)},
                     {"n_trials", f.n_trials}, {"converged", f.converged}, {"well_defined", f.well_defined}});
   }
-  return {{"model", psychometric_model_name(r.options.model)}, {"lapse", r.options.free_lapse ? "free" : "fixed"},
+  return {{"model", threshold_model_name(r.options.model)}, {"lapse", r.options.free_lapse ? "free" : "fixed"},
           {"bootstrap", r.options.bootstrap}, {"seed", r.options.seed}, {"trials", r.trials},
           {"browser_trials", r.browser_trials}, {"fits", fits}, {"warnings", r.warnings}};
 }
@@ -90,7 +90,7 @@ std::string psychometric_fits_csv(const ForcedChoiceResults& r) {
   for (const PsychometricRow& row : r.rows) {
     const PsychometricFit& f = row.fit;
     csv += csv_line({row.pooled ? "pooled" : "subject", row.subject, row.scene, row.label, format_value(row.sigma),
-                     psychometric_model_name(f.options.model), f.options.free_lapse ? "free" : "fixed",
+                     threshold_model_name(f.options.model), f.options.free_lapse ? "free" : "fixed",
                      number(f.options.guess), number(f.threshold), number(f.threshold_se), number(f.slope), number(f.lapse),
                      number(f.deviance), std::to_string(f.df), number(f.aic), std::to_string(f.n_trials), number(f.ci_low),
                      number(f.ci_high), number(f.p_deviance), f.converged ? "true" : "false", f.well_defined ? "true" : "false"});

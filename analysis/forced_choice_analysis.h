@@ -16,7 +16,7 @@
 namespace countershade::analysis {
 
 struct ForcedChoiceOptions {
-  PsychometricModel model = PsychometricModel::weibull;
+  ThresholdModel model = ThresholdModel::weibull;
   bool free_lapse = false;
   int bootstrap = 1000;
   uint64_t seed = 1;

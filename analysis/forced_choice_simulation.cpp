@@ -16,7 +16,7 @@ double normal(SampleStream& random) {
 
 }  // namespace
 
-double true_threshold(PsychometricModel model, double alpha, double beta) {
+double true_threshold(ThresholdModel model, double alpha, double beta) {
   return alpha * std::exp(inverse_base(model, 0.5) / beta);
 }
 

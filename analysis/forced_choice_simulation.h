@@ -25,7 +25,7 @@ struct ForcedChoiceDesign {
   int n_afc = 2;
   double lapse = 0;
   double subject_sd = 0;  // SD of ln α over subjects
-  PsychometricModel model = PsychometricModel::weibull;
+  ThresholdModel model = ThresholdModel::weibull;
   uint64_t seed = 1;
   std::string method;  // the trials' label (the app writes the condition's method)
 };
@@ -35,6 +35,6 @@ struct ForcedChoiceDesign {
 std::vector<ForcedChoiceTrial> simulate_forced_choice(const ForcedChoiceDesign& design);
 
 // The λ where the base function is 1/2: the threshold a fit should recover.
-double true_threshold(PsychometricModel model, double alpha, double beta);
+double true_threshold(ThresholdModel model, double alpha, double beta);
 
 }  // namespace countershade::analysis

@@ -10,22 +10,6 @@
 
 namespace countershade::analysis {
 
-PsychometricModel parse_psychometric_model(const std::string& name) {
-  if (name == "weibull") return PsychometricModel::weibull;
-  if (name == "log-logistic") return PsychometricModel::log_logistic;
-  if (name == "log-normal") return PsychometricModel::log_normal;
-  throw InputError("psychometric model: unknown '" + name + "' (expected weibull, log-logistic or log-normal)");
-}
-
-const char* psychometric_model_name(PsychometricModel model) {
-  switch (model) {
-    case PsychometricModel::weibull: return "weibull";
-    case PsychometricModel::log_logistic: return "log-logistic";
-    case PsychometricModel::log_normal: return "log-normal";
-  }
-  return "?";
-}
-
 namespace {
 
 // Standard errors of b0, b1 and of ln threshold from the inverse expected information.

@@ -11,11 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "analysis/threshold_model.h"
+
 namespace countershade::analysis {
 
-enum class PsychometricModel { weibull, log_logistic, log_normal };
-PsychometricModel parse_psychometric_model(const std::string& name);  // throws InputError
-const char* psychometric_model_name(PsychometricModel model);
 
 // k correct answers out of n trials at one λ.
 struct BinomialCell {
@@ -24,7 +23,7 @@ struct BinomialCell {
 };
 
 struct PsychometricOptions {
-  PsychometricModel model = PsychometricModel::weibull;
+  ThresholdModel model = ThresholdModel::weibull;
   double guess = 0.5;       // γ = 1/n for n alternatives
   bool free_lapse = false;  // false: ℓ = 0
   double max_lapse = 0.1;

@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <stdexcept>
 
 #include <Eigen/Dense>
 #include <boost/math/special_functions/erf.hpp>
@@ -21,32 +22,34 @@ CellData::CellData(std::vector<BinomialCell> c) : cells(std::move(c)) {
   }
 }
 
-BaseValue base_value(PsychometricModel model, double eta) {
+BaseValue base_value(ThresholdModel model, double eta) {
   switch (model) {
-    case PsychometricModel::weibull: {
+    case ThresholdModel::weibull: {
       const double e = std::exp(eta), survive = std::exp(-e), f = e * survive;
       return {e < 1e-3 ? -std::expm1(-e) : 1 - survive, survive, f, f * (1 - e)};  // expm1 only where 1 − e^−e cancels
     }
-    case PsychometricModel::log_logistic: {
+    case ThresholdModel::log_logistic: {
       const double F = 1 / (1 + std::exp(-eta)), Fc = 1 / (1 + std::exp(eta)), f = F * Fc;
       return {F, Fc, f, f * (Fc - F)};
     }
-    case PsychometricModel::log_normal: {
+    case ThresholdModel::log_normal: {
       const double f = std::exp(-0.5 * eta * eta) / std::sqrt(2 * M_PI);
       return {0.5 * std::erfc(-eta / std::sqrt(2.0)), 0.5 * std::erfc(eta / std::sqrt(2.0)), f, -eta * f};
     }
+    case ThresholdModel::logistic: break;  // on λ itself: not a function of ln λ (kPsychometricModels)
   }
-  return {0, 1, 0, 0};
+  throw std::logic_error(std::string("psychometric fit: no base function ") + threshold_model_name(model));
 }
 
 // F⁻¹(p): the η where the base function reaches p.
-double inverse_base(PsychometricModel model, double p) {
+double inverse_base(ThresholdModel model, double p) {
   switch (model) {
-    case PsychometricModel::weibull: return std::log(-std::log1p(-p));
-    case PsychometricModel::log_logistic: return std::log(p / (1 - p));
-    case PsychometricModel::log_normal: return -std::sqrt(2.0) * boost::math::erfc_inv(2 * p);
+    case ThresholdModel::weibull: return std::log(-std::log1p(-p));
+    case ThresholdModel::log_logistic: return std::log(p / (1 - p));
+    case ThresholdModel::log_normal: return -std::sqrt(2.0) * boost::math::erfc_inv(2 * p);
+    case ThresholdModel::logistic: break;
   }
-  return 0;
+  throw std::logic_error(std::string("psychometric fit: no base function ") + threshold_model_name(model));
 }
 
 // Cells sorted by λ, equal λ merged, each checked.
@@ -76,7 +79,7 @@ double deviance_term(double k, double n, double p) { return k > 0 ? k * std::log
 struct CellProbability {
   double psi, q, dpsi, d2psi;  // ψ, 1 − ψ, dψ/dη, d²ψ/dη²
 };
-CellProbability cell_probability(PsychometricModel model, double guess, double lapse, double eta) {
+CellProbability cell_probability(ThresholdModel model, double guess, double lapse, double eta) {
   const BaseValue b = base_value(model, eta);
   const double a = 1 - guess - lapse;
   return {guess + a * b.F, a * b.Fc + lapse, a * b.f, a * b.df};

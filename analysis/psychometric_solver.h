@@ -12,7 +12,7 @@
 namespace countershade::analysis {
 
 // F⁻¹(p): the η where the base function reaches p (F⁻¹(1/2) is the threshold's η).
-double inverse_base(PsychometricModel model, double p);
+double inverse_base(ThresholdModel model, double p);
 
 // Cells sorted by λ with equal λ merged; λ ≤ 0 or k outside [0, n] is an InputError.
 std::vector<BinomialCell> merge_cells(std::vector<BinomialCell> cells);
@@ -30,7 +30,7 @@ struct CellData {
 struct BaseValue {
   double F, Fc, f, df;
 };
-BaseValue base_value(PsychometricModel model, double eta);
+BaseValue base_value(ThresholdModel model, double eta);
 
 struct LikelihoodTerms {
   double deviance = 0, loglik_bernoulli = 0, log_binomial_coefficients = 0;

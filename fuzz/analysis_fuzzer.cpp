@@ -15,9 +15,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::vector<analysis::Response> responses = analysis::read_responses(path);
     analysis::AnalysisOptions options;
     options.normalization = size % 2 ? analysis::JndNormalization::group : analysis::JndNormalization::subject;
-    options.model = (size / 2) % 3 == 0 ? analysis::FitModel::lognormal
-                    : (size / 2) % 3 == 1 ? analysis::FitModel::weibull
-                                          : analysis::FitModel::logistic;
+    options.model = (size / 2) % 3 == 0 ? analysis::ThresholdModel::log_normal
+                    : (size / 2) % 3 == 1 ? analysis::ThresholdModel::weibull
+                                          : analysis::ThresholdModel::logistic;
     options.bootstrap = (size / 6) % 4 == 1 ? 2 : 0;  // slow: a quarter of the inputs
     const std::vector<analysis::BlockResults> blocks = analysis::analyze(responses, options);
     std::filesystem::create_directories(fuzz::input_folder() / "report");

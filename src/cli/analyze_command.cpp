@@ -36,7 +36,7 @@ struct AnalyzeArgs {
 
 analysis::ForcedChoiceOptions forced_choice_options(const AnalyzeArgs& args) {
   analysis::ForcedChoiceOptions o;
-  o.model = analysis::parse_psychometric_model(args.psychometric_model);
+  o.model = analysis::parse_threshold_model(args.psychometric_model, "--psychometric-model", analysis::kPsychometricModels);
   o.free_lapse = args.lapse == "free";
   o.bootstrap = args.bootstrap;
   o.seed = uint64_t(args.seed);
@@ -53,7 +53,7 @@ void run(const AnalyzeArgs& args) {
   options.normalization = analysis::parse_jnd_normalization(args.normalization);
   options.lambda_step = args.lambda_step;
   options.clusters = args.clusters;
-  options.model = analysis::parse_fit_model(args.model);
+  options.model = analysis::parse_threshold_model(args.model, "--model", analysis::kCensoredModels);
   options.bootstrap = args.bootstrap;
   options.seed = uint64_t(args.seed);
   std::vector<fs::path> adjustment, forced_choice;  // told apart by their header
@@ -104,8 +104,8 @@ void add_analyze_command(CLI::App& app) {
       ->check(CLI::IsMember({"lognormal", "weibull", "logistic"}))
       ->capture_default_str();
   cmd->add_option("--psychometric-model", args->psychometric_model,
-                  "Forced-choice trials: weibull, log-logistic or log-normal in log λ")
-      ->check(CLI::IsMember({"weibull", "log-logistic", "log-normal"}))
+                  "Forced-choice trials: weibull, log-logistic or lognormal in log λ (log-normal also read)")
+      ->check(CLI::IsMember({"weibull", "log-logistic", "lognormal", "log-normal"}))
       ->capture_default_str();
   cmd->add_option("--lapse", args->lapse, "Forced-choice trials: the lapse rate fixed at 0, or free in [0, 0.1]")
       ->check(CLI::IsMember({"fixed", "free"}))

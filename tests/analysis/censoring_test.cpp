@@ -64,12 +64,12 @@ TEST(Censoring, AGridStartingAtAQuarterIsFittedWithItsOwnFirstValue) {
     answers.push_back(answer_interval(lambda, index, step, 0.0));
     misread.push_back(answer_interval(lambda, -1, step, 0.0));
   }
-  const Fit fit = fit_threshold(answers, FitModel::lognormal);
+  const Fit fit = fit_threshold(answers, ThresholdModel::log_normal);
   EXPECT_TRUE(fit.converged);
   EXPECT_GT(fit.left_censored, 40u);
   EXPECT_NEAR(fit.threshold, median, 0.01);
   EXPECT_NEAR(fit.scale, sd, 0.02);
-  const Fit wrong = fit_threshold(misread, FitModel::lognormal);
+  const Fit wrong = fit_threshold(misread, ThresholdModel::log_normal);
   EXPECT_GT(std::abs(wrong.scale - sd), 0.03) << "the misread grid should distort the fit: " << wrong.scale;
 }
 
@@ -83,7 +83,7 @@ TEST(Censoring, LogisticFirstStepIsLeftCensored) {
     const int index = std::max(0, int(std::ceil(t / step - 1e-9)) - 1);  // grid from 0.05
     answers.push_back(answer_interval(step * (index + 1), index, step, 0.0));
   }
-  const Fit fit = fit_threshold(answers, FitModel::logistic);
+  const Fit fit = fit_threshold(answers, ThresholdModel::logistic);
   EXPECT_TRUE(fit.converged);
   EXPECT_NEAR(fit.location, mu, 0.01);
   EXPECT_NEAR(fit.scale, s, 0.01);
@@ -91,15 +91,15 @@ TEST(Censoring, LogisticFirstStepIsLeftCensored) {
 
 TEST(Censoring, AllAnswersAtTheFirstStepAreUnidentified) {
   const std::vector<AnswerInterval> answers(12, answer_interval(0.05, 0, 0.05, 3.0));
-  for (FitModel model : {FitModel::logistic, FitModel::lognormal, FitModel::weibull}) {
+  for (ThresholdModel model : {ThresholdModel::logistic, ThresholdModel::log_normal, ThresholdModel::weibull}) {
     const Fit fit = fit_threshold(answers, model);
-    EXPECT_FALSE(fit.identified) << fit_model_name(model);
-    EXPECT_FALSE(fit.converged) << fit_model_name(model);
+    EXPECT_FALSE(fit.identified) << threshold_model_name(model);
+    EXPECT_FALSE(fit.converged) << threshold_model_name(model);
     EXPECT_EQ(fit.left_censored, 12u);
     EXPECT_EQ(fit.right_censored, 0u);
   }
   const std::vector<AnswerInterval> top(12, answer_interval(3.0, 60, 0.05, 3.0));
-  const Fit fit = fit_threshold(top, FitModel::lognormal);
+  const Fit fit = fit_threshold(top, ThresholdModel::log_normal);
   EXPECT_FALSE(fit.identified);
   EXPECT_EQ(fit.right_censored, 12u);
 }
@@ -126,7 +126,7 @@ TEST(Censoring, WeibullLogMedianStandardErrorByTheDeltaMethod) {
     const int index = std::max(0, int(std::ceil(t / 0.1 - 1e-9)) - 1);
     answers.push_back(answer_interval(0.1 * (index + 1), index, 0.1, 2.0));
   }
-  const Fit fit = fit_threshold(answers, FitModel::weibull);
+  const Fit fit = fit_threshold(answers, ThresholdModel::weibull);
   ASSERT_TRUE(fit.converged);
   EXPECT_GT(fit.right_censored, 0u);
   const double q[2] = {fit.location, std::log(fit.scale)}, e = 1e-4;

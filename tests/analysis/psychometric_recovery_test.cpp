@@ -24,7 +24,7 @@ int coverage(double guess, double truth) {
   int covered = 0;
   for (int study = 0; study < 100; ++study) {
     const auto cells = simulated_cells(uint64_t(1000 + study));
-    PsychometricFit fit = fit_psychometric(cells, {PsychometricModel::weibull, guess, false});
+    PsychometricFit fit = fit_psychometric(cells, {ThresholdModel::weibull, guess, false});
     bootstrap_psychometric(fit, cells, 1000, uint64_t(study));
     covered += fit.ci_low <= truth && truth <= fit.ci_high;
   }
@@ -32,7 +32,7 @@ int coverage(double guess, double truth) {
 }
 
 TEST(PsychometricRecovery, BootstrapIntervalsHoldTheTrueThreshold) {
-  const double truth = true_threshold(PsychometricModel::weibull, 0.3, 3.0);
+  const double truth = true_threshold(ThresholdModel::weibull, 0.3, 3.0);
   const int with_guess = coverage(0.5, truth), naive = coverage(0.0, truth);
   EXPECT_GE(with_guess, 90);
   EXPECT_LT(naive, 50);
@@ -44,7 +44,7 @@ TEST(PsychometricRecovery, TheDevianceOfTheTrueModelIsNotRejected) {
   int rejected = 0;
   for (int study = 0; study < 100; ++study) {
     const auto cells = simulated_cells(uint64_t(5000 + study));
-    PsychometricFit fit = fit_psychometric(cells, {PsychometricModel::weibull, 0.5, false});
+    PsychometricFit fit = fit_psychometric(cells, {ThresholdModel::weibull, 0.5, false});
     bootstrap_psychometric(fit, cells, 500, uint64_t(study));
     rejected += fit.p_deviance < 0.05;
   }

@@ -19,13 +19,13 @@ using json = nlohmann::json;
 
 struct ModelCase {
   const char* reference;
-  PsychometricModel model;
+  ThresholdModel model;
   bool free_lapse;
 };
 constexpr ModelCase kCases[] = {
-    {"mafc.cloglog", PsychometricModel::weibull, false},   {"mafc.logit", PsychometricModel::log_logistic, false},
-    {"mafc.probit", PsychometricModel::log_normal, false}, {"weibull_lapse", PsychometricModel::weibull, true},
-    {"probit_lapse", PsychometricModel::log_normal, true},
+    {"mafc.cloglog", ThresholdModel::weibull, false},   {"mafc.logit", ThresholdModel::log_logistic, false},
+    {"mafc.probit", ThresholdModel::log_normal, false}, {"weibull_lapse", ThresholdModel::weibull, true},
+    {"probit_lapse", ThresholdModel::log_normal, true},
 };
 
 // "S02|keys|0.01" or "keys|0.01" → its cells.

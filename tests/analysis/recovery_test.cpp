@@ -45,7 +45,7 @@ TEST(Recovery, KnownThresholdLiesInTheBootstrapIntervalInAtLeast90Of100Studies) 
     design.seed = seed;
     const auto answers = intervals_of(simulate_responses(design), Question::low);
     ASSERT_EQ(answers.size(), 30u);
-    Fit fit = fit_threshold(answers, FitModel::lognormal);
+    Fit fit = fit_threshold(answers, ThresholdModel::log_normal);
     ASSERT_TRUE(fit.converged) << "seed " << seed;
     bootstrap_threshold(fit, grid_of(design), 200, seed);
     ASSERT_GT(fit.bootstrap, 190);
@@ -74,8 +74,8 @@ TEST(Recovery, ThresholdNearTheTopOfTheGridIsRecoveredWithRightCensoring) {
   for (uint64_t seed = 1; seed <= 100; ++seed) {
     design.seed = seed;
     const auto rows = simulate_responses(design);
-    Fit fit = fit_threshold(intervals_of(rows, Question::high), FitModel::lognormal);
-    Fit naive = fit_threshold(intervals_of(rows, Question::high, false), FitModel::lognormal);
+    Fit fit = fit_threshold(intervals_of(rows, Question::high), ThresholdModel::log_normal);
+    Fit naive = fit_threshold(intervals_of(rows, Question::high, false), ThresholdModel::log_normal);
     ASSERT_TRUE(fit.converged) << "seed " << seed;
     censored += int(fit.right_censored);
     answers_seen += int(fit.n);
@@ -100,7 +100,7 @@ TEST(Recovery, ThresholdNearTheTopOfTheGridIsRecoveredWithRightCensoring) {
 
 TEST(Recovery, SameSeedGivesTheSameBootstrapInterval) {
   const auto answers = on_grid({0.25, 0.3, 0.3, 0.35, 0.2, 0.4, 0.3, 0.25, 0.45, 0.3}, 0.05);
-  Fit a = fit_threshold(answers, FitModel::lognormal), b = a;
+  Fit a = fit_threshold(answers, ThresholdModel::log_normal), b = a;
   bootstrap_threshold(a, {0.0, 0.05}, 100, 7);
   bootstrap_threshold(b, {0.0, 0.05}, 100, 7);
   EXPECT_EQ(a.ci_low, b.ci_low);
@@ -113,12 +113,12 @@ TEST(Recovery, SameSeedGivesTheSameBootstrapInterval) {
 // a NaN became a grid index (undefined behaviour). Such a model is not resampled.
 TEST(Recovery, AModelThatRanOffToInfinityIsNotBootstrapped) {
   const auto answers = on_grid({0.25, 0.3, 0.3, 0.35, 0.2}, 0.05);
-  for (FitModel model : {FitModel::lognormal, FitModel::weibull, FitModel::logistic}) {
+  for (ThresholdModel model : {ThresholdModel::log_normal, ThresholdModel::weibull, ThresholdModel::logistic}) {
     Fit fit = fit_threshold(answers, model);
     fit.location = -std::numeric_limits<double>::infinity();
     bootstrap_threshold(fit, {0.0, 0.05, 0.5}, 20, 3);
-    EXPECT_EQ(fit.bootstrap, 0) << fit_model_name(model);
-    EXPECT_TRUE(std::isnan(fit.ci_low)) << fit_model_name(model);
+    EXPECT_EQ(fit.bootstrap, 0) << threshold_model_name(model);
+    EXPECT_TRUE(std::isnan(fit.ci_low)) << threshold_model_name(model);
   }
 }
 
@@ -129,11 +129,11 @@ TEST(Recovery, WeibullAndLogisticModelsFitTheirOwnData) {
     double u = i / 200.0, x = 1.0 + 0.1 * std::log(u / (1 - u));
     answers.push_back(std::max(1.0, std::ceil(x / 0.05 - 1e-9)) * 0.05);
   }
-  Fit logistic = fit_threshold(on_grid(answers, 0.05), FitModel::logistic);
+  Fit logistic = fit_threshold(on_grid(answers, 0.05), ThresholdModel::logistic);
   EXPECT_TRUE(logistic.converged);
   EXPECT_NEAR(logistic.threshold, 1.0, 0.02);
   EXPECT_NEAR(logistic.scale, 0.1, 0.01);
-  Fit weibull = fit_threshold(on_grid(answers, 0.05), FitModel::weibull);
+  Fit weibull = fit_threshold(on_grid(answers, 0.05), ThresholdModel::weibull);
   EXPECT_TRUE(weibull.converged);
   EXPECT_NEAR(weibull.threshold, 1.0, 0.05);  // a different shape, but the same median region
   EXPECT_NEAR(fit_cdf(logistic, logistic.threshold), 0.5, 1e-9);
