@@ -11,23 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "analysis/threshold_model.h"
+#include "analysis/psychometric_cells.h"
 
 namespace countershade::analysis {
-
-
-// k correct answers out of n trials at one λ.
-struct BinomialCell {
-  double lambda = 0;
-  long long k = 0, n = 0;
-};
-
-struct PsychometricOptions {
-  ThresholdModel model = ThresholdModel::weibull;
-  double guess = 0.5;       // γ = 1/n for n alternatives
-  bool free_lapse = false;  // false: ℓ = 0
-  double max_lapse = 0.1;
-};
 
 struct PsychometricFit {
   PsychometricOptions options;

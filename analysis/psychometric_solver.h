@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "analysis/psychometric_fit.h"
+#include "analysis/psychometric_cells.h"
 
 namespace countershade::analysis {
 

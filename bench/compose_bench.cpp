@@ -7,6 +7,8 @@
 #include "core/isa.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

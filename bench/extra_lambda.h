@@ -12,6 +12,7 @@
 
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 

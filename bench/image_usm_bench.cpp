@@ -18,6 +18,8 @@
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

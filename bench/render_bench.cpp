@@ -10,6 +10,7 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/shading.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

@@ -17,6 +17,8 @@
 #include "enhance/registry.h"
 #include "enhance/view.h"
 #include "render/scene.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -10,6 +10,8 @@
 #include "core/sha256.h"
 #include "render/ray_tracer.h"
 #include "stimuli/experiment.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

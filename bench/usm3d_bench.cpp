@@ -18,6 +18,8 @@
 #include "mesh/vertex_order.h"
 #include "face_scatter_smoothing.h"
 #include "subdivided_mesh.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -3,6 +3,7 @@
 #include "core/image.h"
 #include "fuzz/fuzz_input.h"
 #include "render/scene.h"
+#include "render/scene_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const bool support = [] {

@@ -15,6 +15,8 @@
 #include "render/frame_range.h"
 #include "stimuli/flicker.h"
 #include "stimuli/flicker_table.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade::cli {
 namespace {

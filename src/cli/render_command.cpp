@@ -21,6 +21,8 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/scene_animation.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade::cli {
 namespace {

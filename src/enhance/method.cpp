@@ -1,7 +1,6 @@
 #include "enhance/method.h"
 
-#include "core/error.h"
-#include "enhance/registry.h"
+#include "render/renderer.h"
 
 namespace countershade {
 
@@ -34,23 +33,6 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
   }
   context.view = std::move(view);
   return context;
-}
-
-MethodUse parse_method(const std::string& method, const nlohmann::json& parameters) {
-  MethodUse use;
-  use.method = &method_named(method, "method");
-  use.parameters = use.method->parse(ParameterBag::from_json(parameters, method, "parameters"));
-  use.parameters_json = parameters;
-  return use;
-}
-
-std::unique_ptr<PreparedEnhancement> prepare_method(const std::string& method, std::shared_ptr<const View> view,
-                                                    const nlohmann::json& parameters, int threads) {
-  const MethodUse use = parse_method(method, parameters);
-  for (size_t u = 0; u < view->uses.size(); ++u)
-    if (view->uses[u].method == use.method && view->uses[u].parameters_json == parameters)
-      return use.method->prepare(make_use_context(view, u, threads), *view->uses[u].parameters);
-  return use.method->prepare(make_context(view, threads), *use.parameters);  // no stage
 }
 
 }  // namespace countershade

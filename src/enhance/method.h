@@ -168,18 +168,9 @@ const P& parameters_as(const MethodParameters& p) {
   return static_cast<const P&>(p);
 }
 
-// Parses a JSON object of parameters for the named method (InputError for an unknown method or
-// bad parameters).
-MethodUse parse_method(const std::string& method, const nlohmann::json& parameters);
-
 // The context of a method that has no surface stage (or of an external image's view).
 PrepareContext make_context(std::shared_ptr<const View> view, int threads = 0);
 // The context of use `use` of the plan the view was rendered for: its stage and fields.
 PrepareContext make_use_context(std::shared_ptr<const View> view, size_t use, int threads = 0);
-
-// Prepares the named method with these parameters on a view: the short path for tools and
-// tests. A method with a surface stage must be one of the uses the view was rendered for.
-std::unique_ptr<PreparedEnhancement> prepare_method(const std::string& method, std::shared_ptr<const View> view,
-                                                    const nlohmann::json& parameters, int threads = 0);
 
 }  // namespace countershade

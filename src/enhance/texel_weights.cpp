@@ -4,6 +4,7 @@
 #include <atomic>
 
 #include "core/parallel.h"
+#include "render/pixel_pass.h"
 #include "render/shading.h"
 
 namespace countershade {

@@ -16,15 +16,12 @@
 #include "core/color.h"
 #include "core/display.h"
 #include "core/image.h"
+#include "enhance/display_lab.h"
 #include "render/ray_tracer.h"
-#include "render/render_request.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 
 namespace countershade {
-
-// CIELAB per pixel; left unfilled until written (a 1920×1080 view holds 50 MB of it).
-using LabPixels = std::vector<Lab, UninitializedAllocator<Lab>>;
 
 class SurfaceStage;
 class EnhancementMethod;
@@ -35,15 +32,6 @@ struct MethodUse {
   const EnhancementMethod* method = nullptr;
   std::shared_ptr<const MethodParameters> parameters;
   nlohmann::json parameters_json;  // as given, to find the use again (prepare_method)
-};
-
-// What a view is rendered for: every method that will enhance it, and the strongest λ they use.
-struct ViewPlan {
-  std::vector<MethodUse> uses;
-  double max_abs_lambda = 0;
-  RenderRequest request() const;  // the uses' requests merged
-  // Adds a use of the named method (InputError for an unknown method or bad parameters).
-  ViewPlan& add(const std::string& method, const nlohmann::json& parameters);
 };
 
 // What methods derive from a view alone and share between their preparations, made once per key.
@@ -110,24 +98,5 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
 // not rounded yet, seen with its own L*).
 std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding,
                                             int bits, bool round = true);
-
-// Applies the request's scene changes (mesh refinement) before the scene is rendered.
-void apply_request(Scene& scene, const RenderRequest& request);
-
-struct ViewOptions {
-  int bits = 8;
-  int threads = 0;
-  std::function<void(double)> progress;
-};
-
-// Renders a scene for a plan and makes its view: one render for every use, with the fields their
-// surface stages ask for, sampled to the noise budget at the plan's strongest λ.
-std::shared_ptr<const View> render_view(std::shared_ptr<const Scene> scene, const ViewPlan& plan,
-                                        const ViewOptions& options);
-// The plain view (no methods).
-std::shared_ptr<const View> render_view(std::shared_ptr<const Scene> scene, const ViewOptions& options = {});
-
-// The plan of one method.
-ViewPlan plan_for(const std::string& method, const nlohmann::json& parameters, double max_abs_lambda);
 
 }  // namespace countershade

@@ -12,7 +12,7 @@
 
 #include <functional>
 
-#include "render/renderer.h"
+#include "render/render_types.h"
 #include "render/shading.h"
 #include "render/trace_log.h"
 
@@ -35,5 +35,25 @@ struct PixelPassInput {
 
 // Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.
 void pixel_pass(const PixelPassInput& input, RenderResult& result);
+
+// Sees the samples of a render as they are shaded (observe_samples).
+class SampleObserver {
+ public:
+  virtual ~SampleObserver() = default;
+  // One sample that hit a surface: its point (with its UV footprint), its shading record and light
+  // samples, which `shader` can evaluate again (e.g. with another albedo).
+  virtual void surface(size_t pixel, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
+                       const LightSampleRecord* lights) = 0;
+  // The pixel's `samples` samples have all been seen (from the thread that took them).
+  virtual void pixel_done(size_t pixel, uint32_t samples) = 0;
+};
+
+// Takes the samples of an earlier render of this scene and camera again, `counts[p]` of pixel p
+// (its RenderResult::spp), shaded without hooks, and shows each to `observer`: one thread per
+// pixel at a time, a pixel's samples in order. `replay`, when given, is read back instead of
+// tracing what it holds.
+void observe_samples(const Scene& scene, const RayTracer& tracer, const std::vector<uint32_t>& counts,
+                     const TraceLog* replay, SampleObserver& observer, int threads = 0);
+
 
 }  // namespace countershade

@@ -8,7 +8,7 @@
 
 #include <optional>
 
-#include "render/renderer.h"
+#include "render/render_types.h"
 #include "render/scene.h"
 #include "render/shading.h"
 #include "render/trace_log.h"

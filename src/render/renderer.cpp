@@ -89,20 +89,6 @@ GBuffer render_gbuffer(const Scene& scene, const RayTracer& tracer, int threads)
   return centre_pass(scene, tracer, threads, rays);
 }
 
-double display_luminance(const glm::dvec3& radiance, const Exposure& exposure) {
-  glm::dvec3 c;
-  for (int i = 0; i < 3; ++i) c[i] = exposure(radiance[i]);
-  return luminance_of(c);
-}
-
-glm::dvec3 triangle_sample_barycentrics(int j, int k) {
-  // Stratified in the first coordinate, golden-ratio sequence in the second, warped uniformly
-  // onto the triangle.
-  double r1 = (j + 0.5) / k, r2 = std::fmod(0.5 + 0.6180339887498949 * j, 1.0);
-  double s = std::sqrt(r1);
-  return {1.0 - s, s * (1.0 - r2), s * r2};
-}
-
 RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOptions& options) {
   const Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
   RenderResult result;

@@ -139,19 +139,11 @@ struct Scene {
   BoundingBox bounds() const;
 };
 
-// With `surface_graphs`, each object's welded surface (Object::surface) is built as well: the
-// vertex signal and the methods that work on mesh surfaces need it; a plain render does not.
-Scene load_scene(const std::filesystem::path& path, bool surface_graphs = true);
-
 // Builds (or rebuilds, after the meshes changed) every object's surface graph, objects side by side.
 void build_surface_graphs(Scene& scene, int threads = 0);
 
 // Throws std::logic_error unless every object has its surface graph (`who` names the caller).
 void require_surface_graphs(const Scene& scene, const char* who);
-
-// A "noise" object: target, p99, min_spp, max_spp, time_limit (scene and experiment files).
-class JsonObject;
-NoiseBudget read_noise_budget(const JsonObject& o);
 
 // Splits every edge longer than `max_edge_length` (tessellation refinement before surface
 // smoothing). Returns the number of splits.

@@ -1,6 +1,6 @@
 #include "render/surface_sums.h"
 
-#include "render/renderer.h"
+#include "render/render_types.h"
 
 namespace countershade {
 

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "render/ray_tracer.h"
-#include "render/renderer.h"
+#include "render/render_types.h"
 #include "render/shading.h"
 
 namespace countershade {

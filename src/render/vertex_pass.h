@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "render/camera_samples.h"
-#include "render/renderer.h"
+#include "render/render_types.h"
 #include "render/shading.h"
 
 namespace countershade {

@@ -19,6 +19,8 @@
 #include "enhance/registry.h"
 #include "render/camera.h"
 #include "render/frame_range.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -10,6 +10,7 @@
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene_animation.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

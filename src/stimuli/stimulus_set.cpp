@@ -36,6 +36,7 @@
 #include "stimuli/sequence_videos.h"
 #include "stimuli/set_layout.h"
 #include "render/scene_animation.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace fs = std::filesystem;

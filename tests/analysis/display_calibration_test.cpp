@@ -9,6 +9,7 @@
 #include "core/json_reader.h"
 #include "render/scene.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade::analysis {
 namespace {

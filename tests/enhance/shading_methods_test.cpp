@@ -19,6 +19,8 @@
 #include "enhance/view_curvature.h"
 #include "render/shading.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -12,6 +12,7 @@
 #include "enhance/view.h"
 #include "render/rich_scene.h"
 #include "test_util.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -12,6 +12,7 @@
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
 #include "test_util.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -6,6 +6,7 @@
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
 #include "test_util.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -15,6 +15,8 @@
 #include "enhance/registry.h"
 #include "render/ray_tracer.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

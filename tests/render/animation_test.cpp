@@ -15,6 +15,8 @@
 #include "render/scene_animation.h"
 #include "stimuli/perspective_coherence.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

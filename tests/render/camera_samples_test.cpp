@@ -8,6 +8,7 @@
 #include "render/camera.h"
 #include "render/renderer.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

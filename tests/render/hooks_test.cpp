@@ -9,6 +9,8 @@
 #include "render/hooks.h"
 #include "render/shading.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

@@ -12,6 +12,7 @@
 #include "render/camera_samples.h"
 #include "render/shading.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

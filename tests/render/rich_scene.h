@@ -7,6 +7,7 @@
 
 #include "render/scene.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade::testing {
 

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

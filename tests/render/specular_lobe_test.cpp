@@ -16,6 +16,7 @@
 #include "render/renderer.h"
 #include "render/shading.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "render/texture.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

@@ -15,6 +15,7 @@
 #include "render/trace_log.h"
 #include "render/rich_scene.h"
 #include "test_util.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

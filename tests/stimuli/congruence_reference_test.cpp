@@ -17,6 +17,8 @@
 #include "enhance/method.h"
 #include "stimuli/congruence.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

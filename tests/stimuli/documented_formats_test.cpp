@@ -14,6 +14,7 @@
 #include "render/scene.h"
 #include "stimuli/experiment.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

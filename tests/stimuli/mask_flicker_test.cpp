@@ -18,6 +18,8 @@
 #include "stimuli/set_test_util.h"
 #include "stimuli/surface_values.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {

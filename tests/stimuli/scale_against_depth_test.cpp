@@ -13,6 +13,7 @@
 #include "stimuli/scale_against_depth.h"
 #include "stimuli/set_test_util.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

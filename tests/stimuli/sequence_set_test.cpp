@@ -19,6 +19,8 @@
 #include "stimuli/stimulus_set.h"
 #include "stimuli/set_test_util.h"
 #include "test_util.h"
+#include "render/scene_loader.h"
+#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
