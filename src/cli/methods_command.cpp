@@ -23,15 +23,46 @@ void print_method(const EnhancementMethod& m) {
   std::printf("\n");
 }
 
+// Text for a Markdown table cell: a '|' would end the cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+// The method's axes and parameters as docs/enhancement-methods.md shows them: the docs' tables
+// are this output (DocumentedParameters.TheDocsTablesAreTheMethodsMarkdown).
+void print_markdown(const EnhancementMethod& m) {
+  const MethodAxes axes = m.axes();
+  std::printf("λ: %s.", cell(axes.strength_help).c_str());
+  if (axes.widths.empty()) std::printf(" No σ axis.");
+  for (size_t i = 0; i < axes.widths.size(); ++i)
+    std::printf("%s`%s` (%s): %s", i == 0 ? " σ is one of " : "; ", axes.widths[i].key.c_str(),
+                axes.widths[i].unit.c_str(), cell(axes.widths[i].help).c_str());
+  std::printf("%s\n", axes.widths.empty() ? "" : ".");
+  if (m.parameter_docs().empty()) return;
+  std::printf("\n| key | flag | default | meaning |\n|---|---|---|---|\n");
+  for (const auto& p : m.parameter_docs())
+    std::printf("| `%s` | `--%s` | %s | %s |\n", p.key.c_str(), kebab_case(p.key).c_str(),
+                p.default_value.empty() ? "" : ("`" + p.default_value + "`").c_str(), cell(p.help).c_str());
+}
+
 }  // namespace
 
 void add_methods_command(CLI::App& app) {
   auto name = std::make_shared<std::string>();
+  auto markdown = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("methods", "List the enhancement methods, their axes and parameters.");
   cmd->add_option("name", *name, "Show only this method");
-  cmd->callback([name] {
-    if (!name->empty()) return print_method(method_named(*name, "methods"));
-    for (const auto& n : method_names()) print_method(*find_method(n));
+  cmd->add_flag("--markdown", *markdown, "As Markdown: the tables of docs/enhancement-methods.md");
+  cmd->callback([name, markdown] {
+    const auto show = [&](const EnhancementMethod& m) { *markdown ? print_markdown(m) : print_method(m); };
+    if (!name->empty()) return show(method_named(*name, "methods"));
+    for (const auto& n : method_names()) {
+      if (*markdown) std::printf("### `%s`\n\n", n.c_str());
+      show(*find_method(n));
+      if (*markdown) std::printf("\n");
+    }
   });
   cmd->footer(
       "In an experiment file the same parameters are keys of a method's entry (snake_case), and σ is a list\n"

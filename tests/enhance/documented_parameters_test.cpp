@@ -15,6 +15,7 @@
 #include "core/parameters.h"
 #include "enhance/method.h"
 #include "enhance/registry.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -108,6 +109,28 @@ TEST(DocumentedParameters, EveryMethodDocumentsTheDefaultsItsParserReads) {
       EXPECT_TRUE(documented.count(key) || width_keys.count(key)) << name << ": '" << key << "' (default " << fallback << ") is not documented";
   }
   EXPECT_GT(compared, 30u);
+}
+
+// docs/enhancement-methods.md shows every method's axes and parameters as `countershade methods
+// --markdown NAME` prints them, between its markers (scripts/update-method-docs rewrites them):
+// the tables come from the code's own documentation, which the test above holds to the parsers.
+TEST(DocumentedParameters, TheDocsTablesAreTheMethodsMarkdown) {
+  const std::string doc = testing::read_file(testing::source_dir() / "docs/enhancement-methods.md");
+  for (const std::string& name : method_names()) {
+    const std::string begin = "<!-- countershade methods --markdown " + name + " -->\n";
+    const size_t at = doc.find(begin);
+    ASSERT_NE(at, std::string::npos) << "docs/enhancement-methods.md has no generated table for " << name;
+    const size_t start = at + begin.size(), end = doc.find("<!-- end of generated table -->", start);
+    ASSERT_NE(end, std::string::npos) << name;
+    const auto r = testing::run_cli("methods --markdown " + name);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(doc.substr(start, end - start), r.output)
+        << name << ": the docs' table differs from `countershade methods --markdown " << name
+        << "`; run scripts/update-method-docs";
+    if (!find_method(name)->parameter_docs().empty()) {
+      EXPECT_NE(r.output.find("| `" + find_method(name)->parameter_docs()[0].key + "` |"), std::string::npos) << name;
+    }
+  }
 }
 
 // The record itself: each typed read notes its fallback, whether or not the key was given.
