@@ -49,10 +49,12 @@ double resolve_step(const std::vector<const Response*>& rows, const AnalysisOpti
   const Response* first = nullptr;
   for (const Response* r : rows) {
     if (r->lambda_step <= 0) continue;
-    if (!first) first = r;
+    if (!first)
+      first = r;
     else if (std::abs(r->lambda_step - first->lambda_step) > 1e-12)
-      throw InputError(r->source + ": lambda_step " + std::to_string(r->lambda_step) + " differs from " +
-                       std::to_string(first->lambda_step) + " at " + first->source + " (pass --lambda-step)");
+      throw InputError(r->source + ": lambda_step " + std::to_string(r->lambda_step) +
+                       " differs from " + std::to_string(first->lambda_step) + " at " +
+                       first->source + " (pass --lambda-step)");
   }
   if (!first) throw InputError("responses have no lambda_step column: pass --lambda-step");
   return first->lambda_step;
@@ -86,7 +88,8 @@ CellTable subject_means(BlockResults& b, const std::vector<const Response*>& row
   for (const Response* r : rows) {
     auto& cells = answers[r->subject];
     if (cells.empty()) cells.resize(ns * nsig * kQuestionCount);
-    cells[(index_of(b.scenes, r->scene) * nsig + index_of(b.sigmas, r->sigma)) * kQuestionCount + size_t(r->question)]
+    cells[(index_of(b.scenes, r->scene) * nsig + index_of(b.sigmas, r->sigma)) * kQuestionCount +
+          size_t(r->question)]
         .push_back(r->lambda);
   }
   size_t repeated = 0;
@@ -102,7 +105,8 @@ CellTable subject_means(BlockResults& b, const std::vector<const Response*>& row
     for (size_t s = 0; s < ns && reason.empty() && needs_low; ++s)
       for (size_t g = 0; g < nsig && reason.empty(); ++g)
         if (means[(s * nsig + g) * kQuestionCount + size_t(Question::low)] <= 0)
-          reason = "lambda_low of 0 in scene " + b.scenes[s] + ", sigma " + json(b.sigmas[g]).dump() + " (no JND scale)";
+          reason = "lambda_low of 0 in scene " + b.scenes[s] + ", sigma " +
+                   json(b.sigmas[g]).dump() + " (no JND scale)";
     if (!reason.empty()) {
       b.excluded.push_back({subject, reason});
       continue;
@@ -110,13 +114,17 @@ CellTable subject_means(BlockResults& b, const std::vector<const Response*>& row
     b.subjects.push_back(subject);
     included.push_back(std::move(means));
   }
-  if (repeated) b.warnings.push_back(std::to_string(repeated) + " cells had repeated answers; they were averaged");
-  for (const auto& e : b.excluded) b.warnings.push_back("subject " + e.subject + " excluded: " + e.reason);
+  if (repeated)
+    b.warnings.push_back(std::to_string(repeated) +
+                         " cells had repeated answers; they were averaged");
+  for (const auto& e : b.excluded)
+    b.warnings.push_back("subject " + e.subject + " excluded: " + e.reason);
   CellTable table(included.size(), ns, nsig);
   for (size_t i = 0; i < included.size(); ++i)
     for (size_t s = 0; s < ns; ++s)
       for (size_t g = 0; g < nsig; ++g)
-        for (Question q : kQuestions) table.at(i, s, g, q) = included[i][(s * nsig + g) * kQuestionCount + size_t(q)];
+        for (Question q : kQuestions)
+          table.at(i, s, g, q) = included[i][(s * nsig + g) * kQuestionCount + size_t(q)];
   return table;
 }
 
@@ -139,18 +147,22 @@ CellTable jnd_cells(const CellTable& means, JndNormalization normalization) {
   std::vector<double> group_low(ns * nsig, 0.0);
   for (size_t i = 0; i < n; ++i)
     for (size_t s = 0; s < ns; ++s)
-      for (size_t g = 0; g < nsig; ++g) group_low[s * nsig + g] += means.at(i, s, g, Question::low) / double(n);
+      for (size_t g = 0; g < nsig; ++g)
+        group_low[s * nsig + g] += means.at(i, s, g, Question::low) / double(n);
   CellTable jnd(n, ns, nsig);
   for (size_t i = 0; i < n; ++i)
     for (size_t s = 0; s < ns; ++s)
       for (size_t g = 0; g < nsig; ++g)
         for (Question q : kQuestions)
-          jnd.at(i, s, g, q) =
-              means.at(i, s, g, q) / (normalization == JndNormalization::group ? group_low[s * nsig + g] : means.at(i, s, g, Question::low));
+          jnd.at(i, s, g, q) = means.at(i, s, g, q) / (normalization == JndNormalization::group
+                                                           ? group_low[s * nsig + g]
+                                                           : means.at(i, s, g, Question::low));
   return jnd;
 }
 
-json summary_json(const Summary& d) { return {{"n", d.n}, {"mean", d.mean}, {"sd", d.sd}, {"sem", d.sem}}; }
+json summary_json(const Summary& d) {
+  return {{"n", d.n}, {"mean", d.mean}, {"sd", d.sd}, {"sem", d.sem}};
+}
 
 void add_descriptives(BlockResults& b) {
   const CellTable& jnd = b.jnd;
@@ -188,7 +200,8 @@ void add_anovas(BlockResults& b) {
           full(long(i), long((size_t(q) * ns + s) * nsig + g)) = jnd.at(i, s, g, q);
           if (q == Question::best) best(long(i), long(s * nsig + g)) = jnd.at(i, s, g, q);
         }
-  if (ns < 2 || nsig < 2) b.warnings.push_back("fewer than two scenes or σ values: ANOVAs with one level are skipped");
+  if (ns < 2 || nsig < 2)
+    b.warnings.push_back("fewer than two scenes or σ values: ANOVAs with one level are skipped");
   else {
     b.anova = rm_anova(full, {{"question", 3}, {"scene", int(ns)}, {"sigma", int(nsig)}});
     b.anova_best_sigma = rm_anova(best, {{"scene", int(ns)}, {"sigma", int(nsig)}});
@@ -198,8 +211,10 @@ void add_anovas(BlockResults& b) {
   for (const std::vector<AnovaRow>* rows : {&b.anova, &b.anova_best_sigma})
     for (const AnovaRow& r : *rows)
       if (r.df1 > 1 && !r.has_sphericity)
-        b.warnings.push_back(r.effect + ": " + std::to_string(n) + " subjects are too few for a sphericity test of " +
-                             std::to_string(int(r.df1)) + " contrasts (at least " + std::to_string(int(r.df1) + 1) +
+        b.warnings.push_back(r.effect + ": " + std::to_string(n) +
+                             " subjects are too few for a sphericity test of " +
+                             std::to_string(int(r.df1)) + " contrasts (at least " +
+                             std::to_string(int(r.df1) + 1) +
                              " needed): no Mauchly test and no ε corrections, as in R");
 }
 
@@ -208,8 +223,9 @@ void add_anovas(BlockResults& b) {
 void add_t_tests(BlockResults& b) {
   const CellTable& jnd = b.jnd;
   const size_t n = jnd.subjects(), ns = jnd.scenes();
-  const std::pair<Question, Question> pairs[] = {
-      {Question::best, Question::low}, {Question::high, Question::best}, {Question::high, Question::low}};
+  const std::pair<Question, Question> pairs[] = {{Question::best, Question::low},
+                                                 {Question::high, Question::best},
+                                                 {Question::high, Question::low}};
   std::vector<TTest> tests;
   std::vector<double> ps;
   for (auto [a, c] : pairs) {
@@ -221,9 +237,13 @@ void add_t_tests(BlockResults& b) {
   auto adjusted = holm(ps);
   b.json["pairwise"] = json::array();
   for (size_t k = 0; k < 3; ++k)
-    b.json["pairwise"].push_back({{"a", question_name(pairs[k].first)}, {"b", question_name(pairs[k].second)},
-                                  {"mean_diff", tests[k].mean}, {"t", tests[k].t}, {"df", tests[k].df},
-                                  {"p", tests[k].p}, {"p_holm", adjusted[k]}});
+    b.json["pairwise"].push_back({{"a", question_name(pairs[k].first)},
+                                  {"b", question_name(pairs[k].second)},
+                                  {"mean_diff", tests[k].mean},
+                                  {"t", tests[k].t},
+                                  {"df", tests[k].df},
+                                  {"p", tests[k].p},
+                                  {"p_holm", adjusted[k]}});
   tests.clear();
   ps.clear();
   for (size_t s = 0; s < ns; ++s) {
@@ -235,8 +255,12 @@ void add_t_tests(BlockResults& b) {
   adjusted = holm(ps);
   b.json["best_vs_threshold"] = json::array();
   for (size_t s = 0; s < ns; ++s)
-    b.json["best_vs_threshold"].push_back({{"scene", b.scenes[s]}, {"mean", tests[s].mean}, {"t", tests[s].t},
-                                           {"df", tests[s].df}, {"p", tests[s].p}, {"p_holm", adjusted[s]}});
+    b.json["best_vs_threshold"].push_back({{"scene", b.scenes[s]},
+                                           {"mean", tests[s].mean},
+                                           {"t", tests[s].t},
+                                           {"df", tests[s].df},
+                                           {"p", tests[s].p},
+                                           {"p_holm", adjusted[s]}});
 }
 
 // A statistic that is not finite means that the answers it compares do not vary between subjects
@@ -248,10 +272,12 @@ void warn_about_constant_data(BlockResults& b) {
     for (const json& row : b.json[table]) {
       const double value = row[statistic].get<double>();
       if (std::isfinite(value)) continue;
-      const std::string name = row.contains("effect") ? row["effect"].get<std::string>()
+      const std::string name = row.contains("effect")  ? row["effect"].get<std::string>()
                                : row.contains("scene") ? row["scene"].get<std::string>()
-                                                       : row["a"].get<std::string>() + " − " + row["b"].get<std::string>();
-      b.warnings.push_back(std::string(table) + " " + name + ": " + statistic + " = " + (std::isnan(value) ? "NA" : "Inf") +
+                                                       : row["a"].get<std::string>() + " − " +
+                                                             row["b"].get<std::string>();
+      b.warnings.push_back(std::string(table) + " " + name + ": " + statistic + " = " +
+                           (std::isnan(value) ? "NA" : "Inf") +
                            ", the answers do not vary between subjects (an error variance of 0)");
     }
 }
@@ -265,7 +291,8 @@ void add_clusters(BlockResults& b, int clusters) {
     for (size_t s = 0; s < ns; ++s) prefs(long(i), long(s)) = jnd.sigma_mean(i, s, Question::best);
   const int k = std::clamp(clusters, 1, int(n));
   if (k != clusters)
-    b.warnings.push_back("--clusters " + std::to_string(clusters) + " lowered to " + std::to_string(k) + " (the number of subjects)");
+    b.warnings.push_back("--clusters " + std::to_string(clusters) + " lowered to " +
+                         std::to_string(k) + " (the number of subjects)");
   b.dendrogram = ward_d2(prefs);
   b.cluster_labels = cut_tree(b.dendrogram, int(n), k);
   json assignments = json::object();
@@ -278,8 +305,9 @@ void add_clusters(BlockResults& b, int clusters) {
     mean_best[size_t(label - 1)] += prefs.row(long(i)).mean();
   }
   for (int c = 0; c < k; ++c) mean_best[size_t(c)] /= std::max(1, sizes[size_t(c)]);
-  b.json["clusters"] = {{"method", "ward.D2"}, {"distance", "euclidean"}, {"k", k},
-                        {"assignments", assignments}, {"sizes", sizes}, {"mean_best", mean_best}};
+  b.json["clusters"] = {
+      {"method", "ward.D2"},        {"distance", "euclidean"}, {"k", k},
+      {"assignments", assignments}, {"sizes", sizes},          {"mean_best", mean_best}};
 }
 
 json fit_json(const BlockResults::FitEntry& entry, const AnalysisOptions& options) {
@@ -319,14 +347,17 @@ CellAnswers cell_answers(const std::vector<const Response*>& cell, double step) 
   bool first_known = false;
   for (const Response* r : cell) {
     bool zero = false;
-    out.intervals.push_back(answer_interval(r->lambda, r->lambda_index, step, r->lambda_max, &zero));
+    out.intervals.push_back(
+        answer_interval(r->lambda, r->lambda_index, step, r->lambda_max, &zero));
     out.zeros += zero;
     if (r->lambda_index >= 0) {
       const double first = r->lambda - r->lambda_index * step;
       out.grid.first = first_known ? std::min(out.grid.first, first) : first;
       first_known = true;
     }
-    if (r->lambda_max > 0) out.grid.top = std::isinf(out.grid.top) ? r->lambda_max : std::max(out.grid.top, r->lambda_max);
+    if (r->lambda_max > 0)
+      out.grid.top =
+          std::isinf(out.grid.top) ? r->lambda_max : std::max(out.grid.top, r->lambda_max);
   }
   return out;
 }
@@ -335,9 +366,11 @@ std::string cell_name(const BlockResults::FitEntry& e) {
   return e.scene + ", sigma " + json(e.sigma).dump() + ", " + question_name(e.question);
 }
 
-void fit_cell(BlockResults& b, BlockResults::FitEntry& entry, const CellAnswers& cell, const AnalysisOptions& options) {
+void fit_cell(BlockResults& b, BlockResults::FitEntry& entry, const CellAnswers& cell,
+              const AnalysisOptions& options) {
   if (cell.zeros)
-    b.warnings.push_back(std::to_string(cell.zeros) + " answers of lambda = 0 counted as (0, lambda_1]: " + cell_name(entry));
+    b.warnings.push_back(std::to_string(cell.zeros) +
+                         " answers of lambda = 0 counted as (0, lambda_1]: " + cell_name(entry));
   entry.fit = fit_threshold(cell.intervals, options.model);
   if (!entry.fit.identified)
     b.warnings.push_back("fit unidentified (every answer censored at the " +
@@ -346,14 +379,17 @@ void fit_cell(BlockResults& b, BlockResults::FitEntry& entry, const CellAnswers&
   else if (!entry.fit.converged)
     b.warnings.push_back("fit did not converge: " + cell_name(entry));
   if (options.bootstrap > 0)
-    bootstrap_threshold(entry.fit, cell.grid, options.bootstrap, hash_combine(options.seed, uint64_t(b.fits.size())));
+    bootstrap_threshold(entry.fit, cell.grid, options.bootstrap,
+                        hash_combine(options.seed, uint64_t(b.fits.size())));
 }
 
 // Threshold fits on the raw answers of the included subjects (repetitions kept).
-void add_fits(BlockResults& b, const std::vector<const Response*>& rows, const AnalysisOptions& options) {
+void add_fits(BlockResults& b, const std::vector<const Response*>& rows,
+              const AnalysisOptions& options) {
   const std::set<std::string> included(b.subjects.begin(), b.subjects.end());
   if (std::none_of(rows.begin(), rows.end(), [](const Response* r) { return r->lambda_max > 0; }))
-    b.warnings.push_back("no lambda_max column: no answer is right-censored at the top of the grid");
+    b.warnings.push_back(
+        "no lambda_max column: no answer is right-censored at the top of the grid");
   b.json["fits"] = json::array();
   for (size_t s = 0; s < b.scenes.size(); ++s)
     for (size_t g = 0; g < b.sigmas.size(); ++g)
@@ -361,7 +397,8 @@ void add_fits(BlockResults& b, const std::vector<const Response*>& rows, const A
         BlockResults::FitEntry entry{b.scenes[s], b.sigmas[g], q, {}, {}};
         std::vector<const Response*> cell;
         for (const Response* r : rows)
-          if (included.count(r->subject) && r->scene == entry.scene && r->sigma == entry.sigma && r->question == q) {
+          if (included.count(r->subject) && r->scene == entry.scene && r->sigma == entry.sigma &&
+              r->question == q) {
             cell.push_back(r);
             entry.answers.push_back(r->lambda);
           }
@@ -374,7 +411,8 @@ void add_fits(BlockResults& b, const std::vector<const Response*>& rows, const A
 // "file: method M: ", the start of an error about a block's data.
 std::string data_name(const std::vector<const Response*>& rows, const std::string& method) {
   const std::string& source = rows.front()->source;  // "file:line"
-  return source.substr(0, source.rfind(':')) + ": " + (method.empty() ? "" : "method " + method + ": ");
+  return source.substr(0, source.rfind(':')) + ": " +
+         (method.empty() ? "" : "method " + method + ": ");
 }
 
 BlockResults analyze_block(const std::string& method, const std::vector<const Response*>& rows,
@@ -384,26 +422,32 @@ BlockResults analyze_block(const std::string& method, const std::vector<const Re
   b.lambda_step = resolve_step(rows, options);
   collect_design(b, rows);
   // Dividing by a subject's own λ_Low needs it positive; the group mean does not.
-  const CellTable means = subject_means(b, rows, options.normalization == JndNormalization::subject);
+  const CellTable means =
+      subject_means(b, rows, options.normalization == JndNormalization::subject);
   b.lambda_means = means;
   const size_t n = b.subjects.size();
   if (n < 3) {
-    const std::string example =
-        b.excluded.empty() ? "" : ", e.g. " + b.excluded.front().subject + ": " + b.excluded.front().reason;
-    throw InputError(data_name(rows, method) + "only " + std::to_string(n) + (n == 1 ? " subject has" : " subjects have") +
-                     " answers in every cell (need 3 or more; " + std::to_string(b.excluded.size()) + " excluded" +
-                     example + ")");
+    const std::string example = b.excluded.empty() ? ""
+                                                   : ", e.g. " + b.excluded.front().subject + ": " +
+                                                         b.excluded.front().reason;
+    throw InputError(data_name(rows, method) + "only " + std::to_string(n) +
+                     (n == 1 ? " subject has" : " subjects have") +
+                     " answers in every cell (need 3 or more; " +
+                     std::to_string(b.excluded.size()) + " excluded" + example + ")");
   }
-  if (options.normalization == JndNormalization::group) check_group_scale(b, means, data_name(rows, method));
+  if (options.normalization == JndNormalization::group)
+    check_group_scale(b, means, data_name(rows, method));
   b.jnd = jnd_cells(means, options.normalization);
 
   json& out = b.json;
   out["n_subjects"] = n;
   out["excluded_subjects"] = json::array();
-  for (const auto& e : b.excluded) out["excluded_subjects"].push_back({{"subject", e.subject}, {"reason", e.reason}});
+  for (const auto& e : b.excluded)
+    out["excluded_subjects"].push_back({{"subject", e.subject}, {"reason", e.reason}});
   out["lambda_step"] = b.lambda_step;
   out["jnd_normalization"] = jnd_normalization_name(options.normalization);
-  b.browser_answers = size_t(std::count_if(rows.begin(), rows.end(), [](const Response* r) { return r->browser; }));
+  b.browser_answers =
+      size_t(std::count_if(rows.begin(), rows.end(), [](const Response* r) { return r->browser; }));
   if (!method.empty()) out["method"] = method;
   add_descriptives(b);
   add_anovas(b);
@@ -427,8 +471,10 @@ const char* jnd_normalization_name(JndNormalization normalization) {
   return normalization == JndNormalization::group ? "group" : "subject";
 }
 
-std::vector<BlockResults> analyze(const std::vector<Response>& responses, const AnalysisOptions& options) {
-  if (options.lambda_step && !(*options.lambda_step > 0)) throw InputError("--lambda-step: must be positive");
+std::vector<BlockResults> analyze(const std::vector<Response>& responses,
+                                  const AnalysisOptions& options) {
+  if (options.lambda_step && !(*options.lambda_step > 0))
+    throw InputError("--lambda-step: must be positive");
   std::map<std::string, std::vector<const Response*>> blocks;
   for (const auto& r : responses) blocks[r.method].push_back(&r);
   std::vector<BlockResults> results;

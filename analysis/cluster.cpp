@@ -13,7 +13,8 @@ namespace {
 
 // The closest pair of active clusters (the first in row order on ties), and its distance². A
 // distance that is not a number never wins; if none is a number, the first pair is merged.
-std::tuple<int, int, double> closest_pair(const Eigen::MatrixXd& d2, const std::vector<bool>& active) {
+std::tuple<int, int, double> closest_pair(const Eigen::MatrixXd& d2,
+                                          const std::vector<bool>& active) {
   const int n = int(d2.rows());
   int bi = -1, bj = -1;
   double best = std::numeric_limits<double>::quiet_NaN();
@@ -59,7 +60,8 @@ Dendrogram ward_d2(const Eigen::MatrixXd& points) {
     for (int k = 0; k < n; ++k) {
       if (!active[k] || k == bi || k == bj) continue;
       const double ni = size[bi], nj = size[bj], nk = size[k];
-      d2(bi, k) = d2(k, bi) = ((ni + nk) * d2(bi, k) + (nj + nk) * d2(bj, k) - nk * d2(bi, bj)) / (ni + nj + nk);
+      d2(bi, k) = d2(k, bi) =
+          ((ni + nk) * d2(bi, k) + (nj + nk) * d2(bj, k) - nk * d2(bi, bj)) / (ni + nj + nk);
     }
     tree.merges.emplace_back(id[bi], id[bj]);
     tree.heights.push_back(std::sqrt(best));
@@ -75,7 +77,9 @@ std::vector<int> cut_tree(const Dendrogram& tree, int n, int k) {
   // Union the first n − k merges.
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  std::function<int(int)> find = [&](int x) {
+    return parent[x] == x ? x : parent[x] = find(parent[x]);
+  };
   std::vector<int> representative;  // an observation of each merge's cluster
   for (int m = 0; m < int(tree.merges.size()); ++m) {
     auto rep = [&](int node) { return node < 0 ? -node - 1 : representative[size_t(node)]; };

@@ -1,14 +1,14 @@
 #pragma once
 // Ward hierarchical clustering with Euclidean distances, as R's hclust(method = "ward.D2").
 
-#include <vector>
-
 #include <Eigen/Dense>
+#include <vector>
 
 namespace countershade::analysis {
 
 struct Dendrogram {
-  // merges[k] = (a, b): negative = observation −(index+1), non-negative = earlier merge k (R's convention).
+  // merges[k] = (a, b): negative = observation −(index+1), non-negative = earlier merge k (R's
+  // convention).
   std::vector<std::pair<int, int>> merges;
   std::vector<double> heights;
   std::vector<int> order;  // leaf order for drawing

@@ -1,14 +1,13 @@
 #include "analysis/display_calibration.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <limits>
-
-#include <Eigen/Dense>
-#include <boost/math/tools/minima.hpp>
 
 #include "core/error.h"
 #include "core/file_bytes.h"
@@ -30,9 +29,11 @@ double minimize_1d(const Objective& f, double lo, double hi) {
     const double v = f(lo + (hi - lo) * i / kGrid);
     if (v < best_value) best = i, best_value = v;
   }
-  const double a = lo + (hi - lo) * std::max(0, best - 1) / kGrid, b = lo + (hi - lo) * std::min(kGrid, best + 1) / kGrid;
+  const double a = lo + (hi - lo) * std::max(0, best - 1) / kGrid,
+               b = lo + (hi - lo) * std::min(kGrid, best + 1) / kGrid;
   std::uintmax_t iterations = 200;
-  const auto [x, value] = boost::math::tools::brent_find_minima(f, a, b, std::numeric_limits<double>::digits, iterations);
+  const auto [x, value] = boost::math::tools::brent_find_minima(
+      f, a, b, std::numeric_limits<double>::digits, iterations);
   double out = x;
   for (double bound : {lo, hi})
     if (std::abs(out - bound) < 1e-7 * (hi - lo) && f(bound) <= value) out = bound;
@@ -77,7 +78,8 @@ GammaFit fit_psyphy(const std::vector<Reading>& r) {
     J(Eigen::Index(i), 0) = 1, J(Eigen::Index(i), 1) = u;
     J(Eigen::Index(i), 2) = r[i].level > 0 ? p.k * u * std::log(r[i].level) : 0.0;
   }
-  const Eigen::Matrix3d covariance = (J.transpose() * J).inverse() * (fit.rss / double(r.size() - 3));
+  const Eigen::Matrix3d covariance =
+      (J.transpose() * J).inverse() * (fit.rss / double(r.size() - 3));
   const char* names[] = {"Blev", "k", "gamm"};
   for (int c = 0; c < 3; ++c) fit.se[names[c]] = std::sqrt(covariance(c, c));
   return fit;
@@ -87,7 +89,10 @@ GammaFit fit_eq1(const std::vector<Reading>& r) {
   const double lo = r.front().luminance, hi = r.back().luminance;
   auto model = [&](double g) { return [=](double x) { return lo + (hi - lo) * std::pow(x, g); }; };
   const double g = minimize_1d([&](double g) { return rss_of(r, model(g)); }, 0.8, 5.0);
-  return {"psychopy-eq1", {{"gamma", g}, {"a", lo}, {"b", std::pow(hi - lo, 1.0 / g)}}, {}, rss_of(r, model(g))};
+  return {"psychopy-eq1",
+          {{"gamma", g}, {"a", lo}, {"b", std::pow(hi - lo, 1.0 / g)}},
+          {},
+          rss_of(r, model(g))};
 }
 
 GammaFit fit_eq2(const std::vector<Reading>& r) {
@@ -98,7 +103,10 @@ GammaFit fit_eq2(const std::vector<Reading>& r) {
   };
   const double g = minimize_1d([&](double g) { return rss_of(r, model(g)); }, 0.8, 5.0);
   const double a = std::pow(lo, 1.0 / g);
-  return {"psychopy-eq2", {{"gamma", g}, {"a", a}, {"b", std::pow(hi, 1.0 / g) - a}}, {}, rss_of(r, model(g))};
+  return {"psychopy-eq2",
+          {{"gamma", g}, {"a", a}, {"b", std::pow(hi, 1.0 / g) - a}},
+          {},
+          rss_of(r, model(g))};
 }
 
 // Pelli & Zhang: three nested searches, k innermost (for a given γ and a).
@@ -112,14 +120,20 @@ GammaFit fit_eq4(const std::vector<Reading>& r) {
     return minimize_1d([&](double k) { return rss_of(r, model(g, a, k)); }, 2.0, 200.0);
   };
   auto best_a = [&](double g) {
-    return minimize_1d([&](double a) { return rss_of(r, model(g, a, best_k(g, a))); }, 1e-5, lo - 1e-5);
+    return minimize_1d([&](double a) { return rss_of(r, model(g, a, best_k(g, a))); }, 1e-5,
+                       lo - 1e-5);
   };
-  const double g = minimize_1d([&](double g) {
-    const double a = best_a(g);
-    return rss_of(r, model(g, a, best_k(g, a)));
-  }, 0.8, 5.0);
+  const double g = minimize_1d(
+      [&](double g) {
+        const double a = best_a(g);
+        return rss_of(r, model(g, a, best_k(g, a)));
+      },
+      0.8, 5.0);
   const double a = best_a(g), k = best_k(g, a);
-  return {"pelli-zhang", {{"gamma", g}, {"a", a}, {"k", k}, {"b", std::pow(lo - a, 1.0 / g)}}, {}, rss_of(r, model(g, a, k))};
+  return {"pelli-zhang",
+          {{"gamma", g}, {"a", a}, {"k", k}, {"b", std::pow(lo - a, 1.0 / g)}},
+          {},
+          rss_of(r, model(g, a, k))};
 }
 
 // The column called `name` (−1 if absent).
@@ -145,7 +159,8 @@ void check_guns(const GunReadings& guns, const std::string& file) {
                                   " readings; at least 4 are needed to fit three parameters");
     for (size_t i = 1; i < readings.size(); ++i) {
       if (readings[i].level == readings[i - 1].level)
-        throw_input_error(file, "gun " + gun + ": level " + std::to_string(readings[i].level) + " is read twice");
+        throw_input_error(
+            file, "gun " + gun + ": level " + std::to_string(readings[i].level) + " is read twice");
       if (readings[i].luminance <= readings[i - 1].luminance)
         throw_input_error(file, "gun " + gun + ": luminance does not rise with the level (" +
                                     std::to_string(readings[i].luminance) + " cd/m² at level " +
@@ -172,22 +187,26 @@ double level_at(const std::vector<std::string>& row, int column, bool is_code, d
   const std::string& text = row[size_t(column)];
   const double level = number_at(text, where, name);
   if (level < 0 || level > top || (is_code && level != std::floor(level)))
-    throw_input_error(where, name + ": " + text + " is not a level from 0 to " +
-                                 (is_code ? std::to_string(int(top)) + " (--bits " + std::to_string(bits) + ")" : "1"));
+    throw_input_error(
+        where,
+        name + ": " + text + " is not a level from 0 to " +
+            (is_code ? std::to_string(int(top)) + " (--bits " + std::to_string(bits) + ")" : "1"));
   return level / top;
 }
 
 // A row's level in [0, 1]: from code_value or gl, or from both when a photometer's export carries
 // both, which must then agree (gl = code_value / (2^bits − 1) within 1e-6).
-double row_level(const std::vector<std::string>& row, const ReadingColumns& c, int bits, const std::string& where) {
+double row_level(const std::vector<std::string>& row, const ReadingColumns& c, int bits,
+                 const std::string& where) {
   const double top = double((1u << bits) - 1u);
   if (c.gl < 0) return level_at(row, c.code, true, top, bits, where);
   const double gl = level_at(row, c.gl, false, 1.0, bits, where);
   if (c.code < 0) return gl;
   const double code = level_at(row, c.code, true, top, bits, where);
   if (std::abs(gl - code) > 1e-6)
-    throw_input_error(where, "gl " + row[size_t(c.gl)] + " does not match code_value " + row[size_t(c.code)] + " (" +
-                                 row[size_t(c.code)] + "/" + std::to_string(int(top)) + " = " + std::to_string(code) +
+    throw_input_error(where, "gl " + row[size_t(c.gl)] + " does not match code_value " +
+                                 row[size_t(c.code)] + " (" + row[size_t(c.code)] + "/" +
+                                 std::to_string(int(top)) + " = " + std::to_string(code) +
                                  " at --bits " + std::to_string(bits) + ")");
   return code;
 }
@@ -199,24 +218,27 @@ GunReadings read_photometer_readings(const std::filesystem::path& csv, int bits)
   const CsvTable table = parse_csv(read_file_bytes(csv), file);
   if (table.rows.empty()) throw_input_error(file, "empty file");
   const auto& header = table.rows[0];
-  const ReadingColumns c{column_of(header, "gun"), column_of(header, "lum_cd_m2"), column_of(header, "code_value"),
-                         column_of(header, "gl")};
+  const ReadingColumns c{column_of(header, "gun"), column_of(header, "lum_cd_m2"),
+                         column_of(header, "code_value"), column_of(header, "gl")};
   if (c.gun < 0 || c.lum < 0 || (c.code < 0 && c.gl < 0))
     throw_input_error(file, "expected the columns gun, lum_cd_m2 and code_value or gl (or both)");
   GunReadings out;
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const std::string where = file + ": line " + std::to_string(table.lines[r]);
-    if (row.size() != header.size()) throw_input_error(where, "expected " + std::to_string(header.size()) + " fields");
+    if (row.size() != header.size())
+      throw_input_error(where, "expected " + std::to_string(header.size()) + " fields");
     const std::string& g = row[size_t(c.gun)];
-    if (g != "R" && g != "G" && g != "B" && g != "W") throw_input_error(where, "gun: expected R, G, B or W, got '" + g + "'");
+    if (g != "R" && g != "G" && g != "B" && g != "W")
+      throw_input_error(where, "gun: expected R, G, B or W, got '" + g + "'");
     const double level = row_level(row, c, bits, where);
     const double luminance = number_at(row[size_t(c.lum)], where, "lum_cd_m2");
     if (luminance < 0) throw_input_error(where, "lum_cd_m2: a luminance cannot be negative");
     out[g].push_back({level, luminance});
   }
   for (auto& [g, readings] : out)
-    std::sort(readings.begin(), readings.end(), [](const Reading& a, const Reading& b) { return a.level < b.level; });
+    std::sort(readings.begin(), readings.end(),
+              [](const Reading& a, const Reading& b) { return a.level < b.level; });
   check_guns(out, file);
   return out;
 }
@@ -231,7 +253,8 @@ double GammaFit::predict(double x) const {
 
 std::vector<GammaFit> fit_gamma_models(const std::vector<Reading>& readings) {
   std::vector<GammaFit> out = {fit_psyphy(readings), fit_eq1(readings), fit_eq2(readings)};
-  // Pelli & Zhang's a lies in [1e-5, L(0) − 1e-5]: a black level of (almost) zero leaves it no room.
+  // Pelli & Zhang's a lies in [1e-5, L(0) − 1e-5]: a black level of (almost) zero leaves it no
+  // room.
   if (readings.front().luminance > 2e-5) out.push_back(fit_eq4(readings));
   return out;
 }

@@ -14,10 +14,9 @@
 
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace countershade::analysis {
 
@@ -37,11 +36,12 @@ using GunReadings = std::map<std::string, std::vector<Reading>>;
 GunReadings read_photometer_readings(const std::filesystem::path& csv, int bits);
 
 struct GammaFit {
-  std::string model;                     // psyphy, psychopy-eq1, psychopy-eq2, pelli-zhang
-  std::map<std::string, double> params;  // under the reference names: psyphy Blev, k, gamm; others gamma, a, b (k)
-  std::map<std::string, double> se;      // psyphy only: standard errors as R's nls gives them
-  double rss = 0;                        // residual sum of squares, (cd/m²)²
-  double predict(double level) const;    // L at a level
+  std::string model;  // psyphy, psychopy-eq1, psychopy-eq2, pelli-zhang
+  std::map<std::string, double>
+      params;  // under the reference names: psyphy Blev, k, gamm; others gamma, a, b (k)
+  std::map<std::string, double> se;    // psyphy only: standard errors as R's nls gives them
+  double rss = 0;                      // residual sum of squares, (cd/m²)²
+  double predict(double level) const;  // L at a level
 };
 
 // Every model's fit of one gun's readings.

@@ -1,15 +1,15 @@
 #include "analysis/fit.h"
 
-#include <algorithm>
-#include <cmath>
-#include <map>
-#include <numbers>
-
-#include <boost/math/special_functions/erf.hpp>
 #include <ceres/ceres.h>
 #include <glog/logging.h>
 #include <tbb/parallel_for.h>
+
 #include <Eigen/Dense>
+#include <algorithm>
+#include <boost/math/special_functions/erf.hpp>
+#include <cmath>
+#include <map>
+#include <numbers>
 
 #include "core/error.h"
 #include "core/random.h"
@@ -26,10 +26,13 @@ using std::log;
 template <class T>
 T standard_cdf(ThresholdModel model, const T& z) {
   switch (model) {
-    case ThresholdModel::log_normal: return T(0.5) * erfc(-z / T(std::numbers::sqrt2));
-    case ThresholdModel::weibull: return T(1.0) - exp(-exp(z));  // minimum extreme value
+    case ThresholdModel::log_normal:
+      return T(0.5) * erfc(-z / T(std::numbers::sqrt2));
+    case ThresholdModel::weibull:
+      return T(1.0) - exp(-exp(z));  // minimum extreme value
     case ThresholdModel::logistic:
-    case ThresholdModel::log_logistic: return T(1.0) / (T(1.0) + exp(-z));
+    case ThresholdModel::log_logistic:
+      return T(1.0) / (T(1.0) + exp(-z));
   }
   return z;
 }
@@ -46,10 +49,13 @@ T reduced(ThresholdModel model, double lambda, const T& location, const T& log_s
 template <class T>
 T standard_survival(ThresholdModel model, const T& z) {
   switch (model) {
-    case ThresholdModel::log_normal: return T(0.5) * erfc(z / T(std::numbers::sqrt2));
-    case ThresholdModel::weibull: return exp(-exp(z));
+    case ThresholdModel::log_normal:
+      return T(0.5) * erfc(z / T(std::numbers::sqrt2));
+    case ThresholdModel::weibull:
+      return exp(-exp(z));
     case ThresholdModel::logistic:
-    case ThresholdModel::log_logistic: return T(1.0) / (T(1.0) + exp(z));
+    case ThresholdModel::log_logistic:
+      return T(1.0) / (T(1.0) + exp(z));
   }
   return z;
 }
@@ -57,7 +63,8 @@ T standard_survival(ThresholdModel model, const T& z) {
 // The probability of one answer's interval (lower, upper]: F(upper) − F(lower), with F(0) = 0
 // for every model (left-censoring) and F(∞) = 1 (right-censoring).
 template <class T>
-T interval_probability(ThresholdModel model, const AnswerInterval& a, const T& location, const T& log_scale) {
+T interval_probability(ThresholdModel model, const AnswerInterval& a, const T& location,
+                       const T& log_scale) {
   const bool left = !(a.lower > 0), right = std::isinf(a.upper);
   if (left && right) return T(1.0);
   if (right) return standard_survival(model, reduced(model, a.lower, location, log_scale));
@@ -71,7 +78,8 @@ using AnswerCounts = std::map<AnswerInterval, double>;
 // One distinct interval with its count: residual √(2·count·(−ln P)), so the sum of squares is
 // −2 ln L and Ceres' minimum is the maximum-likelihood estimate.
 struct AnswerResidual {
-  AnswerResidual(ThresholdModel model, AnswerInterval interval, double count) : model(model), interval(interval), count(count) {}
+  AnswerResidual(ThresholdModel model, AnswerInterval interval, double count)
+      : model(model), interval(interval), count(count) {}
   template <class T>
   bool operator()(const T* const params, T* residual) const {
     T p = interval_probability(model, interval, params[0], params[1]);
@@ -95,7 +103,8 @@ double negative_log_likelihood(ThresholdModel model, const AnswerCounts& counts,
 Eigen::Vector2d gradient(ThresholdModel model, const AnswerCounts& counts, const double* q) {
   using J = ceres::Jet<double, 2>;
   J location(q[0], 0), log_scale(q[1], 1), nll(0.0);
-  for (const auto& [interval, count] : counts) nll -= J(count) * log(interval_probability(model, interval, location, log_scale));
+  for (const auto& [interval, count] : counts)
+    nll -= J(count) * log(interval_probability(model, interval, location, log_scale));
   return {nll.v[0], nll.v[1]};
 }
 
@@ -124,7 +133,8 @@ double model_scale_point(ThresholdModel model, const AnswerInterval& a) {
 double narrowest_interval(const AnswerCounts& counts, double fallback) {
   double narrowest = std::numeric_limits<double>::infinity();
   for (const auto& [interval, count] : counts)
-    if (!std::isinf(interval.upper)) narrowest = std::min(narrowest, interval.upper - interval.lower);
+    if (!std::isinf(interval.upper))
+      narrowest = std::min(narrowest, interval.upper - interval.lower);
   return std::isinf(narrowest) ? fallback : narrowest;
 }
 
@@ -134,8 +144,9 @@ bool minimize(ThresholdModel model, const AnswerCounts& counts, double* q) {
   ceres::Problem problem;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [interval, count] : counts) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<AnswerResidual, 1, 2>(new AnswerResidual(model, interval, count)), nullptr, q);
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnswerResidual, 1, 2>(
+                                 new AnswerResidual(model, interval, count)),
+                             nullptr, q);
     const double x = model_scale_point(model, interval);
     lo = std::min(lo, x);
     hi = std::max(hi, x);
@@ -143,7 +154,8 @@ bool minimize(ThresholdModel model, const AnswerCounts& counts, double* q) {
   const double narrowest = narrowest_interval(counts, std::exp(lo));
   problem.SetParameterLowerBound(q, 0, lo - 10.0);
   problem.SetParameterUpperBound(q, 0, hi + 10.0);
-  problem.SetParameterLowerBound(q, 1, std::log(1e-4 * (model == ThresholdModel::logistic ? narrowest : 1.0)));
+  problem.SetParameterLowerBound(
+      q, 1, std::log(1e-4 * (model == ThresholdModel::logistic ? narrowest : 1.0)));
   problem.SetParameterUpperBound(q, 1, std::log(100.0 * std::max(1.0, hi - lo + 1.0)));
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
@@ -191,7 +203,8 @@ void polish(ThresholdModel model, const AnswerCounts& counts, double* q) {
 std::pair<double, Eigen::Vector2d> log_median(ThresholdModel model, double location, double scale) {
   switch (model) {
     case ThresholdModel::log_normal:
-    case ThresholdModel::log_logistic: return {location, {1.0, 0.0}};
+    case ThresholdModel::log_logistic:
+      return {location, {1.0, 0.0}};
     case ThresholdModel::weibull: {  // median = exp(μ + σ ln ln 2)
       const double c = std::log(std::log(2.0));
       return {location + scale * c, {1.0, scale * c}};
@@ -222,7 +235,8 @@ Fit solve(const AnswerCounts& counts, ThresholdModel model, const double* start)
   const bool positive = h.determinant() > 0 && h(0, 0) > 0;
   fit.converged = fit.identified && usable && positive &&
                   gradient(model, counts, q).norm() < 1e-4 * std::max(1.0, double(fit.n));
-  const Eigen::Matrix2d covariance = positive ? Eigen::Matrix2d(h.inverse()) : Eigen::Matrix2d::Constant(std::nan(""));
+  const Eigen::Matrix2d covariance =
+      positive ? Eigen::Matrix2d(h.inverse()) : Eigen::Matrix2d::Constant(std::nan(""));
   fit.location_se = std::sqrt(covariance(0, 0));
   const auto [log_threshold, d] = log_median(model, fit.location, fit.scale);
   fit.log_threshold = log_threshold;
@@ -242,9 +256,14 @@ double draw_threshold(const Fit& fit, SampleStream& random) {
   const double u = std::clamp(random.next(), 1e-12, 1.0 - 1e-12);
   double z;
   switch (fit.model) {
-    case ThresholdModel::log_normal: z = -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u); break;
-    case ThresholdModel::weibull: z = std::log(-std::log(1.0 - u)); break;
-    default: z = std::log(u / (1.0 - u));
+    case ThresholdModel::log_normal:
+      z = -std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * u);
+      break;
+    case ThresholdModel::weibull:
+      z = std::log(-std::log(1.0 - u));
+      break;
+    default:
+      z = std::log(u / (1.0 - u));
   }
   const double v = fit.location + fit.scale * z;
   return fit.model == ThresholdModel::logistic ? v : std::exp(v);
@@ -287,7 +306,9 @@ Fit fit_threshold(const std::vector<AnswerInterval>& answers, ThresholdModel mod
   }
   const AnswerCounts counts = count_answers(answers);
   const double mean = sum / n, sd = std::sqrt(std::max(sq / n - mean * mean, 0.0));
-  const double start[2] = {mean, std::log(std::max(sd, model == ThresholdModel::logistic ? narrowest_interval(counts, 1.0) : 0.05))};
+  const double start[2] = {
+      mean, std::log(std::max(
+                sd, model == ThresholdModel::logistic ? narrowest_interval(counts, 1.0) : 0.05))};
   return solve(counts, model, start);
 }
 
@@ -321,7 +342,8 @@ void bootstrap_threshold(Fit& fit, const AnswerGrid& grid, int resamples, uint64
     double h = (double(thresholds.size()) - 1.0) * p;
     size_t i = size_t(std::floor(h));
     double frac = h - double(i);
-    return i + 1 < thresholds.size() ? thresholds[i] + frac * (thresholds[i + 1] - thresholds[i]) : thresholds[i];
+    return i + 1 < thresholds.size() ? thresholds[i] + frac * (thresholds[i + 1] - thresholds[i])
+                                     : thresholds[i];
   };
   fit.ci_low = quantile(0.025);
   fit.ci_high = quantile(0.975);

@@ -15,12 +15,13 @@
 
 namespace countershade::analysis {
 
-
 // Where an answer puts the threshold: (lower, upper]. lower = 0 is left-censored, upper = ∞
 // right-censored.
 struct AnswerInterval {
   double lower = 0, upper = 0;
-  bool operator<(const AnswerInterval& o) const { return lower < o.lower || (lower == o.lower && upper < o.upper); }
+  bool operator<(const AnswerInterval& o) const {
+    return lower < o.lower || (lower == o.lower && upper < o.upper);
+  }
 };
 
 // The λ grid an answer was given on: λ_i = first + i·step, and the top the observer could reach
@@ -33,7 +34,8 @@ struct AnswerGrid {
 // The interval of an answer λ at grid index `index` (−1: unknown, then λ_{i−1} = λ − step) on a
 // grid with the given step and top (0: unknown). An answer of λ = 0 counts as (0, λ_1] and sets
 // *zero when given.
-AnswerInterval answer_interval(double lambda, int index, double step, double top, bool* zero = nullptr);
+AnswerInterval answer_interval(double lambda, int index, double step, double top,
+                               bool* zero = nullptr);
 
 struct Fit {
   ThresholdModel model = ThresholdModel::log_normal;
@@ -44,10 +46,11 @@ struct Fit {
   double log_threshold_se = 0;
   size_t n = 0;
   size_t left_censored = 0, right_censored = 0;  // answers at the bottom and the top of the grid
-  bool identified = true;    // false when every answer is censored on the same side
-  bool converged = false;    // never true for an unidentified fit
+  bool identified = true;  // false when every answer is censored on the same side
+  bool converged = false;  // never true for an unidentified fit
   // Bootstrap 95% CI of the threshold; NaN (NA, null) unless at least two refits converged.
-  double ci_low = std::numeric_limits<double>::quiet_NaN(), ci_high = std::numeric_limits<double>::quiet_NaN();
+  double ci_low = std::numeric_limits<double>::quiet_NaN(),
+         ci_high = std::numeric_limits<double>::quiet_NaN();
   int bootstrap = 0;
 };
 

@@ -5,10 +5,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "analysis/forced_choice_trials.h"
 #include "analysis/psychometric_fit.h"
@@ -40,7 +39,8 @@ struct ForcedChoiceResults {
 
 // Fits every condition; the bootstrap of each fit is seeded by `seed` and the row's key, so the
 // numbers do not depend on the thread count.
-ForcedChoiceResults analyze_forced_choice(const std::vector<ForcedChoiceTrial>& trials, const ForcedChoiceOptions& options);
+ForcedChoiceResults analyze_forced_choice(const std::vector<ForcedChoiceTrial>& trials,
+                                          const ForcedChoiceOptions& options);
 
 // The results.json block.
 nlohmann::ordered_json forced_choice_json(const ForcedChoiceResults& results);
@@ -48,6 +48,7 @@ nlohmann::ordered_json forced_choice_json(const ForcedChoiceResults& results);
 std::string psychometric_fits_csv(const ForcedChoiceResults& results);
 // Proportion correct against λ with binomial 95 % intervals and the fitted curves, one figure per
 // scene: scene → SVG.
-std::vector<std::pair<std::string, std::string>> psychometric_figures(const ForcedChoiceResults& results);
+std::vector<std::pair<std::string, std::string>> psychometric_figures(
+    const ForcedChoiceResults& results);
 
 }  // namespace countershade::analysis

@@ -34,7 +34,8 @@ std::vector<ForcedChoiceTrial> simulate_forced_choice(const ForcedChoiceDesign& 
         const double F = base_value(d.model, condition.beta * std::log(lambda / alpha)).F;
         const double psi = guess + (1 - guess - d.lapse) * F;
         for (int r = 0; r < d.trials_per_level; ++r)
-          trials.push_back({name, condition.scene, d.method, condition.sigma, lambda, random.next() < psi, d.n_afc, false});
+          trials.push_back({name, condition.scene, d.method, condition.sigma, lambda,
+                            random.next() < psi, d.n_afc, false});
       }
     }
   }

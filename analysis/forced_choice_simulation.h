@@ -14,8 +14,8 @@ namespace countershade::analysis {
 struct SimulatedCondition {
   std::string scene = "scene";
   double sigma = 0.01;
-  double alpha = 0.3, beta = 3;    // the group's psychometric function: η = β·ln(λ/α)
-  std::vector<double> levels;      // the λ of the method of constant stimuli
+  double alpha = 0.3, beta = 3;  // the group's psychometric function: η = β·ln(λ/α)
+  std::vector<double> levels;    // the λ of the method of constant stimuli
 };
 
 struct ForcedChoiceDesign {

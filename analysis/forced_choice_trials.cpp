@@ -10,7 +10,8 @@
 namespace countershade::analysis {
 namespace {
 
-const std::vector<std::string> kRequired = {"subject", "scene", "sigma", "lambda", "correct", "n_afc"};
+const std::vector<std::string> kRequired = {"subject", "scene",   "sigma",
+                                            "lambda",  "correct", "n_afc"};
 
 struct Columns {
   std::map<std::string, size_t> index;
@@ -21,7 +22,11 @@ Columns header_columns(const std::vector<std::string>& header, const std::string
   Columns c;
   for (size_t i = 0; i < header.size(); ++i) c.index[header[i]] = i;
   for (const std::string& name : kRequired)
-    if (!c.has(name)) throw_input_error(file, "no '" + name + "' column (forced-choice trials need subject, scene, sigma, lambda, correct, n_afc)");
+    if (!c.has(name))
+      throw_input_error(
+          file,
+          "no '" + name +
+              "' column (forced-choice trials need subject, scene, sigma, lambda, correct, n_afc)");
   return c;
 }
 
@@ -38,10 +43,13 @@ double number_field(const std::string& text, const std::string& where, const std
   return v;
 }
 
-ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns& c, const std::string& where) {
+ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns& c,
+                              const std::string& where) {
   auto field = [&](const std::string& name) -> std::string {
     const size_t i = c.index.at(name);
-    if (i >= row.size()) throw_input_error(where, name + ": missing (the row has " + std::to_string(row.size()) + " fields)");
+    if (i >= row.size())
+      throw_input_error(where,
+                        name + ": missing (the row has " + std::to_string(row.size()) + " fields)");
     return row[i];
   };
   ForcedChoiceTrial t;
@@ -49,16 +57,22 @@ ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns
   t.scene = field("scene");
   if (t.subject.empty()) throw_input_error(where, "subject: empty");
   if (t.scene.empty()) throw_input_error(where, "scene: empty");
-  if (c.has("label")) t.label = field("label");
-  else if (c.has("method")) t.label = field("method");  // the app's forced-choice CSV
+  if (c.has("label"))
+    t.label = field("label");
+  else if (c.has("method"))
+    t.label = field("method");  // the app's forced-choice CSV
   t.sigma = number_field(field("sigma"), where, "sigma");
   t.lambda = number_field(field("lambda"), where, "lambda");
-  if (!(t.lambda > 0)) throw_input_error(where, "lambda: must be above 0 (a forced-choice trial shows some enhancement)");
+  if (!(t.lambda > 0))
+    throw_input_error(where,
+                      "lambda: must be above 0 (a forced-choice trial shows some enhancement)");
   const std::string correct = field("correct");
-  if (correct != "0" && correct != "1") throw_input_error(where, "correct: expected 0 or 1, got '" + correct + "'");
+  if (correct != "0" && correct != "1")
+    throw_input_error(where, "correct: expected 0 or 1, got '" + correct + "'");
   t.correct = correct == "1";
   const double n = number_field(field("n_afc"), where, "n_afc");
-  if (n != std::floor(n) || n < 2 || n > 16) throw_input_error(where, "n_afc: expected a whole number of alternatives from 2 to 16");
+  if (n != std::floor(n) || n < 2 || n > 16)
+    throw_input_error(where, "n_afc: expected a whole number of alternatives from 2 to 16");
   t.n_afc = int(n);
   t.browser = c.has("device_pixel_ratio");
   return t;
@@ -67,7 +81,8 @@ ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns
 }  // namespace
 
 bool is_forced_choice_header(const std::vector<std::string>& header) {
-  return std::count(header.begin(), header.end(), "correct") && std::count(header.begin(), header.end(), "n_afc");
+  return std::count(header.begin(), header.end(), "correct") &&
+         std::count(header.begin(), header.end(), "n_afc");
 }
 
 bool is_forced_choice_file(const std::filesystem::path& path) {
@@ -75,7 +90,8 @@ bool is_forced_choice_file(const std::filesystem::path& path) {
   return !table.rows.empty() && is_forced_choice_header(table.rows.front());
 }
 
-std::vector<ForcedChoiceTrial> read_forced_choice_trials(const std::vector<std::filesystem::path>& files) {
+std::vector<ForcedChoiceTrial> read_forced_choice_trials(
+    const std::vector<std::filesystem::path>& files) {
   std::vector<ForcedChoiceTrial> trials;
   for (const auto& path : files) {
     const std::string file = path.string();
@@ -83,23 +99,27 @@ std::vector<ForcedChoiceTrial> read_forced_choice_trials(const std::vector<std::
     if (table.rows.empty()) throw_input_error(file, "empty file");
     const Columns columns = header_columns(table.rows.front(), file);
     for (size_t r = 1; r < table.rows.size(); ++r)
-      trials.push_back(parse_trial(table.rows[r], columns, file + ":" + std::to_string(table.lines[r])));
+      trials.push_back(
+          parse_trial(table.rows[r], columns, file + ":" + std::to_string(table.lines[r])));
     if (table.rows.size() < 2) throw_input_error(file, "no trials after the header");
   }
   return trials;
 }
 
-std::map<ConditionKey, ConditionCells> aggregate_cells(const std::vector<ForcedChoiceTrial>& trials) {
+std::map<ConditionKey, ConditionCells> aggregate_cells(
+    const std::vector<ForcedChoiceTrial>& trials) {
   std::map<ConditionKey, std::map<double, BinomialCell>> pooled;
   std::map<ConditionKey, std::map<std::string, std::map<double, BinomialCell>>> by_subject;
   std::map<ConditionKey, ConditionCells> out;
   for (const ForcedChoiceTrial& t : trials) {
     const ConditionKey key{t.scene, t.label, t.sigma};
     auto [it, fresh] = out.try_emplace(key);
-    if (fresh) it->second.n_afc = t.n_afc;
+    if (fresh)
+      it->second.n_afc = t.n_afc;
     else if (it->second.n_afc != t.n_afc)
-      throw InputError("forced-choice trials: condition " + t.scene + " σ " + std::to_string(t.sigma) + " mixes " +
-                       std::to_string(it->second.n_afc) + "- and " + std::to_string(t.n_afc) + "-alternative trials");
+      throw InputError("forced-choice trials: condition " + t.scene + " σ " +
+                       std::to_string(t.sigma) + " mixes " + std::to_string(it->second.n_afc) +
+                       "- and " + std::to_string(t.n_afc) + "-alternative trials");
     for (BinomialCell* cell : {&pooled[key][t.lambda], &by_subject[key][t.subject][t.lambda]}) {
       cell->lambda = t.lambda;
       cell->k += t.correct;

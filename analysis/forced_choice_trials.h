@@ -27,18 +27,20 @@ bool is_forced_choice_header(const std::vector<std::string>& header);
 bool is_forced_choice_file(const std::filesystem::path& path);
 
 // Every trial of the files; a bad field is an InputError "file:line: column: what".
-std::vector<ForcedChoiceTrial> read_forced_choice_trials(const std::vector<std::filesystem::path>& files);
+std::vector<ForcedChoiceTrial> read_forced_choice_trials(
+    const std::vector<std::filesystem::path>& files);
 
 // A condition: scene, label, σ.
 using ConditionKey = std::tuple<std::string, std::string, double>;
 
 struct ConditionCells {
   int n_afc = 2;
-  std::vector<BinomialCell> pooled;                           // summed over subjects
+  std::vector<BinomialCell> pooled;                             // summed over subjects
   std::map<std::string, std::vector<BinomialCell>> by_subject;  // subject → cells
 };
 
 // Cells sorted by λ, one per λ. A condition whose trials disagree on n_afc is an InputError.
-std::map<ConditionKey, ConditionCells> aggregate_cells(const std::vector<ForcedChoiceTrial>& trials);
+std::map<ConditionKey, ConditionCells> aggregate_cells(
+    const std::vector<ForcedChoiceTrial>& trials);
 
 }  // namespace countershade::analysis

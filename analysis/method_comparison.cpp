@@ -16,13 +16,16 @@ using json = nlohmann::ordered_json;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Each included subject's mean λ_Low in one scene × σ of a block.
-std::map<std::string, double> lambda_low_by_subject(const BlockResults& b, const std::string& scene, double sigma) {
+std::map<std::string, double> lambda_low_by_subject(const BlockResults& b, const std::string& scene,
+                                                    double sigma) {
   std::map<std::string, double> out;
   const auto s = std::find(b.scenes.begin(), b.scenes.end(), scene);
-  const auto g = std::find_if(b.sigmas.begin(), b.sigmas.end(), [&](double x) { return std::abs(x - sigma) < 1e-12; });
+  const auto g = std::find_if(b.sigmas.begin(), b.sigmas.end(),
+                              [&](double x) { return std::abs(x - sigma) < 1e-12; });
   if (s == b.scenes.end() || g == b.sigmas.end()) return out;
   for (size_t i = 0; i < b.subjects.size(); ++i)
-    out[b.subjects[i]] = b.lambda_means.at(i, size_t(s - b.scenes.begin()), size_t(g - b.sigmas.begin()), Question::low);
+    out[b.subjects[i]] = b.lambda_means.at(i, size_t(s - b.scenes.begin()),
+                                           size_t(g - b.sigmas.begin()), Question::low);
   return out;
 }
 
@@ -47,7 +50,8 @@ json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr
 
 }  // namespace
 
-std::vector<MethodComparison> compare_methods(const std::vector<BlockResults>& adjustment, const ForcedChoiceResults& fc) {
+std::vector<MethodComparison> compare_methods(const std::vector<BlockResults>& adjustment,
+                                              const ForcedChoiceResults& fc) {
   std::vector<MethodComparison> out;
   for (const PsychometricRow& pooled : fc.rows) {
     if (!pooled.pooled) continue;
@@ -59,7 +63,9 @@ std::vector<MethodComparison> compare_methods(const std::vector<BlockResults>& a
       c.method = pooled.label.empty() ? b.method : pooled.label;
       c.sigma = pooled.sigma;
       for (const PsychometricRow& row : fc.rows) {
-        if (row.pooled || row.scene != pooled.scene || row.label != pooled.label || row.sigma != pooled.sigma) continue;
+        if (row.pooled || row.scene != pooled.scene || row.label != pooled.label ||
+            row.sigma != pooled.sigma)
+          continue;
         const auto it = low.find(row.subject);
         // A threshold needs a finite maximum of the likelihood, not a well-pinned slope: QUEST
         // places its trials near the threshold, where the slope is the least constrained.
@@ -83,12 +89,17 @@ std::vector<MethodComparison> compare_methods(const std::vector<BlockResults>& a
 json comparison_json(const std::vector<MethodComparison>& rows) {
   json out = json::array();
   for (const MethodComparison& c : rows)
-    out.push_back({{"scene", c.scene}, {"method", c.method}, {"sigma", c.sigma}, {"n_subjects", c.subjects.size()},
+    out.push_back({{"scene", c.scene},
+                   {"method", c.method},
+                   {"sigma", c.sigma},
+                   {"n_subjects", c.subjects.size()},
                    {"subjects_without_threshold", c.without_threshold},
                    {"geometric_mean_lambda_low", number_or_null(c.geometric_mean_low)},
                    {"geometric_mean_threshold", number_or_null(c.geometric_mean_threshold)},
-                   {"mean_log_ratio", number_or_null(c.mean_log_ratio)}, {"t", number_or_null(c.t)},
-                   {"df", number_or_null(c.df)}, {"p", number_or_null(c.p)}});
+                   {"mean_log_ratio", number_or_null(c.mean_log_ratio)},
+                   {"t", number_or_null(c.t)},
+                   {"df", number_or_null(c.df)},
+                   {"p", number_or_null(c.p)}});
   return out;
 }
 
@@ -96,7 +107,8 @@ std::string comparison_csv(const std::vector<MethodComparison>& rows) {
   std::string csv = csv_line({"scene", "method", "sigma", "subject", "lambda_low", "threshold"});
   for (const MethodComparison& c : rows)
     for (size_t i = 0; i < c.subjects.size(); ++i)
-      csv += csv_line({c.scene, c.method, format_value(c.sigma), c.subjects[i], format_value(round_to(c.lambda_low[i], 10)),
+      csv += csv_line({c.scene, c.method, format_value(c.sigma), c.subjects[i],
+                       format_value(round_to(c.lambda_low[i], 10)),
                        format_value(round_to(c.threshold[i], 10))});
   return csv;
 }

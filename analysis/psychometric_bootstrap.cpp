@@ -2,10 +2,10 @@
 // fitted function with each cell's λ and n, refitted with the same model, for the threshold's
 // percentile CI and the deviance's goodness-of-fit p-value.
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <tbb/parallel_for.h>
 
 #include "analysis/psychometric_fit.h"
 #include "analysis/psychometric_solver.h"
@@ -40,7 +40,8 @@ long long draw_binomial(long long n, double p, SampleStream& random) {
 double quantile(const std::vector<double>& sorted, double p) {
   const double h = (double(sorted.size()) - 1) * p;
   const size_t i = size_t(std::floor(h));
-  return i + 1 < sorted.size() ? sorted[i] + (h - double(i)) * (sorted[i + 1] - sorted[i]) : sorted[i];
+  return i + 1 < sorted.size() ? sorted[i] + (h - double(i)) * (sorted[i + 1] - sorted[i])
+                               : sorted[i];
 }
 
 struct Refit {
@@ -49,11 +50,13 @@ struct Refit {
 
 Refit refit_once(const PsychometricFit& fit, const CellData& data, SampleStream& random) {
   std::vector<BinomialCell> drawn = data.cells;
-  for (BinomialCell& c : drawn) c.k = draw_binomial(c.n, psychometric_probability(fit, c.lambda), random);
+  for (BinomialCell& c : drawn)
+    c.k = draw_binomial(c.n, psychometric_probability(fit, c.lambda), random);
   const CellData sample(std::move(drawn));
   const CoefficientStart from{fit.intercept, fit.slope};
-  const LapseSolution s = fit.options.free_lapse ? solve_free_lapse(sample, fit.options, from)
-                                                 : solve_fixed_lapse(sample, fit.options, from, 0.0, 1e-9);
+  const LapseSolution s = fit.options.free_lapse
+                              ? solve_free_lapse(sample, fit.options, from)
+                              : solve_fixed_lapse(sample, fit.options, from, 0.0, 1e-9);
   Refit r;
   r.deviance = s.deviance;
   if (s.converged && std::isfinite(s.slope) && s.slope != 0) {
@@ -64,12 +67,14 @@ Refit refit_once(const PsychometricFit& fit, const CellData& data, SampleStream&
 
 }  // namespace
 
-void bootstrap_psychometric(PsychometricFit& fit, const std::vector<BinomialCell>& cells, int resamples, uint64_t seed) {
+void bootstrap_psychometric(PsychometricFit& fit, const std::vector<BinomialCell>& cells,
+                            int resamples, uint64_t seed) {
   if (resamples <= 0 || !fit.converged || !std::isfinite(fit.threshold)) return;
   const CellData data(merge_cells(cells));
   std::vector<Refit> refits(static_cast<size_t>(resamples));
   tbb::parallel_for(0, resamples, [&](int b) {
-    SampleStream random(seed, 6, uint64_t(b), 0);  // one stream per resample: independent of scheduling
+    SampleStream random(seed, 6, uint64_t(b),
+                        0);  // one stream per resample: independent of scheduling
     refits[size_t(b)] = refit_once(fit, data, random);
   });
   std::vector<double> thresholds;

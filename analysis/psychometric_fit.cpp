@@ -1,9 +1,8 @@
 #include "analysis/psychometric_fit.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Dense>
 
 #include "analysis/psychometric_solver.h"
 #include "core/error.h"
@@ -14,8 +13,9 @@ namespace {
 
 // Standard errors of b0, b1 and of ln threshold from the inverse expected information.
 void standard_errors(PsychometricFit& fit, const CellData& data) {
-  const Eigen::MatrixXd info = expected_information(data, fit.options, fit.intercept, fit.slope, fit.lapse,
-                                                    fit.options.free_lapse && !fit.lapse_at_bound);
+  const Eigen::MatrixXd info =
+      expected_information(data, fit.options, fit.intercept, fit.slope, fit.lapse,
+                           fit.options.free_lapse && !fit.lapse_at_bound);
   Eigen::FullPivLU<Eigen::MatrixXd> lu(info);
   if (!lu.isInvertible()) {
     fit.se_intercept = fit.se_slope = fit.threshold_se = std::numeric_limits<double>::infinity();
@@ -25,13 +25,15 @@ void standard_errors(PsychometricFit& fit, const CellData& data) {
   fit.se_intercept = std::sqrt(cov(0, 0));
   fit.se_slope = std::sqrt(cov(1, 1));
   const double centre = inverse_base(fit.options.model, 0.5);
-  const Eigen::Vector2d gradient(-1 / fit.slope, -(centre - fit.intercept) / (fit.slope * fit.slope));
+  const Eigen::Vector2d gradient(-1 / fit.slope,
+                                 -(centre - fit.intercept) / (fit.slope * fit.slope));
   fit.threshold_se = fit.threshold * std::sqrt(gradient.dot(cov.topLeftCorner<2, 2>() * gradient));
 }
 
 void summary_statistics(PsychometricFit& fit, const CellData& data) {
   const int parameters = fit.options.free_lapse ? 3 : 2;
-  const LikelihoodTerms terms = likelihood_terms(data, fit.options, fit.intercept, fit.slope, fit.lapse);
+  const LikelihoodTerms terms =
+      likelihood_terms(data, fit.options, fit.intercept, fit.slope, fit.lapse);
   fit.deviance = terms.deviance;
   fit.loglik_bernoulli = terms.loglik_bernoulli;
   fit.loglik_binomial = terms.loglik_bernoulli + terms.log_binomial_coefficients;
@@ -40,7 +42,8 @@ void summary_statistics(PsychometricFit& fit, const CellData& data) {
   const double g = fit.options.guess;
   fit.threshold = std::exp((inverse_base(fit.options.model, 0.5) - fit.intercept) / fit.slope);
   const double f_at_psi = ((1 - g) / 2) / (1 - g - fit.lapse);
-  fit.threshold_psi = std::exp((inverse_base(fit.options.model, f_at_psi) - fit.intercept) / fit.slope);
+  fit.threshold_psi =
+      std::exp((inverse_base(fit.options.model, f_at_psi) - fit.intercept) / fit.slope);
 }
 
 // Separated data: the slope runs off to infinity and the threshold to the step's position; the
@@ -56,7 +59,8 @@ void compare_with_steepest(PsychometricFit& fit, const CellData& data) {
 
 }  // namespace
 
-PsychometricFit fit_psychometric(std::vector<BinomialCell> cells, const PsychometricOptions& options) {
+PsychometricFit fit_psychometric(std::vector<BinomialCell> cells,
+                                 const PsychometricOptions& options) {
   PsychometricFit fit;
   fit.options = options;
   const CellData data(merge_cells(std::move(cells)));
@@ -64,7 +68,8 @@ PsychometricFit fit_psychometric(std::vector<BinomialCell> cells, const Psychome
   for (const BinomialCell& c : data.cells) fit.n_trials += c.n;
   if (data.size() < 2) throw InputError("psychometric fit: needs trials at two λ values at least");
   const CoefficientStart start = starting_coefficients(data, options);
-  const LapseSolution best = options.free_lapse ? solve_free_lapse(data, options, start) : solve_fixed_lapse(data, options, start);
+  const LapseSolution best = options.free_lapse ? solve_free_lapse(data, options, start)
+                                                : solve_fixed_lapse(data, options, start);
   fit.intercept = best.intercept;
   fit.slope = best.slope;
   fit.lapse = best.lapse;
@@ -74,8 +79,9 @@ PsychometricFit fit_psychometric(std::vector<BinomialCell> cells, const Psychome
   summary_statistics(fit, data);
   standard_errors(fit, data);
   compare_with_steepest(fit, data);
-  fit.well_defined = fit.converged && !(fit.deviance_step_limit < fit.deviance - 1e-9) && std::abs(fit.slope) < 50 &&
-                     fit.profile_minima == 1 && (options.free_lapse || fit.se_slope < std::abs(fit.slope));
+  fit.well_defined = fit.converged && !(fit.deviance_step_limit < fit.deviance - 1e-9) &&
+                     std::abs(fit.slope) < 50 && fit.profile_minima == 1 &&
+                     (options.free_lapse || fit.se_slope < std::abs(fit.slope));
   return fit;
 }
 

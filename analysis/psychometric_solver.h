@@ -3,9 +3,8 @@
 // and their derivatives, the likelihood of binomial cells, the expected information, Fisher
 // scoring with Newton polish for b0 and b1 at a given lapse, and the lapse's profile.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "analysis/psychometric_cells.h"
 
@@ -35,12 +34,12 @@ BaseValue base_value(ThresholdModel model, double eta);
 struct LikelihoodTerms {
   double deviance = 0, loglik_bernoulli = 0, log_binomial_coefficients = 0;
 };
-LikelihoodTerms likelihood_terms(const CellData& data, const PsychometricOptions& options, double b0, double b1,
-                                 double lapse);
+LikelihoodTerms likelihood_terms(const CellData& data, const PsychometricOptions& options,
+                                 double b0, double b1, double lapse);
 
 // The expected (Fisher) information of (b0, b1[, ℓ]), as R's summary.glm uses it.
-Eigen::MatrixXd expected_information(const CellData& data, const PsychometricOptions& options, double b0, double b1,
-                                     double lapse, bool with_lapse);
+Eigen::MatrixXd expected_information(const CellData& data, const PsychometricOptions& options,
+                                     double b0, double b1, double lapse, bool with_lapse);
 
 // The deviance of the best infinitely steep function: the levels below the step at γ, the level at
 // the step at its own k/n (clipped to [γ, 1 − ℓ]), the levels above at 1 − ℓ, with ℓ = 0 or the
@@ -65,8 +64,9 @@ struct LapseSolution {
 };
 // `tolerance`: the last step's size relative to the coefficients; the bootstrap's refits need less
 // than the reported fit.
-LapseSolution solve_fixed_lapse(const CellData& data, const PsychometricOptions& options, CoefficientStart start,
-                                double lapse = 0, double tolerance = 1e-13);
-LapseSolution solve_free_lapse(const CellData& data, const PsychometricOptions& options, CoefficientStart start);
+LapseSolution solve_fixed_lapse(const CellData& data, const PsychometricOptions& options,
+                                CoefficientStart start, double lapse = 0, double tolerance = 1e-13);
+LapseSolution solve_free_lapse(const CellData& data, const PsychometricOptions& options,
+                               CoefficientStart start);
 
 }  // namespace countershade::analysis

@@ -15,12 +15,16 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-void write_text(const std::filesystem::path& path, const std::string& text) { write_text_atomically(path, text); }
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  write_text_atomically(path, text);
+}
 
 // A value that could not be computed (NaN, e.g. the standard error of a fit that did not
 // converge) is written as R's NA in CSV, "—" in HTML and null in JSON; an infinite one (F with no
 // error variance) as R's Inf, "∞" and null.
-bool not_available(const json& v) { return v.is_null() || (v.is_number_float() && std::isnan(v.get<double>())); }
+bool not_available(const json& v) {
+  return v.is_null() || (v.is_number_float() && std::isnan(v.get<double>()));
+}
 bool infinite(const json& v) { return v.is_number_float() && std::isinf(v.get<double>()); }
 
 std::string cell(const json& v) {
@@ -29,8 +33,10 @@ std::string cell(const json& v) {
   if (infinite(v)) return v.get<double>() > 0 ? "Inf" : "-Inf";
   std::ostringstream s;
   s.precision(15);
-  if (v.is_number_float()) s << v.get<double>();
-  else s << v.dump();
+  if (v.is_number_float())
+    s << v.get<double>();
+  else
+    s << v.dump();
   return s.str();
 }
 
@@ -43,7 +49,8 @@ std::string table_csv(const json& rows) {
   for (size_t k = 0; k < keys.size(); ++k) out << (k ? "," : "") << keys[k];
   out << "\n";
   for (const auto& row : rows) {
-    for (size_t k = 0; k < keys.size(); ++k) out << (k ? "," : "") << (row.contains(keys[k]) ? cell(row[keys[k]]) : "");
+    for (size_t k = 0; k < keys.size(); ++k)
+      out << (k ? "," : "") << (row.contains(keys[k]) ? cell(row[keys[k]]) : "");
     out << "\n";
   }
   return out.str();
@@ -68,14 +75,18 @@ std::string fixed(double v, int decimals) {
   s << v;
   return s.str();
 }
-std::string df_text(double df) { return std::abs(df - std::round(df)) < 1e-9 ? fixed(df, 0) : fixed(df, 2); }
+std::string df_text(double df) {
+  return std::abs(df - std::round(df)) < 1e-9 ? fixed(df, 0) : fixed(df, 2);
+}
 
 std::string anova_statement(const json& r) {
-  std::string text = "F(" + df_text(r["df1"]) + ", " + df_text(r["df2"]) + ") = " + fixed(r["F"], 2) + ", " +
-                     apa_p(r["p"]) + ", η²G = " + apa_unit(r["ges"], 2);
+  std::string text = "F(" + df_text(r["df1"]) + ", " + df_text(r["df2"]) +
+                     ") = " + fixed(r["F"], 2) + ", " + apa_p(r["p"]) +
+                     ", η²G = " + apa_unit(r["ges"], 2);
   if (r.contains("gg_epsilon") && r["mauchly_p"].get<double>() < 0.05)
-    text += " (sphericity violated, Mauchly W = " + apa_unit(r["mauchly_W"], 2) + ", " + apa_p(r["mauchly_p"]) +
-            "; Greenhouse–Geisser ε = " + apa_unit(r["gg_epsilon"], 2) + ", " + apa_p(r["p_gg"]) + ")";
+    text += " (sphericity violated, Mauchly W = " + apa_unit(r["mauchly_W"], 2) + ", " +
+            apa_p(r["mauchly_p"]) + "; Greenhouse–Geisser ε = " + apa_unit(r["gg_epsilon"], 2) +
+            ", " + apa_p(r["p_gg"]) + ")";
   return text;
 }
 
@@ -88,11 +99,11 @@ std::string html_table(const json& rows, const std::vector<std::string>& keys) {
     out << "<tr>";
     for (const auto& k : keys) {
       std::string v = !row.contains(k)           ? ""
-                      : not_available(row[k])      ? "—"
-                      : infinite(row[k])           ? (row[k].get<double>() > 0 ? "∞" : "−∞")
-                      : row[k].is_number_float()   ? fixed(row[k], 4)
-                      : row[k].is_string()         ? row[k].get<std::string>()
-                                                   : row[k].dump();
+                      : not_available(row[k])    ? "—"
+                      : infinite(row[k])         ? (row[k].get<double>() > 0 ? "∞" : "−∞")
+                      : row[k].is_number_float() ? fixed(row[k], 4)
+                      : row[k].is_string()       ? row[k].get<std::string>()
+                                                 : row[k].dump();
       out << "<td>" << xml_escape(v) << "</td>";
     }
     out << "</tr>\n";
@@ -106,15 +117,21 @@ void report_head(std::ostringstream& h, const BlockResults& b) {
   const json& r = b.json;
   h << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>countershade analysis"
     << (b.method.empty() ? "" : " — " + xml_escape(b.method)) << "</title><style>"
-    << "body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}table{border-collapse:collapse;"
-       "margin:0.5em 0 1.5em}td,th{border:1px solid #ccc;padding:2px 8px;font-size:13px;text-align:right}"
+    << "body{font-family:sans-serif;max-width:1000px;margin:2em "
+       "auto;color:#222}table{border-collapse:collapse;"
+       "margin:0.5em 0 1.5em}td,th{border:1px solid #ccc;padding:2px "
+       "8px;font-size:13px;text-align:right}"
        "th{background:#f3f3f3}li{margin:0.3em 0}.warn{color:#a40}</style></head><body>\n"
-    << "<h1>Adjustment study analysis" << (b.method.empty() ? "" : ": " + xml_escape(b.method)) << "</h1>\n"
-    << "<p>" << r["n_subjects"] << " subjects analysed; JND normalisation: " << r["jnd_normalization"].get<std::string>()
+    << "<h1>Adjustment study analysis" << (b.method.empty() ? "" : ": " + xml_escape(b.method))
+    << "</h1>\n"
+    << "<p>" << r["n_subjects"]
+    << " subjects analysed; JND normalisation: " << r["jnd_normalization"].get<std::string>()
     << "; λ grid step " << r["lambda_step"] << ".</p>\n";
   if (b.browser_answers > 0)
-    h << "<p>" << b.browser_answers << " answers came from a browser (a web-exported study): their display was "
-      << "not calibrated, and the CSV's device_pixel_ratio, window and user_agent columns describe it.</p>\n";
+    h << "<p>" << b.browser_answers
+      << " answers came from a browser (a web-exported study): their display was "
+      << "not calibrated, and the CSV's device_pixel_ratio, window and user_agent columns describe "
+         "it.</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>";
     for (const auto& w : b.warnings) h << "<li class=\"warn\">" << xml_escape(w) << "</li>";
@@ -124,19 +141,23 @@ void report_head(std::ostringstream& h, const BlockResults& b) {
 
 // The ANOVA statements as a list (closed by the caller).
 void anova_list(std::ostringstream& h, const json& rows) {
-  for (const auto& row : rows) h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row)) << "</li>";
+  for (const auto& row : rows)
+    h << "<li><b>" << xml_escape(row["effect"]) << "</b>: " << xml_escape(anova_statement(row))
+      << "</li>";
 }
 
 // The t-tests: pairwise between questions, then λ_Best against 1 JND per scene.
 void t_test_sections(std::ostringstream& h, const json& r) {
   h << "<h2>Pairwise comparisons (paired t-tests, Holm-corrected)</h2>\n<ul>";
   for (const auto& row : r["pairwise"])
-    h << "<li>λ_" << xml_escape(row["a"]) << " − λ_" << xml_escape(row["b"]) << " = " << fixed(row["mean_diff"], 2)
-      << " JND, t(" << df_text(row["df"]) << ") = " << fixed(row["t"], 2) << ", " << xml_escape(apa_p(row["p_holm"])) << "</li>";
+    h << "<li>λ_" << xml_escape(row["a"]) << " − λ_" << xml_escape(row["b"]) << " = "
+      << fixed(row["mean_diff"], 2) << " JND, t(" << df_text(row["df"])
+      << ") = " << fixed(row["t"], 2) << ", " << xml_escape(apa_p(row["p_holm"])) << "</li>";
   h << "</ul>\n<h2>λ_Best against 1 JND per scene (one-sample t-tests, Holm-corrected)</h2>\n<ul>";
   for (const auto& row : r["best_vs_threshold"])
-    h << "<li>" << xml_escape(row["scene"]) << ": λ_Best = " << fixed(row["mean"], 2) << " JND, t(" << df_text(row["df"])
-      << ") = " << fixed(row["t"], 2) << ", " << xml_escape(apa_p(row["p_holm"])) << "</li>";
+    h << "<li>" << xml_escape(row["scene"]) << ": λ_Best = " << fixed(row["mean"], 2) << " JND, t("
+      << df_text(row["df"]) << ") = " << fixed(row["t"], 2) << ", "
+      << xml_escape(apa_p(row["p_holm"])) << "</li>";
 }
 
 std::string report_html(const BlockResults& b, const std::string& fig12, const std::string& fig13,
@@ -144,10 +165,14 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
   const json& r = b.json;
   std::ostringstream h;
   report_head(h, b);
-  h << "<h2>Chosen λ per scene</h2>\n" << fig12 << "\n" << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
+  h << "<h2>Chosen λ per scene</h2>\n"
+    << fig12 << "\n"
+    << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
   h << "<h2>Repeated-measures ANOVA: question × scene × σ (JND)</h2>\n<ul>";
   anova_list(h, r["anova"]);
-  h << "</ul>\n" << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p", "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
+  h << "</ul>\n"
+    << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p",
+                               "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
   h << "<h2>Does σ change λ_Best? scene × σ on λ_Best (JND)</h2>\n" << fig13 << "\n<ul>";
   anova_list(h, r["anova_best_sigma"]);
   h << "</ul>\n";
@@ -156,22 +181,24 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
   const json& c = r["clusters"];
   for (size_t k = 0; k < c["sizes"].size(); ++k)
     h << "<li>cluster " << k + 1 << ": " << c["sizes"][k] << " subjects ("
-      << fixed(100.0 * c["sizes"][k].get<double>() / r["n_subjects"].get<double>(), 0) << " %), mean λ_Best = "
-      << fixed(c["mean_best"][k], 2) << " JND</li>";
-  h << "</ul>\n<h2>Threshold fits</h2>\n" << fits << "\n"
-    << html_table(r["fits"], {"scene", "sigma", "question", "model", "threshold", "log_threshold", "log_threshold_se",
-                              "log_sd", "n", "left_censored", "right_censored", "identified", "converged", "ci_low",
-                              "ci_high"});
+      << fixed(100.0 * c["sizes"][k].get<double>() / r["n_subjects"].get<double>(), 0)
+      << " %), mean λ_Best = " << fixed(c["mean_best"][k], 2) << " JND</li>";
+  h << "</ul>\n<h2>Threshold fits</h2>\n"
+    << fits << "\n"
+    << html_table(r["fits"], {"scene", "sigma", "question", "model", "threshold", "log_threshold",
+                              "log_threshold_se", "log_sd", "n", "left_censored", "right_censored",
+                              "identified", "converged", "ci_low", "ci_high"});
   if (!r["excluded_subjects"].empty())
-    h << "<h2>Excluded subjects</h2>\n" << html_table(r["excluded_subjects"], {"subject", "reason"});
+    h << "<h2>Excluded subjects</h2>\n"
+      << html_table(r["excluded_subjects"], {"subject", "reason"});
   h << "<p><small>Generated by countershade analyze.</small></p></body></html>\n";
   return h.str();
 }
 
 }  // namespace
 
-void write_outputs(const std::vector<BlockResults>& results, const std::filesystem::path& dir, bool figures,
-                   const json& extra) {
+void write_outputs(const std::vector<BlockResults>& results, const std::filesystem::path& dir,
+                   bool figures, const json& extra) {
   json all;
   if (results.size() == 1) {
     all = results[0].json;
@@ -184,16 +211,16 @@ void write_outputs(const std::vector<BlockResults>& results, const std::filesyst
   for (const auto& b : results) {
     std::filesystem::path out = results.size() == 1 ? dir : dir / b.method;
     std::filesystem::create_directories(out);
-    for (const char* table : {"descriptives", "descriptives_by_sigma", "anova", "anova_best_sigma", "pairwise",
-                              "best_vs_threshold", "fits", "excluded_subjects"})
+    for (const char* table : {"descriptives", "descriptives_by_sigma", "anova", "anova_best_sigma",
+                              "pairwise", "best_vs_threshold", "fits", "excluded_subjects"})
       write_text(out / (std::string(table) + ".csv"), table_csv(b.json[table]));
     json clusters = json::array();
     for (size_t i = 0; i < b.subjects.size(); ++i)
       clusters.push_back({{"subject", b.subjects[i]}, {"cluster", b.cluster_labels[i]}});
     write_text(out / "clusters.csv", table_csv(clusters));
     if (!figures) continue;
-    std::string fig12 = figure_questions_by_scene(b), fig13 = figure_lambda_by_sigma(b), fits = figure_fits(b),
-                dendrogram = figure_dendrogram(b);
+    std::string fig12 = figure_questions_by_scene(b), fig13 = figure_lambda_by_sigma(b),
+                fits = figure_fits(b), dendrogram = figure_dendrogram(b);
     write_text(out / "fig12_questions_by_scene.svg", fig12);
     write_text(out / "fig13_lambda_by_sigma.svg", fig13);
     write_text(out / "fits.svg", fits);
@@ -208,17 +235,19 @@ namespace {
 // name can never leave the output folder.
 std::string figure_file_name(const std::string& scene, std::set<std::string>& taken) {
   std::string safe;
-  for (unsigned char c : scene) safe += std::isalnum(c) || c == '.' || c == '_' || c == '-' ? char(c) : '_';
+  for (unsigned char c : scene)
+    safe += std::isalnum(c) || c == '.' || c == '_' || c == '-' ? char(c) : '_';
   std::string name = "psychometric-" + safe + ".svg";
-  for (int i = 2; taken.count(name); ++i) name = "psychometric-" + safe + "-" + std::to_string(i) + ".svg";
+  for (int i = 2; taken.count(name); ++i)
+    name = "psychometric-" + safe + "-" + std::to_string(i) + ".svg";
   taken.insert(name);
   return name;
 }
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> write_forced_choice_outputs(const ForcedChoiceResults& results,
-                                                                            const std::filesystem::path& dir, bool figures) {
+std::vector<std::pair<std::string, std::string>> write_forced_choice_outputs(
+    const ForcedChoiceResults& results, const std::filesystem::path& dir, bool figures) {
   write_text(dir / "psychometric_fits.csv", psychometric_fits_csv(results));
   std::vector<std::pair<std::string, std::string>> files;
   if (!figures) return files;

@@ -24,8 +24,8 @@ std::vector<Response> latest_revisions(std::vector<Response> rows, const CsvTabl
   };
   std::map<std::string, std::pair<long, size_t>> latest;  // question key → (revision, row)
   for (size_t r = 0; r < rows.size(); ++r) {
-    const std::string key = rows[r].subject + '\x1f' + field(r, "session") + '\x1f' + field(r, "trial") + '\x1f' +
-                            kQuestionNames[int(rows[r].question)];
+    const std::string key = rows[r].subject + '\x1f' + field(r, "session") + '\x1f' +
+                            field(r, "trial") + '\x1f' + kQuestionNames[int(rows[r].question)];
     const std::string text = field(r, "revision");
     char* end = nullptr;
     const long revision = std::strtol(text.c_str(), &end, 10);
@@ -45,16 +45,20 @@ std::vector<Response> latest_revisions(std::vector<Response> rows, const CsvTabl
 // Reads the rows of one responses CSV; every error names the file, the line and the column.
 class ResponseRows {
  public:
-  ResponseRows(CsvTable table, std::string file) : table_(std::move(table)), file_(std::move(file)) {
-    if (table_.rows.empty()) throw_input_error(file_, "file is empty (expected a header row and responses)");
+  ResponseRows(CsvTable table, std::string file)
+      : table_(std::move(table)), file_(std::move(file)) {
+    if (table_.rows.empty())
+      throw_input_error(file_, "file is empty (expected a header row and responses)");
     const auto& header = table_.rows[0];
     for (size_t c = 0; c < header.size(); ++c) {
       if (column_.count(header[c]))
-        throw_input_error(file_ + ": line 1, column " + std::to_string(c + 1), "duplicate column '" + header[c] + "'");
+        throw_input_error(file_ + ": line 1, column " + std::to_string(c + 1),
+                          "duplicate column '" + header[c] + "'");
       column_[header[c]] = c;
     }
     for (const std::string& required : required_response_columns())
-      if (!column_.count(required)) throw_input_error(file_ + ": line 1", "missing column '" + required + "'");
+      if (!column_.count(required))
+        throw_input_error(file_ + ": line 1", "missing column '" + required + "'");
     if (table_.rows.size() == 1) throw_input_error(file_, "no responses after the header row");
   }
 
@@ -79,12 +83,14 @@ class ResponseRows {
     resp.sigma = number(r, "sigma");
     resp.lambda = number(r, "lambda");
     if (resp.lambda < 0) throw_input_error(where(r, "lambda"), "λ must not be negative");
-    if (resp.lambda > kLargestLambda) throw_input_error(where(r, "lambda"), "λ beyond 1e6, the largest of any stimulus grid");
+    if (resp.lambda > kLargestLambda)
+      throw_input_error(where(r, "lambda"), "λ beyond 1e6, the largest of any stimulus grid");
     if (resp.lambda > 0 && resp.lambda < kLambdaResolution)
       throw_input_error(where(r, "lambda"), "λ between 0 and 1e-9 is on no stimulus grid");
     auto question = question_from_name(text(r, "question"));
     if (!question)
-      throw_input_error(where(r, "question"), "unknown question '" + text(r, "question") + "' (expected low, high or best)");
+      throw_input_error(where(r, "question"), "unknown question '" + text(r, "question") +
+                                                  "' (expected low, high or best)");
     resp.question = *question;
     if (column_.count("method")) resp.method = text(r, "method");
     resp.browser = column_.count("device_pixel_ratio") > 0;
@@ -102,7 +108,8 @@ class ResponseRows {
     if (column_.count("lambda_index")) {
       const double index = number(r, "lambda_index");
       if (index < 0 || index != std::floor(index) || index > 1e9)
-        throw_input_error(where(r, "lambda_index"), "'" + text(r, "lambda_index") + "' is not a whole number ≥ 0");
+        throw_input_error(where(r, "lambda_index"),
+                          "'" + text(r, "lambda_index") + "' is not a whole number ≥ 0");
       resp.lambda_index = int(index);
     }
     if (column_.count("lambda_max")) {
@@ -110,14 +117,17 @@ class ResponseRows {
       if (!(resp.lambda_max > 0) || resp.lambda_max > kLargestLambda)
         throw_input_error(where(r, "lambda_max"), "must be positive and at most 1e6");
       if (resp.lambda > resp.lambda_max * (1 + 1e-9))
-        throw_input_error(where(r, "lambda"), "λ " + text(r, "lambda") + " is above lambda_max " + text(r, "lambda_max"));
+        throw_input_error(where(r, "lambda"), "λ " + text(r, "lambda") + " is above lambda_max " +
+                                                  text(r, "lambda_max"));
     }
   }
 
-  const std::string& text(size_t r, const std::string& name) const { return table_.rows[r][column_.at(name)]; }
+  const std::string& text(size_t r, const std::string& name) const {
+    return table_.rows[r][column_.at(name)];
+  }
   std::string where(size_t r, const std::string& name) const {
-    return file_ + ": line " + std::to_string(table_.lines[r]) + ", column " + std::to_string(column_.at(name) + 1) +
-           " (" + name + ")";
+    return file_ + ": line " + std::to_string(table_.lines[r]) + ", column " +
+           std::to_string(column_.at(name) + 1) + " (" + name + ")";
   }
   double number(size_t r, const std::string& name) const {
     const std::string& t = text(r, name);
@@ -128,7 +138,8 @@ class ResponseRows {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (t.empty() || used != t.size() || !std::isfinite(v)) throw_input_error(where(r, name), "'" + t + "' is not a number");
+    if (t.empty() || used != t.size() || !std::isfinite(v))
+      throw_input_error(where(r, name), "'" + t + "' is not a number");
     return v;
   }
 
@@ -147,7 +158,8 @@ std::vector<Response> read_responses(const std::vector<std::filesystem::path>& p
   std::vector<Response> all;
   for (const auto& p : paths) {
     auto part = read_responses(p);
-    all.insert(all.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
+    all.insert(all.end(), std::make_move_iterator(part.begin()),
+               std::make_move_iterator(part.end()));
   }
   return all;
 }

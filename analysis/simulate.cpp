@@ -1,13 +1,12 @@
 #include "analysis/simulate.h"
 
 #include <algorithm>
+#include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <sstream>
-
-#include <boost/math/special_functions/erf.hpp>
 
 #include "core/atomic_file.h"
 #include "core/random.h"
@@ -46,11 +45,14 @@ std::vector<Response> simulate_responses(const SimulationDesign& d) {
       for (size_t g = 0; g < d.sigmas.size(); ++g)
         for (int rep = 0; rep < d.repetitions; ++rep)
           for (int q = 0; q < 3; ++q) {
-            SampleStream random(d.seed, 12, (uint64_t(s) * 1000 + sc * 100 + g * 10 + uint64_t(q)) * 64 + uint64_t(rep), 0);
+            SampleStream random(
+                d.seed, 12,
+                (uint64_t(s) * 1000 + sc * 100 + g * 10 + uint64_t(q)) * 64 + uint64_t(rep), 0);
             double log_low = std::log(d.low) + low_offset;
             double log_lambda = log_low;
             if (q == int(Question::best)) log_lambda += std::log(d.best_jnd[weak ? 0 : 1]);
-            if (q == int(Question::high)) log_lambda += std::log(d.high_jnd) + d.high_sigma_slope * double(g);
+            if (q == int(Question::high))
+              log_lambda += std::log(d.high_jnd) + d.high_sigma_slope * double(g);
             log_lambda += d.answer_sd * normal(random);
             Response r;
             r.subject = id;
@@ -69,14 +71,15 @@ std::vector<Response> simulate_responses(const SimulationDesign& d) {
   return out;
 }
 
-void write_responses_csv(const std::vector<Response>& responses, const std::string& path, double lambda_step) {
+void write_responses_csv(const std::vector<Response>& responses, const std::string& path,
+                         double lambda_step) {
   std::ostringstream csv;
   csv.precision(12);
   csv << "subject,scene,sigma,question,lambda,lambda_step,lambda_index,lambda_max,method\n";
   for (const auto& r : responses)
-    csv << csv_field(r.subject) << "," << csv_field(r.scene) << "," << r.sigma << "," << kQuestionNames[int(r.question)]
-        << "," << r.lambda << "," << lambda_step << "," << r.lambda_index << "," << r.lambda_max << ","
-        << csv_field(r.method) << "\n";
+    csv << csv_field(r.subject) << "," << csv_field(r.scene) << "," << r.sigma << ","
+        << kQuestionNames[int(r.question)] << "," << r.lambda << "," << lambda_step << ","
+        << r.lambda_index << "," << r.lambda_max << "," << csv_field(r.method) << "\n";
   write_text_atomically(path, csv.str());
 }
 

@@ -1,13 +1,12 @@
 #include "analysis/stats.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-#include <numeric>
-
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
 #include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace countershade::analysis {
 
@@ -93,16 +92,20 @@ Eigen::MatrixXd contrasts(int levels) {
 Eigen::MatrixXd kron(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   Eigen::MatrixXd out(a.rows() * b.rows(), a.cols() * b.cols());
   for (int i = 0; i < a.rows(); ++i)
-    for (int j = 0; j < a.cols(); ++j) out.block(i * b.rows(), j * b.cols(), b.rows(), b.cols()) = a(i, j) * b;
+    for (int j = 0; j < a.cols(); ++j)
+      out.block(i * b.rows(), j * b.cols(), b.rows(), b.cols()) = a(i, j) * b;
   return out;
 }
 
 // The transform for one effect: contrasts for its factors, normalised averaging for the others.
-Eigen::MatrixXd effect_transform(const std::vector<WithinFactor>& factors, const std::vector<bool>& in_effect) {
+Eigen::MatrixXd effect_transform(const std::vector<WithinFactor>& factors,
+                                 const std::vector<bool>& in_effect) {
   Eigen::MatrixXd m = Eigen::MatrixXd::Ones(1, 1);
   for (size_t f = 0; f < factors.size(); ++f) {
-    Eigen::MatrixXd part = in_effect[f] ? contrasts(factors[f].levels)
-                                        : Eigen::MatrixXd::Constant(1, factors[f].levels, 1.0 / std::sqrt(factors[f].levels));
+    Eigen::MatrixXd part =
+        in_effect[f]
+            ? contrasts(factors[f].levels)
+            : Eigen::MatrixXd::Constant(1, factors[f].levels, 1.0 / std::sqrt(factors[f].levels));
     m = kron(m, part);
   }
   return m;
@@ -162,12 +165,14 @@ void add_sphericity(AnovaRow& row, const Eigen::MatrixXd& S, double n, double ce
 
 }  // namespace
 
-std::vector<AnovaRow> rm_anova(const Eigen::MatrixXd& data, const std::vector<WithinFactor>& factors) {
+std::vector<AnovaRow> rm_anova(const Eigen::MatrixXd& data,
+                               const std::vector<WithinFactor>& factors) {
   const size_t nf = factors.size();
   const double n = double(data.rows());
   const std::vector<std::vector<bool>> effects = effects_in_r_order(nf);
   // Between-subject variation (the intercept's error term) enters generalised η².
-  const EffectSS subjects = sums_of_squares(data, effect_transform(factors, std::vector<bool>(nf, false)));
+  const EffectSS subjects =
+      sums_of_squares(data, effect_transform(factors, std::vector<bool>(nf, false)));
   std::vector<EffectSS> ss;
   double total_error = subjects.ss_error;
   for (const auto& e : effects) {

@@ -3,10 +3,9 @@
 // p, generalised η², Mauchly's test, Greenhouse–Geisser and Huynh–Feldt corrections), t-tests,
 // Holm's correction. Distributions come from Boost.Math, linear algebra from Eigen.
 
+#include <Eigen/Dense>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 namespace countershade::analysis {
 
@@ -41,7 +40,8 @@ struct AnovaRow {
 // Fully within-subject ANOVA. `data` is subjects × cells, the cells in row-major order of
 // `factors` (the first factor varies slowest). Effects come in R's order: main effects, then
 // two-way interactions, and so on, each in factor order.
-std::vector<AnovaRow> rm_anova(const Eigen::MatrixXd& data, const std::vector<WithinFactor>& factors);
+std::vector<AnovaRow> rm_anova(const Eigen::MatrixXd& data,
+                               const std::vector<WithinFactor>& factors);
 
 // Upper-tail probabilities.
 double f_upper(double F, double df1, double df2);

@@ -22,7 +22,12 @@ void BM_AnalysisFullDesign(benchmark::State& state) {
   }
   state.counters["answers"] = double(responses.size());
 }
-BENCHMARK(BM_AnalysisFullDesign)->Arg(0)->Arg(1000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_AnalysisFullDesign)
+    ->Arg(0)
+    ->Arg(1000)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace countershade::analysis

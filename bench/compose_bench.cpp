@@ -7,8 +7,8 @@
 #include "core/isa.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {
@@ -32,7 +32,8 @@ const Case kCases[] = {
 // rendered for every case.
 std::shared_ptr<const View> rendered_view() {
   static std::shared_ptr<const View> view = [] {
-    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/cornsweet-cube.json"));
+    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) +
+                                                    "/experiments/scenes/cornsweet-cube.json"));
     scene->camera.width = kWidth;
     scene->camera.height = kHeight;
     scene->settings.spp = 1;
@@ -56,7 +57,8 @@ void BM_ComposeLightness(benchmark::State& state) {
     lambda += 0.01;
   }
   allow_avx512(true);
-  state.SetLabel(std::string(c.method) + " " + c.parameters.dump() + (state.range(1) ? "" : ", four pixels at a time"));
+  state.SetLabel(std::string(c.method) + " " + c.parameters.dump() +
+                 (state.range(1) ? "" : ", four pixels at a time"));
 }
 // The second argument: 1 lets the composition take eight pixels at a time where the processor has
 // AVX-512 (the default), 0 keeps it at four (the path of other processors), for an A/B in one run.

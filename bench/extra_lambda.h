@@ -29,7 +29,8 @@ inline void measure_extra_lambda(benchmark::State& state, const std::shared_ptr<
     context.compose_from_samples = true;
     return use.method->prepare(context, *use.parameters);
   };
-  benchmark::DoNotOptimize(prepare(render_view(scene, plan_for(method, parameters, 1.0), {}))->compose(1.0));
+  benchmark::DoNotOptimize(
+      prepare(render_view(scene, plan_for(method, parameters, 1.0), {}))->compose(1.0));
   double render = 0, prepared_in = 0, compose = 0;
   for (auto _ : state) {
     auto t = std::chrono::steady_clock::now();

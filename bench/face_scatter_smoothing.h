@@ -8,11 +8,10 @@
 // colour, flags) and faces holding their vertices and border flags.
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <map>
 #include <utility>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "mesh/triangle_mesh.h"
 
@@ -32,13 +31,18 @@ struct FaceScatterMesh {
   std::vector<Face> faces;
 };
 
-inline FaceScatterMesh face_scatter_mesh(const TriangleMesh& mesh, const std::vector<uint8_t>& grey) {
+inline FaceScatterMesh face_scatter_mesh(const TriangleMesh& mesh,
+                                         const std::vector<uint8_t>& grey) {
   FaceScatterMesh m;
   for (size_t v = 0; v < mesh.vertex_count(); ++v)
-    m.vertices.push_back({{mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z}, {0, 0, 1},
-                          {grey[v], grey[v], grey[v], 255}, 0});
+    m.vertices.push_back({{mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z},
+                          {0, 0, 1},
+                          {grey[v], grey[v], grey[v], 255},
+                          0});
   std::map<std::pair<uint32_t, uint32_t>, int> uses;
-  const auto key = [](uint32_t a, uint32_t b) { return a < b ? std::make_pair(a, b) : std::make_pair(b, a); };
+  const auto key = [](uint32_t a, uint32_t b) {
+    return a < b ? std::make_pair(a, b) : std::make_pair(b, a);
+  };
   for (const glm::uvec3& t : mesh.triangles)
     for (int j = 0; j < 3; ++j) ++uses[key(t[j], t[(j + 1) % 3])];
   for (const glm::uvec3& t : mesh.triangles) {
@@ -71,7 +75,8 @@ inline void face_scatter_smooth(FaceScatterMesh& m, int steps) {
     each_edge(true, [&](uint32_t a, uint32_t b) { add(a, b), add(b, a); });
     for (size_t v = 0; v < m.vertices.size(); ++v)
       if (sum[v].count > 0)
-        for (int c = 0; c < 4; ++c) m.vertices[v].color[c] = uint8_t(sum[v].channel[c] / unsigned(sum[v].count));
+        for (int c = 0; c < 4; ++c)
+          m.vertices[v].color[c] = uint8_t(sum[v].channel[c] / unsigned(sum[v].count));
   }
 }
 

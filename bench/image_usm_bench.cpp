@@ -2,10 +2,9 @@
 // one run) and 2D unsharp masking against OpenImageIO's unsharp_mask on the same image.
 //   build/bin/countershade_bench --benchmark_filter='DepthUsm|Usm2d'
 
-#include <benchmark/benchmark.h>
-
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,8 +17,8 @@
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {
@@ -32,7 +31,8 @@ double median(std::vector<double> v) {
 }
 
 // Seconds since `start`, appended to `times`; returns now.
-std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point start, std::vector<double>& times) {
+std::chrono::steady_clock::time_point lap(std::chrono::steady_clock::time_point start,
+                                          std::vector<double>& times) {
   const auto now = std::chrono::steady_clock::now();
   times.push_back(std::chrono::duration<double>(now - start).count());
   return now;
@@ -47,14 +47,16 @@ const std::shared_ptr<const View>& test_view() {
     for (size_t i = 0; i < depth.size(); ++i)
       for (int c = 0; c < 3; ++c) display.pixels[3 * i + c] = 0.35f + 0.1f * float(random.next());
     for (int disc = 0; disc < 40; ++disc) {
-      double cx = random.next() * kWidth, cy = random.next() * kHeight, r = 40 + 160 * random.next();
+      double cx = random.next() * kWidth, cy = random.next() * kHeight,
+             r = 40 + 160 * random.next();
       float z = float(2.0 + 7.0 * random.next()), grey = float(0.2 + 0.6 * random.next());
       for (int y = std::max(0, int(cy - r)); y < std::min(kHeight, int(cy + r)); ++y)
         for (int x = std::max(0, int(cx - r)); x < std::min(kWidth, int(cx + r)); ++x) {
           size_t i = size_t(y) * kWidth + x;
           if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > r * r || depth[i] < z) continue;
           depth[i] = z;
-          for (int c = 0; c < 3; ++c) display.pixels[3 * i + c] = grey + 0.05f * float(random.next());
+          for (int c = 0; c < 3; ++c)
+            display.pixels[3 * i + c] = grey + 0.05f * float(random.next());
         }
     }
     return make_image_view(display, depth, DisplayEncoding::srgb(), 8);
@@ -70,7 +72,8 @@ double kernel_sigma_px(double kernel_percent) {
 }
 
 void BM_DepthUsm(benchmark::State& state) {
-  const nlohmann::json options = {{"operator", "darken"}, {"kernel_percent", double(state.range(0))}};
+  const nlohmann::json options = {{"operator", "darken"},
+                                  {"kernel_percent", double(state.range(0))}};
   for (auto _ : state) {
     Composed out = prepare_method("depth-usm", test_view(), options)->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
@@ -81,7 +84,8 @@ BENCHMARK(BM_DepthUsm)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTi
 
 // One further λ of a prepared view: the darken composition alone.
 void BM_DepthUsmCompose(benchmark::State& state) {
-  auto prepared = prepare_method("depth-usm", test_view(), {{"operator", "darken"}, {"kernel_percent", 5}});
+  auto prepared =
+      prepare_method("depth-usm", test_view(), {{"operator", "darken"}, {"kernel_percent", 5}});
   for (auto _ : state) {
     Composed out = prepared->compose(1.0);
     benchmark::DoNotOptimize(out.display.pixels.data());
@@ -105,20 +109,26 @@ BENCHMARK(BM_SpatialImportance)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->
 // scene at 1920×1080, K = 5 %. Arg 0: the rendered view; 1: its image and depth as an image view.
 void BM_SpatialImportanceOutlines(benchmark::State& state) {
   static const std::shared_ptr<const View> rendered = [] {
-    auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/clutter.json"));
+    auto scene = std::make_shared<Scene>(
+        load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/clutter.json"));
     scene->camera.width = kWidth;
     scene->camera.height = kHeight;
     scene->settings.spp = 1;
     return render_view(scene);
   }();
-  static const std::shared_ptr<const View> image = make_image_view(rendered->display, rendered->depth, rendered->encoding, 8);
+  static const std::shared_ptr<const View> image =
+      make_image_view(rendered->display, rendered->depth, rendered->encoding, 8);
   const View& view = state.range(0) == 0 ? *rendered : *image;
   for (auto _ : state) {
     SpatialImportance si = spatial_importance(view, {}, kernel_sigma_px(5));
     benchmark::DoNotOptimize(si.darker.pixels.data());
   }
 }
-BENCHMARK(BM_SpatialImportanceOutlines)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SpatialImportanceOutlines)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The recursive Gaussian alone on a 1920×1080 float plane (σ in px).
 void BM_GaussianBlur(benchmark::State& state) {
@@ -224,7 +234,8 @@ void BM_Usm2dVersusOiio(benchmark::State& state) {
   one_percent.sigma_percent = 1.0;
   const double sigma = one_percent.sigma_px_for(kWidth, kHeight);
   const float width = oiio_width_for_sigma(sigma);
-  OIIO::ImageBuf src(OIIO::ImageSpec(kWidth, kHeight, 3, OIIO::TypeDesc::FLOAT), (void*)view.display.pixels.data());
+  OIIO::ImageBuf src(OIIO::ImageSpec(kWidth, kHeight, 3, OIIO::TypeDesc::FLOAT),
+                     (void*)view.display.pixels.data());
   OIIO::ImageBuf dst;
   std::vector<double> ours, theirs;
   for (auto _ : state) {

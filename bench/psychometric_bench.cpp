@@ -40,7 +40,12 @@ void BM_PsychometricFitsWithBootstrap(benchmark::State& state) {
   state.counters["fits"] = double(fits);
   state.counters["trials"] = double(trials.size());
 }
-BENCHMARK(BM_PsychometricFitsWithBootstrap)->Arg(0)->Arg(1000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_PsychometricFitsWithBootstrap)
+    ->Arg(0)
+    ->Arg(1000)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace countershade::analysis

@@ -9,15 +9,16 @@
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene.h"
-#include "render/shading.h"
 #include "render/scene_loader.h"
+#include "render/shading.h"
 
 namespace countershade {
 namespace {
 
 const Scene& bunny_scene() {
   static Scene scene = [] {
-    Scene s = load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/bunny-sky.json");
+    Scene s =
+        load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/bunny-sky.json");
     s.camera.width = 1024;
     s.camera.height = 768;
     return s;
@@ -86,8 +87,10 @@ void BM_RenderBunny(benchmark::State& state) {
   const RayTracer& tracer = bunny_tracer();
   RayCounts total;
   for (auto _ : state) total += render(scene, tracer).rays;
-  state.counters["primary/s"] = benchmark::Counter(double(total.primary), benchmark::Counter::kIsRate);
-  state.counters["shadow/s"] = benchmark::Counter(double(total.shadow), benchmark::Counter::kIsRate);
+  state.counters["primary/s"] =
+      benchmark::Counter(double(total.primary), benchmark::Counter::kIsRate);
+  state.counters["shadow/s"] =
+      benchmark::Counter(double(total.shadow), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RenderBunny)->Arg(4)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
@@ -102,5 +105,3 @@ BENCHMARK(BM_BuildBvh)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace countershade
-
-

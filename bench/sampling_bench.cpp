@@ -16,9 +16,9 @@
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
 #include "enhance/view.h"
+#include "enhance/view_plan.h"
 #include "render/scene.h"
 #include "render/scene_loader.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -26,7 +26,8 @@ namespace {
 const nlohmann::json kUsm3d = {{"sigma", 0.12}, {"ring_samples", 3}};
 
 Scene scan_scene() {
-  Scene s = load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/ritschel2008/scenes/scan.json");
+  Scene s = load_scene(std::string(COUNTERSHADE_SOURCE_DIR) +
+                       "/experiments/ritschel2008/scenes/scan.json");
   s.camera.width = 512;
   s.camera.height = 384;
   return s;
@@ -41,7 +42,8 @@ struct Stimulus {
 Stimulus render_stimulus(Scene scene, uint64_t seed) {
   scene.settings.seed = seed;
   const auto t0 = std::chrono::steady_clock::now();
-  auto view = render_view(std::make_shared<Scene>(std::move(scene)), plan_for("usm3d", kUsm3d, 3.0), ViewOptions{});
+  auto view = render_view(std::make_shared<Scene>(std::move(scene)), plan_for("usm3d", kUsm3d, 3.0),
+                          ViewOptions{});
   Image display = prepare_method("usm3d", view, kUsm3d)->compose(3.0).display;
   Stimulus out;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -76,7 +78,8 @@ void BM_NoiseAtEqualTime(benchmark::State& state) {
     // Calibrate: the independent sampler's time per sample per pixel, from a 16-spp render.
     const Stimulus probe = render_stimulus(independent(budget, 16), 3);
     const int spp = std::max(2, 2 * int(std::lround(0.5 * 16.0 * budget_seconds / probe.seconds)));
-    const Stimulus c = render_stimulus(independent(budget, spp), 1), d = render_stimulus(independent(budget, spp), 2);
+    const Stimulus c = render_stimulus(independent(budget, spp), 1),
+                   d = render_stimulus(independent(budget, spp), 2);
     const double budget_rms = two_seed_rms(a, b), independent_rms = two_seed_rms(c, d);
     state.counters["budget_s"] = budget_seconds;
     state.counters["budget_mean_spp"] = a.mean_spp;

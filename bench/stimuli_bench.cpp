@@ -8,21 +8,22 @@
 #include <filesystem>
 
 #include "core/sha256.h"
-#include "render/ray_tracer.h"
-#include "stimuli/experiment.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/ray_tracer.h"
+#include "render/scene_loader.h"
+#include "stimuli/experiment.h"
 
 namespace countershade {
 namespace {
 
 void BM_StimulusPerLambda(benchmark::State& state) {
-  auto scene = std::make_shared<Scene>(
-      load_scene(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/ritschel2008/scenes/chamfer.json"));
+  auto scene = std::make_shared<Scene>(load_scene(std::string(COUNTERSHADE_SOURCE_DIR) +
+                                                  "/experiments/ritschel2008/scenes/chamfer.json"));
   auto t0 = std::chrono::steady_clock::now();
   const nlohmann::json parameters = {{"sigma_fraction", 0.02}};
   auto view = render_view(scene, plan_for("usm3d", parameters, 3.0), {});
-  double render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double render_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   auto prepared = prepare_method("usm3d", view, parameters);
   auto dir = std::filesystem::temp_directory_path() / "countershade-bench-stimuli";
   std::filesystem::create_directories(dir);

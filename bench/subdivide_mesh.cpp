@@ -8,13 +8,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_precision.hpp>
 #include <iostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/geometric.hpp>
-#include <glm/gtc/type_precision.hpp>
 
 #include "mesh/mesh_io.h"
 #include "subdivided_mesh.h"
@@ -26,8 +25,11 @@ using countershade::bench::Subdivided;
 
 // Stripes at three scales of the mesh's size, so the smoothing has structure to remove.
 glm::u8vec3 pattern(const glm::vec3& p, float size) {
-  const auto wave = [&](float scale, float phase) { return 0.5f + 0.5f * std::sin(p.x * scale / size + phase); };
-  const float v = 0.5f * wave(40, 0) + 0.3f * wave(170, 1) + 0.2f * std::sin(p.y * 900 / size) * std::sin(p.z * 700 / size);
+  const auto wave = [&](float scale, float phase) {
+    return 0.5f + 0.5f * std::sin(p.x * scale / size + phase);
+  };
+  const float v = 0.5f * wave(40, 0) + 0.3f * wave(170, 1) +
+                  0.2f * std::sin(p.y * 900 / size) * std::sin(p.z * 700 / size);
   const float c = std::clamp(40.0f + 180.0f * v, 0.0f, 255.0f);
   return {uint8_t(c), uint8_t(0.8f * c + 20), uint8_t(0.6f * c + 40)};
 }
@@ -35,7 +37,8 @@ glm::u8vec3 pattern(const glm::vec3& p, float size) {
 void write_ply(const Subdivided& mesh, float size, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
   out << "ply\nformat binary_little_endian 1.0\nelement vertex " << mesh.positions.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty "
+         "uchar green\n"
          "property uchar blue\nelement face "
       << mesh.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (const glm::vec3& p : mesh.positions) {
@@ -63,6 +66,7 @@ int main(int argc, char** argv) {
   const Subdivided out = countershade::bench::subdivide(in, k);
   const countershade::BoundingBox box = countershade::bounding_box(in);
   write_ply(out, box.diagonal(), argv[3]);
-  std::printf("%s: %zu vertices, %zu triangles\n", argv[3], out.positions.size(), out.triangles.size());
+  std::printf("%s: %zu vertices, %zu triangles\n", argv[3], out.positions.size(),
+              out.triangles.size());
   return 0;
 }

@@ -4,11 +4,10 @@
 // meshes of the smoothing measurements (bench/subdivide_mesh.cpp, BM_SmoothLocality).
 
 #include <cstdint>
+#include <glm/geometric.hpp>
 #include <map>
 #include <utility>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "mesh/triangle_mesh.h"
 
@@ -30,7 +29,8 @@ class EdgePoints {
     auto [it, fresh] = first_.try_emplace(key, uint32_t(out_.positions.size()));
     if (fresh)
       for (int j = 1; j < k_; ++j)
-        out_.positions.push_back(glm::mix(out_.positions[key.first], out_.positions[key.second], float(j) / float(k_)));
+        out_.positions.push_back(
+            glm::mix(out_.positions[key.first], out_.positions[key.second], float(j) / float(k_)));
     return it->second + uint32_t((flipped ? k_ - i : i) - 1);
   }
 
@@ -47,16 +47,23 @@ inline void subdivide_triangle(const glm::uvec3& t, int k, EdgePoints& edges, Su
   for (int i = 0; i <= k; ++i)
     for (int j = 0; i + j <= k; ++j) {
       const int l = k - i - j;
-      if (i == 0 && j == 0) id(i, j) = t.x;
-      else if (i == k) id(i, j) = t.y;
-      else if (j == k) id(i, j) = t.z;
-      else if (j == 0) id(i, j) = edges.at(t.x, t.y, i);
-      else if (i == 0) id(i, j) = edges.at(t.x, t.z, j);
-      else if (l == 0) id(i, j) = edges.at(t.y, t.z, j);
+      if (i == 0 && j == 0)
+        id(i, j) = t.x;
+      else if (i == k)
+        id(i, j) = t.y;
+      else if (j == k)
+        id(i, j) = t.z;
+      else if (j == 0)
+        id(i, j) = edges.at(t.x, t.y, i);
+      else if (i == 0)
+        id(i, j) = edges.at(t.x, t.z, j);
+      else if (l == 0)
+        id(i, j) = edges.at(t.y, t.z, j);
       else {
         id(i, j) = uint32_t(out.positions.size());
         out.positions.push_back((float(l) * out.positions[t.x] + float(i) * out.positions[t.y] +
-                                 float(j) * out.positions[t.z]) / float(k));
+                                 float(j) * out.positions[t.z]) /
+                                float(k));
       }
     }
   for (int i = 0; i < k; ++i)

@@ -14,10 +14,10 @@
 
 #include <random>
 
-#include "extra_lambda.h"
 #include "enhance/filtered_pyramid.h"
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "extra_lambda.h"
 #include "render/procedural_texture.h"
 #include "stimuli/experiment.h"
 
@@ -40,9 +40,14 @@ void BM_TextureFilterPyramid(benchmark::State& state) {
   LightnessFilter f;
   f.kind = FilterKind(state.range(0));
   state.SetLabel(filter_name(f.kind));
-  for (auto _ : state) benchmark::DoNotOptimize(filter_pyramid(plain, TextureMode::mip, f, {}, std::nullopt));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(filter_pyramid(plain, TextureMode::mip, f, {}, std::nullopt));
 }
-BENCHMARK(BM_TextureFilterPyramid)->DenseRange(0, 2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_TextureFilterPyramid)
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 void lookups(benchmark::State& state, double footprint) {
   static const Texture texture(texture_2048());
@@ -52,7 +57,8 @@ void lookups(benchmark::State& state, double footprint) {
   for (auto& uv : uvs) uv = {u(random), u(random)};
   size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(texture.sample(uvs[i], glm::dvec2(footprint, 0.0), glm::dvec2(0.0, footprint)));
+    benchmark::DoNotOptimize(
+        texture.sample(uvs[i], glm::dvec2(footprint, 0.0), glm::dvec2(0.0, footprint)));
     i = (i + 1) & 4095;
   }
 }
@@ -62,9 +68,11 @@ BENCHMARK(BM_TextureLookupSingle);
 BENCHMARK(BM_TextureLookupTrilinear);
 
 void BM_TextureFilterExtraLambda(benchmark::State& state) {
-  const Experiment e = load_experiment(std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/semmo2015/experiment.json");
+  const Experiment e = load_experiment(std::string(COUNTERSHADE_SOURCE_DIR) +
+                                       "/experiments/semmo2015/experiment.json");
   const auto scene = std::make_shared<const Scene>(load_experiment_scene(e, e.scenes[0]));
-  measure_extra_lambda(state, scene, "texture-filter", {{"mode", "mip"}, {"filter", "unsharp"}, {"sigma", 1}});
+  measure_extra_lambda(state, scene, "texture-filter",
+                       {{"mode", "mip"}, {"filter", "unsharp"}, {"sigma", 1}});
 }
 BENCHMARK(BM_TextureFilterExtraLambda)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 

@@ -12,14 +12,14 @@
 #include "core/random.h"
 #include "enhance/method.h"
 #include "enhance/usm3d.h"
+#include "enhance/view_plan.h"
+#include "face_scatter_smoothing.h"
 #include "mesh/adjacency.h"
 #include "mesh/mesh_io.h"
 #include "mesh/smoothing.h"
 #include "mesh/vertex_order.h"
-#include "face_scatter_smoothing.h"
-#include "subdivided_mesh.h"
 #include "render/scene_loader.h"
-#include "enhance/view_plan.h"
+#include "subdivided_mesh.h"
 
 namespace countershade {
 namespace {
@@ -63,7 +63,8 @@ void BM_SmoothIgea(benchmark::State& state) {
   }
   double iterations_run = double(state.iterations());
   double smooth_rate = double(reads) * iterations_run / smooth_seconds;
-  double copy_rate = double(reads) * iterations_run / copy_seconds;  // doubles copied per second (1 thread)
+  double copy_rate =
+      double(reads) * iterations_run / copy_seconds;  // doubles copied per second (1 thread)
   state.counters["n100_ms"] = 1e3 * smooth_seconds / iterations_run;
   state.counters["reads/s/core"] = smooth_rate / threads;
   state.counters["copy/s"] = copy_rate;
@@ -97,10 +98,12 @@ void BM_SmoothIgeaSchemes(benchmark::State& state) {
     std::vector<double> out[2] = {signal, signal};
     for (int scheme = 0; scheme < 2; ++scheme) {
       auto t0 = std::chrono::steady_clock::now();
-      smooth_over_rings(adj, comps.label, steps, out[scheme], scheme ? SmoothingScheme::chebyshev : SmoothingScheme::iterate, 2);
+      smooth_over_rings(adj, comps.label, steps, out[scheme],
+                        scheme ? SmoothingScheme::chebyshev : SmoothingScheme::iterate, 2);
       seconds[scheme] += seconds_since(t0);
     }
-    for (size_t v = 0; v < signal.size(); ++v) largest = std::max(largest, std::abs(out[0][v] - out[1][v]) / 255.0);
+    for (size_t v = 0; v < signal.size(); ++v)
+      largest = std::max(largest, std::abs(out[0][v] - out[1][v]) / 255.0);
   }
   const double runs = double(state.iterations());
   state.counters["iterate_ms"] = 1e3 * seconds[0] / runs;
@@ -127,13 +130,15 @@ void BM_SmoothAgainstFaceScatter(benchmark::State& state) {
       for (int threads = 1; threads <= 2; ++threads) {
         std::vector<double> out = signal;
         auto t1 = std::chrono::steady_clock::now();
-        smooth_over_rings(adj, comps.label, steps, out, scheme ? SmoothingScheme::chebyshev : SmoothingScheme::iterate, threads);
+        smooth_over_rings(adj, comps.label, steps, out,
+                          scheme ? SmoothingScheme::chebyshev : SmoothingScheme::iterate, threads);
         ours[scheme][threads - 1] += seconds_since(t1);
       }
   }
   const double runs = double(state.iterations());
   state.counters["face_scatter_ms"] = 1e3 * baseline / runs;
-  const char* names[2][2] = {{"x_iterate_1t", "x_iterate_2t"}, {"x_chebyshev_1t", "x_chebyshev_2t"}};
+  const char* names[2][2] = {{"x_iterate_1t", "x_iterate_2t"},
+                             {"x_chebyshev_1t", "x_chebyshev_2t"}};
   for (int scheme = 0; scheme < 2; ++scheme)
     for (int t = 0; t < 2; ++t) state.counters[names[scheme][t]] = baseline / ours[scheme][t];
 }
@@ -157,7 +162,8 @@ void BM_SmoothLocality(benchmark::State& state) {
   std::vector<uint32_t> order(fine.positions.size());
   std::iota(order.begin(), order.end(), 0u);
   if (state.range(0) == 1) std::shuffle(order.begin(), order.end(), std::mt19937(1));
-  const VertexAdjacency adj = renumbered(adjacency_from_triangles(order.size(), fine.triangles), order);
+  const VertexAdjacency adj =
+      renumbered(adjacency_from_triangles(order.size(), fine.triangles), order);
   const Components comps = connected_components(adj);
   const std::vector<int> steps(comps.count, 100);
   const std::vector<uint8_t> grey = random_levels(order.size());
@@ -185,7 +191,12 @@ void BM_SmoothLocality(benchmark::State& state) {
   state.counters["speedup"] = seconds[0] / seconds[1];
   state.counters["same_bits"] = same;
 }
-BENCHMARK(BM_SmoothLocality)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_SmoothLocality)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
 
 // igea under the sky at 1024×768 with a fixed 16 spp (4 per vertex point), so both renders take
 // the same samples.
@@ -204,12 +215,14 @@ void BM_Usm3dOverhead(benchmark::State& state) {
   auto scene = igea_scene();
   const int ring = int(state.range(0));
   const double h = mean_edge_length(scene->objects[0].mesh);
-  const nlohmann::json options = {{"sigma", std::sqrt(50.0 / 2.0) * h}, {"ring_samples", ring}};  // n = round(2σ²/h̄²) ≈ 50
+  const nlohmann::json options = {{"sigma", std::sqrt(50.0 / 2.0) * h},
+                                  {"ring_samples", ring}};  // n = round(2σ²/h̄²) ≈ 50
   double plain = 0, enhanced = 0, extra_lambda = 0;
   int n = 0;
   for (auto _ : state) {
     auto t0 = std::chrono::steady_clock::now();
-    Composed none = prepare_method("none", render_view(scene), nlohmann::json::object())->compose(0);
+    Composed none =
+        prepare_method("none", render_view(scene), nlohmann::json::object())->compose(0);
     plain += seconds_since(t0);
     benchmark::DoNotOptimize(none.display.pixels.data());
 

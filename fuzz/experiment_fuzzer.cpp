@@ -4,7 +4,9 @@
 #include "stimuli/experiment.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const bool support = (countershade::fuzz::write_support_file("scene.json", countershade::fuzz::kSupportScene), true);
+  static const bool support =
+      (countershade::fuzz::write_support_file("scene.json", countershade::fuzz::kSupportScene),
+       true);
   (void)support;
   const auto path = countershade::fuzz::write_input(data, size, "experiment.json");
   return countershade::fuzz::expect_clean_refusal([&] { countershade::load_experiment(path); });

@@ -4,6 +4,8 @@
 // any other exception would reach the user as "failure" with exit 1, so the harness aborts on it
 // and libFuzzer records the input. Crashes, hangs, leaks and sanitizer reports are findings too.
 
+#include <unistd.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -12,7 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "core/error.h"
 
@@ -21,7 +22,8 @@ namespace countershade::fuzz {
 // This process's own folder under the temp dir, where inputs and the files they may refer to lie.
 inline const std::filesystem::path& input_folder() {
   static const std::filesystem::path folder = [] {
-    auto f = std::filesystem::temp_directory_path() / ("countershade-fuzz-" + std::to_string(::getpid()));
+    auto f = std::filesystem::temp_directory_path() /
+             ("countershade-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(f);
     return f;
   }();
@@ -29,9 +31,11 @@ inline const std::filesystem::path& input_folder() {
 }
 
 // The input bytes written to a file `name` in the input folder.
-inline std::filesystem::path write_input(const uint8_t* data, size_t size, const std::string& name) {
+inline std::filesystem::path write_input(const uint8_t* data, size_t size,
+                                         const std::string& name) {
   const std::filesystem::path path = input_folder() / name;
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), std::streamsize(size));
   return path;
 }
 

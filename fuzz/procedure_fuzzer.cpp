@@ -6,6 +6,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = countershade::fuzz::write_input(data, size, "procedure.json");
   return countershade::fuzz::expect_clean_refusal([&] {
-    countershade::adjust::parse_study_config(countershade::parse_json_file(path), path.string(), "");
+    countershade::adjust::parse_study_config(countershade::parse_json_file(path), path.string(),
+                                             "");
   });
 }

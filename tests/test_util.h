@@ -33,7 +33,9 @@ inline void with_and_without_avx512(const std::function<void()>& check) {
 
 inline std::filesystem::path source_dir() { return COUNTERSHADE_SOURCE_DIR; }
 // The repository's meshes (data/meshes) and the tests' reference results (tests/reference).
-inline std::filesystem::path mesh_path(const std::string& name) { return source_dir() / "data/meshes" / name; }
+inline std::filesystem::path mesh_path(const std::string& name) {
+  return source_dir() / "data/meshes" / name;
+}
 inline std::filesystem::path reference_path(const std::string& relative) {
   return source_dir() / "tests/reference" / relative;
 }
@@ -82,7 +84,8 @@ inline constexpr const char* kOrbitingBoxScene = R"({"version": 1,
     "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [0.4, 0, 0]]}}]}
 })";
 
-inline std::filesystem::path write_file(const std::filesystem::path& path, const std::string& text) {
+inline std::filesystem::path write_file(const std::filesystem::path& path,
+                                        const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
   return path;
@@ -108,14 +111,17 @@ inline CommandResult run_program(const std::string& program, const std::string& 
   if (!pipe) return result;
   std::array<char, 4096> buffer;
   size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), n);
   int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
 
 // Runs the countershade binary with `arguments` (already shell-quoted).
-inline CommandResult run_cli(const std::string& arguments) { return run_program(COUNTERSHADE_BINARY, arguments); }
+inline CommandResult run_cli(const std::string& arguments) {
+  return run_program(COUNTERSHADE_BINARY, arguments);
+}
 
 // The message of the InputError that `f` throws, or "(no error)".
 inline std::string input_error_of(const std::function<void()>& f) {

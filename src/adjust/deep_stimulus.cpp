@@ -63,8 +63,9 @@ unsigned compile(GLenum kind, const std::string& source) {
 
 DeepStimulusRenderer::Program DeepStimulusRenderer::link(int mode) {
   const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, "#version 330 core\n#define MODE " + std::to_string(mode) + "\n" +
-                                                    kFineLevelsGlsl + kFragmentMain);
+  const GLuint fs =
+      compile(GL_FRAGMENT_SHADER, "#version 330 core\n#define MODE " + std::to_string(mode) + "\n" +
+                                      kFineLevelsGlsl + kFragmentMain);
   Program p;
   p.id = glCreateProgram();
   glAttachShader(p.id, vs);
@@ -118,7 +119,8 @@ unsigned DeepStimulusRenderer::upload(const std::vector<uint16_t>& rgba, int wid
   }
   const GLuint id = new_nearest_texture();
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, 2 * height, 0, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, 2 * height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               bytes.data());
   if (glGetError() != GL_NO_ERROR) {
     glDeleteTextures(1, &id);
     throw std::runtime_error("cannot upload a 16-bit stimulus texture (out of GPU memory?)");
@@ -126,8 +128,8 @@ unsigned DeepStimulusRenderer::upload(const std::vector<uint16_t>& rgba, int wid
   return id;
 }
 
-void DeepStimulusRenderer::draw(unsigned texture, const PixelRect& r, OutputPath path, uint32_t frame,
-                                uint32_t seed) const {
+void DeepStimulusRenderer::draw(unsigned texture, const PixelRect& r, OutputPath path,
+                                uint32_t frame, uint32_t seed) const {
   GLint full[4];
   glGetIntegerv(GL_VIEWPORT, full);
   glDisable(GL_BLEND);
@@ -136,7 +138,9 @@ void DeepStimulusRenderer::draw(unsigned texture, const PixelRect& r, OutputPath
   glDisable(GL_FRAMEBUFFER_SRGB);
   const int bottom = r.framebuffer_height - r.y - r.height;
   glViewport(r.x, bottom, r.width, r.height);
-  const Program& p = programs_[path == OutputPath::ten_bit ? 0 : path == OutputPath::pseudo_grey ? 2 : 1];
+  const Program& p = programs_[path == OutputPath::ten_bit       ? 0
+                               : path == OutputPath::pseudo_grey ? 2
+                                                                 : 1];
   glUseProgram(p.id);
   glUniform2i(p.top_left, r.x, r.framebuffer_height - r.y - 1);
   glUniform1ui(p.frame, frame);
@@ -155,8 +159,8 @@ std::vector<uint16_t> read_back_rgba16(const PixelRect& r) {
   std::vector<uint16_t> bottom_up(row * size_t(r.height)), out(bottom_up.size());
   glFinish();
   glPixelStorei(GL_PACK_ALIGNMENT, 2);
-  glReadPixels(r.x, r.framebuffer_height - r.y - r.height, r.width, r.height, GL_RGBA, GL_UNSIGNED_SHORT,
-               bottom_up.data());
+  glReadPixels(r.x, r.framebuffer_height - r.y - r.height, r.width, r.height, GL_RGBA,
+               GL_UNSIGNED_SHORT, bottom_up.data());
   for (int y = 0; y < r.height; ++y)
     std::copy_n(&bottom_up[size_t(r.height - 1 - y) * row], row, &out[size_t(y) * row]);
   return out;

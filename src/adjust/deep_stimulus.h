@@ -37,7 +37,8 @@ class DeepStimulusRenderer {
 
   // Draws the texture into the bound draw framebuffer through `path` (ten_bit or dither); `frame`
   // and `seed` choose the dither pattern. Leaves the viewport at the whole framebuffer.
-  void draw(unsigned texture, const PixelRect& where, OutputPath path, uint32_t frame, uint32_t seed) const;
+  void draw(unsigned texture, const PixelRect& where, OutputPath path, uint32_t frame,
+            uint32_t seed) const;
 
  private:
   struct Program {

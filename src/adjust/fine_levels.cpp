@@ -4,10 +4,14 @@ namespace countershade::adjust {
 
 const char* output_path_name(OutputPath path) {
   switch (path) {
-    case OutputPath::eight_bit: return "8-bit";
-    case OutputPath::ten_bit: return "ten-bit";
-    case OutputPath::dither: return "dither";
-    case OutputPath::pseudo_grey: return "pseudo-grey";
+    case OutputPath::eight_bit:
+      return "8-bit";
+    case OutputPath::ten_bit:
+      return "ten-bit";
+    case OutputPath::dither:
+      return "dither";
+    case OutputPath::pseudo_grey:
+      return "pseudo-grey";
   }
   return "?";
 }
@@ -40,7 +44,7 @@ uint32_t dither_threshold(uint32_t x, uint32_t y, uint32_t frame, uint32_t seed)
   const uint32_t h = mix(x + mix(y + dither_seed_mix(seed)));
   const uint32_t stratum = ((h >> 26) + frame * 37u) & 63u;
   const uint32_t position = (stratum << 10) | (h & 1023u);  // 0 .. 65535
-  return (position * 65535u) >> 16;                            // 0 .. 65534
+  return (position * 65535u) >> 16;                         // 0 .. 65534
 }
 
 const char* const kFineLevelsGlsl = R"(

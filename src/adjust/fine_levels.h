@@ -23,7 +23,8 @@ enum class OutputPath { eight_bit, ten_bit, dither, pseudo_grey };
 
 const char* output_path_name(OutputPath path);
 
-// What the user may ask for: a path, or "auto" (ten-bit where a read-back confirms it, else dither).
+// What the user may ask for: a path, or "auto" (ten-bit where a read-back confirms it, else
+// dither).
 struct OutputPathChoice {
   bool automatic = true;
   OutputPath path = OutputPath::dither;
@@ -46,7 +47,9 @@ uint32_t dither_seed_mix(uint32_t seed);
 
 // The 8-bit level the dither shows: floor((v · 255 + threshold) / 65535). Its mean over thresholds
 // spread evenly over [0, 65535) is v · 255 / 65535, the 16-bit value in 8-bit levels.
-inline uint32_t dither_level(uint32_t v16, uint32_t threshold) { return (v16 * 255u + threshold) / 65535u; }
+inline uint32_t dither_level(uint32_t v16, uint32_t threshold) {
+  return (v16 * 255u + threshold) / 65535u;
+}
 
 // Bit stealing with Psychtoolbox's CreatePseudoGrayLUT table: a 12-bit index over the sixteenths of
 // a grey level, its top 8 bits the grey level in all three channels, and its low 4 bits (the slot)
@@ -64,7 +67,9 @@ inline uint32_t pseudo_grey_index(uint32_t v16) { return (v16 * 4080u + 32767u) 
 inline constexpr uint32_t kAchromaticSpread = 16;
 
 // The grey pseudo-grey shows for a pixel: the rounded mean of its three codes.
-inline uint32_t pseudo_grey_value(uint32_t r, uint32_t g, uint32_t b) { return (r + g + b + 1u) / 3u; }
+inline uint32_t pseudo_grey_value(uint32_t r, uint32_t g, uint32_t b) {
+  return (r + g + b + 1u) / 3u;
+}
 
 // The 8-bit level of a channel (its mask above) for a 16-bit grey value.
 inline uint32_t pseudo_grey_level(uint32_t v16, uint32_t mask) {

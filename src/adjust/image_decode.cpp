@@ -21,7 +21,8 @@ std::vector<T> decode_as(const StimulusImage& image, OIIO::TypeDesc type) {
   if (spec.width != image.width || spec.height != image.height)
     throw_input_error(image.file.string(), "the image size differs from the manifest");
   const int n = spec.nchannels;
-  if (n < 1 || n > 4) throw_input_error(image.file.string(), "unsupported channel count " + std::to_string(n));
+  if (n < 1 || n > 4)
+    throw_input_error(image.file.string(), "unsupported channel count " + std::to_string(n));
   std::vector<T> raw(size_t(spec.width) * size_t(spec.height) * size_t(n));
   if (!in->read_image(0, 0, 0, n, type, raw.data()))
     throw_input_error(image.file.string(), "cannot decode: " + in->geterror());
@@ -29,8 +30,10 @@ std::vector<T> decode_as(const StimulusImage& image, OIIO::TypeDesc type) {
   for (size_t p = 0; p < size_t(spec.width) * size_t(spec.height); ++p) {
     const T* s = &raw[p * size_t(n)];
     T* d = &rgba[p * 4];
-    if (n <= 2) d[0] = d[1] = d[2] = s[0];
-    else d[0] = s[0], d[1] = s[1], d[2] = s[2];
+    if (n <= 2)
+      d[0] = d[1] = d[2] = s[0];
+    else
+      d[0] = s[0], d[1] = s[1], d[2] = s[2];
     // Alpha is ignored on purpose: stimuli are shown opaque, exactly as their RGB values.
   }
   return rgba;
@@ -38,7 +41,9 @@ std::vector<T> decode_as(const StimulusImage& image, OIIO::TypeDesc type) {
 
 }  // namespace
 
-std::vector<uint8_t> decode_rgba(const StimulusImage& image) { return decode_as<uint8_t>(image, OIIO::TypeDesc::UINT8); }
+std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
+  return decode_as<uint8_t>(image, OIIO::TypeDesc::UINT8);
+}
 
 std::vector<uint16_t> decode_rgba16(const StimulusImage& image) {
   return decode_as<uint16_t>(image, OIIO::TypeDesc::UINT16);
@@ -51,12 +56,14 @@ namespace {
 void require_achromatic_image(const StimulusImage& image, const std::vector<uint16_t>& rgba) {
   for (size_t p = 0; p < rgba.size() / 4; ++p) {
     const uint16_t* c = &rgba[p * 4];
-    if (std::max({c[0], c[1], c[2]}) - std::min({c[0], c[1], c[2]}) <= int(kAchromaticSpread)) continue;
-    throw_input_error(image.file.string(), "--output-path pseudo-grey shows achromatic stimuli only, but pixel (" +
-                                               std::to_string(p % size_t(image.width)) + ", " +
-                                               std::to_string(p / size_t(image.width)) + ") has R, G, B = " +
-                                               std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
-                                               std::to_string(c[2]) + " (use dither or ten-bit)");
+    if (std::max({c[0], c[1], c[2]}) - std::min({c[0], c[1], c[2]}) <= int(kAchromaticSpread))
+      continue;
+    throw_input_error(image.file.string(),
+                      "--output-path pseudo-grey shows achromatic stimuli only, but pixel (" +
+                          std::to_string(p % size_t(image.width)) + ", " +
+                          std::to_string(p / size_t(image.width)) +
+                          ") has R, G, B = " + std::to_string(c[0]) + ", " + std::to_string(c[1]) +
+                          ", " + std::to_string(c[2]) + " (use dither or ten-bit)");
   }
 }
 
@@ -64,8 +71,9 @@ void require_achromatic_image(const StimulusImage& image, const std::vector<uint
 
 void require_achromatic_images(const Study& study, const OutputPathChoice& path) {
   if (study.bits != 16 || path.automatic || path.path != OutputPath::pseudo_grey) return;
-  tbb::parallel_for(size_t(0), study.images.size(),
-                    [&](size_t i) { require_achromatic_image(study.images[i], decode_rgba16(study.images[i])); });
+  tbb::parallel_for(size_t(0), study.images.size(), [&](size_t i) {
+    require_achromatic_image(study.images[i], decode_rgba16(study.images[i]));
+  });
 }
 
 std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study) {
@@ -76,14 +84,20 @@ std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, cons
     std::vector<std::vector<uint8_t>> pixels8(last - first);
     std::vector<std::vector<uint16_t>> pixels16(last - first);
     tbb::parallel_for(first, last, [&](size_t i) {
-      if (study.bits == 16) pixels16[i - first] = decode_rgba16(study.images[i]);
-      else pixels8[i - first] = decode_rgba(study.images[i]);
+      if (study.bits == 16)
+        pixels16[i - first] = decode_rgba16(study.images[i]);
+      else
+        pixels8[i - first] = decode_rgba(study.images[i]);
     });
     for (size_t i = first; i < last; ++i)
-      textures[i] = study.bits == 16 ? presenter.upload_texture16(pixels16[i - first], study.images[i].width, study.images[i].height)
-                                     : presenter.upload_texture(pixels8[i - first], study.images[i].width, study.images[i].height);
+      textures[i] = study.bits == 16
+                        ? presenter.upload_texture16(pixels16[i - first], study.images[i].width,
+                                                     study.images[i].height)
+                        : presenter.upload_texture(pixels8[i - first], study.images[i].width,
+                                                   study.images[i].height);
     FrameContent loading;
-    loading.message = "Loading the stimuli: " + std::to_string(last) + " of " + std::to_string(study.images.size());
+    loading.message = "Loading the stimuli: " + std::to_string(last) + " of " +
+                      std::to_string(study.images.size());
     loading.progress = double(last) / double(study.images.size());
     presenter.draw(loading);
     for (const auto& e : presenter.poll_events()) closed |= e.kind == WindowEvent::Kind::close;

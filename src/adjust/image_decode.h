@@ -12,7 +12,8 @@
 
 namespace countershade::adjust {
 
-// Decodes a stimulus into 8-bit (or 16-bit) RGBA; the size must be the manifest's. Throws InputError.
+// Decodes a stimulus into 8-bit (or 16-bit) RGBA; the size must be the manifest's. Throws
+// InputError.
 std::vector<uint8_t> decode_rgba(const StimulusImage& image);
 std::vector<uint16_t> decode_rgba16(const StimulusImage& image);
 

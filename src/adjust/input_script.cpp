@@ -14,16 +14,17 @@ namespace countershade::adjust {
 namespace {
 
 constexpr double kMaxScriptDelayMs = 3.6e6;  // one hour
-constexpr double kTapSeconds = 0.020;  // how long a scripted key press is held
+constexpr double kTapSeconds = 0.020;        // how long a scripted key press is held
 
 struct KeyName {
   Key key;
   const char* name;
 };
-constexpr KeyName kKeyNames[] = {{Key::up, "up"},       {Key::down, "down"},           {Key::left, "left"},
-                                 {Key::right, "right"}, {Key::enter, "enter"},         {Key::backspace, "backspace"},
-                                 {Key::escape, "escape"}, {Key::quit, "q"},       {Key::one, "1"},
-                                 {Key::two, "2"},       {Key::three, "3"},             {Key::four, "4"}};
+constexpr KeyName kKeyNames[] = {
+    {Key::up, "up"},         {Key::down, "down"},   {Key::left, "left"},
+    {Key::right, "right"},   {Key::enter, "enter"}, {Key::backspace, "backspace"},
+    {Key::escape, "escape"}, {Key::quit, "q"},      {Key::one, "1"},
+    {Key::two, "2"},         {Key::three, "3"},     {Key::four, "4"}};
 
 // A normal deviate from two counter-based uniforms (Box–Muller).
 double normal(SampleStream& s) {
@@ -58,22 +59,28 @@ double parse_delay_ms(const std::string& text, const std::string& where) {
     throw_input_error(where, "'" + text + "' is not a delay in milliseconds");
   }
   if (!(delay_ms >= 0) || !(delay_ms <= kMaxScriptDelayMs))
-    throw_input_error(where, "the delay must be between 0 and 3600000 milliseconds (an hour; a longer pause is a typo)");
+    throw_input_error(
+        where,
+        "the delay must be between 0 and 3600000 milliseconds (an hour; a longer pause is a typo)");
   return delay_ms;
 }
 
 // The events of one action at time_s: a screenshot or close, a held key, or a tapped key.
-void add_action(const std::string& action, std::istringstream& words, double time_s, const std::string& where,
-                std::vector<InputEvent>& events) {
+void add_action(const std::string& action, std::istringstream& words, double time_s,
+                const std::string& where, std::vector<InputEvent>& events) {
   if (action == "screenshot" || action == "close") {
-    events.push_back({time_s, action == "close" ? InputEvent::Kind::close : InputEvent::Kind::screenshot, Key::enter});
+    events.push_back({time_s,
+                      action == "close" ? InputEvent::Kind::close : InputEvent::Kind::screenshot,
+                      Key::enter});
     return;
   }
   if (action == "hold") {
     std::string key_text;
     double hold_ms = -1;
-    if (!(words >> key_text >> hold_ms) || !(hold_ms >= 0)) throw_input_error(where, "expected 'hold KEY MILLISECONDS'");
-    if (!(hold_ms <= kMaxScriptDelayMs)) throw_input_error(where, "a key is held for at most 3600000 milliseconds (an hour)");
+    if (!(words >> key_text >> hold_ms) || !(hold_ms >= 0))
+      throw_input_error(where, "expected 'hold KEY MILLISECONDS'");
+    if (!(hold_ms <= kMaxScriptDelayMs))
+      throw_input_error(where, "a key is held for at most 3600000 milliseconds (an hour)");
     const auto key = key_from_name(key_text);
     if (!key) throw_input_error(where, "unknown key '" + key_text + "'");
     events.push_back({time_s, InputEvent::Kind::press, *key});
@@ -83,7 +90,8 @@ void add_action(const std::string& action, std::istringstream& words, double tim
   const auto key = key_from_name(action);
   if (!key)
     throw_input_error(where, "unknown action '" + action +
-                                 "' (expected up, down, left, right, enter, backspace, escape, q, 1 to 4, hold, screenshot or close)");
+                                 "' (expected up, down, left, right, enter, backspace, escape, q, "
+                                 "1 to 4, hold, screenshot or close)");
   events.push_back({time_s, InputEvent::Kind::press, *key});
   events.push_back({time_s + kTapSeconds, InputEvent::Kind::release, *key});
 }
@@ -106,9 +114,11 @@ std::vector<InputEvent> parse_key_script_text(const std::string& text, const std
     time_s += delay_ms / 1000;
     add_action(action, words, time_s, where, events);
     std::string extra;
-    if (words >> extra) throw_input_error(where, "unexpected '" + extra + "' at the end of the line");
+    if (words >> extra)
+      throw_input_error(where, "unexpected '" + extra + "' at the end of the line");
   }
-  std::stable_sort(events.begin(), events.end(), [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+  std::stable_sort(events.begin(), events.end(),
+                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
   return events;
 }
 
@@ -120,10 +130,13 @@ uint64_t parse_observer_spec(const std::string& spec) {
   const std::string prefix = "simulated:";
   if (spec.rfind(prefix, 0) == 0) {
     std::string digits = spec.substr(prefix.size());
-    if (!digits.empty() && digits.size() <= 15 && std::all_of(digits.begin(), digits.end(), ::isdigit))
+    if (!digits.empty() && digits.size() <= 15 &&
+        std::all_of(digits.begin(), digits.end(), ::isdigit))
       return std::stoull(digits);
   }
-  throw_input_error("--observer", "'" + spec + "' is not an observer (expected simulated:SEED, e.g. simulated:1)");
+  throw_input_error(
+      "--observer",
+      "'" + spec + "' is not an observer (expected simulated:SEED, e.g. simulated:1)");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -137,8 +150,10 @@ double SimulatedObserver::latent_lambda(int condition, int repetition, Question 
   // The observer's thresholds for this condition (fixed over repetitions), plus answer noise.
   SampleStream person(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), 0);
   const double low = 0.2 * top * std::exp(0.2 * normal(person));
-  const double ratio[kQuestionCount] = {1.0, 3.0 * std::exp(0.1 * normal(person)), 1.6 * std::exp(0.1 * normal(person))};
-  SampleStream noise(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), uint64_t(repetition) * 8 + int(question) + 1);
+  const double ratio[kQuestionCount] = {1.0, 3.0 * std::exp(0.1 * normal(person)),
+                                        1.6 * std::exp(0.1 * normal(person))};
+  SampleStream noise(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9),
+                     uint64_t(repetition) * 8 + int(question) + 1);
   return low * ratio[int(question)] * std::exp(0.05 * normal(noise));
 }
 
@@ -156,8 +171,10 @@ std::vector<InputEvent> SimulatedObserver::act(const Procedure& p, double time_s
   Key key = Key::enter;
   if (p.phase() == Procedure::Phase::question) {
     const int target = answer_index(p.trial().condition, p.trial().repetition, p.question());
-    if (p.lambda_index() < target) key = Key::right;
-    else if (p.lambda_index() > target) key = Key::left;
+    if (p.lambda_index() < target)
+      key = Key::right;
+    else if (p.lambda_index() > target)
+      key = Key::left;
   } else if (p.phase() == Procedure::Phase::paused) {
     key = Key::escape;
   }

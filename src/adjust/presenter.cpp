@@ -5,9 +5,9 @@
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
 #include <GL/glext.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,8 +18,8 @@
 
 #include "adjust/deep_stimulus.h"
 #include "core/error.h"
-#include "core/visual_angle.h"
 #include "core/image.h"
+#include "core/visual_angle.h"
 
 namespace countershade::adjust {
 
@@ -28,7 +28,9 @@ namespace {
 const char* const kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 std::string glfw_error;
-void record_glfw_error(int, const char* description) { glfw_error = description ? description : "unknown error"; }
+void record_glfw_error(int, const char* description) {
+  glfw_error = description ? description : "unknown error";
+}
 
 struct Margins {
   int side, top, bottom;
@@ -40,34 +42,49 @@ Margins margins_for(const DisplayOptions& o) {
 
 std::optional<Key> key_of(int glfw_key) {
   switch (glfw_key) {
-    case GLFW_KEY_UP: return Key::up;
-    case GLFW_KEY_DOWN: return Key::down;
-    case GLFW_KEY_LEFT: return Key::left;
-    case GLFW_KEY_RIGHT: return Key::right;
+    case GLFW_KEY_UP:
+      return Key::up;
+    case GLFW_KEY_DOWN:
+      return Key::down;
+    case GLFW_KEY_LEFT:
+      return Key::left;
+    case GLFW_KEY_RIGHT:
+      return Key::right;
     case GLFW_KEY_ENTER:
-    case GLFW_KEY_KP_ENTER: return Key::enter;
-    case GLFW_KEY_BACKSPACE: return Key::backspace;
-    case GLFW_KEY_ESCAPE: return Key::escape;
-    case GLFW_KEY_Q: return Key::quit;
+    case GLFW_KEY_KP_ENTER:
+      return Key::enter;
+    case GLFW_KEY_BACKSPACE:
+      return Key::backspace;
+    case GLFW_KEY_ESCAPE:
+      return Key::escape;
+    case GLFW_KEY_Q:
+      return Key::quit;
     case GLFW_KEY_1:
-    case GLFW_KEY_KP_1: return Key::one;
+    case GLFW_KEY_KP_1:
+      return Key::one;
     case GLFW_KEY_2:
-    case GLFW_KEY_KP_2: return Key::two;
+    case GLFW_KEY_KP_2:
+      return Key::two;
     case GLFW_KEY_3:
-    case GLFW_KEY_KP_3: return Key::three;
+    case GLFW_KEY_KP_3:
+      return Key::three;
     case GLFW_KEY_4:
-    case GLFW_KEY_KP_4: return Key::four;
-    default: return std::nullopt;
+    case GLFW_KEY_KP_4:
+      return Key::four;
+    default:
+      return std::nullopt;
   }
 }
 
 // Draws `text` wrapped to `wrap` pixels, the block centred on `centre_x`, from `top`; returns the
 // height used.
-float centred_text(ImDrawList* list, const char* text, float centre_x, float top, float wrap, ImU32 colour) {
+float centred_text(ImDrawList* list, const char* text, float centre_x, float top, float wrap,
+                   ImU32 colour) {
   ImFont* font = ImGui::GetFont();
   const float size = ImGui::GetFontSize();
   ImVec2 extent = font->CalcTextSizeA(size, FLT_MAX, wrap, text);
-  list->AddText(font, size, ImVec2(std::floor(centre_x - extent.x / 2), std::floor(top)), colour, text, nullptr, wrap);
+  list->AddText(font, size, ImVec2(std::floor(centre_x - extent.x / 2), std::floor(top)), colour,
+                text, nullptr, wrap);
   return extent.y;
 }
 
@@ -116,8 +133,8 @@ GLFWmonitor* Presenter::open_monitor(int need_w, int need_h) {
   const DisplayOptions& o = options_;
   if (o.monitor < 0 || o.monitor >= count) {
     glfwTerminate();
-    throw_input_error("--monitor", std::to_string(o.monitor) + " is not a monitor (found " + std::to_string(count) +
-                                       ", numbered from 0)");
+    throw_input_error("--monitor", std::to_string(o.monitor) + " is not a monitor (found " +
+                                       std::to_string(count) + ", numbered from 0)");
   }
   GLFWmonitor* monitor = monitors[o.monitor];
   const GLFWvidmode* mode = glfwGetVideoMode(monitor);
@@ -126,11 +143,13 @@ GLFWmonitor* Presenter::open_monitor(int need_w, int need_h) {
   if (mode->refreshRate > 0) refresh_hz_ = mode->refreshRate;
   if (need_w > screen_w_ || need_h > screen_h_) {
     glfwTerminate();
-    throw_input_error("display", "two " + std::to_string(o.stimulus_width) + "x" + std::to_string(o.stimulus_height) +
-                                     " stimuli with the question text need " + std::to_string(need_w) + "x" +
-                                     std::to_string(need_h) + " pixels at 1:1 scale, but monitor " +
-                                     std::to_string(o.monitor) + " is " + std::to_string(screen_w_) + "x" +
-                                     std::to_string(screen_h_) + " (use a larger screen or a set with smaller images)");
+    throw_input_error(
+        "display", "two " + std::to_string(o.stimulus_width) + "x" +
+                       std::to_string(o.stimulus_height) + " stimuli with the question text need " +
+                       std::to_string(need_w) + "x" + std::to_string(need_h) +
+                       " pixels at 1:1 scale, but monitor " + std::to_string(o.monitor) + " is " +
+                       std::to_string(screen_w_) + "x" + std::to_string(screen_h_) +
+                       " (use a larger screen or a set with smaller images)");
   }
   if (o.pixels_per_degree) check_visual_angle(monitor, screen_w_);
   return monitor;
@@ -148,13 +167,16 @@ void Presenter::check_visual_angle(GLFWmonitor* monitor, int width_px) const {
   char text[320];
   if (!(width_mm > 0)) {
     glfwTerminate();
-    throw_input_error("--monitor-width-mm", "the monitor does not report its size; give its width in mm");
+    throw_input_error("--monitor-width-mm",
+                      "the monitor does not report its size; give its width in mm");
   }
   const double ppd = pixels_per_degree(width_mm, width_px, *o.distance_mm);
   if (std::abs(ppd / *o.pixels_per_degree - 1.0) <= 0.02) return;
   std::snprintf(text, sizeof text,
-                "the set was made for %.2f pixels per degree at %.0f mm, but monitor %d (%d px, %.0f mm wide) gives "
-                "%.2f (%+.1f %%; at most 2 %% allowed): use the screen the set was made for, or --monitor-width-mm "
+                "the set was made for %.2f pixels per degree at %.0f mm, but monitor %d (%d px, "
+                "%.0f mm wide) gives "
+                "%.2f (%+.1f %%; at most 2 %% allowed): use the screen the set was made for, or "
+                "--monitor-width-mm "
                 "if the monitor misreports its size",
                 *o.pixels_per_degree, *o.distance_mm, o.monitor, width_px, width_mm, ppd,
                 100.0 * (ppd / *o.pixels_per_degree - 1.0));
@@ -171,17 +193,20 @@ void Presenter::create_window(GLFWmonitor* monitor, int need_w, int need_h) {
   glfwWindowHint(GLFW_SAMPLES, 0);
   // A 16-bit study asks for 10 bits per channel; GLFW gives the closest the display has.
   const bool ten = options_.stimulus_bits == 16 && options_.output_path.may_use_ten_bit();
-  for (int hint : {GLFW_RED_BITS, GLFW_GREEN_BITS, GLFW_BLUE_BITS}) glfwWindowHint(hint, ten ? 10 : 8);
+  for (int hint : {GLFW_RED_BITS, GLFW_GREEN_BITS, GLFW_BLUE_BITS})
+    glfwWindowHint(hint, ten ? 10 : 8);
   glfwWindowHint(GLFW_ALPHA_BITS, ten ? 2 : 8);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_FALSE);
-  int win_w = std::max(need_w, std::min(1280, screen_w_)), win_h = std::max(need_h, std::min(800, screen_h_));
+  int win_w = std::max(need_w, std::min(1280, screen_w_)),
+      win_h = std::max(need_h, std::min(800, screen_h_));
   if (options_.fullscreen) {
     glfwWindowHint(GLFW_REFRESH_RATE, glfwGetVideoMode(monitor)->refreshRate);
     win_w = screen_w_;
     win_h = screen_h_;
   }
-  window_ = glfwCreateWindow(win_w, win_h, options_.title.c_str(), options_.fullscreen ? monitor : nullptr, nullptr);
+  window_ = glfwCreateWindow(win_w, win_h, options_.title.c_str(),
+                             options_.fullscreen ? monitor : nullptr, nullptr);
   if (!window_) {
     glfwTerminate();
     throw std::runtime_error("cannot open an OpenGL 3.3 core window: " + glfw_error);
@@ -207,7 +232,8 @@ void Presenter::start_imgui() {
   // may speak of λ, σ, ±, ≤, ×, ° and – (ImGui's default atlas has Latin-1 alone).
   static const ImWchar kGlyphRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2010, 0x205E,
                                          0x2190, 0x21FF, 0x2200, 0x22FF, 0};
-  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options_.font_px), &font_config, kGlyphRanges)) {
+  if (!io.Fonts->AddFontFromFileTTF(kFontFile, float(options_.font_px), &font_config,
+                                    kGlyphRanges)) {
     ImFontConfig fallback;
     fallback.SizePixels = float(options_.font_px);
     io.Fonts->AddFontDefault(&fallback);
@@ -221,7 +247,9 @@ void Presenter::start_imgui() {
 void Presenter::choose_output_path() {
   const GLenum sizes[3] = {GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE,
                            GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE};
-  for (int c = 0; c < 3; ++c) glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_BACK_LEFT, sizes[c], &framebuffer_bits_[c]);
+  for (int c = 0; c < 3; ++c)
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_BACK_LEFT, sizes[c],
+                                          &framebuffer_bits_[c]);
   deep_ = std::make_unique<DeepStimulusRenderer>();
   const OutputPathChoice& choice = options_.output_path;
   if (choice.may_use_ten_bit()) {
@@ -229,11 +257,14 @@ void Presenter::choose_output_path() {
     glfwGetFramebufferSize(window_, &fw, &fh);
     ten_bit_read_back_ = ten_bit_read_back_holds(*deep_, fh);
   }
-  path_ = choice.automatic ? (*ten_bit_read_back_ ? OutputPath::ten_bit : OutputPath::dither) : choice.path;
+  path_ = choice.automatic ? (*ten_bit_read_back_ ? OutputPath::ten_bit : OutputPath::dither)
+                           : choice.path;
   if (path_ == OutputPath::ten_bit && !*ten_bit_read_back_) {
     close_window();
-    throw_input_error("--output-path", "ten-bit: this display's framebuffer has " + std::to_string(framebuffer_bits_[0]) +
-                                           " bits per channel and does not read back 10-bit levels (use auto or dither)");
+    throw_input_error(
+        "--output-path",
+        "ten-bit: this display's framebuffer has " + std::to_string(framebuffer_bits_[0]) +
+            " bits per channel and does not read back 10-bit levels (use auto or dither)");
   }
 }
 
@@ -286,8 +317,10 @@ nlohmann::ordered_json Presenter::output_info() const {
 unsigned Presenter::upload_texture(const std::vector<uint8_t>& rgba, int width, int height) {
   const unsigned id = new_nearest_texture();
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("cannot upload a stimulus texture (out of GPU memory?)");
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               rgba.data());
+  if (glGetError() != GL_NO_ERROR)
+    throw std::runtime_error("cannot upload a stimulus texture (out of GPU memory?)");
   textures_.push_back(id);
   return id;
 }
@@ -307,12 +340,16 @@ void Presenter::key_callback(GLFWwindow* w, int key, int, int action, int) {
     ++self->repeats_ignored_;
     return;
   }
-  self->events_.push_back({action == GLFW_PRESS ? WindowEvent::Kind::press : WindowEvent::Kind::release, *k, glfwGetTime()});
+  self->events_.push_back(
+      {action == GLFW_PRESS ? WindowEvent::Kind::press : WindowEvent::Kind::release, *k,
+       glfwGetTime()});
 }
 
 void Presenter::focus_callback(GLFWwindow* w, int focused) {
   auto* self = static_cast<Presenter*>(glfwGetWindowUserPointer(w));
-  self->events_.push_back({focused ? WindowEvent::Kind::focus_gained : WindowEvent::Kind::focus_lost, Key::enter, glfwGetTime()});
+  self->events_.push_back(
+      {focused ? WindowEvent::Kind::focus_gained : WindowEvent::Kind::focus_lost, Key::enter,
+       glfwGetTime()});
 }
 
 void Presenter::close_callback(GLFWwindow* w) {
@@ -328,7 +365,9 @@ std::vector<WindowEvent> Presenter::poll_events() {
   return out;
 }
 
-double Presenter::now() const { return options_.frame_clock ? frames_ / refresh_hz_ : glfwGetTime(); }
+double Presenter::now() const {
+  return options_.frame_clock ? frames_ / refresh_hz_ : glfwGetTime();
+}
 
 const char* Presenter::pacing() const {
   return options_.frame_clock ? "frame-clock" : timer_pacing_ ? "timer" : "vsync";
@@ -356,7 +395,8 @@ std::vector<unsigned> stimulus_row(const FrameContent& c) {
 // The stimuli side by side at 1:1 (or a request to enlarge the window), the header and question
 // above them, the hint below.
 // 16-bit stimuli are not ImGui images (`imgui_images` false): the presenter draws them itself.
-StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, const Canvas& k, bool imgui_images) {
+StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, const Canvas& k,
+                            bool imgui_images) {
   const Margins m = margins_for(o);
   const std::vector<unsigned> row = stimulus_row(c);
   StimulusLayout layout;
@@ -364,7 +404,8 @@ StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, cons
   layout.height = c.image_height;
   const int n = int(row.size()), span = n * c.image_width + (n - 1) * o.gap_px;
   layout.fits = span + 2 * m.side <= k.fw && c.image_height + m.top + m.bottom <= k.fh;
-  for (int i = 0; i < n; ++i) layout.xs.push_back((k.fw - span) / 2 + i * (c.image_width + o.gap_px));
+  for (int i = 0; i < n; ++i)
+    layout.xs.push_back((k.fw - span) / 2 + i * (c.image_width + o.gap_px));
   layout.left_x = layout.xs.front();
   layout.right_x = layout.xs.back();
   layout.y = m.top + std::max(0, (k.fh - m.top - m.bottom - c.image_height) / 2);
@@ -373,29 +414,36 @@ StimulusLayout draw_stimuli(const FrameContent& c, const DisplayOptions& o, cons
     for (int i = 0; i < n; ++i)
       k.back->AddImage(reinterpret_cast<ImTextureID>(uintptr_t(row[size_t(i)])),
                        ImVec2(float(layout.xs[size_t(i)]) / k.scale, float(layout.y) / k.scale),
-                       ImVec2(float(layout.xs[size_t(i)] + c.image_width) / k.scale, float(layout.y + c.image_height) / k.scale));
+                       ImVec2(float(layout.xs[size_t(i)] + c.image_width) / k.scale,
+                              float(layout.y + c.image_height) / k.scale));
   } else if (!layout.fits) {
-    centred_text(k.front, "The window is too small to show the images at 1:1 scale. Please enlarge it.", centre,
-                 float(k.wh) / 2, k.wrap, k.text);
+    centred_text(k.front,
+                 "The window is too small to show the images at 1:1 scale. Please enlarge it.",
+                 centre, float(k.wh) / 2, k.wrap, k.text);
   }
   const float top = float(layout.y) / k.scale, bottom = float(layout.y + c.image_height) / k.scale;
-  if (!c.header.empty()) centred_text(k.front, c.header.c_str(), centre, top - 3.2f * k.line, k.wrap, k.text);
-  if (!c.question.empty()) centred_text(k.front, c.question.c_str(), centre, top - 1.9f * k.line, k.wrap, k.text);
-  if (!c.hint.empty()) centred_text(k.front, c.hint.c_str(), centre, bottom + 0.8f * k.line, k.wrap, k.text);
+  if (!c.header.empty())
+    centred_text(k.front, c.header.c_str(), centre, top - 3.2f * k.line, k.wrap, k.text);
+  if (!c.question.empty())
+    centred_text(k.front, c.question.c_str(), centre, top - 1.9f * k.line, k.wrap, k.text);
+  if (!c.hint.empty())
+    centred_text(k.front, c.hint.c_str(), centre, bottom + 0.8f * k.line, k.wrap, k.text);
   return layout;
 }
 
 // A centred message over the surround, with an optional progress bar under it.
 void draw_message(const FrameContent& c, const Canvas& k) {
   const float wrap = std::min(k.wrap, 900.0f);
-  const float h = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, wrap, c.message.c_str()).y;
+  const float h =
+      ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize(), FLT_MAX, wrap, c.message.c_str()).y;
   const float top = float(k.wh) / 2 - h / 2 - k.line;
   const float used = centred_text(k.front, c.message.c_str(), float(k.ww) / 2, top, wrap, k.text);
   if (c.progress < 0) return;
   const float bw = std::min(600.0f, float(k.ww) * 0.6f), bh = k.line * 0.6f;
   const ImVec2 p0(float(k.ww) / 2 - bw / 2, top + used + k.line), p1(p0.x + bw, p0.y + bh);
   k.front->AddRect(p0, p1, k.text, 0, 0, 1.5f);
-  k.front->AddRectFilled(p0, ImVec2(p0.x + bw * float(std::clamp(c.progress, 0.0, 1.0)), p1.y), k.text);
+  k.front->AddRectFilled(p0, ImVec2(p0.x + bw * float(std::clamp(c.progress, 0.0, 1.0)), p1.y),
+                         k.text);
 }
 
 // The back buffer as drawn, to a PNG: 8 bits, or 16 where the framebuffer has more than 8 (a
@@ -447,10 +495,11 @@ StimulusLayout Presenter::draw(const FrameContent& c, const std::filesystem::pat
   return layout;
 }
 
-void Presenter::draw_deep_stimuli(const std::vector<unsigned>& row, const StimulusLayout& layout, int fb_height) {
+void Presenter::draw_deep_stimuli(const std::vector<unsigned>& row, const StimulusLayout& layout,
+                                  int fb_height) {
   for (size_t i = 0; i < row.size(); ++i)
-    deep_->draw(row[i], {layout.xs[i], layout.y, layout.width, layout.height, fb_height}, path_, frames_drawn_,
-                options_.dither_seed);
+    deep_->draw(row[i], {layout.xs[i], layout.y, layout.width, layout.height, fb_height}, path_,
+                frames_drawn_, options_.dither_seed);
 }
 
 void Presenter::pace() {
@@ -461,14 +510,17 @@ void Presenter::pace() {
   ++frames_;
   if (frames_ == 20 && !early_intervals_.empty()) {
     // Without a working swap interval (e.g. a virtual X server) frames would run unthrottled.
-    std::nth_element(early_intervals_.begin(), early_intervals_.begin() + early_intervals_.size() / 2, early_intervals_.end());
+    std::nth_element(early_intervals_.begin(),
+                     early_intervals_.begin() + early_intervals_.size() / 2,
+                     early_intervals_.end());
     timer_pacing_ = early_intervals_[early_intervals_.size() / 2] < 0.5 * period;
     next_deadline_ = t + period;
   }
   if (timer_pacing_) {
     // Sleep to just before the deadline, then spin: a sleep can overshoot by a millisecond or more.
     constexpr double kSpin = 0.002;
-    if (t < next_deadline_ - kSpin) std::this_thread::sleep_for(std::chrono::duration<double>(next_deadline_ - kSpin - t));
+    if (t < next_deadline_ - kSpin)
+      std::this_thread::sleep_for(std::chrono::duration<double>(next_deadline_ - kSpin - t));
     while (glfwGetTime() < next_deadline_) std::this_thread::yield();
     next_deadline_ = std::max(next_deadline_ + period, glfwGetTime());
   }

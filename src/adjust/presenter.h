@@ -8,11 +8,10 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "adjust/fine_levels.h"
 #include "adjust/procedure.h"
@@ -105,7 +104,8 @@ class Presenter {
   unsigned upload_texture16(const std::vector<uint16_t>& rgba, int width, int height);
   // How stimuli reach the framebuffer: 8-bit for 8-bit studies; ten-bit or dither for 16-bit ones.
   OutputPath output_path() const { return path_; }
-  // Frames drawn since the window opened (the loading screens included): the next frame's dither index.
+  // Frames drawn since the window opened (the loading screens included): the next frame's dither
+  // index.
   uint32_t frames_drawn() const { return frames_drawn_; }
 
   // Events since the last call. GLFW_REPEAT is dropped on purpose: the procedure times repeats.
@@ -151,7 +151,8 @@ class Presenter {
   void start_imgui();
   void choose_output_path();
   void close_window();
-  void draw_deep_stimuli(const std::vector<unsigned>& row, const StimulusLayout& layout, int fb_height);
+  void draw_deep_stimuli(const std::vector<unsigned>& row, const StimulusLayout& layout,
+                         int fb_height);
 
   static void key_callback(GLFWwindow* w, int key, int scancode, int action, int mods);
   static void focus_callback(GLFWwindow* w, int focused);

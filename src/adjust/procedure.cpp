@@ -11,7 +11,12 @@ namespace countershade::adjust {
 namespace {
 
 // Streams of the session seed, kept apart so adding practice trials does not change the order.
-enum : uint64_t { kStreamOrder = 101, kStreamSide = 102, kStreamStart = 103, kStreamPractice = 104 };
+enum : uint64_t {
+  kStreamOrder = 101,
+  kStreamSide = 102,
+  kStreamStart = 103,
+  kStreamPractice = 104
+};
 
 // Fisher–Yates with counter-based draws: the order depends on the seed alone.
 template <typename T>
@@ -33,9 +38,12 @@ int draw_start(const Condition& c, const PlanSettings& s, uint64_t trial_key, in
 
 const char* side_name(Side side) {
   switch (side) {
-    case Side::left: return "left";
-    case Side::right: return "right";
-    case Side::counterbalanced: return "counterbalanced";
+    case Side::left:
+      return "left";
+    case Side::right:
+      return "right";
+    case Side::counterbalanced:
+      return "counterbalanced";
   }
   return "?";
 }
@@ -56,7 +64,9 @@ std::vector<Trial> real_trials(size_t n, const PlanSettings& s) {
       t.condition = int(c);
       t.repetition = r;
       const bool flip = (r - 1) % 2 == 1;
-      t.side = s.side != Side::counterbalanced ? s.side : ((first_side[c] == Side::left) != flip ? Side::left : Side::right);
+      t.side = s.side != Side::counterbalanced
+                   ? s.side
+                   : ((first_side[c] == Side::left) != flip ? Side::left : Side::right);
       real.push_back(t);
     }
   seeded_shuffle(real, s.seed, kStreamOrder);
@@ -64,7 +74,8 @@ std::vector<Trial> real_trials(size_t n, const PlanSettings& s) {
 }
 
 // The practice trials: conditions in a seeded order, sides alternating when counterbalanced.
-std::vector<Trial> practice_trials(const std::vector<Condition>& conditions, const PlanSettings& s) {
+std::vector<Trial> practice_trials(const std::vector<Condition>& conditions,
+                                   const PlanSettings& s) {
   std::vector<int> pick = s.practice_conditions;
   if (pick.empty()) {
     pick.resize(conditions.size());
@@ -78,7 +89,8 @@ std::vector<Trial> practice_trials(const std::vector<Condition>& conditions, con
     t.condition = pick[size_t(p) % pick.size()];
     t.side = s.side == Side::counterbalanced ? (p % 2 == 0 ? Side::left : Side::right) : s.side;
     for (int q = 0; q < kQuestionCount; ++q)
-      t.start_index[q] = draw_start(conditions[size_t(t.condition)], s, (1ull << 40) + uint64_t(p), q);
+      t.start_index[q] =
+          draw_start(conditions[size_t(t.condition)], s, (1ull << 40) + uint64_t(p), q);
     practice.push_back(t);
   }
   return practice;
@@ -101,7 +113,8 @@ std::vector<Trial> plan_trials(const std::vector<Condition>& conditions, const P
   return plan;
 }
 
-Procedure::Procedure(std::vector<Condition> conditions, std::vector<Trial> plan, RepeatTiming timing)
+Procedure::Procedure(std::vector<Condition> conditions, std::vector<Trial> plan,
+                     RepeatTiming timing)
     : conditions_(std::move(conditions)), plan_(std::move(plan)), timing_(timing) {
   if (plan_.empty()) throw std::invalid_argument("empty trial plan");
   for (const auto& t : plan_)
@@ -176,7 +189,8 @@ void Procedure::press_between_questions(Key key, double time_s) {
   switch (phase_) {
     case Phase::instructions:
     case Phase::practice_done:
-      if (key == Key::enter) enter_question(trial_, question_, time_s);
+      if (key == Key::enter)
+        enter_question(trial_, question_, time_s);
       else if (key == Key::escape) {
         paused_from_ = phase_;
         phase_ = Phase::paused;

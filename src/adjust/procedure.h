@@ -14,7 +14,6 @@
 
 namespace countershade::adjust {
 
-
 // Which side the enhanced image is shown on. `counterbalanced` only appears in the configuration;
 // every planned trial has a concrete side.
 enum class Side { left, right, counterbalanced };
@@ -31,10 +30,10 @@ struct Condition {
 };
 
 struct Trial {
-  int number = 0;          // 1-based position among the real trials; 0 for practice trials
+  int number = 0;  // 1-based position among the real trials; 0 for practice trials
   bool practice = false;
-  int condition = 0;       // index into the condition list
-  int repetition = 1;      // 1-based
+  int condition = 0;        // index into the condition list
+  int repetition = 1;       // 1-based
   Side side = Side::right;  // side of the enhanced image
   int start_index[kQuestionCount] = {0, 0, 0};
 };
@@ -53,7 +52,8 @@ struct PlanSettings {
 // The full trial list of a session: practice trials first, then every condition × repetition in a
 // seeded random order. Counterbalancing alternates a condition's side over its repetitions, and
 // balances the first side over the conditions. The same settings always give the same plan.
-std::vector<Trial> plan_trials(const std::vector<Condition>& conditions, const PlanSettings& settings);
+std::vector<Trial> plan_trials(const std::vector<Condition>& conditions,
+                               const PlanSettings& settings);
 
 // one … four: the number keys (top row or keypad), for forced-choice answers.
 enum class Key { up, down, left, right, enter, backspace, escape, quit, one, two, three, four };
@@ -64,9 +64,9 @@ struct Answer {
   Question question = Question::low;
   int lambda_index = 0;
   int start_index = 0;
-  int n_keypresses = 0;   // arrow-key presses for this answer (auto-repeat steps not counted)
-  double rt_s = 0;        // from the question appearing to Enter
-  int revision = 0;       // 0 for the first answer; +1 each time the observer went back to it
+  int n_keypresses = 0;  // arrow-key presses for this answer (auto-repeat steps not counted)
+  double rt_s = 0;       // from the question appearing to Enter
+  int revision = 0;      // 0 for the first answer; +1 each time the observer went back to it
 };
 
 // What the procedure remembers about an answered question, e.g. from a session being resumed.
@@ -123,7 +123,7 @@ class Procedure {
  private:
   void enter_question(int trial, int question, double time_s);
   void press_between_questions(Key key, double time_s);  // instructions, pause, end
-  Answer confirm(double time_s);                          // Enter on a question: its answer
+  Answer confirm(double time_s);                         // Enter on a question: its answer
   void step(int direction);
   void advance(double time_s);
   bool is_answered(int trial, int question) const;

@@ -66,7 +66,8 @@ CsvTable read_session_table(const fs::path& csv, RecordedAnswers& out) {
   const auto& all = response_columns();
   const std::vector<std::string> without_sequence(all.begin(), all.end() - 1);
   if (table.rows.empty() || (table.rows[0] != all && table.rows[0] != without_sequence))
-    throw_input_error(csv.string() + ": line 1", "not a session file written by this app (unexpected header)");
+    throw_input_error(csv.string() + ": line 1",
+                      "not a session file written by this app (unexpected header)");
   out.columns = table.rows[0].size();
   return table;
 }
@@ -79,22 +80,30 @@ class RowReader {
       if (!plan[i].practice) plan_index_of_number_[plan[i].number] = int(i);
   }
 
-  void read(const std::vector<std::string>& row, const std::string& where, RecordedAnswers& out) const {
+  void read(const std::vector<std::string>& row, const std::string& where,
+            RecordedAnswers& out) const {
     if (row.size() != out.columns)
-      throw_input_error(where, "expected " + std::to_string(out.columns) + " fields, found " + std::to_string(row.size()));
+      throw_input_error(where, "expected " + std::to_string(out.columns) + " fields, found " +
+                                   std::to_string(row.size()));
     const int number = integer(row, "trial", where);
     auto it = plan_index_of_number_.find(number);
     if (it == plan_index_of_number_.end())
-      throw_input_error(where + " (trial)", "trial " + std::to_string(number) + " is not in the plan");
+      throw_input_error(where + " (trial)",
+                        "trial " + std::to_string(number) + " is not in the plan");
     const Condition& c = study_.conditions[size_t(plan_[size_t(it->second)].condition)];
     const auto question = question_from_name(row[column("question")]);
-    if (!question) throw_input_error(where + " (question)", "unknown question '" + row[column("question")] + "'");
+    if (!question)
+      throw_input_error(where + " (question)",
+                        "unknown question '" + row[column("question")] + "'");
     const int lambda_index = integer(row, "lambda_index", where);
     if (row[column("scene")] != c.scene || row[column("method")] != c.method ||
-        row[column("sigma")] != format_value(c.sigma) || lambda_index < 0 || lambda_index >= c.grid_size ||
+        row[column("sigma")] != format_value(c.sigma) || lambda_index < 0 ||
+        lambda_index >= c.grid_size ||
         row[column("lambda")] != format_value(study_.lambda(lambda_index)))
-      throw_input_error(where, "the row does not match trial " + std::to_string(number) +
-                                   " of this session's plan (was the stimulus set or the configuration changed?)");
+      throw_input_error(
+          where,
+          "the row does not match trial " + std::to_string(number) +
+              " of this session's plan (was the stimulus set or the configuration changed?)");
     PastAnswer& past = out.answered[{it->second, int(*question)}];
     const int revision = integer(row, "revision", where);
     if (revision >= past.revision) past = PastAnswer{lambda_index, revision};
@@ -102,7 +111,8 @@ class RowReader {
   }
 
  private:
-  static int integer(const std::vector<std::string>& row, const char* name, const std::string& where) {
+  static int integer(const std::vector<std::string>& row, const char* name,
+                     const std::string& where) {
     const std::string& v = row[column(name)];
     try {
       size_t used = 0;
@@ -120,7 +130,8 @@ class RowReader {
 
 }  // namespace
 
-RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study, const std::vector<Trial>& plan) {
+RecordedAnswers read_recorded_answers(const fs::path& csv, const Study& study,
+                                      const std::vector<Trial>& plan) {
   RecordedAnswers out;
   const CsvTable table = read_session_table(csv, out);
   const RowReader reader(study, plan);
@@ -148,11 +159,13 @@ OrderedJson plan_to_json(const Study& study, const std::vector<Trial>& plan) {
   return out;
 }
 
-SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& plan, const Identity& who,
-                                 const fs::path& dir, bool resume)
+SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& plan,
+                                 const Identity& who, const fs::path& dir, bool resume)
     : study_(study), plan_(plan), who_(who), files_(session_files(dir, who.subject, who.session)) {
-  if (resume) open_existing();
-  else create(dir);
+  if (resume)
+    open_existing();
+  else
+    create(dir);
   run_.started_utc = utc_timestamp();
   run_.resumed = resume;
   run_.answers_before = recorded_.rows;
@@ -162,15 +175,20 @@ SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& p
 void SessionRecorder::create(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (!fs::is_directory(dir, ec)) throw_input_error(dir.string(), "cannot create the sessions folder");
+  if (!fs::is_directory(dir, ec))
+    throw_input_error(dir.string(), "cannot create the sessions folder");
   for (const auto& p : {files_.sidecar, files_.keys})
     if (fs::exists(p, ec))
-      throw_input_error(p.string(), "already exists; a session is never overwritten (use --resume to continue it, "
-                                    "or another --session number)");
+      throw_input_error(
+          p.string(),
+          "already exists; a session is never overwritten (use --resume to continue it, "
+          "or another --session number)");
   std::string header;
-  for (size_t i = 0; i < response_columns().size(); ++i) header += (i ? "," : "") + response_columns()[i];
+  for (size_t i = 0; i < response_columns().size(); ++i)
+    header += (i ? "," : "") + response_columns()[i];
   csv_ = AppendOnlyFile::create(files_.csv, header + "\n");
-  keys_ = AppendOnlyFile::create(files_.keys, "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n");
+  keys_ = AppendOnlyFile::create(files_.keys,
+                                 "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n");
   sidecar_ = {{"format_version", kSidecarFormatVersion},
               {"subject", who_.subject},
               {"session", who_.session},
@@ -190,24 +208,29 @@ void SessionRecorder::open_existing() {
   std::error_code ec;
   for (const auto& p : {files_.csv, files_.sidecar, files_.keys})
     if (!fs::is_regular_file(p, ec))
-      throw_input_error(p.string(), "no such file: there is no session to resume (start it without --resume)");
+      throw_input_error(p.string(),
+                        "no such file: there is no session to resume (start it without --resume)");
   try {
     sidecar_ = OrderedJson::parse(read_file_bytes(files_.sidecar));
   } catch (const std::exception&) {
     throw_input_error(files_.sidecar.string(), "not valid JSON");
   }
-  if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion || !sidecar_.contains("runs"))
+  if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion ||
+      !sidecar_.contains("runs"))
     throw_input_error(files_.sidecar.string(), "not a session sidecar written by this app");
   if (sidecar_.value("stimulus_set", std::string()) != study_.manifest_sha256)
-    throw_input_error(files_.sidecar.string() + ": stimulus_set",
-                      "the session was recorded with another stimulus set (manifest sha256 differs)");
+    throw_input_error(
+        files_.sidecar.string() + ": stimulus_set",
+        "the session was recorded with another stimulus set (manifest sha256 differs)");
   if (sidecar_["plan"] != plan_to_json(study_, plan_) || sidecar_["seed"] != who_.seed)
-    throw_input_error(files_.sidecar.string() + ": plan",
-                      "the trial plan differs from the one recorded (was the configuration or --seed changed?)");
+    throw_input_error(
+        files_.sidecar.string() + ": plan",
+        "the trial plan differs from the one recorded (was the configuration or --seed changed?)");
   recorded_ = read_recorded_answers(files_.csv, study_, plan_);
   // Runs that never recorded their end were interrupted (killed, crashed, power lost).
   for (auto& r : sidecar_["runs"])
-    if (r.value("end", std::string()) == run_end_name(RunEnd::running)) r["end"] = run_end_name(RunEnd::interrupted);
+    if (r.value("end", std::string()) == run_end_name(RunEnd::running))
+      r["end"] = run_end_name(RunEnd::interrupted);
   if (!recorded_.dropped_tail.empty()) move_partial_line_aside();
   csv_ = AppendOnlyFile::open_existing(files_.csv);
   keys_ = AppendOnlyFile::open_existing(files_.keys);
@@ -229,8 +252,9 @@ std::string SessionRecorder::answered_sequence(int condition, int lambda_index) 
 
 void SessionRecorder::record_answer(const Answer& a, double time_s) {
   const Trial& t = plan_[size_t(a.trial_index)];
-  log_line(time_s, a.revision ? "answer-revised" : "answer", "enter", t.practice ? "practice" : std::to_string(t.number),
-           kQuestionNames[int(a.question)], std::to_string(a.lambda_index));
+  log_line(time_s, a.revision ? "answer-revised" : "answer", "enter",
+           t.practice ? "practice" : std::to_string(t.number), kQuestionNames[int(a.question)],
+           std::to_string(a.lambda_index));
   if (t.practice) {
     keys_.sync();
     return;
@@ -268,19 +292,25 @@ void SessionRecorder::record_answer(const Answer& a, double time_s) {
 
 void SessionRecorder::log_event(double time_s, const std::string& event, const std::string& key,
                                 const Procedure& p) {
-  const bool in_trial = p.phase() == Procedure::Phase::question || p.phase() == Procedure::Phase::paused;
+  const bool in_trial =
+      p.phase() == Procedure::Phase::question || p.phase() == Procedure::Phase::paused;
   const Trial& trial = p.trial();
-  log_line(time_s, event, key, !in_trial ? "" : trial.practice ? "practice" : std::to_string(trial.number),
-           in_trial ? kQuestionNames[int(p.question())] : "", in_trial ? std::to_string(p.lambda_index()) : "");
+  log_line(time_s, event, key,
+           !in_trial        ? ""
+           : trial.practice ? "practice"
+                            : std::to_string(trial.number),
+           in_trial ? kQuestionNames[int(p.question())] : "",
+           in_trial ? std::to_string(p.lambda_index()) : "");
 }
 
 void SessionRecorder::log_line(double time_s, const std::string& event, const std::string& key,
-                               const std::string& trial, const std::string& question, const std::string& lambda_index) {
+                               const std::string& trial, const std::string& question,
+                               const std::string& lambda_index) {
   char t[32];
   std::snprintf(t, sizeof t, "%.4f", time_s);
   // Tab-separated (no field holds a tab), so `analyze sessions/*.csv` never picks it up.
-  keys_.append(std::to_string(sidecar_["runs"].size() + 1) + '\t' + t + '\t' + event + '\t' + key + '\t' + trial + '\t' +
-               question + '\t' + lambda_index + '\n');
+  keys_.append(std::to_string(sidecar_["runs"].size() + 1) + '\t' + t + '\t' + event + '\t' + key +
+               '\t' + trial + '\t' + question + '\t' + lambda_index + '\n');
 }
 
 OrderedJson SessionRecorder::sidecar() const {

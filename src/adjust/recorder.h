@@ -9,23 +9,23 @@
 
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "adjust/procedure.h"
 #include "adjust/session_run.h"
-#include "core/append_file.h"
 #include "adjust/study.h"
+#include "core/append_file.h"
 
 namespace countershade::adjust {
 
 struct SessionFiles {
   std::filesystem::path csv, sidecar, keys;
 };
-SessionFiles session_files(const std::filesystem::path& dir, const std::string& subject, int session);
+SessionFiles session_files(const std::filesystem::path& dir, const std::string& subject,
+                           int session);
 
 // What an existing session's CSV holds, mapped onto the plan.
 struct RecordedAnswers {
@@ -63,9 +63,11 @@ class SessionRecorder {
   // before returning. Practice answers go to the trajectory only.
   void record_answer(const Answer& answer, double time_s);
   // One trajectory line: the run time, an event name, a key name and the procedure's state.
-  void log_event(double time_s, const std::string& event, const std::string& key, const Procedure& procedure);
-  void log_line(double time_s, const std::string& event, const std::string& key, const std::string& trial,
-                const std::string& question, const std::string& lambda_index);
+  void log_event(double time_s, const std::string& event, const std::string& key,
+                 const Procedure& procedure);
+  void log_line(double time_s, const std::string& event, const std::string& key,
+                const std::string& trial, const std::string& question,
+                const std::string& lambda_index);
 
   // The current run, for the session to fill in; save() writes the sidecar.
   SessionRun& run() { return run_; }
@@ -92,6 +94,5 @@ class SessionRecorder {
 
 // The plan as stored in the sidecar (one compact object per trial), for the resume check.
 nlohmann::ordered_json plan_to_json(const Study& study, const std::vector<Trial>& plan);
-
 
 }  // namespace countershade::adjust

@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <memory>
 
-
 #include "adjust/image_decode.h"
 #include "adjust/input_script.h"
 #include "adjust/presenter.h"
@@ -34,7 +33,10 @@ void on_signal(int signal) { g_signal = signal; }
 // restores the previous handlers on every way out.
 class SignalGuard {
  public:
-  SignalGuard() : term_(std::signal(SIGTERM, on_signal)), interrupt_(std::signal(SIGINT, on_signal)) { g_signal = 0; }
+  SignalGuard()
+      : term_(std::signal(SIGTERM, on_signal)), interrupt_(std::signal(SIGINT, on_signal)) {
+    g_signal = 0;
+  }
   ~SignalGuard() {
     std::signal(SIGTERM, term_);
     std::signal(SIGINT, interrupt_);
@@ -61,20 +63,25 @@ struct FrameTimes {
     std::sort(v.begin(), v.end());
     double sum = 0;
     for (float x : v) sum += x;
-    auto pct = [&](double p) { return 1000.0 * v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))]; };
+    auto pct = [&](double p) {
+      return 1000.0 * v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+    };
     j["mean_ms"] = 1000.0 * sum / double(v.size());
     j["median_ms"] = pct(0.5);
     j["p95_ms"] = pct(0.95);
     j["p99_ms"] = pct(0.99);
     j["max_ms"] = 1000.0 * v.back();
-    if (period > 0) j["dropped"] = std::count_if(v.begin(), v.end(), [&](float x) { return x > 1.2 * period; });
+    if (period > 0)
+      j["dropped"] = std::count_if(v.begin(), v.end(), [&](float x) { return x > 1.2 * period; });
     return j;
   }
 };
 
 std::string screenshot_path(const fs::path& base, int count) {
   if (count == 0) return base.string();
-  return (base.parent_path() / (base.stem().string() + "-" + std::to_string(count + 1) + base.extension().string())).string();
+  return (base.parent_path() /
+          (base.stem().string() + "-" + std::to_string(count + 1) + base.extension().string()))
+      .string();
 }
 
 // What can be wrong with the command's own inputs, found before anything else.
@@ -88,7 +95,8 @@ CheckedInputs check_inputs(const SessionOptions& o) {
   if (o.session < 1 || o.session > 99) throw_input_error("--session", "must be between 1 and 99");
   if (o.script && o.observer) throw_input_error("--observer", "cannot be combined with --script");
   if (o.frame_clock && !o.script && !o.observer)
-    throw_input_error("--frame-clock", "needs --script or --observer (a person needs the real clock)");
+    throw_input_error("--frame-clock",
+                      "needs --script or --observer (a person needs the real clock)");
   CheckedInputs in;
   if (o.script) in.script = parse_key_script(*o.script);
   if (o.observer) in.observer_seed = parse_observer_spec(*o.observer);
@@ -100,7 +108,8 @@ void check_sessions_dir(const SessionOptions& o) {
   std::error_code ec;
   if (!o.resume) {
     fs::create_directories(o.sessions_dir, ec);
-    if (!fs::is_directory(o.sessions_dir, ec)) throw_input_error(o.sessions_dir.string(), "cannot create the sessions folder");
+    if (!fs::is_directory(o.sessions_dir, ec))
+      throw_input_error(o.sessions_dir.string(), "cannot create the sessions folder");
   }
   if (fs::is_directory(o.sessions_dir, ec) && ::access(o.sessions_dir.c_str(), W_OK) != 0)
     throw_input_error(o.sessions_dir.string(), "the sessions folder is not writable");
@@ -121,9 +130,13 @@ DisplayOptions display_options(const SessionOptions& o, const Study& study, uint
 // draws each frame and keeps the frame statistics.
 class SessionLoop {
  public:
-  SessionLoop(const SessionOptions& o, const Study& study, Procedure& procedure, SessionRecorder& recorder,
-              Presenter& presenter, CheckedInputs inputs)
-      : o_(o), study_(study), procedure_(procedure), recorder_(recorder), presenter_(presenter),
+  SessionLoop(const SessionOptions& o, const Study& study, Procedure& procedure,
+              SessionRecorder& recorder, Presenter& presenter, CheckedInputs inputs)
+      : o_(o),
+        study_(study),
+        procedure_(procedure),
+        recorder_(recorder),
+        presenter_(presenter),
         script_(std::move(inputs.script)) {
     if (inputs.observer_seed) observer_.emplace(*inputs.observer_seed, study);
   }
@@ -143,7 +156,8 @@ class SessionLoop {
       draw_frame();
       const bool automated = o_.script.has_value() || observer_.has_value();
       if (automated && procedure_.phase() == Procedure::Phase::finished) end_ = RunEnd::completed;
-      if (o_.script && !observer_ && next_script_ == script_.size() && !end_) end_ = RunEnd::script_ended;
+      if (o_.script && !observer_ && next_script_ == script_.size() && !end_)
+        end_ = RunEnd::script_ended;
     }
     return *end_;
   }
@@ -166,22 +180,28 @@ class SessionLoop {
   void preload() {
     const double start = presenter_.now();
     auto textures = preload_textures(presenter_, study_);
-    if (textures) texture_ = std::move(*textures);
-    else end_ = RunEnd::closed;
+    if (textures)
+      texture_ = std::move(*textures);
+    else
+      end_ = RunEnd::closed;
     recorder_.run().preload = Preload{study_.images.size(), presenter_.now() - start};
     recorder_.save();
   }
 
-  void log(double t, const std::string& event, const std::string& key) { recorder_.log_event(t, event, key, procedure_); }
+  void log(double t, const std::string& event, const std::string& key) {
+    recorder_.log_event(t, event, key, procedure_);
+  }
   // One trajectory line per auto-repeat step (a late frame can apply several at once).
   void log_repeats(double t, int index_before) {
-    for (int k = std::abs(procedure_.lambda_index() - index_before); k > 0; --k) log(t, "repeat", "");
+    for (int k = std::abs(procedure_.lambda_index() - index_before); k > 0; --k)
+      log(t, "repeat", "");
   }
 
   // Window events, the script's due events, the model observer's, and signals.
   void take_input(double now) {
     for (const auto& w : presenter_.poll_events()) window_event(w);
-    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_) handle(script_[next_script_++]);
+    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_)
+      handle(script_[next_script_++]);
     if (observer_)
       for (const auto& e : observer_->act(procedure_, now)) handle(e);
     if (g_signal) end_ = g_signal == SIGTERM ? RunEnd::terminated : RunEnd::interrupted;
@@ -190,15 +210,24 @@ class SessionLoop {
   void window_event(const WindowEvent& w) {
     const double t = w.time_s - t0_;
     switch (w.kind) {
-      case WindowEvent::Kind::press: handle({t, InputEvent::Kind::press, w.key}); break;
-      case WindowEvent::Kind::release: handle({t, InputEvent::Kind::release, w.key}); break;
-      case WindowEvent::Kind::close: end_ = RunEnd::closed; break;
-      case WindowEvent::Kind::focus_gained: log(t, "focus-gained", ""); break;
+      case WindowEvent::Kind::press:
+        handle({t, InputEvent::Kind::press, w.key});
+        break;
+      case WindowEvent::Kind::release:
+        handle({t, InputEvent::Kind::release, w.key});
+        break;
+      case WindowEvent::Kind::close:
+        end_ = RunEnd::closed;
+        break;
+      case WindowEvent::Kind::focus_gained:
+        log(t, "focus-gained", "");
+        break;
       case WindowEvent::Kind::focus_lost:
         log(t, "focus-lost", "");
         recorder_.run().focus_losses.push_back({t, utc_timestamp()});
         // Another window took the keyboard: pause, so the trial does not run on unattended.
-        if (procedure_.phase() == Procedure::Phase::question) handle({t, InputEvent::Kind::press, Key::escape});
+        if (procedure_.phase() == Procedure::Phase::question)
+          handle({t, InputEvent::Kind::press, Key::escape});
         recorder_.save();
         break;
     }
@@ -206,8 +235,12 @@ class SessionLoop {
 
   void handle(const InputEvent& e) {
     switch (e.kind) {
-      case InputEvent::Kind::screenshot: screenshot_due_ = true; return;
-      case InputEvent::Kind::close: end_ = RunEnd::closed; return;
+      case InputEvent::Kind::screenshot:
+        screenshot_due_ = true;
+        return;
+      case InputEvent::Kind::close:
+        end_ = RunEnd::closed;
+        return;
       case InputEvent::Kind::release: {
         const int index_before = procedure_.lambda_index();
         procedure_.release(e.key, e.time_s);  // may apply repeats that fell due before it
@@ -215,7 +248,9 @@ class SessionLoop {
         log(e.time_s, "release", key_name(e.key));
         return;
       }
-      case InputEvent::Kind::press: press(e); return;
+      case InputEvent::Kind::press:
+        press(e);
+        return;
     }
   }
 
@@ -241,7 +276,8 @@ class SessionLoop {
     if (after == Procedure::Phase::paused && before != after) {
       pause_started_ = t;
       log(t, "pause", "");
-    } else if (before == Procedure::Phase::paused && after != before && after != Procedure::Phase::quit) {
+    } else if (before == Procedure::Phase::paused && after != before &&
+               after != Procedure::Phase::quit) {
       recorder_.run().pauses.push_back({*pause_started_, t - *pause_started_});
       log(t, "resume", "");
       recorder_.save();
@@ -265,11 +301,20 @@ class SessionLoop {
     FrameContent content;
     const Instructions& text = study_.config.text;
     switch (procedure_.phase()) {
-      case Procedure::Phase::instructions: content.message = o_.resume ? text.resume : text.welcome; break;
-      case Procedure::Phase::practice_done: content.message = text.practice_done; break;
-      case Procedure::Phase::paused: content.message = text.paused; break;
-      case Procedure::Phase::finished: content.message = text.finished; break;
-      case Procedure::Phase::quit: break;
+      case Procedure::Phase::instructions:
+        content.message = o_.resume ? text.resume : text.welcome;
+        break;
+      case Procedure::Phase::practice_done:
+        content.message = text.practice_done;
+        break;
+      case Procedure::Phase::paused:
+        content.message = text.paused;
+        break;
+      case Procedure::Phase::finished:
+        content.message = text.finished;
+        break;
+      case Procedure::Phase::quit:
+        break;
       case Procedure::Phase::question: {
         const Trial& trial = procedure_.trial();
         const auto [reference, enhanced] = question_images(t);
@@ -290,8 +335,11 @@ class SessionLoop {
 
   // The screenshot's sidecar: what was on screen and where.
   void describe_screenshot(const fs::path& shot, const StimulusLayout& layout, double t) const {
-    // output_frame: the frame index the dither used (16-bit sets), counted from the window's first frame.
-    OrderedJson info = {{"frame", frame_}, {"output_frame", presenter_.frames_drawn() - 1}, {"phase", int(procedure_.phase())}};
+    // output_frame: the frame index the dither used (16-bit sets), counted from the window's first
+    // frame.
+    OrderedJson info = {{"frame", frame_},
+                        {"output_frame", presenter_.frames_drawn() - 1},
+                        {"phase", int(procedure_.phase())}};
     if (procedure_.phase() == Procedure::Phase::question) {
       const Trial& trial = procedure_.trial();
       const auto [reference, enhanced] = question_images(t);
@@ -301,9 +349,15 @@ class SessionLoop {
       info["question"] = kQuestionNames[int(procedure_.question())];
       info["lambda_index"] = procedure_.lambda_index();
       info["side"] = side_name(trial.side);
-      info["left"] = {{"x", layout.left_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
+      info["left"] = {{"x", layout.left_x},
+                      {"y", layout.y},
+                      {"width", layout.width},
+                      {"height", layout.height},
                       {"file", trial.side == Side::left ? enh : ref}};
-      info["right"] = {{"x", layout.right_x}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
+      info["right"] = {{"x", layout.right_x},
+                       {"y", layout.y},
+                       {"width", layout.width},
+                       {"height", layout.height},
                        {"file", trial.side == Side::left ? ref : enh}};
     }
     write_text_atomically(shot.string() + ".json", info.dump(2) + "\n");
@@ -315,7 +369,8 @@ class SessionLoop {
     const double draw_start = presenter_.now();
     const StimulusLayout layout = presenter_.draw(frame_content(draw_start - t0_), shot);
     const double draw_seconds = presenter_.now() - draw_start;
-    // The frame just swapped is the first to show these presses: frame_ counts the frames before it.
+    // The frame just swapped is the first to show these presses: frame_ counts the frames before
+    // it.
     for (const auto& [pressed, frames_before] : pending_presses_) {
       times_.key_to_frame.push_back(float(presenter_.now() - t0_ - pressed));
       times_.key_to_frame_frames = std::max(times_.key_to_frame_frames, frame_ + 1 - frames_before);
@@ -338,7 +393,8 @@ class SessionLoop {
       times_.all.push_back(float(interval));
       times_.draw.push_back(float(draw_seconds));
       if (procedure_.key_held()) times_.held.push_back(float(interval));
-      if (interval > 1.2 / presenter_.refresh_hz() && times_.dropped_at.size() < 100) times_.dropped_at.push_back(t - t0_);
+      if (interval > 1.2 / presenter_.refresh_hz() && times_.dropped_at.size() < 100)
+        times_.dropped_at.push_back(t - t0_);
     }
     last_frame_ = t;
     ++frame_;
@@ -359,12 +415,13 @@ class SessionLoop {
   int screenshots_ = 0, frame_ = 0;
   FrameTimes times_;
   std::optional<double> pause_started_;
-  std::vector<std::pair<double, int>> pending_presses_;  // presses not yet on screen: time, frames drawn before
+  std::vector<std::pair<double, int>>
+      pending_presses_;  // presses not yet on screen: time, frames drawn before
 };
 
 // Opens the window; a failure is recorded, and a new session without answers leaves no files.
-std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& study, SessionRecorder& recorder,
-                                       uint64_t session_seed) {
+std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& study,
+                                       SessionRecorder& recorder, uint64_t session_seed) {
   try {
     return std::make_unique<Presenter>(display_options(o, study, session_seed));
   } catch (...) {
@@ -372,7 +429,8 @@ std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& stu
     recorder.save();
     if (!o.resume && recorder.run().answers == 0) {
       std::error_code ec;
-      for (const auto& p : {recorder.files().csv, recorder.files().sidecar, recorder.files().keys}) fs::remove(p, ec);
+      for (const auto& p : {recorder.files().csv, recorder.files().sidecar, recorder.files().keys})
+        fs::remove(p, ec);
     }
     throw;
   }
@@ -380,8 +438,8 @@ std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& stu
 
 // Runs the session's loop with the signal handlers installed; records the frame statistics, or
 // the error that ended it (then rethrown).
-RunEnd run_loop(const SessionOptions& o, const Study& study, Procedure& procedure, SessionRecorder& recorder,
-                     Presenter& presenter, CheckedInputs inputs) {
+RunEnd run_loop(const SessionOptions& o, const Study& study, Procedure& procedure,
+                SessionRecorder& recorder, Presenter& presenter, CheckedInputs inputs) {
   SignalGuard signals;
   SessionLoop loop(o, study, procedure, recorder, presenter, std::move(inputs));
   RunEnd end = RunEnd::running;
@@ -408,10 +466,12 @@ int run_session(const SessionOptions& o) {
   verify_study_images(study);
   require_achromatic_images(study, o.output_path);
   PlanSettings settings = study.config.plan;
-  settings.seed = session_seed(study.config.seed.value_or(study.manifest_seed), o.subject, o.session);
+  settings.seed =
+      session_seed(study.config.seed.value_or(study.manifest_seed), o.subject, o.session);
   const std::vector<Trial> plan = plan_trials(study.conditions, settings);
   check_sessions_dir(o);
-  SessionRecorder recorder(study, plan, {o.subject, o.session, settings.seed}, o.sessions_dir, o.resume);
+  SessionRecorder recorder(study, plan, {o.subject, o.session, settings.seed}, o.sessions_dir,
+                           o.resume);
 
   Procedure procedure(study.conditions, plan, study.config.timing);
   if (o.resume) procedure.resume(recorder.recorded().answered);
@@ -419,8 +479,8 @@ int run_session(const SessionOptions& o) {
   if (procedure.done()) {
     recorder.run().end = RunEnd::already_complete;
     recorder.save();
-    std::printf("%s session %d is already complete: %d of %d answers in %s\n", o.subject.c_str(), o.session,
-                total_questions, total_questions, recorder.files().csv.string().c_str());
+    std::printf("%s session %d is already complete: %d of %d answers in %s\n", o.subject.c_str(),
+                o.session, total_questions, total_questions, recorder.files().csv.string().c_str());
     return 0;
   }
   std::unique_ptr<Presenter> presenter = open_window(o, study, recorder, settings.seed);
@@ -430,8 +490,9 @@ int run_session(const SessionOptions& o) {
   recorder.run().ended_utc = utc_timestamp();
   recorder.save();
   presenter.reset();
-  std::printf("%s session %d: %s; %d of %d answers recorded in %s\n", o.subject.c_str(), o.session, run_end_name(end),
-              procedure.answered_count(), total_questions, recorder.files().csv.string().c_str());
+  std::printf("%s session %d: %s; %d of %d answers recorded in %s\n", o.subject.c_str(), o.session,
+              run_end_name(end), procedure.answered_count(), total_questions,
+              recorder.files().csv.string().c_str());
   return 0;
 }
 

@@ -23,10 +23,11 @@ struct SessionOptions {
   std::optional<std::filesystem::path> script;
   std::optional<std::filesystem::path> screenshot;
   std::optional<std::string> observer;  // "simulated:SEED"
-  bool frame_clock = false;             // DisplayOptions::frame_clock (with a script or an observer)
-  std::optional<double> monitor_width_mm;  // overrides the size the monitor reports (visual angle check)
-  adjust::OutputPathChoice output_path;   // 16-bit sets: --output-path
-  std::optional<uint32_t> dither_seed;     // default: the session seed
+  bool frame_clock = false;  // DisplayOptions::frame_clock (with a script or an observer)
+  std::optional<double>
+      monitor_width_mm;  // overrides the size the monitor reports (visual angle check)
+  adjust::OutputPathChoice output_path;  // 16-bit sets: --output-path
+  std::optional<uint32_t> dither_seed;   // default: the session seed
 };
 
 // Returns the exit status: 0 when the run ended normally (finished, quit and saved, closed or

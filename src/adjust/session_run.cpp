@@ -4,16 +4,26 @@ namespace countershade::adjust {
 
 const char* run_end_name(RunEnd end) {
   switch (end) {
-    case RunEnd::running: return "running";
-    case RunEnd::completed: return "completed";
-    case RunEnd::quit: return "quit";
-    case RunEnd::closed: return "closed";
-    case RunEnd::interrupted: return "interrupted";
-    case RunEnd::terminated: return "terminated";
-    case RunEnd::script_ended: return "script-ended";
-    case RunEnd::already_complete: return "already-complete";
-    case RunEnd::display_failed: return "display-failed";
-    case RunEnd::error: return "error";
+    case RunEnd::running:
+      return "running";
+    case RunEnd::completed:
+      return "completed";
+    case RunEnd::quit:
+      return "quit";
+    case RunEnd::closed:
+      return "closed";
+    case RunEnd::interrupted:
+      return "interrupted";
+    case RunEnd::terminated:
+      return "terminated";
+    case RunEnd::script_ended:
+      return "script-ended";
+    case RunEnd::already_complete:
+      return "already-complete";
+    case RunEnd::display_failed:
+      return "display-failed";
+    case RunEnd::error:
+      return "error";
   }
   return "running";
 }

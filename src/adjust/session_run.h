@@ -3,11 +3,10 @@
 // session writes"): typed, so that the session fills in fields rather than JSON keys, and written
 // in one place.
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace countershade::adjust {
 

@@ -1,13 +1,13 @@
 #include "adjust/study.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <tuple>
-
-#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "core/file_bytes.h"
@@ -28,20 +28,24 @@ nlohmann::ordered_json StudyConfig::to_json() const {
   j["start"] = plan.start == StartMode::random ? "random" : "zero";
   j["practice_trials"] = plan.practice_trials;
   auto& c = j["conditions"] = nlohmann::ordered_json::array();
-  for (const auto& s : conditions) c.push_back({{"scene", s.scene}, {"method", s.method}, {"sigma", s.sigma}});
-  if (!practice_conditions.empty()) {  // only when named, so the record of older sessions stays the same
+  for (const auto& s : conditions)
+    c.push_back({{"scene", s.scene}, {"method", s.method}, {"sigma", s.sigma}});
+  if (!practice_conditions
+           .empty()) {  // only when named, so the record of older sessions stays the same
     auto& p = j["practice_conditions"] = nlohmann::ordered_json::array();
-    for (const auto& s : practice_conditions) p.push_back({{"scene", s.scene}, {"method", s.method}, {"sigma", s.sigma}});
+    for (const auto& s : practice_conditions)
+      p.push_back({{"scene", s.scene}, {"method", s.method}, {"sigma", s.sigma}});
   }
-  j["repeat"] = {{"delay_ms", timing.repeat_delay_s * 1000}, {"interval_ms", timing.repeat_interval_s * 1000}};
+  j["repeat"] = {{"delay_ms", timing.repeat_delay_s * 1000},
+                 {"interval_ms", timing.repeat_interval_s * 1000}};
   j["surround"] = surround;
   j["gap_px"] = gap_px;
   j["font_px"] = font_px;
-  j["instructions"] = {{"welcome", text.welcome},       {"resume", text.resume},
-                       {"practice", text.practice},     {"practice_done", text.practice_done},
-                       {"low", text.questions[0]},      {"high", text.questions[1]},
-                       {"best", text.questions[2]},     {"keys", text.keys_hint},
-                       {"paused", text.paused},         {"finished", text.finished}};
+  j["instructions"] = {{"welcome", text.welcome},   {"resume", text.resume},
+                       {"practice", text.practice}, {"practice_done", text.practice_done},
+                       {"low", text.questions[0]},  {"high", text.questions[1]},
+                       {"best", text.questions[2]}, {"keys", text.keys_hint},
+                       {"paused", text.paused},     {"finished", text.finished}};
   return j;
 }
 
@@ -70,14 +74,17 @@ void read_repeat(const JsonObject& r, RepeatTiming& timing) {
 
 }  // namespace
 
-StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file, const std::string& path) {
+StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file,
+                               const std::string& path) {
   StudyConfig c;
   JsonObject o(value, file, path);
   if (o.has("seed")) c.seed = uint64_t(o.integer_in("seed", 1, 0, 1ll << 53));
   c.plan.repetitions = int(o.integer_in("repetitions", 1, 1, 100));
-  const std::string side = o.choice("side", "counterbalanced", {"counterbalanced", "left", "right"});
+  const std::string side =
+      o.choice("side", "counterbalanced", {"counterbalanced", "left", "right"});
   c.plan.side = side == "left" ? Side::left : side == "right" ? Side::right : Side::counterbalanced;
-  c.plan.start = o.choice("start", "random", {"random", "zero"}) == "zero" ? StartMode::zero : StartMode::random;
+  c.plan.start = o.choice("start", "random", {"random", "zero"}) == "zero" ? StartMode::zero
+                                                                           : StartMode::random;
   c.plan.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
   for (const char* key : {"conditions", "practice_conditions"})
     if (o.has(key))
@@ -120,9 +127,12 @@ namespace {
 
 // The λ grid and the seed the study takes from the set.
 void read_grid(Study& study, const Manifest& manifest, const std::string& mfile) {
-  auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
+  auto fail = [&](const std::string& field, const std::string& what) {
+    throw_input_error(mfile + ": " + field, what);
+  };
   if (manifest.bits != 8 && manifest.bits != 16)
-    fail("bits", "the apps show 8- or 16-bit PNG stimuli; this set has " + std::to_string(manifest.bits) +
+    fail("bits", "the apps show 8- or 16-bit PNG stimuli; this set has " +
+                     std::to_string(manifest.bits) +
                      "-bit images (generate it with \"output\": {\"bits\": 8} or 16)");
   study.bits = manifest.bits;
   study.manifest_seed = manifest.seed;
@@ -165,7 +175,9 @@ struct SetIndex {
 };
 
 SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
-  auto fail = [&](const std::string& field, const std::string& what) { throw_input_error(mfile + ": " + field, what); };
+  auto fail = [&](const std::string& field, const std::string& what) {
+    throw_input_error(mfile + ": " + field, what);
+  };
   const int count = manifest.lambda_grid.count;
   SetIndex index;
   for (size_t i = 0; i < manifest.stimuli.size(); ++i) {
@@ -178,7 +190,8 @@ SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
     if (!s.sigma) fail(where + ".sigma", "missing");
     ConditionKey key{s.scene, s.condition_method(), *s.sigma};
     if (!index.grids.count(key)) index.order.push_back(key);
-    if (s.lambda_index >= count) fail(where + ".lambda_index", "outside the λ grid (0.." + std::to_string(count - 1) + ")");
+    if (s.lambda_index >= count)
+      fail(where + ".lambda_index", "outside the λ grid (0.." + std::to_string(count - 1) + ")");
     Entries& entries = index.grids[key][s.lambda_index];
     if (!entries.empty() && !s.frame)  // only a sequence has several entries per λ
       fail(where + ".lambda_index", "λ index " + std::to_string(s.lambda_index) + " listed twice");
@@ -204,12 +217,16 @@ class StudyBuilder {
 
   // A stimulus from its entries (frames ordered by their index), once per first file.
   int add_stimulus(Entries entries) {
-    const auto frame = [&](size_t e) { return manifest_.stimuli[e].frame ? manifest_.stimuli[e].frame->index : 0; };
-    std::sort(entries.begin(), entries.end(), [&](size_t a, size_t b) { return frame(a) < frame(b); });
+    const auto frame = [&](size_t e) {
+      return manifest_.stimuli[e].frame ? manifest_.stimuli[e].frame->index : 0;
+    };
+    std::sort(entries.begin(), entries.end(),
+              [&](size_t a, size_t b) { return frame(a) < frame(b); });
     for (size_t k = 1; k < entries.size(); ++k)
       if (frame(entries[k]) == frame(entries[k - 1]))
-        fail("stimuli[" + std::to_string(entries[k]) + "].frame", "frame " + std::to_string(frame(entries[k])) + " of '" +
-                                                                   manifest_.stimuli[entries[k]].file + "' is listed twice");
+        fail("stimuli[" + std::to_string(entries[k]) + "].frame",
+             "frame " + std::to_string(frame(entries[k])) + " of '" +
+                 manifest_.stimuli[entries[k]].file + "' is listed twice");
     const ManifestEntry& head = manifest_.stimuli[entries[0]];
     auto [it, inserted] = stimulus_of_file_.emplace(head.file, study_.stimuli.size());
     if (!inserted) return int(it->second);
@@ -227,7 +244,8 @@ class StudyBuilder {
     const ManifestEntry& s = manifest_.stimuli[entry];
     auto [it, inserted] = image_of_file_.emplace(s.file, study_.images.size());
     if (inserted)
-      study_.images.push_back({resolve_in_set(study_.manifest_path.parent_path(), s.file), s.file, s.sha256, s.width, s.height});
+      study_.images.push_back({resolve_in_set(study_.manifest_path.parent_path(), s.file), s.file,
+                               s.sha256, s.width, s.height});
     return int(it->second);
   }
 
@@ -239,15 +257,19 @@ class StudyBuilder {
     const auto& entries = index.grids.at(key);
     auto reference = index.reference_of_scene.find(scene);
     if (reference == index.reference_of_scene.end())
-      fail("stimuli", "scene '" + scene + "' has no reference (method \"" + kReferenceMethod + "\") image");
+      fail("stimuli",
+           "scene '" + scene + "' has no reference (method \"" + kReferenceMethod + "\") image");
     std::vector<int> images;
     for (int i = 0; i < count; ++i) {
       auto it = entries.find(i);
-      if (it != entries.end()) images.push_back(add_stimulus(it->second));
-      else if (i == 0 && study_.lambda(0) == 0) images.push_back(add_stimulus(reference->second));
+      if (it != entries.end())
+        images.push_back(add_stimulus(it->second));
+      else if (i == 0 && study_.lambda(0) == 0)
+        images.push_back(add_stimulus(reference->second));
       else
-        fail("stimuli", "condition " + scene + " / " + method + " / sigma " + nlohmann::json(sigma).dump() +
-                            " has no image for λ index " + std::to_string(i) + " (the adjustment needs the whole grid)");
+        fail("stimuli", "condition " + scene + " / " + method + " / sigma " +
+                            nlohmann::json(sigma).dump() + " has no image for λ index " +
+                            std::to_string(i) + " (the adjustment needs the whole grid)");
     }
     const int ref = add_stimulus(reference->second);
     for (int img : images) check_same_shape(img, ref);
@@ -262,10 +284,12 @@ class StudyBuilder {
     const auto& b = study_.image_of(ref);
     if (a.width != b.width || a.height != b.height)
       fail("stimuli", "'" + a.relative + "' is not the size of its reference '" + b.relative + "'");
-    const size_t frames = study_.stimuli[size_t(stimulus)].frames.size(), expected = study_.stimuli[size_t(ref)].frames.size();
+    const size_t frames = study_.stimuli[size_t(stimulus)].frames.size(),
+                 expected = study_.stimuli[size_t(ref)].frames.size();
     if (frames != expected)
-      fail("stimuli", "the sequence of '" + a.relative + "' has " + std::to_string(frames) + " frames, its reference " +
-                          std::to_string(expected) + " (the two sides play in step)");
+      fail("stimuli", "the sequence of '" + a.relative + "' has " + std::to_string(frames) +
+                          " frames, its reference " + std::to_string(expected) +
+                          " (the two sides play in step)");
   }
 
   Study& study_;
@@ -279,7 +303,8 @@ class StudyBuilder {
 bool Study::changes_with_lambda(int condition) const {
   const auto& stimuli = condition_images[size_t(condition)];
   const std::string& reference = image_of(stimuli[0]).sha256;
-  return std::any_of(stimuli.begin() + 1, stimuli.end(), [&](int s) { return image_of(s).sha256 != reference; });
+  return std::any_of(stimuli.begin() + 1, stimuli.end(),
+                     [&](int s) { return image_of(s).sha256 != reference; });
 }
 
 namespace {
@@ -289,17 +314,22 @@ void choose_practice_conditions(Study& study, const std::string& where) {
   auto& chosen = study.config.plan.practice_conditions;
   const auto& named = study.config.practice_conditions;
   for (size_t n = 0; n < named.size(); ++n) {
-    const auto it = std::find_if(study.conditions.begin(), study.conditions.end(), [&](const Condition& c) {
-      return c.scene == named[n].scene && c.method == named[n].method && c.sigma == named[n].sigma;
-    });
+    const auto it =
+        std::find_if(study.conditions.begin(), study.conditions.end(), [&](const Condition& c) {
+          return c.scene == named[n].scene && c.method == named[n].method &&
+                 c.sigma == named[n].sigma;
+        });
     if (it == study.conditions.end())
-      throw_input_error(where + "practice_conditions[" + std::to_string(n) + "]", "not a condition of this study");
+      throw_input_error(where + "practice_conditions[" + std::to_string(n) + "]",
+                        "not a condition of this study");
     chosen.push_back(int(it - study.conditions.begin()));
   }
   for (int c = 0; named.empty() && c < int(study.conditions.size()); ++c)
     if (study.changes_with_lambda(c)) chosen.push_back(c);
   if (chosen.empty() && study.config.plan.practice_trials > 0)
-    throw_input_error(where + "practice_trials", "no condition's images change with λ, so practice would show nothing to adjust");
+    throw_input_error(
+        where + "practice_trials",
+        "no condition's images change with λ, so practice would show nothing to adjust");
 }
 
 }  // namespace
@@ -317,14 +347,17 @@ Study load_study(const fs::path& manifest_path, const std::optional<fs::path>& c
   const SetIndex index = index_set(manifest, mfile);
   for (const auto& sel : study.config.conditions)
     if (!index.grids.count({sel.scene, sel.method, sel.sigma}))
-      throw_input_error(config_file ? config_file->string() + ": conditions" : mfile + ": experiment.adjust.conditions",
-                        "the set has no condition scene '" + sel.scene + "', method '" + sel.method + "', sigma " +
-                            nlohmann::json(sel.sigma).dump());
+      throw_input_error(config_file ? config_file->string() + ": conditions"
+                                    : mfile + ": experiment.adjust.conditions",
+                        "the set has no condition scene '" + sel.scene + "', method '" +
+                            sel.method + "', sigma " + nlohmann::json(sel.sigma).dump());
   StudyBuilder builder(study, manifest, mfile);
   for (const auto& key : index.order)
     if (selected(study.config.conditions, key)) builder.add_condition(key, index);
-  if (study.conditions.empty()) builder.fail("stimuli", "no condition with a λ grid (the set has only reference images)");
-  choose_practice_conditions(study, config_file ? config_file->string() + ": " : mfile + ": experiment.adjust.");
+  if (study.conditions.empty())
+    builder.fail("stimuli", "no condition with a λ grid (the set has only reference images)");
+  choose_practice_conditions(
+      study, config_file ? config_file->string() + ": " : mfile + ": experiment.adjust.");
   return study;
 }
 
@@ -337,7 +370,8 @@ void verify_study_images(const Study& study) {
       problems[i] = "missing image (listed in the manifest, not in the set folder)";
       return;
     }
-    if (sha256_file(image.file) != image.sha256) problems[i] = "sha256 does not match the manifest (the file was changed or is corrupt)";
+    if (sha256_file(image.file) != image.sha256)
+      problems[i] = "sha256 does not match the manifest (the file was changed or is corrupt)";
   });
   for (size_t i = 0; i < problems.size(); ++i)
     if (!problems[i].empty()) throw_input_error(study.images[i].file.string(), problems[i]);
@@ -348,7 +382,9 @@ void check_subject_id(const std::string& subject) {
   if (subject.size() > 64) throw_input_error("--subject", "longer than 64 characters");
   for (char c : subject)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
-      throw_input_error("--subject", "'" + subject + "' may only use letters, digits, '-' and '_' (it becomes a file name)");
+      throw_input_error(
+          "--subject",
+          "'" + subject + "' may only use letters, digits, '-' and '_' (it becomes a file name)");
 }
 
 uint64_t session_seed(uint64_t study_seed, const std::string& subject, int session) {

@@ -5,11 +5,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "adjust/procedure.h"
 
@@ -18,25 +17,31 @@ namespace countershade::adjust {
 struct Instructions {
   std::string welcome =
       "Two images of the same scene are shown side by side. One of them is enhanced; use the arrow "
-      "keys to make the enhancement stronger (Up or Right) or weaker (Down or Left), and press Enter "
-      "to give your answer. There are three questions for each pair. Press Esc at any time to pause.\n\n"
+      "keys to make the enhancement stronger (Up or Right) or weaker (Down or Left), and press "
+      "Enter "
+      "to give your answer. There are three questions for each pair. Press Esc at any time to "
+      "pause.\n\n"
       "Press Enter to begin.";
-  std::string resume = "Welcome back. The session continues where it stopped.\n\nPress Enter to continue.";
+  std::string resume =
+      "Welcome back. The session continues where it stopped.\n\nPress Enter to continue.";
   std::string practice = "Practice";
-  std::string practice_done = "The practice trials are over. The study itself begins now.\n\nPress Enter to continue.";
+  std::string practice_done =
+      "The practice trials are over. The study itself begins now.\n\nPress Enter to continue.";
   std::string questions[kQuestionCount] = {
       "When is a difference between the two images first visible?",
       "When is the difference too strong or objectionable?",
       "Which setting gives the best contrast?",
   };
-  std::string keys_hint = "Up/Right: stronger    Down/Left: weaker    Enter: confirm    Backspace: previous question    Esc: pause";
+  std::string keys_hint =
+      "Up/Right: stronger    Down/Left: weaker    Enter: confirm    Backspace: previous question   "
+      " Esc: pause";
   std::string paused = "Paused.\n\nPress Enter to resume, or Q to quit and save.";
   std::string finished = "Thank you. All answers are saved.\n\nPress Enter to close.";
 };
 
 struct StudyConfig {
-  PlanSettings plan;                  // plan.seed is the configured base seed
-  std::optional<uint64_t> seed;       // unset: the manifest's seed
+  PlanSettings plan;             // plan.seed is the configured base seed
+  std::optional<uint64_t> seed;  // unset: the manifest's seed
   // Conditions to run ({scene, method, sigma}); empty: every condition in the set.
   struct Selection {
     std::string scene, method;
@@ -47,8 +52,8 @@ struct StudyConfig {
   std::vector<Selection> practice_conditions;
   Instructions text;
   RepeatTiming timing;
-  int surround = 128;    // grey level of the background, 0–255 (display values, no gamma change)
-  int gap_px = 48;       // between the two images
+  int surround = 128;  // grey level of the background, 0–255 (display values, no gamma change)
+  int gap_px = 48;     // between the two images
   double font_px = 22;
 
   nlohmann::ordered_json to_json() const;
@@ -56,11 +61,12 @@ struct StudyConfig {
 
 // Reads the procedure configuration: a JSON object (a file of its own, or the "adjust" object of
 // an experiment file). `file` and `path` name it in messages.
-StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file, const std::string& path);
+StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file,
+                               const std::string& path);
 
 struct StimulusImage {
-  std::filesystem::path file;    // absolute or relative to the working directory
-  std::string relative;          // as listed in the manifest
+  std::filesystem::path file;  // absolute or relative to the working directory
+  std::string relative;        // as listed in the manifest
   std::string sha256;
   int width = 0, height = 0;
 };
@@ -78,10 +84,11 @@ struct Stimulus {
 
 struct Study {
   std::filesystem::path manifest_path;
-  std::string manifest_sha256;   // identifies the stimulus set in the responses
+  std::string manifest_sha256;  // identifies the stimulus set in the responses
   std::string set_name;
   uint64_t manifest_seed = 1;
-  int bits = 8;  // the PNGs' bits per channel: 8, or 16 (shown through a 10-bit framebuffer or dithered)
+  int bits =
+      8;  // the PNGs' bits per channel: 8, or 16 (shown through a 10-bit framebuffer or dithered)
   double lambda_min = 0, lambda_step = 0.05;
   // The set's screen (manifest `viewing`): its pixels per degree and viewing distance, which the
   // monitor must match.
@@ -91,18 +98,24 @@ struct Study {
   // index i (indices into `stimuli`).
   std::vector<std::vector<int>> condition_images;
   std::vector<Stimulus> stimuli;
-  std::vector<StimulusImage> images;                // every image (frame) the study shows, once each
+  std::vector<StimulusImage> images;  // every image (frame) the study shows, once each
   StudyConfig config;
-  nlohmann::ordered_json config_source;            // where the configuration came from
+  nlohmann::ordered_json config_source;  // where the configuration came from
 
   // λ of a grid index, derived from the index and rounded to the decimal grid as the set does.
   double lambda(int index) const;
   // The top of the grid an observer can reach in a condition (the responses' lambda_max).
-  double lambda_max(int condition) const { return lambda(int(condition_images[size_t(condition)].size()) - 2); }
+  double lambda_max(int condition) const {
+    return lambda(int(condition_images[size_t(condition)].size()) - 2);
+  }
   // The first image of a stimulus.
-  const StimulusImage& image_of(int stimulus) const { return images[size_t(stimuli[size_t(stimulus)].frames[0])]; }
+  const StimulusImage& image_of(int stimulus) const {
+    return images[size_t(stimuli[size_t(stimulus)].frames[0])];
+  }
   int width(int condition) const { return image_of(condition_images[size_t(condition)][0]).width; }
-  int height(int condition) const { return image_of(condition_images[size_t(condition)][0]).height; }
+  int height(int condition) const {
+    return image_of(condition_images[size_t(condition)][0]).height;
+  }
   int max_width() const;
   int max_height() const;
   // Whether any of a condition's images differs from its reference (a control whose images do
@@ -112,7 +125,8 @@ struct Study {
 
 // Loads the manifest and the configuration (`config_file`, else the experiment's "adjust" object,
 // else the defaults), and builds the conditions. Throws InputError.
-Study load_study(const std::filesystem::path& manifest, const std::optional<std::filesystem::path>& config_file);
+Study load_study(const std::filesystem::path& manifest,
+                 const std::optional<std::filesystem::path>& config_file);
 
 // Checks that every image the study shows exists and matches its size and sha256 in the manifest.
 // Throws InputError naming the first bad file.

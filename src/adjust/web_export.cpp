@@ -19,8 +19,10 @@ namespace {
 const std::vector<std::pair<std::string, std::string>> kAssets = {
     {"node_modules/jspsych/dist/index.browser.min.js", "jspsych/jspsych.js"},
     {"node_modules/jspsych/css/jspsych.css", "jspsych/jspsych.css"},
-    {"node_modules/@jspsych/plugin-browser-check/dist/index.browser.min.js", "jspsych/plugin-browser-check.js"},
-    {"node_modules/@jspsych/plugin-virtual-chinrest/dist/index.browser.min.js", "jspsych/plugin-virtual-chinrest.js"},
+    {"node_modules/@jspsych/plugin-browser-check/dist/index.browser.min.js",
+     "jspsych/plugin-browser-check.js"},
+    {"node_modules/@jspsych/plugin-virtual-chinrest/dist/index.browser.min.js",
+     "jspsych/plugin-virtual-chinrest.js"},
     {"web/random.js", "countershade/random.js"},
     {"web/plan.js", "countershade/plan.js"},
     {"web/procedure.js", "countershade/procedure.js"},
@@ -40,34 +42,50 @@ std::string image_name(size_t image) {
 json condition_json(const Study& study, int c) {
   const Condition& condition = study.conditions[size_t(c)];
   const auto& stimuli = study.condition_images[size_t(c)];
-  auto image_of = [&](int stimulus) { return image_name(size_t(study.stimuli[size_t(stimulus)].frames[0])); };
+  auto image_of = [&](int stimulus) {
+    return image_name(size_t(study.stimuli[size_t(stimulus)].frames[0]));
+  };
   json grid = json::array(), values = json::array(), images = json::array();
   for (size_t k = 1; k < stimuli.size(); ++k) {
     grid.push_back(format_value(study.lambda(int(k) - 1)));  // as the app writes it
     values.push_back(study.lambda(int(k) - 1));              // as the app computes with it
     images.push_back(image_of(stimuli[k]));
   }
-  return {{"scene", condition.scene}, {"method", condition.method}, {"sigma", format_value(condition.sigma)},
-          {"sigma_value", condition.sigma}, {"grid", grid}, {"grid_values", values},
-          {"lambda_max", format_value(study.lambda_max(c))}, {"reference", image_of(stimuli[0])},
-          {"images", images}, {"width", study.width(c)}, {"height", study.height(c)}};
+  return {{"scene", condition.scene},
+          {"method", condition.method},
+          {"sigma", format_value(condition.sigma)},
+          {"sigma_value", condition.sigma},
+          {"grid", grid},
+          {"grid_values", values},
+          {"lambda_max", format_value(study.lambda_max(c))},
+          {"reference", image_of(stimuli[0])},
+          {"images", images},
+          {"width", study.width(c)},
+          {"height", study.height(c)}};
 }
 
 json texts_json(const Instructions& t) {
-  return {{"welcome", t.welcome}, {"resume", t.resume}, {"practice", t.practice}, {"practice_done", t.practice_done},
-          {"questions", {t.questions[0], t.questions[1], t.questions[2]}}, {"keys_hint", t.keys_hint},
-          {"paused", t.paused}, {"finished", t.finished}};
+  return {{"welcome", t.welcome},
+          {"resume", t.resume},
+          {"practice", t.practice},
+          {"practice_done", t.practice_done},
+          {"questions", {t.questions[0], t.questions[1], t.questions[2]}},
+          {"keys_hint", t.keys_hint},
+          {"paused", t.paused},
+          {"finished", t.finished}};
 }
 
 void check_exportable(const Study& study) {
   // A browser shows a 16-bit PNG at 8 bits, rounded as it likes, with no dither or 10-bit check.
   if (study.bits != 8)
-    throw_input_error(study.manifest_path.string() + ": bits",
-                      "a 16-bit set cannot be exported for the web (browsers show 8 bits); make the set with "
-                      "\"output\": {\"bits\": 8}, or run it in the app");
+    throw_input_error(
+        study.manifest_path.string() + ": bits",
+        "a 16-bit set cannot be exported for the web (browsers show 8 bits); make the set with "
+        "\"output\": {\"bits\": 8}, or run it in the app");
   for (const Stimulus& s : study.stimuli)
     if (s.fps > 0)
-      throw_input_error(study.manifest_path.string(), "a set of sequences cannot be exported for the web yet (stills only)");
+      throw_input_error(study.manifest_path.string(),
+                        "a set of sequences cannot be exported for the web yet (stills only)");
   verify_study_images(study);
 }
 
@@ -76,33 +94,37 @@ void check_exportable(const Study& study) {
 json web_study(const Study& study, const WebExportOptions& o) {
   const StudyConfig& c = study.config;
   json conditions = json::array();
-  for (size_t i = 0; i < study.conditions.size(); ++i) conditions.push_back(condition_json(study, int(i)));
-  return {{"format", "countershade-web-study"},
-          {"title", o.title.empty() ? study.set_name : o.title},
-          {"set", {{"name", study.set_name}, {"sha256", study.manifest_sha256}}},
-          {"app_version", kVersion},
-          {"seed", std::to_string(c.seed.value_or(study.manifest_seed))},  // a string: JavaScript numbers hold 53 bits
-          {"repetitions", c.plan.repetitions},
-          {"side", side_name(c.plan.side)},
-          {"start", c.plan.start == StartMode::zero ? "zero" : "random"},
-          {"practice_trials", c.plan.practice_trials},
-          {"practice_conditions", c.plan.practice_conditions},
-          {"timing", {{"delay", c.timing.repeat_delay_s}, {"interval", c.timing.repeat_interval_s}}},
-          {"surround", c.surround},
-          {"gap_px", c.gap_px},
-          {"font_px", c.font_px},
-          {"texts", texts_json(c.text)},
-          {"lambda_step", format_value(study.lambda_step)},
-          {"conditions", conditions},
-          {"post_url", o.post_url ? json(*o.post_url) : json(nullptr)},
-          {"chinrest", o.chinrest}};
+  for (size_t i = 0; i < study.conditions.size(); ++i)
+    conditions.push_back(condition_json(study, int(i)));
+  return {
+      {"format", "countershade-web-study"},
+      {"title", o.title.empty() ? study.set_name : o.title},
+      {"set", {{"name", study.set_name}, {"sha256", study.manifest_sha256}}},
+      {"app_version", kVersion},
+      {"seed", std::to_string(c.seed.value_or(
+                   study.manifest_seed))},  // a string: JavaScript numbers hold 53 bits
+      {"repetitions", c.plan.repetitions},
+      {"side", side_name(c.plan.side)},
+      {"start", c.plan.start == StartMode::zero ? "zero" : "random"},
+      {"practice_trials", c.plan.practice_trials},
+      {"practice_conditions", c.plan.practice_conditions},
+      {"timing", {{"delay", c.timing.repeat_delay_s}, {"interval", c.timing.repeat_interval_s}}},
+      {"surround", c.surround},
+      {"gap_px", c.gap_px},
+      {"font_px", c.font_px},
+      {"texts", texts_json(c.text)},
+      {"lambda_step", format_value(study.lambda_step)},
+      {"conditions", conditions},
+      {"post_url", o.post_url ? json(*o.post_url) : json(nullptr)},
+      {"chinrest", o.chinrest}};
 }
 
 size_t export_web_study(const Study& study, const WebExportOptions& o) {
   check_exportable(study);
   for (const auto& [from, to] : kAssets)
     if (!fs::is_regular_file(o.assets / from))
-      throw_input_error((o.assets / from).string(), "missing (run `npm ci` in the source tree, see docs/online-study.md)");
+      throw_input_error((o.assets / from).string(),
+                        "missing (run `npm ci` in the source tree, see docs/online-study.md)");
   std::error_code ec;
   fs::create_directories(o.output / "images", ec);
   if (ec) throw_input_error(o.output.string(), "cannot create the folder");
@@ -114,7 +136,8 @@ size_t export_web_study(const Study& study, const WebExportOptions& o) {
     write_text_atomically(o.output / image_name(i), read_file_bytes(study.images[i].file));
   // A JavaScript file rather than JSON, so the page also opens where fetch() is not allowed;
   // ASCII-only, so no text from the set can end the literal.
-  write_text_atomically(o.output / "study.js", "window.COUNTERSHADE_STUDY = " + web_study(study, o).dump(1, ' ', true) + ";\n");
+  write_text_atomically(o.output / "study.js", "window.COUNTERSHADE_STUDY = " +
+                                                   web_study(study, o).dump(1, ' ', true) + ";\n");
   return study.images.size();
 }
 

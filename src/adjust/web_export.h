@@ -5,10 +5,9 @@
 // plan and writes the app's responses rows.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "adjust/study.h"
 
@@ -16,7 +15,7 @@ namespace countershade::adjust {
 
 struct WebExportOptions {
   std::filesystem::path output;
-  std::filesystem::path assets;   // holds node_modules/ (jsPsych) and web/ (the plugin)
+  std::filesystem::path assets;  // holds node_modules/ (jsPsych) and web/ (the plugin)
   std::optional<std::string> post_url;
   bool chinrest = false;
   std::string title;

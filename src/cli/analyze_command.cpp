@@ -36,7 +36,8 @@ struct AnalyzeArgs {
 
 analysis::ForcedChoiceOptions forced_choice_options(const AnalyzeArgs& args) {
   analysis::ForcedChoiceOptions o;
-  o.model = analysis::parse_threshold_model(args.psychometric_model, "--psychometric-model", analysis::kPsychometricModels);
+  o.model = analysis::parse_threshold_model(args.psychometric_model, "--psychometric-model",
+                                            analysis::kPsychometricModels);
   o.free_lapse = args.lapse == "free";
   o.bootstrap = args.bootstrap;
   o.seed = uint64_t(args.seed);
@@ -45,7 +46,8 @@ analysis::ForcedChoiceOptions forced_choice_options(const AnalyzeArgs& args) {
 
 void print_warnings(const std::string& block, const std::vector<std::string>& warnings) {
   for (const auto& w : warnings)
-    std::fprintf(stderr, "analyze: warning%s\n", one_line((block.empty() ? "" : " (" + block + ")") + ": " + w).c_str());
+    std::fprintf(stderr, "analyze: warning%s\n",
+                 one_line((block.empty() ? "" : " (" + block + ")") + ": " + w).c_str());
 }
 
 void run(const AnalyzeArgs& args) {
@@ -61,56 +63,71 @@ void run(const AnalyzeArgs& args) {
     (analysis::is_forced_choice_file(input) ? forced_choice : adjustment).push_back(input);
   check_output_folder(args.output);
   std::vector<analysis::BlockResults> results;
-  if (!adjustment.empty()) results = analysis::analyze(analysis::read_responses(adjustment), options);
+  if (!adjustment.empty())
+    results = analysis::analyze(analysis::read_responses(adjustment), options);
   std::optional<analysis::ForcedChoiceResults> fc;
   if (!forced_choice.empty())
-    fc = analysis::analyze_forced_choice(analysis::read_forced_choice_trials(forced_choice), forced_choice_options(args));
+    fc = analysis::analyze_forced_choice(analysis::read_forced_choice_trials(forced_choice),
+                                         forced_choice_options(args));
   std::error_code ec;  // created only now: a failed analysis leaves no empty folder behind
   fs::create_directories(args.output, ec);
-  if (ec || !fs::is_directory(args.output)) throw_input_error(args.output, "cannot create the output folder");
+  if (ec || !fs::is_directory(args.output))
+    throw_input_error(args.output, "cannot create the output folder");
   for (const auto& block : results) print_warnings(block.method, block.warnings);
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();
   if (fc) {
     print_warnings("forced choice", fc->warnings);
     extra["forced_choice"] = analysis::forced_choice_json(*fc);
-    for (const auto& [scene, file] : analysis::write_forced_choice_outputs(*fc, args.output, !args.no_figures))
+    for (const auto& [scene, file] :
+         analysis::write_forced_choice_outputs(*fc, args.output, !args.no_figures))
       extra["forced_choice"]["figures"][scene] = file;
   }
   if (fc && !results.empty()) {
     const auto comparison = analysis::compare_methods(results, *fc);
     extra["adjustment_vs_forced_choice"] = analysis::comparison_json(comparison);
-    write_text_atomically(fs::path(args.output) / "adjustment_vs_forced_choice.csv", analysis::comparison_csv(comparison));
+    write_text_atomically(fs::path(args.output) / "adjustment_vs_forced_choice.csv",
+                          analysis::comparison_csv(comparison));
   }
   analysis::write_outputs(results, args.output, !args.no_figures, extra);
-  std::fprintf(stderr, "analyze: wrote %s/results.json (%zu method block%s%s)\n", args.output.c_str(), results.size(),
-               results.size() == 1 ? "" : "s", fc ? ", forced-choice fits" : "");
+  std::fprintf(stderr, "analyze: wrote %s/results.json (%zu method block%s%s)\n",
+               args.output.c_str(), results.size(), results.size() == 1 ? "" : "s",
+               fc ? ", forced-choice fits" : "");
 }
 
 }  // namespace
 
 void add_analyze_command(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
-  CLI::App* cmd = app.add_subcommand("analyze", "Analyse recorded sessions: JND, ANOVA, t-tests, clusters, fits.");
+  CLI::App* cmd = app.add_subcommand(
+      "analyze", "Analyse recorded sessions: JND, ANOVA, t-tests, clusters, fits.");
   cmd->add_option("responses", args->inputs,
-                  "Responses CSV files and forced-choice trial CSVs, told apart by their header (docs/data-formats)")
+                  "Responses CSV files and forced-choice trial CSVs, told apart by their header "
+                  "(docs/data-formats)")
       ->required();
   cmd->add_option("-o,--output", args->output, "Output folder")->required();
-  cmd->add_option("--normalization", args->normalization, "JND scale: subject (own λ_Low) or group (mean λ_Low)")
+  cmd->add_option("--normalization", args->normalization,
+                  "JND scale: subject (own λ_Low) or group (mean λ_Low)")
       ->check(CLI::IsMember({"subject", "group"}))
       ->capture_default_str();
-  cmd->add_option("--lambda-step", args->lambda_step, "λ grid step (default: the CSV's lambda_step column)");
-  cmd->add_option("--clusters", args->clusters, "Number of Ward clusters")->check(CLI::Range(1, 100))->capture_default_str();
+  cmd->add_option("--lambda-step", args->lambda_step,
+                  "λ grid step (default: the CSV's lambda_step column)");
+  cmd->add_option("--clusters", args->clusters, "Number of Ward clusters")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   cmd->add_option("--model", args->model, "Threshold model: lognormal, weibull or logistic")
       ->check(CLI::IsMember({"lognormal", "weibull", "logistic"}))
       ->capture_default_str();
-  cmd->add_option("--psychometric-model", args->psychometric_model,
-                  "Forced-choice trials: weibull, log-logistic or lognormal in log λ (log-normal also read)")
+  cmd->add_option(
+         "--psychometric-model", args->psychometric_model,
+         "Forced-choice trials: weibull, log-logistic or lognormal in log λ (log-normal also read)")
       ->check(CLI::IsMember({"weibull", "log-logistic", "lognormal", "log-normal"}))
       ->capture_default_str();
-  cmd->add_option("--lapse", args->lapse, "Forced-choice trials: the lapse rate fixed at 0, or free in [0, 0.1]")
+  cmd->add_option("--lapse", args->lapse,
+                  "Forced-choice trials: the lapse rate fixed at 0, or free in [0, 0.1]")
       ->check(CLI::IsMember({"fixed", "free"}))
       ->capture_default_str();
-  cmd->add_option("--bootstrap", args->bootstrap, "Parametric bootstrap resamples per fit (0 = none)")
+  cmd->add_option("--bootstrap", args->bootstrap,
+                  "Parametric bootstrap resamples per fit (0 = none)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Bootstrap seed")->capture_default_str();
@@ -118,7 +135,8 @@ void add_analyze_command(CLI::App& app) {
   cmd->callback([args] { run(*args); });
   cmd->footer(
       "Examples:\n  countershade analyze sessions/*.csv -o reports/study --bootstrap 1000\n"
-      "  countershade analyze forced-choice/*.csv -o reports/2afc --psychometric-model weibull --lapse free");
+      "  countershade analyze forced-choice/*.csv -o reports/2afc --psychometric-model weibull "
+      "--lapse free");
 }
 
 }  // namespace countershade::cli

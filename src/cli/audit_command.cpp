@@ -19,10 +19,13 @@ void add_audit_command(CLI::App& app) {
     bool strict = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand(
-      "audit", "Check a stimulus set for confounds: luminance drift, clipping, noise, λ = 0 against the reference.");
+  CLI::App* cmd = app.add_subcommand("audit",
+                                     "Check a stimulus set for confounds: luminance drift, "
+                                     "clipping, noise, λ = 0 against the reference.");
   cmd->add_option("manifest", args->manifest, "The set's manifest.json")->required();
-  cmd->add_option("-o,--output", args->output, "Report folder (report.html, audit.csv, audit.json, checks.csv)")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Report folder (report.html, audit.csv, audit.json, checks.csv)")
+      ->required();
   cmd->add_option("--jobs", args->jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd->add_flag("--strict", args->strict, "Exit with status 1 when a check fails");
   cmd->callback([args] {

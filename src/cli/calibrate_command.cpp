@@ -25,7 +25,8 @@ struct CalibrateArgs {
 const GammaFit& psyphy_fit(const std::vector<GammaFit>& fits) { return fits.front(); }
 
 // The readings of one gun against each model's curve.
-void write_figure(const fs::path& path, const std::string& gun, const std::vector<analysis::Reading>& readings,
+void write_figure(const fs::path& path, const std::string& gun,
+                  const std::vector<analysis::Reading>& readings,
                   const std::vector<GammaFit>& fits) {
   LinePlot plot;
   plot.title = "gun " + gun + ": readings and fits";
@@ -37,7 +38,8 @@ void write_figure(const fs::path& path, const std::string& gun, const std::vecto
   plot.series.push_back(measured);
   for (size_t m = 0; m < fits.size(); ++m) {
     PlotSeries curve{fits[m].model, {}, {}, plot_color(m)};
-    for (int i = 0; i <= 100; ++i) curve.x.push_back(i / 100.0), curve.y.push_back(fits[m].predict(i / 100.0));
+    for (int i = 0; i <= 100; ++i)
+      curve.x.push_back(i / 100.0), curve.y.push_back(fits[m].predict(i / 100.0));
     plot.series.push_back(curve);
   }
   plot.write(path);
@@ -67,7 +69,9 @@ void run(const CalibrateArgs& args) {
   for (const auto& [gun, readings] : guns)
     write_figure(base.string() + "-" + gun + ".svg", gun, readings, fits.at(gun));
   write_text_atomically(out, display.dump(2) + "\n");
-  std::fprintf(stderr, "calibrate: wrote %s (%zu guns; black %.4g cd/m², white %.4g cd/m²), its lookup table and figures\n",
+  std::fprintf(stderr,
+               "calibrate: wrote %s (%zu guns; black %.4g cd/m², white %.4g cd/m²), its lookup "
+               "table and figures\n",
                args.output.c_str(), guns.size(), black, white);
 }
 
@@ -76,20 +80,26 @@ void run(const CalibrateArgs& args) {
 void add_calibrate_command(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "calibrate", "Fit a display's gamma from photometer readings; write its lookup table and the fits.");
+      "calibrate",
+      "Fit a display's gamma from photometer readings; write its lookup table and the fits.");
   cmd->add_option("readings", args->readings,
-                  "CSV of readings: gun (R, G, B or W), code_value (0 … 2^bits − 1) or gl (0 … 1), lum_cd_m2")
+                  "CSV of readings: gun (R, G, B or W), code_value (0 … 2^bits − 1) or gl (0 … 1), "
+                  "lum_cd_m2")
       ->required();
-  cmd->add_option("-o,--output", args->output,
-                  "DISPLAY.json; also writes DISPLAY.lut.csv (the lookup table) and DISPLAY-<gun>.svg")
+  cmd->add_option(
+         "-o,--output", args->output,
+         "DISPLAY.json; also writes DISPLAY.lut.csv (the lookup table) and DISPLAY-<gun>.svg")
       ->required();
-  cmd->add_option("--bits", args->bits, "The display's bits per channel: the range of code_value and the table's rows")
+  cmd->add_option("--bits", args->bits,
+                  "The display's bits per channel: the range of code_value and the table's rows")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   cmd->callback([args] { run(*args); });
-  cmd->footer("\nExample:\n  countershade calibrate readings.csv -o lab-display.json\n"
-              "The scene's display block then names it: \"display\": {\"calibration\": \"lab-display.json\"} "
-              "(docs/display.md).");
+  cmd->footer(
+      "\nExample:\n  countershade calibrate readings.csv -o lab-display.json\n"
+      "The scene's display block then names it: \"display\": {\"calibration\": "
+      "\"lab-display.json\"} "
+      "(docs/display.md).");
 }
 
 }  // namespace countershade::cli

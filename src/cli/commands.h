@@ -1,10 +1,9 @@
 #pragma once
 // One registration function per subcommand; main.cpp calls them all.
 
+#include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 namespace countershade::cli {
 

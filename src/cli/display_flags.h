@@ -1,16 +1,16 @@
 #pragma once
 // Flags both apps share: how 16-bit stimuli reach the screen.
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <optional>
-
-#include <CLI/CLI.hpp>
 
 #include "adjust/fine_levels.h"
 
 namespace countershade::cli {
 
 // --output-path auto|ten-bit|dither and --dither-seed N.
-void add_output_path_flags(CLI::App* cmd, adjust::OutputPathChoice& path, std::optional<uint32_t>& dither_seed);
+void add_output_path_flags(CLI::App* cmd, adjust::OutputPathChoice& path,
+                           std::optional<uint32_t>& dither_seed);
 
 }  // namespace countershade::cli

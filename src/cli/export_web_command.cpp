@@ -27,9 +27,11 @@ std::string assets_folder(const ExportArgs& a) {
 
 void run(const ExportArgs& a) {
   check_output_folder(a.output);
-  if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 && a.post_url.rfind("https://", 0) != 0 &&
-      a.post_url.rfind("/", 0) != 0)
-    throw_input_error("--post-url", "must start with http://, https:// or / (a path on the server that hosts the study)");
+  if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 &&
+      a.post_url.rfind("https://", 0) != 0 && a.post_url.rfind("/", 0) != 0)
+    throw_input_error(
+        "--post-url",
+        "must start with http://, https:// or / (a path on the server that hosts the study)");
   const adjust::Study study = adjust::load_study(a.manifest, std::nullopt);
   adjust::WebExportOptions o;
   o.output = a.output;
@@ -38,26 +40,34 @@ void run(const ExportArgs& a) {
   o.chinrest = a.chinrest;
   o.title = a.title;
   const size_t images = adjust::export_web_study(study, o);
-  std::fprintf(stderr, "export-web: wrote %s (%zu images, %zu conditions); open it through a web server, e.g. "
-               "`python3 -m http.server -d %s`\n", a.output.c_str(), images, study.conditions.size(), a.output.c_str());
+  std::fprintf(
+      stderr,
+      "export-web: wrote %s (%zu images, %zu conditions); open it through a web server, e.g. "
+      "`python3 -m http.server -d %s`\n",
+      a.output.c_str(), images, study.conditions.size(), a.output.c_str());
 }
 
 }  // namespace
 
 void add_export_web_command(CLI::App& app) {
   auto a = std::make_shared<ExportArgs>();
-  CLI::App* cmd = app.add_subcommand("export-web", "Export a stimulus set as a static jsPsych adjustment study for browsers.");
+  CLI::App* cmd = app.add_subcommand(
+      "export-web", "Export a stimulus set as a static jsPsych adjustment study for browsers.");
   cmd->add_option("manifest", a->manifest, "The stimulus set's manifest.json")->required();
   cmd->add_option("-o,--output", a->output, "The study folder to write")->required();
   cmd->add_option("--post-url", a->post_url,
-                  "Also send every answer to this URL or /path on the hosting server (POST, one CSV row), retried until acknowledged");
-  cmd->add_flag("--chinrest", a->chinrest, "Add jsPsych's virtual chinrest (recorded only: the page is never rescaled)");
+                  "Also send every answer to this URL or /path on the hosting server (POST, one "
+                  "CSV row), retried until acknowledged");
+  cmd->add_flag("--chinrest", a->chinrest,
+                "Add jsPsych's virtual chinrest (recorded only: the page is never rescaled)");
   cmd->add_option("--title", a->title, "The page title (default: the set's name)");
-  cmd->add_option("--assets", a->assets, "The folder with node_modules/ and web/ (default: the source tree)");
+  cmd->add_option("--assets", a->assets,
+                  "The folder with node_modules/ and web/ (default: the source tree)");
   cmd->callback([a] { run(*a); });
   cmd->footer(
       "Example:\n  countershade export-web stimuli/cornsweet/manifest.json -o web-study\n"
-      "  python3 -m http.server -d web-study 8000   # then open http://localhost:8000/?subject=P01");
+      "  python3 -m http.server -d web-study 8000   # then open "
+      "http://localhost:8000/?subject=P01");
 }
 
 }  // namespace countershade::cli

@@ -22,7 +22,8 @@ CLI::Validator sign_check(bool zero_allowed) {
           return "'" + text + "' is not a number";
         }
         if (zero_allowed ? value >= 0 : value > 0) return "";
-        return std::string("must be ") + (zero_allowed ? "0 or more" : "more than 0") + ", not " + text;
+        return std::string("must be ") + (zero_allowed ? "0 or more" : "more than 0") + ", not " +
+               text;
       },
       zero_allowed ? "NONNEGATIVE" : "POSITIVE");
 }
@@ -61,7 +62,8 @@ void reject_non_finite_numbers(CLI::App& app) {
       "");
   for (CLI::App* command : app.get_subcommands({}))
     for (CLI::Option* option : command->get_options())
-      if (option->get_type_name().rfind("FLOAT", 0) == 0) option->transform(finite);  // first: before range checks
+      if (option->get_type_name().rfind("FLOAT", 0) == 0)
+        option->transform(finite);  // first: before range checks
 }
 
 }  // namespace countershade::cli

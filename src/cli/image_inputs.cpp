@@ -10,7 +10,9 @@
 namespace countershade::cli {
 namespace {
 
-bool is_linear_format(const std::string& ext) { return ext == ".exr" || ext == ".hdr" || ext == ".pfm"; }
+bool is_linear_format(const std::string& ext) {
+  return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
+}
 
 }  // namespace
 
@@ -22,17 +24,22 @@ Image load_display_image(const std::string& path, int& bits) {
     for (int x = 0; x < in.width; ++x)
       for (int c = 0; c < 3; ++c) {
         float v = in.at(x, y, in.channels >= 3 ? c : 0);
-        if (!std::isfinite(v)) throw_input_error(path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
-        rgb.at(x, y, c) = linear ? float(srgb_encode(std::clamp(double(v), 0.0, 1.0))) : std::clamp(v, 0.0f, 1.0f);
+        if (!std::isfinite(v))
+          throw_input_error(
+              path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
+        rgb.at(x, y, c) = linear ? float(srgb_encode(std::clamp(double(v), 0.0, 1.0)))
+                                 : std::clamp(v, 0.0f, 1.0f);
       }
   return rgb;
 }
 
-std::vector<float> load_depth(const std::string& path, const std::string& kind, int width, int height) {
+std::vector<float> load_depth(const std::string& path, const std::string& kind, int width,
+                              int height) {
   Image map = read_image(path);
   if (map.width != width || map.height != height)
-    throw_input_error(path, "depth map is " + std::to_string(map.width) + "x" + std::to_string(map.height) +
-                                " but the image is " + std::to_string(width) + "x" + std::to_string(height));
+    throw_input_error(path, "depth map is " + std::to_string(map.width) + "x" +
+                                std::to_string(map.height) + " but the image is " +
+                                std::to_string(width) + "x" + std::to_string(height));
   std::vector<float> depth(size_t(width) * height);
   for (size_t i = 0; i < depth.size(); ++i) {
     float v = map.pixels[i * size_t(map.channels)];

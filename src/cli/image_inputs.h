@@ -14,6 +14,7 @@ Image load_display_image(const std::string& path, int& bits);
 
 // Linear depth per pixel from a depth or disparity map of width × height; disparity becomes
 // depth ∝ 1/disparity. 0, inf and NaN become 0 (background).
-std::vector<float> load_depth(const std::string& path, const std::string& kind, int width, int height);
+std::vector<float> load_depth(const std::string& path, const std::string& kind, int width,
+                              int height);
 
 }  // namespace countershade::cli

@@ -31,10 +31,11 @@ struct ImageUsmArgs {
 void check_image_method(const ResolvedMethod& method, const ImageUsmArgs& args) {
   const std::string& name = method.method->name();
   if (method.request.scene || method.request.vertex_radiance)
-    throw InputError("--method: " + name + " works on a rendered scene's surfaces; use `countershade render`");
-  if (method.request.depth && args.depth.empty()) throw InputError("--depth: " + name + " needs a depth or disparity map");
+    throw InputError("--method: " + name +
+                     " works on a rendered scene's surfaces; use `countershade render`");
+  if (method.request.depth && args.depth.empty())
+    throw InputError("--depth: " + name + " needs a depth or disparity map");
 }
-
 
 void run(const ImageUsmArgs& args, const CLI::App* cmd) {
   const ResolvedMethod method = resolve_method(cmd, args.method);
@@ -46,21 +47,23 @@ void run(const ImageUsmArgs& args, const CLI::App* cmd) {
   Image display = load_display_image(args.image, file_bits);
   const int bits = args.bits.value_or(file_bits == 16 ? 16 : 8);
   std::vector<float> depth;
-  if (!args.depth.empty()) depth = load_depth(args.depth, args.depth_kind, display.width, display.height);
+  if (!args.depth.empty())
+    depth = load_depth(args.depth, args.depth_kind, display.width, display.height);
   auto view = make_image_view(std::move(display), std::move(depth), DisplayEncoding::srgb(), bits);
 
   auto prepared = method.method->prepare(make_context(view), *method.parameters);
   Composed result = prepared->compose(args.method.lambda);
-  if (lower_extension(args.output) == ".exr") {  // back to linear values, like the input EXR convention
+  if (lower_extension(args.output) ==
+      ".exr") {  // back to linear values, like the input EXR convention
     for (float& v : result.display.pixels) v = float(srgb_decode(v));
     write_image(args.output, result.display);
   } else {
     write_image(args.output, result.display, {bits});
   }
   if (!args.aux.empty()) write_auxiliary(args.aux, *prepared);
-  std::fprintf(stderr, "image-usm: wrote %s (%dx%d, %s λ=%g, %zu clipped pixels, %s)\n", args.output.c_str(),
-               view->width(), view->height(), method.method->name().c_str(), args.method.lambda, result.clipped_pixels,
-               prepared->parameters().dump().c_str());
+  std::fprintf(stderr, "image-usm: wrote %s (%dx%d, %s λ=%g, %zu clipped pixels, %s)\n",
+               args.output.c_str(), view->width(), view->height(), method.method->name().c_str(),
+               args.method.lambda, result.clipped_pixels, prepared->parameters().dump().c_str());
 }
 
 }  // namespace
@@ -68,26 +71,36 @@ void run(const ImageUsmArgs& args, const CLI::App* cmd) {
 void add_image_usm_command(CLI::App& app) {
   auto args = std::make_shared<ImageUsmArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "image-usm", "2D or depth-buffer unsharp masking of an external image with an optional depth map.");
-  cmd->add_option("image", args->image, "Image: PNG (8/16-bit), TIFF or JPEG as sRGB code values; EXR/HDR/PFM as linear")
+      "image-usm",
+      "2D or depth-buffer unsharp masking of an external image with an optional depth map.");
+  cmd->add_option("image", args->image,
+                  "Image: PNG (8/16-bit), TIFF or JPEG as sRGB code values; EXR/HDR/PFM as linear")
       ->required();
-  cmd->add_option("--depth", args->depth, "Depth or disparity map of the same size (PNG-16, EXR, PFM, TIFF)");
-  cmd->add_option("--depth-kind", args->depth_kind, "What the map holds: depth, or disparity (depth ∝ 1/disparity)")
+  cmd->add_option("--depth", args->depth,
+                  "Depth or disparity map of the same size (PNG-16, EXR, PFM, TIFF)");
+  cmd->add_option("--depth-kind", args->depth_kind,
+                  "What the map holds: depth, or disparity (depth ∝ 1/disparity)")
       ->check(CLI::IsMember({"depth", "disparity"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output image (.png, .tif or .exr)")->required();
-  add_method_options(cmd, args->method, "An image-space method, e.g. usm2d or depth-usm (`countershade methods`)");
+  add_method_options(cmd, args->method,
+                     "An image-space method, e.g. usm2d or depth-usm (`countershade methods`)");
   cmd->get_option("--method")->required();
-  cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth (default: the input's)")->check(CLI::IsMember({8, 16}));
-  cmd->add_option("--aux", args->aux, "Write the method's intermediate images (e.g. D, G*D, ΔD) as EXR here");
+  cmd->add_option("--bits", args->bits, "PNG/TIFF bit depth (default: the input's)")
+      ->check(CLI::IsMember({8, 16}));
+  cmd->add_option("--aux", args->aux,
+                  "Write the method's intermediate images (e.g. D, G*D, ΔD) as EXR here");
   cmd->callback([args, cmd] { run(*args, cmd); });
   cmd->footer(method_parameters_help() +
-      "\nExamples:\n"
-      "  countershade image-usm photo.png --depth depth.exr -o out.png --method depth-usm --operator darken "
-      "--lambda 0.8 --kernel 5%\n"
-      "  countershade image-usm im0.png --depth disp0.pfm --depth-kind disparity -o out.png --method depth-usm "
-      "--operator color --lambda 2 --kernel 3%\n"
-      "  countershade image-usm photo.png -o sharp.png --method usm2d --lambda 1 --sigma-percent 1");
+              "\nExamples:\n"
+              "  countershade image-usm photo.png --depth depth.exr -o out.png --method depth-usm "
+              "--operator darken "
+              "--lambda 0.8 --kernel 5%\n"
+              "  countershade image-usm im0.png --depth disp0.pfm --depth-kind disparity -o "
+              "out.png --method depth-usm "
+              "--operator color --lambda 2 --kernel 3%\n"
+              "  countershade image-usm photo.png -o sharp.png --method usm2d --lambda 1 "
+              "--sigma-percent 1");
 }
 
 }  // namespace countershade::cli

@@ -1,11 +1,10 @@
 // countershade: stimuli, adjustment studies and analysis for contrast-enhancement research.
 // Exit status: 0 success, 2 bad input or usage (one line on stderr), 1 any other failure.
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 #include "core/allocator.h"
@@ -38,7 +37,8 @@ void add_commands(CLI::App& app) {
 
 // One line on stderr, whatever the message quotes from the user's files.
 void print_error(const char* kind, const std::string& message, const char* suffix = "") {
-  std::fprintf(stderr, "countershade: %s%s%s\n", kind, countershade::one_line(message).c_str(), suffix);
+  std::fprintf(stderr, "countershade: %s%s%s\n", kind, countershade::one_line(message).c_str(),
+               suffix);
 }
 
 // CLI11 reports a mistyped command as "a subcommand is required"; this names it instead. False
@@ -57,8 +57,9 @@ bool known_command(const CLI::App& app, const char* name) {
 
 int main(int argc, char** argv) {
   countershade::keep_freed_buffers_for_reuse();
-  CLI::App app{"countershade: renders contrast-enhanced stimuli, runs adjustment studies and "
-               "analyses them."};
+  CLI::App app{
+      "countershade: renders contrast-enhanced stimuli, runs adjustment studies and "
+      "analyses them."};
   app.set_version_flag("--version", countershade::kVersion);
   app.require_subcommand(1);
   add_commands(app);

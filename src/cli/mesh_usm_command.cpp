@@ -10,14 +10,14 @@
 #include <optional>
 
 #include "cli/commands.h"
-#include "mesh/smoothing.h"
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "enhance/usm3d.h"
-#include "mesh/surface_graph.h"
 #include "mesh/colored_mesh.h"
+#include "mesh/smoothing.h"
+#include "mesh/surface_graph.h"
 
 namespace countershade::cli {
 namespace {
@@ -40,14 +40,16 @@ void check_arguments(const MeshUsmArgs& args) {
   if (args.sigma && !(*args.sigma > 0 && std::isfinite(*args.sigma)))
     throw InputError("--sigma: must be a positive, finite world-space length");
   if (args.iterations && (*args.iterations < 1 || *args.iterations > kMaxSmoothingIterations))
-    throw InputError("--iterations: must be between 1 and 1000000 (a million 1-ring steps take minutes already)");
+    throw InputError(
+        "--iterations: must be between 1 and 1000000 (a million 1-ring steps take minutes "
+        "already)");
   check_output_file(fs::path(args.output), {".ply"}, "a .ply file (it carries vertex colours)");
 }
 
 // Applies Δ = λ·gain·(L − smoothed L) to each vertex's lightness (hue and saturation kept);
 // vertices with Δ = 0 keep their stored colour exactly. Returns the number of clipped vertices.
-size_t apply_contrast(std::vector<glm::dvec3>& colors, const std::vector<Lab>& lab, const SurfaceContrast& sc,
-                      double lambda) {
+size_t apply_contrast(std::vector<glm::dvec3>& colors, const std::vector<Lab>& lab,
+                      const SurfaceContrast& sc, double lambda) {
   size_t clipped = 0;
   for (size_t v = 0; v < colors.size(); ++v) {
     const double delta = lambda * sc.gain_factor[v] * (sc.lightness[v] - sc.smooth_lightness[v]);
@@ -80,12 +82,13 @@ void run(const MeshUsmArgs& args) {
     lab[v] = srgb_to_lab(colors[v]);
     lightness[v] = lab[v].L;
   }
-  const SmoothingWidth width{args.sigma, args.iterations, !args.no_adapt,
-                             args.smoothing == "chebyshev" ? SmoothingScheme::chebyshev : SmoothingScheme::iterate};
+  const SmoothingWidth width{
+      args.sigma, args.iterations, !args.no_adapt,
+      args.smoothing == "chebyshev" ? SmoothingScheme::chebyshev : SmoothingScheme::iterate};
   // The 1-ring of the triangulated mesh, as rendering sees it, with vertices welded at seams.
   const std::vector<glm::vec3> positions = mesh.positions();
-  const SurfaceContrast sc = surface_contrast(surface_graph(positions, triangulated_edges(mesh.polygons())), lightness, {},
-                                              width);
+  const SurfaceContrast sc = surface_contrast(
+      surface_graph(positions, triangulated_edges(mesh.polygons())), lightness, {}, width);
   progress.update(kSmoothed);
   const size_t clipped = apply_contrast(colors, lab, sc, args.lambda);
   mesh.set_colors(colors);
@@ -93,28 +96,33 @@ void run(const MeshUsmArgs& args) {
   mesh.write(fs::path(args.output));
   const int most = *std::max_element(sc.iterations.begin(), sc.iterations.end());
   progress.finish("wrote " + args.output + " (" + std::to_string(colors.size()) + " vertices, " +
-                  std::to_string(sc.components.count) + " components, up to " + std::to_string(most) + " iterations, " +
-                  std::to_string(clipped) + " clipped vertices)");
+                  std::to_string(sc.components.count) + " components, up to " +
+                  std::to_string(most) + " iterations, " + std::to_string(clipped) +
+                  " clipped vertices)");
 }
 
 }  // namespace
 
 void add_mesh_usm_command(CLI::App& app) {
   auto args = std::make_shared<MeshUsmArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "mesh-usm", "3D unsharp masking of a coloured mesh's vertex colours; writes the same mesh with new colours.");
+  CLI::App* cmd = app.add_subcommand("mesh-usm",
+                                     "3D unsharp masking of a coloured mesh's vertex colours; "
+                                     "writes the same mesh with new colours.");
   cmd->add_option("input", args->input, "Mesh with vertex colours (PLY, OFF or OBJ)")->required();
   cmd->add_option("-o,--output", args->output, "Output mesh (.ply)")->required();
   cmd->add_option("--lambda", args->lambda, "Enhancement strength λ")->required();
   cmd->add_option("--sigma", args->sigma, "Smoothing width σ in the mesh's units");
-  cmd->add_option("--iterations", args->iterations, "Explicit number of smoothing iterations instead of σ");
+  cmd->add_option("--iterations", args->iterations,
+                  "Explicit number of smoothing iterations instead of σ");
   cmd->add_flag("--no-adapt", args->no_adapt, "Constant gain λ (no √(1+Var) adaptation)");
   cmd->add_option("--smoothing", args->smoothing,
-                  "chebyshev: the n 1-ring steps in O(√n) products, within 1e-7 of the range; iterate: one product per step")
+                  "chebyshev: the n 1-ring steps in O(√n) products, within 1e-7 of the range; "
+                  "iterate: one product per step")
       ->check(CLI::IsMember({"chebyshev", "iterate"}))
       ->capture_default_str();
   cmd->callback([args] { run(*args); });
-  cmd->footer("Example:\n  countershade mesh-usm scan.ply -o scan-enhanced.ply --lambda 1.5 --sigma 0.01");
+  cmd->footer(
+      "Example:\n  countershade mesh-usm scan.ply -o scan-enhanced.ply --lambda 1.5 --sigma 0.01");
 }
 
 }  // namespace countershade::cli

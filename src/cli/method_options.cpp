@@ -12,7 +12,8 @@ namespace countershade::cli {
 
 void add_method_options(CLI::App* cmd, MethodArgs& args, const std::string& method_help) {
   cmd->add_option("--method", args.method, method_help + " (default: the unenhanced rendering)");
-  cmd->add_option("--lambda", args.lambda, "Enhancement strength λ (0 = unenhanced)")->capture_default_str();
+  cmd->add_option("--lambda", args.lambda, "Enhancement strength λ (0 = unenhanced)")
+      ->capture_default_str();
   cmd->allow_extras();  // the method's own parameters
 }
 

@@ -3,10 +3,9 @@
 // every other "--name value" is collected into a ParameterBag for the method's own parser, so a
 // flag the method does not take is an error naming the method and the flag.
 
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "enhance/method.h"
 

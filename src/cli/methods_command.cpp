@@ -44,7 +44,8 @@ void print_markdown(const EnhancementMethod& m) {
   std::printf("\n| key | flag | default | meaning |\n|---|---|---|---|\n");
   for (const auto& p : m.parameter_docs())
     std::printf("| `%s` | `--%s` | %s | %s |\n", p.key.c_str(), kebab_case(p.key).c_str(),
-                p.default_value.empty() ? "" : ("`" + p.default_value + "`").c_str(), cell(p.help).c_str());
+                p.default_value.empty() ? "" : ("`" + p.default_value + "`").c_str(),
+                cell(p.help).c_str());
 }
 
 }  // namespace
@@ -52,11 +53,14 @@ void print_markdown(const EnhancementMethod& m) {
 void add_methods_command(CLI::App& app) {
   auto name = std::make_shared<std::string>();
   auto markdown = std::make_shared<bool>(false);
-  CLI::App* cmd = app.add_subcommand("methods", "List the enhancement methods, their axes and parameters.");
+  CLI::App* cmd =
+      app.add_subcommand("methods", "List the enhancement methods, their axes and parameters.");
   cmd->add_option("name", *name, "Show only this method");
   cmd->add_flag("--markdown", *markdown, "As Markdown: the tables of docs/enhancement-methods.md");
   cmd->callback([name, markdown] {
-    const auto show = [&](const EnhancementMethod& m) { *markdown ? print_markdown(m) : print_method(m); };
+    const auto show = [&](const EnhancementMethod& m) {
+      *markdown ? print_markdown(m) : print_method(m);
+    };
     if (!name->empty()) return show(method_named(*name, "methods"));
     for (const auto& n : method_names()) {
       if (*markdown) std::printf("### `%s`\n\n", n.c_str());
@@ -65,9 +69,12 @@ void add_methods_command(CLI::App& app) {
     }
   });
   cmd->footer(
-      "In an experiment file the same parameters are keys of a method's entry (snake_case), and σ is a list\n"
-      "under one of the width keys, e.g. {\"method\": \"usm3d\", \"sigma\": [0.03, 0.06], \"ring_samples\": 3}.\n"
-      "On the command line: countershade render SCENE -o OUT.png --method usm3d --lambda 1.5 --sigma 0.05");
+      "In an experiment file the same parameters are keys of a method's entry (snake_case), and σ "
+      "is a list\n"
+      "under one of the width keys, e.g. {\"method\": \"usm3d\", \"sigma\": [0.03, 0.06], "
+      "\"ring_samples\": 3}.\n"
+      "On the command line: countershade render SCENE -o OUT.png --method usm3d --lambda 1.5 "
+      "--sigma 0.05");
 }
 
 }  // namespace countershade::cli

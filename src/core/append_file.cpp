@@ -27,8 +27,10 @@ AppendOnlyFile AppendOnlyFile::create(const fs::path& path, const std::string& h
   f.fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_APPEND | O_CLOEXEC, 0644);
   if (f.fd_ < 0) {
     if (errno == EEXIST)
-      throw_input_error(path.string(), "already exists; a session is never overwritten (use --resume to continue it, "
-                                       "or another --session number)");
+      throw_input_error(
+          path.string(),
+          "already exists; a session is never overwritten (use --resume to continue it, "
+          "or another --session number)");
     throw_input_error(path.string(), std::string("cannot create: ") + std::strerror(errno));
   }
   f.append(header);
@@ -41,7 +43,9 @@ AppendOnlyFile AppendOnlyFile::open_existing(const fs::path& path) {
   AppendOnlyFile f;
   f.path_ = path;
   f.fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (f.fd_ < 0) throw_input_error(path.string(), std::string("cannot open for appending: ") + std::strerror(errno));
+  if (f.fd_ < 0)
+    throw_input_error(path.string(),
+                      std::string("cannot open for appending: ") + std::strerror(errno));
   return f;
 }
 
@@ -49,11 +53,14 @@ AppendOnlyFile AppendOnlyFile::open_or_create(const fs::path& path) {
   AppendOnlyFile f;
   f.path_ = path;
   f.fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (f.fd_ < 0) throw_input_error(path.string(), std::string("cannot open for appending: ") + std::strerror(errno));
+  if (f.fd_ < 0)
+    throw_input_error(path.string(),
+                      std::string("cannot open for appending: ") + std::strerror(errno));
   return f;
 }
 
-AppendOnlyFile::AppendOnlyFile(AppendOnlyFile&& other) noexcept : fd_(other.fd_), path_(std::move(other.path_)) {
+AppendOnlyFile::AppendOnlyFile(AppendOnlyFile&& other) noexcept
+    : fd_(other.fd_), path_(std::move(other.path_)) {
   other.fd_ = -1;
 }
 
@@ -78,7 +85,8 @@ void AppendOnlyFile::append(const std::string& text) {
 }
 
 void AppendOnlyFile::sync() {
-  if (::fsync(fd_) != 0) throw std::runtime_error(path_.string() + ": fsync failed: " + std::strerror(errno));
+  if (::fsync(fd_) != 0)
+    throw std::runtime_error(path_.string() + ": fsync failed: " + std::strerror(errno));
 }
 
 }  // namespace countershade

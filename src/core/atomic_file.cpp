@@ -41,7 +41,8 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 
 std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
 }
 
@@ -66,14 +67,18 @@ void check_output_folder(const std::filesystem::path& folder) {
   if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
     throw_input_error(folder.string(), "is a file, not a folder");
   fs::path existing = fs::absolute(folder, ec);
-  while (existing.has_parent_path() && existing != existing.parent_path() && !fs::exists(existing, ec))
+  while (existing.has_parent_path() && existing != existing.parent_path() &&
+         !fs::exists(existing, ec))
     existing = existing.parent_path();
   if (!fs::is_directory(existing, ec))
-    throw_input_error(folder.string(), "cannot create the folder (" + existing.string() + " is not a folder)");
-  if (!can_create_in(existing)) throw_input_error(folder.string(), "cannot write in " + existing.string());
+    throw_input_error(folder.string(),
+                      "cannot create the folder (" + existing.string() + " is not a folder)");
+  if (!can_create_in(existing))
+    throw_input_error(folder.string(), "cannot write in " + existing.string());
 }
 
-std::string check_output_file(const std::filesystem::path& path, const std::vector<std::string>& extensions,
+std::string check_output_file(const std::filesystem::path& path,
+                              const std::vector<std::string>& extensions,
                               const std::string& formats) {
   namespace fs = std::filesystem;
   const std::string ext = lower_extension(path);

@@ -23,7 +23,8 @@ std::string lower_extension(const std::filesystem::path& path);
 // Checks, before any work, that `path` can become an output file: its extension is one of
 // `extensions` (else InputError "<path>: output must be <formats>"), its folder exists and can
 // be written, and it is not a folder itself. Returns the extension.
-std::string check_output_file(const std::filesystem::path& path, const std::vector<std::string>& extensions,
+std::string check_output_file(const std::filesystem::path& path,
+                              const std::vector<std::string>& extensions,
                               const std::string& formats);
 
 // Checks, before any work, that `folder` is a folder or can become one: not a file, and a file

@@ -26,8 +26,10 @@ std::vector<uint64_t> pack_buckets(const std::vector<CodeQuantizer::Bucket>& buc
   const uint64_t low = (uint64_t(1) << shift) - 1;
   for (size_t b = 0; b < buckets.size(); ++b) {
     const double t = buckets[b].threshold;
-    const uint64_t threshold = std::isinf(t) ? CodeQuantizer::kNoThreshold : std::bit_cast<uint64_t>(t) & low;
-    if (buckets[b].below > 0xFFFFu) throw std::logic_error("CodeQuantizer: a code too large to pack");
+    const uint64_t threshold =
+        std::isinf(t) ? CodeQuantizer::kNoThreshold : std::bit_cast<uint64_t>(t) & low;
+    if (buckets[b].below > 0xFFFFu)
+      throw std::logic_error("CodeQuantizer: a code too large to pack");
     packed[b] = uint64_t(buckets[b].below) << 48 | threshold;
   }
   return packed;
@@ -101,14 +103,17 @@ const CodeQuantizer& CodeQuantizer::shared(const DisplayEncoding& encoding, int 
 }
 
 uint32_t CodeQuantizer::search(double x) const {
-  return uint32_t(std::upper_bound(thresholds_.begin() + 1, thresholds_.end(), x) - thresholds_.begin()) - 1;
+  return uint32_t(std::upper_bound(thresholds_.begin() + 1, thresholds_.end(), x) -
+                  thresholds_.begin()) -
+         1;
 }
 
 uint32_t CodeQuantizer::code(double linear) const {
   const double x = clamp_unit(linear);
   if (!mantissa_bits_) return search(x);
   const Table t = table();
-  const int64_t b = std::clamp(int64_t(std::bit_cast<uint64_t>(x) >> t.shift) - t.offset, int64_t(0), t.last);
+  const int64_t b =
+      std::clamp(int64_t(std::bit_cast<uint64_t>(x) >> t.shift) - t.offset, int64_t(0), t.last);
   return t.bucket[b].below + uint32_t(x >= t.bucket[b].threshold);
 }
 

@@ -14,7 +14,9 @@ namespace countershade {
 
 // code / levels as a float, computed as a product in double: for every code of up to 16 bits the
 // same float as the division float(code) / levels (tested for all), and cheaper in vector loops.
-inline float code_fraction(uint32_t code, double inverse_levels) { return float(double(int32_t(code)) * inverse_levels); }
+inline float code_fraction(uint32_t code, double inverse_levels) {
+  return float(double(int32_t(code)) * inverse_levels);
+}
 
 class CodeQuantizer {
  public:
@@ -62,10 +64,11 @@ class CodeQuantizer {
   DisplayEncoding encoding_;
   int bits_;
   float levels_;
-  std::vector<double> thresholds_;  // [k]: the smallest linear value whose code is at least k (k ≥ 1)
+  std::vector<double>
+      thresholds_;  // [k]: the smallest linear value whose code is at least k (k ≥ 1)
   uint32_t code_at_zero_ = 0, code_at_one_ = 0;
-  int mantissa_bits_ = 0;           // 0: no table, binary search
-  std::vector<Bucket> buckets_;  // then one bucket for x = 1
+  int mantissa_bits_ = 0;         // 0: no table, binary search
+  std::vector<Bucket> buckets_;   // then one bucket for x = 1
   std::vector<uint64_t> packed_;  // the buckets as Table::packed words
 };
 

@@ -27,7 +27,9 @@ Lab xyz_to_lab(const glm::dvec3& xyz) {
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
 
-double cielab_lightness(double Y) { return 116.0 * lab_f(Y * color_constants::kInverseWhite[1]) - 16.0; }
+double cielab_lightness(double Y) {
+  return 116.0 * lab_f(Y * color_constants::kInverseWhite[1]) - 16.0;
+}
 
 Lab linear_rgb_to_lab(const glm::dvec3& rgb) { return xyz_to_lab(linear_rgb_to_xyz(rgb)); }
 
@@ -79,7 +81,8 @@ double hue_weight(double h_mean) {
   auto shifted = [](double c, double s, double degrees) {  // cos(x + degrees)
     return c * std::cos(degrees * kDegree) - s * std::sin(degrees * kDegree);
   };
-  return 1.0 - 0.17 * shifted(c1, s1, -30.0) + 0.24 * c2 + 0.32 * shifted(c3, s3, 6.0) - 0.20 * shifted(c4, s4, -63.0);
+  return 1.0 - 0.17 * shifted(c1, s1, -30.0) + 0.24 * c2 + 0.32 * shifted(c3, s3, 6.0) -
+         0.20 * shifted(c4, s4, -63.0);
 }
 
 }  // namespace
@@ -89,7 +92,8 @@ double ciede2000(const Lab& first, const Lab& second) {
                                std::sqrt(second.a * second.a + second.b * second.b));
   const double g = 0.5 * (1.0 - std::sqrt(seventh_power_share(c_mean)));
   const double a1 = (1.0 + g) * first.a, a2 = (1.0 + g) * second.a;
-  const double c1 = std::sqrt(a1 * a1 + first.b * first.b), c2 = std::sqrt(a2 * a2 + second.b * second.b);
+  const double c1 = std::sqrt(a1 * a1 + first.b * first.b),
+               c2 = std::sqrt(a2 * a2 + second.b * second.b);
   const double h1 = hue_angle(a1, first.b), h2 = hue_angle(a2, second.b);
   const double dh = hue_difference(h1, h2, c1 * c2);
   const double dL = second.L - first.L, dC = c2 - c1;
@@ -98,7 +102,8 @@ double ciede2000(const Lab& first, const Lab& second) {
   const double h_mean = mean_hue(h1, h2, c1 * c2);
   const double l50 = (L_mean - 50.0) * (L_mean - 50.0);
   const double sL = 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);
-  const double sC = 1.0 + 0.045 * c_mean_prime, sH = 1.0 + 0.015 * c_mean_prime * hue_weight(h_mean);
+  const double sC = 1.0 + 0.045 * c_mean_prime,
+               sH = 1.0 + 0.015 * c_mean_prime * hue_weight(h_mean);
   const double rC = 2.0 * std::sqrt(seventh_power_share(c_mean_prime));
   const double z = (h_mean / kDegree - 275.0) / 25.0;
   const double d_theta = 30.0 * kDegree * std::exp(-z * z);

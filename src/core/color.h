@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-
 #include <glm/vec3.hpp>
 
 namespace countershade {
@@ -23,9 +22,8 @@ namespace color_constants {
 // D65 reference white (2° observer) and the sRGB -> XYZ matrix as used by scikit-image.
 inline constexpr double kWhite[3] = {0.95047, 1.0, 1.08883};
 inline constexpr double kInverseWhite[3] = {1.0 / 0.95047, 1.0, 1.0 / 1.08883};
-inline constexpr double kRgbToXyz[3][3] = {{0.412453, 0.357580, 0.180423},
-                                           {0.212671, 0.715160, 0.072169},
-                                           {0.019334, 0.119193, 0.950227}};
+inline constexpr double kRgbToXyz[3][3] = {
+    {0.412453, 0.357580, 0.180423}, {0.212671, 0.715160, 0.072169}, {0.019334, 0.119193, 0.950227}};
 
 struct Matrix3 {
   double m[3][3];
@@ -51,15 +49,19 @@ constexpr Matrix3 inverse(const double (&a)[3][3]) {
 inline constexpr Matrix3 kXyzToRgb = inverse(kRgbToXyz);
 
 inline glm::dvec3 apply(const double (&m)[3][3], const glm::dvec3& v) {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+          m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
           m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 
 // Divisions by constants are multiplications by their reciprocals: the lightness composition runs
 // these for millions of pixels, and a division costs several multiplications.
-inline constexpr double k1_116 = 1.0 / 116.0, k1_500 = 1.0 / 500.0, k1_200 = 1.0 / 200.0, k1_7787 = 1.0 / 7.787;
+inline constexpr double k1_116 = 1.0 / 116.0, k1_500 = 1.0 / 500.0, k1_200 = 1.0 / 200.0,
+                        k1_7787 = 1.0 / 7.787;
 
-inline double lab_f_inverse(double t) { return t > 0.2068966 ? t * t * t : (t - 16.0 / 116.0) * k1_7787; }
+inline double lab_f_inverse(double t) {
+  return t > 0.2068966 ? t * t * t : (t - 16.0 / 116.0) * k1_7787;
+}
 
 // The cube root for t in [2^-300, 2^300], within a few ulp, from +, −, ×, ÷ and the exponent bits
 // only: t = m·2^e with m in [1,2); e = 3q + r; cbrt(t) = cbrt(m·2^r)·2^q. Written once for scalars
@@ -78,7 +80,9 @@ template <typename D, typename I>
   D y = 0.4476214805743782 +
         m * (0.9480536967987485 +
              m * (-0.6625905808117523 +
-                  m * (0.3820491194094191 + m * (-0.14276857566904744 + m * (0.03044327453163275 + m * -0.0028082221513328876)))));
+                  m * (0.3820491194094191 +
+                       m * (-0.14276857566904744 +
+                            m * (0.03044327453163275 + m * -0.0028082221513328876)))));
   const D x = m * (r == 0 ? 1.0 : (r == 1 ? 2.0 : 4.0));
   y *= r == 0 ? 1.0 : (r == 1 ? 1.2599210498948732 : 1.5874010519681994);
   const D y3 = y * y * y;
@@ -87,7 +91,8 @@ template <typename D, typename I>
 }
 inline double cube_root(double t) { return cube_root_lanes<double, int64_t>(t); }
 
-// CIELAB's f(t): the cube root above 0.008856, the linear segment below; for scalars and lanes alike.
+// CIELAB's f(t): the cube root above 0.008856, the linear segment below; for scalars and lanes
+// alike.
 template <typename D, typename I>
 [[gnu::always_inline]] inline D lab_f_lanes(D t) {
   return t > 0.008856 ? cube_root_lanes<D, I>(t) : 7.787 * t + 16.0 / 116.0;
@@ -97,15 +102,20 @@ template <typename D, typename I>
 
 // The conversions towards linear RGB are inline: the lightness composition runs them for
 // millions of pixels per stimulus.
-inline glm::dvec3 linear_rgb_to_xyz(const glm::dvec3& rgb) { return color_constants::apply(color_constants::kRgbToXyz, rgb); }
-inline glm::dvec3 xyz_to_linear_rgb(const glm::dvec3& xyz) { return color_constants::apply(color_constants::kXyzToRgb.m, xyz); }
+inline glm::dvec3 linear_rgb_to_xyz(const glm::dvec3& rgb) {
+  return color_constants::apply(color_constants::kRgbToXyz, rgb);
+}
+inline glm::dvec3 xyz_to_linear_rgb(const glm::dvec3& xyz) {
+  return color_constants::apply(color_constants::kXyzToRgb.m, xyz);
+}
 Lab xyz_to_lab(const glm::dvec3& xyz);
 inline glm::dvec3 lab_to_xyz(const Lab& lab) {
   using namespace color_constants;
   const double fy = (lab.L + 16.0) * k1_116;
   const double fx = lab.a * k1_500 + fy;
   const double fz = fy - lab.b * k1_200;
-  return {lab_f_inverse(fx) * kWhite[0], lab_f_inverse(fy) * kWhite[1], lab_f_inverse(fz) * kWhite[2]};
+  return {lab_f_inverse(fx) * kWhite[0], lab_f_inverse(fy) * kWhite[1],
+          lab_f_inverse(fz) * kWhite[2]};
 }
 
 Lab linear_rgb_to_lab(const glm::dvec3& rgb);
@@ -116,7 +126,8 @@ Lab srgb_to_lab(const glm::dvec3& srgb);
 double cielab_lightness(double Y);
 // The relative luminance Y whose CIELAB L* is `lightness` (the inverse of cielab_lightness).
 inline double luminance_of_lightness(double lightness) {
-  return color_constants::lab_f_inverse((lightness + 16.0) * color_constants::k1_116) * color_constants::kWhite[1];
+  return color_constants::lab_f_inverse((lightness + 16.0) * color_constants::k1_116) *
+         color_constants::kWhite[1];
 }
 // The luminance Y of linear sRGB (the second row of the sRGB -> XYZ matrix).
 inline double luminance_of(const glm::dvec3& rgb) {

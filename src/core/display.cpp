@@ -60,9 +60,15 @@ DisplayEncoding DisplayEncoding::lut(std::vector<double> codes, std::vector<doub
 std::string DisplayEncoding::describe() const {
   std::ostringstream s;
   switch (kind_) {
-    case Kind::srgb: s << "srgb"; break;
-    case Kind::gamma: s << "gamma " << gamma_; break;
-    case Kind::lut: s << "lut (" << codes_.size() << " rows)"; break;
+    case Kind::srgb:
+      s << "srgb";
+      break;
+    case Kind::gamma:
+      s << "gamma " << gamma_;
+      break;
+    case Kind::lut:
+      s << "lut (" << codes_.size() << " rows)";
+      break;
   }
   return s.str();
 }
@@ -70,9 +76,12 @@ std::string DisplayEncoding::describe() const {
 double DisplayEncoding::encode(double linear) const {
   linear = std::isnan(linear) ? 0.0 : std::clamp(linear, 0.0, 1.0);
   switch (kind_) {
-    case Kind::srgb: return srgb_encode(linear);
-    case Kind::gamma: return std::pow(linear, 1.0 / gamma_);
-    case Kind::lut: return interpolate(luminances_, codes_, linear);
+    case Kind::srgb:
+      return srgb_encode(linear);
+    case Kind::gamma:
+      return std::pow(linear, 1.0 / gamma_);
+    case Kind::lut:
+      return interpolate(luminances_, codes_, linear);
   }
   return 0.0;
 }
@@ -80,16 +89,21 @@ double DisplayEncoding::encode(double linear) const {
 double DisplayEncoding::decode(double code) const {
   code = std::clamp(code, 0.0, 1.0);
   switch (kind_) {
-    case Kind::srgb: return srgb_decode(code);
-    case Kind::gamma: return std::pow(code, gamma_);
-    case Kind::lut: return interpolate(codes_, luminances_, code);
+    case Kind::srgb:
+      return srgb_decode(code);
+    case Kind::gamma:
+      return std::pow(code, gamma_);
+    case Kind::lut:
+      return interpolate(codes_, luminances_, code);
   }
   return 0.0;
 }
 
-Image encode_for_display(const Image& radiance, const Exposure& exposure, const DisplayEncoding& encoding) {
+Image encode_for_display(const Image& radiance, const Exposure& exposure,
+                         const DisplayEncoding& encoding) {
   Image out(radiance.width, radiance.height, radiance.channels, Image::Uninitialized{});
-  for (size_t i = 0; i < radiance.pixels.size(); ++i) out.pixels[i] = float(encoding.encode(exposure(radiance.pixels[i])));
+  for (size_t i = 0; i < radiance.pixels.size(); ++i)
+    out.pixels[i] = float(encoding.encode(exposure(radiance.pixels[i])));
   return out;
 }
 

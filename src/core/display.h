@@ -46,10 +46,13 @@ class DisplayEncoding {
 struct Exposure {
   double scale = 1.0;
   double black = 0.0;
-  double operator()(double radiance) const { return black + (1.0 - black) * std::clamp(radiance * scale, 0.0, 1.0); }
+  double operator()(double radiance) const {
+    return black + (1.0 - black) * std::clamp(radiance * scale, 0.0, 1.0);
+  }
 };
 
 // Exposure and display encoding, per channel: linear radiance -> code values in [0,1].
-Image encode_for_display(const Image& radiance, const Exposure& exposure, const DisplayEncoding& encoding);
+Image encode_for_display(const Image& radiance, const Exposure& exposure,
+                         const DisplayEncoding& encoding);
 
 }  // namespace countershade

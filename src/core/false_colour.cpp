@@ -7,8 +7,9 @@ namespace countershade {
 namespace {
 
 // Viridis at nine evenly spaced points, as 8-bit sRGB; linear interpolation between them.
-constexpr unsigned char kViridis[9][3] = {{68, 1, 84},    {72, 40, 120},  {62, 73, 137}, {49, 104, 142}, {38, 130, 142},
-                                          {31, 158, 137}, {53, 183, 121}, {110, 206, 88}, {253, 231, 37}};
+constexpr unsigned char kViridis[9][3] = {{68, 1, 84},    {72, 40, 120},  {62, 73, 137},
+                                          {49, 104, 142}, {38, 130, 142}, {31, 158, 137},
+                                          {53, 183, 121}, {110, 206, 88}, {253, 231, 37}};
 
 }  // namespace
 
@@ -20,7 +21,8 @@ void false_colour(double t, float* rgb) {
   const double position = std::clamp(t, 0.0, 1.0) * 8.0;
   const int k = std::min(7, int(position));
   const double f = position - k;
-  for (int c = 0; c < 3; ++c) rgb[c] = float(((1 - f) * kViridis[k][c] + f * kViridis[k + 1][c]) / 255.0);
+  for (int c = 0; c < 3; ++c)
+    rgb[c] = float(((1 - f) * kViridis[k][c] + f * kViridis[k + 1][c]) / 255.0);
 }
 
 Image false_colour_image(const Image& values) {

@@ -1,13 +1,13 @@
 #include "core/gaussian.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "core/image.h"
 #include "core/parallel.h"
@@ -32,7 +32,8 @@ struct Deriche {
     double n0, n1;  // causal numerator: y(n) = n0 x(n) + n1 x(n−1) − d1 y(n−1) − d2 y(n−2)
     double m1, m2;  // anticausal numerator: y(n) = m1 x(n+1) + m2 x(n+2) − d1 y(n+1) − d2 y(n+2)
     double d1, d2;
-    double causal_gain, anticausal_gain;  // steady-state response to a constant input, for the borders
+    double causal_gain,
+        anticausal_gain;  // steady-state response to a constant input, for the borders
   } section[2];
   // Above this σ the poles are so close to 1 that float coefficients and sums lose the accuracy
   // (3.3e-4 of a step at σ = 100, 2.6e-3 at σ = 500); the recursion then runs in double.
@@ -45,11 +46,13 @@ struct Deriche {
     double h[2][3], d1[2], d2[2];
     for (int k = 0; k < 2; ++k) {
       const double e = std::exp(l[k] / sigma), theta = w[k] / sigma;
-      for (int n = 0; n < 3; ++n) h[k][n] = std::pow(e, n) * (a[k] * std::cos(n * theta) + b[k] * std::sin(n * theta));
+      for (int n = 0; n < 3; ++n)
+        h[k][n] = std::pow(e, n) * (a[k] * std::cos(n * theta) + b[k] * std::sin(n * theta));
       d1[k] = -2 * e * std::cos(theta);
       d2[k] = e * e;
     }
-    // Unit area of the whole (causal + anticausal) response, from the sections' transfer functions at z = 1.
+    // Unit area of the whole (causal + anticausal) response, from the sections' transfer functions
+    // at z = 1.
     double area = 0;
     for (int k = 0; k < 2; ++k) {
       const double den = 1 + d1[k] + d2[k];
@@ -71,8 +74,9 @@ struct Deriche {
 // and vectorise; rows outside the image are the edge rows (clamp-to-edge) with the recursions at
 // their steady state there.
 template <typename T, typename Scratch>
-[[gnu::always_inline]] inline void deriche_columns(const float* in, float* out, int width, int height, int x0, int x1,
-                                                   const Deriche& f, Scratch& scratch) {
+[[gnu::always_inline]] inline void deriche_columns(const float* in, float* out, int width,
+                                                   int height, int x0, int x1, const Deriche& f,
+                                                   Scratch& scratch) {
   const size_t w = size_t(x1 - x0);
   // Causal sums for every row; the state of each section (its last two outputs) stays in cache.
   scratch.resize(size_t(height) * w);
@@ -80,12 +84,15 @@ template <typename T, typename Scratch>
   std::vector<T> state(4 * w);
   T *p1 = state.data(), *p2 = p1 + w, *q1 = p2 + w, *q2 = q1 + w;
   // Plain local copies in T: stores to the state rows could otherwise alias the coefficients.
-  const T sn0 = T(f.section[0].n0), sn1 = T(f.section[0].n1), sm1 = T(f.section[0].m1), sm2 = T(f.section[0].m2);
+  const T sn0 = T(f.section[0].n0), sn1 = T(f.section[0].n1), sm1 = T(f.section[0].m1),
+          sm2 = T(f.section[0].m2);
   const T sd1 = T(f.section[0].d1), sd2 = T(f.section[0].d2);
-  const T tn0 = T(f.section[1].n0), tn1 = T(f.section[1].n1), tm1 = T(f.section[1].m1), tm2 = T(f.section[1].m2);
+  const T tn0 = T(f.section[1].n0), tn1 = T(f.section[1].n1), tm1 = T(f.section[1].m1),
+          tm2 = T(f.section[1].m2);
   const T td1 = T(f.section[1].d1), td2 = T(f.section[1].d2);
   const T s_causal = T(f.section[0].causal_gain), t_causal = T(f.section[1].causal_gain);
-  const T s_anticausal = T(f.section[0].anticausal_gain), t_anticausal = T(f.section[1].anticausal_gain);
+  const T s_anticausal = T(f.section[0].anticausal_gain),
+          t_anticausal = T(f.section[1].anticausal_gain);
   const float* first = in + x0;
   const float* last = in + size_t(height - 1) * width + x0;
   auto row = [&](int y) { return in + size_t(std::clamp(y, 0, height - 1)) * width + x0; };
@@ -137,9 +144,9 @@ struct ColumnScratch {
 
 // The column filter compiled twice: for AVX2 machines and for the x86-64 baseline, chosen at load
 // time (no FMA either way: -ffp-contract=off keeps the bytes the same on every processor).
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-void filter_columns(const float* in, float* out, int width, int height, int x0, int x1, const Deriche& f,
-                    ColumnScratch& scratch) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void filter_columns(
+    const float* in, float* out, int width, int height, int x0, int x1, const Deriche& f,
+    ColumnScratch& scratch) {
   if (f.in_double)
     deriche_columns<double>(in, out, width, height, x0, x1, f, scratch.twice);
   else
@@ -151,7 +158,8 @@ using v8f = float __attribute__((vector_size(32)));
 // out[x·out_stride + y] = in[y·in_stride + x] for one 8×8 tile, in registers: three rounds of
 // two-source shuffles (neighbouring values, then pairs, then halves). Element by element, the
 // strided stores of a transpose cost more than the recursion itself.
-[[gnu::always_inline]] inline void transpose_tile8(const float* in, size_t in_stride, float* out, size_t out_stride) {
+[[gnu::always_inline]] inline void transpose_tile8(const float* in, size_t in_stride, float* out,
+                                                   size_t out_stride) {
   v8f r[8], a[8], b[8];
   for (int i = 0; i < 8; ++i) std::memcpy(&r[i], in + size_t(i) * in_stride, sizeof(v8f));
   for (int i = 0; i < 8; i += 2) {
@@ -161,7 +169,8 @@ using v8f = float __attribute__((vector_size(32)));
   for (int i = 0; i < 8; i += 4)
     for (int j = 0; j < 2; ++j) {
       b[i + 2 * j] = __builtin_shufflevector(a[i + j], a[i + j + 2], 0, 1, 8, 9, 4, 5, 12, 13);
-      b[i + 2 * j + 1] = __builtin_shufflevector(a[i + j], a[i + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+      b[i + 2 * j + 1] =
+          __builtin_shufflevector(a[i + j], a[i + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
     }
   for (int j = 0; j < 4; ++j) {
     const v8f low = __builtin_shufflevector(b[j], b[j + 4], 0, 1, 2, 3, 8, 9, 10, 11);
@@ -173,13 +182,13 @@ using v8f = float __attribute__((vector_size(32)));
 
 // out[x·out_stride + y] = in[y·in_stride + x] for y < rows, x < columns: 8×8 tiles, then the
 // right and bottom edges value by value.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-void transpose_plane(const float* in, size_t in_stride, float* out, size_t out_stride, int rows, int columns) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void transpose_plane(
+    const float* in, size_t in_stride, float* out, size_t out_stride, int rows, int columns) {
   const int rows8 = rows / 8 * 8, columns8 = columns / 8 * 8;
   for (int y = 0; y < rows8; y += 8)
     for (int x = 0; x < columns8; x += 8)
-      transpose_tile8(in + size_t(y) * in_stride + size_t(x), in_stride, out + size_t(x) * out_stride + size_t(y),
-                      out_stride);
+      transpose_tile8(in + size_t(y) * in_stride + size_t(x), in_stride,
+                      out + size_t(x) * out_stride + size_t(y), out_stride);
   for (int y = 0; y < rows; ++y)
     for (int x = y < rows8 ? columns8 : 0; x < columns; ++x)
       out[size_t(x) * out_stride + size_t(y)] = in[size_t(y) * in_stride + size_t(x)];
@@ -188,17 +197,19 @@ void transpose_plane(const float* in, size_t in_stride, float* out, size_t out_s
 void transpose(const float* in, float* out, int width, int height, tbb::task_arena& arena) {
   constexpr int kBlock = 32;
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, (height + kBlock - 1) / kBlock), [&](const tbb::blocked_range<int>& r) {
-      for (int by = r.begin(); by != r.end(); ++by) {
-        const int y0 = by * kBlock;
-        transpose_plane(in + size_t(y0) * width, size_t(width), out + y0, size_t(height), std::min(kBlock, height - y0),
-                        width);
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, (height + kBlock - 1) / kBlock),
+                      [&](const tbb::blocked_range<int>& r) {
+                        for (int by = r.begin(); by != r.end(); ++by) {
+                          const int y0 = by * kBlock;
+                          transpose_plane(in + size_t(y0) * width, size_t(width), out + y0,
+                                          size_t(height), std::min(kBlock, height - y0), width);
+                        }
+                      });
   });
 }
 
-void recursive_vertical(const float* in, float* out, int width, int height, const Deriche& f, tbb::task_arena& arena) {
+void recursive_vertical(const float* in, float* out, int width, int height, const Deriche& f,
+                        tbb::task_arena& arena) {
   constexpr int kColumns = 256;
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, (width + kColumns - 1) / kColumns),
@@ -206,27 +217,30 @@ void recursive_vertical(const float* in, float* out, int width, int height, cons
                         ColumnScratch scratch;
                         for (int b = r.begin(); b != r.end(); ++b)
                           filter_columns(in, out, width, height, b * kColumns,
-                                          std::min(width, (b + 1) * kColumns), f, scratch);
+                                         std::min(width, (b + 1) * kColumns), f, scratch);
                       });
   });
 }
 
 // Filters every row along x, in place: blocks of 32 rows are transposed (in 8×8 tiles) into a
 // small buffer that stays in cache, filtered as columns, and transposed back.
-void recursive_horizontal(float* image, int width, int height, const Deriche& f, tbb::task_arena& arena) {
+void recursive_horizontal(float* image, int width, int height, const Deriche& f,
+                          tbb::task_arena& arena) {
   constexpr int kRows = 32;
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, (height + kRows - 1) / kRows), [&](const tbb::blocked_range<int>& r) {
-      PixelVector block(size_t(width) * kRows), filtered(block.size());  // written before read
-      ColumnScratch scratch;
-      for (int b = r.begin(); b != r.end(); ++b) {
-        int y0 = b * kRows, rows = std::min(kRows, height - y0);
-        float* rows_start = image + size_t(y0) * width;
-        transpose_plane(rows_start, size_t(width), block.data(), size_t(rows), rows, width);
-        filter_columns(block.data(), filtered.data(), rows, width, 0, rows, f, scratch);
-        transpose_plane(filtered.data(), size_t(rows), rows_start, size_t(width), width, rows);
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, (height + kRows - 1) / kRows),
+        [&](const tbb::blocked_range<int>& r) {
+          PixelVector block(size_t(width) * kRows), filtered(block.size());  // written before read
+          ColumnScratch scratch;
+          for (int b = r.begin(); b != r.end(); ++b) {
+            int y0 = b * kRows, rows = std::min(kRows, height - y0);
+            float* rows_start = image + size_t(y0) * width;
+            transpose_plane(rows_start, size_t(width), block.data(), size_t(rows), rows, width);
+            filter_columns(block.data(), filtered.data(), rows, width, 0, rows, f, scratch);
+            transpose_plane(filtered.data(), size_t(rows), rows_start, size_t(width), width, rows);
+          }
+        });
   });
 }
 
@@ -241,7 +255,8 @@ void fir_rows(const float* in, float* out, int width, int height, const std::vec
         const float* src = in + size_t(y) * width;
         for (int x = 0; x < width; ++x) {
           double sum = 0;
-          for (int k = -radius; k <= radius; ++k) sum += kernel[size_t(k + radius)] * src[std::clamp(x + k, 0, width - 1)];
+          for (int k = -radius; k <= radius; ++k)
+            sum += kernel[size_t(k + radius)] * src[std::clamp(x + k, 0, width - 1)];
           row[size_t(x)] = sum;
         }
         for (int x = 0; x < width; ++x) out[size_t(y) * width + x] = float(row[size_t(x)]);
@@ -254,19 +269,22 @@ std::vector<double> gaussian_kernel(double sigma) {
   int radius = std::max(1, int(std::ceil(4.0 * sigma)));
   std::vector<double> k(size_t(2 * radius + 1));
   double sum = 0;
-  for (int i = -radius; i <= radius; ++i) sum += k[size_t(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
+  for (int i = -radius; i <= radius; ++i)
+    sum += k[size_t(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
   for (double& v : k) v /= sum;
   return k;
 }
 
 void check(int width, int height, double sigma) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("gaussian_blur: empty image");
-  if (!(sigma > 0) || !std::isfinite(sigma)) throw std::invalid_argument("gaussian_blur: sigma must be positive");
+  if (!(sigma > 0) || !std::isfinite(sigma))
+    throw std::invalid_argument("gaussian_blur: sigma must be positive");
 }
 
 }  // namespace
 
-void gaussian_blur_exact(const float* in, float* out, int width, int height, double sigma, int threads) {
+void gaussian_blur_exact(const float* in, float* out, int width, int height, double sigma,
+                         int threads) {
   check(width, height, sigma);
   tbb::task_arena arena(worker_count(threads));
   std::vector<double> kernel = gaussian_kernel(sigma);
@@ -279,7 +297,8 @@ void gaussian_blur_exact(const float* in, float* out, int width, int height, dou
 
 void gaussian_blur(const float* in, float* out, int width, int height, double sigma, int threads) {
   check(width, height, sigma);
-  if (sigma < kRecursiveMinSigma) return gaussian_blur_exact(in, out, width, height, sigma, threads);
+  if (sigma < kRecursiveMinSigma)
+    return gaussian_blur_exact(in, out, width, height, sigma, threads);
   tbb::task_arena arena(worker_count(threads));
   Deriche filter(sigma);
   if (in == out) {  // the vertical pass reads rows it has already written otherwise

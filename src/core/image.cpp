@@ -1,18 +1,16 @@
 #include "core/image.h"
 
+#include <OpenImageIO/imageio.h>
 #include <sys/mman.h>
 
-#include <mutex>
-
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
-#include <cmath>
 #include <bit>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -65,7 +63,9 @@ LargeBufferCache& large_buffers() {
   return *cache;
 }
 
-size_t rounded_to_huge_pages(size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+size_t rounded_to_huge_pages(size_t bytes) {
+  return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+}
 
 }  // namespace
 
@@ -89,13 +89,16 @@ void release_large(void* p, size_t bytes) {
   large_buffers().give(p, rounded_to_huge_pages(bytes));
 }
 
-void check_image_size(const std::filesystem::path& path, long long width, long long height, int channels) {
+void check_image_size(const std::filesystem::path& path, long long width, long long height,
+                      int channels) {
   constexpr long long kMaxPixels = 16384LL * 16384LL;
   if (width > 65536 || height > 65536 || width * height > kMaxPixels || channels > 16) {
     const double gigabytes = double(width) * double(height) * channels * sizeof(float) / 1e9;
-    throw_input_error(path.string(), "image is " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                                         std::to_string(channels) + " channels (" + std::to_string(int(gigabytes + 0.5)) +
-                                         " GB in memory); the limit is 16384x16384 pixels and 16 channels");
+    throw_input_error(path.string(),
+                      "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                          " with " + std::to_string(channels) + " channels (" +
+                          std::to_string(int(gigabytes + 0.5)) +
+                          " GB in memory); the limit is 16384x16384 pixels and 16 channels");
   }
 }
 
@@ -103,10 +106,12 @@ void check_finite(const std::filesystem::path& path, const Image& image, bool al
   for (size_t i = 0; i < image.pixels.size(); ++i)
     if (allow_infinity ? std::isnan(image.pixels[i]) : !std::isfinite(image.pixels[i])) {
       const size_t pixel = i / size_t(image.channels);
-      throw_input_error(path.string(), "pixel (" + std::to_string(pixel % size_t(image.width)) + ", " +
-                                           std::to_string(pixel / size_t(image.width)) + ") channel " +
-                                           std::to_string(i % size_t(image.channels)) +
-                                           (allow_infinity ? " is not a number (NaN)" : " is not a finite number"));
+      throw_input_error(
+          path.string(),
+          "pixel (" + std::to_string(pixel % size_t(image.width)) + ", " +
+              std::to_string(pixel / size_t(image.width)) + ") channel " +
+              std::to_string(i % size_t(image.channels)) +
+              (allow_infinity ? " is not a number (NaN)" : " is not a finite number"));
     }
 }
 
@@ -131,8 +136,9 @@ Image read_pfm(const std::filesystem::path& path) {
   const uint64_t declared = uint64_t(width) * uint64_t(height) * uint64_t(channels) * 4u;
   const auto header = in.tellg();
   if (header < 0 || std::filesystem::file_size(path) - uint64_t(header) < declared)
-    throw_input_error(path.string(), "PFM file is truncated (its header declares " + std::to_string(width) + "x" +
-                                         std::to_string(height) + " pixels, " + std::to_string(declared) +
+    throw_input_error(path.string(), "PFM file is truncated (its header declares " +
+                                         std::to_string(width) + "x" + std::to_string(height) +
+                                         " pixels, " + std::to_string(declared) +
                                          " bytes of data)");
   Image image(width, height, channels);
   const bool little = scale < 0;
@@ -156,11 +162,13 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
     throw std::runtime_error(path.string() + ": PFM holds 1 or 3 channels");
   std::ofstream out(path, std::ios::binary);
   bool little = std::endian::native == std::endian::little;
-  out << (image.channels == 3 ? "PF" : "Pf") << "\n" << image.width << " " << image.height << "\n"
+  out << (image.channels == 3 ? "PF" : "Pf") << "\n"
+      << image.width << " " << image.height << "\n"
       << (little ? "-1.0" : "1.0") << "\n";
   for (int y = image.height - 1; y >= 0; --y)
-    out.write(reinterpret_cast<const char*>(&image.pixels[size_t(y) * image.width * image.channels]),
-              std::streamsize(sizeof(float) * size_t(image.width) * image.channels));
+    out.write(
+        reinterpret_cast<const char*>(&image.pixels[size_t(y) * image.width * image.channels]),
+        std::streamsize(sizeof(float) * size_t(image.width) * image.channels));
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
@@ -168,7 +176,8 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
 void check_chunks_if_png(const std::filesystem::path& path) {
   char head[8] = {};
   std::ifstream(path, std::ios::binary).read(head, sizeof head);
-  if (has_png_signature(std::string_view(head, sizeof head))) check_png_chunks(path, read_file_bytes(path));
+  if (has_png_signature(std::string_view(head, sizeof head)))
+    check_png_chunks(path, read_file_bytes(path));
 }
 
 }  // namespace
@@ -176,8 +185,7 @@ void check_chunks_if_png(const std::filesystem::path& path) {
 Image read_image(const std::filesystem::path& path, int* bits) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw_input_error(path.string(), "no such image file");
+  if (!fs::is_regular_file(path, ec)) throw_input_error(path.string(), "no such image file");
   if (lower_extension(path) == ".pfm") {
     if (bits) *bits = 0;
     return read_pfm(path);
@@ -221,7 +229,9 @@ void write_image(const std::filesystem::path& path, const Image& image,
                  const ImageWriteOptions& options) {
   if (image.empty()) throw std::runtime_error(path.string() + ": refusing to write an empty image");
   std::string ext = lower_extension(path);
-  if (ext == ".pfm") return write_atomically(path, [&](const std::filesystem::path& temp) { write_pfm(temp, image); });
+  if (ext == ".pfm")
+    return write_atomically(path,
+                            [&](const std::filesystem::path& temp) { write_pfm(temp, image); });
   bool quantised = ext == ".png" || ext == ".tif" || ext == ".tiff";
   if (quantised && options.png_bits != 8 && options.png_bits != 16)
     throw InputError(path.string() + ": bit depth must be 8 or 16");
@@ -229,14 +239,15 @@ void write_image(const std::filesystem::path& path, const Image& image,
   write_atomically(path, [&](const std::filesystem::path& temp) {
     auto out = OIIO::ImageOutput::create(temp.string());
     if (!out) throw InputError(path.string() + ": unsupported output format '" + ext + "'");
-    OIIO::TypeDesc type = !quantised ? OIIO::TypeDesc::FLOAT
+    OIIO::TypeDesc type = !quantised               ? OIIO::TypeDesc::FLOAT
                           : options.png_bits == 16 ? OIIO::TypeDesc::UINT16
                                                    : OIIO::TypeDesc::UINT8;
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
     spec.attribute("Software", "countershade");
     if (ext == ".png") set_fast_png(spec);
     if (!out->open(temp.string(), spec))
-      throw std::runtime_error(path.string() + ": cannot open for writing (" + out->geterror() + ")");
+      throw std::runtime_error(path.string() + ": cannot open for writing (" + out->geterror() +
+                               ")");
     bool ok = false;
     if (!quantised) {
       ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());

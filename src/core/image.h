@@ -22,8 +22,10 @@ struct DefaultInitAllocator : std::allocator<T> {
   using std::allocator<T>::allocator;
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
-    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
-    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    if constexpr (sizeof...(Args) == 0)
+      ::new (static_cast<void*>(p)) U;
+    else
+      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 };
 
@@ -65,7 +67,8 @@ struct Image {
   Image() = default;
   Image(int w, int h, int c, float fill = 0.0f)
       : width(w), height(h), channels(c), pixels(size_t(w) * size_t(h) * size_t(c), fill) {}
-  Image(int w, int h, int c, Uninitialized) : width(w), height(h), channels(c), pixels(size_t(w) * size_t(h) * size_t(c)) {}
+  Image(int w, int h, int c, Uninitialized)
+      : width(w), height(h), channels(c), pixels(size_t(w) * size_t(h) * size_t(c)) {}
 
   size_t index(int x, int y, int c = 0) const {
     return (size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c);
@@ -85,9 +88,11 @@ struct ImageWriteOptions {
 // Refuses images over 16384x16384 pixels before allocating them, and NaN in float images
 // (+inf stays: depth maps mark the background with it; radiance readers call check_finite).
 Image read_image(const std::filesystem::path& path, int* bits = nullptr);
-void check_image_size(const std::filesystem::path& path, long long width, long long height, int channels);
+void check_image_size(const std::filesystem::path& path, long long width, long long height,
+                      int channels);
 // Throws InputError naming the first pixel and channel that is NaN or (unless allowed) infinite.
-void check_finite(const std::filesystem::path& path, const Image& image, bool allow_infinity = false);
+void check_finite(const std::filesystem::path& path, const Image& image,
+                  bool allow_infinity = false);
 
 // Writes by extension: .png/.tif/.tiff quantised (round to nearest) to 8 or 16 bits, .exr/.pfm/.hdr
 // as float. The file appears atomically: a temporary file in the same folder, then a rename.

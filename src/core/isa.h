@@ -15,7 +15,8 @@ namespace countershade {
 // is not a COUNTERSHADE_WITHOUT_AVX512 build, and allow_avx512 did not turn them off.
 bool has_avx512();
 // Turns the AVX-512 functions off (false) or on again where the processor has them (true, the
-// default). Both ways give the same bits; tests and benchmarks compare the two paths on one machine.
+// default). Both ways give the same bits; tests and benchmarks compare the two paths on one
+// machine.
 void allow_avx512(bool allow);
 
 // Lanes of doubles (and their 64-bit integers) for loops written once for any lane count: eight
@@ -24,8 +25,8 @@ void allow_avx512(bool allow);
 using NarrowLanes = double __attribute__((vector_size(32)));
 using NarrowLaneBits = int64_t __attribute__((vector_size(32)));
 #if defined(__clang__)
-// clang refuses 512-bit vectors as arguments of the (always-inline) helpers, so its builds (fuzzing,
-// sanitizers) take four lanes throughout; the values are the same.
+// clang refuses 512-bit vectors as arguments of the (always-inline) helpers, so its builds
+// (fuzzing, sanitizers) take four lanes throughout; the values are the same.
 using WideLanes = NarrowLanes;
 using WideLaneBits = NarrowLaneBits;
 #else
@@ -43,5 +44,6 @@ using WideLaneBits = int64_t __attribute__((vector_size(64)));
 #if defined(COUNTERSHADE_WITHOUT_AVX512)
 #define COUNTERSHADE_CLONES COUNTERSHADE_AVX2_CLONES
 #else
-#define COUNTERSHADE_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define COUNTERSHADE_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif

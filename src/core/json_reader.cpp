@@ -24,16 +24,19 @@ Json parse_strict(const std::string& text, const std::string& file) {
   std::string duplicate;
   auto check = [&](int, typename Json::parse_event_t event, Json& parsed) {
     using Event = typename Json::parse_event_t;
-    if (event == Event::object_start) keys.emplace_back();
-    else if (event == Event::object_end && !keys.empty()) keys.pop_back();
-    else if (event == Event::key && !keys.empty() && !keys.back().insert(parsed.template get<std::string>()).second &&
-             duplicate.empty())
+    if (event == Event::object_start)
+      keys.emplace_back();
+    else if (event == Event::object_end && !keys.empty())
+      keys.pop_back();
+    else if (event == Event::key && !keys.empty() &&
+             !keys.back().insert(parsed.template get<std::string>()).second && duplicate.empty())
       duplicate = parsed.template get<std::string>();
     return true;
   };
   try {
     Json value = Json::parse(text, check);
-    if (!duplicate.empty()) throw_input_error(file, "the key '" + duplicate + "' appears twice in one object");
+    if (!duplicate.empty())
+      throw_input_error(file, "the key '" + duplicate + "' appears twice in one object");
     return value;
   } catch (const nlohmann::json::exception& e) {
     // nlohmann's message starts with "[json.exception.parse_error.101] "; keep the readable part.
@@ -66,15 +69,22 @@ nlohmann::ordered_json parse_ordered_json_text(const std::string& text, const st
 
 std::string json_type_name(const json& value) {
   switch (value.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return "a boolean";
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return "a boolean";
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "a number";
-    case json::value_t::string: return "a string";
-    case json::value_t::array: return "an array";
-    case json::value_t::object: return "an object";
-    default: return "an unsupported value";
+    case json::value_t::number_float:
+      return "a number";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "an unsupported value";
   }
 }
 
@@ -114,7 +124,8 @@ double JsonObject::number(const std::string& key) const {
 
 long long JsonObject::integer(const std::string& key) const {
   const json& v = at(key);
-  if (v.is_number_unsigned() && v.get<unsigned long long>() > 9007199254740992ull)  // 2^53: beyond every limit
+  if (v.is_number_unsigned() &&
+      v.get<unsigned long long>() > 9007199254740992ull)  // 2^53: beyond every limit
     fail(key, "got " + std::to_string(v.get<unsigned long long>()) + ", which is too large");
   if (v.is_number_integer() || v.is_number_unsigned()) return v.get<long long>();
   if (v.is_number_float()) {

@@ -4,13 +4,12 @@
 // read are reported as unknown, which catches typos.
 
 #include <filesystem>
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
-#include <nlohmann/json.hpp>
 
 namespace countershade {
 
@@ -43,7 +42,7 @@ class JsonObject {
   JsonObject object(const std::string& key) const;
   std::vector<JsonObject> objects(const std::string& key) const;  // array of objects
   std::vector<double> numbers(const std::string& key) const;      // array of numbers
-  const nlohmann::json& raw(const std::string& key) const;       // marks the key as read
+  const nlohmann::json& raw(const std::string& key) const;        // marks the key as read
 
   // Optional values: the fallback when the key is absent.
   double number_or(const std::string& key, double fallback) const;
@@ -54,7 +53,8 @@ class JsonObject {
 
   // Range checks that report with the key path.
   double number_in(const std::string& key, double fallback, double lo, double hi) const;
-  long long integer_in(const std::string& key, long long fallback, long long lo, long long hi) const;
+  long long integer_in(const std::string& key, long long fallback, long long lo,
+                       long long hi) const;
   // A string that must be one of `choices`.
   std::string choice(const std::string& key, const std::string& fallback,
                      const std::vector<std::string>& choices) const;

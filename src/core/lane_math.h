@@ -29,7 +29,8 @@ template <typename D>
     return std::sqrt(x);
   } else {
     D out = x;
-    for (int lane = 0; lane < int(sizeof(D) / sizeof(double)); ++lane) out[lane] = __builtin_sqrt(x[lane]);
+    for (int lane = 0; lane < int(sizeof(D) / sizeof(double)); ++lane)
+      out[lane] = __builtin_sqrt(x[lane]);
     return out;
   }
 }
@@ -70,13 +71,15 @@ template <typename D>
 // then Taylor polynomials in r (the first omitted terms are below 5e-17 there).
 template <typename D>
 [[gnu::always_inline]] inline void sincos_lanes(D theta, D& sin_out, D& cos_out) {
-  constexpr double kSin[] = {-1.0 / 1307674368000.0, 1.0 / 6227020800.0, -1.0 / 39916800.0, 1.0 / 362880.0,
-                             -1.0 / 5040.0,          1.0 / 120.0,        -1.0 / 6.0};
-  constexpr double kCos[] = {1.0 / 20922789888000.0, -1.0 / 87178291200.0, 1.0 / 479001600.0, -1.0 / 3628800.0,
-                             1.0 / 40320.0,          -1.0 / 720.0,         1.0 / 24.0};
+  constexpr double kSin[] = {
+      -1.0 / 1307674368000.0, 1.0 / 6227020800.0, -1.0 / 39916800.0, 1.0 / 362880.0,
+      -1.0 / 5040.0,          1.0 / 120.0,        -1.0 / 6.0};
+  constexpr double kCos[] = {
+      1.0 / 20922789888000.0, -1.0 / 87178291200.0, 1.0 / 479001600.0, -1.0 / 3628800.0,
+      1.0 / 40320.0,          -1.0 / 720.0,         1.0 / 24.0};
   constexpr double kTwoOverPi = 0.6366197723675814, kRound = 6755399441055744.0;  // 1.5·2^52
   constexpr double kHalfPiHigh = 1.5707963267948966, kHalfPiLow = 6.123233995736766e-17;
-  const D k = (theta * kTwoOverPi + kRound) - kRound;  // nearest integer (the sum rounds it)
+  const D k = (theta * kTwoOverPi + kRound) - kRound;      // nearest integer (the sum rounds it)
   const D r = (theta - k * kHalfPiHigh) - k * kHalfPiLow;  // k·high is exact for k ≤ 2
   const D r2 = r * r;
   const D s = r + r * r2 * horner_lanes(r2, kSin);
@@ -90,10 +93,20 @@ template <typename D>
 // 2^n made from the exponent bits. I: int64_t, or the GCC vector of int64 lanes matching D.
 template <typename D, typename I>
 [[gnu::always_inline]] inline D exp_lanes(D x) {
-  constexpr double kTaylor[] = {1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0,
-                                1.0 / 362880.0,     1.0 / 40320.0,     1.0 / 5040.0,     1.0 / 720.0,
-                                1.0 / 120.0,        1.0 / 24.0,        1.0 / 6.0,        0.5,
-                                1.0,                1.0};
+  constexpr double kTaylor[] = {1.0 / 6227020800.0,
+                                1.0 / 479001600.0,
+                                1.0 / 39916800.0,
+                                1.0 / 3628800.0,
+                                1.0 / 362880.0,
+                                1.0 / 40320.0,
+                                1.0 / 5040.0,
+                                1.0 / 720.0,
+                                1.0 / 120.0,
+                                1.0 / 24.0,
+                                1.0 / 6.0,
+                                0.5,
+                                1.0,
+                                1.0};
   constexpr double kLog2e = 1.4426950408889634, kRound = 6755399441055744.0;
   // ln 2 in two parts; the first has 32 significant bits, so n·high is exact for |n| < 2^21.
   constexpr double kLn2High = 6.93147180369123816490e-01, kLn2Low = 1.90821492927058770002e-10;

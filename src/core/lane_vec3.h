@@ -38,7 +38,8 @@ template <typename D>
 }
 // Per lane: a where the mask is set, else b.
 template <typename D, typename M>
-[[gnu::always_inline]] inline Vec3Lanes<D> select_lanes(const M& mask, const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) {
+[[gnu::always_inline]] inline Vec3Lanes<D> select_lanes(const M& mask, const Vec3Lanes<D>& a,
+                                                        const Vec3Lanes<D>& b) {
   return {mask ? a.x : b.x, mask ? a.y : b.y, mask ? a.z : b.z};
 }
 
@@ -52,7 +53,8 @@ template <typename D, size_t N>
   return v;
 }
 template <typename D, size_t N>
-[[gnu::always_inline]] inline void store_lanes(const Vec3Lanes<D>& v, double (&planes)[3][N], size_t first) {
+[[gnu::always_inline]] inline void store_lanes(const Vec3Lanes<D>& v, double (&planes)[3][N],
+                                               size_t first) {
   std::memcpy(planes[0] + first, &v.x, sizeof v.x);
   std::memcpy(planes[1] + first, &v.y, sizeof v.y);
   std::memcpy(planes[2] + first, &v.z, sizeof v.z);

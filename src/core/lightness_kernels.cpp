@@ -1,11 +1,11 @@
 #include "core/lightness_kernels.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <bit>
 #include <cstring>
 #include <type_traits>
-
-#include <immintrin.h>
 
 #include "core/isa.h"
 #include "core/lane_math.h"
@@ -30,14 +30,15 @@ struct RgbLanes {
   D r, g, b;
 };
 // Vectors go by reference in and out of these helpers: clang refuses 512-bit vectors passed or
-// returned by value in a function compiled without AVX-512, even when it is inlined into one with it.
-// CIELAB's inverse f times a white component.
+// returned by value in a function compiled without AVX-512, even when it is inlined into one with
+// it. CIELAB's inverse f times a white component.
 template <typename D>
 [[gnu::always_inline]] inline void lab_f_inverse_lanes(const D& t, double white, D& out) {
   out = (t > 0.2068966 ? t * t * t : (t - 16.0 / 116.0) * color_constants::k1_7787) * white;
 }
 template <typename D>
-[[gnu::always_inline]] inline RgbLanes<D> lightness_to_rgb(const D& L, const D& a, const D& b, const D& target) {
+[[gnu::always_inline]] inline RgbLanes<D> lightness_to_rgb(const D& L, const D& a, const D& b,
+                                                           const D& target) {
   using namespace color_constants;
   const auto& m = kXyzToRgb.m;
   const D Lc = target < 0.0 ? 0.0 : (target > 100.0 ? 100.0 : target);
@@ -100,8 +101,10 @@ struct Rgb4 {
 // compiled for AVX2 and for any x86-64 (chosen at run time); with no fused multiply-adds both
 // give the same bits. (AVX2 gathers of four lanes were tried for the table lookups: slower here.)
 template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, double, float*)>
-[[gnu::always_inline]] inline size_t compose_block(const Lab* lab, const float* in, const double* delta, size_t count,
-                                                   const CodeQuantizer::Table& table, double inverse_levels, float* out) {
+[[gnu::always_inline]] inline size_t compose_block(const Lab* lab, const float* in,
+                                                   const double* delta, size_t count,
+                                                   const CodeQuantizer::Table& table,
+                                                   double inverse_levels, float* out) {
   size_t clipped = 0;
   for (size_t k = 0; k + 4 <= count; k += 4) {
     float* o = out + 3 * k;
@@ -115,14 +118,19 @@ template <void (*Quantize)(const Rgb4&, const CodeQuantizer::Table&, double, flo
     std::memcpy(&v1, reinterpret_cast<const double*>(&lab[k]) + 4, sizeof v1);
     std::memcpy(&v2, reinterpret_cast<const double*>(&lab[k]) + 8, sizeof v2);
     std::memcpy(&d, delta + k, sizeof d);
-    const v4d L = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 0, 3, 6, 6), v2, 0, 1, 2, 5);
-    const v4d a = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 1, 4, 7, 7), v2, 0, 1, 2, 6);
-    const v4d b = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 2, 5, 5, 5), v2, 0, 1, 4, 7);
+    const v4d L =
+        __builtin_shufflevector(__builtin_shufflevector(v0, v1, 0, 3, 6, 6), v2, 0, 1, 2, 5);
+    const v4d a =
+        __builtin_shufflevector(__builtin_shufflevector(v0, v1, 1, 4, 7, 7), v2, 0, 1, 2, 6);
+    const v4d b =
+        __builtin_shufflevector(__builtin_shufflevector(v0, v1, 2, 5, 5, 5), v2, 0, 1, 4, 7);
     const Rgb4 rgb = lightness_to_rgb4(L, a, b, L + d);
     Quantize(rgb, table, inverse_levels, o);
     for (int lane = 0; lane < 4; ++lane) {
-      if (d[lane] == 0.0) std::copy(in + 3 * (k + lane), in + 3 * (k + lane) + 3, o + 3 * lane);
-      else clipped += rgb.clipped[lane] != 0;
+      if (d[lane] == 0.0)
+        std::copy(in + 3 * (k + lane), in + 3 * (k + lane) + 3, o + 3 * lane);
+      else
+        clipped += rgb.clipped[lane] != 0;
     }
   }
   return clipped;
@@ -147,19 +155,25 @@ size_t compose_block_fast(const Lab* lab, const float* in, const double* delta, 
 #endif
 
 // The code values (code / levels) of eight linear values, clamped as clamp_unit4 does.
-COUNTERSHADE_AVX512 inline __m256 quantize8(__m512d c, const CodeQuantizer::Table& table, __m512d inverse_levels) {
+COUNTERSHADE_AVX512 inline __m256 quantize8(__m512d c, const CodeQuantizer::Table& table,
+                                            __m512d inverse_levels) {
   const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
-  c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(c, zero, _CMP_LT_OQ), c, zero);  // NaN stays, as there
+  c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(c, zero, _CMP_LT_OQ), c,
+                           zero);  // NaN stays, as there
   c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(c, one, _CMP_GT_OQ), c, one);
   const __m512i bits = _mm512_castpd_si512(c);
   const __m512i raw = _mm512_sub_epi64(_mm512_sra_epi64(bits, _mm_cvtsi32_si128(table.shift)),
                                        _mm512_set1_epi64(table.offset));
   const __mmask8 inside = _mm512_cmpge_epi64_mask(raw, _mm512_setzero_si512());  // x ≥ 2^-30
-  const __m512i bucket = _mm512_min_epi64(_mm512_max_epi64(raw, _mm512_setzero_si512()), _mm512_set1_epi64(table.last));
-  const __m512i word = _mm512_i64gather_epi64(bucket, reinterpret_cast<const long long*>(table.packed), 8);
+  const __m512i bucket = _mm512_min_epi64(_mm512_max_epi64(raw, _mm512_setzero_si512()),
+                                          _mm512_set1_epi64(table.last));
+  const __m512i word =
+      _mm512_i64gather_epi64(bucket, reinterpret_cast<const long long*>(table.packed), 8);
   const __m512i low = _mm512_set1_epi64(int64_t((uint64_t(1) << table.shift) - 1));
-  const __mmask8 above = inside & _mm512_cmpge_epu64_mask(_mm512_and_si512(bits, low),
-                                                          _mm512_and_si512(word, _mm512_set1_epi64(int64_t(CodeQuantizer::kLowBits))));
+  const __mmask8 above =
+      inside & _mm512_cmpge_epu64_mask(
+                   _mm512_and_si512(bits, low),
+                   _mm512_and_si512(word, _mm512_set1_epi64(int64_t(CodeQuantizer::kLowBits))));
   const __m512i below = _mm512_srli_epi64(word, 48);
   const __m512i code = _mm512_mask_add_epi64(below, above, below, _mm512_set1_epi64(1));
   return _mm512_cvtpd_ps(_mm512_mul_pd(_mm512_cvtepi64_pd(code), inverse_levels));
@@ -182,9 +196,12 @@ COUNTERSHADE_AVX512 inline Rgb8 lightness_to_rgb8(const Lab* lab, const double* 
   std::memcpy(&v1, p + 8, sizeof v1);
   std::memcpy(&v2, p + 16, sizeof v2);
   std::memcpy(&d, delta, sizeof d);
-  const v8d L = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 0, 3, 6, 9, 12, 15, 0, 0), v2, 0, 1, 2, 3, 4, 5, 10, 13);
-  const v8d a = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 1, 4, 7, 10, 13, 0, 0, 0), v2, 0, 1, 2, 3, 4, 8, 11, 14);
-  const v8d b = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 2, 5, 8, 11, 14, 0, 0, 0), v2, 0, 1, 2, 3, 4, 9, 12, 15);
+  const v8d L = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 0, 3, 6, 9, 12, 15, 0, 0),
+                                        v2, 0, 1, 2, 3, 4, 5, 10, 13);
+  const v8d a = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 1, 4, 7, 10, 13, 0, 0, 0),
+                                        v2, 0, 1, 2, 3, 4, 8, 11, 14);
+  const v8d b = __builtin_shufflevector(__builtin_shufflevector(v0, v1, 2, 5, 8, 11, 14, 0, 0, 0),
+                                        v2, 0, 1, 2, 3, 4, 9, 12, 15);
   const v8d target = L + d;
   return {lightness_to_rgb(L, a, b, target), target};
 }
@@ -211,33 +228,40 @@ COUNTERSHADE_AVX512 inline __mmask8 clip_mask8(const RgbLanes<v8d>& rgb, v8d tar
 
 // Writes eight pixels' codes interleaved as RGB, keeping the input's floats where `keep` (one bit
 // per float) is set.
-COUNTERSHADE_AVX512 inline void store_rgb8(__m256 r, __m256 g, __m256 b, const float* in, uint32_t keep, float* out) {
+COUNTERSHADE_AVX512 inline void store_rgb8(__m256 r, __m256 g, __m256 b, const float* in,
+                                           uint32_t keep, float* out) {
   const __m512 rg = _mm512_insertf32x8(_mm512_castps256_ps512(r), g, 1);
   const __m512 bb = _mm512_castps256_ps512(b);
   const __m512i first = _mm512_setr_epi32(0, 8, 16, 1, 9, 17, 2, 10, 18, 3, 11, 19, 4, 12, 20, 5);
   const __m256i last = _mm256_setr_epi32(13, 21, 6, 14, 22, 7, 15, 23);
   const __m512 head = _mm512_permutex2var_ps(rg, first, bb);
-  const __m256 tail = _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, _mm512_castsi256_si512(last), bb));
+  const __m256 tail =
+      _mm512_castps512_ps256(_mm512_permutex2var_ps(rg, _mm512_castsi256_si512(last), bb));
   // Masked loads read only the kept floats: with none kept (the usual case) the input's memory is
   // not read at all.
   _mm512_storeu_ps(out, _mm512_mask_loadu_ps(head, __mmask16(keep), in));
   _mm256_storeu_ps(out + 16, _mm256_mask_loadu_ps(tail, __mmask8(keep >> 16), in + 16));
 }
 
-COUNTERSHADE_AVX512 size_t compose_block_avx512(const Lab* lab, const float* in, const double* delta, size_t count,
-                                                const CodeQuantizer::Table& table, double inverse_levels, float* out) {
+COUNTERSHADE_AVX512 size_t compose_block_avx512(const Lab* lab, const float* in,
+                                                const double* delta, size_t count,
+                                                const CodeQuantizer::Table& table,
+                                                double inverse_levels, float* out) {
   size_t clipped = 0;
   const __m512d inverse = _mm512_set1_pd(inverse_levels);
   for (size_t k = 0; k + 8 <= count; k += 8) {
-    const __mmask8 unchanged = _mm512_cmp_pd_mask(_mm512_loadu_pd(delta + k), _mm512_setzero_pd(), _CMP_EQ_OQ);
+    const __mmask8 unchanged =
+        _mm512_cmp_pd_mask(_mm512_loadu_pd(delta + k), _mm512_setzero_pd(), _CMP_EQ_OQ);
     if (unchanged == 0xff) {
       std::copy(in + 3 * k, in + 3 * k + 24, out + 3 * k);  // background, λ = 0
       continue;
     }
     const Rgb8 pixels = lightness_to_rgb8(lab + k, delta + k);
     const RgbLanes<v8d>& rgb = pixels.rgb;
-    store_rgb8(quantize8(as_m512d(rgb.r), table, inverse), quantize8(as_m512d(rgb.g), table, inverse),
-               quantize8(as_m512d(rgb.b), table, inverse), in + 3 * k, channel_mask(unchanged), out + 3 * k);
+    store_rgb8(quantize8(as_m512d(rgb.r), table, inverse),
+               quantize8(as_m512d(rgb.g), table, inverse),
+               quantize8(as_m512d(rgb.b), table, inverse), in + 3 * k, channel_mask(unchanged),
+               out + 3 * k);
     clipped += size_t(std::popcount(uint32_t(clip_mask8(rgb, pixels.target) & ~unchanged)));
   }
   return clipped;
@@ -273,9 +297,12 @@ template <typename D>
 [[gnu::always_inline]] inline void store_lab_lanes(const D& L, const D& a, const D& b, Lab* out) {
   D v[3];
   if constexpr (sizeof(D) == 64) {
-    v[0] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 8, 0, 1, 9, 0, 2, 10), b, 0, 1, 8, 3, 4, 9, 6, 7);
-    v[1] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 3, 11, 0, 4, 12, 0, 5), b, 10, 1, 2, 11, 4, 5, 12, 7);
-    v[2] = __builtin_shufflevector(__builtin_shufflevector(L, a, 13, 0, 6, 14, 0, 7, 15, 0), b, 0, 13, 2, 3, 14, 5, 6, 15);
+    v[0] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 8, 0, 1, 9, 0, 2, 10), b, 0, 1,
+                                   8, 3, 4, 9, 6, 7);
+    v[1] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 3, 11, 0, 4, 12, 0, 5), b, 10,
+                                   1, 2, 11, 4, 5, 12, 7);
+    v[2] = __builtin_shufflevector(__builtin_shufflevector(L, a, 13, 0, 6, 14, 0, 7, 15, 0), b, 0,
+                                   13, 2, 3, 14, 5, 6, 15);
   } else {
     v[0] = __builtin_shufflevector(__builtin_shufflevector(L, a, 0, 4, 0, 1), b, 0, 1, 4, 3);
     v[1] = __builtin_shufflevector(__builtin_shufflevector(L, a, 5, 0, 2, 6), b, 0, 5, 2, 3);
@@ -293,7 +320,8 @@ template <typename D>
 
 // Lanes of R, G and B from three planes, from pixel k on.
 template <typename D>
-[[gnu::always_inline]] inline RgbLanes<D> load_rgb_lanes(const double* r, const double* g, const double* b, size_t k) {
+[[gnu::always_inline]] inline RgbLanes<D> load_rgb_lanes(const double* r, const double* g,
+                                                         const double* b, size_t k) {
   RgbLanes<D> out;
   std::memcpy(&out.r, r + k, sizeof out.r);
   std::memcpy(&out.g, g + k, sizeof out.g);
@@ -304,8 +332,9 @@ template <typename D>
 // linear_rgb_to_lab on the lanes of D at once (eight or four pixels), lane by lane the operations
 // of the scalar code in core/color.
 template <typename D, typename I>
-[[gnu::always_inline]] inline void linear_to_lab_lanes(const double* r, const double* g, const double* b, size_t count,
-                                                       Lab* out, float* lightness) {
+[[gnu::always_inline]] inline void linear_to_lab_lanes(const double* r, const double* g,
+                                                       const double* b, size_t count, Lab* out,
+                                                       float* lightness) {
   using namespace color_constants;
   constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
@@ -314,7 +343,8 @@ template <typename D, typename I>
     const D X = kRgbToXyz[0][0] * R + kRgbToXyz[0][1] * G + kRgbToXyz[0][2] * B;
     const D Y = kRgbToXyz[1][0] * R + kRgbToXyz[1][1] * G + kRgbToXyz[1][2] * B;
     const D Z = kRgbToXyz[2][0] * R + kRgbToXyz[2][1] * G + kRgbToXyz[2][2] * B;
-    const D fx = lab_f_lanes<D, I>(X * kInverseWhite[0]), fy = lab_f_lanes<D, I>(Y * kInverseWhite[1]),
+    const D fx = lab_f_lanes<D, I>(X * kInverseWhite[0]),
+            fy = lab_f_lanes<D, I>(Y * kInverseWhite[1]),
             fz = lab_f_lanes<D, I>(Z * kInverseWhite[2]);
     const D L = 116.0 * fy - 16.0, a = 500.0 * (fx - fy), bb = 200.0 * (fy - fz);
     store_lab_lanes(L, a, bb, out + k);
@@ -331,20 +361,23 @@ template <typename D, typename I>
 }
 
 COUNTERSHADE_AVX512_FUNCTION
-void linear_to_lab_avx512(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+void linear_to_lab_avx512(const double* r, const double* g, const double* b, size_t count, Lab* out,
+                          float* lightness) {
   linear_to_lab_lanes<WideLanes, WideLaneBits>(r, g, b, count, out, lightness);
 }
 
 COUNTERSHADE_AVX2_CLONES
-void linear_to_lab_avx2(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+void linear_to_lab_avx2(const double* r, const double* g, const double* b, size_t count, Lab* out,
+                        float* lightness) {
   linear_to_lab_lanes<NarrowLanes, NarrowLaneBits>(r, g, b, count, out, lightness);
 }
 
 // L* alone, by the operations that give linear_to_lab_lanes its L*: the same values, a third of
 // the cube roots and none of the stores of a* and b*.
 template <typename D, typename I>
-[[gnu::always_inline]] inline void linear_to_lightness_lanes(const double* r, const double* g, const double* b,
-                                                             size_t count, double* lightness) {
+[[gnu::always_inline]] inline void linear_to_lightness_lanes(const double* r, const double* g,
+                                                             const double* b, size_t count,
+                                                             double* lightness) {
   using namespace color_constants;
   constexpr int N = sizeof(D) / sizeof(double);
   for (size_t k = 0; k + N <= count; k += N) {
@@ -353,16 +386,19 @@ template <typename D, typename I>
     const D L = 116.0 * lab_f_lanes<D, I>(Y * kInverseWhite[1]) - 16.0;
     std::memcpy(lightness + k, &L, sizeof L);
   }
-  for (size_t k = count / N * N; k < count; ++k) lightness[k] = linear_rgb_to_lab({r[k], g[k], b[k]}).L;
+  for (size_t k = count / N * N; k < count; ++k)
+    lightness[k] = linear_rgb_to_lab({r[k], g[k], b[k]}).L;
 }
 
 COUNTERSHADE_AVX512_FUNCTION
-void linear_to_lightness_avx512(const double* r, const double* g, const double* b, size_t count, double* lightness) {
+void linear_to_lightness_avx512(const double* r, const double* g, const double* b, size_t count,
+                                double* lightness) {
   linear_to_lightness_lanes<WideLanes, WideLaneBits>(r, g, b, count, lightness);
 }
 
 COUNTERSHADE_AVX2_CLONES
-void linear_to_lightness_avx2(const double* r, const double* g, const double* b, size_t count, double* lightness) {
+void linear_to_lightness_avx2(const double* r, const double* g, const double* b, size_t count,
+                              double* lightness) {
   linear_to_lightness_lanes<NarrowLanes, NarrowLaneBits>(r, g, b, count, lightness);
 }
 
@@ -378,11 +414,13 @@ template <typename F, typename I>
 
 }  // namespace
 
-void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out, float* lightness) {
+void linear_to_lab_block(const double* r, const double* g, const double* b, size_t count, Lab* out,
+                         float* lightness) {
   (has_avx512() ? linear_to_lab_avx512 : linear_to_lab_avx2)(r, g, b, count, out, lightness);
 }
 
-void linear_to_lightness_block(const double* r, const double* g, const double* b, size_t count, double* lightness) {
+void linear_to_lightness_block(const double* r, const double* g, const double* b, size_t count,
+                               double* lightness) {
   (has_avx512() ? linear_to_lightness_avx512 : linear_to_lightness_avx2)(r, g, b, count, lightness);
 }
 
@@ -408,8 +446,8 @@ bool exact_codes(const float* values, size_t n, float levels, int32_t* code) {
 // The table's values of the codes of `count` RGB pixels (code[3k + channel]), one plane per
 // channel. Scalar loads: AVX-512 gathers of the same loop measured slower (11 % of the conversion
 // against 19 %).
-void gather_planes(const int32_t* __restrict code, size_t count, const double* __restrict table, double* __restrict r,
-                   double* __restrict g, double* __restrict b) {
+void gather_planes(const int32_t* __restrict code, size_t count, const double* __restrict table,
+                   double* __restrict r, double* __restrict g, double* __restrict b) {
   for (size_t k = 0; k < count; ++k) {
     r[k] = table[code[3 * k]];
     g[k] = table[code[3 * k + 1]];
@@ -423,21 +461,22 @@ LightnessComposer::LightnessComposer(const CodeQuantizer& quantizer, int bits)
       inverse_levels_(1.0 / double(float((1u << bits) - 1u))),  // see code_fraction
       eight_(has_avx512()) {}
 
-size_t LightnessComposer::compose(const Lab* lab, const float* source, const double* delta, size_t count,
-                                  float* target) const {
+size_t LightnessComposer::compose(const Lab* lab, const float* source, const double* delta,
+                                  size_t count, float* target) const {
   size_t clipped = 0, done = 0;
-  if (table_ && eight_) {  // never called elsewhere: its code needs AVX-512 from its first instruction
+  if (table_ &&
+      eight_) {  // never called elsewhere: its code needs AVX-512 from its first instruction
     done = count / 8 * 8;
     clipped += compose_block_avx512(lab, source, delta, done, *table_, inverse_levels_, target);
   }
   if (table_) {
     const size_t four = (count - done) / 4 * 4;
-    clipped += compose_block_fast(lab + done, source + 3 * done, delta + done, four, *table_, inverse_levels_,
-                                  target + 3 * done);
+    clipped += compose_block_fast(lab + done, source + 3 * done, delta + done, four, *table_,
+                                  inverse_levels_, target + 3 * done);
     done += four;
   }
-  return clipped + compose_block_slow(lab + done, source + 3 * done, delta + done, count - done, quantizer_,
-                                      target + 3 * done);
+  return clipped + compose_block_slow(lab + done, source + 3 * done, delta + done, count - done,
+                                      quantizer_, target + 3 * done);
 }
 
 }  // namespace countershade

@@ -2,10 +2,10 @@
 // Parallel loops on a chosen number of threads (TBB), the one place that turns "0 = all cores"
 // into an arena.
 
+#include <tbb/task_arena.h>
+
 #include <cstddef>
 #include <functional>
-
-#include <tbb/task_arena.h>
 
 namespace countershade {
 
@@ -21,7 +21,9 @@ void run_with_threads(int threads, Work&& work) {
   arena.execute(std::forward<Work>(work));
 }
 
-// Runs `body(begin, end)` over [0, n) on worker_count(threads) threads, in chunks of at least `grain`.
-void parallel_ranges(size_t n, int threads, const std::function<void(size_t, size_t)>& body, size_t grain = 1);
+// Runs `body(begin, end)` over [0, n) on worker_count(threads) threads, in chunks of at least
+// `grain`.
+void parallel_ranges(size_t n, int threads, const std::function<void(size_t, size_t)>& body,
+                     size_t grain = 1);
 
 }  // namespace countershade

@@ -50,15 +50,17 @@ std::string kebab_case(const std::string& key) {
   return out;
 }
 
-ParameterBag ParameterBag::from_json(const nlohmann::json& object, const std::string& file, const std::string& path,
-                                     const std::set<std::string>& skip) {
+ParameterBag ParameterBag::from_json(const nlohmann::json& object, const std::string& file,
+                                     const std::string& path, const std::set<std::string>& skip) {
   ParameterBag bag;
   if (!object.is_object())
-    throw_input_error(file + (path.empty() ? "" : ": " + path), "expected an object, got " + json_type_name(object));
+    throw_input_error(file + (path.empty() ? "" : ": " + path),
+                      "expected an object, got " + json_type_name(object));
   for (auto it = object.begin(); it != object.end(); ++it) {
     if (skip.count(it.key())) continue;
     const size_t order = bag.entries_.size();
-    bag.entries_[it.key()] = {it.value(), file + ": " + (path.empty() ? "" : path + ".") + it.key(), false, order};
+    bag.entries_[it.key()] = {it.value(), file + ": " + (path.empty() ? "" : path + ".") + it.key(),
+                              false, order};
   }
   return bag;
 }
@@ -113,7 +115,9 @@ std::string ParameterBag::where(const std::string& key) const {
   return command_line_ ? "--" + kebab_case(key) : key;
 }
 
-void ParameterBag::fail(const std::string& key, const std::string& what) const { throw_input_error(where(key), what); }
+void ParameterBag::fail(const std::string& key, const std::string& what) const {
+  throw_input_error(where(key), what);
+}
 
 std::optional<double> ParameterBag::optional_number(const std::string& key) const {
   const Entry* e = find(key);
@@ -134,21 +138,27 @@ double ParameterBag::number(const std::string& key, double fallback) const {
   return optional_number(key).value_or(fallback);
 }
 
-double ParameterBag::number_in(const std::string& key, double fallback, double lo, double hi) const {
+double ParameterBag::number_in(const std::string& key, double fallback, double lo,
+                               double hi) const {
   double v = number(key, fallback);
-  if (v < lo || v > hi) fail(key, "must be in [" + format_bound(lo) + ", " + format_bound(hi) + "], got " + format_bound(v));
+  if (v < lo || v > hi)
+    fail(key,
+         "must be in [" + format_bound(lo) + ", " + format_bound(hi) + "], got " + format_bound(v));
   return v;
 }
 
-std::optional<long long> ParameterBag::optional_integer(const std::string& key, long long lo, long long hi) const {
+std::optional<long long> ParameterBag::optional_integer(const std::string& key, long long lo,
+                                                        long long hi) const {
   auto v = optional_number(key);
   if (!v) return std::nullopt;
   if (*v != std::floor(*v) || *v < double(lo) || *v > double(hi))
-    fail(key, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + format_bound(*v));
+    fail(key, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                  "], got " + format_bound(*v));
   return (long long)*v;
 }
 
-long long ParameterBag::integer_in(const std::string& key, long long fallback, long long lo, long long hi) const {
+long long ParameterBag::integer_in(const std::string& key, long long fallback, long long lo,
+                                   long long hi) const {
   fallbacks_[key] = fallback;
   return optional_integer(key, lo, hi).value_or(fallback);
 }
@@ -158,7 +168,8 @@ bool ParameterBag::boolean(const std::string& key, bool fallback) const {
   const Entry* e = find(key);
   if (!e) return fallback;
   if (!e->from_text) {
-    if (!e->value.is_boolean()) fail(key, "expected true or false, got " + json_type_name(e->value));
+    if (!e->value.is_boolean())
+      fail(key, "expected true or false, got " + json_type_name(e->value));
     return e->value.get<bool>();
   }
   const std::string t = e->value.get<std::string>();
@@ -192,7 +203,8 @@ std::string ParameterBag::choice(const std::string& key, const std::string& fall
   fail(key, "unknown value '" + v + "' (expected one of: " + list + ")");
 }
 
-std::vector<double> ParameterBag::numbers(const std::string& key, const std::vector<double>& fallback) const {
+std::vector<double> ParameterBag::numbers(const std::string& key,
+                                          const std::vector<double>& fallback) const {
   fallbacks_[key] = fallback;
   const Entry* e = find(key);
   if (!e) return fallback;
@@ -200,15 +212,19 @@ std::vector<double> ParameterBag::numbers(const std::string& key, const std::vec
   if (e->from_text) {
     for (const auto& part : split_commas(e->value.get<std::string>())) {
       auto v = parse_number(part);
-      if (!v) fail(key, "expected comma-separated finite numbers, got '" + e->value.get<std::string>() + "'");
+      if (!v)
+        fail(key,
+             "expected comma-separated finite numbers, got '" + e->value.get<std::string>() + "'");
       out.push_back(*v);
     }
     return out;
   }
   if (e->value.is_number()) return {number(key, 0)};
-  if (!e->value.is_array()) fail(key, "expected an array of numbers, got " + json_type_name(e->value));
+  if (!e->value.is_array())
+    fail(key, "expected an array of numbers, got " + json_type_name(e->value));
   for (const auto& v : e->value) {
-    if (!v.is_number() || !std::isfinite(v.get<double>())) fail(key, "expected an array of finite numbers");
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      fail(key, "expected an array of finite numbers");
     out.push_back(v.get<double>());
   }
   return out;
@@ -217,27 +233,32 @@ std::vector<double> ParameterBag::numbers(const std::string& key, const std::vec
 glm::dvec3 ParameterBag::vec3(const std::string& key, const glm::dvec3& fallback) const {
   const bool given = has(key);
   std::vector<double> v = given ? numbers(key, {}) : std::vector<double>{};
-  fallbacks_[key] = std::vector<double>{fallback.x, fallback.y, fallback.z};  // after numbers(), which records {}
+  fallbacks_[key] =
+      std::vector<double>{fallback.x, fallback.y, fallback.z};  // after numbers(), which records {}
   if (!given) return fallback;
   if (v.size() == 1) return glm::dvec3(v[0]);
-  if (v.size() != 3) fail(key, command_line_ ? "expected three numbers R,G,B" : "expected an array of 3 numbers");
+  if (v.size() != 3)
+    fail(key, command_line_ ? "expected three numbers R,G,B" : "expected an array of 3 numbers");
   return {v[0], v[1], v[2]};
 }
 
 std::string ParameterBag::known_list() const {
   std::string list;
-  for (const auto& k : known_) list += (list.empty() ? "" : ", ") + (command_line_ ? "--" + kebab_case(k) : k);
+  for (const auto& k : known_)
+    list += (list.empty() ? "" : ", ") + (command_line_ ? "--" + kebab_case(k) : k);
   return list.empty() ? "it takes no parameters" : list;
 }
 
 void ParameterBag::finish(const std::string& owner) const {
   const std::pair<const std::string, Entry>* first = nullptr;
   for (const auto& item : entries_)
-    if (!known_.count(item.first) && (!first || item.second.order < first->second.order)) first = &item;
+    if (!known_.count(item.first) && (!first || item.second.order < first->second.order))
+      first = &item;
   if (!first) return;
   const auto& [key, entry] = *first;
-  throw_input_error(entry.where, owner + " has no parameter '" + (command_line_ ? kebab_case(key) : key) + "' (" +
-                                     (known_.empty() ? known_list() : "its parameters: " + known_list()) + ")");
+  throw_input_error(
+      entry.where, owner + " has no parameter '" + (command_line_ ? kebab_case(key) : key) + "' (" +
+                       (known_.empty() ? known_list() : "its parameters: " + known_list()) + ")");
 }
 
 nlohmann::ordered_json ParameterBag::to_json() const {

@@ -6,14 +6,13 @@
 // Keys are snake_case ("sigma_px"). On the command line they are written in kebab-case
 // ("--sigma-px 4", "--sigma-px=4"); a bare flag is true and "--no-adapt" sets "adapt" to false.
 
+#include <glm/vec3.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
-#include <nlohmann/json.hpp>
 
 namespace countershade {
 
@@ -22,8 +21,8 @@ class ParameterBag {
   ParameterBag() = default;
   // The keys of a JSON object, except `skip` (keys that the caller reads itself). Messages name
   // "<file>: <path>.<key>".
-  static ParameterBag from_json(const nlohmann::json& object, const std::string& file, const std::string& path,
-                                const std::set<std::string>& skip = {});
+  static ParameterBag from_json(const nlohmann::json& object, const std::string& file,
+                                const std::string& path, const std::set<std::string>& skip = {});
   // Command-line words. Throws InputError for a word that is not a "--name".
   static ParameterBag from_arguments(const std::vector<std::string>& words);
 
@@ -37,10 +36,13 @@ class ParameterBag {
   double number(const std::string& key, double fallback) const;
   std::optional<double> optional_number(const std::string& key) const;
   double number_in(const std::string& key, double fallback, double lo, double hi) const;
-  long long integer_in(const std::string& key, long long fallback, long long lo, long long hi) const;
-  std::optional<long long> optional_integer(const std::string& key, long long lo, long long hi) const;
+  long long integer_in(const std::string& key, long long fallback, long long lo,
+                       long long hi) const;
+  std::optional<long long> optional_integer(const std::string& key, long long lo,
+                                            long long hi) const;
   bool boolean(const std::string& key, bool fallback) const;
-  std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& choices) const;
+  std::string choice(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& choices) const;
   glm::dvec3 vec3(const std::string& key, const glm::dvec3& fallback) const;
   std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback) const;
   // The value as written (a JSON number, or the command line's text), for parameters with their

@@ -26,7 +26,9 @@ std::string chunk_name(std::string_view type) {
 
 }  // namespace
 
-bool has_png_signature(std::string_view bytes) { return bytes.substr(0, kSignature.size()) == kSignature; }
+bool has_png_signature(std::string_view bytes) {
+  return bytes.substr(0, kSignature.size()) == kSignature;
+}
 
 void check_png_chunks(const std::filesystem::path& path, std::string_view bytes) {
   const std::string file = path.string();
@@ -36,18 +38,21 @@ void check_png_chunks(const std::filesystem::path& path, std::string_view bytes)
   for (int index = 0;; ++index) {
     const std::string where = " at byte " + std::to_string(at);
     if (bytes.size() - at < 12)
-      throw_input_error(file, "truncated PNG: the file ends" + where + (index ? ", before the IEND chunk" : ""));
+      throw_input_error(
+          file, "truncated PNG: the file ends" + where + (index ? ", before the IEND chunk" : ""));
     const uint32_t length = big_endian(bytes, at);
     const std::string_view type = bytes.substr(at + 4, 4);
     const std::string name = "chunk " + chunk_name(type) + where;
     if (length > 0x7fffffffu || bytes.size() - at - 12 < length)
-      throw_input_error(file, "truncated PNG: " + name + " claims " + std::to_string(length) + " bytes, the file has " +
-                                  std::to_string(bytes.size() - at - 12) + " left");
+      throw_input_error(file, "truncated PNG: " + name + " claims " + std::to_string(length) +
+                                  " bytes, the file has " + std::to_string(bytes.size() - at - 12) +
+                                  " left");
     const uint32_t stored = big_endian(bytes, at + 8 + length);
     const auto* start = reinterpret_cast<const Bytef*>(bytes.data() + at + 4);
     if (uint32_t(crc32(crc32(0L, Z_NULL, 0), start, uInt(length + 4))) != stored)
       throw_input_error(file, "damaged PNG: " + name + " fails its CRC check");
-    if (index == 0 && type != "IHDR") throw_input_error(file, "damaged PNG: the first chunk is not IHDR");
+    if (index == 0 && type != "IHDR")
+      throw_input_error(file, "damaged PNG: the first chunk is not IHDR");
     image_data |= type == "IDAT";
     at += 12 + length;
     if (type == "IEND") break;

@@ -42,7 +42,8 @@ void Progress::update(double fraction) {
     int decile = int(fraction * 10);
     if (decile <= last_logged_decile_ || decile >= 10 || elapsed < 2.0) return;
     last_logged_decile_ = decile;
-    std::fprintf(stderr, "%s: %d%% (%s)\n", label_.c_str(), decile * 10, format_seconds(elapsed).c_str());
+    std::fprintf(stderr, "%s: %d%% (%s)\n", label_.c_str(), decile * 10,
+                 format_seconds(elapsed).c_str());
   }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// Progress reporting for long runs: a redrawn bar with ETA on a terminal, plain log lines otherwise.
+// Progress reporting for long runs: a redrawn bar with ETA on a terminal, plain log lines
+// otherwise.
 
 #include <chrono>
 #include <mutex>

@@ -1,6 +1,5 @@
 #include "core/sampler.h"
 
-
 namespace countershade {
 namespace {
 
@@ -24,7 +23,9 @@ uint32_t laine_karras(uint32_t x, uint32_t seed) {
 
 // An Owen scramble of x: reverse(laine_karras(reverse(x))). The callers pass values already
 // reversed where they can, which saves two reversals.
-uint32_t owen_of_reversed(uint32_t reversed, uint32_t seed) { return reverse_bits(laine_karras(reversed, seed)); }
+uint32_t owen_of_reversed(uint32_t reversed, uint32_t seed) {
+  return reverse_bits(laine_karras(reversed, seed));
+}
 
 // The second Sobol dimension (generator x + 1: v_i = v_(i−1) xor (v_(i−1) >> 1)), bit-reversed,
 // as XOR tables over the index's four bytes.
@@ -43,7 +44,8 @@ struct ReversedSecondDimension {
       }
   }
   uint32_t operator()(uint32_t k) const {
-    return byte[0][k & 255u] ^ byte[1][(k >> 8) & 255u] ^ byte[2][(k >> 16) & 255u] ^ byte[3][k >> 24];
+    return byte[0][k & 255u] ^ byte[1][(k >> 8) & 255u] ^ byte[2][(k >> 16) & 255u] ^
+           byte[3][k >> 24];
   }
 };
 constexpr ReversedSecondDimension kReversedSecond;
@@ -52,7 +54,9 @@ double to_unit(uint32_t x) { return double(x) * 0x1p-32; }
 
 // The shuffled index: an Owen scramble of the sample number, which keeps every aligned block of
 // 2^m numbers in one aligned block.
-uint32_t shuffled_index(uint32_t index, uint64_t seed) { return owen_of_reversed(reverse_bits(index), uint32_t(mix64(seed))); }
+uint32_t shuffled_index(uint32_t index, uint64_t seed) {
+  return owen_of_reversed(reverse_bits(index), uint32_t(mix64(seed)));
+}
 
 }  // namespace
 
@@ -67,7 +71,8 @@ glm::dvec2 scrambled_sobol_2d(uint32_t index, uint64_t seed) {
 Sampler::Sampler(SamplingMode mode, uint64_t seed, uint64_t domain, uint64_t index, uint32_t sample)
     : mode_(mode),
       stream_(seed, domain, index, sample),
-      base_(hash_combine(hash_combine(hash_combine(seed, domain ^ 0x5A17ull), index), uint64_t(replicate(sample)))),
+      base_(hash_combine(hash_combine(hash_combine(seed, domain ^ 0x5A17ull), index),
+                         uint64_t(replicate(sample)))),
       index_(sample >> 1) {}
 
 uint64_t Sampler::dimension_seed() { return hash_combine(base_, uint64_t(dimension_++)); }

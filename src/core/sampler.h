@@ -16,7 +16,6 @@
 // depend on threads or scheduling.
 
 #include <cstdint>
-
 #include <glm/vec2.hpp>
 
 #include "core/random.h"

@@ -20,7 +20,8 @@ std::vector<double> nice_ticks(double lo, double hi) {
       break;
     }
   std::vector<double> out;
-  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step) out.push_back(std::abs(t) < 1e-12 * span ? 0 : t);
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step)
+    out.push_back(std::abs(t) < 1e-12 * span ? 0 : t);
   return out;
 }
 
@@ -70,19 +71,19 @@ PlotFrame plot_frame(const LinePlot& plot) {
 // Gridlines with tick values, the plot area's outline and the axis labels.
 void plot_axes(std::ostringstream& svg, const LinePlot& plot, const PlotFrame& f) {
   for (double t : nice_ticks(f.x0, f.x1))
-    svg << "<line x1=\"" << f.px(t) << "\" y1=\"" << f.top << "\" x2=\"" << f.px(t) << "\" y2=\"" << f.top + f.ph
-        << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.px(t) << "\" y=\"" << f.top + f.ph + 16
-        << "\" text-anchor=\"middle\">" << t << "</text>\n";
+    svg << "<line x1=\"" << f.px(t) << "\" y1=\"" << f.top << "\" x2=\"" << f.px(t) << "\" y2=\""
+        << f.top + f.ph << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.px(t) << "\" y=\""
+        << f.top + f.ph + 16 << "\" text-anchor=\"middle\">" << t << "</text>\n";
   for (double t : nice_ticks(f.y0, f.y1))
-    svg << "<line x1=\"" << f.left << "\" y1=\"" << f.py(t) << "\" x2=\"" << f.left + f.pw << "\" y2=\"" << f.py(t)
-        << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.left - 6 << "\" y=\"" << f.py(t) + 4
-        << "\" text-anchor=\"end\">" << t << "</text>\n";
-  svg << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.pw << "\" height=\"" << f.ph
-      << "\" fill=\"none\" stroke=\"#444\"/>\n"
-      << "<text x=\"" << f.left + f.pw / 2 << "\" y=\"" << plot.height - 12 << "\" text-anchor=\"middle\">"
-      << xml_escape(plot.x_label) << "</text>\n"
-      << "<text transform=\"translate(16," << f.top + f.ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-      << xml_escape(plot.y_label) << "</text>\n";
+    svg << "<line x1=\"" << f.left << "\" y1=\"" << f.py(t) << "\" x2=\"" << f.left + f.pw
+        << "\" y2=\"" << f.py(t) << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.left - 6 << "\" y=\""
+        << f.py(t) + 4 << "\" text-anchor=\"end\">" << t << "</text>\n";
+  svg << "<rect x=\"" << f.left << "\" y=\"" << f.top << "\" width=\"" << f.pw << "\" height=\""
+      << f.ph << "\" fill=\"none\" stroke=\"#444\"/>\n"
+      << "<text x=\"" << f.left + f.pw / 2 << "\" y=\"" << plot.height - 12
+      << "\" text-anchor=\"middle\">" << xml_escape(plot.x_label) << "</text>\n"
+      << "<text transform=\"translate(16," << f.top + f.ph / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">" << xml_escape(plot.y_label) << "</text>\n";
 }
 
 // One series as a polyline, and its legend entry (row k) when it has a label.
@@ -90,11 +91,13 @@ void plot_series(std::ostringstream& svg, const PlotSeries& s, size_t k, const P
   const double ly = f.top + 14 + 18 * double(k);
   if (s.points) {
     for (size_t i = 0; i < s.x.size(); ++i)
-      svg << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i]) << "\" r=\"3.5\" fill=\"" << s.color << "\"/>";
+      svg << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i]) << "\" r=\"3.5\" fill=\""
+          << s.color << "\"/>";
     svg << "\n";
     if (!s.label.empty())
-      svg << "<circle cx=\"" << f.left + f.pw + 21 << "\" cy=\"" << ly << "\" r=\"3.5\" fill=\"" << s.color
-          << "\"/><text x=\"" << f.left + f.pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
+      svg << "<circle cx=\"" << f.left + f.pw + 21 << "\" cy=\"" << ly << "\" r=\"3.5\" fill=\""
+          << s.color << "\"/><text x=\"" << f.left + f.pw + 38 << "\" y=\"" << ly + 4 << "\">"
+          << xml_escape(s.label) << "</text>\n";
     return;
   }
   svg << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1.8\""
@@ -102,9 +105,10 @@ void plot_series(std::ostringstream& svg, const PlotSeries& s, size_t k, const P
   for (size_t i = 0; i < s.x.size(); ++i) svg << f.px(s.x[i]) << "," << f.py(s.y[i]) << " ";
   svg << "\"/>\n";
   if (s.label.empty()) return;
-  svg << "<line x1=\"" << f.left + f.pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << f.left + f.pw + 32 << "\" y2=\"" << ly
-      << "\" stroke=\"" << s.color << "\" stroke-width=\"2\"" << (s.dashed ? " stroke-dasharray=\"5,3\"" : "")
-      << "/><text x=\"" << f.left + f.pw + 38 << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
+  svg << "<line x1=\"" << f.left + f.pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << f.left + f.pw + 32
+      << "\" y2=\"" << ly << "\" stroke=\"" << s.color << "\" stroke-width=\"2\""
+      << (s.dashed ? " stroke-dasharray=\"5,3\"" : "") << "/><text x=\"" << f.left + f.pw + 38
+      << "\" y=\"" << ly + 4 << "\">" << xml_escape(s.label) << "</text>\n";
 }
 
 }  // namespace
@@ -116,17 +120,20 @@ std::string LinePlot::to_svg() const {
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">" << xml_escape(title) << "</text>\n";
+      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">"
+      << xml_escape(title) << "</text>\n";
   plot_axes(svg, *this, f);
   for (const ErrorBar& e : error_bars)
-    svg << "<line x1=\"" << f.px(e.x) << "\" y1=\"" << f.py(e.low) << "\" x2=\"" << f.px(e.x) << "\" y2=\"" << f.py(e.high)
-        << "\" stroke=\"" << e.color << "\" stroke-width=\"1.2\"/>\n";
+    svg << "<line x1=\"" << f.px(e.x) << "\" y1=\"" << f.py(e.low) << "\" x2=\"" << f.px(e.x)
+        << "\" y2=\"" << f.py(e.high) << "\" stroke=\"" << e.color << "\" stroke-width=\"1.2\"/>\n";
   size_t row = 0;  // legend rows: only labelled series take one
   for (const PlotSeries& s : series) plot_series(svg, s, s.label.empty() ? row : row++, f);
   svg << "</svg>\n";
   return svg.str();
 }
 
-void LinePlot::write(const std::filesystem::path& path) const { write_text_atomically(path, to_svg()); }
+void LinePlot::write(const std::filesystem::path& path) const {
+  write_text_atomically(path, to_svg());
+}
 
 }  // namespace countershade

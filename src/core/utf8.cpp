@@ -9,7 +9,8 @@ size_t utf8_sequence(std::string_view s, size_t at) {
   const uint8_t lead = byte(0);
   size_t length = 0;
   uint8_t low = 0x80, high = 0xBF;  // the allowed range of the second byte
-  if (lead >= 0xC2 && lead <= 0xDF) length = 2;
+  if (lead >= 0xC2 && lead <= 0xDF)
+    length = 2;
   else if (lead >= 0xE0 && lead <= 0xEF) {
     length = 3;
     if (lead == 0xE0) low = 0xA0;

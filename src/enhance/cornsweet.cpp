@@ -10,9 +10,8 @@
 //                   outline.
 
 #include <cmath>
-#include <stdexcept>
-
 #include <glm/geometric.hpp>
+#include <stdexcept>
 
 #include "core/color.h"
 #include "core/error.h"
@@ -25,7 +24,8 @@ namespace {
 
 struct CornsweetParameters final : MethodParameters {
   bool surface = false;
-  double factor = 4.0;  // ΔL* per unit of λ: `amplitude`, or 1 where the edge values give the profile's
+  double factor =
+      4.0;  // ΔL* per unit of λ: `amplitude`, or 1 where the edge values give the profile's
   CornsweetProfile profile;
   glm::dvec3 edge_point{0.0}, edge_direction{1, 0, 0}, bright_normal{0, 0, 1};
 };
@@ -36,7 +36,9 @@ struct CornsweetParameters final : MethodParameters {
 class SurfaceProfile final : public SampleField {
  public:
   explicit SurfaceProfile(const CornsweetParameters& p)
-      : profile_(p.profile), point_(p.edge_point), direction_(glm::normalize(p.edge_direction)),
+      : profile_(p.profile),
+        point_(p.edge_point),
+        direction_(glm::normalize(p.edge_direction)),
         bright_(glm::normalize(p.bright_normal)) {}
   double value(const SampleHit& hit) const override {
     const glm::dvec3 offset = hit.point.position - point_;
@@ -52,7 +54,8 @@ class SurfaceProfile final : public SampleField {
 
 class SurfaceProfileStage final : public SurfaceStage {
  public:
-  explicit SurfaceProfileStage(const CornsweetParameters& p) : field_(std::make_shared<SurfaceProfile>(p)) {}
+  explicit SurfaceProfileStage(const CornsweetParameters& p)
+      : field_(std::make_shared<SurfaceProfile>(p)) {}
   SampleFields fields() const override { return {field_}; }
 
  private:
@@ -69,7 +72,8 @@ PixelDoubles surface_profile(const View& view, const std::vector<float>& profile
   PixelDoubles amount(profile.size(), 0.0);
   for (size_t i = 0; i < amount.size(); ++i) {
     if (!(r.coverage[i] > 0)) continue;
-    const double surface = cielab_lightness(double(r.surface_luminance[i]) / double(r.coverage[i])) + 16.0;
+    const double surface =
+        cielab_lightness(double(r.surface_luminance[i]) / double(r.coverage[i])) + 16.0;
     const double pixel = cielab_lightness(double(r.luminance[i])) + 16.0;
     amount[i] = double(profile[i]) * (surface * surface) / (pixel * pixel);
   }
@@ -80,10 +84,12 @@ PixelDoubles surface_profile(const View& view, const std::vector<float>& profile
 double read_width(const ParameterBag& bag, bool surface) {
   const std::string key = surface ? "sigma" : "sigma_px", other = surface ? "sigma_px" : "sigma";
   if (bag.has(other))
-    bag.fail(other, std::string("is the width of the ") + (surface ? "image" : "surface") + " mode; the " +
-                        (surface ? "surface" : "image") + " mode takes " + key);
+    bag.fail(other, std::string("is the width of the ") + (surface ? "image" : "surface") +
+                        " mode; the " + (surface ? "surface" : "image") + " mode takes " + key);
   const double width = bag.number(key, 0.0);
-  if (!(width > 0)) bag.fail(key, "the " + std::string(surface ? "surface" : "image") + " mode needs a positive width");
+  if (!(width > 0))
+    bag.fail(key,
+             "the " + std::string(surface ? "surface" : "image") + " mode needs a positive width");
   return width;
 }
 
@@ -93,11 +99,14 @@ void read_edge_values(const ParameterBag& bag, CornsweetParameters& p) {
   if (bag.has("edges") != bag.has("plateau"))
     bag.fail(bag.has("edges") ? "edges" : "plateau", "edges and plateau are given together");
   if (!bag.has("edges")) return;
-  if (bag.has("amplitude")) bag.fail("amplitude", "edges and plateau give the profile's size; leave amplitude out");
+  if (bag.has("amplitude"))
+    bag.fail("amplitude", "edges and plateau give the profile's size; leave amplitude out");
   const std::vector<double> edges = bag.numbers("edges", {});
   const double plateau = bag.number("plateau", 50.0);
-  if (edges.size() != 2) bag.fail("edges", "needs two L* values: the dark (left) and the bright (right) edge");
-  if (!(edges[0] >= 0 && edges[0] <= 100 && edges[1] >= 0 && edges[1] <= 100)) bag.fail("edges", "must lie in [0, 100] (L*)");
+  if (edges.size() != 2)
+    bag.fail("edges", "needs two L* values: the dark (left) and the bright (right) edge");
+  if (!(edges[0] >= 0 && edges[0] <= 100 && edges[1] >= 0 && edges[1] <= 100))
+    bag.fail("edges", "must lie in [0, 100] (L*)");
   if (!(plateau >= 0 && plateau <= 100)) bag.fail("plateau", "must lie in [0, 100] (L*)");
   p.factor = 1.0;
   p.profile.dark = edges[0] - plateau;
@@ -107,24 +116,32 @@ void read_edge_values(const ParameterBag& bag, CornsweetParameters& p) {
 class CornsweetMethod final : public EnhancementMethod {
  public:
   std::string name() const override { return "cornsweet"; }
-  std::string summary() const override { return "Cornsweet profile across an edge, in the image or on a surface"; }
+  std::string summary() const override {
+    return "Cornsweet profile across an edge, in the image or on a surface";
+  }
   MethodAxes axes() const override {
     return {"the profile times λ: ±λ·amplitude at the edge, or λ·(edge − plateau) (ΔL*)",
-            {{"sigma_px", "px", "profile width w (image mode)"}, {"sigma", "world units", "profile width w (surface mode)"}}};
+            {{"sigma_px", "px", "profile width w (image mode)"},
+             {"sigma", "world units", "profile width w (surface mode)"}}};
   }
   std::vector<ParameterDoc> parameter_docs() const override {
-    return {{"mode", "image", "image: the edge is the image's vertical centre line; surface: a 3D edge"},
-            {"profile", "exponential",
-             "exponential: ±exp(−d/w); power: (1 − d/w)^a within w of the edge (Boyaci et al. 2007, stimupy)"},
-            {"amplitude", "4", "ΔL* per unit of λ at the edge (without edges)"},
-            {"exponent", "2.75", "the power profile's exponent a"},
-            {"edges", "", "power profile: the L* at the edge on the dark (left) and bright (right) side, with plateau"},
-            {"plateau", "", "power profile: the L* the ramps start from, with edges"},
-            {"sigma_px", "", "width w in pixels (image mode)"},
-            {"sigma", "", "width w in world units (surface mode)"},
-            {"edge_point", "0,0,0", "a point on the 3D edge (surface mode)"},
-            {"edge_direction", "1,0,0", "the edge's direction (surface mode)"},
-            {"bright_normal", "0,0,1", "normals within 60° of it take the bright side (surface mode)"}};
+    return {
+        {"mode", "image",
+         "image: the edge is the image's vertical centre line; surface: a 3D edge"},
+        {"profile", "exponential",
+         "exponential: ±exp(−d/w); power: (1 − d/w)^a within w of the edge (Boyaci et al. 2007, "
+         "stimupy)"},
+        {"amplitude", "4", "ΔL* per unit of λ at the edge (without edges)"},
+        {"exponent", "2.75", "the power profile's exponent a"},
+        {"edges", "",
+         "power profile: the L* at the edge on the dark (left) and bright (right) side, with "
+         "plateau"},
+        {"plateau", "", "power profile: the L* the ramps start from, with edges"},
+        {"sigma_px", "", "width w in pixels (image mode)"},
+        {"sigma", "", "width w in world units (surface mode)"},
+        {"edge_point", "0,0,0", "a point on the 3D edge (surface mode)"},
+        {"edge_direction", "1,0,0", "the edge's direction (surface mode)"},
+        {"bright_normal", "0,0,1", "normals within 60° of it take the bright side (surface mode)"}};
   }
 
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
@@ -140,7 +157,8 @@ class CornsweetMethod final : public EnhancementMethod {
       p->bright_normal = bag.vec3("bright_normal", p->bright_normal);
     }
     p->profile.exponent = bag.number_in("exponent", 2.75, 1e-3, 100.0);
-    if (p->profile.power) read_edge_values(bag, *p);
+    if (p->profile.power)
+      read_edge_values(bag, *p);
     else
       for (const char* key : {"exponent", "edges", "plateau"})
         if (bag.has(key)) bag.fail(key, "belongs to the power profile (profile: power)");
@@ -155,38 +173,46 @@ class CornsweetMethod final : public EnhancementMethod {
     r.scene = parameters_as<CornsweetParameters>(parameters).surface;
     return r;
   }
-  std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext&,
-                                                    const MethodParameters& parameters) const override {
+  std::shared_ptr<const SurfaceStage> surface_stage(
+      const SurfaceContext&, const MethodParameters& parameters) const override {
     const auto& p = parameters_as<CornsweetParameters>(parameters);
     return p.surface ? std::make_shared<SurfaceProfileStage>(p) : nullptr;
   }
   std::string label(const MethodParameters& parameters) const override {
-    return name() + (parameters_as<CornsweetParameters>(parameters).surface ? "-surface" : "-image");
+    return name() +
+           (parameters_as<CornsweetParameters>(parameters).surface ? "-surface" : "-image");
   }
 
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
                                                const MethodParameters& parameters) const override {
     const auto& p = parameters_as<CornsweetParameters>(parameters);
     const View& view = *context.view;
-    if (p.surface && !view.scene) throw InputError("cornsweet: the surface mode needs a rendered scene");
+    if (p.surface && !view.scene)
+      throw InputError("cornsweet: the surface mode needs a rendered scene");
     if (p.surface && context.fields.size() != 1)
-      throw std::logic_error("cornsweet: the view was not rendered for these parameters (render it for a plan with them)");
+      throw std::logic_error(
+          "cornsweet: the view was not rendered for these parameters (render it for a plan with "
+          "them)");
     LightnessChange change;
     change.amount = p.surface ? surface_profile(view, *context.fields[0])
                               : cornsweet_image_profile(p.profile, view.width(), view.height());
     change.factor = p.factor;
-    nlohmann::json record = {{"mode", p.surface ? "surface" : "image"},
-                             {"profile", p.profile.power ? "power" : "exponential"},
-                             {"edge_per_lambda", {p.factor * p.profile.dark, p.factor * p.profile.bright}},
-                             {"width", p.profile.width}};
+    nlohmann::json record = {
+        {"mode", p.surface ? "surface" : "image"},
+        {"profile", p.profile.power ? "power" : "exponential"},
+        {"edge_per_lambda", {p.factor * p.profile.dark, p.factor * p.profile.bright}},
+        {"width", p.profile.width}};
     if (p.profile.power) record["exponent"] = p.profile.exponent;
     return std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
-                                               std::vector<std::pair<std::string, Image>>{}, context.threads);
+                                               std::vector<std::pair<std::string, Image>>{},
+                                               context.threads);
   }
 };
 
 }  // namespace
 
-std::unique_ptr<const EnhancementMethod> make_cornsweet_method() { return std::make_unique<CornsweetMethod>(); }
+std::unique_ptr<const EnhancementMethod> make_cornsweet_method() {
+  return std::make_unique<CornsweetMethod>();
+}
 
 }  // namespace countershade

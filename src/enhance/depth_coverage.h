@@ -20,8 +20,9 @@ struct View;
 // pixel's area. `blurred` is G*D per pixel and `normalise` maps a linear eye depth to D (an
 // infinite one is background). Views without a scene to trace (images read from files) are left
 // as they are.
-void sample_outlines(const View& view, const Image& blurred, const std::function<float(float)>& normalise,
-                     Image& darker, Image& lighter, int threads = 0);
+void sample_outlines(const View& view, const Image& blurred,
+                     const std::function<float(float)>& normalise, Image& darker, Image& lighter,
+                     int threads = 0);
 
 // Whether a linear eye depth belongs to a surface: finite and positive (background is infinite).
 inline bool valid_eye_depth(float d) { return std::isfinite(d) && d > 0.0f; }

@@ -1,13 +1,13 @@
 #include "enhance/depth_usm.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <mutex>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "core/gaussian.h"
@@ -47,7 +47,8 @@ size_t GlobalContrast::bin(float v) const {
 }
 
 double GlobalContrast::operator()(double v) const {
-  if (equalize_) return cdf_min_ < 1.0 ? (cdf_[bin(float(v))] - cdf_min_) / (1.0 - cdf_min_) * range_ : v;
+  if (equalize_)
+    return cdf_min_ < 1.0 ? (cdf_[bin(float(v))] - cdf_min_) / (1.0 - cdf_min_) * range_ : v;
   if (hi_ <= lo_) return v;
   return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) * range_;
 }
@@ -79,9 +80,9 @@ void parallel_chunks(size_t n, const Body& body) {
 // returns how many clipped.
 // Runs in float over blocks (first the per-pixel offsets, then the channels) so that both loops
 // vectorise; compiled for AVX2/FMA machines and for the x86-64 baseline, chosen at load time.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-unsigned offset_and_clip(const float* in, const float* darker, const float* lighter, float* out, size_t n,
-                         const float c[6]) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) unsigned offset_and_clip(
+    const float* in, const float* darker, const float* lighter, float* out, size_t n,
+    const float c[6]) {
   constexpr size_t kBlock = 1024;
   float off0[kBlock], off1[kBlock], off2[kBlock];
   unsigned clipped = 0;
@@ -108,8 +109,8 @@ unsigned offset_and_clip(const float* in, const float* darker, const float* ligh
 }
 
 // The range of the valid depths (finite and positive) among n values; lo > hi when none is valid.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-void valid_depth_range(const float* depth, size_t n, float* lo, float* hi) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void valid_depth_range(
+    const float* depth, size_t n, float* lo, float* hi) {
   float l = INFINITY, h = -INFINITY;
   for (size_t i = 0; i < n; ++i) {
     const float d = depth[i];
@@ -122,8 +123,8 @@ void valid_depth_range(const float* depth, size_t n, float* lo, float* hi) {
 }
 
 // Linear depth mapped to [0,1] as (d − lo)·scale; invalid depths become 1 (far).
-__attribute__((target_clones("arch=x86-64-v3", "default")))
-void normalize_linear_depth(const float* depth, float* out, size_t n, double lo, double scale) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void normalize_linear_depth(
+    const float* depth, float* out, size_t n, double lo, double scale) {
   for (size_t i = 0; i < n; ++i) {
     const float d = depth[i];
     const bool valid = d > 0.0f && d < INFINITY;
@@ -132,13 +133,16 @@ void normalize_linear_depth(const float* depth, float* out, size_t n, double lo,
 }
 
 // C(I) for the contrast operator, once per view and kernel: RGB (3 values per pixel) or L*.
-std::vector<float> contrast_enhanced(const View& view, const DepthUsmParameters& p, double sigma_px, int threads) {
+std::vector<float> contrast_enhanced(const View& view, const DepthUsmParameters& p, double sigma_px,
+                                     int threads) {
   const size_t n = view.lab.size();
   const int channels = p.lab ? 1 : 3;
   std::vector<float> values(size_t(channels) * n);
   for (size_t i = 0; i < n; ++i) {
-    if (p.lab) values[i] = float(view.lab[i].L);
-    else for (int c = 0; c < 3; ++c) values[3 * i + c] = view.display.pixels[3 * i + c];
+    if (p.lab)
+      values[i] = float(view.lab[i].L);
+    else
+      for (int c = 0; c < 3; ++c) values[3 * i + c] = view.display.pixels[3 * i + c];
   }
   const double range = p.lab ? 100.0 : 1.0;
   std::vector<float> enhanced(values.size());
@@ -150,7 +154,8 @@ std::vector<float> contrast_enhanced(const View& view, const DepthUsmParameters&
       for (size_t i = 0; i < n; ++i) plane[i] = values[size_t(channels) * i + c];
       gaussian_blur(plane.data(), blurred.data(), view.width(), view.height(), sigma_px, threads);
       for (size_t i = 0; i < n; ++i)
-        enhanced[size_t(channels) * i + c] = float(std::clamp(2.0 * plane[i] - blurred[i], 0.0, range));
+        enhanced[size_t(channels) * i + c] =
+            float(std::clamp(2.0 * plane[i] - blurred[i], 0.0, range));
     }
   } else {
     GlobalContrast contrast(values, range, p.contrast == ContrastKind::equalize);
@@ -169,28 +174,46 @@ std::vector<float> importance_mask(const SpatialImportance& si) {
 
 class DepthUsmRgb final : public PreparedEnhancement {
  public:
-  DepthUsmRgb(std::shared_ptr<const View> view, const DepthUsmParameters& p, SpatialImportance si, nlohmann::json record,
-              std::vector<float> enhanced, const ChangeNoise* change_noise)
-      : view_(std::move(view)), p_(p), si_(std::move(si)), record_(std::move(record)), enhanced_(std::move(enhanced)),
+  DepthUsmRgb(std::shared_ptr<const View> view, const DepthUsmParameters& p, SpatialImportance si,
+              nlohmann::json record, std::vector<float> enhanced, const ChangeNoise* change_noise)
+      : view_(std::move(view)),
+        p_(p),
+        si_(std::move(si)),
+        record_(std::move(record)),
+        enhanced_(std::move(enhanced)),
         change_noise_(change_noise) {}
 
   Composed compose(double lambda) const override {
     Composed out;
-    out.display = Image(view_->width(), view_->height(), 3, Image::Uninitialized{});  // every pixel is written below
+    out.display = Image(view_->width(), view_->height(), 3,
+                        Image::Uninitialized{});  // every pixel is written below
     switch (p_.op) {
       // add, darken and color are all I + λ(a·min(ΔD, 0) + b·max(ΔD, 0)) per channel.
-      case Operator::add: out.clipped_pixels = apply_linear(out.display, lambda * glm::dvec3(1.0), lambda * glm::dvec3(1.0)); break;
-      case Operator::darken: out.clipped_pixels = apply_linear(out.display, lambda * glm::dvec3(1.0), glm::dvec3(0.0)); break;
-      case Operator::color: out.clipped_pixels = apply_linear(out.display, -lambda * p_.cold, lambda * p_.warm); break;
-      case Operator::contrast: out.clipped_pixels = apply_contrast(out.display, lambda); break;
+      case Operator::add:
+        out.clipped_pixels =
+            apply_linear(out.display, lambda * glm::dvec3(1.0), lambda * glm::dvec3(1.0));
+        break;
+      case Operator::darken:
+        out.clipped_pixels = apply_linear(out.display, lambda * glm::dvec3(1.0), glm::dvec3(0.0));
+        break;
+      case Operator::color:
+        out.clipped_pixels = apply_linear(out.display, -lambda * p_.cold, lambda * p_.warm);
+        break;
+      case Operator::contrast:
+        out.clipped_pixels = apply_contrast(out.display, lambda);
+        break;
     }
     return out;
   }
   nlohmann::json parameters() const override { return record_; }
   std::vector<std::pair<std::string, Image>> auxiliary() const override {
-    return {{"depth_normalized", si_.depth}, {"depth_blurred", si_.blurred}, {"spatial_importance", si_.importance}};
+    return {{"depth_normalized", si_.depth},
+            {"depth_blurred", si_.blurred},
+            {"spatial_importance", si_.importance}};
   }
-  NoiseModel noise(double lambda) const override { return lambda_noise(*view_, change_noise_, lambda); }
+  NoiseModel noise(double lambda) const override {
+    return lambda_noise(*view_, change_noise_, lambda);
+  }
   std::vector<float> mask() const override { return importance_mask(si_); }
 
  private:
@@ -203,12 +226,14 @@ class DepthUsmRgb final : public PreparedEnhancement {
     float* out = result.pixels.data();
     // Beyond float's range a coefficient would be inf, and inf × a zero ΔD is NaN. |ΔD| ≤ 1, so
     // at ±FLT_MAX each term stays finite or saturates, and the clip does the rest.
-    const auto coefficient = [](double c) { return float(std::clamp(c, -double(FLT_MAX), double(FLT_MAX))); };
+    const auto coefficient = [](double c) {
+      return float(std::clamp(c, -double(FLT_MAX), double(FLT_MAX)));
+    };
     const float coefficients[6] = {coefficient(a.x), coefficient(a.y), coefficient(a.z),
                                    coefficient(b.x), coefficient(b.y), coefficient(b.z)};
     parallel_chunks(view_->lab.size(), [&](size_t begin, size_t end) {
-      clipped += offset_and_clip(in + 3 * begin, darker + begin, lighter + begin, out + 3 * begin, end - begin,
-                                 coefficients);
+      clipped += offset_and_clip(in + 3 * begin, darker + begin, lighter + begin, out + 3 * begin,
+                                 end - begin, coefficients);
     });
     return clipped;
   }
@@ -226,7 +251,8 @@ class DepthUsmRgb final : public PreparedEnhancement {
         const double alpha = std::clamp(lambda * double(lighter[i] - darker[i]), 0.0, 1.0);
         bool clip = false;
         for (int c = 0; c < 3; ++c) {
-          const double v = double(enhanced_[3 * i + c]) * alpha + double(in[3 * i + c]) * (1.0 - alpha);
+          const double v =
+              double(enhanced_[3 * i + c]) * alpha + double(in[3 * i + c]) * (1.0 - alpha);
           clip |= v < 0.0 || v > 1.0;
           out[3 * i + c] = float(std::clamp(v, 0.0, 1.0));
         }
@@ -246,8 +272,8 @@ class DepthUsmRgb final : public PreparedEnhancement {
 };
 
 // The same scalar term as a lightness-only change (space lab).
-LightnessChange lab_change(const View& view, const DepthUsmParameters& p, const SpatialImportance& si,
-                           const std::vector<float>& enhanced) {
+LightnessChange lab_change(const View& view, const DepthUsmParameters& p,
+                           const SpatialImportance& si, const std::vector<float>& enhanced) {
   const size_t n = view.lab.size();
   const float *darker = si.darker.pixels.data(), *lighter = si.lighter.pixels.data();
   LightnessChange change;
@@ -263,7 +289,8 @@ LightnessChange lab_change(const View& view, const DepthUsmParameters& p, const 
   }
   change.factor = 100.0;  // ΔD is in [−1, 1]; L* spans 100
   // add: ΔD = min(ΔD, 0) + max(ΔD, 0); darken: min(ΔD, 0).
-  for (size_t i = 0; i < n; ++i) change.amount[i] = p.op == Operator::add ? double(darker[i] + lighter[i]) : double(darker[i]);
+  for (size_t i = 0; i < n; ++i)
+    change.amount[i] = p.op == Operator::add ? double(darker[i] + lighter[i]) : double(darker[i]);
   return change;
 }
 
@@ -278,7 +305,8 @@ Operator parse_operator(const std::string& name) {
 std::optional<std::pair<double, double>> read_depth_range(const ParameterBag& bag) {
   if (!bag.has("depth_range")) return std::nullopt;
   const std::vector<double> r = bag.numbers("depth_range", {});
-  if (r.size() != 2 || !(r[0] >= 0) || !(r[1] > r[0])) bag.fail("depth_range", "expected NEAR,FAR with 0 <= NEAR < FAR");
+  if (r.size() != 2 || !(r[0] >= 0) || !(r[1] > r[0]))
+    bag.fail("depth_range", "expected NEAR,FAR with 0 <= NEAR < FAR");
   return std::make_pair(r[0], r[1]);
 }
 
@@ -286,18 +314,24 @@ class DepthUsmMethod final : public EnhancementMethod {
  public:
   std::string name() const override { return "depth-usm"; }
   std::string summary() const override { return "depth-buffer unsharp masking (Luft et al. 2006)"; }
-  MethodAxes axes() const override { return {"strength λ of the operator on ΔD = G*D − D", image_width_axes()}; }
+  MethodAxes axes() const override {
+    return {"strength λ of the operator on ΔD = G*D − D", image_width_axes()};
+  }
   std::vector<ParameterDoc> parameter_docs() const override {
     std::vector<ParameterDoc> docs = image_width_docs();
-    docs.insert(docs.end(), {{"operator", "darken", "add | contrast | darken | color (Luft et al. 2006, eqs. 2–5)"},
-                             {"contrast", "stretch", "C for the contrast operator: stretch | equalize | local"},
-                             {"space", "rgb", "rgb (display RGB, as published) | lab (the same term on L* only)"},
-                             {"depth_mapping", "linear", "linear eye depth | zbuffer (non-linear, near/far)"},
-                             {"z_near", "", "zbuffer near plane (default: the nearest depth)"},
-                             {"z_far", "", "zbuffer far plane (default: the farthest depth)"},
-                             {"depth_range", "", "NEAR,FAR: eye depths D maps to 0 and 1, clamped (default: each image's own range; fix it for sequences)"},
-                             {"cold", "-0.1,-0.05,0.15", "color: the cold colour R,G,B"},
-                             {"warm", "0.15,0.1,-0.1", "color: the warm colour R,G,B"}});
+    docs.insert(
+        docs.end(),
+        {{"operator", "darken", "add | contrast | darken | color (Luft et al. 2006, eqs. 2–5)"},
+         {"contrast", "stretch", "C for the contrast operator: stretch | equalize | local"},
+         {"space", "rgb", "rgb (display RGB, as published) | lab (the same term on L* only)"},
+         {"depth_mapping", "linear", "linear eye depth | zbuffer (non-linear, near/far)"},
+         {"z_near", "", "zbuffer near plane (default: the nearest depth)"},
+         {"z_far", "", "zbuffer far plane (default: the farthest depth)"},
+         {"depth_range", "",
+          "NEAR,FAR: eye depths D maps to 0 and 1, clamped (default: each image's own range; fix "
+          "it for sequences)"},
+         {"cold", "-0.1,-0.05,0.15", "color: the cold colour R,G,B"},
+         {"warm", "0.15,0.1,-0.1", "color: the warm colour R,G,B"}});
     return docs;
   }
 
@@ -309,8 +343,10 @@ class DepthUsmMethod final : public EnhancementMethod {
     p->lab = bag.choice("space", "rgb", {"rgb", "lab"}) == "lab";
     if (p->op == Operator::color) {
       if (p->lab)
-        bag.fail("space", "the color operator shifts hue (Luft et al. 2006, eq. 5) and lab changes lightness only; "
-                          "use rgb, or another operator");
+        bag.fail("space",
+                 "the color operator shifts hue (Luft et al. 2006, eq. 5) and lab changes "
+                 "lightness only; "
+                 "use rgb, or another operator");
       p->cold = bag.vec3("cold", p->cold);
       p->warm = bag.vec3("warm", p->warm);
     }
@@ -341,7 +377,8 @@ class DepthUsmMethod final : public EnhancementMethod {
   }
   // The contrast operator blends towards a contrast-stretched image, which carries a pixel's own
   // noise (modelled as c = L); the other operators add a change that depends on depth only.
-  std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters& parameters) const override {
+  std::shared_ptr<const ChangePerLambda> change_per_lambda(
+      const MethodParameters& parameters) const override {
     if (parameters_as<DepthUsmParameters>(parameters).op != Operator::contrast) return nullptr;
     return std::make_shared<LightnessTimes>(1.0);
   }
@@ -358,18 +395,22 @@ class DepthUsmMethod final : public EnhancementMethod {
     SpatialImportance si = spatial_importance(view, p.mapping, sigma, context.threads);
     std::vector<float> enhanced;
     if (p.op == Operator::contrast) enhanced = contrast_enhanced(view, p, sigma, context.threads);
-    nlohmann::json record = {{"operator", p.op_name}, {"sigma_px", sigma}, {"space", p.lab ? "lab" : "rgb"},
+    nlohmann::json record = {{"operator", p.op_name},
+                             {"sigma_px", sigma},
+                             {"space", p.lab ? "lab" : "rgb"},
                              {"depth_mapping", p.mapping.zbuffer ? "zbuffer" : "linear"},
                              {"contrast", p.contrast_name}};
     if (p.mapping.range) record["depth_range"] = {p.mapping.range->first, p.mapping.range->second};
     if (!p.lab)
-      return std::make_unique<DepthUsmRgb>(context.view, p, std::move(si), std::move(record), std::move(enhanced),
-                                           context.change_noise);
+      return std::make_unique<DepthUsmRgb>(context.view, p, std::move(si), std::move(record),
+                                           std::move(enhanced), context.change_noise);
     LightnessChange change = lab_change(view, p, si, enhanced);
-    std::vector<std::pair<std::string, Image>> aux = {
-        {"depth_normalized", si.depth}, {"depth_blurred", si.blurred}, {"spatial_importance", si.importance}};
-    auto prepared = std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record), std::move(aux),
-                                                        context.threads, plain_noise(context));
+    std::vector<std::pair<std::string, Image>> aux = {{"depth_normalized", si.depth},
+                                                      {"depth_blurred", si.blurred},
+                                                      {"spatial_importance", si.importance}};
+    auto prepared =
+        std::make_unique<LightnessPrepared>(context.view, std::move(change), std::move(record),
+                                            std::move(aux), context.threads, plain_noise(context));
     prepared->set_mask([importance = importance_mask(si)] { return importance; });
     return prepared;
   }
@@ -382,10 +423,12 @@ struct DepthNormaliser {
   double lo = 0, scale = 0;           // linear: (d − lo)·scale
   double near = 1, far = 2, mlo = 0, mhi = 0;
   double mapped(double d) const { return (1.0 / near - 1.0 / d) / (1.0 / near - 1.0 / far); }
-  bool clamp = false;                 // a fixed range: depths outside it map to 0 or 1
+  bool clamp = false;  // a fixed range: depths outside it map to 0 or 1
   float operator()(float d) const {
     if (!any || !valid_eye_depth(d)) return 1.0f;
-    const double D = !zbuffer ? (double(d) - lo) * scale : mhi > mlo ? (mapped(d) - mlo) / (mhi - mlo) : 0.0;
+    const double D = !zbuffer    ? (double(d) - lo) * scale
+                     : mhi > mlo ? (mapped(d) - mlo) / (mhi - mlo)
+                                 : 0.0;
     return float(clamp ? std::clamp(D, 0.0, 1.0) : D);
   }
 };
@@ -406,7 +449,8 @@ std::pair<float, float> view_depth_range(const View& view) {
 
 DepthNormaliser depth_normaliser(const View& view, const DepthMapping& mapping) {
   // A fixed range needs no scan: an invalid depth maps to far whatever the range.
-  auto [lo, hi] = mapping.range ? std::pair<float, float>(float(mapping.range->first), float(mapping.range->second))
+  auto [lo, hi] = mapping.range ? std::pair<float, float>(float(mapping.range->first),
+                                                          float(mapping.range->second))
                                 : view_depth_range(view);
   DepthNormaliser n;
   n.any = lo <= hi;
@@ -428,9 +472,10 @@ Image normalized_depth(const View& view, const DepthNormaliser& normalise) {
   const size_t n = size_t(w) * h;
   Image depth(w, h, 1, Image::Uninitialized{});  // every pixel is written below
   parallel_chunks(n, [&](size_t begin, size_t end) {
-    if (normalise.any && !normalise.zbuffer && !normalise.clamp)  // the common case, in a loop that vectorises
-      normalize_linear_depth(view.depth.data() + begin, depth.pixels.data() + begin, end - begin, normalise.lo,
-                             normalise.scale);
+    if (normalise.any && !normalise.zbuffer &&
+        !normalise.clamp)  // the common case, in a loop that vectorises
+      normalize_linear_depth(view.depth.data() + begin, depth.pixels.data() + begin, end - begin,
+                             normalise.lo, normalise.scale);
     else
       for (size_t i = begin; i < end; ++i) depth.pixels[i] = normalise(view.depth[i]);
   });
@@ -439,10 +484,12 @@ Image normalized_depth(const View& view, const DepthNormaliser& normalise) {
 
 }  // namespace
 
-SpatialImportance spatial_importance(const View& view, const DepthMapping& mapping, double sigma_px, int threads) {
+SpatialImportance spatial_importance(const View& view, const DepthMapping& mapping, double sigma_px,
+                                     int threads) {
   const int w = view.width(), h = view.height();
   const size_t n = size_t(w) * h;
-  if (view.depth.size() != n) throw InputError("depth-usm: the view has no depth map of the image's size");
+  if (view.depth.size() != n)
+    throw InputError("depth-usm: the view has no depth map of the image's size");
   SpatialImportance si;
   const DepthNormaliser normalise = depth_normaliser(view, mapping);
   si.depth = normalized_depth(view, normalise);
@@ -464,6 +511,8 @@ SpatialImportance spatial_importance(const View& view, const DepthMapping& mappi
   return si;
 }
 
-std::unique_ptr<const EnhancementMethod> make_depth_usm_method() { return std::make_unique<DepthUsmMethod>(); }
+std::unique_ptr<const EnhancementMethod> make_depth_usm_method() {
+  return std::make_unique<DepthUsmMethod>();
+}
 
 }  // namespace countershade

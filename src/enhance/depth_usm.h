@@ -28,8 +28,8 @@ struct SpatialImportance {
 };
 
 struct DepthMapping {
-  bool zbuffer = false;                  // the perspective z-buffer value instead of linear depth
-  std::optional<double> z_near, z_far;   // its planes (default: the valid depth range)
+  bool zbuffer = false;                 // the perspective z-buffer value instead of linear depth
+  std::optional<double> z_near, z_far;  // its planes (default: the valid depth range)
   // The eye depths D maps to 0 and 1, clamped (default: the image's own valid range). Held fixed,
   // D of a surface point does not change when something else in the scene moves: in a sequence a
   // per-frame range would let every frame's whole ΔD swell and shrink with the nearest object.
@@ -37,7 +37,8 @@ struct DepthMapping {
 };
 
 // D, G*D and ΔD of a view's depth map with Gaussian σ in pixels.
-SpatialImportance spatial_importance(const View& view, const DepthMapping& mapping, double sigma_px, int threads = 0);
+SpatialImportance spatial_importance(const View& view, const DepthMapping& mapping, double sigma_px,
+                                     int threads = 0);
 
 // Histogram-based global contrast over all `values` (all channels jointly, so colour balance is
 // kept), in [0, range]: a 1st–99th percentile stretch, or an equalisation that maps the lowest

@@ -3,10 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/vec2.hpp>
 #include <utility>
 #include <vector>
-
-#include <glm/vec2.hpp>
 
 namespace countershade {
 
@@ -14,8 +13,8 @@ namespace countershade {
 // among the four nearest: the weighted sum of `value(i)` and the sum of the weights used (0 when
 // none of the four is in the mask), so a field never mixes with pixels outside the object.
 template <class T, class Value>
-std::pair<T, double> interpolate_in_mask(const glm::dvec2& film, int width, int height, const std::vector<char>& mask,
-                                         Value value) {
+std::pair<T, double> interpolate_in_mask(const glm::dvec2& film, int width, int height,
+                                         const std::vector<char>& mask, Value value) {
   const double fx = film.x - 0.5, fy = film.y - 0.5;
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
   const double tx = fx - x0, ty = fy - y0;

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
-#include <sstream>
-
 #include <glm/common.hpp>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/color.h"
@@ -23,14 +22,17 @@ std::string cache_key(const Texture& plain, TextureMode mode, const LightnessFil
   const TextureLevel& base = plain.levels().front();
   std::ostringstream inputs;
   inputs.precision(17);
-  inputs << kCacheMagic << base.width << ' ' << base.height << ' ' << (mode == TextureMode::mip ? "mip" : "texture")
-         << ' ' << filter_name(f.kind) << ' ' << f.sigma << ' ' << f.sigma_r << ' ' << f.tau << ' ' << f.phi << '\n';
+  inputs << kCacheMagic << base.width << ' ' << base.height << ' '
+         << (mode == TextureMode::mip ? "mip" : "texture") << ' ' << filter_name(f.kind) << ' '
+         << f.sigma << ' ' << f.sigma_r << ' ' << f.tau << ' ' << f.phi << '\n';
   hash.update(inputs.str());
   hash.update(base.texels.data(), base.texels.size() * sizeof(glm::vec3));
   return hash.hex_digest();
 }
 
-std::optional<std::vector<std::vector<float>>> read_cached(const fs::path& file, const FilteredPyramid& p, size_t levels) {
+std::optional<std::vector<std::vector<float>>> read_cached(const fs::path& file,
+                                                           const FilteredPyramid& p,
+                                                           size_t levels) {
   std::error_code error;
   if (!fs::is_regular_file(file, error)) return std::nullopt;
   std::string bytes;
@@ -56,7 +58,8 @@ std::optional<std::vector<std::vector<float>>> read_cached(const fs::path& file,
 
 void write_cached(const fs::path& file, const std::vector<std::vector<float>>& detail) {
   std::string bytes = kCacheMagic;
-  for (const auto& level : detail) bytes.append(reinterpret_cast<const char*>(level.data()), level.size() * sizeof(float));
+  for (const auto& level : detail)
+    bytes.append(reinterpret_cast<const char*>(level.data()), level.size() * sizeof(float));
   std::error_code error;
   fs::create_directories(file.parent_path(), error);
   try {
@@ -70,7 +73,8 @@ void write_cached(const fs::path& file, const std::vector<std::vector<float>>& d
 
 std::vector<float> level_lightness(const TextureLevel& level) {
   std::vector<float> L(level.texels.size());
-  for (size_t i = 0; i < L.size(); ++i) L[i] = float(linear_rgb_to_lab(glm::dvec3(level.texels[i])).L);
+  for (size_t i = 0; i < L.size(); ++i)
+    L[i] = float(linear_rgb_to_lab(glm::dvec3(level.texels[i])).L);
   return L;
 }
 
@@ -81,9 +85,11 @@ glm::vec3 texel_with_detail(const glm::vec3& plain, double change) {
   return glm::vec3(glm::clamp(rgb, glm::dvec3(0.0), glm::dvec3(1.0)));
 }
 
-TextureLevel with_detail(const TextureLevel& plain, const std::vector<float>& detail, double strength) {
+TextureLevel with_detail(const TextureLevel& plain, const std::vector<float>& detail,
+                         double strength) {
   TextureLevel out = plain;
-  for (size_t i = 0; i < out.texels.size(); ++i) out.texels[i] = texel_with_detail(plain.texels[i], strength * double(detail[i]));
+  for (size_t i = 0; i < out.texels.size(); ++i)
+    out.texels[i] = texel_with_detail(plain.texels[i], strength * double(detail[i]));
   return out;
 }
 
@@ -94,7 +100,8 @@ Texture FilteredPyramid::relative_detail() const {
     const std::vector<float> L = level_lightness(level);
     TextureLevel relative{level.width, level.height, std::vector<glm::vec3>(L.size())};
     const double strength = mode == TextureMode::mip ? strength_of_level(k) : 1.0;
-    for (size_t i = 0; i < L.size(); ++i) relative.texels[i] = glm::vec3(float(strength * detail[k][i] / (L[i] + 16.0)));
+    for (size_t i = 0; i < L.size(); ++i)
+      relative.texels[i] = glm::vec3(float(strength * detail[k][i] / (L[i] + 16.0)));
     levels.push_back(std::move(relative));
   }
   if (mode == TextureMode::texture) return Texture(std::move(levels.front()));
@@ -102,7 +109,8 @@ Texture FilteredPyramid::relative_detail() const {
 }
 
 glm::vec3 FilteredPyramid::mip_texel_at(double lambda, size_t level, size_t index) const {
-  return texel_with_detail(plain->levels()[level].texels[index], lambda * strength_of_level(level) * double(detail[level][index]));
+  return texel_with_detail(plain->levels()[level].texels[index],
+                           lambda * strength_of_level(level) * double(detail[level][index]));
 }
 
 double FilteredPyramid::strength_of_level(size_t level) const {
@@ -111,7 +119,8 @@ double FilteredPyramid::strength_of_level(size_t level) const {
 }
 
 Texture FilteredPyramid::at(double lambda) const {
-  if (mode == TextureMode::texture) return Texture(with_detail(plain->levels().front(), detail.front(), lambda));
+  if (mode == TextureMode::texture)
+    return Texture(with_detail(plain->levels().front(), detail.front(), lambda));
   std::vector<TextureLevel> levels;
   for (size_t k = 0; k < detail.size(); ++k)
     levels.push_back(with_detail(plain->levels()[k], detail[k], lambda * strength_of_level(k)));
@@ -125,12 +134,15 @@ std::optional<fs::path> pyramid_cache_folder() {
   return std::nullopt;
 }
 
-FilteredPyramid filter_pyramid(std::shared_ptr<const Texture> plain, TextureMode mode, const LightnessFilter& filter,
-                               std::vector<double> level_strengths, const std::optional<fs::path>& cache, int threads) {
+FilteredPyramid filter_pyramid(std::shared_ptr<const Texture> plain, TextureMode mode,
+                               const LightnessFilter& filter, std::vector<double> level_strengths,
+                               const std::optional<fs::path>& cache, int threads) {
   FilteredPyramid p{std::move(plain), mode, {}, std::move(level_strengths)};
   const size_t levels = mode == TextureMode::mip ? p.plain->levels().size() : 1;
   const std::optional<fs::path> file =
-      cache ? std::optional<fs::path>(*cache / "pyramids" / (cache_key(*p.plain, mode, filter) + ".detail")) : std::nullopt;
+      cache ? std::optional<fs::path>(*cache / "pyramids" /
+                                      (cache_key(*p.plain, mode, filter) + ".detail"))
+            : std::nullopt;
   if (file)
     if (auto cached = read_cached(*file, p, levels)) {
       p.detail = std::move(*cached);
@@ -138,7 +150,8 @@ FilteredPyramid filter_pyramid(std::shared_ptr<const Texture> plain, TextureMode
     }
   for (size_t k = 0; k < levels; ++k) {
     const TextureLevel& level = p.plain->levels()[k];
-    p.detail.push_back(lightness_detail(level_lightness(level), level.width, level.height, filter, Borders::wrap, threads));
+    p.detail.push_back(lightness_detail(level_lightness(level), level.width, level.height, filter,
+                                        Borders::wrap, threads));
   }
   if (file) write_cached(*file, p.detail);
   return p;

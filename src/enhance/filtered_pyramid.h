@@ -25,7 +25,8 @@ std::vector<float> level_lightness(const TextureLevel& level);
 // The level with L* changed by strength·detail, lightness-only (a*, b* scaled with L*, as every
 // lightness method composes), clamped to reflectances in [0,1]. A texel whose change is 0 keeps
 // its value bit for bit.
-TextureLevel with_detail(const TextureLevel& plain, const std::vector<float>& detail, double strength);
+TextureLevel with_detail(const TextureLevel& plain, const std::vector<float>& detail,
+                         double strength);
 // One texel of it: `plain` with its L* changed by `change`.
 glm::vec3 texel_with_detail(const glm::vec3& plain, double change);
 
@@ -33,7 +34,8 @@ struct FilteredPyramid {
   std::shared_ptr<const Texture> plain;
   TextureMode mode = TextureMode::mip;
   std::vector<std::vector<float>> detail;  // [level][texel]: one level in texture mode, all in mip
-  std::vector<double> level_strengths;     // mip: strength multiplier per level (the last repeats); empty: all 1
+  std::vector<double>
+      level_strengths;  // mip: strength multiplier per level (the last repeats); empty: all 1
 
   double strength_of_level(size_t level) const;
   // The filtered texture at strength λ (λ = 0: the plain pyramid's texels).
@@ -51,8 +53,8 @@ struct FilteredPyramid {
 std::optional<std::filesystem::path> pyramid_cache_folder();
 
 // Filters `plain` (reading and writing the cache in `cache` when given).
-FilteredPyramid filter_pyramid(std::shared_ptr<const Texture> plain, TextureMode mode, const LightnessFilter& filter,
-                               std::vector<double> level_strengths, const std::optional<std::filesystem::path>& cache,
-                               int threads = 0);
+FilteredPyramid filter_pyramid(std::shared_ptr<const Texture> plain, TextureMode mode,
+                               const LightnessFilter& filter, std::vector<double> level_strengths,
+                               const std::optional<std::filesystem::path>& cache, int threads = 0);
 
 }  // namespace countershade

@@ -4,10 +4,9 @@
 // on depth, so that silhouettes stay sharp. n_{k+1} is the filter of n_1 with a spatial σ_k =
 // σ_1·1.7^(k−1) pixels. They belong to one view: when the camera moves, they change.
 
+#include <glm/vec3.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "enhance/normal_field.h"
 #include "enhance/view.h"
@@ -19,7 +18,8 @@ class ImageNormals final : public NormalScaleField {
  public:
   // `depth_tolerance`: the range kernel's σ relative to the pixel's depth (0.02: neighbours 2 %
   // nearer or farther weigh e^{−1/2}).
-  ImageNormals(const View& view, double sigma1_px, int scales, double depth_tolerance, int threads = 0);
+  ImageNormals(const View& view, double sigma1_px, int scales, double depth_tolerance,
+               int threads = 0);
 
   int scales() const override { return scales_; }
   // n_k (k = 2 … S) at a film position (pixels), interpolated bilinearly over the object pixels

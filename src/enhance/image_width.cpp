@@ -45,10 +45,11 @@ ImageWidth read_image_width(const ParameterBag& bag) {
 }
 
 void check_image_width(const ImageWidth& w, const ParameterBag& bag, const std::string& method) {
-  const int given = int(w.kernel_percent.has_value()) + int(w.sigma_px.has_value()) + int(w.sigma_percent.has_value());
+  const int given = int(w.kernel_percent.has_value()) + int(w.sigma_px.has_value()) +
+                    int(w.sigma_percent.has_value());
   if (given != 1)
-    throw_input_error(method, "give exactly one width: " + bag.where("kernel") + ", " + bag.where("sigma_px") + " or " +
-                                  bag.where("sigma_percent"));
+    throw_input_error(method, "give exactly one width: " + bag.where("kernel") + ", " +
+                                  bag.where("sigma_px") + " or " + bag.where("sigma_percent"));
   const std::string kernel_key = bag.has("kernel") ? "kernel" : "kernel_percent";
   if (w.kernel_percent && !(*w.kernel_percent > 0 && *w.kernel_percent <= 50))
     bag.fail(kernel_key, "must be more than 0% and at most 50% of the image diagonal");
@@ -58,13 +59,17 @@ void check_image_width(const ImageWidth& w, const ParameterBag& bag, const std::
 }
 
 std::vector<WidthAxis> image_width_axes() {
-  return {{"kernel_percent", "% of the image diagonal", "kernel size K; σ = K/4 (the kernel spans ±2σ)"},
-          {"sigma_px", "px", "Gaussian σ in pixels"},
-          {"sigma_percent", "% of the image diagonal", "Gaussian σ as a share of the image diagonal"}};
+  return {
+      {"kernel_percent", "% of the image diagonal",
+       "kernel size K; σ = K/4 (the kernel spans ±2σ)"},
+      {"sigma_px", "px", "Gaussian σ in pixels"},
+      {"sigma_percent", "% of the image diagonal", "Gaussian σ as a share of the image diagonal"}};
 }
 
 std::vector<ParameterDoc> image_width_docs() {
-  return {{"kernel", "", "kernel size K as % of the image diagonal, e.g. 5% (σ = K/4); kernel_percent in experiments"},
+  return {{"kernel", "",
+           "kernel size K as % of the image diagonal, e.g. 5% (σ = K/4); kernel_percent in "
+           "experiments"},
           {"sigma_px", "", "Gaussian σ in pixels"},
           {"sigma_percent", "", "Gaussian σ as % of the image diagonal"}};
 }

@@ -15,11 +15,14 @@ namespace {
 constexpr double kDegenerate = 1e-12;
 
 template <typename D>
-[[gnu::always_inline]] inline D angle_between(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) { return acos_lanes(clamp_lanes(dot(a, b), -1.0, 1.0)); }
+[[gnu::always_inline]] inline D angle_between(const Vec3Lanes<D>& a, const Vec3Lanes<D>& b) {
+  return acos_lanes(clamp_lanes(dot(a, b), -1.0, 1.0));
+}
 
 // Rodrigues' rotation of v about the unit axis k by θ in [0, π], normalised.
 template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> rotate(const Vec3Lanes<D>& v, const Vec3Lanes<D>& k, const D& theta) {
+[[gnu::always_inline]] inline Vec3Lanes<D> rotate(const Vec3Lanes<D>& v, const Vec3Lanes<D>& k,
+                                                  const D& theta) {
   D s, c;
   sincos_lanes(theta, s, c);
   const Vec3Lanes<D> r = v * c + cross(k, v) * s + k * (dot(k, v) * (1.0 - c));
@@ -30,8 +33,10 @@ template <typename D>
 // rotation is zero (no feature at this scale, the light along the coarser vector or on the guide)
 // keeps `light` itself.
 template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> align_lanes(const Vec3Lanes<D>& light, const Vec3Lanes<D>& fine,
-                                                       const Vec3Lanes<D>& z, double strength, double damping) {
+[[gnu::always_inline]] inline Vec3Lanes<D> align_lanes(const Vec3Lanes<D>& light,
+                                                       const Vec3Lanes<D>& fine,
+                                                       const Vec3Lanes<D>& z, double strength,
+                                                       double damping) {
   // Frame: z the coarser vector, x the finer one's part across it (its length is λ2).
   const Vec3Lanes<D> across = fine - z * dot(fine, z);
   const D lambda2 = sqrt_lanes(dot(across, across));
@@ -48,7 +53,8 @@ template <typename D>
   const Vec3Lanes<D> light_across = light - z * dot(light, z);
   const D across_length = sqrt_lanes(dot(light_across, light_across));
   const D side = bright ? 1.0 : -1.0;
-  const D lambda1 = 1.0 - 2.0 * angle_between(light_across / across_length, x * side) / std::numbers::pi;
+  const D lambda1 =
+      1.0 - 2.0 * angle_between(light_across / across_length, x * side) / std::numbers::pi;
   // W_γ(λ1·λ2), with e^{−γ} = damping.
   const D w = clamp_lanes(lambda1 * lambda2, 0.0, 1.0);
   const D theta = std::min(strength, 1.0) * (w / (damping * (1.0 - w) + w)) * angle;
@@ -61,10 +67,13 @@ template <typename D>
 
 // The cascade of align_light for every lane; vectors[k] holds v_{k+1}.
 template <typename D>
-[[gnu::always_inline]] inline Vec3Lanes<D> cascade_lanes(Vec3Lanes<D> l, const Vec3Lanes<D>* vectors, size_t count,
-                                                         std::span<const double> strengths, double damping) {
+[[gnu::always_inline]] inline Vec3Lanes<D> cascade_lanes(Vec3Lanes<D> l,
+                                                         const Vec3Lanes<D>* vectors, size_t count,
+                                                         std::span<const double> strengths,
+                                                         double damping) {
   for (size_t i = count - 1; i-- > 0;)
-    if (i < strengths.size() && strengths[i] > 0) l = align_lanes(l, vectors[i], vectors[i + 1], strengths[i], damping);
+    if (i < strengths.size() && strengths[i] > 0)
+      l = align_lanes(l, vectors[i], vectors[i + 1], strengths[i], damping);
   return l;
 }
 
@@ -73,14 +82,17 @@ glm::dvec3 vector_of(const Vec3Lanes<double>& v) { return {v.x, v.y, v.z}; }
 
 // align_light_block on the lanes of D at once.
 template <typename D>
-[[gnu::always_inline]] inline void align_light_lanes(AlignmentBlock& block, size_t count, size_t scales,
-                                                     std::span<const double> strengths, double damping) {
+[[gnu::always_inline]] inline void align_light_lanes(AlignmentBlock& block, size_t count,
+                                                     size_t scales,
+                                                     std::span<const double> strengths,
+                                                     double damping) {
   constexpr size_t kLanes = sizeof(D) / sizeof(double);
   static_assert(kAlignmentBlock % kLanes == 0);
   scales = std::min(scales, kMaxAlignmentScales);
   for (size_t first = 0; first < count; first += kLanes) {
     if (scales < 2) {
-      for (int c = 0; c < 3; ++c) std::copy_n(block.light[c] + first, kLanes, block.aligned[c] + first);
+      for (int c = 0; c < 3; ++c)
+        std::copy_n(block.light[c] + first, kLanes, block.aligned[c] + first);
       continue;
     }
     Vec3Lanes<D> v[kMaxAlignmentScales];
@@ -91,14 +103,14 @@ template <typename D>
 }
 
 COUNTERSHADE_AVX512_FUNCTION
-void align_light_avx512(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
-                        double damping) {
+void align_light_avx512(AlignmentBlock& block, size_t count, size_t scales,
+                        std::span<const double> strengths, double damping) {
   align_light_lanes<WideLanes>(block, count, scales, strengths, damping);
 }
 
 COUNTERSHADE_AVX2_CLONES
-void align_light_avx2(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
-                      double damping) {
+void align_light_avx2(AlignmentBlock& block, size_t count, size_t scales,
+                      std::span<const double> strengths, double damping) {
   align_light_lanes<NarrowLanes>(block, count, scales, strengths, damping);
 }
 
@@ -113,14 +125,16 @@ double AlignmentWeight::operator()(double x) const {
 
 double alignment_weight(double x, double gamma) { return AlignmentWeight(gamma)(x); }
 
-glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine, const glm::dvec3& coarse, double strength,
+glm::dvec3 align_one_scale(const glm::dvec3& light, const glm::dvec3& fine,
+                           const glm::dvec3& coarse, double strength,
                            const AlignmentWeight& weight) {
   if (!(strength > 0)) return light;
-  return vector_of(align_lanes(lanes_of(light), lanes_of(fine), lanes_of(coarse), strength, weight.damping()));
+  return vector_of(
+      align_lanes(lanes_of(light), lanes_of(fine), lanes_of(coarse), strength, weight.damping()));
 }
 
-glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vectors, std::span<const double> strengths,
-                       const AlignmentWeight& weight) {
+glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vectors,
+                       std::span<const double> strengths, const AlignmentWeight& weight) {
   Vec3Lanes<double> v[kMaxAlignmentScales];
   const size_t count = std::min(vectors.size(), kMaxAlignmentScales);
   for (size_t k = 0; k < count; ++k) v[k] = lanes_of(vectors[k]);
@@ -128,8 +142,8 @@ glm::dvec3 align_light(const glm::dvec3& light, std::span<const glm::dvec3> vect
   return vector_of(cascade_lanes(lanes_of(light), v, count, strengths, weight.damping()));
 }
 
-void align_light_block(AlignmentBlock& block, size_t count, size_t scales, std::span<const double> strengths,
-                       double damping) {
+void align_light_block(AlignmentBlock& block, size_t count, size_t scales,
+                       std::span<const double> strengths, double damping) {
   (has_avx512() ? align_light_avx512 : align_light_avx2)(block, count, scales, strengths, damping);
 }
 

@@ -1,9 +1,8 @@
 #pragma once
 // Light warping's direction warp (the method lives in light_warping.cpp), for the method and tests.
 
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 namespace countershade {
 
@@ -15,7 +14,7 @@ glm::dvec3 warp_light(const glm::dvec3& wi, const glm::dvec3& r, double kappa, d
 
 // warp_light of every sample k (wi[k], r[k], kappa[k]) into out[k], many at once in vector lanes:
 // the same bits as one at a time (both are one code, core/lane_math.h).
-void warp_lights(std::span<const glm::dvec3> wi, std::span<const glm::dvec3> r, std::span<const double> kappa,
-                 double amount, glm::dvec3* out);
+void warp_lights(std::span<const glm::dvec3> wi, std::span<const glm::dvec3> r,
+                 std::span<const double> kappa, double amount, glm::dvec3* out);
 
 }  // namespace countershade

@@ -39,11 +39,12 @@ struct LightnessChange {
     detail,
   };
   Kind kind = Kind::scaled;
-  double factor = 1.0;         // scaled, detail: a constant factor (e.g. ΔL* per unit of λ)
-  PixelDoubles amount;         // scaled, blended: per pixel; not zero-filled on resize, since every method writes it all
-  std::vector<double> gain;    // scaled: an optional per-pixel gain (empty: 1)
-  std::vector<float> weight;   // blended: per pixel
-  PixelVector smooth;          // detail: per pixel
+  double factor = 1.0;  // scaled, detail: a constant factor (e.g. ΔL* per unit of λ)
+  PixelDoubles amount;  // scaled, blended: per pixel; not zero-filled on resize, since every method
+                        // writes it all
+  std::vector<double> gain;   // scaled: an optional per-pixel gain (empty: 1)
+  std::vector<float> weight;  // blended: per pixel
+  PixelVector smooth;         // detail: per pixel
 };
 
 // A uniform L* offset on some pixels, composed with a change (PreparedEnhancement::compose_offset).
@@ -54,8 +55,8 @@ struct LightnessOffset {
 
 // Applies the change at strength λ (and the offset, if any) to the view's stimulus. Pixels whose
 // Δ is 0 keep their code values exactly, so λ = 0 reproduces the view bit for bit.
-Composed compose_lightness(const View& view, const LightnessChange& change, double lambda, int threads = 0,
-                           const LightnessOffset* offset = nullptr);
+Composed compose_lightness(const View& view, const LightnessChange& change, double lambda,
+                           int threads = 0, const LightnessOffset* offset = nullptr);
 
 // The sampling noise of the stimulus of strength λ (PreparedEnhancement::noise).
 using NoiseFunction = std::function<NoiseModel(double lambda)>;
@@ -66,14 +67,22 @@ NoiseFunction plain_noise(const PrepareContext& context);
 // The prepared state of every lightness method: the view, its change, and what to record.
 class LightnessPrepared final : public PreparedEnhancement {
  public:
-  LightnessPrepared(std::shared_ptr<const View> view, LightnessChange change, nlohmann::json parameters,
+  LightnessPrepared(std::shared_ptr<const View> view, LightnessChange change,
+                    nlohmann::json parameters,
                     std::vector<std::pair<std::string, Image>> auxiliary = {}, int threads = 0,
                     NoiseFunction noise = {})
-      : view_(std::move(view)), change_(std::move(change)), parameters_(std::move(parameters)),
-        auxiliary_(std::move(auxiliary)), threads_(threads), noise_(std::move(noise)) {}
+      : view_(std::move(view)),
+        change_(std::move(change)),
+        parameters_(std::move(parameters)),
+        auxiliary_(std::move(auxiliary)),
+        threads_(threads),
+        noise_(std::move(noise)) {}
 
-  Composed compose(double lambda) const override { return compose_lightness(*view_, change_, lambda, threads_); }
-  std::optional<Composed> compose_offset(double lambda, double offset, std::span<const double> where) const override {
+  Composed compose(double lambda) const override {
+    return compose_lightness(*view_, change_, lambda, threads_);
+  }
+  std::optional<Composed> compose_offset(double lambda, double offset,
+                                         std::span<const double> where) const override {
     const LightnessOffset uniform{offset, where};
     return compose_lightness(*view_, change_, lambda, threads_, &uniform);
   }

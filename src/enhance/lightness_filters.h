@@ -36,10 +36,11 @@ LightnessFilter read_lightness_filter(const ParameterBag& bag);
 
 // d per sample for a width×height plane of L*, row-major.
 std::vector<float> lightness_detail(std::span<const float> lightness, int width, int height,
-                                    const LightnessFilter& filter, Borders borders, int threads = 0);
+                                    const LightnessFilter& filter, Borders borders,
+                                    int threads = 0);
 
 // A separable Gaussian in double precision over ±⌈4σ⌉ samples, normalised, with the given borders.
-std::vector<double> gaussian_filter(std::span<const float> plane, int width, int height, double sigma,
-                                    Borders borders, int threads = 0);
+std::vector<double> gaussian_filter(std::span<const float> plane, int width, int height,
+                                    double sigma, Borders borders, int threads = 0);
 
 }  // namespace countershade

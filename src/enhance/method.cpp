@@ -7,7 +7,8 @@ namespace countershade {
 PrepareContext make_use_context(std::shared_ptr<const View> view, size_t use, int threads) {
   PrepareContext context = make_context(std::move(view), threads);
   context.stage = context.view->stages.at(use);
-  for (size_t f : context.view->stage_fields.at(use)) context.fields.push_back(&context.view->render.fields.at(f));
+  for (size_t f : context.view->stage_fields.at(use))
+    context.fields.push_back(&context.view->render.fields.at(f));
   if (const int change = context.view->change_noise.at(use); change >= 0)
     context.change_noise = &context.view->render.change_noise.at(size_t(change));
   return context;
@@ -17,10 +18,11 @@ PrepareContext make_context(std::shared_ptr<const View> view, int threads) {
   PrepareContext context;
   context.threads = threads;
   if (view->scene) {
-    context.render_again = [scene = view->scene, tracer = view->tracer, bits = view->bits, trace = view->render.trace,
-                            threads](const RenderRequest& request) {
+    context.render_again = [scene = view->scene, tracer = view->tracer, bits = view->bits,
+                            trace = view->render.trace, threads](const RenderRequest& request) {
       RenderOptions options;
-      options.replay_trace = trace;  // same scene and camera: the hooks re-shade, nothing is traced again
+      options.replay_trace =
+          trace;  // same scene and camera: the hooks re-shade, nothing is traced again
       options.threads = threads;
       options.vertex_radiance = request.vertex_radiance;
       options.ring_samples = request.ring_samples;

@@ -12,13 +12,12 @@
 
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/image.h"
 #include "core/parameters.h"
@@ -52,7 +51,7 @@ struct ParameterDoc {
 };
 
 struct Composed {
-  Image display;              // the stimulus: code values of the view's bit depth, as values in [0,1]
+  Image display;  // the stimulus: code values of the view's bit depth, as values in [0,1]
   size_t clipped_pixels = 0;  // pixels where L' left [0,100] or an RGB channel left [0,1]
 };
 
@@ -100,10 +99,10 @@ class PreparedEnhancement {
 // the view's scene again with hooks.
 struct PrepareContext {
   std::shared_ptr<const View> view;
-  std::shared_ptr<const SurfaceStage> stage;  // from surface_stage(), when the method has one
+  std::shared_ptr<const SurfaceStage> stage;      // from surface_stage(), when the method has one
   std::vector<const std::vector<float>*> fields;  // the stage's fields, averaged per pixel
-  const ChangeNoise* change_noise = nullptr;      // the render's noise estimate of its change per λ
-  int threads = 0;  // 0 = all cores
+  const ChangeNoise* change_noise = nullptr;  // the render's noise estimate of its change per λ
+  int threads = 0;                            // 0 = all cores
   // The caller composes many λ (a stimulus set): a method that would render every λ again may
   // instead compose each from the view's own samples (exact up to rounding, and far cheaper),
   // once the view was sampled for the largest λ. False (`render`): it renders its one λ again,
@@ -138,17 +137,21 @@ class EnhancementMethod {
   // What the method needs from rendering for these parameters.
   virtual RenderRequest request(const MethodParameters&) const { return {}; }
   // The work between the vertex signal and the pixels (default: none).
-  virtual std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext&, const MethodParameters&) const {
+  virtual std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext&,
+                                                            const MethodParameters&) const {
     return nullptr;
   }
   // How the method changes a pixel's L* per unit λ, from a replicate's means and its stage's
   // fields (render/sample_field.h), so that the pixels are sampled until the stimulus meets the
   // noise budget. Default: none (the change does not carry the pixel's noise).
-  virtual std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const { return nullptr; }
+  virtual std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters&) const {
+    return nullptr;
+  }
   // For methods that build on the vertex signal (request().vertex_radiance): per object, the L*
   // error its vertices must reach so that the stimulus's share `allowed` of the noise budget holds
   // at |λ| ≤ max_abs_lambda, and how far around the visible surface that matters.
-  virtual std::vector<VertexNeed> vertex_needs(const Scene&, const MethodParameters&, double /*max_abs_lambda*/,
+  virtual std::vector<VertexNeed> vertex_needs(const Scene&, const MethodParameters&,
+                                               double /*max_abs_lambda*/,
                                                double /*allowed*/) const {
     return {};
   }
@@ -158,8 +161,8 @@ class EnhancementMethod {
   // throws InputError naming the method and what is missing. Default: anything goes.
   virtual void check_scene(const Scene&, const MethodParameters&) const {}
   // The once-per-(view, σ) work. Throws InputError when the view lacks what the method needs.
-  virtual std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
-                                                       const MethodParameters& parameters) const = 0;
+  virtual std::unique_ptr<PreparedEnhancement> prepare(
+      const PrepareContext& context, const MethodParameters& parameters) const = 0;
 };
 
 // Casts a method's parameters back to its own struct (parse() made them).

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <mutex>
-
 #include <glm/geometric.hpp>
+#include <mutex>
 
 #include "core/parallel.h"
 #include "mesh/smoothing.h"
@@ -29,25 +28,29 @@ std::vector<glm::dvec3> point_normals(const Object& object) {
 
 // `steps[c]` further Jacobi steps for the points of component c: each point takes the
 // normalised sum of its 1-ring (itself excluded), as 3D unsharp masking's smoothing does.
-void smooth_normals(const SurfaceGraph& surface, const std::vector<int>& steps, std::vector<glm::dvec3>& normals,
-                    int threads) {
+void smooth_normals(const SurfaceGraph& surface, const std::vector<int>& steps,
+                    std::vector<glm::dvec3>& normals, int threads) {
   const int most = steps.empty() ? 0 : *std::max_element(steps.begin(), steps.end());
   std::vector<glm::dvec3> next(normals.size());
   for (int step = 0; step < most; ++step) {
-    parallel_ranges(normals.size(), threads, [&](size_t begin, size_t end) {
-      for (size_t point = begin; point < end; ++point) {
-        next[point] = normals[point];
-        if (step >= steps[surface.components.label[point]]) continue;
-        glm::dvec3 sum(0.0);
-        for (uint32_t q : surface.adjacency.of(point)) sum += normals[q];
-        if (glm::length(sum) > 1e-12) next[point] = glm::normalize(sum);
-      }
-    }, 1024);
+    parallel_ranges(
+        normals.size(), threads,
+        [&](size_t begin, size_t end) {
+          for (size_t point = begin; point < end; ++point) {
+            next[point] = normals[point];
+            if (step >= steps[surface.components.label[point]]) continue;
+            glm::dvec3 sum(0.0);
+            for (uint32_t q : surface.adjacency.of(point)) sum += normals[q];
+            if (glm::length(sum) > 1e-12) next[point] = glm::normalize(sum);
+          }
+        },
+        1024);
     normals.swap(next);
   }
 }
 
-std::vector<glm::vec3> to_vertices(const SurfaceGraph& surface, const std::vector<glm::dvec3>& per_point) {
+std::vector<glm::vec3> to_vertices(const SurfaceGraph& surface,
+                                   const std::vector<glm::dvec3>& per_point) {
   std::vector<glm::vec3> out(surface.point_of.size());
   for (size_t v = 0; v < out.size(); ++v) out[v] = glm::vec3(per_point[surface.point_of[v]]);
   return out;
@@ -55,8 +58,12 @@ std::vector<glm::vec3> to_vertices(const SurfaceGraph& surface, const std::vecto
 
 }  // namespace
 
-MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, double sigma1, int scales, int threads)
-    : scene_(std::move(shared_scene)), sigma1_(sigma1), scales_(scales), vertex_normals_(scene_->objects.size()),
+MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, double sigma1,
+                                     int scales, int threads)
+    : scene_(std::move(shared_scene)),
+      sigma1_(sigma1),
+      scales_(scales),
+      vertex_normals_(scene_->objects.size()),
       iterations_(scene_->objects.size()) {
   const Scene& scene = *scene_;
   require_surface_graphs(scene, "multiscale normals");
@@ -71,7 +78,8 @@ MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, 
       std::vector<int> target(edge.size()), more(edge.size());
       for (size_t c = 0; c < edge.size(); ++c) {
         target[c] = iterations_for_sigma(sigma, edge[c]);
-        more[c] = std::max(0, target[c] - done[c]);  // σ² grows with the steps: continue from the finer scale
+        more[c] = std::max(
+            0, target[c] - done[c]);  // σ² grows with the steps: continue from the finer scale
       }
       smooth_normals(surface, more, normals, threads);
       done = target;
@@ -82,7 +90,8 @@ MultiscaleNormals::MultiscaleNormals(std::shared_ptr<const Scene> shared_scene, 
 }
 
 bool MultiscaleNormals::same_input(const Scene& scene, double sigma1, int scales) const {
-  if (sigma1 != sigma1_ || scales != scales_ || scene.objects.size() != scene_->objects.size()) return false;
+  if (sigma1 != sigma1_ || scales != scales_ || scene.objects.size() != scene_->objects.size())
+    return false;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const TriangleMesh &a = scene.objects[o].mesh, &b = scene_->objects[o].mesh;
     if (a.positions != b.positions || a.triangles != b.triangles) return false;
@@ -90,8 +99,8 @@ bool MultiscaleNormals::same_input(const Scene& scene, double sigma1, int scales
   return true;
 }
 
-std::shared_ptr<const MultiscaleNormals> MultiscaleNormals::shared(std::shared_ptr<const Scene> scene, double sigma1,
-                                                                   int scales, int threads) {
+std::shared_ptr<const MultiscaleNormals> MultiscaleNormals::shared(
+    std::shared_ptr<const Scene> scene, double sigma1, int scales, int threads) {
   constexpr size_t kKept = 2;  // a few MB each for a large scan; the sets's scenes come in order
   static std::mutex mutex;
   static std::deque<std::shared_ptr<const MultiscaleNormals>> recent;
@@ -110,8 +119,8 @@ std::shared_ptr<const MultiscaleNormals> MultiscaleNormals::shared(std::shared_p
 glm::dvec3 MultiscaleNormals::at(const SurfacePoint& point, int k) const {
   const auto& normals = vertex_normals_[point.object][size_t(k - 2)];
   const glm::uvec3 t = scene_->objects[point.object].mesh.triangles[point.triangle];
-  const glm::dvec3 n = (1 - point.b1 - point.b2) * glm::dvec3(normals[t.x]) + point.b1 * glm::dvec3(normals[t.y]) +
-                       point.b2 * glm::dvec3(normals[t.z]);
+  const glm::dvec3 n = (1 - point.b1 - point.b2) * glm::dvec3(normals[t.x]) +
+                       point.b1 * glm::dvec3(normals[t.y]) + point.b2 * glm::dvec3(normals[t.z]);
   const double length = glm::length(n);
   return length > 1e-12 ? n / length : point.shading_normal;
 }

@@ -5,10 +5,9 @@
 // σ_k = σ_1·1.7^(k−1) (world units), k = 1 … S−1. Computed on the mesh, they do not change when
 // the camera moves.
 
+#include <glm/vec3.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "enhance/normal_field.h"
 #include "render/hooks.h"
@@ -24,7 +23,8 @@ class MultiscaleNormals final : public NormalScaleField {
   MultiscaleNormals(std::shared_ptr<const Scene> scene, double sigma1, int scales, int threads = 0);
   // The same, shared with the last scenes asked for whose meshes are identical (compared vertex by
   // vertex) at the same σ_1 and S: the light-direction variants of one scene smooth once.
-  static std::shared_ptr<const MultiscaleNormals> shared(std::shared_ptr<const Scene> scene, double sigma1, int scales,
+  static std::shared_ptr<const MultiscaleNormals> shared(std::shared_ptr<const Scene> scene,
+                                                         double sigma1, int scales,
                                                          int threads = 0);
 
   int scales() const override { return scales_; }
@@ -36,7 +36,9 @@ class MultiscaleNormals final : public NormalScaleField {
   // {"mode": "surface", "smoothing_iterations": per object, scale and component}.
   nlohmann::json describe() const override;
   // The smoothing iterations of scale k (2 … S) per component of object `object`.
-  const std::vector<int>& iterations(size_t object, int k) const { return iterations_[object][size_t(k - 2)]; }
+  const std::vector<int>& iterations(size_t object, int k) const {
+    return iterations_[object][size_t(k - 2)];
+  }
 
  private:
   bool same_input(const Scene& scene, double sigma1, int scales) const;

@@ -27,13 +27,16 @@ class NoEnhancement final : public EnhancementMethod {
     bag.finish(name());
     return std::make_shared<NoParameters>();
   }
-  std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context, const MethodParameters&) const override {
+  std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
+                                               const MethodParameters&) const override {
     return std::make_unique<Identity>(context.view);
   }
 };
 
 }  // namespace
 
-std::unique_ptr<const EnhancementMethod> make_none_method() { return std::make_unique<NoEnhancement>(); }
+std::unique_ptr<const EnhancementMethod> make_none_method() {
+  return std::make_unique<NoEnhancement>();
+}
 
 }  // namespace countershade

@@ -17,7 +17,8 @@ class NormalScaleField {
  public:
   virtual ~NormalScaleField() = default;
   virtual int scales() const = 0;
-  // n_1 … n_S into n[0 … S−1]: n_1 the shading normal, the smoother ones on the side the viewer sees.
+  // n_1 … n_S into n[0 … S−1]: n_1 the shading normal, the smoother ones on the side the viewer
+  // sees.
   virtual void at_shading_point(const ShadingInputs& s, glm::dvec3* n) const = 0;
   // What the manifest records about how the normals were made (the mode and its own figures).
   virtual nlohmann::json describe() const = 0;

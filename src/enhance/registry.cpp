@@ -17,10 +17,11 @@ namespace countershade {
   X(lla)                                \
   X(exaggerated_shading)                \
   X(radiance_scaling)                   \
-  X(light_warping)                       \
+  X(light_warping)                      \
   X(texture_filter)
 
-#define COUNTERSHADE_DECLARE_FACTORY(id) std::unique_ptr<const EnhancementMethod> make_##id##_method();
+#define COUNTERSHADE_DECLARE_FACTORY(id) \
+  std::unique_ptr<const EnhancementMethod> make_##id##_method();
 COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)
 
 namespace {
@@ -46,7 +47,8 @@ void register_method(std::unique_ptr<const EnhancementMethod> method) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
   for (const auto& m : r.methods)
-    if (m->name() == method->name()) throw std::logic_error("method '" + method->name() + "' is registered twice");
+    if (m->name() == method->name())
+      throw std::logic_error("method '" + method->name() + "' is registered twice");
   r.methods.push_back(std::move(method));
 }
 

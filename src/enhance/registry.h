@@ -21,7 +21,9 @@ const EnhancementMethod& unenhanced_method();
 // outside this library is one static MethodRegistration.
 void register_method(std::unique_ptr<const EnhancementMethod> method);
 struct MethodRegistration {
-  explicit MethodRegistration(std::unique_ptr<const EnhancementMethod> method) { register_method(std::move(method)); }
+  explicit MethodRegistration(std::unique_ptr<const EnhancementMethod> method) {
+    register_method(std::move(method));
+  }
 };
 
 }  // namespace countershade

@@ -23,10 +23,11 @@ struct NormalScales {
   double depth_tolerance = 0.02;
 };
 
-// Reads `scales` (2 … 8, default 3), `mode` (surface or image) and `depth_tolerance` now, and σ_1 as `sigma`; call check_normal_scales after
-// bag.finish() so that an unknown key is reported first.
+// Reads `scales` (2 … 8, default 3), `mode` (surface or image) and `depth_tolerance` now, and σ_1
+// as `sigma`; call check_normal_scales after bag.finish() so that an unknown key is reported first.
 NormalScales read_normal_scales(const ParameterBag& bag, std::optional<double>& sigma);
-void check_normal_scales(const ParameterBag& bag, NormalScales& scales, const std::optional<double>& sigma);
+void check_normal_scales(const ParameterBag& bag, NormalScales& scales,
+                         const std::optional<double>& sigma);
 WidthAxis normal_scales_axis();
 std::vector<ParameterDoc> normal_scales_docs();
 
@@ -46,15 +47,18 @@ void require_scene(const PrepareContext& context, const std::string& method);
 
 // The multi-scale normals of the context's view in the chosen mode; InputError naming `method`
 // without a scene.
-std::shared_ptr<const NormalScaleField> scene_normals(const PrepareContext& context, const NormalScales& scales,
-                                                       const std::string& method);
+std::shared_ptr<const NormalScaleField> scene_normals(const PrepareContext& context,
+                                                      const NormalScales& scales,
+                                                      const std::string& method);
 
 // Each λ rendered again with the hook `hook_for(λ)`; a null hook gives the view itself (λ = 0).
 class HookedRender final : public PreparedEnhancement {
  public:
   using HookFor = std::function<std::shared_ptr<const ShadingHook>(double lambda)>;
   HookedRender(const PrepareContext& context, HookFor hook_for, nlohmann::json parameters)
-      : view_(context.view), render_again_(context.render_again), hook_for_(std::move(hook_for)),
+      : view_(context.view),
+        render_again_(context.render_again),
+        hook_for_(std::move(hook_for)),
         parameters_(std::move(parameters)) {}
 
   Composed compose(double lambda) const override;

@@ -43,7 +43,8 @@ double mean_rounded_square(double r) {
 const std::array<double, kTableSteps + 1>& quantized_table() {
   static const std::array<double, kTableSteps + 1> table = [] {
     std::array<double, kTableSteps + 1> t{};
-    for (int i = 0; i <= kTableSteps; ++i) t[size_t(i)] = mean_rounded_square(kTableMax * i / kTableSteps);
+    for (int i = 0; i <= kTableSteps; ++i)
+      t[size_t(i)] = mean_rounded_square(kTableMax * i / kTableSteps);
     return t;
   }();
   return table;
@@ -58,10 +59,13 @@ struct CodeSteps {
 
 class CodeLightness {
  public:
-  CodeLightness(const DisplayEncoding& encoding, int bits) : levels_((1u << bits) - 1u), linear_(levels_ + 1) {
+  CodeLightness(const DisplayEncoding& encoding, int bits)
+      : levels_((1u << bits) - 1u), linear_(levels_ + 1) {
     for (uint32_t k = 0; k <= levels_; ++k) linear_[k] = encoding.decode(double(k) / levels_);
   }
-  uint32_t code(float value) const { return uint32_t(std::lround(std::clamp(double(value), 0.0, 1.0) * levels_)); }
+  uint32_t code(float value) const {
+    return uint32_t(std::lround(std::clamp(double(value), 0.0, 1.0) * levels_));
+  }
 
   CodeSteps steps(const uint32_t k[3]) const {
     const auto& w = color_constants::kRgbToXyz[1];
@@ -93,7 +97,8 @@ double lightness_step(const CodeSteps& s) {
 // neighbouring pixels mostly hold the same codes, and a step costs six cube roots.
 class StepCache {
  public:
-  explicit StepCache(const CodeLightness& codes) : codes_(codes), slots_(kSlots, {UINT64_MAX, 0.0}) {}
+  explicit StepCache(const CodeLightness& codes)
+      : codes_(codes), slots_(kSlots, {UINT64_MAX, 0.0}) {}
   double operator()(const float* rgb) {
     uint32_t k[3];
     for (int c = 0; c < 3; ++c) k[c] = codes_.code(rgb[c]);
@@ -121,7 +126,8 @@ double quantized_noise_steps(double r) {
   return std::sqrt((1.0 - f) * table[size_t(i)] + f * table[size_t(i) + 1]);
 }
 
-NoiseModel lambda_noise(const View& view, const ChangeNoise* change, double lambda, const std::vector<float>& extra) {
+NoiseModel lambda_noise(const View& view, const ChangeNoise* change, double lambda,
+                        const std::vector<float>& extra) {
   const std::vector<float>& own = view.render.noise;
   NoiseModel model;
   model.sigma.resize(own.size());
@@ -174,7 +180,8 @@ NoiseSummary summarize_noise(const std::vector<float>& sigma) {
   auto exceed = [&](double x) {
     double p = 0;
     for (int b = 0; b < kBins; ++b)
-      if (count[size_t(b)] > 0) p += count[size_t(b)] * std::erfc(x / (largest * (b + 0.5) / kBins * std::sqrt(2.0)));
+      if (count[size_t(b)] > 0)
+        p += count[size_t(b)] * std::erfc(x / (largest * (b + 0.5) / kBins * std::sqrt(2.0)));
     return p / double(sigma.size());
   };
   double lo = 0, hi = 6.0 * largest;

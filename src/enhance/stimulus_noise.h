@@ -20,7 +20,8 @@ struct NoiseSummary {
 // The noise of L + λ·c per pixel before quantisation, from the view's noise and the render's
 // estimate for the change c (none: the view's noise), plus an independent term |λ|·extra[p]
 // (e.g. the error of a smoothed vertex signal, which every replicate shares).
-NoiseModel lambda_noise(const View& view, const ChangeNoise* change, double lambda, const std::vector<float>& extra = {});
+NoiseModel lambda_noise(const View& view, const ChangeNoise* change, double lambda,
+                        const std::vector<float>& extra = {});
 
 // Per pixel, the estimated standard deviation of the written stimulus's L* between seeds.
 std::vector<float> stimulus_noise(const View& view, const NoiseModel& model, const Image& written);

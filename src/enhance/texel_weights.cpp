@@ -41,7 +41,8 @@ class PixelSums {
       keys_[at] = kEmpty;
     }
     used_.clear();
-    std::sort(out.begin(), out.end(), [](const Weighed& a, const Weighed& b) { return a.id < b.id; });
+    std::sort(out.begin(), out.end(),
+              [](const Weighed& a, const Weighed& b) { return a.id < b.id; });
     return out;
   }
 
@@ -76,8 +77,11 @@ thread_local PixelSums pixel_sums;
 
 class TexelWeights::Observer final : public SampleObserver {
  public:
-  Observer(const Scene& scene, const std::vector<const Texture*>& textures, size_t pixels, uint64_t entry_limit)
-      : textures_(textures), texture_of_(texture_of_objects(scene, textures)), merged_(pixels),
+  Observer(const Scene& scene, const std::vector<const Texture*>& textures, size_t pixels,
+           uint64_t entry_limit)
+      : textures_(textures),
+        texture_of_(texture_of_objects(scene, textures)),
+        merged_(pixels),
         entry_limit_(entry_limit) {
     for (const Object& o : scene.objects) repeat_.push_back(o.material.texture_repeat);
     for (const Texture* t : textures) {
@@ -89,18 +93,21 @@ class TexelWeights::Observer final : public SampleObserver {
     }
   }
 
-  void surface(size_t /*pixel*/, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
-               const LightSampleRecord* lights) override {
+  void surface(size_t /*pixel*/, const Shader& shader, const SurfacePoint& point,
+               const ShadingRecord& record, const LightSampleRecord* lights) override {
     const int k = texture_of_[point.object];
     if (k < 0 || over_limit()) return;
-    // Radiance is linear in the albedo, per channel: this is the light each unit of albedo reflects.
-    const glm::dvec3 light =
-        shader.evaluate(point, record, lights, glm::dvec3(1.0)) - shader.evaluate(point, record, lights, glm::dvec3(0.0));
+    // Radiance is linear in the albedo, per channel: this is the light each unit of albedo
+    // reflects.
+    const glm::dvec3 light = shader.evaluate(point, record, lights, glm::dvec3(1.0)) -
+                             shader.evaluate(point, record, lights, glm::dvec3(0.0));
     thread_local std::vector<TextureTap> taps;
     taps.clear();
     const double repeat = repeat_[point.object];
-    textures_[size_t(k)]->taps(point.uv * repeat, point.duv_dx * repeat, point.duv_dy * repeat, taps);
-    for (const TextureTap& tap : taps) pixel_sums.add(first_id_[size_t(k)][tap.level] + tap.texel, light * tap.weight);
+    textures_[size_t(k)]->taps(point.uv * repeat, point.duv_dx * repeat, point.duv_dy * repeat,
+                               taps);
+    for (const TextureTap& tap : taps)
+      pixel_sums.add(first_id_[size_t(k)][tap.level] + tap.texel, light * tap.weight);
   }
 
   // Past the limit the weights are given up. The running total only grows, so whether that happens
@@ -127,15 +134,20 @@ class TexelWeights::Observer final : public SampleObserver {
         out.texels_.push_back(texel_of(id));
       }
     out.first_.assign(merged_.size() + 1, 0);
-    for (size_t p = 0; p < merged_.size(); ++p) out.first_[p + 1] = out.first_[p] + merged_[p].size();
+    for (size_t p = 0; p < merged_.size(); ++p)
+      out.first_[p + 1] = out.first_[p] + merged_[p].size();
     out.entries_.resize(out.first_.back());
-    parallel_ranges(merged_.size(), threads, [&](size_t begin, size_t end) {
-      for (size_t p = begin; p < end; ++p) {
-        Entry* entry = out.entries_.data() + out.first_[p];
-        for (const Weighed& w : merged_[p]) *entry++ = {uint32_t(slot[w.id]), {w.weight[0], w.weight[1], w.weight[2]}};
-        std::vector<Weighed>().swap(merged_[p]);
-      }
-    }, 1024);
+    parallel_ranges(
+        merged_.size(), threads,
+        [&](size_t begin, size_t end) {
+          for (size_t p = begin; p < end; ++p) {
+            Entry* entry = out.entries_.data() + out.first_[p];
+            for (const Weighed& w : merged_[p])
+              *entry++ = {uint32_t(slot[w.id]), {w.weight[0], w.weight[1], w.weight[2]}};
+            std::vector<Weighed>().swap(merged_[p]);
+          }
+        },
+        1024);
   }
 
  private:
@@ -157,7 +169,8 @@ class TexelWeights::Observer final : public SampleObserver {
   std::atomic<bool> over_{false};
 };
 
-std::vector<int> texture_of_objects(const Scene& scene, const std::vector<const Texture*>& textures) {
+std::vector<int> texture_of_objects(const Scene& scene,
+                                    const std::vector<const Texture*>& textures) {
   std::vector<int> out;
   for (const Object& o : scene.objects) {
     const auto found = std::find(textures.begin(), textures.end(), o.material.texture.get());
@@ -166,8 +179,9 @@ std::vector<int> texture_of_objects(const Scene& scene, const std::vector<const 
   return out;
 }
 
-std::shared_ptr<const TexelWeights> TexelWeights::of_view(const View& view, const std::vector<const Texture*>& textures,
-                                                          int threads, uint64_t byte_limit) {
+std::shared_ptr<const TexelWeights> TexelWeights::of_view(
+    const View& view, const std::vector<const Texture*>& textures, int threads,
+    uint64_t byte_limit) {
   const Scene& scene = *view.scene;
   Observer observer(scene, textures, view.render.spp.size(), byte_limit / sizeof(Entry));
   observe_samples(scene, *view.tracer, view.render.spp, view.render.trace.get(), observer, threads);
@@ -177,19 +191,25 @@ std::shared_ptr<const TexelWeights> TexelWeights::of_view(const View& view, cons
   return out;
 }
 
-Image TexelWeights::radiance_with(const Image& base, const std::vector<glm::dvec3>& change, int threads) const {
+Image TexelWeights::radiance_with(const Image& base, const std::vector<glm::dvec3>& change,
+                                  int threads) const {
   Image out = base;
-  parallel_ranges(first_.size() - 1, threads, [&](size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p) {
-      if (first_[p] == first_[p + 1]) continue;
-      glm::dvec3 sum(0.0);
-      for (size_t e = first_[p]; e < first_[p + 1]; ++e) {
-        const Entry& entry = entries_[e];
-        sum += glm::dvec3(entry.weight[0], entry.weight[1], entry.weight[2]) * change[entry.slot];
-      }
-      for (int c = 0; c < 3; ++c) out.pixels[3 * p + size_t(c)] = float(double(base.pixels[3 * p + size_t(c)]) + sum[c]);
-    }
-  }, 1024);
+  parallel_ranges(
+      first_.size() - 1, threads,
+      [&](size_t begin, size_t end) {
+        for (size_t p = begin; p < end; ++p) {
+          if (first_[p] == first_[p + 1]) continue;
+          glm::dvec3 sum(0.0);
+          for (size_t e = first_[p]; e < first_[p + 1]; ++e) {
+            const Entry& entry = entries_[e];
+            sum +=
+                glm::dvec3(entry.weight[0], entry.weight[1], entry.weight[2]) * change[entry.slot];
+          }
+          for (int c = 0; c < 3; ++c)
+            out.pixels[3 * p + size_t(c)] = float(double(base.pixels[3 * p + size_t(c)]) + sum[c]);
+        }
+      },
+      1024);
   return out;
 }
 

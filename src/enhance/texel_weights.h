@@ -10,10 +10,9 @@
 // composes every λ of a stimulus set this way (docs/enhancement-methods.md).
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "enhance/view.h"
@@ -23,7 +22,8 @@ namespace countershade {
 
 // Per object of `scene`, the index in `textures` of the texture its material samples through its
 // UVs, or -1 (no UVs, or a texture not listed).
-std::vector<int> texture_of_objects(const Scene& scene, const std::vector<const Texture*>& textures);
+std::vector<int> texture_of_objects(const Scene& scene,
+                                    const std::vector<const Texture*>& textures);
 
 class TexelWeights {
  public:
@@ -35,14 +35,17 @@ class TexelWeights {
   // The weights of every sample the view's render took (taken again, from its log where it kept
   // one), for the texels of `textures`; lookups of other textures count as constant light. Null
   // when they would outgrow `byte_limit` (16 bytes per texel per pixel that reads it).
-  static std::shared_ptr<const TexelWeights> of_view(const View& view, const std::vector<const Texture*>& textures,
-                                                     int threads = 0, uint64_t byte_limit = kDefaultByteLimit);
+  static std::shared_ptr<const TexelWeights> of_view(const View& view,
+                                                     const std::vector<const Texture*>& textures,
+                                                     int threads = 0,
+                                                     uint64_t byte_limit = kDefaultByteLimit);
   static constexpr uint64_t kDefaultByteLimit = uint64_t(1) << 30;
 
   // Every texel some pixel reads: the slots of `radiance_with`'s changes.
   const std::vector<Texel>& texels() const { return texels_; }
   // `base` (the view's radiance) plus, per pixel, Σ w·change[slot] over the texels it reads.
-  Image radiance_with(const Image& base, const std::vector<glm::dvec3>& change, int threads = 0) const;
+  Image radiance_with(const Image& base, const std::vector<glm::dvec3>& change,
+                      int threads = 0) const;
   size_t entries() const { return entries_.size(); }
 
  private:

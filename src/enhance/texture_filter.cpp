@@ -34,7 +34,9 @@ std::string mode_name(FilterMode mode) {
 // The textures of a render at one λ: each of the scene's textures replaced by its filtered pyramid.
 class PyramidHook final : public TextureHook {
  public:
-  void add(const Texture* plain, Texture filtered) { textures_.emplace(plain, std::move(filtered)); }
+  void add(const Texture* plain, Texture filtered) {
+    textures_.emplace(plain, std::move(filtered));
+  }
   const Texture* texture(unsigned, const Material& material) const override {
     const auto found = textures_.find(material.texture.get());
     return found == textures_.end() ? nullptr : &found->second;
@@ -75,15 +77,19 @@ class RelativeDetailField final : public SampleField {
 // A pixel's change of L* per unit λ: the samples' relative change times the pixel's L* + 16.
 class TexelDetailChange final : public ChangePerLambda {
  public:
-  double value(const PixelMeans& means) const override { return means.fields[0] * (means.lightness + 16.0); }
+  double value(const PixelMeans& means) const override {
+    return means.fields[0] * (means.lightness + 16.0);
+  }
 };
 
 // The filtered pyramids of a view's textures (made before its pixels are sampled, so that the
 // sampling knows the change they make) and the field of that change.
 class FilteredTextureStage final : public SurfaceStage {
  public:
-  FilteredTextureStage(const Scene& scene, std::shared_ptr<const std::vector<FilteredPyramid>> pyramids)
-      : pyramids_(std::move(pyramids)), field_(std::make_shared<RelativeDetailField>(scene, *pyramids_)) {}
+  FilteredTextureStage(const Scene& scene,
+                       std::shared_ptr<const std::vector<FilteredPyramid>> pyramids)
+      : pyramids_(std::move(pyramids)),
+        field_(std::make_shared<RelativeDetailField>(scene, *pyramids_)) {}
   SampleFields fields() const override { return {field_}; }
   const std::shared_ptr<const std::vector<FilteredPyramid>>& pyramids() const { return pyramids_; }
 
@@ -94,11 +100,18 @@ class FilteredTextureStage final : public SurfaceStage {
 
 class FilteredTextures final : public PreparedEnhancement {
  public:
-  FilteredTextures(const PrepareContext& context, std::shared_ptr<const std::vector<FilteredPyramid>> pyramids,
-                   std::shared_ptr<const TexelWeights> weights, nlohmann::json parameters, bool unsharp)
-      : view_(context.view), render_again_(context.render_again), threads_(context.threads),
-        pyramids_(std::move(pyramids)), weights_(std::move(weights)), parameters_(std::move(parameters)),
-        noise_(plain_noise(context)), unsharp_(unsharp) {}
+  FilteredTextures(const PrepareContext& context,
+                   std::shared_ptr<const std::vector<FilteredPyramid>> pyramids,
+                   std::shared_ptr<const TexelWeights> weights, nlohmann::json parameters,
+                   bool unsharp)
+      : view_(context.view),
+        render_again_(context.render_again),
+        threads_(context.threads),
+        pyramids_(std::move(pyramids)),
+        weights_(std::move(weights)),
+        parameters_(std::move(parameters)),
+        noise_(plain_noise(context)),
+        unsharp_(unsharp) {}
 
   Composed compose(double lambda) const override {
     if (lambda == 0) return {view_->display, 0};
@@ -127,20 +140,25 @@ class FilteredTextures final : public PreparedEnhancement {
   // The view's radiance with every texel its samples read changed to its value at λ.
   Image from_weights(double lambda) const {
     const std::vector<FilteredPyramid>& pyramids = *pyramids_;
-    std::vector<std::optional<Texture>> whole(pyramids.size());  // texture mode: every level changes
+    std::vector<std::optional<Texture>> whole(
+        pyramids.size());  // texture mode: every level changes
     for (size_t k = 0; k < pyramids.size(); ++k)
       if (pyramids[k].mode == TextureMode::texture) whole[k] = pyramids[k].at(lambda);
     const auto& texels = weights_->texels();
     std::vector<glm::dvec3> change(texels.size());
-    parallel_ranges(texels.size(), threads_, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        const TexelWeights::Texel& t = texels[i];
-        const FilteredPyramid& p = pyramids[t.texture];
-        const glm::vec3 at = whole[t.texture] ? whole[t.texture]->levels()[t.level].texels[t.index]
-                                              : p.mip_texel_at(lambda, t.level, t.index);
-        change[i] = glm::dvec3(at) - glm::dvec3(p.plain->levels()[t.level].texels[t.index]);
-      }
-    }, 4096);
+    parallel_ranges(
+        texels.size(), threads_,
+        [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) {
+            const TexelWeights::Texel& t = texels[i];
+            const FilteredPyramid& p = pyramids[t.texture];
+            const glm::vec3 at = whole[t.texture]
+                                     ? whole[t.texture]->levels()[t.level].texels[t.index]
+                                     : p.mip_texel_at(lambda, t.level, t.index);
+            change[i] = glm::dvec3(at) - glm::dvec3(p.plain->levels()[t.level].texels[t.index]);
+          }
+        },
+        4096);
     RenderResult result;
     result.radiance = weights_->radiance_with(view_->render.radiance, change, threads_);
     return make_view(view_->scene, view_->tracer, std::move(result), view_->bits, false)->display;
@@ -169,20 +187,27 @@ class TextureFilterMethod final : public EnhancementMethod {
  public:
   std::string name() const override { return "texture-filter"; }
   std::string summary() const override {
-    return "an image filter in screen space (post), on the texture (texture) or on every mip level (mip)";
+    return "an image filter in screen space (post), on the texture (texture) or on every mip level "
+           "(mip)";
   }
   MethodAxes axes() const override {
-    return {"the filter's strength: unsharp's gain, bilateral's blend towards the abstraction, dog's line strength",
-            {{"sigma", "texels (pixels with mode post)", "the filter's spatial σ (dog: the finer of σ and 1.6σ)"}}};
+    return {
+        "the filter's strength: unsharp's gain, bilateral's blend towards the abstraction, dog's "
+        "line strength",
+        {{"sigma", "texels (pixels with mode post)",
+          "the filter's spatial σ (dog: the finer of σ and 1.6σ)"}}};
   }
   std::vector<ParameterDoc> parameter_docs() const override {
-    return {{"sigma", "2", "spatial σ: texels of each level (mip), of the texture (texture), pixels (post)"},
-            {"mode", "mip", "post: the rendered image; texture: the texture, then its pyramid; mip: every level"},
+    return {{"sigma", "2",
+             "spatial σ: texels of each level (mip), of the texture (texture), pixels (post)"},
+            {"mode", "mip",
+             "post: the rendered image; texture: the texture, then its pyramid; mip: every level"},
             {"filter", "unsharp", "unsharp (L* detail), bilateral (abstraction), dog (edge lines)"},
             {"sigma_r", "10", "bilateral: the range σ in L*"},
             {"tau", "1", "dog: how far below 0 the DoG must fall before a line starts, in L*"},
             {"phi", "0.5", "dog: the steepness of a line's soft edge, per L*"},
-            {"level_strengths", "all 1", "mip: a strength multiplier per level, finest first (the last repeats)"}};
+            {"level_strengths", "all 1",
+             "mip: a strength multiplier per level, finest first (the last repeats)"}};
   }
   std::string label(const MethodParameters& parameters) const override {
     const auto& p = parameters_as<TextureFilterParameters>(parameters);
@@ -192,12 +217,15 @@ class TextureFilterMethod final : public EnhancementMethod {
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<TextureFilterParameters>();
     const std::string mode = bag.choice("mode", "mip", {"post", "texture", "mip"});
-    p->mode = mode == "post" ? FilterMode::post : (mode == "texture" ? FilterMode::texture : FilterMode::mip);
+    p->mode = mode == "post" ? FilterMode::post
+                             : (mode == "texture" ? FilterMode::texture : FilterMode::mip);
     p->filter = read_lightness_filter(bag);
-    if (bag.has("level_strengths") && p->mode != FilterMode::mip) bag.fail("level_strengths", "applies to mode mip only");
+    if (bag.has("level_strengths") && p->mode != FilterMode::mip)
+      bag.fail("level_strengths", "applies to mode mip only");
     p->level_strengths = bag.numbers("level_strengths", {});
     for (double s : p->level_strengths)
-      if (!(s >= 0 && s <= 100)) bag.fail("level_strengths", "every multiplier must lie in [0, 100]");
+      if (!(s >= 0 && s <= 100))
+        bag.fail("level_strengths", "every multiplier must lie in [0, 100]");
     bag.finish(name());
     return p;
   }
@@ -205,30 +233,34 @@ class TextureFilterMethod final : public EnhancementMethod {
   RenderRequest request(const MethodParameters& parameters) const override {
     RenderRequest r;
     r.scene = parameters_as<TextureFilterParameters>(parameters).mode != FilterMode::post;
-    r.renders_again = r.scene;  // `render` renders its λ with the filtered textures; a set takes the samples again
+    r.renders_again = r.scene;  // `render` renders its λ with the filtered textures; a set takes
+                                // the samples again
     return r;
   }
 
-  std::shared_ptr<const ChangePerLambda> change_per_lambda(const MethodParameters& parameters) const override {
+  std::shared_ptr<const ChangePerLambda> change_per_lambda(
+      const MethodParameters& parameters) const override {
     const auto& p = parameters_as<TextureFilterParameters>(parameters);
     if (p.mode != FilterMode::post) return std::make_shared<TexelDetailChange>();
     if (p.filter.kind != FilterKind::unsharp) return nullptr;
     return std::make_shared<LightnessTimes>(1.0);  // as usm2d: the detail carries the pixel's noise
   }
 
-  std::shared_ptr<const SurfaceStage> surface_stage(const SurfaceContext& context,
-                                                    const MethodParameters& parameters) const override {
+  std::shared_ptr<const SurfaceStage> surface_stage(
+      const SurfaceContext& context, const MethodParameters& parameters) const override {
     const auto& p = parameters_as<TextureFilterParameters>(parameters);
     if (p.mode == FilterMode::post) return nullptr;
     check_scene(context.scene, p);
-    return std::make_shared<FilteredTextureStage>(context.scene, filter_textures(context.scene, p, context.threads));
+    return std::make_shared<FilteredTextureStage>(
+        context.scene, filter_textures(context.scene, p, context.threads));
   }
 
   void check_scene(const Scene& scene, const MethodParameters& parameters) const override {
     const auto& p = parameters_as<TextureFilterParameters>(parameters);
     if (p.mode != FilterMode::post && scene_textures(scene).empty())
-      throw InputError(name() + " in mode " + mode_name(p.mode) + " filters textures, and no object of " +
-                       scene.file.string() + " has one (mode post filters the image)");
+      throw InputError(name() + " in mode " + mode_name(p.mode) +
+                       " filters textures, and no object of " + scene.file.string() +
+                       " has one (mode post filters the image)");
   }
 
   std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
@@ -239,33 +271,38 @@ class TextureFilterMethod final : public EnhancementMethod {
   }
 
  private:
-  static std::shared_ptr<const std::vector<FilteredPyramid>> filter_textures(const Scene& scene,
-                                                                             const TextureFilterParameters& p,
-                                                                             int threads) {
+  static std::shared_ptr<const std::vector<FilteredPyramid>> filter_textures(
+      const Scene& scene, const TextureFilterParameters& p, int threads) {
     const TextureMode mode = p.mode == FilterMode::mip ? TextureMode::mip : TextureMode::texture;
     auto pyramids = std::make_shared<std::vector<FilteredPyramid>>();
     for (const auto& t : scene_textures(scene))
-      pyramids->push_back(filter_pyramid(t, mode, p.filter, p.level_strengths, pyramid_cache_folder(), threads));
+      pyramids->push_back(
+          filter_pyramid(t, mode, p.filter, p.level_strengths, pyramid_cache_folder(), threads));
     return pyramids;
   }
 
   nlohmann::json describe(const TextureFilterParameters& p) const {
-    nlohmann::json out{{"mode", mode_name(p.mode)}, {"filter", filter_name(p.filter.kind)}, {"sigma", p.filter.sigma}};
+    nlohmann::json out{{"mode", mode_name(p.mode)},
+                       {"filter", filter_name(p.filter.kind)},
+                       {"sigma", p.filter.sigma}};
     if (p.filter.kind == FilterKind::bilateral) out["sigma_r"] = p.filter.sigma_r;
-    if (p.filter.kind == FilterKind::dog) out.update({{"tau", p.filter.tau}, {"phi", p.filter.phi}});
+    if (p.filter.kind == FilterKind::dog)
+      out.update({{"tau", p.filter.tau}, {"phi", p.filter.phi}});
     if (!p.level_strengths.empty()) out["level_strengths"] = p.level_strengths;
     return out;
   }
 
-  std::unique_ptr<PreparedEnhancement> prepare_post(const PrepareContext& context, const TextureFilterParameters& p) const {
+  std::unique_ptr<PreparedEnhancement> prepare_post(const PrepareContext& context,
+                                                    const TextureFilterParameters& p) const {
     const View& view = *context.view;
     const std::vector<float> detail =
-        lightness_detail(view_signal_lightness(view), view.width(), view.height(), p.filter, Borders::clamp, context.threads);
+        lightness_detail(view_signal_lightness(view), view.width(), view.height(), p.filter,
+                         Borders::clamp, context.threads);
     LightnessChange change;
     change.amount.assign(detail.begin(), detail.end());
-    auto prepared = std::make_unique<LightnessPrepared>(context.view, std::move(change), describe(p),
-                                                        std::vector<std::pair<std::string, Image>>{}, context.threads,
-                                                        plain_noise(context));
+    auto prepared = std::make_unique<LightnessPrepared>(
+        context.view, std::move(change), describe(p), std::vector<std::pair<std::string, Image>>{},
+        context.threads, plain_noise(context));
     if (p.filter.kind == FilterKind::unsharp)  // the detail is S − G*S, so M = S − detail
       prepared->set_mask([view = context.view, detail] {
         const std::span<const float> S = view_signal_lightness(*view);
@@ -282,7 +319,8 @@ class TextureFilterMethod final : public EnhancementMethod {
     check_scene(*context.view->scene, p);
     const auto textures = scene_textures(*context.view->scene);
     const auto* stage = dynamic_cast<const FilteredTextureStage*>(context.stage.get());
-    auto pyramids = stage ? stage->pyramids() : filter_textures(*context.view->scene, p, context.threads);
+    auto pyramids =
+        stage ? stage->pyramids() : filter_textures(*context.view->scene, p, context.threads);
     nlohmann::json parameters = describe(p);
     parameters["textures"] = textures.size();
     std::shared_ptr<const TexelWeights> weights;
@@ -290,15 +328,19 @@ class TextureFilterMethod final : public EnhancementMethod {
       std::vector<const Texture*> plain;
       for (const auto& t : textures) plain.push_back(t.get());
       const View& view = *context.view;
-      weights = view.memo.get<TexelWeights>("texel-weights", [&] { return TexelWeights::of_view(view, plain, context.threads); });
+      weights = view.memo.get<TexelWeights>(
+          "texel-weights", [&] { return TexelWeights::of_view(view, plain, context.threads); });
     }
-    return std::make_unique<FilteredTextures>(context, std::move(pyramids), std::move(weights), std::move(parameters),
+    return std::make_unique<FilteredTextures>(context, std::move(pyramids), std::move(weights),
+                                              std::move(parameters),
                                               p.filter.kind == FilterKind::unsharp);
   }
 };
 
 }  // namespace
 
-std::unique_ptr<const EnhancementMethod> make_texture_filter_method() { return std::make_unique<TextureFilterMethod>(); }
+std::unique_ptr<const EnhancementMethod> make_texture_filter_method() {
+  return std::make_unique<TextureFilterMethod>();
+}
 
 }  // namespace countershade

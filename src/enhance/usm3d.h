@@ -36,11 +36,13 @@ struct SurfaceContrast {
 // connected component, and the gain factor w·√(1+Var) (importance may be empty: w = 1). Vertices
 // at one point of the surface (a seam) share its values.
 SurfaceContrast surface_contrast(const SurfaceGraph& surface, std::vector<double> lightness,
-                                 const std::vector<float>& importance,
-                                 const SmoothingWidth& width, int threads = 0);
+                                 const std::vector<float>& importance, const SmoothingWidth& width,
+                                 int threads = 0);
 
 // The same for a rendered object, from the display lightness of its vertex radiance.
-SurfaceContrast surface_contrast(const Object& object, const std::vector<glm::vec3>& vertex_radiance,
-                                 const Display& display, const SmoothingWidth& width, int threads = 0);
+SurfaceContrast surface_contrast(const Object& object,
+                                 const std::vector<glm::vec3>& vertex_radiance,
+                                 const Display& display, const SmoothingWidth& width,
+                                 int threads = 0);
 
 }  // namespace countershade

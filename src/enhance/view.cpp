@@ -17,21 +17,25 @@ void quantize_in_place(Image& image, int bits) {
 namespace {
 
 // encode_for_display and then quantize_in_place, in one pass without a pow() per channel.
-Image quantized_display(const Image& radiance, const Exposure& exposure, const DisplayEncoding& encoding, int bits) {
+Image quantized_display(const Image& radiance, const Exposure& exposure,
+                        const DisplayEncoding& encoding, int bits) {
   const CodeQuantizer& quantizer = CodeQuantizer::shared(encoding, bits);
   Image out(radiance.width, radiance.height, radiance.channels, Image::Uninitialized{});
-  for (size_t i = 0; i < radiance.pixels.size(); ++i) out.pixels[i] = quantizer.value(exposure(radiance.pixels[i]));
+  for (size_t i = 0; i < radiance.pixels.size(); ++i)
+    out.pixels[i] = quantizer.value(exposure(radiance.pixels[i]));
   return out;
 }
 
 }  // namespace
 
-std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::shared_ptr<const RayTracer> tracer,
-                                      RenderResult render, int bits, bool lab) {
+std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene,
+                                      std::shared_ptr<const RayTracer> tracer, RenderResult render,
+                                      int bits, bool lab) {
   auto view = std::make_shared<View>();
   view->encoding = scene->display.encoding;
   view->bits = bits;
-  view->display = quantized_display(render.radiance, scene->display.exposure(), view->encoding, bits);
+  view->display =
+      quantized_display(render.radiance, scene->display.exposure(), view->encoding, bits);
   if (lab) view->lab = display_to_lab(view->display, view->encoding, bits, &view->lightness);
   view->depth = render.gbuffer.depth;
   view->render = std::move(render);
@@ -40,8 +44,8 @@ std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::s
   return view;
 }
 
-std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding,
-                                            int bits, bool round) {
+std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth,
+                                            const DisplayEncoding& encoding, int bits, bool round) {
   auto view = std::make_shared<View>();
   view->encoding = encoding;
   view->bits = bits;

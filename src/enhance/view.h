@@ -3,15 +3,15 @@
 // what is read from an image and depth file. Every method of a stimulus set starts from the same
 // view; prepared methods share it (std::shared_ptr<const View>) and keep it alive.
 
+#include <tbb/task_arena.h>
+
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
-#include <tbb/task_arena.h>
 
 #include "core/color.h"
 #include "core/display.h"
@@ -42,7 +42,8 @@ class ViewMemo {
   ViewMemo(const ViewMemo&) {}
   ViewMemo& operator=(const ViewMemo&) { return *this; }
   template <class T>
-  std::shared_ptr<const T> get(const std::string& key, const std::function<std::shared_ptr<const T>()>& make) const {
+  std::shared_ptr<const T> get(const std::string& key,
+                               const std::function<std::shared_ptr<const T>()>& make) const {
     std::lock_guard<std::mutex> lock(mutex_);
     const auto [entry, first] = values_.try_emplace(key);
     std::shared_ptr<const void>& value = entry->second;
@@ -61,11 +62,11 @@ struct View {
   std::shared_ptr<const Scene> scene;       // null for external images
   std::shared_ptr<const RayTracer> tracer;  // the scene's BVH, for renders with hooks
   DisplayEncoding encoding = DisplayEncoding::srgb();
-  RenderResult render;        // G-buffer and vertex radiance (renders only)
-  std::vector<float> depth;   // linear eye depth per pixel; 0, inf or NaN = background/invalid
-  Image display;              // the unenhanced stimulus: code values in [0,1], quantised to `bits`
-  LabPixels lab;              // CIELAB of `display`, per pixel
-  PixelVector lightness;      // L* of `lab` as floats, made with it (the plane image filters read)
+  RenderResult render;       // G-buffer and vertex radiance (renders only)
+  std::vector<float> depth;  // linear eye depth per pixel; 0, inf or NaN = background/invalid
+  Image display;             // the unenhanced stimulus: code values in [0,1], quantised to `bits`
+  LabPixels lab;             // CIELAB of `display`, per pixel
+  PixelVector lightness;     // L* of `lab` as floats, made with it (the plane image filters read)
   int bits = 8;
   // Per use of the plan the view was rendered for: its surface stage (or null) and the indices of
   // the stage's fields in render.fields.
@@ -90,13 +91,15 @@ void quantize_in_place(Image& image, int bits);
 // The View of a render: exposure and display encoding, quantised to the output bit depth (8 or
 // 16) so every method starts from exactly the pixels of the reference image, then CIELAB (left
 // empty with `lab` false: the renders a method asks for itself, of which it keeps the display).
-std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene, std::shared_ptr<const RayTracer> tracer,
-                                      RenderResult render, int bits = 8, bool lab = true);
+std::shared_ptr<const View> make_view(std::shared_ptr<const Scene> scene,
+                                      std::shared_ptr<const RayTracer> tracer, RenderResult render,
+                                      int bits = 8, bool lab = true);
 
 // The View of an external image (display-encoded code values, 3 channels) with an optional
 // depth map of the same size, rounded to `bits` unless `round` is false (a stimulus a method has
 // not rounded yet, seen with its own L*).
-std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth, const DisplayEncoding& encoding,
-                                            int bits, bool round = true);
+std::shared_ptr<const View> make_image_view(Image display, std::vector<float> depth,
+                                            const DisplayEncoding& encoding, int bits,
+                                            bool round = true);
 
 }  // namespace countershade

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 #include "enhance/film_lookup.h"
@@ -28,7 +27,8 @@ ParameterDoc curvature_tau_doc() {
 }
 
 ViewCurvature::ViewCurvature(const View& view, double tau)
-    : camera_(view.scene->camera), kappa_(view.render.gbuffer.width, view.render.gbuffer.height, 1) {
+    : camera_(view.scene->camera),
+      kappa_(view.render.gbuffer.width, view.render.gbuffer.height, 1) {
   const GBuffer& g = view.render.gbuffer;
   std::vector<glm::dvec2> field(g.normal.size(), glm::dvec2(0.0));
   object_.assign(g.normal.size(), 0);
@@ -43,16 +43,19 @@ ViewCurvature::ViewCurvature(const View& view, double tau)
     for (int x = 1; x + 1 < g.width; ++x) {
       const size_t i = g.index(x, y), above = i - size_t(g.width), below = i + size_t(g.width);
       if (!object_[i]) continue;
-      const double dx = derivative(object_[i - 1], object_[i + 1], field[i - 1].x, field[i].x, field[i + 1].x);
+      const double dx =
+          derivative(object_[i - 1], object_[i + 1], field[i - 1].x, field[i].x, field[i + 1].x);
       // Film rows grow downwards while the view's y axis points up.
-      const double dy = derivative(object_[below], object_[above], field[below].y, field[i].y, field[above].y);
+      const double dy =
+          derivative(object_[below], object_[above], field[below].y, field[i].y, field[above].y);
       kappa_.at(x, y) = float(std::tanh(-tau * (dx + dy)));
     }
 }
 
 double ViewCurvature::at(const glm::dvec3& p) const {
-  const auto [sum, weight] = interpolate_in_mask<double>(camera_.film_position(p), kappa_.width, kappa_.height, object_,
-                                                         [&](size_t i) { return double(kappa_.pixels[i]); });
+  const auto [sum, weight] =
+      interpolate_in_mask<double>(camera_.film_position(p), kappa_.width, kappa_.height, object_,
+                                  [&](size_t i) { return double(kappa_.pixels[i]); });
   return weight > 0 ? sum / weight : 0.0;
 }
 

@@ -2,9 +2,8 @@
 // The view-dependent curvature κ that radiance scaling and light warping read (Vergne et al.
 // 2010): the divergence of the screen gradient field of the view's normals, through tanh.
 
-#include <vector>
-
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "core/image.h"
 #include "enhance/method.h"

@@ -5,13 +5,18 @@
 
 namespace countershade::forced_choice {
 
-const char* layout_name(Layout layout) { return layout == Layout::spatial ? "spatial" : "temporal"; }
+const char* layout_name(Layout layout) {
+  return layout == Layout::spatial ? "spatial" : "temporal";
+}
 
 const char* procedure_kind_name(ProcedureKind kind) {
   switch (kind) {
-    case ProcedureKind::constant: return "constant";
-    case ProcedureKind::staircase: return "staircase";
-    case ProcedureKind::quest: return "quest";
+    case ProcedureKind::constant:
+      return "constant";
+    case ProcedureKind::staircase:
+      return "staircase";
+    case ProcedureKind::quest:
+      return "quest";
   }
   return "?";
 }
@@ -51,13 +56,16 @@ void read_procedure_block(const JsonObject& p, ChoiceConfig& c) {
 
 }  // namespace
 
-ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file, const std::string& path) {
-  if (!value.is_object()) throw_input_error(file + (path.empty() ? "" : ": " + path), "expected a JSON object");
+ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
+                                 const std::string& path) {
+  if (!value.is_object())
+    throw_input_error(file + (path.empty() ? "" : ": " + path), "expected a JSON object");
   ChoiceConfig c;
   c.source = file + ": " + (path.empty() ? "" : path + ".");
   JsonObject o(value, file, path);
   c.n_afc = int(o.integer_in("n_afc", 2, 2, 4));
-  c.layout = o.choice("layout", "spatial", {"spatial", "temporal"}) == "temporal" ? Layout::temporal : Layout::spatial;
+  c.layout = o.choice("layout", "spatial", {"spatial", "temporal"}) == "temporal" ? Layout::temporal
+                                                                                  : Layout::spatial;
   c.interval_frames = int(o.integer_in("interval_frames", 30, 1, 6000));
   c.blank_frames = int(o.integer_in("blank_frames", 30, 0, 6000));
   c.feedback_frames = int(o.integer_in("feedback_frames", 0, 0, 600));
@@ -81,9 +89,12 @@ std::string ChoiceConfig::welcome_text() const {
   if (!welcome.empty()) return welcome;
   const std::string n = n_afc == 2 ? "Two" : n_afc == 3 ? "Three" : "Four";
   const std::string shown = layout == Layout::spatial ? "side by side" : "one after the other";
-  const std::string keys = n_afc == 2 ? (layout == Layout::spatial ? "Press Left for the left one and Right for the right one"
-                                                                   : "Press Left for the first and Right for the second")
-                                      : "Press its number (1 is the " + std::string(layout == Layout::spatial ? "leftmost" : "first") + ")";
+  const std::string keys =
+      n_afc == 2
+          ? (layout == Layout::spatial ? "Press Left for the left one and Right for the right one"
+                                       : "Press Left for the first and Right for the second")
+          : "Press its number (1 is the " +
+                std::string(layout == Layout::spatial ? "leftmost" : "first") + ")";
   return n + " images of the same scene are shown " + shown + "; one of them is enhanced. " + keys +
          ". Press Esc at any time to pause.\n\nPress Enter to begin.";
 }

@@ -5,11 +5,10 @@
 // each condition's λ: constant stimuli, a staircase or QUEST.
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "forced_choice/procedure_spec.h"
 
@@ -29,19 +28,21 @@ struct ConditionSelection {
 struct ChoiceConfig {
   int n_afc = 2;
   Layout layout = Layout::spatial;
-  int interval_frames = 30, blank_frames = 30;  // temporal layout: each interval, and the blank between
-  int feedback_frames = 0;                      // 0: no feedback
+  int interval_frames = 30,
+      blank_frames = 30;    // temporal layout: each interval, and the blank between
+  int feedback_frames = 0;  // 0: no feedback
   std::string question = "Which image is enhanced?";
   // Empty: a text that fits the layout and the number of alternatives (welcome_text()).
   std::string welcome;
   ProcedureKind kind = ProcedureKind::quest;
-  ProcedureSpec adaptive;           // staircase or QUEST (QUEST intensities are log10 λ)
-  std::vector<double> levels;       // constant stimuli: the λ shown
-  int repetitions = 20;             // constant stimuli: trials per level
-  int trials = 40;                  // QUEST: trials per condition
-  int max_trials = 200;             // any procedure: a condition ends after this many trials
-  std::vector<ConditionSelection> conditions;           // empty: every condition of the set
-  std::vector<ConditionSelection> practice_conditions;  // empty: conditions whose images change with λ
+  ProcedureSpec adaptive;      // staircase or QUEST (QUEST intensities are log10 λ)
+  std::vector<double> levels;  // constant stimuli: the λ shown
+  int repetitions = 20;        // constant stimuli: trials per level
+  int trials = 40;             // QUEST: trials per condition
+  int max_trials = 200;        // any procedure: a condition ends after this many trials
+  std::vector<ConditionSelection> conditions;  // empty: every condition of the set
+  std::vector<ConditionSelection>
+      practice_conditions;  // empty: conditions whose images change with λ
   int practice_trials = 0;
   std::optional<uint64_t> seed;
   nlohmann::json procedure_source;  // the procedure block as written, for the session's record
@@ -54,6 +55,7 @@ struct ChoiceConfig {
 };
 
 // Reads the block; every bad value is an InputError naming `file` and the key path.
-ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file, const std::string& path);
+ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
+                                 const std::string& path);
 
 }  // namespace countershade::forced_choice

@@ -13,7 +13,8 @@ double ChoiceObserver::probability_correct(double lambda, int n_afc) const {
   return guess + (1 - guess) * (1 - std::exp(-std::pow(lambda / alpha, beta)));
 }
 
-int ChoiceObserver::respond(int number, int practice_index, double lambda, int target, int n_afc) const {
+int ChoiceObserver::respond(int number, int practice_index, double lambda, int target,
+                            int n_afc) const {
   SampleStream random(seed, 401, uint64_t(number), uint64_t(practice_index));
   if (random.next() < probability_correct(lambda, n_afc)) return target;
   const int wrong = std::min(int(random.next() * (n_afc - 1)), n_afc - 2);  // one of the others
@@ -27,13 +28,15 @@ ChoiceObserver parse_choice_observer(const std::string& spec) {
     std::istringstream in(spec.substr(prefix.size()));
     char c1 = 0, c2 = 0;
     long long seed = -1;
-    if (in >> o.alpha >> c1 >> o.beta >> c2 >> seed && c1 == ',' && c2 == ',' && in.peek() == EOF && o.alpha > 0 &&
-        o.beta > 0 && std::isfinite(o.alpha) && std::isfinite(o.beta) && seed >= 0) {
+    if (in >> o.alpha >> c1 >> o.beta >> c2 >> seed && c1 == ',' && c2 == ',' && in.peek() == EOF &&
+        o.alpha > 0 && o.beta > 0 && std::isfinite(o.alpha) && std::isfinite(o.beta) && seed >= 0) {
       o.seed = uint64_t(seed);
       return o;
     }
   }
-  throw_input_error("--observer", "'" + spec + "' is not an observer (expected weibull:ALPHA,BETA,SEED, e.g. weibull:0.3,3,7)");
+  throw_input_error(
+      "--observer",
+      "'" + spec + "' is not an observer (expected weibull:ALPHA,BETA,SEED, e.g. weibull:0.3,3,7)");
 }
 
 }  // namespace countershade::forced_choice

@@ -18,9 +18,11 @@ using json = nlohmann::ordered_json;
 
 const std::vector<std::string>& choice_columns() {
   static const std::vector<std::string> columns = {
-      "subject", "session", "trial",   "scene",    "method",   "sigma",  "lambda", "lambda_index", "lambda_requested",
-      "n_afc",   "layout",  "target",  "response", "correct",  "rt_ms",  "procedure", "condition_trial", "set_sha256",
-      "time_utc"};
+      "subject",          "session",    "trial",   "scene",
+      "method",           "sigma",      "lambda",  "lambda_index",
+      "lambda_requested", "n_afc",      "layout",  "target",
+      "response",         "correct",    "rt_ms",   "procedure",
+      "condition_trial",  "set_sha256", "time_utc"};
   return columns;
 }
 
@@ -47,29 +49,44 @@ void move_partial_line_aside(const fs::path& csv, json& sidecar) {
                                 {"file", aside.filename().string()}});
 }
 
-std::string row_mismatch(const std::vector<std::string>& row, const ChoiceTrial& t, const adjust::Study& study) {
+std::string row_mismatch(const std::vector<std::string>& row, const ChoiceTrial& t,
+                         const adjust::Study& study) {
   const auto& c = study.conditions[size_t(t.condition)];
-  const std::vector<std::pair<size_t, std::string>> expected = {
-      {2, std::to_string(t.number)}, {3, c.scene}, {4, c.method}, {5, format_value(c.sigma)},
-      {7, std::to_string(t.lambda_index)}, {11, std::to_string(t.target)}};
+  const std::vector<std::pair<size_t, std::string>> expected = {{2, std::to_string(t.number)},
+                                                                {3, c.scene},
+                                                                {4, c.method},
+                                                                {5, format_value(c.sigma)},
+                                                                {7, std::to_string(t.lambda_index)},
+                                                                {11, std::to_string(t.target)}};
   for (const auto& [column, value] : expected)
     if (row[column] != value)
-      return choice_columns()[column] + " is '" + row[column] + "' where this session's plan has '" + value + "'";
+      return choice_columns()[column] + " is '" + row[column] +
+             "' where this session's plan has '" + value + "'";
   return "";
 }
 
 }  // namespace
 
-ChoiceRecorder::ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& config, const Identity& who,
-                               const fs::path& dir, bool resume, ChoiceRun& run)
-    : study_(study), config_(config), who_(who), files_(choice_files(dir, who.subject, who.session)) {
+ChoiceRecorder::ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& config,
+                               const Identity& who, const fs::path& dir, bool resume,
+                               ChoiceRun& run)
+    : study_(study),
+      config_(config),
+      who_(who),
+      files_(choice_files(dir, who.subject, who.session)) {
   run_.started_utc = utc_timestamp();
   run_.resumed = resume;
   if (!resume) {
-    if (fs::exists(files_.sidecar)) throw_input_error(files_.sidecar.string(), "exists already (use --resume to continue it)");
-    sidecar_ = {{"format", "countershade-forced-choice-session"}, {"subject", who.subject}, {"session", who.session},
-                {"seed", who.seed}, {"set", {{"manifest", study.manifest_path.string()}, {"sha256", study.manifest_sha256}}},
-                {"config", config.to_json()}, {"runs", json::array()}};
+    if (fs::exists(files_.sidecar))
+      throw_input_error(files_.sidecar.string(), "exists already (use --resume to continue it)");
+    sidecar_ = {
+        {"format", "countershade-forced-choice-session"},
+        {"subject", who.subject},
+        {"session", who.session},
+        {"seed", who.seed},
+        {"set", {{"manifest", study.manifest_path.string()}, {"sha256", study.manifest_sha256}}},
+        {"config", config.to_json()},
+        {"runs", json::array()}};
     csv_ = AppendOnlyFile::create(files_.csv, csv_line(choice_columns()));
     save(run);
     return;
@@ -79,7 +96,8 @@ ChoiceRecorder::ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& c
   sidecar_ = json::parse(read_file_bytes(files_.sidecar));
   if (sidecar_.value("seed", uint64_t(0)) != who.seed || sidecar_["config"] != config.to_json() ||
       sidecar_["set"]["sha256"] != study.manifest_sha256)
-    throw_input_error(files_.sidecar.string(), "this session was begun with another set, seed or configuration");
+    throw_input_error(files_.sidecar.string(),
+                      "this session was begun with another set, seed or configuration");
   for (auto& r : sidecar_["runs"])  // a run that never recorded its end was killed
     if (r.value("end", std::string()) == adjust::run_end_name(adjust::RunEnd::running))
       r["end"] = adjust::run_end_name(adjust::RunEnd::interrupted);
@@ -91,12 +109,14 @@ ChoiceRecorder::ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& c
 void ChoiceRecorder::replay(ChoiceRun& run) {
   const std::string file = files_.csv.string();
   const CsvTable table = parse_csv(read_file_bytes(files_.csv), file);
-  if (table.rows.empty() || table.rows.front() != choice_columns()) throw_input_error(file, "not a forced-choice session (its header differs)");
+  if (table.rows.empty() || table.rows.front() != choice_columns())
+    throw_input_error(file, "not a forced-choice session (its header differs)");
   while (run.in_practice()) run.answer(run.current()->target);  // practice is not recorded: skip it
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const std::string where = file + ":" + std::to_string(table.lines[r]);
-    if (row.size() != choice_columns().size()) throw_input_error(where, "expected " + std::to_string(choice_columns().size()) + " fields");
+    if (row.size() != choice_columns().size())
+      throw_input_error(where, "expected " + std::to_string(choice_columns().size()) + " fields");
     if (run.finished()) throw_input_error(where, "a trial after the session's last one");
     const std::string mismatch = row_mismatch(row, *run.current(), study_);
     if (!mismatch.empty()) throw_input_error(where, mismatch);
@@ -111,12 +131,13 @@ void ChoiceRecorder::record(const ChoiceTrial& t, int response, bool correct, do
   const auto& c = study_.conditions[size_t(t.condition)];
   char rt[32];
   std::snprintf(rt, sizeof rt, "%.1f", rt_s * 1000);
-  csv_.append(csv_line({who_.subject, std::to_string(who_.session), std::to_string(t.number), c.scene, c.method,
-                        format_value(c.sigma), format_value(t.lambda), std::to_string(t.lambda_index),
-                        format_value(round_to(t.intensity.requested, 9)), std::to_string(config_.n_afc),
-                        layout_name(config_.layout), std::to_string(t.target), std::to_string(response), correct ? "1" : "0",
-                        rt, procedure_kind_name(config_.kind), std::to_string(t.condition_trial), study_.manifest_sha256,
-                        utc_timestamp()}));
+  csv_.append(csv_line(
+      {who_.subject, std::to_string(who_.session), std::to_string(t.number), c.scene, c.method,
+       format_value(c.sigma), format_value(t.lambda), std::to_string(t.lambda_index),
+       format_value(round_to(t.intensity.requested, 9)), std::to_string(config_.n_afc),
+       layout_name(config_.layout), std::to_string(t.target), std::to_string(response),
+       correct ? "1" : "0", rt, procedure_kind_name(config_.kind),
+       std::to_string(t.condition_trial), study_.manifest_sha256, utc_timestamp()}));
   csv_.sync();
   ++rows_;
   ++run_.answers;
@@ -128,7 +149,9 @@ void ChoiceRecorder::save(const ChoiceRun& run) {
   out["procedures"] = json::array();
   for (int c : run.conditions()) {
     const auto& condition = study_.conditions[size_t(c)];
-    out["procedures"].push_back({{"scene", condition.scene}, {"method", condition.method}, {"sigma", condition.sigma},
+    out["procedures"].push_back({{"scene", condition.scene},
+                                 {"method", condition.method},
+                                 {"sigma", condition.sigma},
                                  {"state", run.procedure_state(c)}});
   }
   write_text_atomically(files_.sidecar, out.dump(2) + "\n");

@@ -8,10 +8,9 @@
 // exactly where it stopped, with the procedures in the same state.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "adjust/session_run.h"
 #include "adjust/study.h"

@@ -17,16 +17,17 @@ bool matches(const ConditionSelection& s, const adjust::Condition& c) {
   return s.scene == c.scene && s.method == c.method && std::abs(s.sigma - c.sigma) < 1e-12;
 }
 
-std::vector<int> select(const adjust::Study& study, const std::vector<ConditionSelection>& wanted, const std::string& source,
-                        const std::string& key) {
+std::vector<int> select(const adjust::Study& study, const std::vector<ConditionSelection>& wanted,
+                        const std::string& source, const std::string& key) {
   std::vector<int> out;
   for (size_t w = 0; w < wanted.size(); ++w) {
     const auto& c = study.conditions;
-    const auto it = std::find_if(c.begin(), c.end(), [&](const adjust::Condition& x) { return matches(wanted[w], x); });
+    const auto it = std::find_if(c.begin(), c.end(),
+                                 [&](const adjust::Condition& x) { return matches(wanted[w], x); });
     if (it == c.end())
       throw_input_error(source + key + "[" + std::to_string(w) + "]",
-                        "no condition " + wanted[w].scene + " / " + wanted[w].method + " / σ " + std::to_string(wanted[w].sigma) +
-                            " in the set");
+                        "no condition " + wanted[w].scene + " / " + wanted[w].method + " / σ " +
+                            std::to_string(wanted[w].sigma) + " in the set");
     out.push_back(int(it - c.begin()));
   }
   return out;
@@ -49,7 +50,8 @@ int balanced_target(uint64_t seed, int condition, int k, int n) {
   std::vector<int> order(static_cast<size_t>(n));
   std::iota(order.begin(), order.end(), 0);
   SampleStream random(seed, kStreamTarget, uint64_t(condition), uint64_t(k / n));
-  for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[std::min(size_t(random.next() * double(i)), i - 1)]);
+  for (size_t i = order.size(); i > 1; --i)
+    std::swap(order[i - 1], order[std::min(size_t(random.next() * double(i)), i - 1)]);
   return order[size_t(k % n)];
 }
 
@@ -58,21 +60,28 @@ int balanced_target(uint64_t seed, int condition, int k, int n) {
 ChoiceRun::ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uint64_t seed)
     : study_(study), config_(config), seed_(seed) {
   conditions_ = select(study, config.conditions, config.source, "conditions");
-  if (conditions_.empty()) conditions_.resize(study.conditions.size()), std::iota(conditions_.begin(), conditions_.end(), 0);
-  practice_conditions_ = select(study, config.practice_conditions, config.source, "practice_conditions");
+  if (conditions_.empty())
+    conditions_.resize(study.conditions.size()),
+        std::iota(conditions_.begin(), conditions_.end(), 0);
+  practice_conditions_ =
+      select(study, config.practice_conditions, config.source, "practice_conditions");
   if (practice_conditions_.empty())
     for (int c : conditions_)
       if (study.changes_with_lambda(c)) practice_conditions_.push_back(c);
   if (config.practice_trials > 0 && practice_conditions_.empty())
-    throw_input_error(config.source + "practice_trials", "no condition's images change with λ, so practice would show nothing to find");
+    throw_input_error(
+        config.source + "practice_trials",
+        "no condition's images change with λ, so practice would show nothing to find");
   for (int c : conditions_) grids_.push_back(grid_of(study, c));
   for (size_t i = 0; i < conditions_.size(); ++i) {
     const auto& c = study.conditions[size_t(conditions_[i])];
     try {
-      procedures_.push_back(std::make_unique<ConditionProcedure>(config, grids_[i], hash_combine(seed, uint64_t(conditions_[i])),
-                                                                 config.source + "procedure"));
+      procedures_.push_back(std::make_unique<ConditionProcedure>(
+          config, grids_[i], hash_combine(seed, uint64_t(conditions_[i])),
+          config.source + "procedure"));
     } catch (const InputError& e) {  // which condition's grid it is
-      throw InputError(std::string(e.what()) + " (condition " + c.scene + " / " + c.method + " / σ " + format_value(c.sigma) + ")");
+      throw InputError(std::string(e.what()) + " (condition " + c.scene + " / " + c.method +
+                       " / σ " + format_value(c.sigma) + ")");
     }
   }
   current_ = plan_next();
@@ -87,7 +96,9 @@ ChoiceTrial ChoiceRun::practice_trial(int k) const {
   SampleStream random(seed_, kStreamPractice, uint64_t(k), 0);
   ChoiceTrial t;
   t.practice = true;
-  t.condition = practice_conditions_[std::min(size_t(random.next() * double(practice_conditions_.size())), practice_conditions_.size() - 1)];
+  t.condition =
+      practice_conditions_[std::min(size_t(random.next() * double(practice_conditions_.size())),
+                                    practice_conditions_.size() - 1)];
   const ChoiceGrid grid = grid_of(study_, t.condition);
   t.intensity = {grid.lambdas.back(), grid.lambdas.size() - 1};
   t.lambda_index = grid.indices.back();

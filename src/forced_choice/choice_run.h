@@ -17,14 +17,14 @@
 namespace countershade::forced_choice {
 
 struct ChoiceTrial {
-  int number = 0;           // 1-based among the real trials; 0 for practice
+  int number = 0;  // 1-based among the real trials; 0 for practice
   bool practice = false;
   int condition = 0;        // index into the study's conditions
   int condition_trial = 0;  // 1-based within the condition
   Intensity intensity;
-  int lambda_index = 0;     // the set's grid index shown
+  int lambda_index = 0;  // the set's grid index shown
   double lambda = 0;
-  int target = 0;           // position (spatial) or interval (temporal) of the enhanced image, 0-based
+  int target = 0;  // position (spatial) or interval (temporal) of the enhanced image, 0-based
 };
 
 class ChoiceRun {

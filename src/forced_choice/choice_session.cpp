@@ -35,12 +35,15 @@ ChoiceConfig load_config(const ChoiceSessionOptions& o) {
   if (o.config) return parse_choice_config(parse_json_file(*o.config), o.config->string(), "");
   const nlohmann::json manifest = parse_json_file(o.manifest);
   if (!manifest.contains("experiment") || !manifest["experiment"].contains("forced_choice"))
-    throw_input_error(o.manifest.string(), "experiment.forced_choice: missing (add the block to the experiment, or pass --procedure FILE)");
-  return parse_choice_config(manifest["experiment"]["forced_choice"], o.manifest.string(), "experiment.forced_choice");
+    throw_input_error(o.manifest.string(),
+                      "experiment.forced_choice: missing (add the block to the experiment, or pass "
+                      "--procedure FILE)");
+  return parse_choice_config(manifest["experiment"]["forced_choice"], o.manifest.string(),
+                             "experiment.forced_choice");
 }
 
-adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config,
-                                       uint64_t session_seed) {
+adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study,
+                                       const ChoiceConfig& config, uint64_t session_seed) {
   adjust::DisplayOptions d = adjust::study_display(study, "choose");
   d.columns = config.layout == Layout::spatial ? config.n_afc : 1;
   d.fullscreen = o.fullscreen;
@@ -67,9 +70,14 @@ std::optional<int> chosen(Key key, int n) {
 // The event loop: key events drive the run, answers go to the recorder, each frame is drawn.
 class ChoiceLoop {
  public:
-  ChoiceLoop(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config, ChoiceRun& run,
-             ChoiceRecorder& recorder, adjust::Presenter& presenter)
-      : o_(o), study_(study), config_(config), run_(run), recorder_(recorder), presenter_(presenter) {
+  ChoiceLoop(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config,
+             ChoiceRun& run, ChoiceRecorder& recorder, adjust::Presenter& presenter)
+      : o_(o),
+        study_(study),
+        config_(config),
+        run_(run),
+        recorder_(recorder),
+        presenter_(presenter) {
     if (o.script) script_ = adjust::parse_key_script(*o.script);
     if (o.observer) observer_ = parse_choice_observer(*o.observer);
   }
@@ -84,7 +92,8 @@ class ChoiceLoop {
       if (end_) break;
       advance(now);
       draw_frame(now);
-      if (o_.script && !observer_ && next_script_ == script_.size() && !end_) end_ = RunEnd::script_ended;
+      if (o_.script && !observer_ && next_script_ == script_.size() && !end_)
+        end_ = RunEnd::script_ended;
     }
     return *end_;
   }
@@ -93,9 +102,12 @@ class ChoiceLoop {
   void preload() {
     const double start = presenter_.now();
     auto textures = adjust::preload_textures(presenter_, study_);
-    if (textures) texture_ = std::move(*textures);
-    else end_ = RunEnd::closed;
-    recorder_.current_run().preload = adjust::Preload{study_.images.size(), presenter_.now() - start};
+    if (textures)
+      texture_ = std::move(*textures);
+    else
+      end_ = RunEnd::closed;
+    recorder_.current_run().preload =
+        adjust::Preload{study_.images.size(), presenter_.now() - start};
     recorder_.save(run_);
   }
 
@@ -105,7 +117,8 @@ class ChoiceLoop {
       if (w.kind == adjust::WindowEvent::Kind::press) press(w.key, w.time_s - t0_);
       if (w.kind == adjust::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(now);
     }
-    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_) scripted(script_[next_script_++]);
+    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_)
+      scripted(script_[next_script_++]);
     if (observer_) observe(now);
     if (g_signal) end_ = g_signal == SIGTERM ? RunEnd::terminated : RunEnd::interrupted;
   }
@@ -121,17 +134,21 @@ class ChoiceLoop {
     if (now < phase_since_ + observer_->delay_s) return;
     if (phase_ == Phase::trial && answer_allowed(now)) {
       const ChoiceTrial& t = *run_.current();
-      const int response = observer_->respond(t.number, practice_index_, t.lambda, t.target, config_.n_afc);
+      const int response =
+          observer_->respond(t.number, practice_index_, t.lambda, t.target, config_.n_afc);
       press(kNumberKeys[response], now);
-    } else if (phase_ == Phase::instructions || phase_ == Phase::practice_done || phase_ == Phase::finished) {
+    } else if (phase_ == Phase::instructions || phase_ == Phase::practice_done ||
+               phase_ == Phase::finished) {
       press(Key::enter, now);
     }
   }
 
   // When the answer keys count: a spatial trial at once, a temporal one after its last interval.
   double answer_from() const {
-    const int frames = config_.n_afc * config_.interval_frames + (config_.n_afc - 1) * config_.blank_frames;
-    return config_.layout == Layout::spatial ? phase_since_ : phase_since_ + frames / presenter_.refresh_hz();
+    const int frames =
+        config_.n_afc * config_.interval_frames + (config_.n_afc - 1) * config_.blank_frames;
+    return config_.layout == Layout::spatial ? phase_since_
+                                             : phase_since_ + frames / presenter_.refresh_hz();
   }
   bool answer_allowed(double now) const { return now + 1e-9 >= answer_from(); }
 
@@ -148,14 +165,25 @@ class ChoiceLoop {
 
   void press(Key key, double now) {
     switch (phase_) {
-      case Phase::instructions: if (key == Key::enter) next_trial(now); break;
-      case Phase::practice_done: if (key == Key::enter) next_trial(now); break;
-      case Phase::feedback: break;
-      case Phase::finished: if (key == Key::enter || key == Key::escape) end_ = RunEnd::completed; break;
-      case Phase::paused: resume_or_quit(key, now); break;
+      case Phase::instructions:
+        if (key == Key::enter) next_trial(now);
+        break;
+      case Phase::practice_done:
+        if (key == Key::enter) next_trial(now);
+        break;
+      case Phase::feedback:
+        break;
+      case Phase::finished:
+        if (key == Key::enter || key == Key::escape) end_ = RunEnd::completed;
+        break;
+      case Phase::paused:
+        resume_or_quit(key, now);
+        break;
       case Phase::trial:
-        if (key == Key::escape) pause(now);
-        else if (const auto choice = chosen(key, config_.n_afc); choice && answer_allowed(now)) answer(*choice, now);
+        if (key == Key::escape)
+          pause(now);
+        else if (const auto choice = chosen(key, config_.n_afc); choice && answer_allowed(now))
+          answer(*choice, now);
         break;
     }
   }
@@ -165,7 +193,8 @@ class ChoiceLoop {
       recorder_.current_run().pauses.back().quit = true;
       end_ = RunEnd::quit;
     } else if (key == Key::enter) {
-      recorder_.current_run().pauses.back().seconds = now - recorder_.current_run().pauses.back().at_s;
+      recorder_.current_run().pauses.back().seconds =
+          now - recorder_.current_run().pauses.back().at_s;
       enter_phase(paused_from_, now);  // a paused trial starts again from its beginning
       recorder_.save(run_);
     }
@@ -175,8 +204,10 @@ class ChoiceLoop {
     const ChoiceTrial t = *run_.current();
     const bool was_practice = t.practice;
     const bool correct = run_.answer(response);
-    if (!was_practice) recorder_.record(t, response, correct, now - answer_from());
-    else ++practice_index_;
+    if (!was_practice)
+      recorder_.record(t, response, correct, now - answer_from());
+    else
+      ++practice_index_;
     last_correct_ = correct;
     feedback_after_practice_ = was_practice;
     recorder_.save(run_);
@@ -194,7 +225,8 @@ class ChoiceLoop {
   }
 
   void advance(double now) {
-    if (phase_ == Phase::feedback && now >= phase_since_ + config_.feedback_frames / presenter_.refresh_hz())
+    if (phase_ == Phase::feedback &&
+        now >= phase_since_ + config_.feedback_frames / presenter_.refresh_hz())
       after_answer(feedback_after_practice_, now);
   }
 
@@ -203,7 +235,8 @@ class ChoiceLoop {
     const ChoiceTrial& trial = *run_.current();
     const auto& stimuli = study_.condition_images[size_t(trial.condition)];
     const int reference = study_.stimuli[size_t(stimuli[0])].frame_at(t);
-    const int enhanced = study_.stimuli[size_t(stimuli[size_t(1 + trial.lambda_index)])].frame_at(t);
+    const int enhanced =
+        study_.stimuli[size_t(stimuli[size_t(1 + trial.lambda_index)])].frame_at(t);
     return {texture_[size_t(reference)], texture_[size_t(enhanced)]};
   }
 
@@ -216,7 +249,8 @@ class ChoiceLoop {
     c.header = trial.practice ? "Practice" : "Trial " + std::to_string(trial.number);
     c.question = config_.question;
     if (config_.layout == Layout::spatial) {
-      for (int i = 0; i < config_.n_afc; ++i) c.row.push_back(i == trial.target ? enhanced : reference);
+      for (int i = 0; i < config_.n_afc; ++i)
+        c.row.push_back(i == trial.target ? enhanced : reference);
       c.hint = config_.answer_keys() + ": choose    Esc: pause";
       return c;
     }
@@ -226,8 +260,9 @@ class ChoiceLoop {
       c.left_texture = trial.target == interval ? enhanced : reference;
       c.hint = "Interval " + std::to_string(interval + 1) + " of " + std::to_string(config_.n_afc);
     } else if (interval == config_.n_afc) {
-      c.message = config_.question + "\n\n" + config_.answer_keys() + ": the interval (" +
-                  (config_.n_afc == 2 ? "Left or 1 the first, Right or 2 the second" : "1 the first") + ")";
+      c.message =
+          config_.question + "\n\n" + config_.answer_keys() + ": the interval (" +
+          (config_.n_afc == 2 ? "Left or 1 the first, Right or 2 the second" : "1 the first") + ")";
     }
     return c;
   }
@@ -237,7 +272,9 @@ class ChoiceLoop {
   int interval_at(double frames) const {
     const int period = config_.interval_frames + config_.blank_frames;
     const int k = int(frames) / period;
-    if (k >= config_.n_afc || (k == config_.n_afc - 1 && frames >= k * period + config_.interval_frames)) return config_.n_afc;
+    if (k >= config_.n_afc ||
+        (k == config_.n_afc - 1 && frames >= k * period + config_.interval_frames))
+      return config_.n_afc;
     return frames - k * period < config_.interval_frames ? k : -1;
   }
 
@@ -245,13 +282,26 @@ class ChoiceLoop {
     FrameContent c;
     switch (phase_) {
       case Phase::instructions:
-        c.message = o_.resume ? "Welcome back. The session continues where it stopped.\n\nPress Enter to continue." : config_.welcome_text();
+        c.message = o_.resume ? "Welcome back. The session continues where it stopped.\n\nPress "
+                                "Enter to continue."
+                              : config_.welcome_text();
         break;
-      case Phase::trial: return trial_content(t);
-      case Phase::feedback: c.message = last_correct_ ? "Correct" : "Wrong"; break;
-      case Phase::practice_done: c.message = "The practice trials are over. The study itself begins now.\n\nPress Enter to continue."; break;
-      case Phase::paused: c.message = "Paused.\n\nPress Enter to resume, or Q to quit and save."; break;
-      case Phase::finished: c.message = "Thank you. All answers are saved.\n\nPress Enter to close."; break;
+      case Phase::trial:
+        return trial_content(t);
+      case Phase::feedback:
+        c.message = last_correct_ ? "Correct" : "Wrong";
+        break;
+      case Phase::practice_done:
+        c.message =
+            "The practice trials are over. The study itself begins now.\n\nPress Enter to "
+            "continue.";
+        break;
+      case Phase::paused:
+        c.message = "Paused.\n\nPress Enter to resume, or Q to quit and save.";
+        break;
+      case Phase::finished:
+        c.message = "Thank you. All answers are saved.\n\nPress Enter to close.";
+        break;
     }
     return c;
   }
@@ -261,7 +311,9 @@ class ChoiceLoop {
     if (screenshot_due_ && o_.screenshot) {
       const fs::path& base = *o_.screenshot;
       shot = screenshots_ == 0 ? base
-                               : base.parent_path() / (base.stem().string() + "-" + std::to_string(screenshots_ + 1) + base.extension().string());
+                               : base.parent_path() /
+                                     (base.stem().string() + "-" +
+                                      std::to_string(screenshots_ + 1) + base.extension().string());
     }
     const FrameContent content = frame_content(now);
     const adjust::StimulusLayout layout = presenter_.draw(content, shot);
@@ -269,7 +321,8 @@ class ChoiceLoop {
     presenter_.pace();
   }
 
-  void describe_screenshot(const fs::path& shot, const FrameContent& content, const adjust::StimulusLayout& layout, double t) {
+  void describe_screenshot(const fs::path& shot, const FrameContent& content,
+                           const adjust::StimulusLayout& layout, double t) {
     json info = {{"phase", int(phase_)}};
     if (phase_ == Phase::trial && (content.left_texture || !content.row.empty())) {
       const ChoiceTrial& trial = *run_.current();
@@ -280,10 +333,14 @@ class ChoiceLoop {
           if (texture_[i] == texture) return study_.images[i].relative;
         return std::string();
       };
-      const std::vector<unsigned> shown = content.centred ? std::vector<unsigned>{content.left_texture} : content.row;
+      const std::vector<unsigned> shown =
+          content.centred ? std::vector<unsigned>{content.left_texture} : content.row;
       info["images"] = json::array();
       for (size_t i = 0; i < shown.size() && i < layout.xs.size(); ++i)
-        info["images"].push_back({{"x", layout.xs[i]}, {"y", layout.y}, {"width", layout.width}, {"height", layout.height},
+        info["images"].push_back({{"x", layout.xs[i]},
+                                  {"y", layout.y},
+                                  {"width", layout.width},
+                                  {"height", layout.height},
                                   {"file", file_of(shown[i])}});
       info["interval"] = content.centred ? content.hint : "";
     }
@@ -322,16 +379,18 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   const ChoiceConfig config = load_config(o);
   adjust::verify_study_images(study);
   adjust::require_achromatic_images(study, o.output_path);
-  const uint64_t seed = adjust::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
+  const uint64_t seed =
+      adjust::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
   ChoiceRun run(study, config, seed);
   std::error_code ec;
   if (!o.resume) fs::create_directories(o.sessions_dir, ec);
-  ChoiceRecorder recorder(study, config, {o.subject, o.session, seed}, o.sessions_dir, o.resume, run);
+  ChoiceRecorder recorder(study, config, {o.subject, o.session, seed}, o.sessions_dir, o.resume,
+                          run);
   if (run.finished()) {
     recorder.current_run().end = RunEnd::already_complete;
     recorder.save(run);
-    std::printf("%s session %d is already complete: %d trials in %s\n", o.subject.c_str(), o.session, recorder.rows(),
-                recorder.files().csv.string().c_str());
+    std::printf("%s session %d is already complete: %d trials in %s\n", o.subject.c_str(),
+                o.session, recorder.rows(), recorder.files().csv.string().c_str());
     return 0;
   }
   auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study, config, seed));
@@ -346,8 +405,8 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   recorder.current_run().ended_utc = utc_timestamp();
   recorder.save(run);
   presenter.reset();
-  std::printf("%s session %d: %s; %d trials recorded in %s\n", o.subject.c_str(), o.session, adjust::run_end_name(end),
-              recorder.rows(), recorder.files().csv.string().c_str());
+  std::printf("%s session %d: %s; %d trials recorded in %s\n", o.subject.c_str(), o.session,
+              adjust::run_end_name(end), recorder.rows(), recorder.files().csv.string().c_str());
   return 0;
 }
 

@@ -13,7 +13,8 @@ namespace countershade::forced_choice {
 
 struct ChoiceSessionOptions {
   std::filesystem::path manifest;
-  std::optional<std::filesystem::path> config;  // --procedure; else the experiment's "forced_choice"
+  std::optional<std::filesystem::path>
+      config;  // --procedure; else the experiment's "forced_choice"
   std::string subject;
   int session = 1;
   std::filesystem::path sessions_dir = "sessions";
@@ -24,8 +25,8 @@ struct ChoiceSessionOptions {
   std::optional<std::filesystem::path> screenshot;
   std::optional<std::string> observer;  // "weibull:ALPHA,BETA,SEED"
   bool frame_clock = false;
-  adjust::OutputPathChoice output_path;   // 16-bit sets: --output-path
-  std::optional<uint32_t> dither_seed;     // default: the session seed
+  adjust::OutputPathChoice output_path;  // 16-bit sets: --output-path
+  std::optional<uint32_t> dither_seed;   // default: the session seed
 };
 
 // Returns 0 when the run ended normally. Bad input throws InputError before any window opens.

@@ -5,10 +5,9 @@
 // stimuli show each listed λ (which must be on the grid) a number of times in a seeded order.
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "forced_choice/choice_config.h"
 #include "forced_choice/quest.h"
@@ -32,7 +31,8 @@ struct Intensity {
 class ConditionProcedure {
  public:
   // Throws InputError (naming `where`) when the procedure cannot work on this grid.
-  ConditionProcedure(const ChoiceConfig& config, const ChoiceGrid& grid, uint64_t seed, const std::string& where);
+  ConditionProcedure(const ChoiceConfig& config, const ChoiceGrid& grid, uint64_t seed,
+                     const std::string& where);
 
   Intensity next() const;
   void record(const Intensity& shown, bool correct);

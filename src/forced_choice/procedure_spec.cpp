@@ -20,7 +20,9 @@ std::optional<double> optional_bound(const JsonObject& o, const std::string& key
 
 std::vector<double> step_sizes(const JsonObject& o) {
   if (!o.has("stepSizes")) return {4.0};
-  std::vector<double> steps = o.raw("stepSizes").is_number() ? std::vector<double>{o.number("stepSizes")} : o.numbers("stepSizes");
+  std::vector<double> steps = o.raw("stepSizes").is_number()
+                                  ? std::vector<double>{o.number("stepSizes")}
+                                  : o.numbers("stepSizes");
   if (steps.empty()) o.fail("stepSizes", "must list at least one step size");
   for (double s : steps)
     if (!(s > 0)) o.fail("stepSizes", "step sizes must be above 0");
@@ -36,16 +38,20 @@ StaircaseRules read_staircase(const JsonObject& o) {
   r.n_up = int(o.integer_in("nUp", 1, 1, 1000));
   r.n_down = int(o.integer_in("nDown", 3, 1, 1000));
   r.n_trials = int(o.integer_in("nTrials", 0, 0, kMostTrials));
-  if (o.has("nReversals") && !o.raw("nReversals").is_null()) r.n_reversals = int(o.integer_in("nReversals", 0, 0, kMostTrials));
+  if (o.has("nReversals") && !o.raw("nReversals").is_null())
+    r.n_reversals = int(o.integer_in("nReversals", 0, 0, kMostTrials));
   r.min_value = optional_bound(o, "minVal");
   r.max_value = optional_bound(o, "maxVal");
   r.apply_initial_rule = o.boolean_or("applyInitialRule", true);
-  if (r.min_value && r.max_value && !(*r.min_value < *r.max_value)) o.fail("maxVal", "must be above minVal");
+  if (r.min_value && r.max_value && !(*r.min_value < *r.max_value))
+    o.fail("maxVal", "must be above minVal");
   if ((r.min_value && r.start < *r.min_value) || (r.max_value && r.start > *r.max_value))
     o.fail("startVal", "must lie within [minVal, maxVal]");
   if (r.step_type != StepType::lin) {
-    if (!(r.start > 0)) o.fail("startVal", "must be above 0 for " + type + " steps (they multiply)");
-    if (r.min_value && !(*r.min_value > 0)) o.fail("minVal", "must be above 0 for " + type + " steps (they multiply)");
+    if (!(r.start > 0))
+      o.fail("startVal", "must be above 0 for " + type + " steps (they multiply)");
+    if (r.min_value && !(*r.min_value > 0))
+      o.fail("minVal", "must be above 0 for " + type + " steps (they multiply)");
   }
   return r;
 }
@@ -60,12 +66,13 @@ QuestParameters read_quest(const JsonObject& o) {
   q.p_threshold = o.number("pThreshold");
   const double top = 1 - q.delta * (1 - q.gamma);  // the function's ceiling
   if (!(q.p_threshold > q.gamma && q.p_threshold < top))
-    o.fail("pThreshold", "must lie strictly between gamma (" + std::to_string(q.gamma) + ") and 1 − delta·(1 − gamma) (" +
-                             std::to_string(top) + ")");
+    o.fail("pThreshold", "must lie strictly between gamma (" + std::to_string(q.gamma) +
+                             ") and 1 − delta·(1 − gamma) (" + std::to_string(top) + ")");
   q.grain = o.number_in("grain", 0.01, 1e-9, kHuge);
   if (o.has("range") && !o.raw("range").is_null()) q.range = o.number_in("range", 0, 1e-9, kHuge);
   const double steps = q.range ? *q.range / q.grain : 500;
-  if (steps > 1e6) o.fail(q.range ? "range" : "grain", "range / grain gives more than 1000000 grid points");
+  if (steps > 1e6)
+    o.fail(q.range ? "range" : "grain", "range / grain gives more than 1000000 grid points");
   return q;
 }
 
@@ -93,7 +100,8 @@ ProcedureSpec read_procedure_file(const std::filesystem::path& path) {
   JsonObject block(root, path.string(), "");
   ProcedureSpec spec = read_procedure(block);
   block.finish();
-  if (spec.type == ProcedureType::quest) Quest check(spec.quest, path.string());  // a usable function
+  if (spec.type == ProcedureType::quest)
+    Quest check(spec.quest, path.string());  // a usable function
   return spec;
 }
 

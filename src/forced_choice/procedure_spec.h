@@ -18,7 +18,8 @@ struct ProcedureSpec {
   ProcedureType type = ProcedureType::staircase;
   StaircaseRules staircase;  // when type is staircase
   QuestParameters quest;     // when type is quest
-  int n_trials = 0;  // QUEST: trials per run, 0 = as many as there are answers (the staircase's own nTrials otherwise)
+  int n_trials = 0;  // QUEST: trials per run, 0 = as many as there are answers (the staircase's own
+                     // nTrials otherwise)
 };
 
 ProcedureSpec read_procedure(const JsonObject& block);

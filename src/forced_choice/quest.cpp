@@ -25,7 +25,8 @@ double x_log_x(double x) { return x * std::log(x + DBL_EPSILON); }
 }  // namespace
 
 double Quest::psychometric(double x) const {
-  return p_.delta * p_.gamma + (1 - p_.delta) * (1 - (1 - p_.gamma) * std::exp(-std::pow(10.0, p_.beta * x)));
+  return p_.delta * p_.gamma +
+         (1 - p_.delta) * (1 - (1 - p_.gamma) * std::exp(-std::pow(10.0, p_.beta * x)));
 }
 
 Quest::Quest(const QuestParameters& parameters, const std::string& where) : p_(parameters) {
@@ -50,8 +51,10 @@ Quest::Quest(const QuestParameters& parameters, const std::string& where) : p_(p
     }
   }
   if (ps.size() < 2 || !(p_.p_threshold >= ps.front() && p_.p_threshold <= ps.back()))
-    throw_input_error(where, "pThreshold " + std::to_string(p_.p_threshold) +
-                                 " is outside the psychometric function's range (gamma to 1 − delta·(1 − gamma))");
+    throw_input_error(
+        where,
+        "pThreshold " + std::to_string(p_.p_threshold) +
+            " is outside the psychometric function's range (gamma to 1 − delta·(1 − gamma))");
   x_threshold_ = interpolate(ps, xs, p_.p_threshold);
   for (int i = -dim_; i <= dim_; ++i) p2_.push_back(psychometric(i * p_.grain + x_threshold_));
 
@@ -70,8 +73,10 @@ void Quest::update(double intensity, bool correct) {
   // Column (0-based) of the table for grid point i (−half..half): the table is stored reversed.
   long long first = (dim_ + 1) - half - shift - 1;
   const long long last = first + dim_;
-  if (first < 0) first = 0;
-  else if (last > columns - 1) first = columns - 1 - dim_;
+  if (first < 0)
+    first = 0;
+  else if (last > columns - 1)
+    first = columns - 1 - dim_;
   double total = 0;
   for (int j = 0; j <= dim_; ++j) {
     const double p = p2_[size_t(columns - 1 - (first + j))];

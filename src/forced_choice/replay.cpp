@@ -22,7 +22,8 @@ Replay replay_staircase(const StaircaseRules& rules, const std::vector<bool>& re
   while (!stair.finished() && used < responses.size()) {
     const double shown = stair.next_intensity();
     const bool reversal = stair.add_response(responses[used++]);
-    out.csv += csv_line({std::to_string(used), exact_number(shown), responses[used - 1] ? "1" : "0", reversal ? "1" : "0"});
+    out.csv += csv_line({std::to_string(used), exact_number(shown), responses[used - 1] ? "1" : "0",
+                         reversal ? "1" : "0"});
   }
   out.summary = {{"type", "staircase"},
                  {"trials", used},
@@ -35,22 +36,29 @@ Replay replay_staircase(const StaircaseRules& rules, const std::vector<bool>& re
   return out;
 }
 
-Replay replay_quest(const QuestParameters& parameters, int n_trials, const std::vector<bool>& responses) {
+Replay replay_quest(const QuestParameters& parameters, int n_trials,
+                    const std::vector<bool>& responses) {
   Replay out;
-  out.csv = csv_line({"trial", "intensity", "response", "quest_mean", "quest_mode", "quest_sd", "quest_quantile"});
+  out.csv = csv_line(
+      {"trial", "intensity", "response", "quest_mean", "quest_mode", "quest_sd", "quest_quantile"});
   Quest quest(parameters);
   size_t used = 0;
   while ((n_trials == 0 || int(used) < n_trials) && used < responses.size()) {
     const double shown = quest.quantile();
     const bool correct = responses[used++];
     quest.update(shown, correct);
-    out.csv += csv_line({std::to_string(used), exact_number(shown), correct ? "1" : "0", exact_number(quest.mean()),
-                         exact_number(quest.mode()), exact_number(quest.sd()), exact_number(quest.quantile())});
+    out.csv += csv_line({std::to_string(used), exact_number(shown), correct ? "1" : "0",
+                         exact_number(quest.mean()), exact_number(quest.mode()),
+                         exact_number(quest.sd()), exact_number(quest.quantile())});
   }
-  out.summary = {{"type", "quest"},          {"trials", used},
-                 {"quest_mean", quest.mean()}, {"quest_mode", quest.mode()},
-                 {"quest_sd", quest.sd()},     {"next_intensity", quest.quantile()},
-                 {"quantile_order", quest.quantile_order()}, {"responses_left", responses.size() - used}};
+  out.summary = {{"type", "quest"},
+                 {"trials", used},
+                 {"quest_mean", quest.mean()},
+                 {"quest_mode", quest.mode()},
+                 {"quest_sd", quest.sd()},
+                 {"next_intensity", quest.quantile()},
+                 {"quantile_order", quest.quantile_order()},
+                 {"responses_left", responses.size() - used}};
   return out;
 }
 
@@ -70,7 +78,8 @@ Replay replay_procedure(const ProcedureSpec& spec, const std::vector<bool>& resp
 std::vector<bool> read_binary_responses(const std::filesystem::path& path) {
   const std::string file = path.string();
   const CsvTable table = parse_csv(read_file_bytes(path), file);
-  if (table.rows.empty()) throw_input_error(file, "empty file (expected a header with a 'response' column)");
+  if (table.rows.empty())
+    throw_input_error(file, "empty file (expected a header with a 'response' column)");
   const auto& header = table.rows.front();
   size_t column = header.size();
   for (size_t i = 0; i < header.size(); ++i)
@@ -81,7 +90,8 @@ std::vector<bool> read_binary_responses(const std::filesystem::path& path) {
     const auto& row = table.rows[r];
     const std::string value = column < row.size() ? row[column] : "";
     if (value != "0" && value != "1")
-      throw_input_error(file + ":" + std::to_string(table.lines[r]), "response: expected 0 or 1, got '" + value + "'");
+      throw_input_error(file + ":" + std::to_string(table.lines[r]),
+                        "response: expected 0 or 1, got '" + value + "'");
     responses.push_back(value == "1");
   }
   return responses;

@@ -4,17 +4,16 @@
 // how the procedures are checked against PsychoPy's and Psychtoolbox's sequences.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "forced_choice/procedure_spec.h"
 
 namespace countershade::forced_choice {
 
 struct Replay {
-  std::string csv;               // one row per trial (docs/forced-choice.md, "Replaying a procedure")
+  std::string csv;  // one row per trial (docs/forced-choice.md, "Replaying a procedure")
   nlohmann::ordered_json summary;  // trials run, the final estimate, responses left over
 };
 

@@ -31,9 +31,15 @@ bool Staircase::reversal_for(bool correct) const {
 void Staircase::step(bool up) {
   const double s = step_size_;
   switch (rules_.step_type) {
-    case StepType::lin: next_ += up ? s : -s; break;
-    case StepType::log: next_ = up ? next_ * std::pow(10.0, s) : next_ / std::pow(10.0, s); break;
-    case StepType::db: next_ = up ? next_ * std::pow(10.0, s / 20.0) : next_ / std::pow(10.0, s / 20.0); break;
+    case StepType::lin:
+      next_ += up ? s : -s;
+      break;
+    case StepType::log:
+      next_ = up ? next_ * std::pow(10.0, s) : next_ / std::pow(10.0, s);
+      break;
+    case StepType::db:
+      next_ = up ? next_ * std::pow(10.0, s / 20.0) : next_ / std::pow(10.0, s / 20.0);
+      break;
   }
   if (up && rules_.max_value && next_ > *rules_.max_value) next_ = *rules_.max_value;
   if (!up && rules_.min_value && next_ < *rules_.min_value) next_ = *rules_.min_value;
@@ -49,20 +55,27 @@ bool Staircase::add_response(bool correct, std::optional<double> shown_value) {
 
   const bool initial = reversal_intensities_.empty() && rules_.apply_initial_rule;
   const bool reversal = reversal_for(correct);
-  if (initial) direction_ = correct ? Direction::down : Direction::up;
-  else if (counter_ >= rules_.n_down) direction_ = Direction::down;
-  else if (counter_ <= -rules_.n_up) direction_ = Direction::up;
+  if (initial)
+    direction_ = correct ? Direction::down : Direction::up;
+  else if (counter_ >= rules_.n_down)
+    direction_ = Direction::down;
+  else if (counter_ <= -rules_.n_up)
+    direction_ = Direction::up;
   if (reversal) {
     reversal_trials_.push_back(int(intensities_.size()));
     reversal_intensities_.push_back(shown);
     const size_t n = std::min(reversal_intensities_.size(), rules_.step_sizes.size() - 1);
     step_size_ = rules_.step_sizes[n];
   }
-  finished_ = int(reversal_intensities_.size()) >= effective_reversals() && int(intensities_.size()) >= rules_.n_trials;
+  finished_ = int(reversal_intensities_.size()) >= effective_reversals() &&
+              int(intensities_.size()) >= rules_.n_trials;
   // The trial of the first reversal still steps by the initial 1-up/1-down rule.
-  if (initial) step(!correct);
-  else if (counter_ >= rules_.n_down) step(false);
-  else if (counter_ <= -rules_.n_up) step(true);
+  if (initial)
+    step(!correct);
+  else if (counter_ >= rules_.n_down)
+    step(false);
+  else if (counter_ <= -rules_.n_up)
+    step(true);
   return reversal;
 }
 
@@ -70,7 +83,8 @@ double Staircase::estimate(int count) const {
   if (reversal_intensities_.empty()) return std::numeric_limits<double>::quiet_NaN();
   const size_t n = std::min(reversal_intensities_.size(), size_t(count));
   double sum = 0;
-  for (size_t i = reversal_intensities_.size() - n; i < reversal_intensities_.size(); ++i) sum += reversal_intensities_[i];
+  for (size_t i = reversal_intensities_.size() - n; i < reversal_intensities_.size(); ++i)
+    sum += reversal_intensities_[i];
   return sum / double(n);
 }
 

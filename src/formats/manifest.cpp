@@ -17,9 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::set<std::string> kEntryKeys = {"file",   "scene",  "method",         "label",  "sigma",
-                                          "sigma_kind", "lambda", "lambda_index", "clipped_pixels",
-                                          "width", "height", "size", "sha256", "frame", "fps"};
+const std::set<std::string> kEntryKeys = {
+    "file",           "scene", "method", "label", "sigma",  "sigma_kind", "lambda", "lambda_index",
+    "clipped_pixels", "width", "height", "size",  "sha256", "frame",      "fps"};
 
 class ManifestReader {
  public:
@@ -45,14 +45,19 @@ class ManifestReader {
   // A λ as stimulus grids hold them (formats/responses.h): the app records it as the answer.
   double lambda(const OrderedJson& o, const std::string& where, const char* key) const {
     const double v = number(o, where, key);
-    if (std::abs(v) > kLargestLambda) fail(where + key, "beyond ±1e6, which no stimulus grid holds");
+    if (std::abs(v) > kLargestLambda)
+      fail(where + key, "beyond ±1e6, which no stimulus grid holds");
     return v;
   }
-  int64_t integer(const OrderedJson& o, const std::string& where, const char* key, int64_t lo, int64_t hi) const {
+  int64_t integer(const OrderedJson& o, const std::string& where, const char* key, int64_t lo,
+                  int64_t hi) const {
     const OrderedJson& v = need(o, where, key);
     if (!v.is_number_integer()) fail(where + key, "not an integer");
-    int64_t i = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX) ? INT64_MAX : v.get<int64_t>();
-    if (i < lo || i > hi) fail(where + key, "out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    int64_t i = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX)
+                    ? INT64_MAX
+                    : v.get<int64_t>();
+    if (i < lo || i > hi)
+      fail(where + key, "out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return i;
   }
 
@@ -75,11 +80,14 @@ class ManifestReader {
     if (s.contains("sigma")) e.sigma = number(s, where, "sigma");
     if (s.contains("sigma_kind")) e.sigma_kind = string(s, where, "sigma_kind");
     if (s.contains("lambda")) e.lambda = lambda(s, where, "lambda");
-    if (s.contains("lambda_index")) e.lambda_index = int(integer(s, where, "lambda_index", 0, 1 << 30));
-    if (s.contains("clipped_pixels")) e.clipped_pixels = uint64_t(integer(s, where, "clipped_pixels", 0, INT64_MAX));
+    if (s.contains("lambda_index"))
+      e.lambda_index = int(integer(s, where, "lambda_index", 0, 1 << 30));
+    if (s.contains("clipped_pixels"))
+      e.clipped_pixels = uint64_t(integer(s, where, "clipped_pixels", 0, INT64_MAX));
     if (s.contains("size")) e.size = uint64_t(integer(s, where, "size", 0, INT64_MAX));
     if (s.contains("frame") || s.contains("fps")) {  // a sequence's frame has both
-      e.frame = ManifestEntry::Frame{int(integer(s, where, "frame", 0, 1 << 30)), number(s, where, "fps")};
+      e.frame = ManifestEntry::Frame{int(integer(s, where, "frame", 0, 1 << 30)),
+                                     number(s, where, "fps")};
       if (!(e.frame->fps > 0)) fail(where + "fps", "must be positive");
     }
     if (!e.is_reference()) {
@@ -95,8 +103,10 @@ class ManifestReader {
     if (!m.is_object()) fail("", "expected an object");
     Manifest out;
     if (!m.contains("format_version") || m["format_version"] != kManifestFormatVersion)
-      fail("format_version", "missing or unsupported (expected " + std::to_string(kManifestFormatVersion) + ")");
-    if (!m.contains("stimuli") || !m["stimuli"].is_array()) fail("stimuli", "missing or not an array");
+      fail("format_version",
+           "missing or unsupported (expected " + std::to_string(kManifestFormatVersion) + ")");
+    if (!m.contains("stimuli") || !m["stimuli"].is_array())
+      fail("stimuli", "missing or not an array");
     out.software_version = m.value("software_version", "");
     out.experiment_name = m.value("experiment_name", path_.parent_path().filename().string());
     out.experiment_sha256 = m.value("experiment_sha256", "");
@@ -106,9 +116,11 @@ class ManifestReader {
     if (m.contains("lambda_grid")) out.lambda_grid = grid(m["lambda_grid"]);
     if (m.contains("shard")) {
       const OrderedJson& sh = m["shard"];
-      out.shard = std::make_pair(int(integer(sh, "shard.", "index", 1, 1 << 20)), int(integer(sh, "shard.", "count", 1, 1 << 20)));
+      out.shard = std::make_pair(int(integer(sh, "shard.", "index", 1, 1 << 20)),
+                                 int(integer(sh, "shard.", "count", 1, 1 << 20)));
     }
-    for (size_t i = 0; i < m["stimuli"].size(); ++i) out.stimuli.push_back(entry(m["stimuli"][i], i));
+    for (size_t i = 0; i < m["stimuli"].size(); ++i)
+      out.stimuli.push_back(entry(m["stimuli"][i], i));
     if (m.contains("videos")) out.videos = videos(m["videos"]);
     if (m.contains("viewing")) out.viewing = viewing(m["viewing"]);
     if (m.contains("run")) out.run = m["run"];
@@ -149,7 +161,8 @@ class ManifestReader {
     out.min = lambda(g, "lambda_grid.", "min");
     out.step = lambda(g, "lambda_grid.", "step");
     out.count = int(integer(g, "lambda_grid.", "count", 1, kMostLambdaValues));
-    out.max = g.contains("max") ? lambda(g, "lambda_grid.", "max") : out.min + out.step * (out.count - 1);
+    out.max =
+        g.contains("max") ? lambda(g, "lambda_grid.", "max") : out.min + out.step * (out.count - 1);
     return out;
   }
 
@@ -161,7 +174,8 @@ class ManifestReader {
 
 fs::path resolve_in_set(const fs::path& set_dir, const std::string& relative) {
   fs::path p(relative);
-  if (relative.empty() || p.is_absolute()) throw InputError("path '" + relative + "' must be relative to the set folder");
+  if (relative.empty() || p.is_absolute())
+    throw InputError("path '" + relative + "' must be relative to the set folder");
   for (const auto& part : p)
     if (part == "..") throw InputError("path '" + relative + "' leaves the set folder");
   return set_dir / p;
@@ -203,7 +217,9 @@ OrderedJson to_json(const Manifest& m) {
   j["experiment"] = m.experiment;
   j["seed"] = m.seed;
   j["bits"] = m.bits;
-  j["lambda_grid"] = {{"min", m.lambda_grid.min}, {"max", m.lambda_grid.max}, {"step", m.lambda_grid.step},
+  j["lambda_grid"] = {{"min", m.lambda_grid.min},
+                      {"max", m.lambda_grid.max},
+                      {"step", m.lambda_grid.step},
                       {"count", m.lambda_grid.count}};
   if (m.shard) j["shard"] = {{"index", m.shard->first}, {"count", m.shard->second}};
   j["stimuli"] = OrderedJson::array();
@@ -212,7 +228,9 @@ OrderedJson to_json(const Manifest& m) {
   if (!m.viewing.empty())
     j["viewing"] = {{"pixels_per_degree", *m.viewing.pixels_per_degree},
                     {"screen",
-                     {{"width_mm", m.viewing.width_mm}, {"width_px", m.viewing.width_px}, {"distance_mm", m.viewing.distance_mm}}}};
+                     {{"width_mm", m.viewing.width_mm},
+                      {"width_px", m.viewing.width_px},
+                      {"distance_mm", m.viewing.distance_mm}}}};
   j["run"] = m.run;
   return j;
 }
@@ -232,11 +250,12 @@ namespace {
 
 // A file a stimulus names in entry.extra[key] as {"file", "sha256"}: its congruence map, or the
 // method's mask of a sequence frame (several entries may name one mask; it is checked once).
-void check_named_file(const fs::path& dir, const ManifestEntry& s, const char* key, std::set<fs::path>& listed,
-                      std::vector<std::string>& problems) {
+void check_named_file(const fs::path& dir, const ManifestEntry& s, const char* key,
+                      std::set<fs::path>& listed, std::vector<std::string>& problems) {
   if (!s.extra.contains(key)) return;
   const OrderedJson& named = s.extra[key];
-  if (!named.is_object() || !named.contains("file") || !named["file"].is_string() || !named.contains("sha256")) {
+  if (!named.is_object() || !named.contains("file") || !named["file"].is_string() ||
+      !named.contains("sha256")) {
     problems.push_back(s.file + ": " + key + " needs a file and a sha256");
     return;
   }
@@ -244,8 +263,10 @@ void check_named_file(const fs::path& dir, const ManifestEntry& s, const char* k
   const fs::path file = resolve_in_set(dir, rel);
   if (!listed.insert(fs::weakly_canonical(file)).second) return;
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) problems.push_back(rel + ": missing");
-  else if (sha256_file(file) != named["sha256"]) problems.push_back(rel + ": sha256 differs from the manifest");
+  if (!fs::is_regular_file(file, ec))
+    problems.push_back(rel + ": missing");
+  else if (sha256_file(file) != named["sha256"])
+    problems.push_back(rel + ": sha256 differs from the manifest");
 }
 
 }  // namespace
@@ -263,8 +284,10 @@ std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
       problems.push_back(s.file + ": missing");
       continue;
     }
-    if (s.size && fs::file_size(file) != s.size) problems.push_back(s.file + ": size differs from the manifest");
-    if (sha256_file(file) != s.sha256) problems.push_back(s.file + ": sha256 differs from the manifest");
+    if (s.size && fs::file_size(file) != s.size)
+      problems.push_back(s.file + ": size differs from the manifest");
+    if (sha256_file(file) != s.sha256)
+      problems.push_back(s.file + ": sha256 differs from the manifest");
     check_named_file(dir, s, "congruence_map", listed, problems);
     check_named_file(dir, s, "mask", listed, problems);
   }
@@ -272,14 +295,17 @@ std::vector<std::string> verify_stimulus_set(const fs::path& manifest_path) {
     const std::string rel = video["file"].get<std::string>();
     const fs::path file = resolve_in_set(dir, rel);
     std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) problems.push_back(rel + ": missing");
-    else if (sha256_file(file) != video["sha256"]) problems.push_back(rel + ": sha256 differs from the manifest");
+    if (!fs::is_regular_file(file, ec))
+      problems.push_back(rel + ": missing");
+    else if (sha256_file(file) != video["sha256"])
+      problems.push_back(rel + ": sha256 differs from the manifest");
   }
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".png") continue;
     auto rel = fs::relative(entry.path(), dir).string();
     if (rel.rfind("contact-sheets", 0) == 0) continue;
-    if (!listed.count(fs::weakly_canonical(entry.path()))) problems.push_back(rel + ": not in the manifest");
+    if (!listed.count(fs::weakly_canonical(entry.path())))
+      problems.push_back(rel + ": not in the manifest");
   }
   return problems;
 }
@@ -291,13 +317,16 @@ OrderedJson reproducible_part(const Manifest& manifest) {
 }
 
 void sort_entries(std::vector<ManifestEntry>& entries) {
-  std::sort(entries.begin(), entries.end(), [](const ManifestEntry& a, const ManifestEntry& b) { return a.file < b.file; });
+  std::sort(entries.begin(), entries.end(),
+            [](const ManifestEntry& a, const ManifestEntry& b) { return a.file < b.file; });
 }
 
 void set_image_noise(ManifestEntry& entry, const ImageNoise& noise) {
   OrderedJson& j = entry.extra["noise"];
   j = {{"rms", noise.rms}, {"p99", noise.p99}};
-  if (noise.budget) j["budget"] = {{"target", noise.budget->target}, {"p99", noise.budget->p99}, {"met", noise.budget->met}};
+  if (noise.budget)
+    j["budget"] = {
+        {"target", noise.budget->target}, {"p99", noise.budget->p99}, {"met", noise.budget->met}};
 }
 
 std::optional<ImageNoise> image_noise(const ManifestEntry& entry) {
@@ -308,7 +337,8 @@ std::optional<ImageNoise> image_noise(const ManifestEntry& entry) {
   noise.p99 = j->value("p99", 0.0);
   if (j->contains("budget")) {
     const OrderedJson& b = (*j)["budget"];
-    noise.budget = ImageNoise::Budget{b.value("target", 0.0), b.value("p99", 0.0), b.value("met", false)};
+    noise.budget =
+        ImageNoise::Budget{b.value("target", 0.0), b.value("p99", 0.0), b.value("met", false)};
   }
   return noise;
 }

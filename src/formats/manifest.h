@@ -5,12 +5,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace countershade {
 
@@ -28,9 +27,9 @@ struct LambdaGridInfo {
 struct ManifestEntry {
   std::string file;  // relative to the set folder
   std::string scene, method;
-  std::string label;                // the method's folder name; empty for references
-  std::optional<double> sigma;      // absent for references
-  std::string sigma_kind;           // the width key the σ list was given under
+  std::string label;            // the method's folder name; empty for references
+  std::optional<double> sigma;  // absent for references
+  std::string sigma_kind;       // the width key the σ list was given under
   double lambda = 0;
   int lambda_index = 0;
   uint64_t clipped_pixels = 0;
@@ -41,7 +40,8 @@ struct ManifestEntry {
     double fps = 0;
   };
   std::optional<Frame> frame;
-  OrderedJson extra = OrderedJson::object();  // method details: parameters, operator, iterations, noise, ...
+  OrderedJson extra =
+      OrderedJson::object();  // method details: parameters, operator, iterations, noise, ...
   int width = 0, height = 0;
   uint64_t size = 0;
   std::string sha256;
@@ -90,14 +90,15 @@ struct Manifest {
   OrderedJson videos = OrderedJson::array();
   Viewing viewing;  // "viewing", when the experiment gives a screen or a scene a calibrated display
   OrderedJson run = OrderedJson::object();  // timings and timestamps: differ between runs
-  std::string file_sha256;  // of the file it was read from (not written)
+  std::string file_sha256;                  // of the file it was read from (not written)
 };
 
 OrderedJson to_json(const ManifestEntry& entry);
 OrderedJson to_json(const Manifest& manifest);
 
 // One entry from its JSON (e.g. a journal line); `file` and `index` name it in messages.
-ManifestEntry parse_manifest_entry(const OrderedJson& json, const std::filesystem::path& file, size_t index);
+ManifestEntry parse_manifest_entry(const OrderedJson& json, const std::filesystem::path& file,
+                                   size_t index);
 
 // Reads a manifest and checks its structure; throws InputError naming the file and the field.
 Manifest read_manifest(const std::filesystem::path& path);
@@ -105,7 +106,8 @@ Manifest read_manifest(const std::filesystem::path& path);
 void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
 
 // Joins a manifest's relative path to its folder; rejects absolute paths and paths that leave it.
-std::filesystem::path resolve_in_set(const std::filesystem::path& set_dir, const std::string& relative);
+std::filesystem::path resolve_in_set(const std::filesystem::path& set_dir,
+                                     const std::string& relative);
 
 // Checks a finished set: every listed file exists with its size and sha256, and every PNG in the
 // folder is listed. Returns the problems found (empty when the set is intact).

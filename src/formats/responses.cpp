@@ -14,15 +14,16 @@ std::optional<Question> question_from_name(const std::string& name) {
 }
 
 const std::vector<std::string>& required_response_columns() {
-  static const std::vector<std::string> columns = {"subject", "scene", "sigma", "question", "lambda"};
+  static const std::vector<std::string> columns = {"subject", "scene", "sigma", "question",
+                                                   "lambda"};
   return columns;
 }
 
 const std::vector<std::string>& response_columns() {
   static const std::vector<std::string> columns = {
-      "subject",     "scene",        "sigma",       "question",   "lambda",        "method",
-      "lambda_step", "lambda_index", "lambda_max", "start_index", "repetition", "session",
-      "trial",       "side",         "n_keypresses", "rt_ms",     "revision",      "timestamp_utc",
+      "subject",      "scene",        "sigma",        "question",    "lambda",     "method",
+      "lambda_step",  "lambda_index", "lambda_max",   "start_index", "repetition", "session",
+      "trial",        "side",         "n_keypresses", "rt_ms",       "revision",   "timestamp_utc",
       "stimulus_set", "app_version",  "sequence"};
   return columns;
 }
@@ -36,17 +37,23 @@ class CsvParser {
   CsvTable parse() {
     if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);  // UTF-8 byte order mark
     for (size_t i = 0; i < text_.size(); ++i) {
-      if (quoted_) quoted_char(i);
-      else plain_char(i);
+      if (quoted_)
+        quoted_char(i);
+      else
+        plain_char(i);
     }
-    if (quoted_) throw_input_error(file_ + ": line " + std::to_string(row_line_), "a quoted field is never closed");
+    if (quoted_)
+      throw_input_error(file_ + ": line " + std::to_string(row_line_),
+                        "a quoted field is never closed");
     if (field_started_ || after_quote_ || !row_.empty()) end_row();
     return std::move(table_);
   }
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
-    throw_input_error(file_ + ": line " + std::to_string(line_) + ", column " + std::to_string(row_.size() + 1), what);
+    throw_input_error(
+        file_ + ": line " + std::to_string(line_) + ", column " + std::to_string(row_.size() + 1),
+        what);
   }
   void end_field() {
     // Names end up in results.json and the report, which hold only UTF-8 text.
@@ -79,7 +86,8 @@ class CsvParser {
   void plain_char(size_t& i) {
     const char c = text_[i];
     if (c == '"') {
-      if (field_started_ || after_quote_) fail("a quote inside an unquoted field (quote the whole field and double the quote)");
+      if (field_started_ || after_quote_)
+        fail("a quote inside an unquoted field (quote the whole field and double the quote)");
       quoted_ = field_started_ = true;
     } else if (c == ',') {
       end_field();
@@ -105,7 +113,9 @@ class CsvParser {
 
 }  // namespace
 
-CsvTable parse_csv(const std::string& text, const std::string& file) { return CsvParser(text, file).parse(); }
+CsvTable parse_csv(const std::string& text, const std::string& file) {
+  return CsvParser(text, file).parse();
+}
 
 std::string csv_field(const std::string& value) {
   if (value.find_first_of(",\"\r\n") == std::string::npos) return value;

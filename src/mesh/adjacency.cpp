@@ -27,25 +27,33 @@ VertexAdjacency adjacency_from_edges(size_t vertex_count,
   // Sort and deduplicate each vertex's list (interior edges appear once per adjacent face), each
   // in place and side by side, then pack them.
   std::vector<uint32_t> offsets(vertex_count + 1, 0);
-  parallel_ranges(vertex_count, 0, [&](size_t first, size_t last) {
-    for (size_t v = first; v < last; ++v) {
-      auto begin = all.begin() + adj.offsets[v], end = all.begin() + adj.offsets[v + 1];
-      std::sort(begin, end);
-      offsets[v + 1] = uint32_t(std::unique(begin, end) - begin);
-    }
-  }, 4096);
+  parallel_ranges(
+      vertex_count, 0,
+      [&](size_t first, size_t last) {
+        for (size_t v = first; v < last; ++v) {
+          auto begin = all.begin() + adj.offsets[v], end = all.begin() + adj.offsets[v + 1];
+          std::sort(begin, end);
+          offsets[v + 1] = uint32_t(std::unique(begin, end) - begin);
+        }
+      },
+      4096);
   for (size_t v = 0; v < vertex_count; ++v) offsets[v + 1] += offsets[v];
   std::vector<uint32_t> packed(offsets.back());
-  parallel_ranges(vertex_count, 0, [&](size_t first, size_t last) {
-    for (size_t v = first; v < last; ++v)
-      std::copy_n(all.begin() + adj.offsets[v], offsets[v + 1] - offsets[v], packed.begin() + offsets[v]);
-  }, 4096);
+  parallel_ranges(
+      vertex_count, 0,
+      [&](size_t first, size_t last) {
+        for (size_t v = first; v < last; ++v)
+          std::copy_n(all.begin() + adj.offsets[v], offsets[v + 1] - offsets[v],
+                      packed.begin() + offsets[v]);
+      },
+      4096);
   adj.offsets = std::move(offsets);
   adj.neighbours = std::move(packed);
   return adj;
 }
 
-VertexAdjacency adjacency_from_triangles(size_t vertex_count, const std::vector<glm::uvec3>& triangles) {
+VertexAdjacency adjacency_from_triangles(size_t vertex_count,
+                                         const std::vector<glm::uvec3>& triangles) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(3 * triangles.size());
   for (const auto& t : triangles)

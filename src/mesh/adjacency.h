@@ -3,11 +3,10 @@
 // connectivity textures of Ritschel et al. 2008), and connected components.
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <span>
 #include <utility>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace countershade {
 
@@ -25,7 +24,8 @@ struct VertexAdjacency {
 VertexAdjacency adjacency_from_edges(size_t vertex_count,
                                      const std::vector<std::pair<uint32_t, uint32_t>>& edges);
 // From triangles: the 1-ring of v is every vertex sharing a triangle edge with v.
-VertexAdjacency adjacency_from_triangles(size_t vertex_count, const std::vector<glm::uvec3>& triangles);
+VertexAdjacency adjacency_from_triangles(size_t vertex_count,
+                                         const std::vector<glm::uvec3>& triangles);
 
 // Component label per vertex (0..count-1, numbered in order of the lowest vertex index).
 struct Components {

@@ -7,9 +7,8 @@
 // Those weights spread over k like a Gaussian of width √n, so K ≈ √(2n·ln(2/ε)).
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec4.hpp>
+#include <vector>
 
 #include "mesh/adjacency.h"
 
@@ -26,11 +25,11 @@ std::vector<double> power_chebyshev_coefficients(int n, double tail = kChebyshev
 // kept), by the truncated expansion: one product with A per degree, evaluated with Clenshaw's
 // recurrence. Deterministic: each vertex's sums run in a fixed order whatever the threads.
 void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                      const std::vector<int>& iterations, std::vector<double>& values, int threads = 0,
-                      double tail = kChebyshevTail);
+                      const std::vector<int>& iterations, std::vector<double>& values,
+                      int threads = 0, double tail = kChebyshevTail);
 // Four signals at once: the same numbers as four calls, in one pass over the rings.
 void chebyshev_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                      const std::vector<int>& iterations, std::vector<glm::dvec4>& values, int threads = 0,
-                      double tail = kChebyshevTail);
+                      const std::vector<int>& iterations, std::vector<glm::dvec4>& values,
+                      int threads = 0, double tail = kChebyshevTail);
 
 }  // namespace countershade

@@ -2,7 +2,6 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-
 #include <algorithm>
 #include <cmath>
 
@@ -24,7 +23,8 @@ ColoredMeshFile ColoredMeshFile::read(const std::filesystem::path& path) {
   // The triangle loader applies every validity check (NaN, indices, non-manifold, degenerate).
   TriangleMesh checked = load_mesh(path);
   if (!checked.has_vertex_colors())
-    throw_input_error(path.string(), "mesh has no vertex colours (mesh-usm enhances vertex colours)");
+    throw_input_error(path.string(),
+                      "mesh has no vertex colours (mesh-usm enhances vertex colours)");
   auto impl = std::make_unique<Impl>();
   impl->mesh.request_vertex_colors();
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor;
@@ -32,7 +32,8 @@ ColoredMeshFile ColoredMeshFile::read(const std::filesystem::path& path) {
       !options.check(OpenMesh::IO::Options::VertexColor))
     throw_input_error(path.string(), "cannot read the mesh's vertex colours");
   if (impl->mesh.n_vertices() != checked.vertex_count())
-    throw_input_error(path.string(), "vertex count differs between readers; the file may be malformed");
+    throw_input_error(path.string(),
+                      "vertex count differs between readers; the file may be malformed");
   return ColoredMeshFile(std::move(impl));
 }
 
@@ -81,7 +82,8 @@ void ColoredMeshFile::set_colors(const std::vector<glm::dvec3>& colors) {
 
 void ColoredMeshFile::write(const std::filesystem::path& path) const {
   write_atomically(path, [&](const std::filesystem::path& temp) {
-    OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor | OpenMesh::IO::Options::Binary;
+    OpenMesh::IO::Options options =
+        OpenMesh::IO::Options::VertexColor | OpenMesh::IO::Options::Binary;
     if (!OpenMesh::IO::write_mesh(impl_->mesh, temp.string(), options))
       throw std::runtime_error(path.string() + ": cannot write mesh");
   });

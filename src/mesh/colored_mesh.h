@@ -3,11 +3,10 @@
 // change its vertex colours and write it back without touching anything else.
 
 #include <filesystem>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <utility>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace countershade {
 

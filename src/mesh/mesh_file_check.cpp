@@ -40,8 +40,11 @@ void check_obj_vertex(const std::string& rest, const std::string& where, long lo
   if (values.size() < 3) throw_input_error(where, vertex + " has fewer than 3 coordinates");
   // Positions are stored as float: a value beyond float's range would become infinite.
   for (size_t k = 0; k < values.size(); ++k)
-    if (!(std::abs(values[k]) <= 1e38)) throw_input_error(where, vertex + " has a NaN or infinite " + (k < 3 ? "coordinate" : "value"));
-  if (values.size() >= 6 && std::any_of(values.begin() + 3, values.begin() + 6, [](double c) { return c < 0 || c > 1; }))
+    if (!(std::abs(values[k]) <= 1e38))
+      throw_input_error(where,
+                        vertex + " has a NaN or infinite " + (k < 3 ? "coordinate" : "value"));
+  if (values.size() >= 6 &&
+      std::any_of(values.begin() + 3, values.begin() + 6, [](double c) { return c < 0 || c > 1; }))
     throw_input_error(where, vertex + " has a colour outside [0, 1]");
 }
 
@@ -49,12 +52,14 @@ void check_obj_vertex(const std::string& rest, const std::string& where, long lo
 void check_obj_texcoord(const std::string& rest, const std::string& where, long long index) {
   const std::vector<double> values = obj_numbers(rest, where);
   if (values.size() < 2 || !std::isfinite(values[0]) || !std::isfinite(values[1]))
-    throw_input_error(where, "texture coordinate " + std::to_string(index) + " needs two finite numbers");
+    throw_input_error(where,
+                      "texture coordinate " + std::to_string(index) + " needs two finite numbers");
 }
 
 // One corner of a face ("v", "v/vt", "v/vt/vn", "v//vn"): its vertex index resolved (1-based,
 // negative from the end), after checking both indices against what the file has defined so far.
-long long obj_corner(const std::string& corner, const std::string& where, const long long (&defined)[3]) {
+long long obj_corner(const std::string& corner, const std::string& where,
+                     const long long (&defined)[3]) {
   long long index[3] = {0, 0, 0};
   size_t start = 0;
   for (int k = 0; k < 3 && start <= corner.size(); ++k) {
@@ -75,14 +80,15 @@ long long obj_corner(const std::string& corner, const std::string& where, const 
     if (k > 0 && i == 0) continue;  // no texture coordinate or normal given
     const long long resolved = i < 0 ? defined[k] + i + 1 : i;
     if (i == 0 || resolved < 1 || resolved > defined[k])
-      throw_input_error(where, std::string("face ") + names[k] + " index " + std::to_string(i) + " is out of range (1.." +
-                                   std::to_string(defined[k]) + ")");
+      throw_input_error(where, std::string("face ") + names[k] + " index " + std::to_string(i) +
+                                   " is out of range (1.." + std::to_string(defined[k]) + ")");
   }
   return index[0] < 0 ? defined[0] + index[0] + 1 : index[0];
 }
 
 // "f c1 c2 c3 ...": at least three corners, each vertex once. Returns its triangle count.
-size_t check_obj_face(const std::string& rest, const std::string& where, const long long (&defined)[3]) {
+size_t check_obj_face(const std::string& rest, const std::string& where,
+                      const long long (&defined)[3]) {
   std::istringstream fields(rest);
   std::vector<long long> face;
   for (std::string corner; fields >> corner;) face.push_back(obj_corner(corner, where, defined));
@@ -106,16 +112,21 @@ size_t check_obj(const std::filesystem::path& path) {
     // it then starts with other whitespace (a vertical tab, a form feed), else its first word. A
     // vertex OpenMesh skips but we counted would let a face reach past its vertices.
     const size_t start = line.find_first_not_of(" \t\r\n");
-    if (start == std::string::npos || std::isspace(static_cast<unsigned char>(line[start]))) continue;
+    if (start == std::string::npos || std::isspace(static_cast<unsigned char>(line[start])))
+      continue;
     std::istringstream fields(line.substr(start));
     std::string keyword, rest;
     fields >> keyword;
     std::getline(fields, rest);
     const std::string where = path.string() + ": line " + std::to_string(number);
-    if (keyword == "v") check_obj_vertex(rest, where, defined[0]++);
-    else if (keyword == "vt") check_obj_texcoord(rest, where, defined[1]++);
-    else if (keyword == "vn") ++defined[2];
-    else if (keyword == "f") triangles += check_obj_face(rest, where, defined);
+    if (keyword == "v")
+      check_obj_vertex(rest, where, defined[0]++);
+    else if (keyword == "vt")
+      check_obj_texcoord(rest, where, defined[1]++);
+    else if (keyword == "vn")
+      ++defined[2];
+    else if (keyword == "f")
+      triangles += check_obj_face(rest, where, defined);
   }
   return triangles;
 }
@@ -127,10 +138,13 @@ void check_stl(const std::filesystem::path& path) {
   in.read(head, sizeof head);
   const auto size = std::filesystem::file_size(path);
   uint32_t triangles = 0;
-  std::memcpy(&triangles, head + 80, 4);  // little-endian, as on every machine countershade builds for
+  std::memcpy(&triangles, head + 80,
+              4);  // little-endian, as on every machine countershade builds for
   if (size >= 84 && size == 84 + 50 * std::uintmax_t(triangles)) return;
   if (std::string_view(head, std::min<size_t>(size, 5)) != "solid")
-    throw_input_error(path.string(), "neither a binary STL (84 + 50 bytes per triangle) nor an ASCII STL ('solid')");
+    throw_input_error(
+        path.string(),
+        "neither a binary STL (84 + 50 bytes per triangle) nor an ASCII STL ('solid')");
 }
 
 }  // namespace

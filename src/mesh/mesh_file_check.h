@@ -10,8 +10,9 @@
 
 namespace countershade {
 
-// `ext` is the lower-case extension (".obj", ".ply", ".stl"; OFF has its own reader, off_reader.h). Returns the number of
-// triangles an OBJ file describes after fan triangulation (0 for the other formats).
+// `ext` is the lower-case extension (".obj", ".ply", ".stl"; OFF has its own reader, off_reader.h).
+// Returns the number of triangles an OBJ file describes after fan triangulation (0 for the other
+// formats).
 size_t check_mesh_file_structure(const std::filesystem::path& path, const std::string& ext);
 
 }  // namespace countershade

@@ -3,7 +3,6 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -35,7 +34,8 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& where) {
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     if (tri.x >= nv || tri.y >= nv || tri.z >= nv)
-      throw_input_error(where, "triangle " + std::to_string(t) + " has a vertex index out of range");
+      throw_input_error(where,
+                        "triangle " + std::to_string(t) + " has a vertex index out of range");
     if (tri.x == tri.y || tri.y == tri.z || tri.x == tri.z || triangle_double_area(mesh, t) == 0.0)
       throw_input_error(where, "triangle " + std::to_string(t) + " is degenerate (zero area)");
   }
@@ -51,7 +51,8 @@ std::string check_mesh_file(const std::filesystem::path& path) {
   if (fs::file_size(path, ec) == 0) throw_input_error(path.string(), "mesh file is empty");
   std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
-    throw_input_error(path.string(), "unsupported mesh format '" + ext + "' (use OBJ, PLY, OFF or STL)");
+    throw_input_error(path.string(),
+                      "unsupported mesh format '" + ext + "' (use OBJ, PLY, OFF or STL)");
   return ext;
 }
 
@@ -88,7 +89,8 @@ size_t add_polygons(const PolygonSoup& soup, OMesh& om, OpenMesh::IO::Options& o
       om.set_color(vh, OMesh::Color(uint8_t(c.x), uint8_t(c.y), uint8_t(c.z)));
     }
   }
-  options = soup.colours.empty() ? OpenMesh::IO::Options() : OpenMesh::IO::Options(OpenMesh::IO::Options::VertexColor);
+  options = soup.colours.empty() ? OpenMesh::IO::Options()
+                                 : OpenMesh::IO::Options(OpenMesh::IO::Options::VertexColor);
   size_t triangles = 0;
   std::vector<OMesh::VertexHandle> corners;
   for (const auto& face : soup.faces) {
@@ -102,8 +104,9 @@ size_t add_polygons(const PolygonSoup& soup, OMesh& om, OpenMesh::IO::Options& o
 
 // The file read into `om`, by countershade's OFF reader or by OpenMesh; returns OpenMesh's error
 // output and, for OBJ and OFF, the number of triangles the file describes (else 0).
-std::string read_into_open_mesh(const std::filesystem::path& path, const std::string& ext, OMesh& om,
-                                OpenMesh::IO::Options& options, size_t& expected_triangles) {
+std::string read_into_open_mesh(const std::filesystem::path& path, const std::string& ext,
+                                OMesh& om, OpenMesh::IO::Options& options,
+                                size_t& expected_triangles) {
   if (ext == ".off") {
     const PolygonSoup soup = read_off(path);
     return capture_open_mesh_errors([&] { expected_triangles = add_polygons(soup, om, options); });
@@ -156,13 +159,17 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
   om.request_vertex_colors();
   om.request_vertex_texcoords2D();
   om.request_halfedge_texcoords2D();
-  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor | OpenMesh::IO::Options::VertexTexCoord |
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor |
+                                  OpenMesh::IO::Options::VertexTexCoord |
                                   OpenMesh::IO::Options::FaceTexCoord;
   size_t expected_triangles = 0;
   const std::string log = read_into_open_mesh(path, ext, om, options, expected_triangles);
   if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
-      log.find("failed") != std::string::npos || (expected_triangles > 0 && om.n_faces() < expected_triangles))
-    throw_input_error(path.string(), "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
+      log.find("failed") != std::string::npos ||
+      (expected_triangles > 0 && om.n_faces() < expected_triangles))
+    throw_input_error(
+        path.string(),
+        "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
   TriangleMesh mesh = to_triangle_mesh(om, options);
   validate_mesh(mesh, path.string());
   return mesh;

@@ -10,10 +10,9 @@
 // optional colour that is ignored). Binary OFF and the 4OFF and nOFF variants are refused.
 
 #include <filesystem>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace countershade {
 

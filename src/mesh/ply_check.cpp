@@ -26,21 +26,24 @@ struct PlyElement {
 
 // What a PLY header has declared so far.
 struct PlyHeader {
-  std::string format;  // ascii, binary_little_endian or binary_big_endian
+  std::string format;             // ascii, binary_little_endian or binary_big_endian
   unsigned long long values = 0;  // the sum of the element counts
   std::vector<PlyElement> elements;
 };
 
 // 0: not a PLY type, 1: an integer type, 2: a floating-point type.
 int ply_type(const std::string& t) {
-  static const char* const kIntegers[] = {"char",  "uchar",  "short", "ushort", "int",    "uint",
-                                          "int8",  "uint8",  "int16", "uint16", "int32",  "uint32"};
+  static const char* const kIntegers[] = {"char", "uchar", "short", "ushort", "int",   "uint",
+                                          "int8", "uint8", "int16", "uint16", "int32", "uint32"};
   static const char* const kFloats[] = {"float", "double", "float32", "float64"};
-  auto is = [&](const auto& names) { return std::any_of(std::begin(names), std::end(names), [&](const char* k) { return t == k; }); };
+  auto is = [&](const auto& names) {
+    return std::any_of(std::begin(names), std::end(names), [&](const char* k) { return t == k; });
+  };
   return is(kIntegers) ? 1 : is(kFloats) ? 2 : 0;
 }
 
-// "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME", with known types and an integer count.
+// "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME", with known types and an integer
+// count.
 bool read_ply_property(const std::vector<std::string>& w, PlyProperty& property) {
   if (w.size() == 3 && ply_type(w[1]) != 0) {
     property.integer = ply_type(w[1]) == 1;
@@ -52,25 +55,33 @@ bool read_ply_property(const std::vector<std::string>& w, PlyProperty& property)
   return true;
 }
 
-void check_ply_element(const std::vector<std::string>& w, const std::string& where, PlyHeader& header) {
+void check_ply_element(const std::vector<std::string>& w, const std::string& where,
+                       PlyHeader& header) {
   unsigned long long count = 0;
-  if (w.size() != 3 || !parse_count(w[2], count)) throw_input_error(where, "expected 'element NAME COUNT'");
+  if (w.size() != 3 || !parse_count(w[2], count))
+    throw_input_error(where, "expected 'element NAME COUNT'");
   // OpenMesh's reader handles vertex and face elements; it crashed on others (found by the fuzzer).
-  if (w[1] != "vertex" && w[1] != "face") throw_input_error(where, "element '" + w[1] + "' is not read (only vertex and face)");
+  if (w[1] != "vertex" && w[1] != "face")
+    throw_input_error(where, "element '" + w[1] + "' is not read (only vertex and face)");
   header.values += std::min(count, 1ull << 62);
   header.elements.push_back({w[1], count, {}});
 }
 
 // One PLY header line (after the first), which must be printable ASCII with a known keyword.
-void check_ply_header_line(const std::string& line, const std::vector<std::string>& w, const std::string& where,
-                           PlyHeader& header) {
-  if (std::any_of(line.begin(), line.end(), [](char c) { return (c < 0x20 && c != '\t') || c > 0x7e; }))
+void check_ply_header_line(const std::string& line, const std::vector<std::string>& w,
+                           const std::string& where, PlyHeader& header) {
+  if (std::any_of(line.begin(), line.end(),
+                  [](char c) { return (c < 0x20 && c != '\t') || c > 0x7e; }))
     throw_input_error(where, "PLY header holds a control or non-ASCII character");
   const std::string keyword = w.empty() ? "" : w[0];
   if (keyword == "format") {
-    const bool known = w.size() == 3 && (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian") &&
-                       w[2] == "1.0";
-    if (!known) throw_input_error(where, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+    const bool known =
+        w.size() == 3 &&
+        (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian") &&
+        w[2] == "1.0";
+    if (!known)
+      throw_input_error(where,
+                        "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
     header.format = w[1];
   } else if (keyword == "element") {
     check_ply_element(w, where, header);
@@ -78,10 +89,13 @@ void check_ply_header_line(const std::string& line, const std::vector<std::strin
     PlyProperty property;
     if (header.elements.empty()) throw_input_error(where, "a property before any element line");
     if (!read_ply_property(w, property))
-      throw_input_error(where, "expected 'property TYPE NAME' or 'property list INTEGER_TYPE TYPE NAME'");
+      throw_input_error(where,
+                        "expected 'property TYPE NAME' or 'property list INTEGER_TYPE TYPE NAME'");
     header.elements.back().properties.push_back(property);
   } else if (keyword != "comment" && keyword != "obj_info") {
-    throw_input_error(where, "unexpected PLY header line (expected format, element, property, comment or end_header)");
+    throw_input_error(
+        where,
+        "unexpected PLY header line (expected format, element, property, comment or end_header)");
   }
 }
 
@@ -94,7 +108,8 @@ double next_ply_value(std::istream& in, bool integer, const std::string& where) 
   const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), whole);
   if (integer && (error != std::errc() || end != word.data() + word.size()))
     throw_input_error(where, "'" + word + "' is not an integer");
-  if (!integer && !parse_number(word, value)) throw_input_error(where, "'" + word + "' is not a number");
+  if (!integer && !parse_number(word, value))
+    throw_input_error(where, "'" + word + "' is not a number");
   return integer ? double(whole) : value;
 }
 
@@ -117,8 +132,8 @@ void check_ply_body(std::ifstream& in, const std::filesystem::path& path, const 
   if (header.format.empty()) throw_input_error(file, "PLY header has no format line");
   const auto body = std::filesystem::file_size(path) - std::uintmax_t(in.tellg());
   if (header.values > body)
-    throw_input_error(file, "PLY header declares " + std::to_string(header.values) + " elements but only " +
-                                std::to_string(body) + " bytes follow it");
+    throw_input_error(file, "PLY header declares " + std::to_string(header.values) +
+                                " elements but only " + std::to_string(body) + " bytes follow it");
   if (header.format == "ascii") check_ply_ascii_body(in, header, file);
 }
 
@@ -137,7 +152,8 @@ void check_ply(const std::filesystem::path& path) {
     } else if (line == "end_header") {
       return check_ply_body(in, path, header);
     } else {
-      check_ply_header_line(line, split_words(line), file + ": line " + std::to_string(number), header);
+      check_ply_header_line(line, split_words(line), file + ": line " + std::to_string(number),
+                            header);
     }
     if (in.tellg() > kMaxHeader) break;
   }

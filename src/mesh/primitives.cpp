@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <map>
 #include <numbers>
 #include <tuple>
-
-#include <glm/geometric.hpp>
 
 namespace countershade {
 namespace {
@@ -88,8 +87,9 @@ double gaussian_bump(double u, double v, double cu, double cv, double sigma) {
 
 double relief_coarse(double u, double v) {
   // {u, v, amplitude}: hills (+) and valleys (−) of σ = 0.14.
-  static constexpr double kHills[6][3] = {{0.25, 0.30, 1.0},  {0.70, 0.25, -0.7}, {0.55, 0.60, 0.8},
-                                          {0.20, 0.75, -0.6}, {0.80, 0.75, 0.9},  {0.45, 0.95, 0.5}};
+  static constexpr double kHills[6][3] = {{0.25, 0.30, 1.0}, {0.70, 0.25, -0.7},
+                                          {0.55, 0.60, 0.8}, {0.20, 0.75, -0.6},
+                                          {0.80, 0.75, 0.9}, {0.45, 0.95, 0.5}};
   double h = 0;
   for (const auto& [cu, cv, a] : kHills) h += a * gaussian_bump(u, v, cu, cv, 0.14);
   return h;
@@ -133,7 +133,8 @@ struct BoxLattice {
 
 // One face of the box: axis `a` fixed at its first (side 0) or last lattice index, walking the
 // other two axes u and v; corner uvs span the face.
-void add_box_face(TriangleMesh& mesh, Welder<std::tuple<int, int, int>>& welder, const BoxLattice& box, int a, int side) {
+void add_box_face(TriangleMesh& mesh, Welder<std::tuple<int, int, int>>& welder,
+                  const BoxLattice& box, int a, int side) {
   const int u = (a + 1) % 3, v = (a + 2) % 3;
   const int fixed = side == 0 ? 0 : int(box.axes[a].size()) - 1;
   const int nu = int(box.axes[u].size()), nv = int(box.axes[v].size());
@@ -148,7 +149,8 @@ void add_box_face(TriangleMesh& mesh, Welder<std::tuple<int, int, int>>& welder,
   const glm::dvec3& h = box.h;
   for (int j = 0; j + 1 < nv; ++j)
     for (int i = 0; i + 1 < nu; ++i) {
-      const unsigned a0 = vertex(i, j), a1 = vertex(i + 1, j), a2 = vertex(i + 1, j + 1), a3 = vertex(i, j + 1);
+      const unsigned a0 = vertex(i, j), a1 = vertex(i + 1, j), a2 = vertex(i + 1, j + 1),
+                     a3 = vertex(i, j + 1);
       const size_t first = mesh.triangles.size();
       // (u, v, a) is right-handed, so u->v is counter-clockwise seen from +a.
       if (side == 1)
@@ -170,9 +172,12 @@ TriangleMesh make_box(const glm::dvec3& size, EdgeProfile profile, double radius
   BoxLattice box;
   box.h = size * 0.5;
   box.profile = profile;
-  box.r = profile == EdgeProfile::sharp ? 0.0 : std::min(radius, 0.999 * std::min({box.h.x, box.h.y, box.h.z}));
+  box.r = profile == EdgeProfile::sharp
+              ? 0.0
+              : std::min(radius, 0.999 * std::min({box.h.x, box.h.y, box.h.z}));
   const int edge = std::max(1, edge_segments);
-  const double spacing = 2.0 * (std::max({box.h.x, box.h.y, box.h.z}) - box.r) / std::max(1, subdivisions);
+  const double spacing =
+      2.0 * (std::max({box.h.x, box.h.y, box.h.z}) - box.r) / std::max(1, subdivisions);
   for (int a = 0; a < 3; ++a) box.axes[a] = axis_coordinates(box.h[a], box.r, edge, spacing);
   box.inner = box.h - glm::dvec3(box.r);
   TriangleMesh mesh;
@@ -219,14 +224,16 @@ double turn_angle(int i, int n) { return 2.0 * std::numbers::pi * (i % n) / n; }
 
 // A cylinder's cap at height y: concentric rings inwards from the side's outer ring `outer`, then a
 // centre vertex; facing down for cap 0, up for cap 1.
-void add_cylinder_cap(TriangleMesh& mesh, std::vector<unsigned> outer, double radius, int rings, double y, int cap) {
+void add_cylinder_cap(TriangleMesh& mesh, std::vector<unsigned> outer, double radius, int rings,
+                      double y, int cap) {
   const int n = int(outer.size());
   for (int k = rings - 1; k > 0; --k) {
     std::vector<unsigned> ring(n);
     for (int i = 0; i < n; ++i) {
       ring[i] = unsigned(mesh.positions.size());
       const double rr = radius * k / rings;
-      mesh.positions.emplace_back(rr * std::cos(turn_angle(i, n)), y, -rr * std::sin(turn_angle(i, n)));
+      mesh.positions.emplace_back(rr * std::cos(turn_angle(i, n)), y,
+                                  -rr * std::sin(turn_angle(i, n)));
     }
     for (int i = 0; i < n; ++i) {
       if (cap == 1)
@@ -261,11 +268,13 @@ TriangleMesh make_cylinder(double radius, double height, int segments) {
   // Side grid: rows+1 rings of n vertices.
   for (int j = 0; j <= rows; ++j)
     for (int i = 0; i < n; ++i)
-      mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)), -height / 2 + height * j / rows,
+      mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)),
+                                  -height / 2 + height * j / rows,
                                   -radius * std::sin(turn_angle(i, n)));
   auto side = [n](int i, int j) { return unsigned(j * n + (i % n)); };
   for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < n; ++i) add_quad(mesh, side(i, j), side(i + 1, j), side(i + 1, j + 1), side(i, j + 1));
+    for (int i = 0; i < n; ++i)
+      add_quad(mesh, side(i, j), side(i + 1, j), side(i + 1, j + 1), side(i, j + 1));
   // Caps share the side's outer rings.
   for (int cap = 0; cap < 2; ++cap) {
     std::vector<unsigned> outer(n);
@@ -282,7 +291,8 @@ TriangleMesh make_disc(double radius, int segments) {
   std::vector<unsigned> outer(n);
   for (int i = 0; i < n; ++i) {
     outer[i] = unsigned(mesh.positions.size());
-    mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)), 0.0, -radius * std::sin(turn_angle(i, n)));
+    mesh.positions.emplace_back(radius * std::cos(turn_angle(i, n)), 0.0,
+                                -radius * std::sin(turn_angle(i, n)));
   }
   add_cylinder_cap(mesh, outer, radius, int(grid.rings), 0.0, 1);
   return mesh;

@@ -42,7 +42,9 @@ struct RoundGrid {
   double rows, rings;
   // At most this many triangles: the side's rows and both caps (or one cap for a disc), each ring
   // of the caps counted as a full row.
-  double triangle_bound(bool disc) const { return 2.0 * segments * (disc ? rings : 2.0 * rings + rows); }
+  double triangle_bound(bool disc) const {
+    return 2.0 * segments * (disc ? rings : 2.0 * rings + rows);
+  }
 };
 RoundGrid round_grid(double radius, double height, int segments);
 

@@ -1,11 +1,10 @@
 #include "mesh/refine.h"
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <queue>
 #include <stdexcept>
 #include <unordered_map>
-
-#include <glm/geometric.hpp>
 
 namespace countershade {
 namespace {
@@ -56,8 +55,10 @@ class EdgeSplitter {
   uint32_t midpoint_vertex(uint32_t a, uint32_t b) {
     const uint32_t m = uint32_t(mesh_.positions.size());
     mesh_.positions.push_back(0.5f * (mesh_.positions[a] + mesh_.positions[b]));
-    if (mesh_.has_vertex_colors()) mesh_.vertex_colors.push_back(0.5f * (mesh_.vertex_colors[a] + mesh_.vertex_colors[b]));
-    if (vertex_values_) vertex_values_->push_back(0.5f * ((*vertex_values_)[a] + (*vertex_values_)[b]));
+    if (mesh_.has_vertex_colors())
+      mesh_.vertex_colors.push_back(0.5f * (mesh_.vertex_colors[a] + mesh_.vertex_colors[b]));
+    if (vertex_values_)
+      vertex_values_->push_back(0.5f * ((*vertex_values_)[a] + (*vertex_values_)[b]));
     return m;
   }
 
@@ -77,7 +78,8 @@ class EdgeSplitter {
 
   void split_triangle(uint32_t t, uint32_t a, uint32_t b, uint32_t m) {
     const glm::uvec3 tri = mesh_.triangles[t];
-    // Rotate so that the split edge is corners first -> second (either direction) and the third is opposite.
+    // Rotate so that the split edge is corners first -> second (either direction) and the third is
+    // opposite.
     const int ca = tri.x == a ? 0 : tri.y == a ? 1 : 2, cb = tri.x == b ? 0 : tri.y == b ? 1 : 2;
     const int first = (ca + 1) % 3 == cb ? ca : cb;
     const int second = (first + 1) % 3, opposite = (first + 2) % 3;
@@ -102,14 +104,16 @@ class EdgeSplitter {
   TriangleMesh& mesh_;
   double max_length_;
   std::vector<float>* vertex_values_;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> edge_triangles_;  // 1 triangle on a boundary, 2 inside
-  std::priority_queue<std::pair<double, uint64_t>> queue_;             // longest first
+  std::unordered_map<uint64_t, std::vector<uint32_t>>
+      edge_triangles_;                                      // 1 triangle on a boundary, 2 inside
+  std::priority_queue<std::pair<double, uint64_t>> queue_;  // longest first
 };
 
 }  // namespace
 
 size_t refine_long_edges(TriangleMesh& mesh, double max_length, std::vector<float>* vertex_values) {
-  if (!(max_length > 0)) throw std::invalid_argument("refine_long_edges: max_length must be positive");
+  if (!(max_length > 0))
+    throw std::invalid_argument("refine_long_edges: max_length must be positive");
   return EdgeSplitter(mesh, max_length, vertex_values).run();
 }
 

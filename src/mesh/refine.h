@@ -13,6 +13,7 @@ namespace countershade {
 // Corner attributes (normals, UVs) are interpolated per triangle, so creases and UV seams stay
 // intact; vertex colours and `vertex_values` (one per vertex, e.g. importance weights) are
 // interpolated along the edge. Returns the number of splits.
-size_t refine_long_edges(TriangleMesh& mesh, double max_length, std::vector<float>* vertex_values = nullptr);
+size_t refine_long_edges(TriangleMesh& mesh, double max_length,
+                         std::vector<float>* vertex_values = nullptr);
 
 }  // namespace countershade

@@ -3,9 +3,8 @@
 // quantities 3D unsharp masking derives from a per-vertex signal.
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec4.hpp>
+#include <vector>
 
 #include "mesh/adjacency.h"
 #include "mesh/triangle_mesh.h"
@@ -26,7 +25,8 @@ int iterations_for_sigma(double sigma, double mean_edge_length);
 // joins two components, so nothing leaks between them). Vertices without neighbours keep their
 // value. `threads` = 0 uses all cores.
 void laplacian_smooth(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                      const std::vector<int>& iterations, std::vector<double>& values, int threads = 0);
+                      const std::vector<int>& iterations, std::vector<double>& values,
+                      int threads = 0);
 
 // How the n steps are taken: one product with the 1-ring average per step, or the truncated
 // Chebyshev expansion of the n-th power (mesh/chebyshev_smoothing.h: O(√n) products, within
@@ -44,20 +44,21 @@ inline constexpr int kReorderSteps = 100;
 // laplacian_smooth or chebyshev_smooth, by `scheme`; in breadth-first order above kReorderAbove
 // vertices and from kReorderSteps steps (the most any component takes) on.
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                       const std::vector<int>& iterations, std::vector<double>& values, SmoothingScheme scheme,
-                       int threads = 0);
+                       const std::vector<int>& iterations, std::vector<double>& values,
+                       SmoothingScheme scheme, int threads = 0);
 // Four signals at once (each component of the vectors one): the same numbers as four calls, in
 // one pass over the rings per step.
 void smooth_over_rings(const VertexAdjacency& adjacency, const std::vector<uint32_t>& label,
-                       const std::vector<int>& iterations, std::vector<glm::dvec4>& values, SmoothingScheme scheme,
-                       int threads = 0);
+                       const std::vector<int>& iterations, std::vector<glm::dvec4>& values,
+                       SmoothingScheme scheme, int threads = 0);
 
 // Population variance of `values` over {i} ∪ N(i), per vertex.
-std::vector<double> one_ring_variance(const VertexAdjacency& adjacency, const std::vector<double>& values,
-                                      int threads = 0);
+std::vector<double> one_ring_variance(const VertexAdjacency& adjacency,
+                                      const std::vector<double>& values, int threads = 0);
 
 // Mean edge length of each component (each undirected edge counted once).
 std::vector<double> component_mean_edge_length(const std::vector<glm::vec3>& positions,
-                                               const VertexAdjacency& adjacency, const Components& components);
+                                               const VertexAdjacency& adjacency,
+                                               const Components& components);
 
 }  // namespace countershade

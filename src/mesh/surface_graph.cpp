@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-
 #include <glm/geometric.hpp>
+#include <numeric>
 
 #include "mesh/smoothing.h"
 #include "mesh/triangle_mesh.h"
@@ -28,7 +27,8 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
 // which costs comparisons, not correctness).
 glm::i64vec3 cell_of(const glm::dvec3& p, double cell) {
   const glm::dvec3 c = glm::clamp(glm::floor(p / cell), glm::dvec3(-0x1p62), glm::dvec3(0x1p62));
-  return glm::i64vec3(std::isnan(c.x) ? 0 : c.x, std::isnan(c.y) ? 0 : c.y, std::isnan(c.z) ? 0 : c.z);
+  return glm::i64vec3(std::isnan(c.x) ? 0 : c.x, std::isnan(c.y) ? 0 : c.y,
+                      std::isnan(c.z) ? 0 : c.z);
 }
 
 // The vertices inserted so far, by grid cell: a flat hash table of chains (head per bucket, next
@@ -53,7 +53,8 @@ class CellTable {
  private:
   static constexpr uint32_t kNone = UINT32_MAX;
   size_t bucket(const glm::i64vec3& c) const {
-    const uint64_t key = (uint64_t(c.x) * 73856093u) ^ (uint64_t(c.y) * 19349663u) ^ (uint64_t(c.z) * 83492791u);
+    const uint64_t key =
+        (uint64_t(c.x) * 73856093u) ^ (uint64_t(c.y) * 19349663u) ^ (uint64_t(c.z) * 83492791u);
     return size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & (head_.size() - 1);
   }
   std::vector<uint32_t> head_, next_;
@@ -92,9 +93,11 @@ std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions, double toler
 }  // namespace
 
 SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
-                           const std::vector<std::pair<uint32_t, uint32_t>>& edges, double tolerance) {
+                           const std::vector<std::pair<uint32_t, uint32_t>>& edges,
+                           double tolerance) {
   SurfaceGraph g;
-  const std::vector<uint32_t> root = weld(positions, tolerance < 0 ? default_tolerance(positions) : tolerance);
+  const std::vector<uint32_t> root =
+      weld(positions, tolerance < 0 ? default_tolerance(positions) : tolerance);
   g.point_of.assign(positions.size(), 0);
   std::vector<uint32_t> point_of_root(positions.size(), UINT32_MAX);
   for (uint32_t v = 0; v < positions.size(); ++v) {
@@ -119,8 +122,8 @@ void measure_edges(SurfaceGraph& graph, const std::vector<glm::vec3>& positions)
   graph.mean_edge_length = component_mean_edge_length(points, graph.adjacency, graph.components);
 }
 
-SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
-                           double tolerance) {
+SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
+                           const std::vector<glm::uvec3>& triangles, double tolerance) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(3 * triangles.size());
   for (const auto& t : triangles)
@@ -131,7 +134,8 @@ SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::v
 std::vector<double> SurfaceGraph::to_points(const std::vector<double>& per_vertex) const {
   if (point_count() == point_of.size()) {  // nothing welded: point p is vertex p
     std::vector<double> out(per_vertex.size());
-    for (size_t v = 0; v < out.size(); ++v) out[v] = 0.0 + per_vertex[v];  // the sum's bits, -0 included
+    for (size_t v = 0; v < out.size(); ++v)
+      out[v] = 0.0 + per_vertex[v];  // the sum's bits, -0 included
     return out;
   }
   std::vector<double> sum(point_count(), 0.0), count(point_count(), 0.0);
@@ -150,7 +154,8 @@ std::vector<double> SurfaceGraph::to_vertices(const std::vector<double>& per_poi
   return out;
 }
 
-std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(const std::vector<std::vector<uint32_t>>& polygons) {
+std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(
+    const std::vector<std::vector<uint32_t>>& polygons) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   for (const auto& p : polygons) {
     for (size_t i = 0; i < p.size(); ++i) edges.emplace_back(p[i], p[(i + 1) % p.size()]);

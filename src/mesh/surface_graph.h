@@ -5,10 +5,9 @@
 // cross those seams as the surface does. The 1-ring is that of the welded points.
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <utility>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "mesh/adjacency.h"
 
@@ -32,9 +31,10 @@ struct SurfaceGraph {
 // Welds the vertices within `tolerance` of each other (default: 1e-6 of the bounding-box
 // diagonal) and builds the 1-ring from the edges (undirected, either orientation).
 SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
-                           const std::vector<std::pair<uint32_t, uint32_t>>& edges, double tolerance = -1);
-SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
+                           const std::vector<std::pair<uint32_t, uint32_t>>& edges,
                            double tolerance = -1);
+SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
+                           const std::vector<glm::uvec3>& triangles, double tolerance = -1);
 
 // Measures the graph's mean edge lengths again at new positions of its vertices (a moved or
 // scaled mesh keeps its graph, not its lengths).
@@ -42,6 +42,7 @@ void measure_edges(SurfaceGraph& graph, const std::vector<glm::vec3>& positions)
 
 // The edges of polygons (vertex lists) after fan triangulation from their first vertex: the
 // polygon's sides and its diagonals (v0, v_i), as a triangulated mesh connects them.
-std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(const std::vector<std::vector<uint32_t>>& polygons);
+std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(
+    const std::vector<std::vector<uint32_t>>& polygons);
 
 }  // namespace countershade

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -39,7 +38,8 @@ double mean_edge_length(const TriangleMesh& mesh) {
   double sum = 0.0;
   for (const auto& tri : mesh.triangles)
     for (int c = 0; c < 3; ++c)
-      sum += glm::length(glm::dvec3(mesh.positions[tri[c]]) - glm::dvec3(mesh.positions[tri[(c + 1) % 3]]));
+      sum += glm::length(glm::dvec3(mesh.positions[tri[c]]) -
+                         glm::dvec3(mesh.positions[tri[(c + 1) % 3]]));
   return mesh.triangles.empty() ? 0.0 : sum / (3.0 * double(mesh.triangles.size()));
 }
 
@@ -63,7 +63,8 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_deg) {
 
   const auto [offsets, corners] = vertex_corners(mesh);
 
-  const double cos_crease = crease_angle_deg >= 180.0 ? -2.0 : std::cos(glm::radians(crease_angle_deg));
+  const double cos_crease =
+      crease_angle_deg >= 180.0 ? -2.0 : std::cos(glm::radians(crease_angle_deg));
   mesh.corner_normals.assign(3 * nf, glm::vec3(0.0f));
   for (size_t v = 0; v < nv; ++v) {
     for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i) {

@@ -1,23 +1,23 @@
 #pragma once
-// The renderer's mesh: shared (welded) vertices for connectivity, per-corner attributes for shading.
-// Welded vertices matter: surface smoothing runs over vertex connectivity, so a hard edge must
-// keep its vertices shared and express the crease only in the per-corner normals.
+// The renderer's mesh: shared (welded) vertices for connectivity, per-corner attributes for
+// shading. Welded vertices matter: surface smoothing runs over vertex connectivity, so a hard edge
+// must keep its vertices shared and express the crease only in the per-corner normals.
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 namespace countershade {
 
 struct TriangleMesh {
-  std::vector<glm::vec3> positions;       // #V vertex positions
-  std::vector<glm::uvec3> triangles;      // #F vertex indices, counter-clockwise = front
-  std::vector<glm::vec3> corner_normals;  // 3·#F unit shading normals (triangle t, corner c at 3t+c)
-  std::vector<glm::vec2> corner_uvs;      // 3·#F texture coordinates, or empty
-  std::vector<glm::vec3> vertex_colors;   // #V colours in [0,1] as stored in the file, or empty
+  std::vector<glm::vec3> positions;   // #V vertex positions
+  std::vector<glm::uvec3> triangles;  // #F vertex indices, counter-clockwise = front
+  std::vector<glm::vec3>
+      corner_normals;                 // 3·#F unit shading normals (triangle t, corner c at 3t+c)
+  std::vector<glm::vec2> corner_uvs;  // 3·#F texture coordinates, or empty
+  std::vector<glm::vec3> vertex_colors;  // #V colours in [0,1] as stored in the file, or empty
 
   size_t vertex_count() const { return positions.size(); }
   size_t triangle_count() const { return triangles.size(); }

@@ -29,7 +29,8 @@ std::vector<T> gathered(const std::vector<T>& values, const std::vector<uint32_t
   return out;
 }
 template <typename T>
-void scatter(const std::vector<T>& reordered, const std::vector<uint32_t>& order, std::vector<T>& values) {
+void scatter(const std::vector<T>& reordered, const std::vector<uint32_t>& order,
+             std::vector<T>& values) {
   for (size_t i = 0; i < order.size(); ++i) values[order[i]] = reordered[i];
 }
 

@@ -4,11 +4,10 @@
 // applied after their static one), each a path of keys at strictly increasing times,
 // interpolated linearly or with a Catmull–Rom spline, plus a duration and a frame rate.
 
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace countershade {
 
@@ -16,8 +15,8 @@ enum class Interpolation { linear, catmull_rom };
 
 // A path of 3-vectors (scalars use .x) over time. Before the first key and after the last it
 // holds their values; at a key's time it is exactly that key's value. The Catmull–Rom spline is
-// the cubic Hermite spline whose tangent at key i is (p[i+1] − p[i−1]) / (t[i+1] − t[i−1]) (one-sided
-// at the ends), so it is C¹ over non-uniform times.
+// the cubic Hermite spline whose tangent at key i is (p[i+1] − p[i−1]) / (t[i+1] − t[i−1])
+// (one-sided at the ends), so it is C¹ over non-uniform times.
 class Track {
  public:
   // Throws std::invalid_argument unless there are ≥ 2 keys at strictly increasing times.
@@ -41,7 +40,8 @@ struct LightPath {
   size_t light = 0;         // its index in the file's list (for messages)
   bool directional = true;  // which typed list of the scene holds it
   size_t index = 0;         // its index there
-  std::optional<Track> direction, position, intensity;  // intensity: irradiance of a directional light
+  std::optional<Track> direction, position,
+      intensity;  // intensity: irradiance of a directional light
 };
 
 // An object's motion: translate, rotate (degrees about x, then y, then z) and scale, composed like

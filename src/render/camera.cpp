@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -45,7 +44,8 @@ unsigned CameraRays::outside(const glm::dvec3& p) const {
   const double z = glm::dot(d, forward_), x = glm::dot(d, right_), y = glm::dot(d, up_);
   const double w = kSlack * (camera_.orthographic ? half_width_ : half_width_ * z);
   const double h = kSlack * (camera_.orthographic ? half_height_ : half_height_ * z);
-  return unsigned(x < -w) | unsigned(x > w) << 1 | unsigned(y < -h) << 2 | unsigned(y > h) << 3 | unsigned(z < 0) << 4;
+  return unsigned(x < -w) | unsigned(x > w) << 1 | unsigned(y < -h) << 2 | unsigned(y > h) << 3 |
+         unsigned(z < 0) << 4;
 }
 
 bool CameraRays::may_see(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) const {
@@ -56,10 +56,13 @@ glm::dvec2 CameraRays::film_position(const glm::dvec3& p) const {
   const glm::dvec3 d = p - camera_.eye;
   const double depth = camera_.orthographic ? 1.0 : glm::dot(d, forward_);
   const double sx = glm::dot(d, right_) / depth, sy = glm::dot(d, up_) / depth;
-  return {(sx / half_width_ + 1.0) * camera_.width / 2.0, (1.0 - sy / half_height_) * camera_.height / 2.0};
+  return {(sx / half_width_ + 1.0) * camera_.width / 2.0,
+          (1.0 - sy / half_height_) * camera_.height / 2.0};
 }
 
-double CameraRays::eye_depth(const glm::dvec3& p) const { return glm::dot(p - camera_.eye, forward_); }
+double CameraRays::eye_depth(const glm::dvec3& p) const {
+  return glm::dot(p - camera_.eye, forward_);
+}
 
 glm::dvec3 CameraRays::towards_viewer(const glm::dvec3& p) const {
   return camera_.orthographic ? -forward_ : glm::normalize(camera_.eye - p);

@@ -1,10 +1,9 @@
 #pragma once
 // Look-at camera, perspective (vertical field of view) or orthographic (view height).
 
-#include <optional>
-
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 
 namespace countershade {
 

@@ -9,11 +9,10 @@
 // the ground hidden behind it).
 
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <glm/vec2.hpp>
 
 #include "core/sampler.h"
 #include "render/ray_tracer.h"
@@ -30,28 +29,33 @@ void latin_hypercube(uint64_t seed, uint64_t pixel, int spp, std::vector<glm::dv
 // The position of sample `s` within its pixel, in [0, 1)²: the pixel's Latin hypercube with the
 // independent sampler (`lhs`, from latin_hypercube), else the sampler's first two dimensions (the
 // centre when a fixed count takes one sample).
-glm::dvec2 sample_position(const RenderSettings& settings, Sampler& sampler, const std::vector<glm::dvec2>& lhs,
-                           uint32_t s);
+glm::dvec2 sample_position(const RenderSettings& settings, Sampler& sampler,
+                           const std::vector<glm::dvec2>& lhs, uint32_t s);
 
 class CameraHits {
  public:
   CameraHits(size_t pixels, uint32_t spp, const Scene& scene);
 
   uint32_t spp() const { return spp_; }
-  std::optional<Hit> hit(size_t pixel, uint32_t s) const { return samples_[pixel * spp_ + s].unpack(); }
+  std::optional<Hit> hit(size_t pixel, uint32_t s) const {
+    return samples_[pixel * spp_ + s].unpack();
+  }
   // Per triangle of an object: whether some camera sample hits it (from either side).
   const std::vector<uint8_t>& triangles_hit(unsigned object) const { return seen_[object]; }
 
  private:
-  friend std::shared_ptr<const CameraHits> trace_camera_samples(const Scene&, const RayTracer&, int);
+  friend std::shared_ptr<const CameraHits> trace_camera_samples(const Scene&, const RayTracer&,
+                                                                int);
   uint32_t spp_;
-  std::unique_ptr<PackedHit[]> samples_;    // pixel-major, left uninitialised: the tracing writes each
+  std::unique_ptr<PackedHit[]>
+      samples_;  // pixel-major, left uninitialised: the tracing writes each
   size_t count_;
   std::vector<std::vector<uint8_t>> seen_;  // [object][triangle]
 };
 
 // Every camera sample of a render with a fixed count, traced; none without a fixed count, or when
 // the hits would take more than 128 MB (16 bytes a sample: 1024×768 at 10 samples per pixel).
-std::shared_ptr<const CameraHits> trace_camera_samples(const Scene& scene, const RayTracer& tracer, int threads);
+std::shared_ptr<const CameraHits> trace_camera_samples(const Scene& scene, const RayTracer& tracer,
+                                                       int threads);
 
 }  // namespace countershade

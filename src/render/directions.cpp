@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 #include "core/fast_math.h"
@@ -22,7 +21,8 @@ glm::dvec3 direction_around(const TangentFrame& frame, double cos_theta, double 
   double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
   double sin_phi, cos_phi;
   sincos_turns(turns, sin_phi, cos_phi);
-  return glm::normalize(sin_theta * cos_phi * frame.t + sin_theta * sin_phi * frame.b + cos_theta * frame.n);
+  return glm::normalize(sin_theta * cos_phi * frame.t + sin_theta * sin_phi * frame.b +
+                        cos_theta * frame.n);
 }
 
 glm::dvec3 sample_cone(const TangentFrame& axis, double cos_max, double u1, double u2) {
@@ -32,7 +32,8 @@ glm::dvec3 sample_cone(const TangentFrame& axis, double cos_max, double u1, doub
 glm::dvec3 sample_cosine_hemisphere(const TangentFrame& frame, double u1, double u2) {
   double r = std::sqrt(u1), sin_phi, cos_phi;
   sincos_turns(u2, sin_phi, cos_phi);
-  return glm::normalize(r * cos_phi * frame.t + r * sin_phi * frame.b + std::sqrt(std::max(0.0, 1.0 - u1)) * frame.n);
+  return glm::normalize(r * cos_phi * frame.t + r * sin_phi * frame.b +
+                        std::sqrt(std::max(0.0, 1.0 - u1)) * frame.n);
 }
 
 }  // namespace countershade

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
-
 #include <glm/vec2.hpp>
+#include <numbers>
 
 #include "core/fast_math.h"
 
@@ -19,7 +18,7 @@ double luminance(const glm::dvec3& c) { return 0.212671 * c.x + 0.715160 * c.y +
 
 glm::dvec3 equirect_direction(double u, double v) {
   double sin_phi, cos_phi, sin_theta, cos_theta;
-  sincos_turns(u, sin_phi, cos_phi);          // φ = 2πu
+  sincos_turns(u, sin_phi, cos_phi);            // φ = 2πu
   sincos_turns(0.5 * v, sin_theta, cos_theta);  // θ = πv
   return {sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi};
 }
@@ -141,7 +140,8 @@ glm::dvec3 EnvironmentMap::radiance(const glm::dvec3& d) const {
     const double fy = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi * height_ - 0.5;
     const int y0 = int(std::floor(fy));
     const double ty = fy - y0;
-    return (1 - ty) * rows_[size_t(std::clamp(y0, 0, height_ - 1))] + ty * rows_[size_t(std::clamp(y0 + 1, 0, height_ - 1))];
+    return (1 - ty) * rows_[size_t(std::clamp(y0, 0, height_ - 1))] +
+           ty * rows_[size_t(std::clamp(y0 + 1, 0, height_ - 1))];
   }
   const glm::dvec2 uv = equirect_coordinates(d);
   return radiance_at(uv.x, uv.y);

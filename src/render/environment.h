@@ -3,10 +3,9 @@
 // Convention: +y is up; direction d maps to u = atan2(d.x, -d.z)/(2π) (wrapped to [0,1)),
 // v = acos(d.y)/π, so the map's centre column looks down -z and its top row is the zenith.
 
+#include <glm/vec3.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/image.h"
 
@@ -29,8 +28,8 @@ class EnvironmentMap {
 
   struct Sample {
     glm::dvec3 direction;
-    double pdf;            // per unit solid angle
-    glm::dvec3 radiance;   // the map's (bilinear) radiance in that direction
+    double pdf;           // per unit solid angle
+    glm::dvec3 radiance;  // the map's (bilinear) radiance in that direction
   };
   // Picks a texel with probability proportional to luminance · sinθ (O(1), alias method) using
   // u1, and a uniform point inside it using u2 and u3.

@@ -12,11 +12,10 @@
 // - A texture hook replaces the texture a material samples (e.g. a filtered mip pyramid).
 
 #include <cstddef>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
 #include <span>
-
-#include <glm/vec3.hpp>
 
 #include "render/scene.h"
 
@@ -41,8 +40,10 @@ glm::dvec3 specular_brdf(const ShadingInputs& s, const glm::dvec3& wi);
 // `incident` is the sample's radiance already divided by its probability density.
 glm::dvec3 reflect_plain(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
 // The diffuse and specular parts of that reflection separately (they add up to reflect_plain).
-glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
-glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident);
+glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi,
+                           const glm::dvec3& incident);
+glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi,
+                            const glm::dvec3& incident);
 
 // How much of a hook's change a light sample keeps, by its cosine with the shading normal, when the
 // hook fades out over a band of the original terminator: smoothstep from 0 at the terminator to 1
@@ -59,20 +60,23 @@ class ShadingHook {
  public:
   virtual ~ShadingHook() = default;
   // The radiance reflected towards s.wo from one visible light sample from direction `wi`.
-  virtual glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const = 0;
+  virtual glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi,
+                             const glm::dvec3& incident) const = 0;
   // reflect() for many light samples at once (a replay asks for every sample of a block of pixels
   // together), so that a hook may vectorise its work. Each out[k] must equal reflect() of
   // samples[k] bit for bit: the same stimulus comes out of a render and of a replay. It runs
   // inside the replay's parallel loop, between uses of per-thread buffers: like reflect(), it
   // must not start parallel work of its own (a waiting thread could take another block).
   virtual void reflect_many(std::span<const HookSample> samples, glm::dvec3* out) const {
-    for (size_t k = 0; k < samples.size(); ++k) out[k] = reflect(*samples[k].inputs, samples[k].wi, samples[k].incident);
+    for (size_t k = 0; k < samples.size(); ++k)
+      out[k] = reflect(*samples[k].inputs, samples[k].wi, samples[k].incident);
   }
   // A hook that shades the original light's dark side returns, for a light sample from behind the
   // shading normal of a light that casts shadows, the direction it shades that sample with: the
   // sample arrives (and reflect() is asked for it) when that direction faces the normal and its
   // shadow ray is open. None: that sample stays dark, as in the plain render.
-  virtual std::optional<glm::dvec3> dark_side_direction(const ShadingInputs&, const glm::dvec3&) const {
+  virtual std::optional<glm::dvec3> dark_side_direction(const ShadingInputs&,
+                                                        const glm::dvec3&) const {
     return std::nullopt;
   }
   // Whether it shades the dark side at all. A light that casts no shadows needs no direction:
@@ -82,8 +86,10 @@ class ShadingHook {
   // dark_side_direction() of many samples at once (a replay asks for all its rays' directions
   // together), so that a hook may vectorise it; out[k] must equal dark_side_direction(samples[k])
   // bit for bit.
-  virtual void dark_side_directions(std::span<const HookSample> samples, std::optional<glm::dvec3>* out) const {
-    for (size_t k = 0; k < samples.size(); ++k) out[k] = dark_side_direction(*samples[k].inputs, samples[k].wi);
+  virtual void dark_side_directions(std::span<const HookSample> samples,
+                                    std::optional<glm::dvec3>* out) const {
+    for (size_t k = 0; k < samples.size(); ++k)
+      out[k] = dark_side_direction(*samples[k].inputs, samples[k].wi);
   }
   // The cosine band over which the change fades out towards the original terminator (0: none).
   // With a band the dark side stays dark whatever dark_side_direction says.

@@ -4,11 +4,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <mutex>
 #include <stdexcept>
 #include <tuple>
-
-#include <glm/geometric.hpp>
 
 #include "core/color.h"
 #include "core/parallel.h"
@@ -36,21 +35,29 @@ struct Sums {
   std::vector<std::vector<double>> field[2];  // [replicate][field][pixel]
   std::vector<uint32_t> count;
   SurfaceSums surfaces;
-  double samples(int r, size_t p) const { return double(r == 0 ? (count[p] + 1) / 2 : count[p] / 2); }
+  double samples(int r, size_t p) const {
+    return double(r == 0 ? (count[p] + 1) / 2 : count[p] / 2);
+  }
 };
 
 class PixelSampler {
  public:
   PixelSampler(const PixelPassInput& in, Sums& sums, TraceLog* record, const GBuffer& gbuffer,
                SampleObserver* observer = nullptr)
-      : in_(in), sums_(sums), record_(record), gbuffer_(gbuffer), observer_(observer), rays_(in.scene.camera),
+      : in_(in),
+        sums_(sums),
+        record_(record),
+        gbuffer_(gbuffer),
+        observer_(observer),
+        rays_(in.scene.camera),
         width_(in.scene.camera.width),
         fixed_spp_(in.scene.settings.spp.value_or(0)) {}
 
   // Takes samples [count, target) of a pixel.
   void sample(size_t pixel, uint32_t target, RayCounts& rays, std::vector<glm::dvec2>& lhs) {
     const RenderSettings& settings = in_.scene.settings;
-    if (settings.sampling == SamplingMode::independent) latin_hypercube(settings.seed, pixel, fixed_spp_, lhs);
+    if (settings.sampling == SamplingMode::independent)
+      latin_hypercube(settings.seed, pixel, fixed_spp_, lhs);
     if (record_) record_->reserve(pixel, target, expected_hits(pixel, target));
     for (uint32_t s = sums_.count[pixel]; s < target; ++s) one_sample(pixel, s, rays, lhs);
     sums_.count[pixel] = target;
@@ -74,19 +81,24 @@ class PixelSampler {
     }
     SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
     if (in_.shader.textured(hit->object))  // the footprint picks the texture's mip level
-      set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y), rays_.ray(x + offset.x, y + offset.y + 1), sp);
+      set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y),
+                           rays_.ray(x + offset.x, y + offset.y + 1), sp);
     const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
-    auto [record, lights] = answers.record ? record_->shading_to_record(pixel) : std::pair<ShadingRecord*, LightSampleRecord*>{};
+    auto [record, lights] = answers.record ? record_->shading_to_record(pixel)
+                                           : std::pair<ShadingRecord*, LightSampleRecord*>{};
     if (!record && !observer_)
-      return accumulate(pixel, s, in_.shader.radiance(sp, -ray.direction, true, sampler, counts, tracing_answers(answers)),
-                        &sample_hit);
+      return accumulate(
+          pixel, s,
+          in_.shader.radiance(sp, -ray.direction, true, sampler, counts, tracing_answers(answers)),
+          &sample_hit);
     thread_local ShadingRecord observed;  // an observed sample's shading, where the log keeps none
     thread_local std::vector<LightSampleRecord> observed_lights;
     if (!record) {
       observed_lights.resize(in_.shader.light_samples());
       std::tie(record, lights) = std::pair{&observed, observed_lights.data()};
     }
-    in_.shader.gather(sp, -ray.direction, true, sampler, counts, tracing_answers(answers), *record, lights);
+    in_.shader.gather(sp, -ray.direction, true, sampler, counts, tracing_answers(answers), *record,
+                      lights);
     accumulate(pixel, s, in_.shader.evaluate(sp, *record, lights, record->albedo), &sample_hit);
     if (observer_) observer_->surface(pixel, in_.shader, sp, *record, lights);
   }
@@ -107,7 +119,8 @@ class PixelSampler {
     const SampleHit sample_hit{*replayed.point, replayed.back};
     accumulate(pixel, s, replayed.radiance, &sample_hit);
     if (observer_)
-      observer_->surface(pixel, in_.shader, *replayed.point, in_.replay->shading(pixel, s), in_.replay->light_samples(pixel, s));
+      observer_->surface(pixel, in_.shader, *replayed.point, in_.replay->shading(pixel, s),
+                         in_.replay->light_samples(pixel, s));
   }
 
   // Adds one sample's radiance (and, for a hit, its fields) to the pixel's sums.
@@ -115,25 +128,29 @@ class PixelSampler {
     const int r = Sampler::replicate(s);
     if (hit) {
       auto& fields = sums_.field[r];
-      for (size_t f = 0; f < fields.size(); ++f) fields[f][pixel] += in_.request.fields[f]->value(*hit);
+      for (size_t f = 0; f < fields.size(); ++f)
+        fields[f][pixel] += in_.request.fields[f]->value(*hit);
     }
     for (int c = 0; c < 3; ++c) sums_.rgb[r][c][pixel] += radiance[c];
     if (hit) sums_.hits[r][pixel] += 1.0;
-    const uint32_t surface = hit ? SurfaceSums::surface_of(hit->point.object, hit->back) : SurfaceSums::kBackground;
+    const uint32_t surface =
+        hit ? SurfaceSums::surface_of(hit->point.object, hit->back) : SurfaceSums::kBackground;
     sums_.surfaces.add(r, pixel, surface, radiance);
   }
 
   // The camera ray's hit: read back from the replayed log where it holds the sample (with its
   // shadow answers), else traced (or read from the samples traced ahead) and recorded when the
   // render keeps a log.
-  std::optional<Hit> camera_hit(size_t pixel, uint32_t s, const Ray& ray, RayCounts& counts, ShadowAnswers& answers) const {
+  std::optional<Hit> camera_hit(size_t pixel, uint32_t s, const Ray& ray, RayCounts& counts,
+                                ShadowAnswers& answers) const {
     if (in_.replay && in_.replay->has(pixel, s)) {
       answers = in_.replay->answers(pixel, s);
       return in_.replay->hit(pixel, s);
     }
     ++counts.primary;
-    auto hit = in_.camera_hits && s < in_.camera_hits->spp() ? in_.camera_hits->hit(pixel, s)
-                                                            : in_.tracer.intersect(ray.origin, ray.direction);
+    auto hit = in_.camera_hits && s < in_.camera_hits->spp()
+                   ? in_.camera_hits->hit(pixel, s)
+                   : in_.tracer.intersect(ray.origin, ray.direction);
     if (record_) {
       record_->record_hit(pixel, s, hit);
       answers.record = record_->answers_to_record(pixel);
@@ -165,16 +182,17 @@ struct ReplicateSpread {
 };
 
 // The products of one pixel's replicate differences into `out` (pixel p).
-void pixel_spread(const Sums& sums, const PixelRequest& request, const Exposure& exposure, size_t p, std::vector<double>* fields,
-                  ReplicateSpread& out) {
+void pixel_spread(const Sums& sums, const PixelRequest& request, const Exposure& exposure, size_t p,
+                  std::vector<double>* fields, ReplicateSpread& out) {
   PixelMeans means[2];
   for (int r = 0; r < 2; ++r) {
     const double k = sums.samples(r, p);
     const glm::dvec3 mean(sums.rgb[r][0][p] / k, sums.rgb[r][1][p] / k, sums.rgb[r][2][p] / k);
     for (size_t f = 0; f < fields[r].size(); ++f) fields[r][f] = sums.field[r][f][p] / k;
     const SurfaceSums::Luminance y = sums.surfaces.weighted_luminance(r, p, exposure);
-    means[r] = {cielab_lightness(display_luminance(mean, exposure)), (y.surfaces + y.background) / k, y.surfaces / k,
-                sums.hits[r][p] / k, fields[r].data()};
+    means[r] = {cielab_lightness(display_luminance(mean, exposure)),
+                (y.surfaces + y.background) / k, y.surfaces / k, sums.hits[r][p] / k,
+                fields[r].data()};
   }
   const double dL = means[0].lightness - means[1].lightness;
   out.LL[p] = 0.25 * dL * dL;
@@ -192,33 +210,43 @@ void pixel_spread(const Sums& sums, const PixelRequest& request, const Exposure&
   }
 }
 
-ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request, const Exposure& exposure, int threads) {
+ReplicateSpread replicate_spread(const Sums& sums, const PixelRequest& request,
+                                 const Exposure& exposure, int threads) {
   const size_t n = sums.count.size(), changes = request.changes.size();
-  ReplicateSpread out{std::vector<double>(n, 0.0), std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0)),
+  ReplicateSpread out{std::vector<double>(n, 0.0),
+                      std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0)),
                       std::vector<std::vector<double>>(changes, std::vector<double>(n, 0.0))};
-  parallel_ranges(n, threads, [&](size_t begin, size_t end) {
-    std::vector<double> fields[2] = {std::vector<double>(request.fields.size()), std::vector<double>(request.fields.size())};
-    for (size_t p = begin; p < end; ++p)
-      if (sums.count[p] >= 2) pixel_spread(sums, request, exposure, p, fields, out);
-  }, 4096);
+  parallel_ranges(
+      n, threads,
+      [&](size_t begin, size_t end) {
+        std::vector<double> fields[2] = {std::vector<double>(request.fields.size()),
+                                         std::vector<double>(request.fields.size())};
+        for (size_t p = begin; p < end; ++p)
+          if (sums.count[p] >= 2) pixel_spread(sums, request, exposure, p, fields, out);
+      },
+      4096);
   return out;
 }
 
 // A 3×3 mean, clamped at the borders.
 std::vector<double> mean3x3(const std::vector<double>& in, int width, int height, int threads) {
   std::vector<double> out(in.size());
-  parallel_ranges(size_t(height), threads, [&](size_t begin, size_t end) {
-    for (int y = int(begin); y < int(end); ++y)
-      for (int x = 0; x < width; ++x) {
-        double acc = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int xx = std::clamp(x + dx, 0, width - 1), yy = std::clamp(y + dy, 0, height - 1);
-            acc += in[size_t(yy) * width + xx];
+  parallel_ranges(
+      size_t(height), threads,
+      [&](size_t begin, size_t end) {
+        for (int y = int(begin); y < int(end); ++y)
+          for (int x = 0; x < width; ++x) {
+            double acc = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const int xx = std::clamp(x + dx, 0, width - 1),
+                          yy = std::clamp(y + dy, 0, height - 1);
+                acc += in[size_t(yy) * width + xx];
+              }
+            out[size_t(y) * width + x] = acc / 9.0;
           }
-        out[size_t(y) * width + x] = acc / 9.0;
-      }
-  }, 16);
+      },
+      16);
   return out;
 }
 
@@ -228,15 +256,20 @@ std::vector<double> largest_variance(const ReplicateSpread& pooled, double lambd
   std::vector<double> out = pooled.LL;
   for (size_t c = 0; c < pooled.LC.size(); ++c)
     for (size_t p = 0; p < out.size(); ++p)
-      out[p] = std::max(out[p], pooled.LL[p] + 2.0 * lambda * std::abs(pooled.LC[c][p]) + lambda * lambda * pooled.CC[c][p]);
+      out[p] = std::max(out[p], pooled.LL[p] + 2.0 * lambda * std::abs(pooled.LC[c][p]) +
+                                    lambda * lambda * pooled.CC[c][p]);
   return out;
 }
 
 class AdaptiveSampling {
  public:
   AdaptiveSampling(const PixelPassInput& in, RenderResult& result)
-      : in_(in), result_(result), width_(in.scene.camera.width), height_(in.scene.camera.height),
-        sums_(size_t(width_) * height_, in.request.fields.size()), order_(tile_order(width_, height_)) {}
+      : in_(in),
+        result_(result),
+        width_(in.scene.camera.width),
+        height_(in.scene.camera.height),
+        sums_(size_t(width_) * height_, in.request.fields.size()),
+        order_(tile_order(width_, height_)) {}
 
   void run() {
     const RenderSettings& settings = in_.scene.settings;
@@ -253,7 +286,8 @@ class AdaptiveSampling {
       if (settings.spp) break;  // a fixed count: one round
       active = unconverged(active, target);
       const double elapsed = seconds_since(start), last = seconds_since(round_start);
-      if (!active.empty() && settings.noise.time_limit_s > 0 && elapsed + 2 * last > settings.noise.time_limit_s) {
+      if (!active.empty() && settings.noise.time_limit_s > 0 &&
+          elapsed + 2 * last > settings.noise.time_limit_s) {
         result_.sampling.stopped_by = "time_limit";
         break;
       }
@@ -271,7 +305,8 @@ class AdaptiveSampling {
 
   void sample_round(const std::vector<uint32_t>& active, const std::vector<uint32_t>& target) {
     keep_log_within_limit(target);
-    PixelSampler sampler(in_, sums_, in_.record && !in_.record->abandoned() ? in_.record : nullptr, result_.gbuffer);
+    PixelSampler sampler(in_, sums_, in_.record && !in_.record->abandoned() ? in_.record : nullptr,
+                         result_.gbuffer);
     std::mutex mutex;
     std::atomic<size_t> done{0};
     const int round = result_.sampling.rounds;
@@ -280,7 +315,8 @@ class AdaptiveSampling {
         [&](size_t begin, size_t end) {
           RayCounts counts;
           std::vector<glm::dvec2> lhs;
-          for (size_t i = begin; i < end; ++i) sampler.sample(active[i], target[active[i]], counts, lhs);
+          for (size_t i = begin; i < end; ++i)
+            sampler.sample(active[i], target[active[i]], counts, lhs);
           std::lock_guard<std::mutex> lock(mutex);
           result_.rays += counts;
           done += end - begin;
@@ -298,14 +334,18 @@ class AdaptiveSampling {
     if (!log || log->abandoned()) return;
     uint64_t planned = 0;
     for (uint32_t t : target) planned += t;
-    if (log->keeps_shading() && log->projected_bytes(planned, true) > log->byte_limit() / 2) log->drop_shading();
+    if (log->keeps_shading() && log->projected_bytes(planned, true) > log->byte_limit() / 2)
+      log->drop_shading();
     if (log->projected_bytes(planned, false) > log->byte_limit()) log->abandon();
   }
 
   // A rough share of the work done: the first round is most of it when few pixels need more.
   double progress(int round, double within) const {
-    const int rounds = 1 + int(std::log2(double(in_.scene.settings.noise.max_spp) / in_.scene.settings.noise.min_spp));
-    return std::min(1.0, (round + within) / double(in_.scene.settings.spp ? 1 : std::max(1, rounds)));
+    const int rounds =
+        1 +
+        int(std::log2(double(in_.scene.settings.noise.max_spp) / in_.scene.settings.noise.min_spp));
+    return std::min(1.0,
+                    (round + within) / double(in_.scene.settings.spp ? 1 : std::max(1, rounds)));
   }
 
   // The 3×3 means are the estimates (nine replicate pairs). A further 3×3 mean of the stimuli's
@@ -321,11 +361,13 @@ class AdaptiveSampling {
       pooled_.LC[c] = mean3x3(spread.LC[c], width_, height_, threads);
       pooled_.CC[c] = mean3x3(spread.CC[c], width_, height_, threads);
     }
-    decision_ = mean3x3(largest_variance(pooled_, in_.request.max_abs_lambda), width_, height_, threads);
+    decision_ =
+        mean3x3(largest_variance(pooled_, in_.request.max_abs_lambda), width_, height_, threads);
   }
 
   // The active pixels that still miss their threshold, with their next sample counts.
-  std::vector<uint32_t> unconverged(const std::vector<uint32_t>& active, std::vector<uint32_t>& target) {
+  std::vector<uint32_t> unconverged(const std::vector<uint32_t>& active,
+                                    std::vector<uint32_t>& target) {
     const NoiseBudget& budget = in_.scene.settings.noise;
     const double threshold = stopping_threshold(active);
     std::vector<uint32_t> next;
@@ -360,8 +402,10 @@ class AdaptiveSampling {
     std::vector<double> open;
     open.reserve(active.size());
     for (size_t p = 0; p < decision_.size(); ++p) {
-      if (is_active[p]) open.push_back(decision_[p]);
-      else stopped += decision_[p];
+      if (is_active[p])
+        open.push_back(decision_[p]);
+      else
+        stopped += decision_[p];
     }
     const auto within = [&](double t2) {
       double sum = stopped;
@@ -399,7 +443,8 @@ class AdaptiveSampling {
     for (size_t p = 0; p < n; ++p) {
       const double k = double(sums_.count[p]);
       auto both = [&](const std::vector<double>* v) { return float((v[0][p] + v[1][p]) / k); };
-      for (int c = 0; c < 3; ++c) result_.radiance.pixels[3 * p + c] = float((sums_.rgb[0][c][p] + sums_.rgb[1][c][p]) / k);
+      for (int c = 0; c < 3; ++c)
+        result_.radiance.pixels[3 * p + c] = float((sums_.rgb[0][c][p] + sums_.rgb[1][c][p]) / k);
       for (size_t f = 0; f < result_.fields.size(); ++f)
         result_.fields[f][p] = float((sums_.field[0][f][p] + sums_.field[1][f][p]) / k);
       const SurfaceSums::Luminance y = sums_.surfaces.weighted_luminance(-1, p, exposure());
@@ -430,12 +475,16 @@ class AdaptiveSampling {
 
 }  // namespace
 
-void pixel_pass(const PixelPassInput& input, RenderResult& result) { AdaptiveSampling(input, result).run(); }
+void pixel_pass(const PixelPassInput& input, RenderResult& result) {
+  AdaptiveSampling(input, result).run();
+}
 
-void observe_samples(const Scene& scene, const RayTracer& tracer, const std::vector<uint32_t>& counts,
-                     const TraceLog* replay, SampleObserver& observer, int threads) {
+void observe_samples(const Scene& scene, const RayTracer& tracer,
+                     const std::vector<uint32_t>& counts, const TraceLog* replay,
+                     SampleObserver& observer, int threads) {
   const int width = scene.camera.width, height = scene.camera.height;
-  if (counts.size() != size_t(width) * size_t(height)) throw std::logic_error("observe_samples: one count per pixel");
+  if (counts.size() != size_t(width) * size_t(height))
+    throw std::logic_error("observe_samples: one count per pixel");
   if (replay && replay->pixel_count() != counts.size()) replay = nullptr;
   const Shader shader(scene, tracer);
   const PixelRequest request;
@@ -444,11 +493,14 @@ void observe_samples(const Scene& scene, const RayTracer& tracer, const std::vec
   const GBuffer none;  // expected_hits reads it only while a log records
   PixelSampler sampler(in, sums, nullptr, none, &observer);
   const std::vector<uint32_t> order = tile_order(width, height);
-  parallel_ranges(order.size(), threads, [&](size_t begin, size_t end) {
-    RayCounts rays;
-    std::vector<glm::dvec2> lhs;
-    for (size_t i = begin; i < end; ++i) sampler.sample(order[i], counts[order[i]], rays, lhs);
-  }, 64);
+  parallel_ranges(
+      order.size(), threads,
+      [&](size_t begin, size_t end) {
+        RayCounts rays;
+        std::vector<glm::dvec2> lhs;
+        for (size_t i = begin; i < end; ++i) sampler.sample(order[i], counts[order[i]], rays, lhs);
+      },
+      64);
 }
 
 }  // namespace countershade

@@ -29,8 +29,9 @@ struct PixelPassInput {
   std::function<void(double)> progress;
   TraceLog* record = nullptr;        // keeps every sample's ray answers (render/trace_log.h)
   const TraceLog* replay = nullptr;  // reads back those it holds instead of tracing them
-  bool estimate_noise = true;        // false: a fixed count skips the noise estimate (noise stays 0)
-  const CameraHits* camera_hits = nullptr;  // the camera samples' hits, traced ahead (render/camera_samples.h)
+  bool estimate_noise = true;  // false: a fixed count skips the noise estimate (noise stays 0)
+  const CameraHits* camera_hits =
+      nullptr;  // the camera samples' hits, traced ahead (render/camera_samples.h)
 };
 
 // Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.
@@ -42,8 +43,8 @@ class SampleObserver {
   virtual ~SampleObserver() = default;
   // One sample that hit a surface: its point (with its UV footprint), its shading record and light
   // samples, which `shader` can evaluate again (e.g. with another albedo).
-  virtual void surface(size_t pixel, const Shader& shader, const SurfacePoint& point, const ShadingRecord& record,
-                       const LightSampleRecord* lights) = 0;
+  virtual void surface(size_t pixel, const Shader& shader, const SurfacePoint& point,
+                       const ShadingRecord& record, const LightSampleRecord* lights) = 0;
   // The pixel's `samples` samples have all been seen (from the thread that took them).
   virtual void pixel_done(size_t pixel, uint32_t samples) = 0;
 };
@@ -52,8 +53,8 @@ class SampleObserver {
 // (its RenderResult::spp), shaded without hooks, and shows each to `observer`: one thread per
 // pixel at a time, a pixel's samples in order. `replay`, when given, is read back instead of
 // tracing what it holds.
-void observe_samples(const Scene& scene, const RayTracer& tracer, const std::vector<uint32_t>& counts,
-                     const TraceLog* replay, SampleObserver& observer, int threads = 0);
-
+void observe_samples(const Scene& scene, const RayTracer& tracer,
+                     const std::vector<uint32_t>& counts, const TraceLog* replay,
+                     SampleObserver& observer, int threads = 0);
 
 }  // namespace countershade

@@ -1,7 +1,6 @@
 #include "render/procedural_texture.h"
 
 #include <algorithm>
-
 #include <glm/common.hpp>
 
 #include "core/random.h"
@@ -12,7 +11,9 @@ namespace {
 // A value in [−1, 1] for lattice point (i, j) of an octave.
 double lattice(uint64_t seed, int octave, int i, int j) {
   const uint64_t key = (uint64_t(uint32_t(i)) << 32) | uint32_t(j);
-  return 2.0 * double(mix64(seed ^ mix64(uint64_t(octave) * 0x9e3779b97f4a7c15ull ^ key)) >> 11) * 0x1.0p-53 - 1.0;
+  return 2.0 * double(mix64(seed ^ mix64(uint64_t(octave) * 0x9e3779b97f4a7c15ull ^ key)) >> 11) *
+             0x1.0p-53 -
+         1.0;
 }
 
 // Periodic value noise with `cells` cells per side, smoothly interpolated.
@@ -22,7 +23,8 @@ double value_noise(uint64_t seed, int octave, int cells, double u, double v) {
   const double tx = x - i, ty = y - j;
   const double sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty);
   auto at = [&](int a, int b) { return lattice(seed, octave, a % cells, b % cells); };
-  return (1 - sy) * ((1 - sx) * at(i, j) + sx * at(i + 1, j)) + sy * ((1 - sx) * at(i, j + 1) + sx * at(i + 1, j + 1));
+  return (1 - sy) * ((1 - sx) * at(i, j) + sx * at(i + 1, j)) +
+         sy * ((1 - sx) * at(i, j + 1) + sx * at(i + 1, j + 1));
 }
 
 }  // namespace
@@ -40,7 +42,8 @@ TextureLevel checker_noise(const CheckerNoise& spec) {
       noise /= 0.96875;  // the amplitudes' sum, so that |n| ≤ 1
       const bool is_light = ((x * spec.squares / n) + (y * spec.squares / n)) % 2 == 0;
       const glm::dvec3 albedo = (is_light ? light : dark) * (1.0 + spec.noise * noise);
-      level.texels[size_t(y) * size_t(n) + size_t(x)] = glm::vec3(glm::clamp(albedo, glm::dvec3(0.0), glm::dvec3(1.0)));
+      level.texels[size_t(y) * size_t(n) + size_t(x)] =
+          glm::vec3(glm::clamp(albedo, glm::dvec3(0.0), glm::dvec3(1.0)));
     }
   return level;
 }
@@ -50,7 +53,8 @@ TextureLevel stripes(const Stripes& spec) {
   TextureLevel level{n, n, std::vector<glm::vec3>(size_t(n) * size_t(n))};
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x)
-      level.texels[size_t(y) * size_t(n) + size_t(x)] = glm::vec3(float((x * spec.stripes / n) % 2 ? spec.dark : spec.light));
+      level.texels[size_t(y) * size_t(n) + size_t(x)] =
+          glm::vec3(float((x * spec.stripes / n) % 2 ? spec.dark : spec.light));
   return level;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Textures the project makes itself, so that a stimulus needs no image file: a checkerboard with
 // value noise over several octaves, which has content at every level of its mip pyramid (the
-// receding ground plane of texture-space filtering), and stripes with edges at known places (an edge
-// probe); docs/scene-format.md, "Procedural textures".
+// receding ground plane of texture-space filtering), and stripes with edges at known places (an
+// edge probe); docs/scene-format.md, "Procedural textures".
 
 #include <cstdint>
 
@@ -11,17 +11,17 @@
 namespace countershade {
 
 struct CheckerNoise {
-  int size = 1024;       // texels per side (it tiles)
-  int squares = 16;      // checker squares per side (even, so the pattern tiles)
-  double noise = 0.35;   // relative amplitude of the noise on the albedo
+  int size = 1024;      // texels per side (it tiles)
+  int squares = 16;     // checker squares per side (even, so the pattern tiles)
+  double noise = 0.35;  // relative amplitude of the noise on the albedo
   uint64_t seed = 1;
 };
 
 // Stripes across u (edges at u = k/stripes), alternately light and dark: the edge probe of
 // "Scale against depth" (docs/enhancement-methods.md), whose edges lie at known world positions.
 struct Stripes {
-  int size = 1024;      // texels per side
-  int stripes = 16;     // stripes across u (even, so the pattern tiles)
+  int size = 1024;                  // texels per side
+  int stripes = 16;                 // stripes across u (even, so the pattern tiles)
   double light = 0.6, dark = 0.15;  // grey albedos
 };
 TextureLevel stripes(const Stripes& spec);

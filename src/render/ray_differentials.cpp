@@ -1,7 +1,6 @@
 #include "render/ray_differentials.h"
 
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 namespace countershade {
@@ -29,11 +28,13 @@ void set_uv_differentials(const Scene& scene, const Ray& right, const Ray& down,
   const glm::dvec3 e2 = glm::dvec3(mesh.positions[tri.z]) - glm::dvec3(mesh.positions[tri.x]);
   // Barycentric offsets (b1, b2) of a vector in the triangle's plane: the normal equations of
   // offset = b1·e1 + b2·e2.
-  const double a = glm::dot(e1, e1), b = glm::dot(e1, e2), c = glm::dot(e2, e2), det = a * c - b * b;
+  const double a = glm::dot(e1, e1), b = glm::dot(e1, e2), c = glm::dot(e2, e2),
+               det = a * c - b * b;
   if (!(std::abs(det) > 0)) return;
   const size_t corner = 3 * size_t(sp.triangle);
   const glm::dvec2 uv0(mesh.corner_uvs[corner]);
-  const glm::dvec2 du1 = glm::dvec2(mesh.corner_uvs[corner + 1]) - uv0, du2 = glm::dvec2(mesh.corner_uvs[corner + 2]) - uv0;
+  const glm::dvec2 du1 = glm::dvec2(mesh.corner_uvs[corner + 1]) - uv0,
+                   du2 = glm::dvec2(mesh.corner_uvs[corner + 2]) - uv0;
   auto uv_offset = [&](const glm::dvec3& offset) {
     const double p = glm::dot(e1, offset), q = glm::dot(e2, offset);
     return ((c * p - b * q) / det) * du1 + ((a * q - b * p) / det) * du2;

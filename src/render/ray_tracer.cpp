@@ -6,12 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 namespace countershade {
 namespace {
@@ -40,7 +39,8 @@ glm::dvec3 vertex(const Triangles& g, unsigned index) {
 // another. A degenerate triangle keeps Embree's values.
 void refine(const Triangles& g, const glm::dvec3& origin, const glm::dvec3& direction, Hit& hit) {
   const unsigned* corner = g.indices + 3 * size_t(hit.triangle);
-  const glm::dvec3 p0 = vertex(g, corner[0]), e1 = vertex(g, corner[1]) - p0, e2 = vertex(g, corner[2]) - p0;
+  const glm::dvec3 p0 = vertex(g, corner[0]), e1 = vertex(g, corner[1]) - p0,
+                   e2 = vertex(g, corner[2]) - p0;
   const glm::dvec3 p = glm::cross(direction, e2);
   const double det = glm::dot(e1, p);
   if (det == 0.0 || !std::isfinite(det)) return;
@@ -83,12 +83,14 @@ RayTracer::RayTracer(const Scene& scene) : handles_(std::make_unique<Handles>())
   for (size_t id = 0; id < scene.objects.size(); ++id) {
     const TriangleMesh& mesh = scene.objects[id].mesh;
     RTCGeometry geom = rtcNewGeometry(handles_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertex_count()));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.vertex_count()));
     for (size_t v = 0; v < mesh.vertex_count(); ++v)
       std::memcpy(vertices + 3 * v, &mesh.positions[v], 3 * sizeof(float));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.triangle_count()));
     for (size_t t = 0; t < mesh.triangle_count(); ++t)
       std::memcpy(indices + 3 * t, &mesh.triangles[t], 3 * sizeof(unsigned));
     handles_->objects.push_back({vertices, indices});
@@ -139,7 +141,8 @@ void RayTracer::intersect_packet(int count, const glm::dvec3* origins, const glm
   for (int i = 0; i < kPacket; ++i) {
     const bool used = i < count;  // the unused lanes are switched off
     valid[i] = used ? -1 : 0;
-    const glm::dvec3 o = used ? origins[i] : glm::dvec3(0.0), d = used ? directions[i] : glm::dvec3(0, 0, 1);
+    const glm::dvec3 o = used ? origins[i] : glm::dvec3(0.0),
+                     d = used ? directions[i] : glm::dvec3(0, 0, 1);
     rh.ray.org_x[i] = float(o.x);
     rh.ray.org_y[i] = float(o.y);
     rh.ray.org_z[i] = float(o.z);

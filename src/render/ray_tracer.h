@@ -3,11 +3,10 @@
 // triangle index, so hits map straight back to the scene.
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "render/scene.h"
 
@@ -27,7 +26,8 @@ struct PackedHit {
   uint32_t triangle;
   float b1, b2;
   static PackedHit of(const std::optional<Hit>& hit) {
-    return hit ? PackedHit{int32_t(hit->object), hit->triangle, float(hit->b1), float(hit->b2)} : PackedHit{-1, 0, 0, 0};
+    return hit ? PackedHit{int32_t(hit->object), hit->triangle, float(hit->b1), float(hit->b2)}
+               : PackedHit{-1, 0, 0, 0};
   }
   std::optional<Hit> unpack() const {
     if (object < 0) return std::nullopt;

@@ -1,17 +1,16 @@
 #include "render/record_replay.h"
 
 #include <algorithm>
-#include <vector>
-
 #include <glm/geometric.hpp>
+#include <vector>
 
 #include "core/parallel.h"
 #include "core/sampler.h"
 
 namespace countershade {
 
-ReplayedSample replay_sample(const Scene& scene, const Shader& shader, const TraceLog& log, size_t pixel,
-                             uint32_t sample) {
+ReplayedSample replay_sample(const Scene& scene, const Shader& shader, const TraceLog& log,
+                             size_t pixel, uint32_t sample) {
   ReplayedSample out;
   const auto hit = log.hit(pixel, sample);
   if (!hit) {
@@ -40,8 +39,8 @@ constexpr size_t kReplayPixels = 16;
 
 // The radiance of pixels [first, end) into `radiance`: each sample is its background or its record
 // evaluated again, summed per replicate in sample order (as the pixel pass sums them).
-void replay_pixels(const Scene& scene, const Shader& shader, const TraceLog& log, uint32_t samples, size_t first,
-                   size_t end, Image& radiance) {
+void replay_pixels(const Scene& scene, const Shader& shader, const TraceLog& log, uint32_t samples,
+                   size_t first, size_t end, Image& radiance) {
   thread_local std::vector<SurfacePoint> points;
   thread_local std::vector<ReplayInput> inputs;
   thread_local std::vector<size_t> slots;  // each input's place in `values`
@@ -60,7 +59,8 @@ void replay_pixels(const Scene& scene, const Shader& shader, const TraceLog& log
         continue;
       }
       const ShadingRecord& record = log.shading(p, s);
-      points.push_back(record.restore(surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2)));
+      points.push_back(
+          record.restore(surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2)));
       inputs.push_back({&points.back(), &record, log.light_samples(p, s)});
       slots.push_back(slot);
     }
@@ -70,23 +70,29 @@ void replay_pixels(const Scene& scene, const Shader& shader, const TraceLog& log
   for (size_t p = first, slot = 0; p < end; ++p) {
     glm::dvec3 sums[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
     for (uint32_t s = 0; s < samples; ++s, ++slot) sums[Sampler::replicate(s)] += values[slot];
-    for (int c = 0; c < 3; ++c) radiance.pixels[3 * p + size_t(c)] = float((sums[0][c] + sums[1][c]) / double(samples));
+    for (int c = 0; c < 3; ++c)
+      radiance.pixels[3 * p + size_t(c)] = float((sums[0][c] + sums[1][c]) / double(samples));
   }
 }
 
 }  // namespace
 
-std::optional<Image> replay_radiance(const Scene& scene, const Shader& shader, const TraceLog& log, int threads) {
+std::optional<Image> replay_radiance(const Scene& scene, const Shader& shader, const TraceLog& log,
+                                     int threads) {
   const int width = scene.camera.width, height = scene.camera.height;
   const std::optional<int> spp = scene.settings.spp;
   if (!spp || *spp < 1 || log.pixel_count() != size_t(width) * size_t(height)) return std::nullopt;
   const uint32_t samples = uint32_t(*spp);
   if (!holds_every_record(log, samples)) return std::nullopt;
   Image radiance(width, height, 3, Image::Uninitialized{});
-  parallel_ranges(log.pixel_count(), threads, [&](size_t begin, size_t end) {
-    for (size_t first = begin; first < end; first += kReplayPixels)
-      replay_pixels(scene, shader, log, samples, first, std::min(end, first + kReplayPixels), radiance);
-  }, 256);
+  parallel_ranges(
+      log.pixel_count(), threads,
+      [&](size_t begin, size_t end) {
+        for (size_t first = begin; first < end; first += kReplayPixels)
+          replay_pixels(scene, shader, log, samples, first, std::min(end, first + kReplayPixels),
+                        radiance);
+      },
+      256);
   return radiance;
 }
 

@@ -22,13 +22,14 @@ struct ReplayedSample {
   std::optional<SurfacePoint> point;  // none: the ray hit nothing (radiance is its background)
   bool back = false;
 };
-ReplayedSample replay_sample(const Scene& scene, const Shader& shader, const TraceLog& log, size_t pixel,
-                             uint32_t sample);
+ReplayedSample replay_sample(const Scene& scene, const Shader& shader, const TraceLog& log,
+                             size_t pixel, uint32_t sample);
 
-// The radiance image of a render with `shader`'s hooks at the scene's fixed sample count, when `log`
-// holds every sample's shading record: the same bits as the pixel pass replaying the log gives
-// (each pixel's samples summed per replicate in sample order). None when the scene has no fixed
-// count or the log lacks a record.
-std::optional<Image> replay_radiance(const Scene& scene, const Shader& shader, const TraceLog& log, int threads);
+// The radiance image of a render with `shader`'s hooks at the scene's fixed sample count, when
+// `log` holds every sample's shading record: the same bits as the pixel pass replaying the log
+// gives (each pixel's samples summed per replicate in sample order). None when the scene has no
+// fixed count or the log lacks a record.
+std::optional<Image> replay_radiance(const Scene& scene, const Shader& shader, const TraceLog& log,
+                                     int threads);
 
 }  // namespace countershade

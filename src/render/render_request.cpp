@@ -14,8 +14,10 @@ void RenderRequest::merge(const RenderRequest& other, const std::string& who) {
   ring_samples = std::max(ring_samples, other.ring_samples);
   if (other.refine_edge_length) {
     if (refine_edge_length && *refine_edge_length != *other.refine_edge_length)
-      throw_input_error(who, "asks to refine the scene's meshes to a different edge length than another method "
-                             "of the same scene (one view serves them all)");
+      throw_input_error(
+          who,
+          "asks to refine the scene's meshes to a different edge length than another method "
+          "of the same scene (one view serves them all)");
     refine_edge_length = other.refine_edge_length;
   }
 }

@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <mutex>
 #include <optional>
-
-#include <glm/geometric.hpp>
 
 #include "core/color.h"
 #include "core/parallel.h"
@@ -35,21 +34,26 @@ GBuffer centre_pass(const Scene& scene, const RayTracer& tracer, int threads, Ra
   g.barycentrics.assign(n, glm::vec2(0.0f));
   g.back.assign(n, 0);
   const CameraRays camera(scene.camera);
-  parallel_ranges(n, threads, [&](size_t begin, size_t end) {
-    for (size_t p = begin; p < end; ++p) {
-      const Ray centre = camera.ray(double(p % size_t(width)) + 0.5, double(p / size_t(width)) + 0.5);
-      const auto hit = tracer.intersect(centre.origin, centre.direction);
-      if (!hit) continue;
-      const SurfacePoint sp = surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2);
-      const bool back = glm::dot(sp.geometric_normal, -centre.direction) < 0;
-      g.depth[p] = float(camera.eye_depth(sp.position));
-      g.normal[p] = glm::vec3(back ? -sp.shading_normal : sp.shading_normal);
-      g.object[p] = int32_t(hit->object);
-      g.triangle[p] = int32_t(hit->triangle);
-      g.barycentrics[p] = glm::vec2(float(hit->b1), float(hit->b2));
-      g.back[p] = back;
-    }
-  }, 1024);
+  parallel_ranges(
+      n, threads,
+      [&](size_t begin, size_t end) {
+        for (size_t p = begin; p < end; ++p) {
+          const Ray centre =
+              camera.ray(double(p % size_t(width)) + 0.5, double(p / size_t(width)) + 0.5);
+          const auto hit = tracer.intersect(centre.origin, centre.direction);
+          if (!hit) continue;
+          const SurfacePoint sp =
+              surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2);
+          const bool back = glm::dot(sp.geometric_normal, -centre.direction) < 0;
+          g.depth[p] = float(camera.eye_depth(sp.position));
+          g.normal[p] = glm::vec3(back ? -sp.shading_normal : sp.shading_normal);
+          g.object[p] = int32_t(hit->object);
+          g.triangle[p] = int32_t(hit->triangle);
+          g.barycentrics[p] = glm::vec2(float(hit->b1), float(hit->b2));
+          g.back[p] = back;
+        }
+      },
+      1024);
   rays.primary += n;
   return g;
 }
@@ -65,13 +69,16 @@ std::vector<bool> seen_from_behind(const GBuffer& g, size_t objects) {
 // The log to replay, if it is one of this camera's size and was kept whole.
 const TraceLog* replayable(const TraceLog* log, const Scene& scene) {
   if (!log || log->abandoned()) return nullptr;
-  return log->pixel_count() == size_t(scene.camera.width) * size_t(scene.camera.height) ? log : nullptr;
+  return log->pixel_count() == size_t(scene.camera.width) * size_t(scene.camera.height) ? log
+                                                                                        : nullptr;
 }
 
 // A render that keeps its radiance only, when the replayed log's records give it alone.
-std::optional<RenderResult> from_records_alone(const Scene& scene, const Shader& shader, const TraceLog* replay,
+std::optional<RenderResult> from_records_alone(const Scene& scene, const Shader& shader,
+                                               const TraceLog* replay,
                                                const RenderOptions& options) {
-  if (!replay || !options.radiance_only || options.vertex_radiance || options.record_trace) return std::nullopt;
+  if (!replay || !options.radiance_only || options.vertex_radiance || options.record_trace)
+    return std::nullopt;
   auto radiance = replay_radiance(scene, shader, *replay, options.threads);
   if (!radiance) return std::nullopt;
   const uint32_t spp = uint32_t(*scene.settings.spp);
@@ -93,28 +100,39 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
   const Shader shader(scene, tracer, options.shading_hook.get(), options.texture_hook.get());
   RenderResult result;
   const TraceLog* replay = replayable(options.replay_trace.get(), scene);
-  if (auto replayed = from_records_alone(scene, shader, replay, options)) return std::move(*replayed);
-  result.gbuffer = replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
+  if (auto replayed = from_records_alone(scene, shader, replay, options))
+    return std::move(*replayed);
+  result.gbuffer =
+      replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
   // With a fixed count the camera samples are known before the pixels: traced ahead in packets
   // (a pixel's samples side by side), they cost less than tracing them one by one in the pixel
   // pass, which reads them back, and their hits tell the vertex pass exactly which triangles the
   // pixels read (bunny-sky, docs/performance.md).
   std::shared_ptr<const CameraHits> camera_hits;
-  if (!replay && options.trace_ahead) camera_hits = trace_camera_samples(scene, tracer, options.threads);
+  if (!replay && options.trace_ahead)
+    camera_hits = trace_camera_samples(scene, tracer, options.threads);
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;
     needs.resize(scene.objects.size(), VertexNeed{scene.settings.noise.target, 1});
-    VertexPassInput in{scene, tracer, shader, result.gbuffer, options.ring_samples,
-                       seen_from_behind(result.gbuffer, scene.objects.size()), std::move(needs), options.threads,
+    VertexPassInput in{scene,
+                       tracer,
+                       shader,
+                       result.gbuffer,
+                       options.ring_samples,
+                       seen_from_behind(result.gbuffer, scene.objects.size()),
+                       std::move(needs),
+                       options.threads,
                        camera_hits.get()};
     result.vertices = vertex_pass(in, &result.rays);
   }
   PixelRequest request;
   if (options.before_pixels) request = options.before_pixels(result);
   std::shared_ptr<TraceLog> record;
-  if (options.record_trace) record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit, shader.light_samples());
-  pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(), replay,
-              options.estimate_noise, camera_hits.get()},
+  if (options.record_trace)
+    record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit,
+                                        shader.light_samples());
+  pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(),
+              replay, options.estimate_noise, camera_hits.get()},
              result);
   if (record && !record->abandoned()) {
     record->gbuffer = result.gbuffer;

@@ -34,12 +34,12 @@ using SampleFields = std::vector<std::shared_ptr<const SampleField>>;
 
 // Means over one replicate's samples of a pixel (or over all of them).
 struct PixelMeans {
-  double lightness = 0;          // L* of the display luminance of the mean radiance
+  double lightness = 0;  // L* of the display luminance of the mean radiance
   // Σ over the pixel's surfaces (and background) of share × display luminance of that surface's
   // mean radiance: the clamp at white applies to each surface's mean, never to single samples.
-  double luminance = 0;          // surfaces and background
-  double surface_luminance = 0;  // surfaces alone
-  double coverage = 0;           // share of samples that hit a surface
+  double luminance = 0;            // surfaces and background
+  double surface_luminance = 0;    // surfaces alone
+  double coverage = 0;             // share of samples that hit a surface
   const double* fields = nullptr;  // the method's own fields, in the order of its stage's fields()
 };
 

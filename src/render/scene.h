@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 #include "core/display.h"
 #include "core/sampler.h"
@@ -29,13 +28,13 @@ inline constexpr int kSceneFormatVersion = 1;
 enum class SpecularModel { none, blinn_phong, cook_torrance };
 
 struct Material {
-  glm::dvec3 albedo{0.8};                   // diffuse reflectance (used when there is no texture)
-  std::shared_ptr<const Texture> texture;   // diffuse reflectance from the mesh UVs
-  double texture_repeat = 1;                // the texture tiles this many times across the UV square
+  glm::dvec3 albedo{0.8};                  // diffuse reflectance (used when there is no texture)
+  std::shared_ptr<const Texture> texture;  // diffuse reflectance from the mesh UVs
+  double texture_repeat = 1;               // the texture tiles this many times across the UV square
   SpecularModel specular = SpecularModel::none;
-  glm::dvec3 specular_color{0.04};          // Blinn–Phong ks, or Cook–Torrance F0
-  double shininess = 64.0;                  // Blinn–Phong exponent
-  double roughness = 0.3;                   // Cook–Torrance GGX roughness (alpha = roughness²)
+  glm::dvec3 specular_color{0.04};  // Blinn–Phong ks, or Cook–Torrance F0
+  double shininess = 64.0;          // Blinn–Phong exponent
+  double roughness = 0.3;           // Cook–Torrance GGX roughness (alpha = roughness²)
 };
 
 struct Object {
@@ -43,7 +42,7 @@ struct Object {
   TriangleMesh mesh;  // world space, corner normals filled
   Material material;
   std::vector<float> importance;  // per-vertex weight for 3D unsharp masking (default 1)
-  SurfaceGraph surface;           // welded points and their 1-ring (load_scene, refinement); may be left out
+  SurfaceGraph surface;  // welded points and their 1-ring (load_scene, refinement); may be left out
 };
 
 struct DirectionalLight {
@@ -70,8 +69,8 @@ struct EnvironmentLight {
   std::shared_ptr<const EnvironmentMap> map;
   double scale = 1.0;
   EnvironmentSampling sampling = EnvironmentSampling::importance;
-  int samples = 4;                  // rays per shading sample
-  bool visible_to_camera = true;    // camera rays that miss see the environment
+  int samples = 4;                // rays per shading sample
+  bool visible_to_camera = true;  // camera rays that miss see the environment
 };
 
 // Ambient light of constant radiance, attenuated by ambient occlusion within `distance`.
@@ -101,11 +100,11 @@ struct Display {
 enum class NoiseAllocation { pixel, image };
 
 struct NoiseBudget {
-  double target = 0.5;       // RMS sampling noise of the written image, in L*
+  double target = 0.5;  // RMS sampling noise of the written image, in L*
   NoiseAllocation allocation = NoiseAllocation::pixel;
-  double p99 = 2.0;          // the 99th percentile of its per-pixel error, in L*
+  double p99 = 2.0;  // the 99th percentile of its per-pixel error, in L*
   int min_spp = 16, max_spp = 4096;
-  double time_limit_s = 0;   // 0: none. When it stops the sampling the image is not reproducible.
+  double time_limit_s = 0;  // 0: none. When it stops the sampling the image is not reproducible.
 };
 
 struct RenderSettings {
@@ -134,12 +133,14 @@ struct Scene {
   AmbientLight ambient;
   Display display;
   RenderSettings settings;
-  std::optional<Animation> animation;  // moving stimuli: scene_at (render/scene_animation.h) poses it
+  std::optional<Animation>
+      animation;  // moving stimuli: scene_at (render/scene_animation.h) poses it
 
   BoundingBox bounds() const;
 };
 
-// Builds (or rebuilds, after the meshes changed) every object's surface graph, objects side by side.
+// Builds (or rebuilds, after the meshes changed) every object's surface graph, objects side by
+// side.
 void build_surface_graphs(Scene& scene, int threads = 0);
 
 // Throws std::logic_error unless every object has its surface graph (`who` names the caller).

@@ -1,25 +1,25 @@
 #include "render/scene_loader.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
-#include <glm/ext/matrix_transform.hpp>
-#include <glm/matrix.hpp>
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-#include <tbb/task_group.h>
-
 #include "core/atomic_file.h"
 #include "core/color.h"
 #include "core/error.h"
-#include "core/number_format.h"
 #include "core/image.h"
-#include "core/parallel.h"
 #include "core/json_reader.h"
+#include "core/number_format.h"
+#include "core/parallel.h"
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
 #include "mesh/refine.h"
@@ -31,7 +31,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-SurfaceGraph surface_of(const TriangleMesh& mesh) { return surface_graph(mesh.positions, mesh.triangles); }
+SurfaceGraph surface_of(const TriangleMesh& mesh) {
+  return surface_graph(mesh.positions, mesh.triangles);
+}
 
 class SceneLoader {
  public:
@@ -44,7 +46,8 @@ class SceneLoader {
     long long version = root.integer("version");
     if (version != kSceneFormatVersion)
       root.fail("version", "unsupported scene format version " + std::to_string(version) +
-                               " (this build reads version " + std::to_string(kSceneFormatVersion) + ")");
+                               " (this build reads version " + std::to_string(kSceneFormatVersion) +
+                               ")");
     Scene scene;
     scene.file = path_;
     scene.camera = camera(root.object("camera"));
@@ -55,7 +58,8 @@ class SceneLoader {
     std::vector<LightRef> light_refs;
     if (root.has("lights"))
       for (const auto& l : root.objects("lights")) light_refs.push_back(light(l, scene));
-    if (root.has("animation")) scene.animation = read_animation(root.object("animation"), scene, light_refs);
+    if (root.has("animation"))
+      scene.animation = read_animation(root.object("animation"), scene, light_refs);
     if (root.has("description")) root.string("description");
     root.finish();
     return scene;
@@ -131,14 +135,18 @@ class SceneLoader {
 
   RenderSettings settings(const JsonObject& o) {
     RenderSettings s;
-    if (o.has("spp") && o.has("noise")) o.fail("noise", "give either a fixed spp or a noise budget, not both");
+    if (o.has("spp") && o.has("noise"))
+      o.fail("noise", "give either a fixed spp or a noise budget, not both");
     if (o.has("spp")) s.spp = int(o.integer_in("spp", 16, 1, 65536));
     if (o.has("vertex_spp")) s.vertex_spp = int(o.integer_in("vertex_spp", 4, 2, 65536));
     if (o.has("noise")) s.noise = read_noise_budget(o.object("noise"));
-    s.sampling = o.choice("sampler", "sobol", {"sobol", "independent"}) == "sobol" ? SamplingMode::sobol
-                                                                                : SamplingMode::independent;
+    s.sampling = o.choice("sampler", "sobol", {"sobol", "independent"}) == "sobol"
+                     ? SamplingMode::sobol
+                     : SamplingMode::independent;
     if (s.sampling == SamplingMode::independent && !s.spp)
-      o.fail("sampler", "the independent sampler takes a fixed spp (the noise budget samples adaptively with sobol)");
+      o.fail("sampler",
+             "the independent sampler takes a fixed spp (the noise budget samples adaptively with "
+             "sobol)");
     s.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
     o.finish();
     return s;
@@ -150,7 +158,9 @@ class SceneLoader {
     d.black_level = o.number_in("black_level", 0.0, 0.0, 0.5);
     if (o.has("calibration")) {
       if (o.has("encoding") || o.has("lut") || o.has("gamma"))
-        o.fail("calibration", "a calibrated display takes its encoding from the calibration; give no encoding, lut or gamma");
+        o.fail("calibration",
+               "a calibrated display takes its encoding from the calibration; give no encoding, "
+               "lut or gamma");
       calibrated(o, resolve(o, "calibration"), d);
       if (o.has("background")) d.background = non_negative_color(o, "background", glm::dvec3(0));
       o.finish();
@@ -171,11 +181,13 @@ class SceneLoader {
   // calibration file) and its luminance range.
   static void calibrated(const JsonObject& o, const fs::path& file, Display& d) {
     std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) o.fail("calibration", "no such file '" + file.string() + "'");
+    if (!fs::is_regular_file(file, ec))
+      o.fail("calibration", "no such file '" + file.string() + "'");
     const nlohmann::json j = parse_json_file(file);
     const JsonObject c(j, file.string(), "");
     const JsonObject block = c.object("display");
-    if (block.string("encoding") != "lut") block.fail("encoding", "expected \"lut\" (a file written by countershade calibrate)");
+    if (block.string("encoding") != "lut")
+      block.fail("encoding", "expected \"lut\" (a file written by countershade calibrate)");
     fs::path lut = block.string("lut");
     if (lut.is_relative()) lut = file.parent_path() / lut;
     d.encoding = read_lut(block, lut);
@@ -222,7 +234,9 @@ class SceneLoader {
         for (int c = 0; c < 4; ++c) t[c][r] = m[size_t(r * 4 + c)];
       // A singular linear part collapses the object to a plane, line or point (no normals).
       if (!(std::abs(glm::determinant(glm::dmat3(t))) > 1e-12))
-        o.fail("matrix", "is singular (the determinant of its 3x3 part is 0): the object would have no volume or area");
+        o.fail("matrix",
+               "is singular (the determinant of its 3x3 part is 0): the object would have no "
+               "volume or area");
       o.finish();
       return t;
     }
@@ -250,10 +264,12 @@ class SceneLoader {
 #else
   static constexpr double kMaxPrimitiveTriangles = 5e7;
 #endif
-  static void check_triangles(const JsonObject& o, double triangles, const std::string& key = "subdivisions") {
+  static void check_triangles(const JsonObject& o, double triangles,
+                              const std::string& key = "subdivisions") {
     if (triangles > kMaxPrimitiveTriangles)
-      o.fail(key, "would make about " + std::to_string(std::llround(triangles)) + " triangles (the limit is " +
-                                 std::to_string(std::llround(kMaxPrimitiveTriangles)) + ")");
+      o.fail(key, "would make about " + std::to_string(std::llround(triangles)) +
+                      " triangles (the limit is " +
+                      std::to_string(std::llround(kMaxPrimitiveTriangles)) + ")");
   }
 
   // A plane, or a relief: the plane displaced by coarse and fine relief whose heights are
@@ -263,32 +279,37 @@ class SceneLoader {
     check_triangles(o, 2.0 * subdivisions * subdivisions);
     const double size = positive(o, "size", 1.0);
     if (!relief) return make_plane(size, subdivisions);
-    const double coarse = o.number_in("coarse", 0.1, -1.0, 1.0), fine = o.number_in("fine", 0.004, -1.0, 1.0);
+    const double coarse = o.number_in("coarse", 0.1, -1.0, 1.0),
+                 fine = o.number_in("fine", 0.004, -1.0, 1.0);
     return make_relief(size, subdivisions, coarse * size, fine * size);
   }
 
   // A cylinder, or a disc (a cylinder's cap on its own), refused before it is built when it would
   // have too many triangles.
   static TriangleMesh round_shape(const JsonObject& o, bool disc) {
-    const double radius = positive(o, "radius", 0.5), height = disc ? 0.0 : positive(o, "height", 1.0);
+    const double radius = positive(o, "radius", 0.5),
+                 height = disc ? 0.0 : positive(o, "height", 1.0);
     const int segments = int(o.integer_in("segments", 64, 3, 65536));
     const double triangles = round_grid(radius, height, segments).triangle_bound(disc);
     // The height (for its radius) is to blame when even the fewest segments are too many.
-    const bool height_to_blame = !disc && round_grid(radius, height, 3).triangle_bound(disc) > kMaxPrimitiveTriangles;
+    const bool height_to_blame =
+        !disc && round_grid(radius, height, 3).triangle_bound(disc) > kMaxPrimitiveTriangles;
     check_triangles(o, triangles, height_to_blame ? "height" : "segments");
     return disc ? make_disc(radius, segments) : make_cylinder(radius, height, segments);
   }
 
   TriangleMesh shape(const JsonObject& o) {
-    std::string type = o.choice("type", "", {"plane", "relief", "box", "sphere", "cylinder", "disc"});
+    std::string type =
+        o.choice("type", "", {"plane", "relief", "box", "sphere", "cylinder", "disc"});
     TriangleMesh mesh;
     if (type == "plane" || type == "relief") {
       mesh = plane(o, type == "relief");
     } else if (type == "box") {
       glm::dvec3 size = o.vec3_or("size", glm::dvec3(1.0));
       if (size.x <= 0 || size.y <= 0 || size.z <= 0) o.fail("size", "must be positive");
-      if (o.has("bevel") && o.has("chamfer")) o.fail("chamfer", "give either bevel or chamfer, not both");
-      EdgeProfile profile = o.has("bevel") ? EdgeProfile::bevel
+      if (o.has("bevel") && o.has("chamfer"))
+        o.fail("chamfer", "give either bevel or chamfer, not both");
+      EdgeProfile profile = o.has("bevel")     ? EdgeProfile::bevel
                             : o.has("chamfer") ? EdgeProfile::chamfer
                                                : EdgeProfile::sharp;
       double radius = 0;
@@ -298,7 +319,8 @@ class SceneLoader {
         if (!(radius > 0) || radius >= 0.5 * std::min({size.x, size.y, size.z}))
           o.fail(key, "must be positive and less than half the smallest side");
       }
-      const int segments = int(o.integer_in("edge_segments", 4, 1, 256)), subdivisions = int(o.integer_in("subdivisions", 32, 1, 4096));
+      const int segments = int(o.integer_in("edge_segments", 4, 1, 256)),
+                subdivisions = int(o.integer_in("subdivisions", 32, 1, 4096));
       check_triangles(o, 12.0 * (subdivisions + segments) * (subdivisions + segments));
       mesh = make_box(size, profile, radius, segments, subdivisions);
     } else if (type == "sphere") {
@@ -329,11 +351,13 @@ class SceneLoader {
   }
 
   std::shared_ptr<const Texture> procedural_texture(const JsonObject& o) {
-    if (o.choice("pattern", "checker-noise", {"checker-noise", "stripes"}) == "stripes") return stripe_texture(o);
+    if (o.choice("pattern", "checker-noise", {"checker-noise", "stripes"}) == "stripes")
+      return stripe_texture(o);
     CheckerNoise spec;
     spec.size = int(o.integer_in("size", 1024, 8, 8192));
     spec.squares = int(o.integer_in("squares", 16, 2, 1024));
-    if (spec.squares % 2 != 0 || spec.squares > spec.size) o.fail("squares", "must be even and at most the size, so that the pattern tiles");
+    if (spec.squares % 2 != 0 || spec.squares > spec.size)
+      o.fail("squares", "must be even and at most the size, so that the pattern tiles");
     spec.noise = o.number_in("noise", 0.35, 0.0, 1.0);
     spec.seed = uint64_t(o.integer_in("seed", 1, 0, (1ll << 53)));
     o.finish();
@@ -344,7 +368,8 @@ class SceneLoader {
     Stripes spec;
     spec.size = int(o.integer_in("size", 1024, 8, 8192));
     spec.stripes = int(o.integer_in("stripes", 16, 2, 1024));
-    if (spec.stripes % 2 != 0 || spec.stripes > spec.size) o.fail("stripes", "must be even and at most the size, so that the pattern tiles");
+    if (spec.stripes % 2 != 0 || spec.stripes > spec.size)
+      o.fail("stripes", "must be even and at most the size, so that the pattern tiles");
     spec.light = o.number_in("light", 0.6, 0.0, 1.0);
     spec.dark = o.number_in("dark", 0.15, 0.0, 1.0);
     o.finish();
@@ -357,12 +382,14 @@ class SceneLoader {
     if (m.albedo.x > 1 || m.albedo.y > 1 || m.albedo.z > 1) o.fail("albedo", "must be at most 1");
     std::string encoding = o.choice("texture_encoding", "srgb", {"srgb", "linear"});
     if (o.has("texture") && o.raw("texture").is_object()) {
-      if (o.has("texture_encoding")) o.fail("texture_encoding", "applies to texture image files only");
+      if (o.has("texture_encoding"))
+        o.fail("texture_encoding", "applies to texture image files only");
       m.texture = procedural_texture(o.object("texture"));
     } else if (o.has("texture")) {
       m.texture = texture(o, "texture", encoding == "srgb");
     }
-    if (o.has("texture_repeat") && !m.texture) o.fail("texture_repeat", "applies to a material with a texture only");
+    if (o.has("texture_repeat") && !m.texture)
+      o.fail("texture_repeat", "applies to a material with a texture only");
     m.texture_repeat = o.number_in("texture_repeat", 1.0, 1e-3, 1e4);
     if (o.has("specular")) {
       JsonObject s = o.object("specular");
@@ -382,7 +409,8 @@ class SceneLoader {
     return m;
   }
 
-  std::vector<float> importance(const JsonObject& o, const std::string& key, const TriangleMesh& mesh) {
+  std::vector<float> importance(const JsonObject& o, const std::string& key,
+                                const TriangleMesh& mesh) {
     const nlohmann::json& value = o.raw(key);
     if (value.is_number()) return std::vector<float>(mesh.vertex_count(), float(o.number(key)));
     JsonObject w = o.object(key);
@@ -390,7 +418,8 @@ class SceneLoader {
     std::vector<double> range = w.has("range") ? w.numbers("range") : std::vector<double>{0.0, 1.0};
     if (range.size() != 2) w.fail("range", "expected [low, high]");
     w.finish();
-    if (!mesh.has_vertex_colors()) o.fail(key, "the mesh has no vertex colours to read weights from");
+    if (!mesh.has_vertex_colors())
+      o.fail(key, "the mesh has no vertex colours to read weights from");
     std::vector<float> weights(mesh.vertex_count());
     for (size_t v = 0; v < weights.size(); ++v) {
       const glm::vec3& c = mesh.vertex_colors[v];
@@ -434,17 +463,18 @@ class SceneLoader {
     return obj;
   }
 
-
   // Transformed positions must stay finite and within ±1e15 (a translation of 1e88 overflows float,
   // and the renderer's welding and ray tracing need room for their own arithmetic).
   static void check_world_positions(const JsonObject& o, const TriangleMesh& mesh) {
     constexpr float kLimit = 1e15f;
     for (const glm::vec3& p : mesh.positions)
       if (!(std::abs(p.x) <= kLimit && std::abs(p.y) <= kLimit && std::abs(p.z) <= kLimit))
-        o.fail("transform", "puts vertices outside ±1e15 (or makes them not finite); scenes are in metres");
+        o.fail("transform",
+               "puts vertices outside ±1e15 (or makes them not finite); scenes are in metres");
   }
 
-  // Centres the mesh on the origin in x and z, stands it on y = 0 and scales its largest extent to 1.
+  // Centres the mesh on the origin in x and z, stands it on y = 0 and scales its largest extent
+  // to 1.
   static void fit_to_unit(TriangleMesh& mesh) {
     BoundingBox box = bounding_box(mesh);
     glm::vec3 extent = box.hi - box.lo;
@@ -457,17 +487,23 @@ class SceneLoader {
   LightRef light(const JsonObject& o, Scene& scene) {
     const size_t directional = scene.directional_lights.size(), point = scene.point_lights.size();
     add_light(o, scene);
-    if (scene.directional_lights.size() > directional) return {LightRef::Kind::directional, directional};
+    if (scene.directional_lights.size() > directional)
+      return {LightRef::Kind::directional, directional};
     if (scene.point_lights.size() > point) return {LightRef::Kind::point, point};
     return {};
   }
 
   void add_light(const JsonObject& o, Scene& scene) {
-    const std::string type = o.choice("type", "", {"directional", "point", "environment", "ambient"});
-    if (type == "directional") add_directional(o, scene);
-    else if (type == "point") add_point(o, scene);
-    else if (type == "environment") add_environment(o, scene);
-    else add_ambient(o, scene);
+    const std::string type =
+        o.choice("type", "", {"directional", "point", "environment", "ambient"});
+    if (type == "directional")
+      add_directional(o, scene);
+    else if (type == "point")
+      add_point(o, scene);
+    else if (type == "environment")
+      add_environment(o, scene);
+    else
+      add_ambient(o, scene);
     o.finish();
   }
 
@@ -497,7 +533,8 @@ class SceneLoader {
     if (sources != 1) o.fail("", "an environment needs exactly one of 'file', 'sky' or 'constant'");
     l.map = environment_map(o);
     l.scale = o.number_in("scale", 1.0, 0.0, 1e9);
-    const std::string sampling = o.choice("sampling", "importance", {"importance", "cosine", "cosine+specular"});
+    const std::string sampling =
+        o.choice("sampling", "importance", {"importance", "cosine", "cosine+specular"});
     l.sampling = sampling == "importance" ? EnvironmentSampling::importance
                  : sampling == "cosine"   ? EnvironmentSampling::cosine
                                           : EnvironmentSampling::cosine_and_specular;
@@ -532,7 +569,8 @@ class SceneLoader {
       s.finish();
       return std::make_shared<EnvironmentMap>(EnvironmentMap::sky(sky));
     }
-    return std::make_shared<EnvironmentMap>(EnvironmentMap::constant(non_negative_color(o, "constant", glm::dvec3(1.0))));
+    return std::make_shared<EnvironmentMap>(
+        EnvironmentMap::constant(non_negative_color(o, "constant", glm::dvec3(1.0))));
   }
 
   static void add_ambient(const JsonObject& o, Scene& scene) {
@@ -549,7 +587,9 @@ class SceneLoader {
 
 }  // namespace
 
-Scene load_scene(const fs::path& path, bool surface_graphs) { return SceneLoader(path, surface_graphs).load(); }
+Scene load_scene(const fs::path& path, bool surface_graphs) {
+  return SceneLoader(path, surface_graphs).load();
+}
 
 NoiseBudget read_noise_budget(const JsonObject& o) {
   NoiseBudget b;
@@ -560,7 +600,8 @@ NoiseBudget read_noise_budget(const JsonObject& o) {
   if (b.min_spp % 2) o.fail("min_spp", "must be even (the samples form two replicates)");
   b.time_limit_s = o.number_in("time_limit", 0.0, 0.0, 1e7);
   const std::string allocation = o.string_or("allocation", "pixel");
-  if (allocation != "pixel" && allocation != "image") o.fail("allocation", "expected \"pixel\" or \"image\"");
+  if (allocation != "pixel" && allocation != "image")
+    o.fail("allocation", "expected \"pixel\" or \"image\"");
   b.allocation = allocation == "image" ? NoiseAllocation::image : NoiseAllocation::pixel;
   o.finish();
   return b;

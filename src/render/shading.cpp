@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
-
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include "core/fast_math.h"
 #include "render/specular_lobe.h"
@@ -18,12 +17,15 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // Light samples per shading point: a delta light needs one, an area light its `samples`.
-int samples_per_point(const DirectionalLight& light) { return light.angular_radius_deg > 0 ? light.samples : 1; }
+int samples_per_point(const DirectionalLight& light) {
+  return light.angular_radius_deg > 0 ? light.samples : 1;
+}
 int samples_per_point(const PointLight& light) { return light.radius > 0 ? light.samples : 1; }
 
 }  // namespace
 
-SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1, double b2) {
+SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1,
+                           double b2) {
   const TriangleMesh& mesh = scene.objects[object].mesh;
   const glm::uvec3& tri = mesh.triangles[triangle];
   double b0 = 1.0 - b1 - b2;
@@ -36,7 +38,8 @@ SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangl
   sp.position = b0 * p0 + b1 * p1 + b2 * p2;
   sp.geometric_normal = glm::normalize(glm::cross(p1 - p0, p2 - p0));
   size_t c = 3 * size_t(triangle);
-  glm::dvec3 n = b0 * glm::dvec3(mesh.corner_normals[c]) + b1 * glm::dvec3(mesh.corner_normals[c + 1]) +
+  glm::dvec3 n = b0 * glm::dvec3(mesh.corner_normals[c]) +
+                 b1 * glm::dvec3(mesh.corner_normals[c + 1]) +
                  b2 * glm::dvec3(mesh.corner_normals[c + 2]);
   double len = glm::length(n);
   sp.shading_normal = len > 1e-12 ? n / len : sp.geometric_normal;
@@ -80,14 +83,18 @@ glm::dvec3 specular_brdf(const ShadingInputs& s, const glm::dvec3& wi) {
   return F * (D * G / (4.0 * n_wi * n_wo));
 }
 
-glm::dvec3 brdf(const ShadingInputs& s, const glm::dvec3& wi) { return s.albedo / kPi + specular_brdf(s, wi); }
+glm::dvec3 brdf(const ShadingInputs& s, const glm::dvec3& wi) {
+  return s.albedo / kPi + specular_brdf(s, wi);
+}
 
-glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) {
+glm::dvec3 reflect_diffuse(const ShadingInputs& s, const glm::dvec3& wi,
+                           const glm::dvec3& incident) {
   double cos_i = glm::dot(s.normal, wi);
   return cos_i > 0 ? s.albedo / kPi * incident * cos_i : glm::dvec3(0.0);
 }
 
-glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) {
+glm::dvec3 reflect_specular(const ShadingInputs& s, const glm::dvec3& wi,
+                            const glm::dvec3& incident) {
   double cos_i = glm::dot(s.normal, wi);
   return cos_i > 0 ? specular_brdf(s, wi) * incident * cos_i : glm::dvec3(0.0);
 }
@@ -105,7 +112,8 @@ glm::dvec3 shadow_origin(const Scene& scene, const SurfacePoint& p, bool back) {
   const unsigned v[3] = {tri.x, tri.y, tri.z};
   glm::dvec3 lift(0.0);
   for (int k = 0; k < 3; ++k) {
-    const glm::dvec3 n = back ? -glm::dvec3(mesh.corner_normals[c + k]) : glm::dvec3(mesh.corner_normals[c + k]);
+    const glm::dvec3 n =
+        back ? -glm::dvec3(mesh.corner_normals[c + k]) : glm::dvec3(mesh.corner_normals[c + k]);
     const double below = glm::dot(p.position - glm::dvec3(mesh.positions[v[k]]), n);
     if (below < 0) lift -= b[k] * below * n;
   }
@@ -129,10 +137,12 @@ size_t Shader::count_light_samples(const Scene& scene) {
   return n;
 }
 
-bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const {
+bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance,
+                     RayCounts& counts) const {
   ShadowAnswers* answers = c.answers;
   if (answers && answers->replay) {
-    if (answers->replay == answers->replay_end) throw std::logic_error("Shader: a replayed sample asks more shadow rays than it recorded");
+    if (answers->replay == answers->replay_end)
+      throw std::logic_error("Shader: a replayed sample asks more shadow rays than it recorded");
     return *answers->replay++ != 0;
   }
   ++counts.shadow;
@@ -144,8 +154,8 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance, Ra
   return open;
 }
 
-void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
-                  RayCounts& counts) const {
+void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
+                  double distance, RayCounts& counts) const {
   // Light from behind the shading normal never arrives, with or without hooks, so a render with
   // hooks asks exactly the shadow rays of the render without them.
   LightSampleRecord& light = *c.lights++;
@@ -159,7 +169,8 @@ double terminator_fade(double cos_i, double band) {
   return x * x * (3 - 2 * x);
 }
 
-glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& light, const glm::dvec3*& given) const {
+glm::dvec3 Shader::reflect(const ShadingInputs& s, const LightSampleRecord& light,
+                           const glm::dvec3*& given) const {
   const double cos_i = glm::dot(s.normal, light.wi);
   if (!shading_hook_) return brdf(s, light.wi) * light.radiance * (cos_i / light.divisor);
   const glm::dvec3 incident = light.radiance / light.divisor;
@@ -183,30 +194,39 @@ std::vector<TangentFrame> Shader::light_frames(const Scene& scene) {
 std::vector<Shader::DarkSideRay> Shader::dark_side_rays(const Scene& scene) {
   std::vector<DarkSideRay> rays;
   for (const auto& light : scene.directional_lights)
-    rays.insert(rays.end(), size_t(samples_per_point(light)), light.shadows ? DarkSideRay::to_infinity : DarkSideRay::none);
-  for (const auto& light : scene.point_lights) rays.insert(rays.end(), size_t(samples_per_point(light)), DarkSideRay::to_point);
+    rays.insert(rays.end(), size_t(samples_per_point(light)),
+                light.shadows ? DarkSideRay::to_infinity : DarkSideRay::none);
+  for (const auto& light : scene.point_lights)
+    rays.insert(rays.end(), size_t(samples_per_point(light)), DarkSideRay::to_point);
   // An environment's samples from behind the normal are never shaded: its cosine sampler draws
   // none there, and an importance-sampled one would need a ray per sample and per λ.
-  if (scene.environment) rays.insert(rays.end(), size_t(scene.environment->samples), DarkSideRay::never);
+  if (scene.environment)
+    rays.insert(rays.end(), size_t(scene.environment->samples), DarkSideRay::never);
   return rays;
 }
 
-Shader::DarkSide Shader::dark_side(const ShadingInputs& s, const LightSampleRecord& light, size_t k) const {
+Shader::DarkSide Shader::dark_side(const ShadingInputs& s, const LightSampleRecord& light,
+                                   size_t k) const {
   // Only a sample from behind the shading normal: one that faces it and does not arrive is a cast
   // shadow. A sample with nothing to carry (inside a point light) needs nothing.
-  if (!shading_hook_ || !shading_hook_->shades_dark_side() || shading_hook_->terminator_band() > 0 ||
-      glm::dot(s.normal, light.wi) > 0 || light.radiance == glm::dvec3(0.0) || dark_side_rays_[k] == DarkSideRay::never)
+  if (!shading_hook_ || !shading_hook_->shades_dark_side() ||
+      shading_hook_->terminator_band() > 0 || glm::dot(s.normal, light.wi) > 0 ||
+      light.radiance == glm::dvec3(0.0) || dark_side_rays_[k] == DarkSideRay::never)
     return DarkSide::dark;
   return dark_side_rays_[k] == DarkSideRay::none ? DarkSide::unshadowed : DarkSide::traced;
 }
 
-bool Shader::dark_side_open(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k,
+bool Shader::dark_side_open(const ShadingInputs& s, const ShadingRecord& r,
+                            const LightSampleRecord& light, size_t k,
                             const std::optional<glm::dvec3>& towards) const {
   if (!towards || !(glm::dot(s.normal, *towards) > 0)) return false;
   // Another object (or another part of this one) may still block the direction it is shaded with.
   // A point light's divisor is the squared distance to the sampled point on it.
-  const double reach = dark_side_rays_[k] == DarkSideRay::to_point ? std::sqrt(light.divisor) : 1e30;
-  const Context c{s.point, s.normal, r.geometric_normal(s.point), shadow_origin(scene_, s.point, r.back), nullptr, nullptr};
+  const double reach =
+      dark_side_rays_[k] == DarkSideRay::to_point ? std::sqrt(light.divisor) : 1e30;
+  const Context c{
+      s.point, s.normal, r.geometric_normal(s.point), shadow_origin(scene_, s.point, r.back),
+      nullptr, nullptr};
   RayCounts counts;
   return visible(c, *towards, reach, counts);
 }
@@ -218,7 +238,8 @@ void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
     const int samples = samples_per_point(light);
     for (int s = 0; s < samples; ++s) {
       const glm::dvec2 u = random.next2d();
-      glm::dvec3 wi = light.angular_radius_deg > 0 ? sample_cone(*frame, cos_max, u.x, u.y) : light.direction;
+      glm::dvec3 wi =
+          light.angular_radius_deg > 0 ? sample_cone(*frame, cos_max, u.x, u.y) : light.direction;
       // Without shadows the light reaches every point that faces it (distance 0: no shadow ray).
       draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
     }
@@ -255,7 +276,8 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   const Material& material = scene_.objects[c.point.object].material;
   const TangentFrame frame(c.normal);  // shared by the samples drawn around the normal
   // With cosine+specular, the last quarter of the samples (at least one) come from the lobe.
-  const bool mixed = env.sampling == EnvironmentSampling::cosine_and_specular && has_specular_lobe(material);
+  const bool mixed =
+      env.sampling == EnvironmentSampling::cosine_and_specular && has_specular_lobe(material);
   const int from_lobe = mixed ? std::max(1, env.samples / 4) : 0;
   for (int s = 0; s < env.samples; ++s) {
     const glm::dvec2 u = random.next2d();
@@ -284,8 +306,8 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   }
 }
 
-double Shader::mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi, int samples,
-                           int from_lobe) {
+double Shader::mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi,
+                           int samples, int from_lobe) {
   // The balance heuristic over all the samples: each one divided by the share-weighted density of
   // both strategies (the cosine's alone without a lobe).
   const double cosine = std::max(glm::dot(c.normal, wi), 0.0) / kPi;
@@ -307,23 +329,29 @@ double Shader::ambient_open(const Context& c, Sampler& random, RayCounts& counts
   return double(unoccluded) / ambient.samples;
 }
 
-void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided, Sampler& random,
-                    RayCounts& counts, ShadowAnswers* answers, ShadingRecord& record, LightSampleRecord* lights) const {
+void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                    Sampler& random, RayCounts& counts, ShadowAnswers* answers,
+                    ShadingRecord& record, LightSampleRecord* lights) const {
   record.duv_dx = point.duv_dx;
   record.duv_dy = point.duv_dy;
   record.wo = wo;
   record.back = two_sided && glm::dot(point.geometric_normal, wo) < 0;
   record.albedo = albedo(point);
-  Context c{point, record.shading_normal(point), record.geometric_normal(point), shadow_origin(scene_, point, record.back),
-            answers, lights, wo};
+  Context c{point,
+            record.shading_normal(point),
+            record.geometric_normal(point),
+            shadow_origin(scene_, point, record.back),
+            answers,
+            lights,
+            wo};
   directional(c, random, counts);
   point_lights(c, random, counts);
   environment(c, random, counts);
   record.ambient_open = ambient_open(c, random, counts);
 }
 
-glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r, const LightSampleRecord* lights,
-                            const glm::dvec3& albedo) const {
+glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r,
+                            const LightSampleRecord* lights, const glm::dvec3& albedo) const {
   const glm::dvec3* hooked = nullptr;
   return evaluate_inputs(inputs(point, r, albedo), r, lights, hooked);
 }
@@ -336,7 +364,8 @@ void Shader::replay_many(std::span<const ReplayInput> records, glm::dvec3* radia
   points.clear();
   points.reserve(records.size());  // `samples` points into it: no reallocation below
   for (const ReplayInput& in : records)
-    points.push_back(inputs(*in.point, *in.record, texture_hook_ ? albedo(*in.point) : in.record->albedo));
+    points.push_back(
+        inputs(*in.point, *in.record, texture_hook_ ? albedo(*in.point) : in.record->albedo));
   lit_samples(records, points, lit);
   // The samples evaluate_inputs reflects through `hooked`, in order: every lit one.
   samples.clear();
@@ -350,11 +379,12 @@ void Shader::replay_many(std::span<const ReplayInput> records, glm::dvec3* radia
   if (shading_hook_) shading_hook_->reflect_many(samples, hooked.data());
   const glm::dvec3* next = shading_hook_ ? hooked.data() : nullptr;
   for (size_t j = 0; j < records.size(); ++j)
-    radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next, &lit[j * light_samples_]);
+    radiance[j] = evaluate_inputs(points[j], *records[j].record, records[j].lights, next,
+                                  &lit[j * light_samples_]);
 }
 
-void Shader::lit_samples(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,
-                         std::vector<uint8_t>& lit) const {
+void Shader::lit_samples(std::span<const ReplayInput> records,
+                         std::span<const ShadingInputs> points, std::vector<uint8_t>& lit) const {
   thread_local std::vector<HookSample> traced;
   thread_local std::vector<size_t> where;  // each traced sample's index in `lit`
   thread_local std::vector<std::optional<glm::dvec3>> towards;
@@ -375,24 +405,31 @@ void Shader::lit_samples(std::span<const ReplayInput> records, std::span<const S
   if (!traced.empty()) shading_hook_->dark_side_directions(traced, towards.data());
   for (size_t t = 0; t < traced.size(); ++t) {
     const size_t j = where[t] / light_samples_, k = where[t] % light_samples_;
-    lit[where[t]] = dark_side_open(points[j], *records[j].record, records[j].lights[k], k, towards[t]);
+    lit[where[t]] =
+        dark_side_open(points[j], *records[j].record, records[j].lights[k], k, towards[t]);
   }
 }
 
-bool Shader::sample_lit(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k) const {
+bool Shader::sample_lit(const ShadingInputs& s, const ShadingRecord& r,
+                        const LightSampleRecord& light, size_t k) const {
   if (light.arrives) return true;
   switch (dark_side(s, light, k)) {
-    case DarkSide::unshadowed: return true;
-    case DarkSide::traced: return dark_side_open(s, r, light, k, shading_hook_->dark_side_direction(s, light.wi));
-    default: return false;
+    case DarkSide::unshadowed:
+      return true;
+    case DarkSide::traced:
+      return dark_side_open(s, r, light, k, shading_hook_->dark_side_direction(s, light.wi));
+    default:
+      return false;
   }
 }
 
-glm::dvec3 Shader::evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
-                                   const glm::dvec3*& hooked, const uint8_t* lit) const {
+glm::dvec3 Shader::evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r,
+                                   const LightSampleRecord* lights, const glm::dvec3*& hooked,
+                                   const uint8_t* lit) const {
   const glm::dvec3& albedo = s.albedo;
-  // Sums per light, in the order the samples were drawn. A sample that does not arrive adds nothing,
-  // unless it lies on the original light's dark side and the hook lights it there (sample_lit).
+  // Sums per light, in the order the samples were drawn. A sample that does not arrive adds
+  // nothing, unless it lies on the original light's dark side and the hook lights it there
+  // (sample_lit).
   size_t k = 0;
   auto sum_of = [&](int samples) {
     glm::dvec3 sum(0.0);
@@ -404,8 +441,10 @@ glm::dvec3 Shader::evaluate_inputs(const ShadingInputs& s, const ShadingRecord& 
   auto add_mean = [&](int samples) { L += sum_of(samples) / double(samples); };
   for (const auto& light : scene_.directional_lights) add_mean(samples_per_point(light));
   for (const auto& light : scene_.point_lights) add_mean(samples_per_point(light));
-  if (const auto& env = scene_.environment) L += env->scale * sum_of(env->samples) / double(env->samples);
-  if (scene_.ambient.radiance != glm::dvec3(0.0)) L += albedo * scene_.ambient.radiance * r.ambient_open;
+  if (const auto& env = scene_.environment)
+    L += env->scale * sum_of(env->samples) / double(env->samples);
+  if (scene_.ambient.radiance != glm::dvec3(0.0))
+    L += albedo * scene_.ambient.radiance * r.ambient_open;
   return L;
 }
 

@@ -3,11 +3,10 @@
 // per-vertex signal of 3D unsharp masking is lit exactly like the image.
 
 #include <cstdint>
-#include <span>
-#include <vector>
-
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <span>
+#include <vector>
 
 #include "core/sampler.h"
 #include "render/directions.h"
@@ -22,7 +21,8 @@ struct SurfacePoint {
   glm::dvec3 geometric_normal;  // unit, on the counter-clockwise (front) side
   glm::dvec3 shading_normal;    // unit, interpolated corner normal
   glm::dvec2 uv{0.0};
-  glm::dvec2 duv_dx{0.0}, duv_dy{0.0};  // UV change per pixel along the film's x and y (0: no footprint)
+  glm::dvec2 duv_dx{0.0},
+      duv_dy{0.0};  // UV change per pixel along the film's x and y (0: no footprint)
   unsigned object = 0, triangle = 0;
   double b1 = 0, b2 = 0;  // barycentrics of corners 1 and 2
 };
@@ -73,8 +73,12 @@ struct ShadingRecord {
     return p;
   }
   // The point's normals on the viewed side.
-  glm::dvec3 shading_normal(const SurfacePoint& p) const { return back ? -p.shading_normal : p.shading_normal; }
-  glm::dvec3 geometric_normal(const SurfacePoint& p) const { return back ? -p.geometric_normal : p.geometric_normal; }
+  glm::dvec3 shading_normal(const SurfacePoint& p) const {
+    return back ? -p.shading_normal : p.shading_normal;
+  }
+  glm::dvec3 geometric_normal(const SurfacePoint& p) const {
+    return back ? -p.geometric_normal : p.geometric_normal;
+  }
 };
 
 // One kept record to evaluate again (Shader::replay_many).
@@ -89,8 +93,12 @@ class Shader {
   // Hooks may be null (the plain path).
   Shader(const Scene& scene, const RayTracer& tracer, const ShadingHook* shading_hook = nullptr,
          const TextureHook* texture_hook = nullptr)
-      : scene_(scene), tracer_(tracer), shading_hook_(shading_hook), texture_hook_(texture_hook),
-        light_samples_(count_light_samples(scene)), dark_side_rays_(dark_side_rays(scene)),
+      : scene_(scene),
+        tracer_(tracer),
+        shading_hook_(shading_hook),
+        texture_hook_(texture_hook),
+        light_samples_(count_light_samples(scene)),
+        dark_side_rays_(dark_side_rays(scene)),
         light_frames_(light_frames(scene)) {}
 
   // Outgoing radiance from `point` towards unit direction `wo`. With `two_sided`, a point seen
@@ -104,12 +112,15 @@ class Shader {
   // with this shader's hooks. `replay` evaluates a record gathered by another render of the same
   // scene (its texture lookups again if this shader has a texture hook).
   size_t light_samples() const { return light_samples_; }
-  void gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided, Sampler& random, RayCounts& counts,
-              ShadowAnswers* answers, ShadingRecord& record, LightSampleRecord* lights) const;
-  glm::dvec3 evaluate(const SurfacePoint& point, const ShadingRecord& record, const LightSampleRecord* lights,
-                      const glm::dvec3& albedo) const;
-  // `point`: the recorded hit's surface_point() with the record's footprint (ShadingRecord::restore).
-  glm::dvec3 replay(const SurfacePoint& point, const ShadingRecord& record, const LightSampleRecord* lights) const {
+  void gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided, Sampler& random,
+              RayCounts& counts, ShadowAnswers* answers, ShadingRecord& record,
+              LightSampleRecord* lights) const;
+  glm::dvec3 evaluate(const SurfacePoint& point, const ShadingRecord& record,
+                      const LightSampleRecord* lights, const glm::dvec3& albedo) const;
+  // `point`: the recorded hit's surface_point() with the record's footprint
+  // (ShadingRecord::restore).
+  glm::dvec3 replay(const SurfacePoint& point, const ShadingRecord& record,
+                    const LightSampleRecord* lights) const {
     return evaluate(point, record, lights, texture_hook_ ? albedo(point) : record.albedo);
   }
   // replay() of many records, radiance[k] for records[k]: the shading hook reflects all their
@@ -123,7 +134,8 @@ class Shader {
   // Whether `object`'s albedo may come from a texture (its material's, or the texture hook's), so
   // that its lookups need a footprint.
   bool textured(unsigned object) const {
-    return scene_.objects[object].mesh.has_uvs() && (texture_hook_ || scene_.objects[object].material.texture);
+    return scene_.objects[object].mesh.has_uvs() &&
+           (texture_hook_ || scene_.objects[object].material.texture);
   }
 
  private:
@@ -133,25 +145,28 @@ class Shader {
   void directional(Context& c, Sampler& random, RayCounts& counts) const;
   void point_lights(Context& c, Sampler& random, RayCounts& counts) const;
   void environment(Context& c, Sampler& random, RayCounts& counts) const;
-  static double mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi, int samples,
-                            int from_lobe);
+  static double mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi,
+                            int samples, int from_lobe);
   double ambient_open(const Context& c, Sampler& random, RayCounts& counts) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
   // `distance` away (0: no shadow ray): whether it arrives.
-  void draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor, double distance,
-            RayCounts& counts) const;
+  void draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
+            double distance, RayCounts& counts) const;
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
-  ShadingInputs inputs(const SurfacePoint& point, const ShadingRecord& r, const glm::dvec3& albedo) const {
+  ShadingInputs inputs(const SurfacePoint& point, const ShadingRecord& r,
+                       const glm::dvec3& albedo) const {
     return {point, scene_.objects[point.object].material, r.shading_normal(point), r.wo, albedo};
   }
   // evaluate() for given inputs. `hooked` (optional): the hook's reflections of the arriving light
   // samples in order, read and advanced instead of asking the hook one sample at a time.
   // `lit` (optional): sample_lit of each of the point's light samples, read instead of deciding it.
-  glm::dvec3 evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord* lights,
-                             const glm::dvec3*& hooked, const uint8_t* lit = nullptr) const;
+  glm::dvec3 evaluate_inputs(const ShadingInputs& s, const ShadingRecord& r,
+                             const LightSampleRecord* lights, const glm::dvec3*& hooked,
+                             const uint8_t* lit = nullptr) const;
   // The reflection of one arriving light sample (through the shading hook if there is one; its
   // value taken from `hooked` when that is not null).
-  glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light, const glm::dvec3*& hooked) const;
+  glm::dvec3 reflect(const ShadingInputs& s, const LightSampleRecord& light,
+                     const glm::dvec3*& hooked) const;
   // The original light's dark side (ShadingHook::dark_side_direction). How a light sample's dark
   // side could be lit: the shadow ray it would need, per sample index in drawing order.
   enum class DarkSideRay : uint8_t { never, none, to_infinity, to_point };
@@ -164,11 +179,13 @@ class Shader {
   DarkSide dark_side(const ShadingInputs& s, const LightSampleRecord& light, size_t k) const;
   // Whether a dark-side sample that needs a ray is lit: the hook's direction `towards` faces the
   // normal and its shadow ray is open.
-  bool dark_side_open(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k,
+  bool dark_side_open(const ShadingInputs& s, const ShadingRecord& r,
+                      const LightSampleRecord& light, size_t k,
                       const std::optional<glm::dvec3>& towards) const;
   // Whether light sample k of a point is reflected: it arrives, or it lies on a dark side the hook
   // lights (with the hook's direction open where its light casts shadows).
-  bool sample_lit(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light, size_t k) const;
+  bool sample_lit(const ShadingInputs& s, const ShadingRecord& r, const LightSampleRecord& light,
+                  size_t k) const;
   // sample_lit of every light sample of `records`, record by record (records.size() × light
   // samples), the dark side's directions asked of the hook for all of them at once.
   void lit_samples(std::span<const ReplayInput> records, std::span<const ShadingInputs> points,

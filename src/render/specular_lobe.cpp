@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
+#include <numbers>
 
 namespace countershade {
 namespace {
@@ -14,7 +13,8 @@ constexpr double kPi = std::numbers::pi;
 // The density of a half vector at cos θh = c over solid angle.
 double half_vector_pdf(const Material& m, double c) {
   if (c <= 0) return 0.0;
-  if (m.specular == SpecularModel::blinn_phong) return (m.shininess + 1.0) / (2.0 * kPi) * std::pow(c, m.shininess);
+  if (m.specular == SpecularModel::blinn_phong)
+    return (m.shininess + 1.0) / (2.0 * kPi) * std::pow(c, m.shininess);
   return ggx_distribution(ggx_alpha2(m), c) * c;
 }
 
@@ -36,15 +36,16 @@ double ggx_distribution(double alpha2, double cos_h) {
 
 bool has_specular_lobe(const Material& m) { return m.specular != SpecularModel::none; }
 
-std::optional<glm::dvec3> sample_specular_lobe(const Material& m, const TangentFrame& n, const glm::dvec3& wo,
-                                               double u1, double u2) {
+std::optional<glm::dvec3> sample_specular_lobe(const Material& m, const TangentFrame& n,
+                                               const glm::dvec3& wo, double u1, double u2) {
   const glm::dvec3 h = direction_around(n, half_vector_cosine(m, u1), u2);
   const double wo_h = glm::dot(wo, h);
   if (wo_h <= 0) return std::nullopt;
   return glm::normalize(2.0 * wo_h * h - wo);
 }
 
-double specular_lobe_pdf(const Material& m, const glm::dvec3& n, const glm::dvec3& wo, const glm::dvec3& wi) {
+double specular_lobe_pdf(const Material& m, const glm::dvec3& n, const glm::dvec3& wo,
+                         const glm::dvec3& wi) {
   const glm::dvec3 sum = wi + wo;
   const double length = glm::length(sum);
   if (length <= 1e-12) return 0.0;

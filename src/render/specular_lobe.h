@@ -6,9 +6,8 @@
 // every sample by the mixture's density (the balance heuristic), removes most of that variance
 // without changing the expected image.
 
-#include <optional>
-
 #include <glm/vec3.hpp>
+#include <optional>
 
 #include "render/directions.h"
 #include "render/scene.h"
@@ -24,12 +23,13 @@ double ggx_distribution(double alpha2, double cos_h);
 bool has_specular_lobe(const Material& m);
 
 // A direction towards the light: a half vector drawn with density D(h)·cos θh (GGX) or
-// (s + 1)/2π · cos^s θh (Blinn–Phong) around the normal (the frame's axis), and `wo` reflected about it.
-// None where the half vector faces away from `wo`.
-std::optional<glm::dvec3> sample_specular_lobe(const Material& m, const TangentFrame& n, const glm::dvec3& wo,
-                                               double u1, double u2);
+// (s + 1)/2π · cos^s θh (Blinn–Phong) around the normal (the frame's axis), and `wo` reflected
+// about it. None where the half vector faces away from `wo`.
+std::optional<glm::dvec3> sample_specular_lobe(const Material& m, const TangentFrame& n,
+                                               const glm::dvec3& wo, double u1, double u2);
 
 // The solid-angle density with which sample_specular_lobe draws `wi`: pdf(h) / (4 |wo·h|).
-double specular_lobe_pdf(const Material& m, const glm::dvec3& n, const glm::dvec3& wo, const glm::dvec3& wi);
+double specular_lobe_pdf(const Material& m, const glm::dvec3& n, const glm::dvec3& wo,
+                         const glm::dvec3& wi);
 
 }  // namespace countershade

@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <stdexcept>
 #include <string>
 
-#include <glm/geometric.hpp>
-
 #include "core/color.h"
-
 
 namespace countershade {
 namespace {
@@ -40,7 +38,8 @@ Span span(int i, int finer, int coarser) {
 }  // namespace
 
 TextureLevel level_from_image(const Image& image, bool srgb_encoded) {
-  TextureLevel level{image.width, image.height, std::vector<glm::vec3>(size_t(image.width) * size_t(image.height))};
+  TextureLevel level{image.width, image.height,
+                     std::vector<glm::vec3>(size_t(image.width) * size_t(image.height))};
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       glm::vec3 c;
@@ -64,7 +63,8 @@ namespace {
 
 // The four texels of a bilinear lookup at `level` (as TextureLevel::bilinear reads them), each
 // with `weight` times its bilinear weight.
-void bilinear_taps(const TextureLevel& t, uint32_t level, const glm::dvec2& uv, double weight, std::vector<TextureTap>& out) {
+void bilinear_taps(const TextureLevel& t, uint32_t level, const glm::dvec2& uv, double weight,
+                   std::vector<TextureTap>& out) {
   const double fx = (uv.x - std::floor(uv.x)) * t.width - 0.5;
   const double fy = (1.0 - (uv.y - std::floor(uv.y))) * t.height - 0.5;
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
@@ -120,13 +120,15 @@ TextureLevel downsample(const TextureLevel& finer) {
 Texture::Texture(TextureLevel base) {
   levels_.clear();
   levels_.push_back(std::move(base));
-  while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(downsample(levels_.back()));
+  while (levels_.back().width > 1 || levels_.back().height > 1)
+    levels_.push_back(downsample(levels_.back()));
 }
 
 Texture Texture::from_levels(std::vector<TextureLevel> levels) {
   if (levels.empty()) throw std::logic_error("a texture pyramid needs at least one level");
   for (size_t k = 1; k < levels.size(); ++k)
-    if (levels[k].width != std::max(1, levels[k - 1].width / 2) || levels[k].height != std::max(1, levels[k - 1].height / 2))
+    if (levels[k].width != std::max(1, levels[k - 1].width / 2) ||
+        levels[k].height != std::max(1, levels[k - 1].height / 2))
       throw std::logic_error("texture pyramid level " + std::to_string(k) + " has the wrong size");
   Texture t;
   t.levels_ = std::move(levels);
@@ -148,9 +150,13 @@ Texture::Footprint Texture::footprint(const glm::dvec2& duv_dx, const glm::dvec2
   return f;
 }
 
-int Texture::probes_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const { return footprint(duv_dx, duv_dy).probes; }
+int Texture::probes_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
+  return footprint(duv_dx, duv_dy).probes;
+}
 
-double Texture::level_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const { return footprint(duv_dx, duv_dy).level; }
+double Texture::level_of(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
+  return footprint(duv_dx, duv_dy).level;
+}
 
 glm::dvec3 Texture::trilinear(const glm::dvec2& uv, double level) const {
   if (level <= 0.0) return sample(uv);  // bit for bit the lookup without a pyramid
@@ -160,10 +166,12 @@ glm::dvec3 Texture::trilinear(const glm::dvec2& uv, double level) const {
   return (1.0 - t) * levels_[fine].bilinear(uv) + t * levels_[fine + 1].bilinear(uv);
 }
 
-void Texture::trilinear_taps(const glm::dvec2& uv, double level, double weight, std::vector<TextureTap>& out) const {
+void Texture::trilinear_taps(const glm::dvec2& uv, double level, double weight,
+                             std::vector<TextureTap>& out) const {
   if (level <= 0.0) return bilinear_taps(levels_.front(), 0, uv, weight, out);
   const size_t fine = size_t(level);
-  if (fine + 1 >= levels_.size()) return bilinear_taps(levels_.back(), uint32_t(levels_.size() - 1), uv, weight, out);
+  if (fine + 1 >= levels_.size())
+    return bilinear_taps(levels_.back(), uint32_t(levels_.size() - 1), uv, weight, out);
   const double t = level - double(fine);
   bilinear_taps(levels_[fine], uint32_t(fine), uv, weight * (1.0 - t), out);
   bilinear_taps(levels_[fine + 1], uint32_t(fine + 1), uv, weight * t, out);
@@ -173,14 +181,17 @@ void Texture::taps(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dv
                    std::vector<TextureTap>& out) const {
   const Footprint f = footprint(duv_dx, duv_dy);
   for (int i = 0; i < f.probes; ++i)
-    trilinear_taps(f.probes == 1 ? uv : uv + f.axis * ((i + 0.5) / f.probes - 0.5), f.level, 1.0 / f.probes, out);
+    trilinear_taps(f.probes == 1 ? uv : uv + f.axis * ((i + 0.5) / f.probes - 0.5), f.level,
+                   1.0 / f.probes, out);
 }
 
-glm::dvec3 Texture::sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const {
+glm::dvec3 Texture::sample(const glm::dvec2& uv, const glm::dvec2& duv_dx,
+                           const glm::dvec2& duv_dy) const {
   const Footprint f = footprint(duv_dx, duv_dy);
   if (f.probes == 1) return trilinear(uv, f.level);
   glm::dvec3 sum(0.0);
-  for (int i = 0; i < f.probes; ++i) sum += trilinear(uv + f.axis * ((i + 0.5) / f.probes - 0.5), f.level);
+  for (int i = 0; i < f.probes; ++i)
+    sum += trilinear(uv + f.axis * ((i + 0.5) / f.probes - 0.5), f.level);
   return sum / double(f.probes);
 }
 

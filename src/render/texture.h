@@ -10,10 +10,9 @@
 // changes only where textures are minified.
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "core/image.h"
 
@@ -66,7 +65,8 @@ class Texture {
   glm::dvec3 sample(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
   // The texels that lookup reads, appended to `out` with weights summing to 1: sample() is
   // Σ weight·texel up to rounding (a texel may appear more than once).
-  void taps(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy, std::vector<TextureTap>& out) const;
+  void taps(const glm::dvec2& uv, const glm::dvec2& duv_dx, const glm::dvec2& duv_dy,
+            std::vector<TextureTap>& out) const;
   // The (fractional) level of that lookup: log2 of the width each probe covers in level-0 texels
   // (the longer side over the number of probes, at least the shorter side), clamped to
   // [0, levels − 1].
@@ -86,7 +86,8 @@ class Texture {
   };
   Footprint footprint(const glm::dvec2& duv_dx, const glm::dvec2& duv_dy) const;
   glm::dvec3 trilinear(const glm::dvec2& uv, double level) const;
-  void trilinear_taps(const glm::dvec2& uv, double level, double weight, std::vector<TextureTap>& out) const;
+  void trilinear_taps(const glm::dvec2& uv, double level, double weight,
+                      std::vector<TextureTap>& out) const;
 
   std::vector<TextureLevel> levels_{TextureLevel{1, 1, {glm::vec3(0.0f)}}};
 };

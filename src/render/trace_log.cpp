@@ -45,14 +45,17 @@ uint64_t TraceLog::projected_bytes(uint64_t planned, bool with_shading) const {
   for (const Pixel& p : pixels_) {
     samples += p.hits.size();
     answers += p.answers.size();
-    shading += p.records.size() * sizeof(ShadingRecord) + p.lights.size() * sizeof(LightSampleRecord) +
+    shading += p.records.size() * sizeof(ShadingRecord) +
+               p.lights.size() * sizeof(LightSampleRecord) +
                p.backgrounds.size() * sizeof(glm::dvec3);
   }
   const double answers_per_sample = samples ? double(answers) / double(samples) : 0.0;
   // Before any sample is seen, every sample counts as a hit.
-  const double shading_per_sample = samples ? double(shading) / double(samples)
-                                            : double(sizeof(ShadingRecord) + light_samples_ * sizeof(LightSampleRecord));
-  const double per_sample = double(sizeof(TracedHit)) + answers_per_sample + (with_shading ? shading_per_sample : 0.0);
+  const double shading_per_sample =
+      samples ? double(shading) / double(samples)
+              : double(sizeof(ShadingRecord) + light_samples_ * sizeof(LightSampleRecord));
+  const double per_sample =
+      double(sizeof(TracedHit)) + answers_per_sample + (with_shading ? shading_per_sample : 0.0);
   return uint64_t(double(planned) * per_sample) + pixels_.size() * sizeof(Pixel);
 }
 
@@ -73,7 +76,8 @@ void TraceLog::abandon() {
 
 ShadowAnswers TraceLog::answers(size_t pixel, uint32_t sample) const {
   const Pixel& p = pixels_[pixel];
-  const size_t end = sample + 1 < p.hits.size() ? p.hits[sample + 1].first_answer : p.answers.size();
+  const size_t end =
+      sample + 1 < p.hits.size() ? p.hits[sample + 1].first_answer : p.answers.size();
   ShadowAnswers out;
   out.replay = p.answers.data() + p.hits[sample].first_answer;
   out.replay_end = p.answers.data() + end;

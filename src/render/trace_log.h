@@ -5,8 +5,9 @@
 // render with hooks takes the same camera samples, hits the same points and asks the same shadow
 // rays as the render without them (see ShadowAnswers). So such a render can read every answer back
 // instead of tracing it, and gives the image it would give by tracing, bit for bit. (A hook that
-// lights the original light's dark side traces rays of its own there, per λ: render/hooks.h.) That makes an extra λ of a
-// method that renders again (shading and texture hooks) cost its shading, not its rays.
+// lights the original light's dark side traces rays of its own there, per λ: render/hooks.h.) That
+// makes an extra λ of a method that renders again (shading and texture hooks) cost its shading, not
+// its rays.
 //
 // While it fits, the log also keeps every sample's shading record (render/shading.h: its albedo,
 // its UV footprint and its light samples with their visibility; the point comes again from the
@@ -29,7 +30,8 @@ namespace countershade {
 struct TracedHit {
   PackedHit hit{-1, 0, 0, 0};
   uint32_t first_answer = 0;
-  uint32_t shaded = 0;  // its shading record (a hit) or background (a miss), while the log keeps them
+  uint32_t shaded =
+      0;  // its shading record (a hit) or background (a miss), while the log keeps them
 };
 
 class TraceLog {
@@ -61,17 +63,24 @@ class TraceLog {
   bool abandoned() const { return abandoned_; }
 
   // Replaying: whether sample `sample` of `pixel` was recorded; its hit and its answers.
-  bool has(size_t pixel, uint32_t sample) const { return !abandoned_ && sample < pixels_[pixel].hits.size(); }
-  std::optional<Hit> hit(size_t pixel, uint32_t sample) const { return pixels_[pixel].hits[sample].hit.unpack(); }
+  bool has(size_t pixel, uint32_t sample) const {
+    return !abandoned_ && sample < pixels_[pixel].hits.size();
+  }
+  std::optional<Hit> hit(size_t pixel, uint32_t sample) const {
+    return pixels_[pixel].hits[sample].hit.unpack();
+  }
   ShadowAnswers answers(size_t pixel, uint32_t sample) const;
   // Whether the sample's shading was kept; a hit's record and light samples, or the background a
   // miss saw. (Defined here, as `hit` is: a replay calls them for every sample.)
-  bool has_shading(size_t pixel, uint32_t sample) const { return keeps_shading_ && has(pixel, sample); }
+  bool has_shading(size_t pixel, uint32_t sample) const {
+    return keeps_shading_ && has(pixel, sample);
+  }
   const ShadingRecord& shading(size_t pixel, uint32_t sample) const {
     return pixels_[pixel].records[pixels_[pixel].hits[sample].shaded];
   }
   const LightSampleRecord* light_samples(size_t pixel, uint32_t sample) const {
-    return pixels_[pixel].lights.data() + size_t(pixels_[pixel].hits[sample].shaded) * light_samples_;
+    return pixels_[pixel].lights.data() +
+           size_t(pixels_[pixel].hits[sample].shaded) * light_samples_;
   }
   glm::dvec3 background(size_t pixel, uint32_t sample) const {
     return pixels_[pixel].backgrounds[pixels_[pixel].hits[sample].shaded];
@@ -83,7 +92,7 @@ class TraceLog {
  private:
   struct Pixel {
     std::vector<TracedHit> hits;
-    std::vector<uint8_t> answers;  // 1: the shadow ray reached the light
+    std::vector<uint8_t> answers;        // 1: the shadow ray reached the light
     std::vector<ShadingRecord> records;  // the hits' shading, in sample order
     std::vector<LightSampleRecord> lights;
     std::vector<glm::dvec3> backgrounds;  // the misses'

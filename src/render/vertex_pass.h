@@ -38,10 +38,11 @@ struct VertexPassInput {
   const Shader& shader;
   const GBuffer& gbuffer;  // which triangles the pixel centres see, and from which side
   int ring_samples = 0;
-  std::vector<bool> back;          // per object: also shade the back
-  std::vector<VertexNeed> needs;   // per object
+  std::vector<bool> back;         // per object: also shade the back
+  std::vector<VertexNeed> needs;  // per object
   int threads = 0;
-  const CameraHits* camera_hits = nullptr;  // with a fixed count: which triangles the camera samples hit
+  const CameraHits* camera_hits =
+      nullptr;  // with a fixed count: which triangles the camera samples hit
 };
 
 VertexSignal vertex_pass(const VertexPassInput& input, RayCounts* rays = nullptr);

@@ -38,18 +38,21 @@ struct Decoded {
 // decoded as sRGB, noted in the report.
 DisplayEncoding encoding_of(const ManifestEntry& reference, std::vector<std::string>& notes) {
   const auto it = reference.extra.find("display_encoding");
-  const std::string text = it != reference.extra.end() && it->is_string() ? it->get<std::string>() : "srgb";
+  const std::string text =
+      it != reference.extra.end() && it->is_string() ? it->get<std::string>() : "srgb";
   if (text.rfind("gamma ", 0) == 0) return DisplayEncoding::gamma(std::stod(text.substr(6)));
   const auto lut = reference.extra.find("display_lut");
   if (lut != reference.extra.end()) {
     try {
-      return DisplayEncoding::lut(lut->at("codes").get<std::vector<double>>(), lut->at("luminances").get<std::vector<double>>());
+      return DisplayEncoding::lut(lut->at("codes").get<std::vector<double>>(),
+                                  lut->at("luminances").get<std::vector<double>>());
     } catch (const std::exception& e) {
       throw_input_error(reference.file + ": display_lut", e.what());
     }
   }
   if (text != "srgb")
-    notes.push_back(reference.scene + ": display encoding '" + text + "' is not stored in the manifest; L* decoded as sRGB");
+    notes.push_back(reference.scene + ": display encoding '" + text +
+                    "' is not stored in the manifest; L* decoded as sRGB");
   return DisplayEncoding::srgb();
 }
 
@@ -72,7 +75,8 @@ Decoded decode(const std::filesystem::path& file, const DisplayEncoding& encodin
 }
 
 // `range`: a calibrated display's black and white (cd/m²), for the mean luminance.
-void lightness_statistics(const Decoded& d, const std::optional<std::pair<double, double>>& range, StimulusAudit& out) {
+void lightness_statistics(const Decoded& d, const std::optional<std::pair<double, double>>& range,
+                          StimulusAudit& out) {
   double sum = 0, squares = 0;
   for (const Lab& lab : d.lab) sum += lab.L;
   const double n = double(d.lab.size()), mean = sum / n;
@@ -92,7 +96,8 @@ std::optional<std::pair<double, double>> luminance_range(const ManifestEntry& re
   try {
     return std::make_pair(it->at("black").get<double>(), it->at("white").get<double>());
   } catch (const std::exception&) {
-    throw_input_error(reference.file + ": luminance_cd_m2", "expected {\"black\": number, \"white\": number}");
+    throw_input_error(reference.file + ": luminance_cd_m2",
+                      "expected {\"black\": number, \"white\": number}");
   }
 }
 
@@ -131,7 +136,8 @@ void compare_with_reference(const Decoded& d, const Decoded& reference, Stimulus
 // A 16-bit image's codes rounded to 8 bits, as values in [0,1].
 Image rounded_to_8_bits(const Decoded& d) {
   Image image(d.width, d.height, 3, Image::Uninitialized{});
-  for (size_t i = 0; i < d.codes.size(); ++i) image.pixels[i] = float(std::lround(d.codes[i] * 255.0 / 65535.0)) / 255.0f;
+  for (size_t i = 0; i < d.codes.size(); ++i)
+    image.pixels[i] = float(std::lround(d.codes[i] * 255.0 / 65535.0)) / 255.0f;
   return image;
 }
 
@@ -139,7 +145,8 @@ Image rounded_to_8_bits(const Decoded& d) {
 // (StimulusAudit::quantisation_loss). That set holds the reference rounded to 8 bits and composes
 // each stimulus on it, as the generator does: the reference's L* plus the change Δ, with hue and
 // chroma kept, rounded to 8-bit codes. Δ is the 16-bit set's own, L*₁₆ − L*₁₆(reference).
-std::optional<double> quantisation_loss(const Decoded& d, const Decoded& reference, const DisplayEncoding& encoding) {
+std::optional<double> quantisation_loss(const Decoded& d, const Decoded& reference,
+                                        const DisplayEncoding& encoding) {
   if (d.bits != 16) return std::nullopt;
   const Image& base = reference.at_8_bits;
   const LabPixels& base_lab = reference.lab_at_8_bits;
@@ -150,8 +157,8 @@ std::optional<double> quantisation_loss(const Decoded& d, const Decoded& referen
   const LightnessComposer composer(CodeQuantizer::shared(encoding, 8), 8);
   for (size_t first = 0; first < n; first += 64) {
     const size_t count = std::min<size_t>(64, n - first);
-    composer.compose(base_lab.data() + first, base.pixels.data() + 3 * first, delta.data() + first, count,
-                     composed.pixels.data() + 3 * first);
+    composer.compose(base_lab.data() + first, base.pixels.data() + 3 * first, delta.data() + first,
+                     count, composed.pixels.data() + 3 * first);
   }
   const LabPixels lab = display_to_lab(composed, encoding, 8);
   double ideal = 0, error = 0;
@@ -165,8 +172,9 @@ std::optional<double> quantisation_loss(const Decoded& d, const Decoded& referen
 }
 
 // Every measure of one stimulus (or reference) against its reference.
-void measure(const Decoded& d, const Decoded& reference, const std::optional<std::pair<double, double>>& range,
-             const DisplayEncoding& encoding, StimulusAudit& s) {
+void measure(const Decoded& d, const Decoded& reference,
+             const std::optional<std::pair<double, double>>& range, const DisplayEncoding& encoding,
+             StimulusAudit& s) {
   lightness_statistics(d, range, s);
   compare_with_reference(d, reference, s);
   if (!s.reference) s.quantisation_loss = quantisation_loss(d, reference, encoding);
@@ -188,14 +196,17 @@ void add_quantisation_notes(AuditReport& report) {
     std::ostringstream note;
     note << c.scene << " " << c.name << ": at 8 bits more than " << 100 * kQuantisationWarning
          << " % of the change would be lost at lambda " << format_value(*first)
-         << (*last != *first ? " to " + format_value(*last) : std::string()) << " (up to " << std::lround(100 * worst)
+         << (*last != *first ? " to " + format_value(*last) : std::string()) << " (up to "
+         << std::lround(100 * worst)
          << " %); show these stimuli at 16 bits with dithering or on a 10-bit display";
     report.notes.push_back(note.str());
   }
 }
 
 // The render an entry belongs to: its scene and, in a sequence, its frame.
-std::pair<std::string, int> shot_of(const ManifestEntry& e) { return {e.scene, e.frame ? e.frame->index : -1}; }
+std::pair<std::string, int> shot_of(const ManifestEntry& e) {
+  return {e.scene, e.frame ? e.frame->index : -1};
+}
 
 // Each stimulus's mean L* drift from its own reference.
 void set_drifts(AuditReport& report) {
@@ -206,9 +217,9 @@ void set_drifts(AuditReport& report) {
 }
 
 // Every reference image, decoded, by (scene, frame); and each scene's display encoding.
-std::map<std::pair<std::string, int>, Decoded> decoded_references(const Manifest& manifest, const std::filesystem::path& dir,
-                                                                  std::map<std::string, DisplayEncoding>& encodings,
-                                                                  std::vector<std::string>& notes) {
+std::map<std::pair<std::string, int>, Decoded> decoded_references(
+    const Manifest& manifest, const std::filesystem::path& dir,
+    std::map<std::string, DisplayEncoding>& encodings, std::vector<std::string>& notes) {
   std::map<std::pair<std::string, int>, Decoded> references;
   for (const auto& e : manifest.stimuli)
     if (e.is_reference()) {
@@ -246,8 +257,11 @@ Manifest verified_manifest(const std::filesystem::path& manifest_path) {
   Manifest manifest = read_manifest(manifest_path);
   const auto problems = verify_stimulus_set(manifest_path);
   if (!problems.empty())
-    throw_input_error(manifest_path.string(), "the set does not match its manifest (" + problems.front() +
-                                                  (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") + ")");
+    throw_input_error(
+        manifest_path.string(),
+        "the set does not match its manifest (" + problems.front() +
+            (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") +
+            ")");
   return manifest;
 }
 
@@ -269,7 +283,8 @@ AuditLimits read_audit_limits(const JsonObject& o) {
 }
 
 size_t AuditReport::failed() const {
-  return size_t(std::count_if(checks.begin(), checks.end(), [](const AuditCheck& c) { return !c.passed; }));
+  return size_t(
+      std::count_if(checks.begin(), checks.end(), [](const AuditCheck& c) { return !c.passed; }));
 }
 
 std::string AuditReport::summary() const {
@@ -279,30 +294,38 @@ std::string AuditReport::summary() const {
   std::vector<std::pair<std::string, size_t>> kinds;
   for (const auto& c : checks) {
     if (c.passed) continue;
-    auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == c.check; });
-    if (it == kinds.end()) kinds.emplace_back(c.check, 1);
-    else ++it->second;
+    auto it =
+        std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == c.check; });
+    if (it == kinds.end())
+      kinds.emplace_back(c.check, 1);
+    else
+      ++it->second;
   }
   for (size_t k = 0; kinds.size() > 1 && k < kinds.size(); ++k)
-    s << (k == 0 ? " (" : ", ") << kinds[k].second << " " << kinds[k].first << (k + 1 == kinds.size() ? ")" : "");
+    s << (k == 0 ? " (" : ", ") << kinds[k].second << " " << kinds[k].first
+      << (k + 1 == kinds.size() ? ")" : "");
   size_t shown = 0;
   for (const auto& c : checks)
-    if (!c.passed && shown++ < 3) s << (shown == 1 ? ": " : "; ") << c.scene << " " << c.condition << " " << c.detail;
+    if (!c.passed && shown++ < 3)
+      s << (shown == 1 ? ": " : "; ") << c.scene << " " << c.condition << " " << c.detail;
   if (failed() > 3) s << "; ...";
   return s.str();
 }
 
-AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const AuditOptions& options) {
+AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path,
+                               const AuditOptions& options) {
   const Manifest manifest = verified_manifest(manifest_path);
   const std::filesystem::path dir = manifest_path.parent_path();
   AuditReport report;
   report.manifest = manifest_path;
   report.set_name = manifest.experiment_name;
   if (manifest.experiment.contains("audit"))
-    report.limits = read_audit_limits(JsonObject(manifest.experiment["audit"], manifest_path.string(), "experiment.audit"));
+    report.limits = read_audit_limits(
+        JsonObject(manifest.experiment["audit"], manifest_path.string(), "experiment.audit"));
   std::map<std::string, DisplayEncoding> encodings;
   const auto references = decoded_references(manifest, dir, encodings, report.notes);
-  std::map<std::string, std::optional<std::pair<double, double>>> ranges;  // per scene, a calibrated display's
+  std::map<std::string, std::optional<std::pair<double, double>>>
+      ranges;  // per scene, a calibrated display's
   for (const auto& e : manifest.stimuli)
     if (e.is_reference()) ranges[e.scene] = luminance_range(e);
   report.stimuli.resize(manifest.stimuli.size());
@@ -314,12 +337,14 @@ AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const
       StimulusAudit s = describe(e);
       const auto reference = references.find(shot_of(e));
       if (reference == references.end())
-        throw_input_error(manifest_path.string(), "scene " + e.scene + " has no reference image" +
-                                                      (e.frame ? " for frame " + std::to_string(e.frame->index) : ""));
+        throw_input_error(manifest_path.string(),
+                          "scene " + e.scene + " has no reference image" +
+                              (e.frame ? " for frame " + std::to_string(e.frame->index) : ""));
       Decoded own;
       if (!e.is_reference()) own = decode(resolve_in_set(dir, e.file), encodings.at(e.scene));
       const Decoded& d = e.is_reference() ? reference->second : own;
-      if (d.width != reference->second.width || d.height != reference->second.height || d.bits != reference->second.bits)
+      if (d.width != reference->second.width || d.height != reference->second.height ||
+          d.bits != reference->second.bits)
         throw_input_error(e.file, "differs in size or bit depth from its scene's reference");
       measure(d, reference->second, ranges.at(e.scene), encodings.at(e.scene), s);
       report.stimuli[i] = std::move(s);

@@ -20,10 +20,10 @@
 namespace countershade {
 
 struct AuditLimits {
-  double max_drift = 1.0;      // |mean L*(λ) − mean L*(reference)|, L*
-  double max_clipped = 0.01;   // share of pixels clipped by the enhancement
+  double max_drift = 1.0;                          // |mean L*(λ) − mean L*(reference)|, L*
+  double max_clipped = 0.01;                       // share of pixels clipped by the enhancement
   std::optional<int> screen_width, screen_height;  // pixels; images shown side by side 1:1
-  int gap_px = 48;             // between the two images, as the adjustment app shows them
+  int gap_px = 48;  // between the two images, as the adjustment app shows them
 };
 
 // The experiment file's "audit" block (docs/stimulus-sets.md); throws InputError.
@@ -31,13 +31,14 @@ AuditLimits read_audit_limits(const JsonObject& o);
 
 struct StimulusAudit {
   std::string file, scene, condition;  // condition: "<label> sigma <σ>", empty for references
-  std::string sha256;                   // the manifest's checksum, verified before measuring
+  std::string sha256;                  // the manifest's checksum, verified before measuring
   double sigma = 0, lambda = 0;
   int frame = -1;  // a sequence's frame; -1 for a still
   bool reference = false;
   double mean_lightness = 0, rms_contrast = 0, clipped_fraction = 0;
-  std::optional<double> mean_luminance_cd_m2;  // on a calibrated display (its reference records the range)
-  double drift = 0;  // mean L* minus its reference's (the same frame's, in a sequence)
+  std::optional<double>
+      mean_luminance_cd_m2;  // on a calibrated display (its reference records the range)
+  double drift = 0;          // mean L* minus its reference's (the same frame's, in a sequence)
   double delta_e_mean = 0, delta_e_p99 = 0, changed_fraction = 0;  // against the reference
   std::optional<double> noise_rms, noise_p99;
   std::optional<bool> noise_met;
@@ -62,10 +63,11 @@ struct AuditReport {
   AuditLimits limits;
   std::vector<StimulusAudit> stimuli;  // in manifest order
   std::vector<AuditCheck> checks;
-  std::vector<std::string> notes;      // e.g. how L* was decoded
+  std::vector<std::string> notes;  // e.g. how L* was decoded
 
   size_t failed() const;
-  std::string summary() const;  // one line: "1224 images, 100 checks, 21 failed (11 mean L* drift, 10 clipped pixels): ..."
+  std::string summary() const;  // one line: "1224 images, 100 checks, 21 failed (11 mean L* drift,
+                                // 10 clipped pixels): ..."
 };
 
 struct AuditOptions {
@@ -88,15 +90,19 @@ void add_audit_checks(AuditReport& report, const Manifest& manifest);
 
 // Whether the enhancement clipped a pixel: its codes (three channels) differ from the reference's,
 // and a channel sits at 0 or at `top` (full scale) where the reference's does not.
-inline bool clipped_by_enhancement(const uint16_t* stimulus, const uint16_t* reference, uint16_t top) {
-  if (stimulus[0] == reference[0] && stimulus[1] == reference[1] && stimulus[2] == reference[2]) return false;
+inline bool clipped_by_enhancement(const uint16_t* stimulus, const uint16_t* reference,
+                                   uint16_t top) {
+  if (stimulus[0] == reference[0] && stimulus[1] == reference[1] && stimulus[2] == reference[2])
+    return false;
   bool at_limit = false;
-  for (int k = 0; k < 3; ++k) at_limit |= (stimulus[k] == 0 || stimulus[k] == top) && stimulus[k] != reference[k];
+  for (int k = 0; k < 3; ++k)
+    at_limit |= (stimulus[k] == 0 || stimulus[k] == top) && stimulus[k] != reference[k];
   return at_limit;
 }
 
 // Checks the set's integrity first (every file listed with its size and sha256, nothing
 // unlisted): a tampered set is an InputError (exit 2). Then measures every stimulus.
-AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path, const AuditOptions& options = {});
+AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path,
+                               const AuditOptions& options = {});
 
 }  // namespace countershade

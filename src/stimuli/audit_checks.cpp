@@ -22,17 +22,19 @@ AuditCheck lambda_zero_check(const AuditCondition& c) {
     if (s->lambda == 0.0 && (!worst || s->changed_fraction > worst->changed_fraction)) worst = s;
   if (!worst) return check;
   check.passed = worst->changed_fraction == 0.0;
-  check.detail = check.passed ? "identical pixels"
-                              : fixed(100 * worst->changed_fraction, 3) + " % of pixels differ (max dE " +
-                                    fixed(worst->delta_e_p99, 2) + " at p99)" +
-                                    (worst->frame >= 0 ? " in frame " + std::to_string(worst->frame) : "");
+  check.detail = check.passed
+                     ? "identical pixels"
+                     : fixed(100 * worst->changed_fraction, 3) + " % of pixels differ (max dE " +
+                           fixed(worst->delta_e_p99, 2) + " at p99)" +
+                           (worst->frame >= 0 ? " in frame " + std::to_string(worst->frame) : "");
   return check;
 }
 
 // The smallest λ whose measure passes the limit, as a clause for a failed check: a reader can tell
 // whether the λ range a study cares about (around the first visible difference) is affected.
 // The stimuli are in λ order.
-std::string first_past(const AuditCondition& c, double limit, double (*measure)(const StimulusAudit&)) {
+std::string first_past(const AuditCondition& c, double limit,
+                       double (*measure)(const StimulusAudit&)) {
   for (const auto* s : c.stimuli)
     if (measure(*s) > limit) return "; past it from lambda " + format_value(s->lambda);
   return "";
@@ -51,8 +53,8 @@ AuditCheck drift_check(const AuditCondition& c, double limit) {
     }
   }
   check.passed = std::abs(worst) <= limit;
-  check.detail = (worst >= 0 ? "+" : "") + fixed(worst, 2) + " L* at lambda " + format_value(at) + " (limit " +
-                 format_value(limit) + first_past(c, limit, absolute_drift) + ")";
+  check.detail = (worst >= 0 ? "+" : "") + fixed(worst, 2) + " L* at lambda " + format_value(at) +
+                 " (limit " + format_value(limit) + first_past(c, limit, absolute_drift) + ")";
   return check;
 }
 
@@ -65,13 +67,14 @@ AuditCheck clipping_check(const AuditCondition& c, double limit) {
       at = s->lambda;
     }
   check.passed = worst <= limit;
-  check.detail = fixed(100 * worst, 2) + " % at lambda " + format_value(at) + " (limit " + format_value(100 * limit) +
-                 " %" + first_past(c, limit, clipped_share) + ")";
+  check.detail = fixed(100 * worst, 2) + " % at lambda " + format_value(at) + " (limit " +
+                 format_value(100 * limit) + " %" + first_past(c, limit, clipped_share) + ")";
   return check;
 }
 
 AuditCheck noise_check(const AuditCondition& c) {
-  AuditCheck check{"noise within budget", c.scene, c.name, true, "no noise estimate in the manifest"};
+  AuditCheck check{"noise within budget", c.scene, c.name, true,
+                   "no noise estimate in the manifest"};
   double worst = 0;
   bool any = false;
   for (const auto* s : c.stimuli) {
@@ -80,7 +83,9 @@ AuditCheck noise_check(const AuditCondition& c) {
     worst = std::max(worst, *s->noise_rms);
     if (s->noise_met && !*s->noise_met) check.passed = false;
   }
-  if (any) check.detail = "largest RMS " + fixed(worst, 2) + " L*" + (check.passed ? "" : ", budget missed");
+  if (any)
+    check.detail =
+        "largest RMS " + fixed(worst, 2) + " L*" + (check.passed ? "" : ", budget missed");
   return check;
 }
 
@@ -90,9 +95,10 @@ AuditCheck noise_check(const AuditCondition& c) {
 // control condition, whose every image is the reference, is left out: there nothing is enhanced.
 // The longest run of one image is reported, per frame in a sequence.
 AuditCheck lambda_steps_check(const AuditCondition& c) {
-  AuditCheck check{"every lambda step changes the image", c.scene, c.name, true, "no two lambdas share an image"};
-  const bool control =
-      std::all_of(c.stimuli.begin(), c.stimuli.end(), [](const StimulusAudit* s) { return s->changed_fraction == 0; });
+  AuditCheck check{"every lambda step changes the image", c.scene, c.name, true,
+                   "no two lambdas share an image"};
+  const bool control = std::all_of(c.stimuli.begin(), c.stimuli.end(),
+                                   [](const StimulusAudit* s) { return s->changed_fraction == 0; });
   if (control) {
     check.detail = "every image equals the reference (a control)";
     return check;
@@ -111,9 +117,10 @@ AuditCheck lambda_steps_check(const AuditCondition& c) {
     if (run.length <= longest) continue;
     longest = run.length;
     check.passed = false;
-    check.detail = "the same image from lambda " + format_value(run.first->lambda) + " to " + format_value(s->lambda) +
-                   " (" + std::to_string(run.length) + " grid values" +
-                   (s->frame >= 0 ? ", frame " + std::to_string(s->frame) : "") + "): the enhancement stops changing";
+    check.detail = "the same image from lambda " + format_value(run.first->lambda) + " to " +
+                   format_value(s->lambda) + " (" + std::to_string(run.length) + " grid values" +
+                   (s->frame >= 0 ? ", frame " + std::to_string(s->frame) : "") +
+                   "): the enhancement stops changing";
   }
   return check;
 }
@@ -129,8 +136,9 @@ AuditCheck screen_check(const AuditLimits& limits, const Manifest& manifest) {
   const int needed = 2 * width + limits.gap_px;
   check.passed = needed <= *limits.screen_width && height <= *limits.screen_height;
   check.detail = "two " + std::to_string(width) + "x" + std::to_string(height) + " images and a " +
-                 std::to_string(limits.gap_px) + " px gap need " + std::to_string(needed) + "x" + std::to_string(height) +
-                 "; the screen is " + std::to_string(*limits.screen_width) + "x" + std::to_string(*limits.screen_height);
+                 std::to_string(limits.gap_px) + " px gap need " + std::to_string(needed) + "x" +
+                 std::to_string(height) + "; the screen is " +
+                 std::to_string(*limits.screen_width) + "x" + std::to_string(*limits.screen_height);
   return check;
 }
 
@@ -149,8 +157,9 @@ std::vector<AuditCondition> audit_conditions(const AuditReport& report) {
     out[it->second].stimuli.push_back(&s);
   }
   for (auto& c : out)
-    std::sort(c.stimuli.begin(), c.stimuli.end(),
-              [](auto* a, auto* b) { return std::tie(a->lambda, a->frame) < std::tie(b->lambda, b->frame); });
+    std::sort(c.stimuli.begin(), c.stimuli.end(), [](auto* a, auto* b) {
+      return std::tie(a->lambda, a->frame) < std::tie(b->lambda, b->frame);
+    });
   return out;
 }
 

@@ -12,11 +12,13 @@ namespace {
 
 double coherence_of(const ManifestEntry& s) { return s.extra["coherence"].get<double>(); }
 
-void write_table(const std::filesystem::path& path, const Experiment& e, const std::vector<const ManifestEntry*>& entries) {
+void write_table(const std::filesystem::path& path, const Experiment& e,
+                 const std::vector<const ManifestEntry*>& entries) {
   std::ostringstream csv;
   csv << "scene,condition,lambda,coherence_rms_lstar,pixels,coherence_stable_lstar,stable_pixels\n";
   for (const ManifestEntry* s : entries)
-    csv << condition_columns(e, *s) << format_value(coherence_of(*s)) << ',' << s->extra.value("coherence_pixels", 0) << ','
+    csv << condition_columns(e, *s) << format_value(coherence_of(*s)) << ','
+        << s->extra.value("coherence_pixels", 0) << ','
         << optional_figure_columns(*s, "coherence_stable") << '\n';
   write_text_atomically(path, csv.str());
 }
@@ -48,13 +50,15 @@ void write_plot(const std::filesystem::path& path, const Experiment& e, const st
 
 }  // namespace
 
-void write_coherence_figures(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest) {
+void write_coherence_figures(const Experiment& e, const std::filesystem::path& dir,
+                             const Manifest& manifest) {
   std::vector<const ManifestEntry*> entries;
   for (const ManifestEntry& s : manifest.stimuli)
     if (s.extra.contains("coherence")) entries.push_back(&s);
   if (entries.empty() || !e.coherence_dolly) return;
   write_table(dir / "coherence.csv", e, entries);
-  for (const ExperimentScene& scene : e.scenes) write_plot(dir / ("coherence-" + scene.name + ".svg"), e, scene.name, entries);
+  for (const ExperimentScene& scene : e.scenes)
+    write_plot(dir / ("coherence-" + scene.name + ".svg"), e, scene.name, entries);
 }
 
 }  // namespace countershade

@@ -11,6 +11,7 @@
 namespace countershade {
 
 // DIR/coherence.csv and DIR/coherence-SCENE.svg; nothing when no entry has a coherence figure.
-void write_coherence_figures(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest);
+void write_coherence_figures(const Experiment& experiment, const std::filesystem::path& dir,
+                             const Manifest& manifest);
 
 }  // namespace countershade

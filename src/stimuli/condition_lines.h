@@ -17,8 +17,8 @@ std::string condition_name(const Experiment& experiment, const ManifestEntry& en
 // "scene,condition,lambda," (λ empty for the reference): the first columns of a table's row.
 std::string condition_columns(const Experiment& experiment, const ManifestEntry& entry);
 
-// "value,pixels" of a figure the entry may lack (`key` and `key`_pixels in its extra fields), or ","
-// without it: the last columns of a table's row for the stable figures.
+// "value,pixels" of a figure the entry may lack (`key` and `key`_pixels in its extra fields), or
+// "," without it: the last columns of a table's row for the stable figures.
 std::string optional_figure_columns(const ManifestEntry& entry, const std::string& key);
 
 // The lines of a plot with one line per condition: a colour per method (by its place in the
@@ -28,7 +28,7 @@ class ConditionLines {
  public:
   ConditionLines(const Experiment& experiment, LinePlot& plot) : e_(experiment), plot_(plot) {}
   PlotSeries& line_of(const ManifestEntry& entry);  // added on first use
-  void fit_legend();  // makes the plot tall enough for its legend
+  void fit_legend();                                // makes the plot tall enough for its legend
 
  private:
   size_t method_index(const std::string& label) const;

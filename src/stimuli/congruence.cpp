@@ -11,7 +11,7 @@
 namespace countershade {
 namespace {
 
-constexpr double kIsotropic = 1e-12;       // eigenvalue gap below which there is no orientation
+constexpr double kIsotropic = 1e-12;  // eigenvalue gap below which there is no orientation
 constexpr double kNormalisingQuantile = 0.99;
 
 bool is_foreground(float depth) { return std::isfinite(depth) && depth > 0; }
@@ -37,7 +37,8 @@ std::vector<float> normalised_depth(const Image& depth) {
     if (is_foreground(d)) lo = std::min(lo, d), hi = std::max(hi, d);
   std::vector<float> out(depth.pixels.size(), 1.0f);
   for (size_t i = 0; i < out.size(); ++i)
-    if (is_foreground(depth.pixels[i])) out[i] = hi > lo ? (depth.pixels[i] - lo) / (hi - lo) : 0.0f;
+    if (is_foreground(depth.pixels[i]))
+      out[i] = hi > lo ? (depth.pixels[i] - lo) / (hi - lo) : 0.0f;
   return out;
 }
 
@@ -69,7 +70,8 @@ void eigen(double a, double b, double c, float& vx, float& vy, float& e) {
   vx = float(ux / length), vy = float(uy / length);
 }
 
-Flow flow(const std::vector<float>& field, const std::vector<char>& interior, int w, int h, double tensor_sigma) {
+Flow flow(const std::vector<float>& field, const std::vector<char>& interior, int w, int h,
+          double tensor_sigma) {
   const size_t n = field.size();
   std::vector<float> xx(n, 0.0f), xy(n, 0.0f), yy(n, 0.0f);
   for (int y = 0; y < h; ++y)
@@ -79,7 +81,8 @@ Flow flow(const std::vector<float>& field, const std::vector<char>& interior, in
       const float gx = derivative(field, i, 1, x, w), gy = derivative(field, i, w, y, h);
       xx[size_t(i)] = gx * gx, xy[size_t(i)] = gx * gy, yy[size_t(i)] = gy * gy;
     }
-  for (std::vector<float>* p : {&xx, &xy, &yy}) gaussian_blur_exact(p->data(), p->data(), w, h, tensor_sigma, 1);
+  for (std::vector<float>* p : {&xx, &xy, &yy})
+    gaussian_blur_exact(p->data(), p->data(), w, h, tensor_sigma, 1);
   Flow f{std::vector<float>(n), std::vector<float>(n), std::vector<float>(n)};
   for (size_t i = 0; i < n; ++i) eigen(xx[i], xy[i], yy[i], f.vx[i], f.vy[i], f.e[i]);
   return f;
@@ -105,9 +108,12 @@ double percentile(std::vector<float> values, double p) {
   return values[k] + (h - double(k)) * (double(values[k + 1]) - double(values[k]));
 }
 
-Congruence congruence(const Image& lightness, const Image& depth, const CongruenceOptions& options) {
-  if (lightness.channels != 1 || depth.channels != 1 || lightness.width != depth.width || lightness.height != depth.height)
-    throw std::invalid_argument("congruence: lightness and depth must be one-channel images of the same size");
+Congruence congruence(const Image& lightness, const Image& depth,
+                      const CongruenceOptions& options) {
+  if (lightness.channels != 1 || depth.channels != 1 || lightness.width != depth.width ||
+      lightness.height != depth.height)
+    throw std::invalid_argument(
+        "congruence: lightness and depth must be one-channel images of the same size");
   const int w = depth.width, h = depth.height;
   const std::vector<char> interior = interior_mask(depth);
   std::vector<float> shading(lightness.pixels.size());
@@ -123,7 +129,8 @@ Congruence congruence(const Image& lightness, const Image& depth, const Congruen
     if (!interior[i]) continue;
     const double alignment = std::abs(double(c.vx[i]) * s.vx[i] + double(c.vy[i]) * s.vy[i]);
     const double difference = double(c.e[i]) - s.e[i];
-    const double d = options.penalty == CongruencePenalty::absolute ? std::abs(difference) : difference;
+    const double d =
+        options.penalty == CongruencePenalty::absolute ? std::abs(difference) : difference;
     const double term = c.e[i] * (1.0 - std::clamp(d, 0.0, 1.0)) * alignment;
     out.map.pixels[i] = float(term);
     agreement += term, weight += c.e[i];
@@ -139,7 +146,8 @@ Congruence display_congruence(const Image& display, const DisplayEncoding& encod
   Image lightness(display.width, display.height, 1);
   for (size_t i = 0; i < lab.size(); ++i) lightness.pixels[i] = float(lab[i].L);
   Image depth_image(display.width, display.height, 1);
-  if (depth.size() != depth_image.pixels.size()) throw std::invalid_argument("congruence: depth size differs from the image");
+  if (depth.size() != depth_image.pixels.size())
+    throw std::invalid_argument("congruence: depth size differs from the image");
   std::copy(depth.begin(), depth.end(), depth_image.pixels.begin());
   return congruence(lightness, depth_image, options);
 }

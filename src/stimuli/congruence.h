@@ -25,20 +25,22 @@ struct CongruenceOptions {
 };
 
 struct Congruence {
-  double score = 0;           // s in [0, 1]
+  double score = 0;            // s in [0, 1]
   size_t interior_pixels = 0;  // foreground pixels whose 3×3 neighbourhood is all foreground
-  Image map;                  // per pixel: e_c·(1 − ⌊d⌋)·|v_c·v_s| (0 outside the interior)
+  Image map;  // per pixel: e_c·(1 − ⌊d⌋)·|v_c·v_s| (0 outside the interior)
 };
 
 // `lightness`: one channel of CIELAB L* (0…100); `depth`: one channel of the same size, where
 // foreground pixels have a finite, positive depth (0, inf and NaN are background).
 // Throws std::invalid_argument when the sizes differ or an image is not one channel.
-Congruence congruence(const Image& lightness, const Image& depth, const CongruenceOptions& options = {});
+Congruence congruence(const Image& lightness, const Image& depth,
+                      const CongruenceOptions& options = {});
 
 // The score of a display image (decoded with `encoding` at `bits`, 0 = float) against a depth
 // buffer of the same size (values as for `congruence`).
 Congruence display_congruence(const Image& display, const DisplayEncoding& encoding, int bits,
-                              const std::vector<float>& depth, const CongruenceOptions& options = {});
+                              const std::vector<float>& depth,
+                              const CongruenceOptions& options = {});
 
 // The 99th-percentile rule's percentile: linear interpolation between order statistics
 // (x sorted, h = (n − 1)·p, x[⌊h⌋] + (h − ⌊h⌋)·(x[⌊h⌋+1] − x[⌊h⌋]); R's type 7); 0 for no values.

@@ -14,7 +14,7 @@ namespace countershade {
 // light directions are swept when there are several; with `sheets`,
 // DIR/contact-sheets/congruence-LABEL.png.
 // Nothing when the manifest lacks a score (an experiment without "congruence", or a shard).
-void write_congruence_figures(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest,
-                              bool sheets);
+void write_congruence_figures(const Experiment& experiment, const std::filesystem::path& dir,
+                              const Manifest& manifest, bool sheets);
 
 }  // namespace countershade

@@ -10,6 +10,7 @@
 
 namespace countershade {
 
-void write_depth_scale_figures(const Experiment& e, const std::filesystem::path& dir, const Manifest& manifest);
+void write_depth_scale_figures(const Experiment& e, const std::filesystem::path& dir,
+                               const Manifest& manifest);
 
 }  // namespace countershade

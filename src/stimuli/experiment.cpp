@@ -1,40 +1,40 @@
 #include "stimuli/experiment.h"
 
-#include "adjust/study.h"
-#include "forced_choice/choice_config.h"
-#include "stimuli/audit.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <set>
 #include <sstream>
 
+#include "adjust/study.h"
 #include "core/error.h"
-#include "formats/responses.h"
 #include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
 #include "enhance/registry.h"
+#include "enhance/view_plan.h"
+#include "forced_choice/choice_config.h"
+#include "formats/responses.h"
 #include "render/camera.h"
 #include "render/frame_range.h"
 #include "render/scene_loader.h"
-#include "enhance/view_plan.h"
-
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
+#include "stimuli/audit.h"
 
 namespace countershade {
 
 int LambdaGrid::count() const {
   const double steps = std::floor((max - min) / step + 1e-9);
-  return steps < double(kMostLambdaValues) ? int(steps) + 1 : kMostLambdaValues + 1;  // no overflow of the int
+  return steps < double(kMostLambdaValues) ? int(steps) + 1
+                                           : kMostLambdaValues + 1;  // no overflow of the int
 }
 
 double LambdaGrid::value(int index) const {
   double v = min + double(index) * step;
-  return std::round(v / kLambdaResolution) * kLambdaResolution;  // exact decimal values: 0.15, not 0.15000000000000002
+  return std::round(v / kLambdaResolution) *
+         kLambdaResolution;  // exact decimal values: 0.15, not 0.15000000000000002
 }
 
 bool ExperimentMethod::applies_to(const std::string& scene) const {
@@ -66,13 +66,18 @@ std::string width_key(const EnhancementMethod& method, const JsonObject& o) {
 }
 
 void check_label(const JsonObject& o, const std::string& label) {
-  if (label.empty() || label == "." || label == ".." || label.find_first_of("/\\") != std::string::npos)
+  if (label.empty() || label == "." || label == ".." ||
+      label.find_first_of("/\\") != std::string::npos)
     o.fail("label", "'" + label + "' must be a plain folder name (no '/', '\\', '.' or '..')");
 }
 
 // The pixels per degree that a size in degrees (`what`, at `key`) needs.
-double degrees_to_pixels(const JsonObject& o, const std::string& key, const std::optional<Screen>& screen) {
-  if (!screen) o.fail(key, "a size in degrees needs the experiment's \"screen\" block (width_mm, width_px, distance_mm)");
+double degrees_to_pixels(const JsonObject& o, const std::string& key,
+                         const std::optional<Screen>& screen) {
+  if (!screen)
+    o.fail(key,
+           "a size in degrees needs the experiment's \"screen\" block (width_mm, width_px, "
+           "distance_mm)");
   return screen->pixels_per_degree();
 }
 
@@ -86,7 +91,8 @@ ExperimentMethod parse_method(const JsonObject& o, const std::optional<Screen>& 
   m.sigma_key = key;
   m.sigmas = key.empty() ? std::vector<double>{0.0} : o.numbers(key);
   if (m.sigmas.empty()) o.fail(key, "the σ list is empty");
-  if (std::set<double>(m.sigmas.begin(), m.sigmas.end()).size() != m.sigmas.size()) o.fail(key, "the σ list has duplicates");
+  if (std::set<double>(m.sigmas.begin(), m.sigmas.end()).size() != m.sigmas.size())
+    o.fail(key, "the σ list has duplicates");
   if (o.has("scenes"))
     for (const auto& s : o.raw("scenes")) {
       if (!s.is_string()) o.fail("scenes", "expected a list of scene names");
@@ -96,7 +102,8 @@ ExperimentMethod parse_method(const JsonObject& o, const std::optional<Screen>& 
   for (size_t g = 0; g < m.sigmas.size(); ++g) {
     ParameterBag bag = ParameterBag::from_json(o.value(), o.file(), o.path(), own);
     if (!key.empty())
-      bag.set(parsed_key, m.sigmas[g] * px_per_unit, o.file() + ": " + o.key_path(key) + "[" + std::to_string(g) + "]");
+      bag.set(parsed_key, m.sigmas[g] * px_per_unit,
+              o.file() + ": " + o.key_path(key) + "[" + std::to_string(g) + "]");
     m.parameters.push_back(m.method->parse(bag));
     m.request.merge(m.method->request(*m.parameters.back()), o.file() + ": " + o.path());
   }
@@ -112,7 +119,8 @@ LambdaGrid read_lambda_grid(const JsonObject& l) {
   grid.step = l.number_or("step", 0.05);
   if (!(grid.step > 0)) l.fail("step", "must be positive");
   for (const char* key : {"min", "max", "step"})
-    if (std::abs(l.number_or(key, 0.0)) > kLargestLambda) l.fail(key, "beyond ±1e6 (every method saturates long before)");
+    if (std::abs(l.number_or(key, 0.0)) > kLargestLambda)
+      l.fail(key, "beyond ±1e6 (every method saturates long before)");
   if (grid.max < grid.min) l.fail("max", "the λ range is empty (max < min)");
   if (grid.count() > kMostLambdaValues) l.fail("step", "more than 100000 λ values");
   l.finish();
@@ -126,7 +134,8 @@ int read_output_bits(const JsonObject& out) {
   return bits;
 }
 
-ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& base, const std::optional<Screen>& screen) {
+ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& base,
+                            const std::optional<Screen>& screen) {
   ExperimentScene scene;
   scene.name = s.string("name");
   if (scene.name.empty() || scene.name.find_first_of("/\\. ") != std::string::npos)
@@ -134,29 +143,36 @@ ExperimentScene parse_scene(const JsonObject& s, const std::filesystem::path& ba
   std::filesystem::path file = s.string("file");
   scene.file = file.is_absolute() ? file : base / file;
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(scene.file, ec)) s.fail("file", "unknown scene: no such file " + scene.file.string());
+  if (!std::filesystem::is_regular_file(scene.file, ec))
+    s.fail("file", "unknown scene: no such file " + scene.file.string());
   if (s.has("width")) scene.width = int(s.integer_in("width", 0, 1, 16384));
   if (s.has("height")) scene.height = int(s.integer_in("height", 0, 1, 16384));
-  for (auto [key, size] : {std::pair{"width_deg", &scene.width}, std::pair{"height_deg", &scene.height}}) {
+  for (auto [key, size] :
+       {std::pair{"width_deg", &scene.width}, std::pair{"height_deg", &scene.height}}) {
     if (!s.has(key)) continue;
     const std::string pixel_key = std::string(key).substr(0, std::string(key).size() - 4);
     if (s.has(pixel_key)) s.fail(key, "give the size in pixels or in degrees, not both");
-    const long long pixels = std::llround(s.number_in(key, 0, 1e-3, 360.0) * degrees_to_pixels(s, key, screen));
-    if (pixels < 1 || pixels > 16384) s.fail(key, "is " + std::to_string(pixels) + " pixels on this screen (1 to 16384)");
+    const long long pixels =
+        std::llround(s.number_in(key, 0, 1e-3, 360.0) * degrees_to_pixels(s, key, screen));
+    if (pixels < 1 || pixels > 16384)
+      s.fail(key, "is " + std::to_string(pixels) + " pixels on this screen (1 to 16384)");
     *size = int(pixels);
   }
   if (s.has("spp")) scene.spp = int(s.integer_in("spp", 0, 1, 65536));
   if (s.has("frames")) {  // the scene is read now, so a bad range fails before anything renders
     const Scene animated = load_scene(scene.file);
-    scene.frames = frame_range(s.string("frames"), animated, 0, s.file() + ": " + s.key_path("frames"));
+    scene.frames =
+        frame_range(s.string("frames"), animated, 0, s.file() + ": " + s.key_path("frames"));
     scene.fps = animated.animation->fps;
   }
   if (s.has("edge_probe")) {
     const JsonObject probe = s.object("edge_probe");
     scene.probe_edges_x = probe.numbers("edges_x");
     probe.finish();
-    if (scene.probe_edges_x.empty() || !std::is_sorted(scene.probe_edges_x.begin(), scene.probe_edges_x.end()) ||
-        std::adjacent_find(scene.probe_edges_x.begin(), scene.probe_edges_x.end()) != scene.probe_edges_x.end())
+    if (scene.probe_edges_x.empty() ||
+        !std::is_sorted(scene.probe_edges_x.begin(), scene.probe_edges_x.end()) ||
+        std::adjacent_find(scene.probe_edges_x.begin(), scene.probe_edges_x.end()) !=
+            scene.probe_edges_x.end())
       s.fail("edge_probe", "edges_x must list at least one world x, in increasing order");
     if (scene.frames) s.fail("edge_probe", "applies to still scenes only");
   }
@@ -184,7 +200,8 @@ std::vector<ExperimentScene> light_variants(const ExperimentScene& scene, const 
   if (elevations.empty()) d.fail("elevations", "needs at least one elevation");
   std::vector<ExperimentScene> out;
   for (double elevation : elevations) {
-    if (!(elevation > -90 && elevation < 90)) d.fail("elevations", "each elevation must lie in (-90, 90) degrees");
+    if (!(elevation > -90 && elevation < 90))
+      d.fail("elevations", "each elevation must lie in (-90, 90) degrees");
     for (int k = 0; k < azimuths; ++k) {
       ExperimentScene variant = scene;
       variant.light = ViewLight{elevation, 360.0 * k / azimuths, image_plane};
@@ -203,7 +220,8 @@ std::vector<ExperimentScene> parse_scenes(const JsonObject& root, const std::fil
   for (const auto& s : root.objects("scenes")) {
     const ExperimentScene scene = parse_scene(s, base, screen);
     const std::vector<ExperimentScene> variants =
-        s.has("light_directions") ? light_variants(scene, s.object("light_directions")) : std::vector<ExperimentScene>{scene};
+        s.has("light_directions") ? light_variants(scene, s.object("light_directions"))
+                                  : std::vector<ExperimentScene>{scene};
     s.finish();
     for (const auto& v : variants) {
       if (!names.insert(v.name).second) s.fail("name", "duplicate scene name '" + v.name + "'");
@@ -232,7 +250,8 @@ void read_figure_options(const JsonObject& root, Experiment& e) {
     e.congruence = root.boolean_or("congruence", false);
   }
   e.video = root.boolean_or("video", false);
-  if (e.video && e.bits != 8) root.fail("video", "the videos are 8-bit: use \"output\": {\"bits\": 8}");
+  if (e.video && e.bits != 8)
+    root.fail("video", "the videos are 8-bit: use \"output\": {\"bits\": 8}");
   if (root.has("coherence")) {
     const JsonObject c = root.object("coherence");
     e.coherence_dolly = c.number_in("dolly", 0.02, 1e-4, 0.5);
@@ -266,7 +285,8 @@ Experiment load_experiment(const std::filesystem::path& path) {
   // The adjustment procedure: parsed now as `adjust` will parse it, so a typo fails here, not
   // in front of the first participant.
   if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
-  if (root.has("forced_choice")) forced_choice::parse_choice_config(root.raw("forced_choice"), path.string(), "forced_choice");
+  if (root.has("forced_choice"))
+    forced_choice::parse_choice_config(root.raw("forced_choice"), path.string(), "forced_choice");
   // The audit's limits, checked now; headroom keeps to its clipping limit.
   if (root.has("audit")) e.max_clipped = read_audit_limits(root.object("audit")).max_clipped;
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));
@@ -283,13 +303,16 @@ Experiment load_experiment(const std::filesystem::path& path) {
   for (const auto& m : root.objects("methods")) {
     e.methods.push_back(parse_method(m, e.screen));
     if (!labels.insert(e.methods.back().label).second)
-      m.fail("method", "two methods share the folder '" + e.methods.back().label + "' (give one a \"label\")");
+      m.fail("method", "two methods share the folder '" + e.methods.back().label +
+                           "' (give one a \"label\")");
   }
   if (e.methods.empty()) root.fail("methods", "an experiment needs at least one method");
   read_design_options(root, e);
   for (const auto& m : e.methods)
     for (const auto& s : m.scenes)
-      if (!names.count(s)) throw_input_error(path.string() + ": methods", "method '" + m.label + "' names an unknown scene '" + s + "'");
+      if (!names.count(s))
+        throw_input_error(path.string() + ": methods",
+                          "method '" + m.label + "' names an unknown scene '" + s + "'");
   root.finish();
   return e;
 }
@@ -300,7 +323,8 @@ glm::dvec3 view_light_direction(const Camera& camera, const ViewLight& light) {
   // The horizon's direction towards the viewer, and the view's right and up.
   const glm::dvec3 towards_viewer = -rays.forward(), right = rays.right(), up = rays.up();
   if (light.image_plane)
-    return glm::normalize(std::cos(e) * (std::cos(a) * right + std::sin(a) * up) + std::sin(e) * towards_viewer);
+    return glm::normalize(std::cos(e) * (std::cos(a) * right + std::sin(a) * up) +
+                          std::sin(e) * towards_viewer);
   const glm::dvec3 horizon = std::cos(a) * towards_viewer + std::sin(a) * right;
   return glm::normalize(std::cos(e) * horizon + std::sin(e) * up);
 }
@@ -318,11 +342,13 @@ Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene&
     if (scene.directional_lights.empty())
       throw_input_error(experiment.file.string() + ": scenes (" + s.name + ")",
                         "light_directions needs a scene with a directional light");
-    for (auto& light : scene.directional_lights) light.direction = view_light_direction(scene.camera, *s.light);
+    for (auto& light : scene.directional_lights)
+      light.direction = view_light_direction(scene.camera, *s.light);
   }
   if (scene.settings.sampling == SamplingMode::independent && !scene.settings.spp)
-    throw_input_error(experiment.file.string() + ": scenes (" + s.name + ")",
-                      "the scene uses the independent sampler, which takes a fixed spp; give the scene an spp");
+    throw_input_error(
+        experiment.file.string() + ": scenes (" + s.name + ")",
+        "the scene uses the independent sampler, which takes a fixed spp; give the scene an spp");
   scene.settings.seed = experiment.seed;
   return scene;
 }

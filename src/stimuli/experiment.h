@@ -4,18 +4,17 @@
 // and every scene file loaded, before any rendering starts.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/number_format.h"
 #include "enhance/method.h"
 #include "render/render_request.h"
 #include "render/scene.h"
-#include "stimuli/screen.h"
 #include "stimuli/congruence.h"
+#include "stimuli/screen.h"
 
 namespace countershade {
 
@@ -38,7 +37,7 @@ struct ExperimentScene {
   std::filesystem::path file;
   std::optional<int> width, height, spp;
   std::optional<ViewLight> light;  // every directional light of the scene points this way
-  std::string swept_from;           // with `light`: the name of the scene entry it is one direction of
+  std::string swept_from;  // with `light`: the name of the scene entry it is one direction of
   // A sequence: frames A … B of the scene's animation, each a stimulus of its own (unset: a still).
   std::optional<std::pair<int, int>> frames;
   double fps = 0;  // the animation's frame rate, for sequences
@@ -50,19 +49,19 @@ struct ExperimentScene {
 
 struct ExperimentMethod {
   const EnhancementMethod* method = nullptr;
-  std::string label;      // folder name: the method's label unless the experiment gives one
-  std::string sigma_key;  // the width key the σ list was given under ("" without a width)
+  std::string label;           // folder name: the method's label unless the experiment gives one
+  std::string sigma_key;       // the width key the σ list was given under ("" without a width)
   std::vector<double> sigmas;  // one condition each, recorded as "sigma" in the manifest
   std::vector<std::shared_ptr<const MethodParameters>> parameters;  // parsed, one per σ
-  RenderRequest request;             // what it needs from rendering, over all its σ
+  RenderRequest request;            // what it needs from rendering, over all its σ
   std::vector<std::string> scenes;  // the scenes it applies to (empty: all)
   bool applies_to(const std::string& scene) const;
 };
 
 struct LambdaGrid {
   double min = 0, max = 3, step = 0.05;
-  int count() const;                 // number of grid values, min and max included
-  double value(int index) const;     // λ derived from the index, never accumulated
+  int count() const;              // number of grid values, min and max included
+  double value(int index) const;  // λ derived from the index, never accumulated
 };
 
 struct Experiment {
@@ -76,8 +75,8 @@ struct Experiment {
   std::vector<ExperimentScene> scenes;
   std::vector<ExperimentMethod> methods;
   int contact_columns = 6;
-  std::optional<NoiseBudget> noise;  // replaces the scenes' budgets (a scene's spp still wins)
-  bool congruence = false;            // score every stimulus (methods.md, "Congruence score")
+  std::optional<NoiseBudget> noise;      // replaces the scenes' budgets (a scene's spp still wins)
+  bool congruence = false;               // score every stimulus (methods.md, "Congruence score")
   CongruenceOptions congruence_options;  // "congruence": {"penalty", "tensor_sigma"}
   // Measure every stimulus's perspective coherence under a camera dolly of this fraction of the
   // eye–target distance (methods.md, "Perspective coherence metric").
@@ -101,7 +100,8 @@ Experiment load_experiment(const std::filesystem::path& path);
 // The unit direction towards a light at `light` relative to the camera's view.
 glm::dvec3 view_light_direction(const Camera& camera, const ViewLight& light);
 
-// The scene as the experiment renders it: view and light overrides and the experiment's seed applied.
+// The scene as the experiment renders it: view and light overrides and the experiment's seed
+// applied.
 Scene load_experiment_scene(const Experiment& experiment, const ExperimentScene& scene);
 
 }  // namespace countershade

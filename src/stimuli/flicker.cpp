@@ -7,10 +7,10 @@
 #include "core/error.h"
 #include "core/gaussian.h"
 #include "enhance/lightness.h"
+#include "enhance/view_plan.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
 #include "render/scene_animation.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -39,7 +39,8 @@ struct RenderedFrame {
   FlickerFrame frame;
 };
 
-RenderedFrame render_frame(const Scene& base, int index, const FlickerRender& render, const FlickerOptions& options) {
+RenderedFrame render_frame(const Scene& base, int index, const FlickerRender& render,
+                           const FlickerOptions& options) {
   auto scene = std::make_shared<const Scene>(scene_at(base, base.animation->time_of(index)));
   ViewPlan plan;
   plan.uses.push_back({render.method, render.parameters, nlohmann::json::object()});
@@ -50,22 +51,26 @@ RenderedFrame render_frame(const Scene& base, int index, const FlickerRender& re
   RenderedFrame out;
   FlickerFrame& f = out.frame;
   f.view = render_view(scene, plan, view_options);
-  const auto prepared = render.method->prepare(make_use_context(f.view, 0, render.threads), *render.parameters);
+  const auto prepared =
+      render.method->prepare(make_use_context(f.view, 0, render.threads), *render.parameters);
   const Image enhanced = prepared->compose(render.lambda).display;
-  out.layer = render.component == FlickerComponent::mask ? prepared->mask() : enhancement_layer(*f.view, enhanced);
+  out.layer = render.component == FlickerComponent::mask ? prepared->mask()
+                                                         : enhancement_layer(*f.view, enhanced);
   if (out.layer.empty())
     throw InputError("--component mask: " + render.method->name() +
-                     " subtracts no low-pass signal, so it has no mask (usm3d, usm2d, depth-usm and texture-filter "
+                     " subtracts no low-pass signal, so it has no mask (usm3d, usm2d, depth-usm "
+                     "and texture-filter "
                      "with filter unsharp have one)");
   out.plain = view_lightness(*f.view);
   f.layer = out.layer;
   f.plain = out.plain;
   if (options.object >= 0) f.levels = level_layers(*f.view, enhanced);
   if (options.has_region() && options.region_scene)
-    f.region = region_pixels(
-        *geometry_view(std::make_shared<const Scene>(scene_at(*options.region_scene, base.animation->time_of(index))),
-                       render.threads),
-        options);
+    f.region =
+        region_pixels(*geometry_view(std::make_shared<const Scene>(scene_at(
+                                         *options.region_scene, base.animation->time_of(index))),
+                                     render.threads),
+                      options);
   if (options.scale_px > 0) {
     f.layer_at_scale = blurred(f.layer, *f.view, options.scale_px);
     f.plain_at_scale = blurred(f.plain, *f.view, options.scale_px);
@@ -75,8 +80,8 @@ RenderedFrame render_frame(const Scene& base, int index, const FlickerRender& re
 
 // Per pixel of the object seen in both frames, the largest change over the three channels (−1
 // elsewhere).
-std::vector<float> object_largest_change(const FlickerFrame& a, const FlickerFrame& b, const CarryPoint& carry,
-                                         int object) {
+std::vector<float> object_largest_change(const FlickerFrame& a, const FlickerFrame& b,
+                                         const CarryPoint& carry, int object) {
   std::vector<float> largest(a.layer.size(), -1.0f);
   for (size_t c = 0; c < 3; ++c) {
     std::vector<float> differences;
@@ -90,11 +95,13 @@ std::vector<float> object_largest_change(const FlickerFrame& a, const FlickerFra
 
 // The largest change and its 99th percentile over the object's pixels; with `stable`, only over
 // those whose plain L* changes by at most that much.
-ObjectChange object_change(const std::vector<float>& largest, const std::vector<float>& plain_differences,
+ObjectChange object_change(const std::vector<float>& largest,
+                           const std::vector<float>& plain_differences,
                            std::optional<double> stable) {
   std::vector<float> values;
   for (size_t i = 0; i < largest.size(); ++i)
-    if (largest[i] >= 0 && (!stable || plain_differences[i] <= *stable)) values.push_back(largest[i]);
+    if (largest[i] >= 0 && (!stable || plain_differences[i] <= *stable))
+      values.push_back(largest[i]);
   ObjectChange out;
   out.pixels = values.size();
   if (values.empty()) return out;
@@ -137,7 +144,8 @@ Reprojection rms_in(const std::vector<float>& differences, const std::vector<cha
   Reprojection out;
   double sum = 0;
   for (size_t i = 0; i < differences.size(); ++i)
-    if (region[i] && !std::isnan(differences[i])) sum += double(differences[i]) * differences[i], ++out.pixels;
+    if (region[i] && !std::isnan(differences[i]))
+      sum += double(differences[i]) * differences[i], ++out.pixels;
   out.rms = out.pixels ? std::sqrt(sum / double(out.pixels)) : 0.0;
   return out;
 }
@@ -148,10 +156,12 @@ std::vector<char> region_pixels(const View& view, const FlickerOptions& o) {
   const size_t n = size_t(view.width()) * view.height();
   std::vector<char> in(n, 1);
   const int radius = int(std::ceil(o.within_px));
-  const std::vector<double> d2 = o.near >= 0 ? squared_distance_to(view, o.near, radius) : std::vector<double>{};
+  const std::vector<double> d2 =
+      o.near >= 0 ? squared_distance_to(view, o.near, radius) : std::vector<double>{};
   for (size_t i = 0; i < n; ++i) {
     if (o.on >= 0 && view.object_at(i) != o.on) in[i] = 0;
-    if (o.near >= 0 && (d2[i] > o.within_px * o.within_px || view.object_at(i) == o.near)) in[i] = 0;
+    if (o.near >= 0 && (d2[i] > o.within_px * o.within_px || view.object_at(i) == o.near))
+      in[i] = 0;
   }
   return in;
 }
@@ -177,10 +187,13 @@ PairFlicker pair_flicker(const FlickerFrame& a, const FlickerFrame& b, const Car
   PairFlicker out;
   out.layer = reprojection_rms(*a.view, a.layer, *b.view, b.layer, carry, &out.differences);
   if (options.scale_px > 0) {
-    out.at_scale = reprojection_rms(*a.view, a.layer_at_scale, *b.view, b.layer_at_scale, carry).rms;
-    out.plain_at_scale = reprojection_rms(*a.view, a.plain_at_scale, *b.view, b.plain_at_scale, carry).rms;
+    out.at_scale =
+        reprojection_rms(*a.view, a.layer_at_scale, *b.view, b.layer_at_scale, carry).rms;
+    out.plain_at_scale =
+        reprojection_rms(*a.view, a.plain_at_scale, *b.view, b.plain_at_scale, carry).rms;
   }
-  if (options.stable > 0) out.stable = rms_where_stable(out.differences, plain.differences, options.stable);
+  if (options.stable > 0)
+    out.stable = rms_where_stable(out.differences, plain.differences, options.stable);
   if (options.has_region()) {
     const std::vector<char> region = a.region.empty() ? region_pixels(*a.view, options) : a.region;
     out.region = rms_in(out.differences, region);
@@ -189,7 +202,8 @@ PairFlicker pair_flicker(const FlickerFrame& a, const FlickerFrame& b, const Car
   if (options.object < 0) return out;
   const std::vector<float> largest = object_largest_change(a, b, carry, options.object);
   out.object = object_change(largest, plain.differences, std::nullopt);
-  if (options.stable > 0) out.object_stable = object_change(largest, plain.differences, options.stable);
+  if (options.stable > 0)
+    out.object_stable = object_change(largest, plain.differences, options.stable);
   return out;
 }
 
@@ -201,7 +215,8 @@ void measure_rendered_flicker(const Scene& base, int first, int last, const Flic
     RenderedFrame current = render_frame(base, f, render, options);
     const CarryPoint carry = carry_between_frames(base, f - 1, f);
     const PlainChange plain = plain_change(previous.frame, current.frame, carry);
-    sink(f, previous.frame, current.frame, plain, pair_flicker(previous.frame, current.frame, carry, plain, options));
+    sink(f, previous.frame, current.frame, plain,
+         pair_flicker(previous.frame, current.frame, carry, plain, options));
     previous = std::move(current);
     if (progress) progress(double(f - first) / double(last - first));
   }
@@ -211,7 +226,8 @@ int named_object(const Scene& scene, const std::string& name, const char* option
   if (name.empty()) return -1;
   for (size_t k = 0; k < scene.objects.size(); ++k)
     if (scene.objects[k].name == name) return int(k);
-  throw InputError(std::string(option) + ": " + scene.file.string() + " has no object called '" + name + "'");
+  throw InputError(std::string(option) + ": " + scene.file.string() + " has no object called '" +
+                   name + "'");
 }
 
 void remove_object(Scene& scene, const std::string& name) {

@@ -23,11 +23,12 @@ namespace countershade {
 struct FlickerFrame {
   std::shared_ptr<const View> view;     // its geometry (depth, objects, camera)
   std::span<const float> layer, plain;  // enhanced − plain L*, and plain L*
-  // Optional planes: enhanced − plain per channel in levels of 8-bit output (FlickerOptions::object),
-  // and the layer and plain L* blurred (FlickerOptions::scale_px).
+  // Optional planes: enhanced − plain per channel in levels of 8-bit output
+  // (FlickerOptions::object), and the layer and plain L* blurred (FlickerOptions::scale_px).
   std::array<std::vector<float>, 3> levels;
   std::vector<float> layer_at_scale, plain_at_scale;
-  std::vector<char> region;  // FlickerOptions' region when given by another scene (empty: from `view`)
+  std::vector<char>
+      region;  // FlickerOptions' region when given by another scene (empty: from `view`)
 };
 
 // The measures beyond the layer's RMS.
@@ -75,7 +76,7 @@ struct PairFlicker {
   Reprojection stable;             // FlickerOptions::stable
   double at_scale = 0, plain_at_scale = 0;  // FlickerOptions::scale_px
   ObjectChange object, object_stable;       // FlickerOptions::object (object_stable: with stable)
-  Reprojection region, plain_region;        // FlickerOptions' region: the layer's and the plain L*'s
+  Reprojection region, plain_region;  // FlickerOptions' region: the layer's and the plain L*'s
 };
 PairFlicker pair_flicker(const FlickerFrame& a, const FlickerFrame& b, const CarryPoint& carry,
                          const PlainChange& plain, const FlickerOptions& options);
@@ -95,8 +96,9 @@ struct FlickerRender {
 };
 
 // Per frame pair, the pair's frame number, both frames, the plain change and its measures.
-using FlickerPairSink = std::function<void(int frame, const FlickerFrame& previous, const FlickerFrame& current,
-                                           const PlainChange& plain, const PairFlicker& pair)>;
+using FlickerPairSink =
+    std::function<void(int frame, const FlickerFrame& previous, const FlickerFrame& current,
+                       const PlainChange& plain, const PairFlicker& pair)>;
 
 // Renders frames first … last of `base` (which must have an animation) with the method and
 // measures each consecutive pair. `progress`: the share of pairs done.

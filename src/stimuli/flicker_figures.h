@@ -12,6 +12,7 @@ namespace countershade {
 
 // DIR/flicker.csv, and DIR/flicker-SCENE-lambda-Λ.svg and DIR/flicker-stable-SCENE-lambda-Λ.svg
 // for every λ ≠ 0 of the grid; nothing when no entry has a flicker figure.
-void write_flicker_figures(const Experiment& experiment, const std::filesystem::path& dir, const Manifest& manifest);
+void write_flicker_figures(const Experiment& experiment, const std::filesystem::path& dir,
+                           const Manifest& manifest);
 
 }  // namespace countershade

@@ -21,7 +21,8 @@ class FlickerTable {
  private:
   const FlickerOptions& o_;
   std::string csv_;
-  double mean_[8] = {};  // sums over pairs: layer, plain, both at scale, stable, stable share, region, plain there
+  double mean_[8] = {};  // sums over pairs: layer, plain, both at scale, stable, stable share,
+                         // region, plain there
   ObjectChange object_, object_stable_;  // the worst pair's
   int pairs_ = 0;
   size_t pixels_ = 0;

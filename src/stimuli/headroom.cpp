@@ -23,9 +23,11 @@ double share_of(const Clipped& c, bool total) { return total ? c.total() : c.whi
 
 // One setting's search from `start` (the setting at 0) against white clipping or the total. With
 // `guard_white`, a step that clips more white than the start and more than the limit ends it.
-Tried search_setting(const std::function<Clipped(double)>& at, const Tried& start, const HeadroomSearch& search,
-                     bool total, double limit, bool guard_white) {
-  auto spoils_white = [&](const Clipped& c) { return guard_white && c.white > std::max(limit, start.clipped.white); };
+Tried search_setting(const std::function<Clipped(double)>& at, const Tried& start,
+                     const HeadroomSearch& search, bool total, double limit, bool guard_white) {
+  auto spoils_white = [&](const Clipped& c) {
+    return guard_white && c.white > std::max(limit, start.clipped.white);
+  };
   auto passes = [&](const Clipped& c) { return share_of(c, total) <= limit && !spoils_white(c); };
   Tried failing = start, passing{search.first, at(search.first)};
   while (!passes(passing.clipped)) {
@@ -33,7 +35,8 @@ Tried search_setting(const std::function<Clipped(double)>& at, const Tried& star
     const bool stalled = share_of(passing.clipped, total) >= share_of(failing.clipped, total);
     if (stalled || spoils_white(passing.clipped) || passing.value == search.end) return failing;
     failing = passing;
-    const double next = search.first > 0 ? std::min(2 * passing.value, search.end) : std::max(2 * passing.value, search.end);
+    const double next = search.first > 0 ? std::min(2 * passing.value, search.end)
+                                         : std::max(2 * passing.value, search.end);
     passing = {next, at(next)};
   }
   while (std::abs(failing.value - passing.value) > search.resolution) {
@@ -50,10 +53,18 @@ Headroom find_headroom(const ClippedAt& clipped_at, double limit, const Headroom
                        const HeadroomSearch& black_level) {
   Tried stops{0.0, clipped_at({})};
   if (stops.clipped.white > limit)
-    stops = search_setting([&](double s) { return clipped_at({s, 0.0}); }, stops, exposure, false, limit, false);
+    stops = search_setting(
+        [&](double s) {
+          return clipped_at({s, 0.0});
+        },
+        stops, exposure, false, limit, false);
   Tried black{0.0, stops.clipped};
   if (black.clipped.total() > limit && black.clipped.black > 0)
-    black = search_setting([&](double b) { return clipped_at({stops.value, b}); }, black, black_level, true, limit, true);
+    black = search_setting(
+        [&](double b) {
+          return clipped_at({stops.value, b});
+        },
+        black, black_level, true, limit, true);
   return {stops.value, black.value};
 }
 
@@ -66,14 +77,16 @@ std::vector<uint16_t> codes_of(const Image& display, int bits) {
 }
 
 // The shares of pixels the enhancement clipped at full scale and at black.
-Clipped clipped_shares(const std::vector<uint16_t>& stimulus, const std::vector<uint16_t>& reference, int bits) {
+Clipped clipped_shares(const std::vector<uint16_t>& stimulus,
+                       const std::vector<uint16_t>& reference, int bits) {
   const uint16_t top = uint16_t((1u << bits) - 1u);
   size_t white = 0, black = 0;
   for (size_t p = 0; 3 * p < stimulus.size(); ++p) {
     const uint16_t *s = &stimulus[3 * p], *r = &reference[3 * p];
     if (!clipped_by_enhancement(s, r, top)) continue;
     bool at_top = false, at_zero = false;
-    for (int k = 0; k < 3; ++k) at_top |= s[k] == top && r[k] != top, at_zero |= s[k] == 0 && r[k] != 0;
+    for (int k = 0; k < 3; ++k)
+      at_top |= s[k] == top && r[k] != top, at_zero |= s[k] == 0 && r[k] != 0;
     white += at_top;
     black += at_zero && !at_top;
   }
@@ -83,8 +96,8 @@ Clipped clipped_shares(const std::vector<uint16_t>& stimulus, const std::vector<
 
 }  // namespace
 
-Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
-                        bool hold_mean) {
+Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas,
+                        int threads, bool hold_mean) {
   const std::vector<uint16_t> reference = codes_of(view->display, view->bits);
   Clipped largest{0, 0, 0};
   for (size_t use = 0; use < view->uses.size(); ++use) {
@@ -97,7 +110,8 @@ Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vect
       Image display = prepared->compose(lambda).display;
       if (hold_mean) display = hold_mean_lightness(*view, *prepared, lambda, {display, 0}).display;
       const Clipped c = clipped_shares(codes_of(display, view->bits), reference, view->bits);
-      largest = {std::max(largest.white, c.white), std::max(largest.black, c.black), std::max(largest.total(), c.total())};
+      largest = {std::max(largest.white, c.white), std::max(largest.black, c.black),
+                 std::max(largest.total(), c.total())};
     }
   }
   return largest;

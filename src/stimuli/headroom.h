@@ -39,7 +39,7 @@ using ClippedAt = std::function<Clipped(const Headroom&)>;
 struct HeadroomSearch {
   double first, end, resolution;
 };
-inline constexpr HeadroomSearch kExposureSearch{-0.25, -8.0, 0.05};          // stops
+inline constexpr HeadroomSearch kExposureSearch{-0.25, -8.0, 0.05};           // stops
 inline constexpr HeadroomSearch kBlackLevelSearch{1.0 / 64, 0.5, 1.0 / 256};  // share of full scale
 
 // The smallest change that clips within `limit`. First the exposure, lowered only as far as
@@ -49,14 +49,15 @@ inline constexpr HeadroomSearch kBlackLevelSearch{1.0 / 64, 0.5, 1.0 / 256};  //
 // a step does not lower the share it is after, where the black level clips more white than
 // before and more than the limit, or at its end, and keeps the last setting it tried before that
 // step (the limit is then not met; the audit says so).
-Headroom find_headroom(const ClippedAt& clipped_at, double limit, const HeadroomSearch& exposure = kExposureSearch,
+Headroom find_headroom(const ClippedAt& clipped_at, double limit,
+                       const HeadroomSearch& exposure = kExposureSearch,
                        const HeadroomSearch& black_level = kBlackLevelSearch);
 
 // The largest shares of the view's pixels that any of its enhancing uses clips at full scale and
 // at black (a channel at the top code or at 0 where the view's own image has not) at any of
 // `lambdas`. With `hold_mean`, each stimulus is measured as the set writes it, after its mean is
 // held (stimuli/mean_hold.h).
-Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas, int threads,
-                        bool hold_mean);
+Clipped largest_clipped(const std::shared_ptr<const View>& view, const std::vector<double>& lambdas,
+                        int threads, bool hold_mean);
 
 }  // namespace countershade

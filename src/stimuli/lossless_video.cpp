@@ -20,7 +20,8 @@ namespace {
 [[noreturn]] void fail(const fs::path& file, const std::string& what, int code = 0) {
   char text[AV_ERROR_MAX_STRING_SIZE] = "";
   if (code < 0) av_strerror(code, text, sizeof text);
-  throw std::runtime_error(file.string() + ": " + what + (code < 0 ? std::string(" (") + text + ")" : ""));
+  throw std::runtime_error(file.string() + ": " + what +
+                           (code < 0 ? std::string(" (") + text + ")" : ""));
 }
 
 struct CodecFree {
@@ -48,8 +49,10 @@ struct Muxer {
 };
 
 void open_muxer(Muxer& m, const fs::path& file, int width, int height, double fps) {
-  if (avformat_alloc_output_context2(&m.format, nullptr, "matroska", file.c_str()) < 0) fail(file, "no Matroska muxer");
-  m.format->flags |= AVFMT_FLAG_BITEXACT;  // no random ids or dates: the same frames, the same bytes
+  if (avformat_alloc_output_context2(&m.format, nullptr, "matroska", file.c_str()) < 0)
+    fail(file, "no Matroska muxer");
+  m.format->flags |=
+      AVFMT_FLAG_BITEXACT;  // no random ids or dates: the same frames, the same bytes
   const AVCodec* ffv1 = avcodec_find_encoder(AV_CODEC_ID_FFV1);
   if (!ffv1) fail(file, "this libavcodec has no FFV1 encoder");
   m.codec.reset(avcodec_alloc_context3(ffv1));
@@ -67,8 +70,10 @@ void open_muxer(Muxer& m, const fs::path& file, int width, int height, double fp
   m.stream = avformat_new_stream(m.format, nullptr);
   avcodec_parameters_from_context(m.stream->codecpar, c);
   m.stream->time_base = c->time_base;
-  if (int e = avio_open(&m.format->pb, file.c_str(), AVIO_FLAG_WRITE); e < 0) fail(file, "cannot write", e);
-  if (int e = avformat_write_header(m.format, nullptr); e < 0) fail(file, "cannot write the header", e);
+  if (int e = avio_open(&m.format->pb, file.c_str(), AVIO_FLAG_WRITE); e < 0)
+    fail(file, "cannot write", e);
+  if (int e = avformat_write_header(m.format, nullptr); e < 0)
+    fail(file, "cannot write the header", e);
 }
 
 // Sends one frame (null: the end) and writes every packet the encoder has ready.
@@ -78,7 +83,8 @@ void encode(Muxer& m, const AVFrame* frame, const fs::path& file) {
   while (avcodec_receive_packet(m.codec.get(), packet.get()) == 0) {
     av_packet_rescale_ts(packet.get(), m.codec->time_base, m.stream->time_base);
     packet->stream_index = m.stream->index;
-    if (int e = av_interleaved_write_frame(m.format, packet.get()); e < 0) fail(file, "cannot write a frame", e);
+    if (int e = av_interleaved_write_frame(m.format, packet.get()); e < 0)
+      fail(file, "cannot write a frame", e);
   }
 }
 
@@ -97,7 +103,8 @@ FramePtr packed_frame(const Image& image, int64_t pts) {
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       uint8_t* pixel = f->data[0] + y * f->linesize[0] + 4 * x;
-      for (int c = 0; c < 3; ++c) pixel[kByteOf[c]] = code(image.at(x, y, std::min(c, image.channels - 1)));
+      for (int c = 0; c < 3; ++c)
+        pixel[kByteOf[c]] = code(image.at(x, y, std::min(c, image.channels - 1)));
       pixel[3] = 0;
     }
   f->pts = pts;
@@ -107,7 +114,8 @@ FramePtr packed_frame(const Image& image, int64_t pts) {
 void write_frames(const fs::path& file, const std::vector<Image>& frames, double fps) {
   Muxer m;
   open_muxer(m, file, frames.front().width, frames.front().height, fps);
-  for (size_t k = 0; k < frames.size(); ++k) encode(m, packed_frame(frames[k], int64_t(k)).get(), file);
+  for (size_t k = 0; k < frames.size(); ++k)
+    encode(m, packed_frame(frames[k], int64_t(k)).get(), file);
   encode(m, nullptr, file);
   if (int e = av_write_trailer(m.format); e < 0) fail(file, "cannot finish", e);
 }
@@ -117,7 +125,8 @@ Image rgb_of(const AVFrame* f, const fs::path& file) {
   Image image(f->width, f->height, 3);
   for (int y = 0; y < f->height; ++y)
     for (int x = 0; x < f->width; ++x)
-      for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(f->data[0][y * f->linesize[0] + 4 * x + kByteOf[c]]) / 255.0f;
+      for (int c = 0; c < 3; ++c)
+        image.at(x, y, c) = float(f->data[0][y * f->linesize[0] + 4 * x + kByteOf[c]]) / 255.0f;
   return image;
 }
 
@@ -131,19 +140,24 @@ void drain(AVCodecContext* decoder, std::vector<Image>& out, const fs::path& fil
 
 std::vector<Image> read_video_frames(const fs::path& video) {
   AVFormatContext* input = nullptr;
-  if (int e = avformat_open_input(&input, video.c_str(), nullptr, nullptr); e < 0) fail(video, "cannot open", e);
-  std::unique_ptr<AVFormatContext, void (*)(AVFormatContext*)> guard(input, [](AVFormatContext* c) { avformat_close_input(&c); });
-  if (int e = avformat_find_stream_info(input, nullptr); e < 0) fail(video, "cannot read the streams", e);
+  if (int e = avformat_open_input(&input, video.c_str(), nullptr, nullptr); e < 0)
+    fail(video, "cannot open", e);
+  std::unique_ptr<AVFormatContext, void (*)(AVFormatContext*)> guard(
+      input, [](AVFormatContext* c) { avformat_close_input(&c); });
+  if (int e = avformat_find_stream_info(input, nullptr); e < 0)
+    fail(video, "cannot read the streams", e);
   const AVCodec* codec = nullptr;
   const int stream = av_find_best_stream(input, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0);
   if (stream < 0 || !codec) fail(video, "no video stream", stream);
   CodecPtr decoder(avcodec_alloc_context3(codec));
   avcodec_parameters_to_context(decoder.get(), input->streams[stream]->codecpar);
-  if (int e = avcodec_open2(decoder.get(), codec, nullptr); e < 0) fail(video, "cannot open the decoder", e);
+  if (int e = avcodec_open2(decoder.get(), codec, nullptr); e < 0)
+    fail(video, "cannot open the decoder", e);
   std::vector<Image> frames;
   PacketPtr packet(av_packet_alloc());
   while (av_read_frame(input, packet.get()) >= 0) {
-    if (packet->stream_index == stream && avcodec_send_packet(decoder.get(), packet.get()) == 0) drain(decoder.get(), frames, video);
+    if (packet->stream_index == stream && avcodec_send_packet(decoder.get(), packet.get()) == 0)
+      drain(decoder.get(), frames, video);
     av_packet_unref(packet.get());
   }
   avcodec_send_packet(decoder.get(), nullptr);
@@ -161,7 +175,9 @@ void write_lossless_video(const fs::path& output, const std::vector<Image>& fram
     same = back[k].width == frames[k].width && back[k].height == frames[k].height;
     for (int y = 0; same && y < frames[k].height; ++y)
       for (int x = 0; same && x < frames[k].width; ++x)
-        for (int c = 0; c < 3; ++c) same = same && code(back[k].at(x, y, c)) == code(frames[k].at(x, y, std::min(c, frames[k].channels - 1)));
+        for (int c = 0; c < 3; ++c)
+          same = same && code(back[k].at(x, y, c)) ==
+                             code(frames[k].at(x, y, std::min(c, frames[k].channels - 1)));
   }
   if (!same) {
     fs::remove(temporary);

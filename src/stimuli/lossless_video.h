@@ -13,7 +13,8 @@ namespace countershade {
 
 // Writes the 8-bit RGB frames (all of one size) at `fps`, atomically, then decodes the file and
 // throws std::runtime_error unless every pixel of every frame comes back unchanged.
-void write_lossless_video(const std::filesystem::path& output, const std::vector<Image>& frames, double fps);
+void write_lossless_video(const std::filesystem::path& output, const std::vector<Image>& frames,
+                          double fps);
 
 // Decodes a video into RGB images (code values in [0, 1], as read_image gives them).
 std::vector<Image> read_video_frames(const std::filesystem::path& video);

@@ -18,11 +18,12 @@ std::string mask_path(const Experiment& e, const SetUnit& u) {
   const ExperimentMethod& m = e.methods[size_t(u.method)];
   char frame[32];
   std::snprintf(frame, sizeof frame, "/mask/frame-%04d.png", u.frame);
-  return e.scenes[u.scene].name + "/" + m.label + "/sigma-" + format_value(m.sigmas[u.sigma]) + frame;
+  return e.scenes[u.scene].name + "/" + m.label + "/sigma-" + format_value(m.sigmas[u.sigma]) +
+         frame;
 }
 
-nlohmann::json write_mask(const std::filesystem::path& dir, const std::string& rel, std::span<const float> mask,
-                          int width, int height) {
+nlohmann::json write_mask(const std::filesystem::path& dir, const std::string& rel,
+                          std::span<const float> mask, int width, int height) {
   Image image(width, height, 1);
   for (size_t i = 0; i < mask.size(); ++i)
     image.pixels[i] = float(std::clamp((double(mask[i]) - kLow) / kRange, 0.0, 1.0));

@@ -5,11 +5,10 @@
 // usm2d lie in [0,100]; depth-usm's 100·ΔD in [−100, 100]).
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "stimuli/experiment.h"
 #include "stimuli/set_layout.h"
@@ -20,8 +19,8 @@ namespace countershade {
 std::string mask_path(const Experiment& e, const SetUnit& unit);
 
 // Writes the mask to dir/rel and returns its manifest record {"file", "sha256"}.
-nlohmann::json write_mask(const std::filesystem::path& dir, const std::string& rel, std::span<const float> mask,
-                          int width, int height);
+nlohmann::json write_mask(const std::filesystem::path& dir, const std::string& rel,
+                          std::span<const float> mask, int width, int height);
 
 // The mask of a file written by write_mask, in L*.
 std::vector<float> read_mask(const std::filesystem::path& file);

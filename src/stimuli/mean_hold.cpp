@@ -18,7 +18,8 @@ LightnessChange uniform_offset(const View& view) {
   LightnessChange change;
   change.kind = LightnessChange::Kind::scaled;
   change.amount.resize(size_t(view.width()) * size_t(view.height()));
-  for (size_t i = 0; i < change.amount.size(); ++i) change.amount[i] = is_object(view, i) ? 1.0 : 0.0;
+  for (size_t i = 0; i < change.amount.size(); ++i)
+    change.amount[i] = is_object(view, i) ? 1.0 : 0.0;
   return change;
 }
 
@@ -39,8 +40,8 @@ struct Tried {
 // same δ (half a code's L*, near 0.19 for mid greys): there the mean jumps by up to a tenth of an
 // L*, and only the small differences between neighbouring codes' thresholds (under 1e-3 of δ)
 // reach the values in between, which is why the bracket narrows that far.
-Tried closest_offset(const std::function<double(double, Composed*)>& error_at, Tried best, double share,
-                     double tolerance) {
+Tried closest_offset(const std::function<double(double, Composed*)>& error_at, Tried best,
+                     double share, double tolerance) {
   double lo = -100, hi = 100, x0 = 0, f0 = best.error, x1 = -best.error / share;
   (f0 < 0 ? lo : hi) = 0.0;
   for (int step = 0; step < 60 && std::abs(best.error) > tolerance && hi - lo > 1e-7; ++step) {
@@ -62,18 +63,25 @@ Tried closest_offset(const std::function<double(double, Composed*)>& error_at, T
 
 HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double tolerance,
                              const OffsetComposer& recompose) {
-  if (stimulus.display.pixels == view.display.pixels) return {stimulus.display, 0.0, stimulus.clipped_pixels};
+  if (stimulus.display.pixels == view.display.pixels)
+    return {stimulus.display, 0.0, stimulus.clipped_pixels};
   const double target = mean_display_lightness(view.display, view.encoding, view.bits);
   const LightnessChange change = uniform_offset(view);
-  const double share = double(std::count(change.amount.begin(), change.amount.end(), 1.0)) / double(change.amount.size());
+  const double share = double(std::count(change.amount.begin(), change.amount.end(), 1.0)) /
+                       double(change.amount.size());
   if (share == 0) return {stimulus.display, 0.0, stimulus.clipped_pixels};
-  std::shared_ptr<const View> own;  // the stimulus as a view, made only if the method cannot compose offsets
+  std::shared_ptr<const View>
+      own;  // the stimulus as a view, made only if the method cannot compose offsets
   auto error_at = [&](double offset, Composed* out) {
     std::optional<Composed> c = recompose ? recompose(offset, change.amount) : std::nullopt;
-    if (!c) {  // the offset on the stimulus as its method composed it (unrounded, for RGB operators)
-      if (!own) own = make_image_view(stimulus.display, view.depth, view.encoding, view.bits, false);
+    if (!c) {  // the offset on the stimulus as its method composed it (unrounded, for RGB
+               // operators)
+      if (!own)
+        own = make_image_view(stimulus.display, view.depth, view.encoding, view.bits, false);
       c = compose_lightness(*own, change, offset, 1);
-      quantize_in_place(c->display, view.bits);  // the pixels the offset leaves keep the method's values until here
+      quantize_in_place(
+          c->display,
+          view.bits);  // the pixels the offset leaves keep the method's values until here
       c->clipped_pixels += stimulus.clipped_pixels;
     }
     const double error = mean_display_lightness(c->display, view.encoding, view.bits) - target;
@@ -87,9 +95,10 @@ HeldMean hold_mean_lightness(const View& view, const Composed& stimulus, double 
 
 HeldMean hold_mean_lightness(const View& view, const PreparedEnhancement& prepared, double lambda,
                              const Composed& stimulus) {
-  return hold_mean_lightness(view, stimulus, 0.005, [&](double offset, std::span<const double> where) {
-    return prepared.compose_offset(lambda, offset, where);
-  });
+  return hold_mean_lightness(view, stimulus, 0.005,
+                             [&](double offset, std::span<const double> where) {
+                               return prepared.compose_offset(lambda, offset, where);
+                             });
 }
 
 }  // namespace countershade

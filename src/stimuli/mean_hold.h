@@ -18,14 +18,16 @@
 namespace countershade {
 
 struct HeldMean {
-  Image display;          // the stimulus with its offset, code values of the view's bit depth
-  double offset = 0;      // the L* offset δ applied to every object pixel
-  size_t clipped_pixels = 0;  // clipped pixels (L' outside [0, 100] or a channel outside [0, 1]), the stimulus's own included
+  Image display;              // the stimulus with its offset, code values of the view's bit depth
+  double offset = 0;          // the L* offset δ applied to every object pixel
+  size_t clipped_pixels = 0;  // clipped pixels (L' outside [0, 100] or a channel outside [0, 1]),
+                              // the stimulus's own included
 };
 
 // The stimulus composed again with an L* offset on the pixels `where` marks, before its one
 // quantisation (PreparedEnhancement::compose_offset); empty when its method cannot.
-using OffsetComposer = std::function<std::optional<Composed>(double offset, std::span<const double> where)>;
+using OffsetComposer =
+    std::function<std::optional<Composed>(double offset, std::span<const double> where)>;
 
 // `stimulus`: a stimulus of `view` as its method composed it (code values, rounded to view.bits
 // or not yet: RGB operators leave that to the writer) and its clipped pixels. Object pixels are

@@ -1,9 +1,8 @@
 #include "stimuli/perspective_coherence.h"
 
 #include <cmath>
-#include <limits>
-
 #include <glm/geometric.hpp>
+#include <limits>
 
 #include "enhance/lightness.h"
 #include "render/scene_animation.h"
@@ -11,12 +10,15 @@
 namespace countershade {
 namespace {
 
-bool on_surface(const std::vector<float>& depth, size_t i) { return std::isfinite(depth[i]) && depth[i] > 0; }
+bool on_surface(const std::vector<float>& depth, size_t i) {
+  return std::isfinite(depth[i]) && depth[i] > 0;
+}
 
 // Whether pixel i sees `object` within 10 % of eye depth `depth`: the test every pixel of a
 // neighbourhood must pass, in the first frame (interior) as in the moved one (lookup).
 bool sees(const View& v, size_t i, int object, double depth) {
-  return on_surface(v.depth, i) && v.object_at(i) == object && std::abs(double(v.depth[i]) / depth - 1.0) <= 0.1;
+  return on_surface(v.depth, i) && v.object_at(i) == object &&
+         std::abs(double(v.depth[i]) / depth - 1.0) <= 0.1;
 }
 
 // Whether pixel (x, y) and its 3×3 neighbourhood all see one object within 10 % of the pixel's
@@ -28,7 +30,8 @@ bool interior(const View& v, int x, int y) {
   const int object = v.object_at(centre);
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx)
-      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), object, v.depth[centre])) return false;
+      if (!sees(v, size_t(y + dy) * size_t(v.width()) + size_t(x + dx), object, v.depth[centre]))
+        return false;
   return true;
 }
 
@@ -45,8 +48,8 @@ void catmull_rom(double t, double w[4]) {
 // that detail near the pixel scale survives the resampling better than bilinearly), if the 4×4
 // pixels there all see `object` within 10 % of that depth (so no other surface mixes in, not even
 // one just behind a silhouette) and the four nearest see the point of eye depth `depth`.
-bool lookup(const View& v, const glm::dvec2& film, double depth, int object, std::span<const float> values,
-            double& out) {
+bool lookup(const View& v, const glm::dvec2& film, double depth, int object,
+            std::span<const float> values, double& out) {
   const double fx = film.x - 0.5, fy = film.y - 0.5;
   const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
   if (x0 < 1 || y0 < 1 || x0 + 2 >= v.width() || y0 + 2 >= v.height()) return false;
@@ -89,10 +92,11 @@ CarryPoint carry_between_frames(const Scene& base, int from, int to) {
   };
 }
 
-Reprojection reprojection_rms(const View& first, std::span<const float> first_values, const View& moved,
-                              std::span<const float> moved_values, const CarryPoint& carry,
-                              std::vector<float>* differences) {
-  if (differences) differences->assign(first_values.size(), std::numeric_limits<float>::quiet_NaN());
+Reprojection reprojection_rms(const View& first, std::span<const float> first_values,
+                              const View& moved, std::span<const float> moved_values,
+                              const CarryPoint& carry, std::vector<float>* differences) {
+  if (differences)
+    differences->assign(first_values.size(), std::numeric_limits<float>::quiet_NaN());
   const CameraRays a(first.scene->camera), b(moved.scene->camera);
   double sum = 0;
   size_t count = 0;
@@ -104,7 +108,9 @@ Reprojection reprojection_rms(const View& first, std::span<const float> first_va
       const int object = first.object_at(i);
       if (carry) p = carry(p, object);
       double value;
-      if (b.eye_depth(p) <= 0 || !lookup(moved, b.film_position(p), b.eye_depth(p), object, moved_values, value)) continue;
+      if (b.eye_depth(p) <= 0 ||
+          !lookup(moved, b.film_position(p), b.eye_depth(p), object, moved_values, value))
+        continue;
       const double d = double(first_values[i]) - value;
       if (differences) (*differences)[i] = float(std::abs(d));
       sum += d * d;
@@ -113,8 +119,8 @@ Reprojection reprojection_rms(const View& first, std::span<const float> first_va
   return {count ? std::sqrt(sum / double(count)) : 0.0, count};
 }
 
-Reprojection rms_where_stable(const std::vector<float>& differences, const std::vector<float>& plain_differences,
-                              double tolerance) {
+Reprojection rms_where_stable(const std::vector<float>& differences,
+                              const std::vector<float>& plain_differences, double tolerance) {
   double sum = 0;
   Reprojection out;
   for (size_t i = 0; i < differences.size(); ++i)

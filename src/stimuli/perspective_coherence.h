@@ -8,10 +8,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <glm/vec3.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "core/image.h"
 #include "enhance/view.h"
@@ -43,8 +42,9 @@ CarryPoint carry_between_frames(const Scene& base, int from, int to);
 // within 1 %. moved_values is interpolated bicubically there; `carry` moves the point first.
 // With `differences`, also |first_values(x) − moved_values(x′)| per pixel of the first frame
 // (NaN where x did not count).
-Reprojection reprojection_rms(const View& first, std::span<const float> first_values, const View& moved,
-                              std::span<const float> moved_values, const CarryPoint& carry = {},
+Reprojection reprojection_rms(const View& first, std::span<const float> first_values,
+                              const View& moved, std::span<const float> moved_values,
+                              const CarryPoint& carry = {},
                               std::vector<float>* differences = nullptr);
 
 // The tolerance of a set's stable figures (flicker and coherence): the pixels whose plain L*
@@ -55,7 +55,7 @@ inline constexpr double kStableTolerance = 0.1;
 // them) over the pixels whose `plain_differences` are at most `tolerance`: where the plain render
 // itself reprojects well, so that neither a change of the scene (a moving shadow) nor what the
 // resampling cannot carry enters. 0 over no pixels.
-Reprojection rms_where_stable(const std::vector<float>& differences, const std::vector<float>& plain_differences,
-                              double tolerance);
+Reprojection rms_where_stable(const std::vector<float>& differences,
+                              const std::vector<float>& plain_differences, double tolerance);
 
 }  // namespace countershade

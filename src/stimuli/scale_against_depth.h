@@ -35,7 +35,8 @@ struct HaloSample {
 // The halo widths of every `row_step`-th row at the edges x ∈ `edges_x` it crosses. Each side of
 // an edge is read along the row, from the edge to halfway to the next edge (at most 64 px), and its
 // distances are taken along the edge's normal in the image.
-std::vector<HaloSample> halo_samples(const ProbeImage& image, std::span<const double> edges_x, int row_step = 4);
+std::vector<HaloSample> halo_samples(const ProbeImage& image, std::span<const double> edges_x,
+                                     int row_step = 4);
 
 // The slope of log(width) against log(depth), by least squares with an intercept per edge, over
 // the samples at least `min_width_px` wide: an edge's tilt in the image scales its widths along

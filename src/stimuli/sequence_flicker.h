@@ -21,7 +21,8 @@ namespace countershade {
 // "flicker_stable_pixels": the same over the pixels whose plain L* reprojects within
 // kStableTolerance (stimuli/perspective_coherence.h, rms_where_stable). Frames without an
 // earlier frame in the entries get none.
-void measure_sequence_flicker(const Experiment& e, const std::filesystem::path& dir, const ExperimentScene& scene,
-                              const Scene& base, std::vector<ManifestEntry>& entries, int threads);
+void measure_sequence_flicker(const Experiment& e, const std::filesystem::path& dir,
+                              const ExperimentScene& scene, const Scene& base,
+                              std::vector<ManifestEntry>& entries, int threads);
 
 }  // namespace countershade

@@ -16,7 +16,8 @@ void write_sequence_videos(const fs::path& dir, Manifest& manifest, int threads)
     if (s.frame) sequences[s.sequence()].push_back(&s);
   std::vector<std::string> folders;
   for (auto& [folder, frames] : sequences) {
-    std::sort(frames.begin(), frames.end(), [](auto* a, auto* b) { return a->frame->index < b->frame->index; });
+    std::sort(frames.begin(), frames.end(),
+              [](auto* a, auto* b) { return a->frame->index < b->frame->index; });
     folders.push_back(folder);
   }
   std::vector<OrderedJson> videos(folders.size());
@@ -24,11 +25,15 @@ void write_sequence_videos(const fs::path& dir, Manifest& manifest, int threads)
     for (size_t k = begin; k < end; ++k) {
       const auto& entries = sequences.at(folders[k]);
       std::vector<Image> frames;
-      for (const ManifestEntry* s : entries) frames.push_back(read_image(resolve_in_set(dir, s->file)));
+      for (const ManifestEntry* s : entries)
+        frames.push_back(read_image(resolve_in_set(dir, s->file)));
       const std::string file = folders[k] + ".mkv";
       write_lossless_video(dir / file, frames, entries.front()->frame->fps);
-      videos[k] = {{"file", file}, {"sequence", folders[k]}, {"frames", frames.size()},
-                   {"fps", entries.front()->frame->fps}, {"size", fs::file_size(dir / file)},
+      videos[k] = {{"file", file},
+                   {"sequence", folders[k]},
+                   {"frames", frames.size()},
+                   {"fps", entries.front()->frame->fps},
+                   {"size", fs::file_size(dir / file)},
                    {"sha256", sha256_file(dir / file)}};
     }
   });

@@ -30,8 +30,9 @@ void SetJournal::append(const ManifestEntry& entry) {
 namespace {
 
 [[noreturn]] void refuse_other_experiment(const fs::path& set_dir) {
-  throw_input_error(set_dir.string(), "the set there was made from a different experiment file; resume it with that "
-                                      "file or choose a new folder (nothing was changed)");
+  throw_input_error(set_dir.string(),
+                    "the set there was made from a different experiment file; resume it with that "
+                    "file or choose a new folder (nothing was changed)");
 }
 
 bool still_there(const fs::path& set_dir, const ManifestEntry& entry) {
@@ -69,7 +70,8 @@ std::vector<ManifestEntry> journal_entries(const fs::path& set_dir, const fs::pa
 
 }  // namespace
 
-std::map<std::string, ManifestEntry> verified_earlier_images(const fs::path& set_dir, const fs::path& journal,
+std::map<std::string, ManifestEntry> verified_earlier_images(const fs::path& set_dir,
+                                                             const fs::path& journal,
                                                              const fs::path& manifest,
                                                              const std::string& experiment_sha256) {
   std::vector<ManifestEntry> candidates;
@@ -89,16 +91,20 @@ std::map<std::string, ManifestEntry> verified_earlier_images(const fs::path& set
   return done;
 }
 
-void remove_interrupted_writes(const fs::path& dir, const std::function<bool(const std::string& file)>& mine) {
+void remove_interrupted_writes(const fs::path& dir,
+                               const std::function<bool(const std::string& file)>& mine) {
   // A run killed while writing leaves its temporary file (".<stem>.tmp-<pid>-<n><ext>", see
   // write_atomically) beside the file it was writing; finished files never have that form.
   std::vector<fs::path> leftovers;
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     const size_t tmp = name.find(".tmp-");
-    if (!entry.is_regular_file() || name.size() < 2 || name[0] != '.' || tmp == std::string::npos) continue;
-    const fs::path target = fs::relative(entry.path().parent_path(), dir) / (name.substr(1, tmp - 1) + entry.path().extension().string());
-    if (!mine || mine(target.lexically_normal().generic_string())) leftovers.push_back(entry.path());
+    if (!entry.is_regular_file() || name.size() < 2 || name[0] != '.' || tmp == std::string::npos)
+      continue;
+    const fs::path target = fs::relative(entry.path().parent_path(), dir) /
+                            (name.substr(1, tmp - 1) + entry.path().extension().string());
+    if (!mine || mine(target.lexically_normal().generic_string()))
+      leftovers.push_back(entry.path());
   }
   for (const auto& p : leftovers) fs::remove(p);
 }

@@ -21,7 +21,8 @@ std::vector<SetUnit> all_units(const Experiment& e) {
       units.push_back({s, -1, 0, f});
       for (size_t m = 0; m < e.methods.size(); ++m)
         if (e.methods[m].applies_to(e.scenes[s].name))
-          for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g) units.push_back({s, int(m), g, f});
+          for (size_t g = 0; g < e.methods[m].sigmas.size(); ++g)
+            units.push_back({s, int(m), g, f});
     }
   }
   return units;
@@ -33,8 +34,9 @@ std::string reference_path(const Experiment& e, size_t scene, int frame) {
 
 std::string stimulus_path(const Experiment& e, const SetUnit& u, int lambda_index) {
   const ExperimentMethod& m = e.methods[size_t(u.method)];
-  const std::string folder = e.scenes[u.scene].name + "/" + m.label + "/sigma-" + format_value(m.sigmas[u.sigma]) +
-                             "/lambda-" + format_value(e.lambda.value(lambda_index));
+  const std::string folder = e.scenes[u.scene].name + "/" + m.label + "/sigma-" +
+                             format_value(m.sigmas[u.sigma]) + "/lambda-" +
+                             format_value(e.lambda.value(lambda_index));
   return u.frame < 0 ? folder + ".png" : folder + frame_file(u.frame);
 }
 
@@ -44,7 +46,8 @@ std::string unit_path(const Experiment& e, const SetUnit& u, int lambda_index) {
 
 std::string manifest_name(int shard, int shards) {
   return shards == 1 ? "manifest.json"
-                     : "manifest.shard-" + std::to_string(shard) + "-of-" + std::to_string(shards) + ".json";
+                     : "manifest.shard-" + std::to_string(shard) + "-of-" + std::to_string(shards) +
+                           ".json";
 }
 
 std::string journal_name(int shard, int shards) {

@@ -30,7 +30,7 @@ struct SlurmScripts {
 // experiment file `experiment` (which `e` was loaded from) and the countershade binary `binary`.
 // Throws InputError for a path a script cannot hold or an option it would not pass on as given.
 SlurmScripts write_slurm_scripts(const Experiment& e, const std::filesystem::path& experiment,
-                                 const std::filesystem::path& dir, const std::filesystem::path& binary,
-                                 const SlurmOptions& options);
+                                 const std::filesystem::path& dir,
+                                 const std::filesystem::path& binary, const SlurmOptions& options);
 
 }  // namespace countershade

@@ -1,5 +1,7 @@
 #include "stimuli/stimulus_set.h"
 
+#include <tbb/parallel_for.h>
+
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -7,8 +9,6 @@
 #include <map>
 #include <mutex>
 #include <sstream>
-
-#include <tbb/parallel_for.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -18,32 +18,34 @@
 #include "core/sha256.h"
 #include "core/time.h"
 #include "core/version.h"
+#include "enhance/lightness.h"
 #include "enhance/stimulus_noise.h"
-#include "stimuli/congruence.h"
+#include "enhance/view_plan.h"
+#include "render/scene_animation.h"
 #include "stimuli/coherence_figures.h"
+#include "stimuli/congruence.h"
 #include "stimuli/congruence_figures.h"
+#include "stimuli/contact_sheet.h"
 #include "stimuli/depth_scale_figures.h"
+#include "stimuli/flicker_figures.h"
 #include "stimuli/headroom.h"
 #include "stimuli/mask_file.h"
-#include "stimuli/scale_against_depth.h"
 #include "stimuli/mean_hold.h"
-#include "stimuli/flicker_figures.h"
-#include "enhance/lightness.h"
 #include "stimuli/perspective_coherence.h"
-#include "stimuli/contact_sheet.h"
-#include "stimuli/set_journal.h"
+#include "stimuli/scale_against_depth.h"
 #include "stimuli/sequence_flicker.h"
 #include "stimuli/sequence_videos.h"
+#include "stimuli/set_journal.h"
 #include "stimuli/set_layout.h"
-#include "render/scene_animation.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 Manifest manifest_header(const Experiment& e) {
   Manifest m;
@@ -66,7 +68,8 @@ Manifest manifest_header(const Experiment& e) {
 void check_writable(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw_input_error(dir.string(), "cannot create the output folder (" + ec.message() + ")");
+  if (ec || !fs::is_directory(dir))
+    throw_input_error(dir.string(), "cannot create the output folder (" + ec.message() + ")");
   fs::path probe = dir / ".countershade-write-test";
   {
     std::ofstream out(probe);
@@ -76,7 +79,8 @@ void check_writable(const fs::path& dir) {
 }
 
 // Writes one stimulus and completes its manifest entry with the file's facts.
-ManifestEntry write_stimulus(const fs::path& set_dir, ManifestEntry entry, const Image& display, int bits) {
+ManifestEntry write_stimulus(const fs::path& set_dir, ManifestEntry entry, const Image& display,
+                             int bits) {
   const fs::path file = set_dir / entry.file;
   fs::create_directories(file.parent_path());
   write_image(file, display, {bits});
@@ -88,7 +92,8 @@ ManifestEntry write_stimulus(const fs::path& set_dir, ManifestEntry entry, const
 }
 
 // The manifest entry of a method's stimulus, before the file's facts are known.
-ManifestEntry stimulus_entry(const Experiment& e, const SetUnit& u, int l, const Composed& c, const nlohmann::json& parameters) {
+ManifestEntry stimulus_entry(const Experiment& e, const SetUnit& u, int l, const Composed& c,
+                             const nlohmann::json& parameters) {
   const ExperimentMethod& m = e.methods[size_t(u.method)];
   ManifestEntry entry;
   entry.file = stimulus_path(e, u, l);
@@ -112,7 +117,8 @@ ManifestEntry stimulus_entry(const Experiment& e, const SetUnit& u, int l, const
 RenderRequest scene_request(const Experiment& e, size_t scene) {
   RenderRequest request;
   for (const auto& m : e.methods)
-    if (m.applies_to(e.scenes[scene].name)) request.merge(m.request, e.file.string() + ": methods (" + m.label + ")");
+    if (m.applies_to(e.scenes[scene].name))
+      request.merge(m.request, e.file.string() + ": methods (" + m.label + ")");
   return request;
 }
 
@@ -138,22 +144,26 @@ ScenePlan scene_plan(const Experiment& e, size_t scene) {
 }
 
 // The noise estimate and sample counts of an image as written (docs/data-formats).
-void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& model, const Image& written) {
+void record_noise(ManifestEntry& entry, const View& view, const NoiseModel& model,
+                  const Image& written) {
   const NoiseBudget& budget = view.scene->settings.noise;
   const NoiseSummary noise = summarize_noise(stimulus_noise(view, model, written));
   const SamplingReport& sampling = view.render.sampling;
   const bool fixed = view.scene->settings.spp.has_value();
   ImageNoise recorded{round_to(noise.rms, 4), round_to(noise.p99, 4), std::nullopt};
   if (!fixed)
-    recorded.budget = ImageNoise::Budget{budget.target, budget.p99, noise.rms <= budget.target && noise.p99 <= budget.p99};
+    recorded.budget = ImageNoise::Budget{budget.target, budget.p99,
+                                         noise.rms <= budget.target && noise.p99 <= budget.p99};
   set_image_noise(entry, recorded);
-  entry.extra["spp"] = {{"min", sampling.pixels.min}, {"mean", round_to(sampling.pixels.mean, 2)},
+  entry.extra["spp"] = {{"min", sampling.pixels.min},
+                        {"mean", round_to(sampling.pixels.mean, 2)},
                         {"max", sampling.pixels.max}};
 }
 
 // The stimulus of strength λ with its reference's mean L* (the experiment's hold_mean), the
 // offset composed by the method where it can; returns the L* offset.
-double hold_mean(const View& view, const PreparedEnhancement& prepared, double lambda, Composed& c) {
+double hold_mean(const View& view, const PreparedEnhancement& prepared, double lambda,
+                 Composed& c) {
   HeldMean held = hold_mean_lightness(view, prepared, lambda, c);
   c.display = std::move(held.display);
   c.clipped_pixels = held.clipped_pixels;
@@ -161,8 +171,8 @@ double hold_mean(const View& view, const PreparedEnhancement& prepared, double l
 }
 
 // The congruence score of a stimulus, and its map in false colour as congruence/FILE.
-void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Image& display, const View& view, int bits,
-                       const CongruenceOptions& options) {
+void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Image& display,
+                       const View& view, int bits, const CongruenceOptions& options) {
   const Congruence c = display_congruence(display, view.encoding, bits, view.depth, options);
   entry.extra["congruence"] = round_to(c.score, 4);
   const std::string map = "congruence/" + entry.file;
@@ -174,8 +184,9 @@ void record_congruence(const fs::path& set_dir, ManifestEntry& entry, const Imag
 // The stimulus's perspective coherence (for the reference: the plain render's own reprojection
 // error), in L*, with the number of pixels it covers; given the plain render's own change per
 // pixel, also over the pixels where it stays within kStableTolerance.
-void record_coherence(ManifestEntry& entry, const View& view, const std::vector<float>& first, const View& moved,
-                      const std::vector<float>& second, const std::vector<float>* plain_differences = nullptr) {
+void record_coherence(ManifestEntry& entry, const View& view, const std::vector<float>& first,
+                      const View& moved, const std::vector<float>& second,
+                      const std::vector<float>* plain_differences = nullptr) {
   std::vector<float> differences;
   const Reprojection r = reprojection_rms(view, first, moved, second, {}, &differences);
   entry.extra["coherence"] = round_to(r.rms, 4);
@@ -192,15 +203,18 @@ nlohmann::json write_frame_mask(const fs::path& dir, const Experiment& e, const 
                                 const PreparedEnhancement& prepared, const View& view) {
   if (u.frame < 0) return nullptr;
   const std::vector<float> mask = prepared.mask();
-  return mask.empty() ? nlohmann::json() : write_mask(dir, mask_path(e, u), mask, view.width(), view.height());
+  return mask.empty() ? nlohmann::json()
+                      : write_mask(dir, mask_path(e, u), mask, view.width(), view.height());
 }
 
 // The halo widths of an edge probe's stimulus against depth, and their log-log slope
 // (stimuli/scale_against_depth.h).
 void record_halo_widths(ManifestEntry& entry, const View& view, const std::vector<float>& layer,
                         const std::vector<double>& edges_x) {
-  const std::vector<HaloSample> samples = halo_samples({view.scene->camera, view.depth, layer}, edges_x);
-  nlohmann::json edge = nlohmann::json::array(), depth = nlohmann::json::array(), width = nlohmann::json::array();
+  const std::vector<HaloSample> samples =
+      halo_samples({view.scene->camera, view.depth, layer}, edges_x);
+  nlohmann::json edge = nlohmann::json::array(), depth = nlohmann::json::array(),
+                 width = nlohmann::json::array();
   for (const HaloSample& s : samples) {
     edge.push_back(s.edge_x);
     depth.push_back(round_to(s.depth, 4));
@@ -208,20 +222,22 @@ void record_halo_widths(ManifestEntry& entry, const View& view, const std::vecto
   }
   entry.extra["halo_widths"] = {{"edge_x", edge}, {"depth", depth}, {"width_px", width}};
   const DepthSlope slope = depth_slope(samples);
-  entry.extra["depth_slope"] = std::isfinite(slope.slope) ? nlohmann::json(round_to(slope.slope, 4)) : nlohmann::json();
+  entry.extra["depth_slope"] =
+      std::isfinite(slope.slope) ? nlohmann::json(round_to(slope.slope, 4)) : nlohmann::json();
   entry.extra["depth_slope_samples"] = slope.samples;
 }
 
 // The plain render's own change per pixel under the dolly (empty without one).
 std::vector<float> plain_differences(const View& view, const View* moved) {
   std::vector<float> differences;
-  if (moved) reprojection_rms(view, view_lightness(view), *moved, view_lightness(*moved), {}, &differences);
+  if (moved)
+    reprojection_rms(view, view_lightness(view), *moved, view_lightness(*moved), {}, &differences);
   return differences;
 }
 
 // The view again with its camera dollied, for the coherence metric (null without one).
-std::shared_ptr<const View> moved_view(const Experiment& e, const Scene& scene, const ViewPlan& plan,
-                                       const ViewOptions& options) {
+std::shared_ptr<const View> moved_view(const Experiment& e, const Scene& scene,
+                                       const ViewPlan& plan, const ViewOptions& options) {
   if (!e.coherence_dolly) return nullptr;
   auto moved = std::make_shared<Scene>(scene);
   moved->camera = dollied(scene.camera, *e.coherence_dolly);
@@ -287,14 +303,17 @@ class SetGenerator {
   bool all_done(const Shot& shot) const;
   void record(ManifestEntry entry, bool is_new);
   void make_shot(const Shot& shot, const ScenePlan& plan);
-  std::shared_ptr<const View> headroom_view(size_t scene, const ScenePlan& plan, const ViewOptions& options);
+  std::shared_ptr<const View> headroom_view(size_t scene, const ScenePlan& plan,
+                                            const ViewOptions& options);
   void write_reference(const SetUnit& unit, const View& view, const View* moved);
   // The method prepared for a grid of λ (each composed from the view's own samples).
   std::unique_ptr<PreparedEnhancement> prepare_for_grid(const ExperimentMethod& m, const SetUnit& u,
-                                                        const std::shared_ptr<const View>& view, size_t use) const;
+                                                        const std::shared_ptr<const View>& view,
+                                                        size_t use) const;
   // `plain`: the plain render's own change per pixel under the dolly (with `moved`).
   void write_condition(const SetUnit& unit, const std::shared_ptr<const View>& view,
-                       const std::shared_ptr<const View>& moved, const std::vector<float>& plain, size_t use);
+                       const std::shared_ptr<const View>& moved, const std::vector<float>& plain,
+                       size_t use);
   void finish();
 
   const Experiment& e_;
@@ -310,7 +329,8 @@ class SetGenerator {
   std::mutex entries_mutex_;
   size_t total_ = 0;
   std::atomic<size_t> finished_{0}, written_{0}, skipped_{0};
-  std::atomic<double> render_seconds_{0}, prepare_seconds_{0}, compose_seconds_{0}, encode_seconds_{0};
+  std::atomic<double> render_seconds_{0}, prepare_seconds_{0}, compose_seconds_{0},
+      encode_seconds_{0};
   GenerateReport report_;
 };
 
@@ -319,13 +339,16 @@ void SetGenerator::prepare_folder() {
   manifest_path_ = dir_ / manifest_name(options_.shard, options_.shards);
   journal_path_ = dir_ / journal_name(options_.shard, options_.shards);
   std::error_code ec;
-  const bool has_manifest = fs::exists(manifest_path_, ec), has_journal = fs::exists(journal_path_, ec);
+  const bool has_manifest = fs::exists(manifest_path_, ec),
+             has_journal = fs::exists(journal_path_, ec);
   if (!options_.resume && (has_manifest || has_journal))
-    throw_input_error(dir_.string(), "already holds a stimulus set (" +
-                                         (has_manifest ? manifest_path_ : journal_path_).filename().string() +
-                                         "); use --resume to finish it or choose a new folder");
+    throw_input_error(dir_.string(),
+                      "already holds a stimulus set (" +
+                          (has_manifest ? manifest_path_ : journal_path_).filename().string() +
+                          "); use --resume to finish it or choose a new folder");
   if (options_.resume)
-    done_ = verified_earlier_images(dir_, journal_path_, manifest_path_, e_.sha256);  // refuses another experiment's set
+    done_ = verified_earlier_images(dir_, journal_path_, manifest_path_,
+                                    e_.sha256);  // refuses another experiment's set
 }
 
 // The temporary files an interrupted run of this part left: every one in a run of the whole set;
@@ -351,7 +374,8 @@ std::vector<SetUnit> SetGenerator::shard_units() const {
 
 std::vector<std::string> SetGenerator::files_of(const SetUnit& u) const {
   std::vector<std::string> files;
-  for (int l = 0; l < (u.is_reference() ? 1 : e_.lambda.count()); ++l) files.push_back(unit_path(e_, u, l));
+  for (int l = 0; l < (u.is_reference() ? 1 : e_.lambda.count()); ++l)
+    files.push_back(unit_path(e_, u, l));
   return files;
 }
 
@@ -377,9 +401,11 @@ void SetGenerator::record(ManifestEntry entry, bool is_new) {
 void record_display(ManifestEntry& entry, const Display& display) {
   entry.extra["display_encoding"] = display.encoding.describe();
   if (display.encoding.kind() == DisplayEncoding::Kind::lut)
-    entry.extra["display_lut"] = {{"codes", display.encoding.lut_codes()}, {"luminances", display.encoding.lut_luminances()}};
+    entry.extra["display_lut"] = {{"codes", display.encoding.lut_codes()},
+                                  {"luminances", display.encoding.lut_luminances()}};
   if (display.luminance_cd_m2)
-    entry.extra["luminance_cd_m2"] = {{"black", display.luminance_cd_m2->first}, {"white", display.luminance_cd_m2->second}};
+    entry.extra["luminance_cd_m2"] = {{"black", display.luminance_cd_m2->first},
+                                      {"white", display.luminance_cd_m2->second}};
 }
 
 // The display the experiment's headroom settled on: the scene's exposure and black level.
@@ -400,23 +426,25 @@ void SetGenerator::write_reference(const SetUnit& u, const View& view, const Vie
   record_display(entry, view.scene->display);
   if (e_.headroom) record_headroom(*view.scene, entry);
   record_noise(entry, view, NoiseModel{}, view.display);
-  if (e_.congruence) record_congruence(dir_, entry, view.display, view, e_.bits, e_.congruence_options);
+  if (e_.congruence)
+    record_congruence(dir_, entry, view.display, view, e_.bits, e_.congruence_options);
   if (moved) record_coherence(entry, view, view_lightness(view), *moved, view_lightness(*moved));
   entry = write_stimulus(dir_, std::move(entry), view.display, e_.bits);
   encode_seconds_.fetch_add(since(te));
   record(std::move(entry), true);
 }
 
-std::unique_ptr<PreparedEnhancement> SetGenerator::prepare_for_grid(const ExperimentMethod& m, const SetUnit& u,
-                                                                  const std::shared_ptr<const View>& view,
-                                                                  size_t use) const {
+std::unique_ptr<PreparedEnhancement> SetGenerator::prepare_for_grid(
+    const ExperimentMethod& m, const SetUnit& u, const std::shared_ptr<const View>& view,
+    size_t use) const {
   PrepareContext c = make_use_context(view, use, options_.jobs);
   c.compose_from_samples = true;  // a grid of λ
   return m.method->prepare(c, *m.parameters[u.sigma]);
 }
 
 void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const View>& view,
-                                   const std::shared_ptr<const View>& moved, const std::vector<float>& plain, size_t use) {
+                                   const std::shared_ptr<const View>& moved,
+                                   const std::vector<float>& plain, size_t use) {
   const ExperimentMethod& m = e_.methods[size_t(u.method)];
   auto tp = Clock::now();
   std::unique_ptr<PreparedEnhancement> prepared, prepared_moved;
@@ -424,7 +452,8 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
     prepared = prepare_for_grid(m, u, view, use);
     if (moved) prepared_moved = prepare_for_grid(m, u, moved, use);
   });
-  const nlohmann::json mask = options_.masks ? write_frame_mask(dir_, e_, u, *prepared, *view) : nlohmann::json();
+  const nlohmann::json mask =
+      options_.masks ? write_frame_mask(dir_, e_, u, *prepared, *view) : nlohmann::json();
   prepare_seconds_.fetch_add(since(tp));
   const nlohmann::json parameters = prepared->parameters();
   run_with_threads(options_.jobs, [&] {
@@ -440,13 +469,16 @@ void SetGenerator::write_condition(const SetUnit& u, const std::shared_ptr<const
       if (e_.hold_mean) entry.extra["mean_offset"] = round_to(offset, 4);
       if (!mask.is_null()) entry.extra["mask"] = mask;
       if (!e_.scenes[u.scene].probe_edges_x.empty())
-        record_halo_widths(entry, *view, enhancement_layer(*view, c.display), e_.scenes[u.scene].probe_edges_x);
+        record_halo_widths(entry, *view, enhancement_layer(*view, c.display),
+                           e_.scenes[u.scene].probe_edges_x);
       if (e_.headroom) record_headroom(*view->scene, entry);
       record_noise(entry, *view, prepared->noise(e_.lambda.value(l)), c.display);
-      if (e_.congruence) record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
+      if (e_.congruence)
+        record_congruence(dir_, entry, c.display, *view, e_.bits, e_.congruence_options);
       if (moved)
-        record_coherence(entry, *view, enhancement_layer(*view, c.display), *moved,
-                         enhancement_layer(*moved, prepared_moved->compose(e_.lambda.value(l)).display), &plain);
+        record_coherence(
+            entry, *view, enhancement_layer(*view, c.display), *moved,
+            enhancement_layer(*moved, prepared_moved->compose(e_.lambda.value(l)).display), &plain);
       entry = write_stimulus(dir_, std::move(entry), c.display, e_.bits);
       encode_seconds_.fetch_add(since(te));
       record(std::move(entry), true);
@@ -466,24 +498,31 @@ void SetGenerator::make_shot(const Shot& shot, const ScenePlan& plan) {
   vo.threads = options_.jobs;
   const SetUnit& first = shot.front();
   const std::shared_ptr<const Scene> base = scenes_[first.scene];
-  const auto scene = first.frame < 0 ? base : std::make_shared<const Scene>(scene_at(*base, base->animation->time_of(first.frame)));
+  const auto scene =
+      first.frame < 0
+          ? base
+          : std::make_shared<const Scene>(scene_at(*base, base->animation->time_of(first.frame)));
   std::shared_ptr<const View> view, moved;
   run_with_threads(options_.jobs, [&] {
     view = e_.headroom ? headroom_view(first.scene, plan, vo) : render_view(scene, plan.plan, vo);
     moved = moved_view(e_, *view->scene, plan.plan, vo);
   });
   render_seconds_.fetch_add(since(t0));
-  const std::vector<float> plain = plain_differences(*view, moved.get());  // once for every condition
+  const std::vector<float> plain =
+      plain_differences(*view, moved.get());  // once for every condition
   for (const auto& u : shot) {
-    if (u.is_reference()) write_reference(u, *view, moved.get());
-    else write_condition(u, view, moved, plain, plan.use_of.at({u.method, int(u.sigma)}));
+    if (u.is_reference())
+      write_reference(u, *view, moved.get());
+    else
+      write_condition(u, view, moved, plain, plan.use_of.at({u.method, int(u.sigma)}));
   }
 }
 
 // The still scene's view under the display change the experiment's headroom settles on. Each
 // change the search tries is a render of its own; the last one is kept, since the search mostly
 // settles on the change it tried last.
-std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePlan& plan, const ViewOptions& options) {
+std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePlan& plan,
+                                                        const ViewOptions& options) {
   const std::vector<double> extremes = {e_.lambda.value(0), e_.lambda.value(e_.lambda.count() - 1)};
   std::shared_ptr<const View> last;
   Headroom last_change;
@@ -497,11 +536,14 @@ std::shared_ptr<const View> SetGenerator::headroom_view(size_t s, const ScenePla
     return last = render_view(scene, plan.plan, options);
   };
   const Headroom change = find_headroom(
-      [&](const Headroom& change) { return largest_clipped(at(change), extremes, options_.jobs, e_.hold_mean); },
+      [&](const Headroom& change) {
+        return largest_clipped(at(change), extremes, options_.jobs, e_.hold_mean);
+      },
       e_.max_clipped);
   if (last_change != change) at(change);
   // The search's renders are the set's slowest part; say what they settled on.
-  std::fprintf(stderr, "stimuli %s: headroom for %s: exposure %+.2f stops, black level %.4f (%d renders)\n",
+  std::fprintf(stderr,
+               "stimuli %s: headroom for %s: exposure %+.2f stops, black level %.4f (%d renders)\n",
                e_.name.c_str(), e_.scenes[s].name.c_str(), last->scene->display.exposure_stops,
                last->scene->display.black_level, renders);
   return last;
@@ -522,8 +564,10 @@ void SetGenerator::finish() {
                           {"finished_utc", utc_timestamp(false)},
                           {"jobs", options_.jobs},
                           {"seconds",
-                           {{"render", report_.render_seconds}, {"prepare", report_.prepare_seconds},
-                            {"compose", report_.compose_seconds}, {"encode", report_.encode_seconds},
+                           {{"render", report_.render_seconds},
+                            {"prepare", report_.prepare_seconds},
+                            {"compose", report_.compose_seconds},
+                            {"encode", report_.encode_seconds},
                             {"total", report_.total_seconds}}}};
   };
   if (options_.shards > 1) {  // a part: its manifest only; the merge finishes the set
@@ -532,12 +576,14 @@ void SetGenerator::finish() {
     manifest.run = run();
     write_manifest(manifest_path_, manifest);
   } else {
-    finish_set(e_, dir_, manifest, [&](size_t s) { return scenes_[s]; }, run, {options_.jobs, options_.contact_sheets});
+    finish_set(e_, dir_, manifest, [&](size_t s) { return scenes_[s]; }, run,
+               {options_.jobs, options_.contact_sheets});
   }
   std::error_code ec;
   fs::remove(journal_path_, ec);
   report_.manifest = manifest_path_;
-  progress_.finish("wrote " + manifest_path_.string() + " (" + std::to_string(manifest.stimuli.size()) + " images, " +
+  progress_.finish("wrote " + manifest_path_.string() + " (" +
+                   std::to_string(manifest.stimuli.size()) + " images, " +
                    format_seconds(report_.total_seconds) + ")");
 }
 
@@ -572,37 +618,46 @@ std::pair<int, int> parse_shard(const std::string& text) {
   return {i, n};
 }
 
-GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir, const GenerateOptions& options) {
+GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir,
+                                     const GenerateOptions& options) {
   return SetGenerator(e, dir, options).run();
 }
 
-fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir, const FinishOptions& options) {
+fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir,
+                               const FinishOptions& options) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw_input_error(dir.string(), "no such folder (nothing to merge)");
+  if (!fs::is_directory(dir, ec))
+    throw_input_error(dir.string(), "no such folder (nothing to merge)");
   std::map<int, Manifest> shards;
   int count = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("manifest.shard-", 0) != 0) continue;
     Manifest m = read_manifest(entry.path());
-    if (m.experiment_sha256 != e.sha256) throw_input_error(entry.path().string(), "was made from a different experiment file");
+    if (m.experiment_sha256 != e.sha256)
+      throw_input_error(entry.path().string(), "was made from a different experiment file");
     if (!m.shard) throw_input_error(entry.path().string(), "shard: missing");
     if (count && m.shard->second != count)
-      throw_input_error(entry.path().string(), "belongs to a split into a different number of shards");
+      throw_input_error(entry.path().string(),
+                        "belongs to a split into a different number of shards");
     count = m.shard->second;
     shards[m.shard->first] = std::move(m);
   }
-  if (!count) throw_input_error(dir.string(), "no shard manifests (manifest.shard-I-of-N.json) to merge");
+  if (!count)
+    throw_input_error(dir.string(), "no shard manifests (manifest.shard-I-of-N.json) to merge");
   std::string missing;
   for (int i = 1; i <= count; ++i)
     if (!shards.count(i)) missing += (missing.empty() ? "" : ",") + std::to_string(i);
   if (!missing.empty())
-    throw_input_error(dir.string(), (missing.find(',') == std::string::npos ? "shard " + missing + " of " + std::to_string(count) + " has"
-                                                                             : "shards " + missing + " of " + std::to_string(count) + " have") +
-                                        " not finished (no manifest.shard-I-of-" + std::to_string(count) + ".json); run " +
-                                        (missing.find(',') == std::string::npos ? "it" : "them") +
-                                        " again (with Slurm: sbatch --array=" + missing +
-                                        " " + (dir / "slurm" / "array.sbatch").string() + "), then merge; nothing was written");
+    throw_input_error(
+        dir.string(),
+        (missing.find(',') == std::string::npos
+             ? "shard " + missing + " of " + std::to_string(count) + " has"
+             : "shards " + missing + " of " + std::to_string(count) + " have") +
+            " not finished (no manifest.shard-I-of-" + std::to_string(count) + ".json); run " +
+            (missing.find(',') == std::string::npos ? "it" : "them") +
+            " again (with Slurm: sbatch --array=" + missing + " " +
+            (dir / "slurm" / "array.sbatch").string() + "), then merge; nothing was written");
   Manifest manifest = manifest_header(e);
   std::string started = "9999", finished = "0000";
   for (auto& [i, m] : shards) {
@@ -610,8 +665,10 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir, const F
     started = std::min(started, m.run.value("started_utc", started));
     finished = std::max(finished, m.run.value("finished_utc", finished));
   }
-  const nlohmann::json run = {{"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
-  finish_set(e, dir, manifest, [&](size_t s) { return set_scene(e, s); }, [&] { return run; }, options);
+  const nlohmann::json run = {
+      {"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
+  finish_set(
+      e, dir, manifest, [&](size_t s) { return set_scene(e, s); }, [&] { return run; }, options);
   return dir / "manifest.json";
 }
 

@@ -8,13 +8,13 @@
 #include <functional>
 #include <string>
 
-#include "stimuli/experiment.h"
 #include "formats/manifest.h"
+#include "stimuli/experiment.h"
 
 namespace countershade {
 
 struct GenerateOptions {
-  int jobs = 0;              // threads (0 = all cores)
+  int jobs = 0;               // threads (0 = all cores)
   int shard = 1, shards = 1;  // this run's part, I of N
   bool resume = false;
   bool contact_sheets = true;
@@ -25,7 +25,8 @@ struct GenerateOptions {
 
 struct GenerateReport {
   size_t images_written = 0, images_skipped = 0;
-  double render_seconds = 0, prepare_seconds = 0, compose_seconds = 0, encode_seconds = 0, total_seconds = 0;
+  double render_seconds = 0, prepare_seconds = 0, compose_seconds = 0, encode_seconds = 0,
+         total_seconds = 0;
   std::filesystem::path manifest;
 };
 
@@ -40,7 +41,8 @@ struct FinishOptions {
 
 // Joins manifest.shard-*-of-N.json in `dir` into manifest.json and finishes the set as a run on
 // one machine does: the same flicker figures, videos, sheets and figures.
-std::filesystem::path merge_shard_manifests(const Experiment& experiment, const std::filesystem::path& dir,
+std::filesystem::path merge_shard_manifests(const Experiment& experiment,
+                                            const std::filesystem::path& dir,
                                             const FinishOptions& options = {});
 
 // Parses "I/N"; throws InputError.

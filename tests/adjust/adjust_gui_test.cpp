@@ -1,22 +1,22 @@
 // The adjustment app end to end: the real binary in a real window on a private Xvfb server,
 // driven by key scripts, the simulated observer, xdotool, and SIGKILL.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 #include <sstream>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "adjust/input_script.h"
 #include "adjust/recorder.h"
 #include "adjust/study.h"
 #include "analysis/responses.h"
-#include "core/image.h"
 #include "app_runner.h"
+#include "core/image.h"
 #include "tiny_set.h"
 #include "x_display.h"
 
@@ -35,13 +35,15 @@ using testing::adjust_args;
 using testing::run_app;
 
 // Waits until the app's window exists and its stimuli are loaded (up to 120 s: only a hang should
-// stop it): key presses during loading are ignored on purpose, so a test must not send them earlier.
+// stop it): key presses during loading are ignored on purpose, so a test must not send them
+// earlier.
 bool wait_until_ready(const fs::path& sidecar, const std::string& xdotool) {
   for (int i = 0; i < 1200; ++i) {
     if (fs::exists(sidecar)) {
       auto runs = json::parse(testing::read_file(sidecar))["runs"];
       if (!runs.empty() && runs.back().contains("preload") &&
-          std::system((xdotool + "search --name 'countershade adjust' >/dev/null 2>&1").c_str()) == 0)
+          std::system((xdotool + "search --name 'countershade adjust' >/dev/null 2>&1").c_str()) ==
+              0)
         return true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -68,7 +70,8 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
                     dir / "log.txt"),
             0)
       << testing::read_file(dir / "log.txt");
-  EXPECT_NE(testing::read_file(dir / "log.txt").find("completed; 24 of 24 answers"), std::string::npos)
+  EXPECT_NE(testing::read_file(dir / "log.txt").find("completed; 24 of 24 answers"),
+            std::string::npos)
       << testing::read_file(dir / "log.txt");
 
   const fs::path csv = dir / "sessions/P01_s01.csv";
@@ -81,7 +84,8 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
   std::map<int, std::set<std::string>> questions_of_trial;
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
-    const int trial = std::stoi(row[column("trial")]), revision = std::stoi(row[column("revision")]);
+    const int trial = std::stoi(row[column("trial")]),
+              revision = std::stoi(row[column("revision")]);
     const std::string question = row[3];
     int expected = question == "low" ? 1 : question == "high" ? 3 : 2;
     if (trial == 1 && question == "low" && revision == 1) expected = 2;
@@ -115,11 +119,13 @@ TEST(AdjustGui, AScriptedSessionWritesExactlyTheExpectedRows) {
 TEST(AdjustGui, TheScreenshotShowsBothStimuliPixelExactOnAUniformSurround) {
   testing::TempDir dir;
   auto manifest = testing::make_tiny_set(dir);
-  testing::write_file(dir / "keys.txt", "300 enter\n40 right\n40 right\n100 screenshot\n40 close\n");
+  testing::write_file(dir / "keys.txt",
+                      "300 enter\n40 right\n40 right\n100 screenshot\n40 close\n");
   testing::XvfbServer x;
   ASSERT_EQ(run_app(x,
                     adjust_args(manifest, dir / "sessions", "P02",
-                                {"--script", (dir / "keys.txt").string(), "--screenshot", (dir / "shot.png").string()}),
+                                {"--script", (dir / "keys.txt").string(), "--screenshot",
+                                 (dir / "shot.png").string()}),
                     dir / "log.txt"),
             0)
       << testing::read_file(dir / "log.txt");
@@ -138,7 +144,8 @@ TEST(AdjustGui, TheScreenshotShowsBothStimuliPixelExactOnAUniformSurround) {
     for (int y = 0; y < stimulus.height; ++y)
       for (int x = 0; x < stimulus.width; ++x)
         for (int c = 0; c < 3; ++c)
-          differing += std::lround(stimulus.at(x, y, c) * 255) != std::lround(shot.at(x0 + x, y0 + y, c) * 255);
+          differing += std::lround(stimulus.at(x, y, c) * 255) !=
+                       std::lround(shot.at(x0 + x, y0 + y, c) * 255);
     EXPECT_EQ(differing, 0) << side << ": " << r["file"];
     shown.insert(r["file"].get<std::string>());
   }
@@ -148,14 +155,18 @@ TEST(AdjustGui, TheScreenshotShowsBothStimuliPixelExactOnAUniformSurround) {
   EXPECT_EQ(shown.size(), 2u);
   // The surround is the configured uniform grey, also between and around the stimuli.
   const int gap_x = info["left"]["x"].get<int>() + info["left"]["width"].get<int>() + 10;
-  for (auto [x, y] : {std::pair{0, 0}, {shot.width - 1, shot.height - 1}, {gap_x, info["left"]["y"].get<int>() + 5}})
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(std::lround(shot.at(x, y, c) * 255), 128) << x << "," << y;
+  for (auto [x, y] : {std::pair{0, 0},
+                      {shot.width - 1, shot.height - 1},
+                      {gap_x, info["left"]["y"].get<int>() + 5}})
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(std::lround(shot.at(x, y, c) * 255), 128) << x << "," << y;
 }
 
 // Every answer exactly once, each the simulated observer's answer, the file parses cleanly, and the
 // sidecar records every kill. Returns the rows of the responses file.
-std::vector<std::vector<std::string>> check_every_answer_once(const fs::path& manifest, const fs::path& dir,
-                                                              int answers, int kills) {
+std::vector<std::vector<std::string>> check_every_answer_once(const fs::path& manifest,
+                                                              const fs::path& dir, int answers,
+                                                              int kills) {
   const fs::path sessions = dir / "sessions";
   const fs::path sidecar = sessions / "P03_s01.json";
   Study study = load_study(manifest, std::nullopt);
@@ -169,15 +180,20 @@ std::vector<std::vector<std::string>> check_every_answer_once(const fs::path& ma
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const int trial = std::stoi(row[column("trial")]);
-    EXPECT_TRUE(seen.insert({trial, row[3]}).second) << "trial " << trial << " " << row[3] << " twice";
+    EXPECT_TRUE(seen.insert({trial, row[3]}).second)
+        << "trial " << trial << " " << row[3] << " twice";
     const auto& planned = sidecar_json["plan"][size_t(trial - 1)];
     int condition = -1;
     for (size_t c = 0; c < study.conditions.size(); ++c)
-      if (study.conditions[c].scene == planned["scene"] && study.conditions[c].sigma == planned["sigma"].get<double>())
+      if (study.conditions[c].scene == planned["scene"] &&
+          study.conditions[c].sigma == planned["sigma"].get<double>())
         condition = int(c);
     EXPECT_GE(condition, 0);
-    Question q = row[3] == "low" ? Question::low : row[3] == "high" ? Question::high : Question::best;
-    EXPECT_EQ(std::stoi(row[7]), observer.answer_index(condition, planned["repetition"], q)) << "trial " << trial;
+    Question q = row[3] == "low"    ? Question::low
+                 : row[3] == "high" ? Question::high
+                                    : Question::best;
+    EXPECT_EQ(std::stoi(row[7]), observer.answer_index(condition, planned["repetition"], q))
+        << "trial " << trial;
   }
   EXPECT_EQ(seen.size(), size_t(answers));
   // The sidecar records every interruption.
@@ -191,24 +207,27 @@ std::vector<std::vector<std::string>> check_every_answer_once(const fs::path& ma
 // Runs the simulated observer's session of `manifest`, killing it `max_kills` times at random
 // moments and resuming, until it completes with all `answers`; then checks that every answer is
 // there exactly once and is the observer's. Returns the rows of the responses file.
-std::vector<std::vector<std::string>> kill_and_resume(const fs::path& manifest, const fs::path& dir, int answers,
-                                                      int max_kills) {
+std::vector<std::vector<std::string>> kill_and_resume(const fs::path& manifest, const fs::path& dir,
+                                                      int answers, int max_kills) {
   const fs::path sessions = dir / "sessions";
   const fs::path sidecar = sessions / "P03_s01.json";
   testing::XvfbServer x;
   std::mt19937 random(2024);
   std::uniform_real_distribution<double> kill_after(0.0, 0.7);
   auto runs_recorded = [&] {
-    return fs::exists(sidecar) ? json::parse(testing::read_file(sidecar))["runs"].size() : size_t(0);
+    return fs::exists(sidecar) ? json::parse(testing::read_file(sidecar))["runs"].size()
+                               : size_t(0);
   };
-  const std::string done = "completed; " + std::to_string(answers) + " of " + std::to_string(answers);
+  const std::string done =
+      "completed; " + std::to_string(answers) + " of " + std::to_string(answers);
   int kills = 0, launches = 0;
   bool complete = false;
   while (!complete && launches < 60) {
     std::vector<std::string> extra = {"--observer", "simulated:7"};
     if (fs::exists(sidecar)) extra.push_back("--resume");
     const size_t runs_before = runs_recorded();
-    testing::Child app(adjust_args(manifest, sessions, "P03", extra), x.display(), (dir / "log.txt").string());
+    testing::Child app(adjust_args(manifest, sessions, "P03", extra), x.display(),
+                       (dir / "log.txt").string());
     ++launches;
     if (kills < max_kills) {
       // Kill at a random point after the run has registered itself (so the sidecar can know of it):
@@ -236,7 +255,8 @@ std::vector<std::vector<std::string>> kill_and_resume(const fs::path& manifest, 
 // the 8-bit path is killed in the sequence test below).
 TEST(AdjustGui, KilledSessionsResumeWithEveryAnswerExactlyOnce) {
   testing::TempDir dir;
-  const auto manifest = testing::make_tiny_set(dir, R"({"repetitions": 8})", 96, 72, 0.4, R"("output": {"bits": 16},)");
+  const auto manifest = testing::make_tiny_set(dir, R"({"repetitions": 8})", 96, 72, 0.4,
+                                               R"("output": {"bits": 16},)");
   kill_and_resume(manifest, dir.path(), 96, 12);
   const auto runs = json::parse(testing::read_file(dir / "sessions" / "P03_s01.json"))["runs"];
   EXPECT_EQ(runs.back()["display"]["output"]["stimulus_bits"], 16);
@@ -246,9 +266,12 @@ TEST(AdjustGui, KilledSessionsResumeWithEveryAnswerExactlyOnce) {
 // loses nothing.
 TEST(AdjustGui, SequenceSessionsRecordTheChosenSequenceAndSurviveKills) {
   testing::TempDir dir;
-  const auto rows = kill_and_resume(testing::make_sequence_set(dir, R"({"repetitions": 16})"), dir.path(), 48, 6);
+  const auto rows =
+      kill_and_resume(testing::make_sequence_set(dir, R"({"repetitions": 16})"), dir.path(), 48, 6);
   for (size_t r = 1; r < rows.size(); ++r)
-    EXPECT_EQ(rows[r][column("sequence")], "orbit/usm2d/sigma-2/lambda-" + rows[r][column("lambda_index")]) << r;
+    EXPECT_EQ(rows[r][column("sequence")],
+              "orbit/usm2d/sigma-2/lambda-" + rows[r][column("lambda_index")])
+        << r;
 }
 
 // The left and right files of a screenshot's sidecar, checked pixel for pixel against the shot.
@@ -262,8 +285,9 @@ std::pair<std::string, std::string> shown_files(const fs::path& shot, const fs::
     for (int y = 0; y < stimulus.height; ++y)
       for (int x = 0; x < stimulus.width; ++x)
         for (int c = 0; c < 3; ++c)
-          differing += std::lround(stimulus.at(x, y, c) * 255) !=
-                       std::lround(screen.at(r["x"].get<int>() + x, r["y"].get<int>() + y, c) * 255);
+          differing +=
+              std::lround(stimulus.at(x, y, c) * 255) !=
+              std::lround(screen.at(r["x"].get<int>() + x, r["y"].get<int>() + y, c) * 255);
     EXPECT_EQ(differing, 0) << shot << " " << side << ": " << r["file"];
   }
   return {info["left"]["file"], info["right"]["file"]};
@@ -271,14 +295,16 @@ std::pair<std::string, std::string> shown_files(const fs::path& shot, const fs::
 
 // Plays the sequence set for about 10 s with three screenshots (5 s in, 260 ms later, and after a
 // λ step) and returns the run's record from the sidecar.
-json play_for_ten_seconds(const fs::path& manifest, const fs::path& dir, const std::string& subject) {
-  testing::write_file(dir / "keys.txt", "300 enter\n5000 screenshot\n260 screenshot\n100 right\n200 screenshot\n"
-                                        "4400 close\n");
+json play_for_ten_seconds(const fs::path& manifest, const fs::path& dir,
+                          const std::string& subject) {
+  testing::write_file(dir / "keys.txt",
+                      "300 enter\n5000 screenshot\n260 screenshot\n100 right\n200 screenshot\n"
+                      "4400 close\n");
   testing::XvfbServer x;
   EXPECT_EQ(run_app(x,
                     adjust_args(manifest, dir / "sessions", subject,
-                                {"--script", (dir / "keys.txt").string(), "--screenshot", (dir / "shot.png").string(),
-                                 "--frame-clock"}),
+                                {"--script", (dir / "keys.txt").string(), "--screenshot",
+                                 (dir / "shot.png").string(), "--frame-clock"}),
                     dir / "log.txt"),
             0)
       << testing::read_file(dir / "log.txt");
@@ -294,10 +320,13 @@ TEST(AdjustPlayback, TwoSequencesPlayInStepAndKeepPlayingAcrossALambdaStep) {
   const json run = play_for_ten_seconds(manifest, dir.path(), "P09");
   auto frame_of = [](const std::string& file) { return fs::path(file).filename().string(); };
   std::vector<std::pair<std::string, std::string>> shots;
-  for (const char* name : {"shot.png", "shot-2.png", "shot-3.png"}) shots.push_back(shown_files(dir / name, dir / "set"));
-  for (const auto& [left, right] : shots) EXPECT_EQ(frame_of(left), frame_of(right)) << left << " | " << right;
+  for (const char* name : {"shot.png", "shot-2.png", "shot-3.png"})
+    shots.push_back(shown_files(dir / name, dir / "set"));
+  for (const auto& [left, right] : shots)
+    EXPECT_EQ(frame_of(left), frame_of(right)) << left << " | " << right;
   EXPECT_NE(frame_of(shots[0].first), frame_of(shots[1].first));  // 260 ms apart at 4 fps
-  const std::string after_step = shots[2].first.find("reference") == std::string::npos ? shots[2].first : shots[2].second;
+  const std::string after_step =
+      shots[2].first.find("reference") == std::string::npos ? shots[2].first : shots[2].second;
   EXPECT_NE(after_step.find("lambda-1/"), std::string::npos) << after_step;
 
   EXPECT_EQ(run["preload"]["images"], 3 * 4);
@@ -315,7 +344,9 @@ TEST(AdjustGui, SimulatedObserverSessionsFeedTheAnalysis) {
   std::string csvs;
   for (int subject = 1; subject <= 5; ++subject) {
     const std::string id = "S" + std::to_string(subject);
-    ASSERT_EQ(run_app(x, adjust_args(manifest, dir / "sessions", id, {"--observer", "simulated:" + std::to_string(subject)}),
+    ASSERT_EQ(run_app(x,
+                      adjust_args(manifest, dir / "sessions", id,
+                                  {"--observer", "simulated:" + std::to_string(subject)}),
                       dir / "log.txt"),
               0)
         << testing::read_file(dir / "log.txt");
@@ -329,9 +360,9 @@ TEST(AdjustGui, SimulatedObserverSessionsFeedTheAnalysis) {
   EXPECT_DOUBLE_EQ(results["lambda_step"].get<double>(), 0.4);
   ASSERT_EQ(results["fits"].size(), 12u);  // 2 scenes × 2 σ × 3 questions
   // Each fitted threshold lies within the interval-censored answers of its cell.
-  auto rows = analysis::read_responses(
-      std::vector<fs::path>{dir / "sessions/S1_s01.csv", dir / "sessions/S2_s01.csv", dir / "sessions/S3_s01.csv",
-                            dir / "sessions/S4_s01.csv", dir / "sessions/S5_s01.csv"});
+  auto rows = analysis::read_responses(std::vector<fs::path>{
+      dir / "sessions/S1_s01.csv", dir / "sessions/S2_s01.csv", dir / "sessions/S3_s01.csv",
+      dir / "sessions/S4_s01.csv", dir / "sessions/S5_s01.csv"});
   for (const auto& fit : results["fits"]) {
     double lo = 1e9, hi = -1e9;
     for (const auto& row : rows)
@@ -350,7 +381,8 @@ TEST(AdjustGui, RealKeyEventsFromTheXServerDriveTheSession) {
   testing::TempDir dir;
   auto manifest = testing::make_tiny_set(dir, R"({"start": "zero"})");
   testing::XvfbServer x;
-  testing::Child app(adjust_args(manifest, dir / "sessions", "P04"), x.display(), (dir / "log.txt").string());
+  testing::Child app(adjust_args(manifest, dir / "sessions", "P04"), x.display(),
+                     (dir / "log.txt").string());
   const std::string xdotool = "DISPLAY=" + x.display() + " xdotool ";
   ASSERT_TRUE(wait_until_ready(dir / "sessions/P04_s01.json", xdotool))
       << testing::read_file(dir / "log.txt");
@@ -372,10 +404,11 @@ TEST(AdjustGui, AHeldKeyRepeatsAtTheAppsRateNotTheXServers) {
   testing::TempDir dir;
   // A 21-value grid (step 0.1), so a held key does not reach the end.
   // The app's interval (200 ms) differs from the X server's default repeat (25 per second).
-  auto manifest = testing::make_tiny_set(dir, R"({"start": "zero", "repeat": {"delay_ms": 400, "interval_ms": 200}})",
-                                         96, 72, 0.1);
+  auto manifest = testing::make_tiny_set(
+      dir, R"({"start": "zero", "repeat": {"delay_ms": 400, "interval_ms": 200}})", 96, 72, 0.1);
   testing::XvfbServer x;
-  testing::Child app(adjust_args(manifest, dir / "sessions", "P06"), x.display(), (dir / "log.txt").string());
+  testing::Child app(adjust_args(manifest, dir / "sessions", "P06"), x.display(),
+                     (dir / "log.txt").string());
   const std::string xdotool = "DISPLAY=" + x.display() + " xdotool ";
   ASSERT_TRUE(wait_until_ready(dir / "sessions/P06_s01.json", xdotool))
       << testing::read_file(dir / "log.txt");
@@ -383,7 +416,9 @@ TEST(AdjustGui, AHeldKeyRepeatsAtTheAppsRateNotTheXServers) {
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   // The X server auto-repeats a held key (GLFW reports those as GLFW_REPEAT); the app ignores
   // them and steps once on the press, then every 200 ms after 400 ms.
-  ASSERT_EQ(std::system((xdotool + "keydown Right && sleep 1.05 && " + xdotool + "keyup Right").c_str()), 0);
+  ASSERT_EQ(
+      std::system((xdotool + "keydown Right && sleep 1.05 && " + xdotool + "keyup Right").c_str()),
+      0);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   for (const char* key : {"Return", "Escape", "q"}) {
     ASSERT_EQ(std::system((xdotool + "key " + key).c_str()), 0);
@@ -415,20 +450,24 @@ TEST(AdjustGui, AHeldKeyRepeatsAtTheAppsRateNotTheXServers) {
 // and is refused on one 5 % wider (the monitor's size given, since Xvfb has no EDID to report).
 TEST(AdjustGui, ASetIsShownOnlyAtItsPixelsPerDegree) {
   testing::TempDir dir;
-  auto manifest = testing::make_tiny_set(dir, "", 96, 72, 0.4,
-                                         R"("screen": {"width_mm": 400, "width_px": 1280, "distance_mm": 570},)");
+  auto manifest = testing::make_tiny_set(
+      dir, "", 96, 72, 0.4,
+      R"("screen": {"width_mm": 400, "width_px": 1280, "distance_mm": 570},)");
   testing::XvfbServer x;
   auto run = [&](const std::string& subject, const std::string& width_mm) {
-    return run_app(x, adjust_args(manifest, dir / "sessions", subject,
-                                  {"--observer", "simulated:1", "--frame-clock", "--monitor-width-mm", width_mm}),
-                   dir / (subject + ".log"));
+    return run_app(
+        x,
+        adjust_args(manifest, dir / "sessions", subject,
+                    {"--observer", "simulated:1", "--frame-clock", "--monitor-width-mm", width_mm}),
+        dir / (subject + ".log"));
   };
   EXPECT_EQ(run("S1", "400"), 0) << testing::read_file(dir / "S1.log");
   EXPECT_EQ(run("S2", "392.5"), 0) << testing::read_file(dir / "S2.log");  // +1.9 %
   ASSERT_EQ(run("S3", "420"), 2);
   const std::string log = testing::read_file(dir / "S3.log");
   EXPECT_EQ(testing::count_lines(log), 1) << log;
-  EXPECT_NE(log.find("the set was made for 31.84 pixels per degree at 570 mm, but monitor 0 (1280 px, 420 mm wide) gives "
+  EXPECT_NE(log.find("the set was made for 31.84 pixels per degree at 570 mm, but monitor 0 (1280 "
+                     "px, 420 mm wide) gives "
                      "30.32 (-4.8 %"),
             std::string::npos)
       << log;
@@ -440,7 +479,9 @@ TEST(AdjustGui, AScreenTooSmallForOneToOneIsRefusedWithTheReason) {
   auto manifest = testing::make_tiny_set(dir);
   testing::write_file(dir / "wide.json", R"({"gap_px": 1400})");
   testing::XvfbServer x;
-  ASSERT_EQ(run_app(x, adjust_args(manifest, dir / "sessions", "P05", {"--procedure", (dir / "wide.json").string()}),
+  ASSERT_EQ(run_app(x,
+                    adjust_args(manifest, dir / "sessions", "P05",
+                                {"--procedure", (dir / "wide.json").string()}),
                     dir / "log.txt"),
             2);
   const std::string log = testing::read_file(dir / "log.txt");

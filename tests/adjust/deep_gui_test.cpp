@@ -2,9 +2,9 @@
 // confirms a 10-bit framebuffer and shows each stimulus at its 10-bit levels; on a depth-24 one it
 // dithers, and a screenshot is exactly the seed's frame. Killed sessions still lose nothing.
 
-#include <algorithm>
-
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "adjust/fine_levels.h"
@@ -28,16 +28,20 @@ struct Shot {
 // One scripted session on an X server of the given depth, up to a screenshot of a question.
 Shot screenshot_session(const testing::TempDir& dir, const fs::path& manifest, int depth,
                         const std::vector<std::string>& more = {}) {
-  const std::string name = "depth" + std::to_string(depth) + (more.empty() ? "" : "-" + more.back());
-  testing::write_file(dir / "keys.txt", "300 enter\n40 right\n40 right\n100 screenshot\n40 close\n");
+  const std::string name =
+      "depth" + std::to_string(depth) + (more.empty() ? "" : "-" + more.back());
+  testing::write_file(dir / "keys.txt",
+                      "300 enter\n40 right\n40 right\n100 screenshot\n40 close\n");
   testing::XvfbServer x("1280x1024x" + std::to_string(depth));
-  std::vector<std::string> flags = {"--script", (dir / "keys.txt").string(), "--frame-clock", "--screenshot",
-                                    (dir / (name + ".png")).string()};
+  std::vector<std::string> flags = {"--script", (dir / "keys.txt").string(), "--frame-clock",
+                                    "--screenshot", (dir / (name + ".png")).string()};
   flags.insert(flags.end(), more.begin(), more.end());
-  const int status = testing::run_app(x, testing::adjust_args(manifest, dir / name, "P01", flags), dir / (name + ".log"));
+  const int status = testing::run_app(x, testing::adjust_args(manifest, dir / name, "P01", flags),
+                                      dir / (name + ".log"));
   EXPECT_EQ(status, 0) << testing::read_file(dir / (name + ".log"));
   Shot shot;
-  shot.display = json::parse(testing::read_file(dir / name / "P01_s01.json"))["runs"][0]["display"]["output"];
+  shot.display =
+      json::parse(testing::read_file(dir / name / "P01_s01.json"))["runs"][0]["display"]["output"];
   shot.info = json::parse(testing::read_file(dir / (name + ".png.json")));
   shot.image = read_image(dir / (name + ".png"));
   return shot;
@@ -54,7 +58,8 @@ void for_each_stimulus_pixel(const Shot& shot, const fs::path& set, Check check)
       for (int x = 0; x < stimulus.width; ++x)
         for (int c = 0; c < 3; ++c)
           check(uint32_t(std::lround(stimulus.at(x, y, c) * 65535)),
-                uint32_t(std::lround(shot.image.at(x0 + x, y0 + y, c) * 65535)), uint32_t(x), uint32_t(y));
+                uint32_t(std::lround(shot.image.at(x0 + x, y0 + y, c) * 65535)), uint32_t(x),
+                uint32_t(y));
   }
 }
 
@@ -78,19 +83,23 @@ TEST(DeepGui, SixteenBitSetsShowAtTenBitsWhereTheReadBackConfirmsThemElseDithere
   EXPECT_EQ(dithered.display["ten_bit_read_back"], false);
   const uint32_t seed = dithered.display["dither_seed"], frame = dithered.info["output_frame"];
   wrong = 0;
-  for_each_stimulus_pixel(dithered, dir / "set", [&](uint32_t code, uint32_t shown, uint32_t x, uint32_t y) {
-    wrong += shown / 257 != dither_level(code, dither_threshold(x, y, frame, seed));
-  });
+  for_each_stimulus_pixel(
+      dithered, dir / "set", [&](uint32_t code, uint32_t shown, uint32_t x, uint32_t y) {
+        wrong += shown / 257 != dither_level(code, dither_threshold(x, y, frame, seed));
+      });
   EXPECT_EQ(wrong, 0);
 }
 
 // A session asked for an output path it cannot have, on a depth-24 server: one line saying
 // `why`, exit 2, and no answers file.
-void expect_refused(const fs::path& dir, const fs::path& manifest, const std::string& path, const std::string& why) {
+void expect_refused(const fs::path& dir, const fs::path& manifest, const std::string& path,
+                    const std::string& why) {
   testing::XvfbServer x("1280x1024x24");
-  const int status = testing::run_app(
-      x, testing::adjust_args(manifest, dir / "sessions", "P01", {"--observer", "simulated:1", "--output-path", path}),
-      dir / "log.txt");
+  const int status =
+      testing::run_app(x,
+                       testing::adjust_args(manifest, dir / "sessions", "P01",
+                                            {"--observer", "simulated:1", "--output-path", path}),
+                       dir / "log.txt");
   const std::string log = testing::read_file(dir / "log.txt");
   EXPECT_EQ(status, 2) << log;
   EXPECT_NE(log.find(why), std::string::npos) << log;
@@ -114,11 +123,13 @@ TEST(DeepGui, PseudoGreyShowsAGreySetAtTheTablesLevelsAndRefusesColour) {
         uint32_t code[3], shown[3];
         for (int c = 0; c < 3; ++c) {
           code[c] = uint32_t(std::lround(stimulus.at(x, y, c) * 65535));
-          shown[c] = uint32_t(std::lround(shot.image.at(int(r["x"]) + x, int(r["y"]) + y, c) * 255));
+          shown[c] =
+              uint32_t(std::lround(shot.image.at(int(r["x"]) + x, int(r["y"]) + y, c) * 255));
         }
         const uint32_t grey = pseudo_grey_value(code[0], code[1], code[2]);
         wrong += shown[0] != pseudo_grey_level(grey, kPseudoGreyRed) ||
-                 shown[1] != pseudo_grey_level(grey, kPseudoGreyGreen) || shown[2] != pseudo_grey_level(grey, kPseudoGreyBlue);
+                 shown[1] != pseudo_grey_level(grey, kPseudoGreyGreen) ||
+                 shown[2] != pseudo_grey_level(grey, kPseudoGreyBlue);
         between += shown[0] != shown[1] || shown[1] != shown[2];
       }
   }
@@ -131,7 +142,8 @@ TEST(DeepGui, PseudoGreyShowsAGreySetAtTheTablesLevelsAndRefusesColour) {
   scene.replace(scene.find(grey), grey.size(), "\"albedo\": [0.6, 0.45, 0.3]");
   testing::write_file(colour / "cube.json", scene);
   const auto coloured = testing::make_tiny_set_of(colour, kSixteenBits);
-  expect_refused(colour.path(), coloured, "pseudo-grey", "pseudo-grey shows achromatic stimuli only, but pixel (");
+  expect_refused(colour.path(), coloured, "pseudo-grey",
+                 "pseudo-grey shows achromatic stimuli only, but pixel (");
 }
 
 // Asked for ten-bit where the framebuffer has 8 bits: one line, exit 2, and no session files left.

@@ -12,12 +12,12 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
-
-#include <gtest/gtest.h>
 
 #include "adjust/deep_stimulus.h"
 #include "adjust/image_decode.h"
@@ -174,7 +174,8 @@ TEST(DeepOutput, PseudoGreyDrawsEverySixteenBitGreyAsTheReferenceLevels) {
   ASSERT_TRUE(fb.complete());
   std::vector<uint16_t> ramp(256 * 256 * 4);
   for (uint32_t v = 0; v < 65536; ++v)
-    for (int c = 0; c < 4; ++c) ramp[v * 4 + c] = uint16_t(c == 3 ? 65535 : c == 1 ? std::min(v + (v & 1), 65535u) : v);
+    for (int c = 0; c < 4; ++c)
+      ramp[v * 4 + c] = uint16_t(c == 3 ? 65535 : c == 1 ? std::min(v + (v & 1), 65535u) : v);
   DeepStimulusRenderer renderer;
   const unsigned texture = DeepStimulusRenderer::upload(ramp, 256, 256);
   const PixelRect where{0, 0, 256, 256, 256};
@@ -184,7 +185,8 @@ TEST(DeepOutput, PseudoGreyDrawsEverySixteenBitGreyAsTheReferenceLevels) {
   long differing = 0, tilted = 0;
   for (uint32_t v = 0; v < 65536; ++v) {
     const uint32_t grey = pseudo_grey_value(ramp[v * 4], ramp[v * 4 + 1], ramp[v * 4 + 2]);
-    for (int c = 0; c < 3; ++c) differing += back[v * 4 + c] / 257u != pseudo_grey_level(grey, masks[c]);
+    for (int c = 0; c < 3; ++c)
+      differing += back[v * 4 + c] / 257u != pseudo_grey_level(grey, masks[c]);
     tilted += back[v * 4] != back[v * 4 + 1] || back[v * 4 + 1] != back[v * 4 + 2];
   }
   EXPECT_EQ(differing, 0);

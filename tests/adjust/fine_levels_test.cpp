@@ -1,13 +1,13 @@
 // The 16-bit output paths' definitions, checked against independent arithmetic: the nearest
 // 10-bit level, and the dither whose mean over 64 frames is the 16-bit value.
 
-#include <cmath>
-#include <random>
-#include <set>
+#include "adjust/fine_levels.h"
 
 #include <gtest/gtest.h>
 
-#include "adjust/fine_levels.h"
+#include <cmath>
+#include <random>
+#include <set>
 
 namespace countershade::adjust {
 namespace {
@@ -30,9 +30,11 @@ TEST(FineLevels, TheDithersMeanOverSixtyFourFramesIsTheSixteenBitValue) {
   std::mt19937 random(11);
   double worst = 0;
   for (uint32_t v = 0; v <= 65535; ++v) {
-    const uint32_t x = random() % 4096, y = random() % 4096, start = random() % 100000, seed = random();
+    const uint32_t x = random() % 4096, y = random() % 4096, start = random() % 100000,
+                   seed = random();
     int sum = 0;
-    for (uint32_t f = start; f < start + 64; ++f) sum += int(dither_level(v, dither_threshold(x, y, f, seed)));
+    for (uint32_t f = start; f < start + 64; ++f)
+      sum += int(dither_level(v, dither_threshold(x, y, f, seed)));
     const double error = std::abs(sum / 64.0 - double(v) * 255.0 / 65535.0);
     worst = std::max(worst, error);
     ASSERT_LT(error, 0.02) << "code " << v << " at " << x << "," << y;
@@ -49,7 +51,8 @@ TEST(FineLevels, TheDitherShowsOnlyTheTwoLevelsAroundTheValue) {
     }
   // An exact 8-bit level (a multiple of 257) stays itself in every frame.
   for (uint32_t level = 0; level <= 255; ++level)
-    for (uint32_t f = 0; f < 64; ++f) ASSERT_EQ(dither_level(level * 257, dither_threshold(level, 3, f, 9)), level);
+    for (uint32_t f = 0; f < 64; ++f)
+      ASSERT_EQ(dither_level(level * 257, dither_threshold(level, 3, f, 9)), level);
 }
 
 // Thresholds spread evenly over [0, 65535) across pixels (no visible pattern of a few values),
@@ -76,8 +79,9 @@ TEST(FineLevels, TheDitherPatternIsSpatiallyEvenAndChangesEveryFrameAndWithTheSe
 
 // The boost table as Psychtoolbox's CreatePseudoGrayLUT lists it (slots counted from 0), written
 // out here apart from the masks in fine_levels.h.
-constexpr int kBoost[16][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 1},
-                               {1, 0, 1}, {0, 1, 0}, {0, 1, 0}, {0, 1, 1}, {0, 1, 1}, {0, 1, 1}, {1, 1, 0}, {1, 1, 0}};
+constexpr int kBoost[16][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0},
+                               {1, 0, 0}, {1, 0, 1}, {1, 0, 1}, {0, 1, 0}, {0, 1, 0}, {0, 1, 1},
+                               {0, 1, 1}, {0, 1, 1}, {1, 1, 0}, {1, 1, 0}};
 
 // Bit stealing: Psychtoolbox's table, its 1786 levels, and every 16-bit grey value shown within
 // 0.14 + 1/32 of a level when the guns weigh 0.30, 0.59 and 0.11 (the weights the table is built
@@ -86,12 +90,14 @@ constexpr int kBoost[16][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0
 TEST(FineLevels, PseudoGreyIsPsychtoolboxsTableAndSplitsEachLevelInSeven) {
   const uint32_t masks[3] = {kPseudoGreyRed, kPseudoGreyGreen, kPseudoGreyBlue};
   for (uint32_t slot = 0; slot < 16; ++slot)
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(int((masks[c] >> slot) & 1u), kBoost[slot][c]) << slot << " " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(int((masks[c] >> slot) & 1u), kBoost[slot][c]) << slot << " " << c;
   std::set<uint32_t> triplets;
   double worst = 0, previous = -1;
   bool monotonic = true;
   for (uint32_t v = 0; v <= 65535; ++v) {
-    const uint32_t r = pseudo_grey_level(v, kPseudoGreyRed), g = pseudo_grey_level(v, kPseudoGreyGreen),
+    const uint32_t r = pseudo_grey_level(v, kPseudoGreyRed),
+                   g = pseudo_grey_level(v, kPseudoGreyGreen),
                    b = pseudo_grey_level(v, kPseudoGreyBlue);
     triplets.insert(r << 16 | g << 8 | b);
     const double shown = 0.30 * r + 0.59 * g + 0.11 * b;

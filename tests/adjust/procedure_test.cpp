@@ -3,17 +3,18 @@
 
 #include "adjust/procedure.h"
 
+#include <gtest/gtest.h>
+
 #include <map>
 #include <set>
-
-#include <gtest/gtest.h>
 
 namespace countershade::adjust {
 namespace {
 
 std::vector<Condition> conditions(int n, int grid = 11) {
   std::vector<Condition> out;
-  for (int i = 0; i < n; ++i) out.push_back({"scene" + std::to_string(i % 3), "usm3d", 0.01 * (1 + i / 3), grid});
+  for (int i = 0; i < n; ++i)
+    out.push_back({"scene" + std::to_string(i % 3), "usm3d", 0.01 * (1 + i / 3), grid});
   return out;
 }
 
@@ -30,9 +31,9 @@ PlanSettings settings(uint64_t seed, int repetitions = 1, Side side = Side::coun
 bool same_plan(const std::vector<Trial>& a, const std::vector<Trial>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
-    if (a[i].condition != b[i].condition || a[i].repetition != b[i].repetition || a[i].side != b[i].side ||
-        a[i].start_index[0] != b[i].start_index[0] || a[i].start_index[1] != b[i].start_index[1] ||
-        a[i].start_index[2] != b[i].start_index[2])
+    if (a[i].condition != b[i].condition || a[i].repetition != b[i].repetition ||
+        a[i].side != b[i].side || a[i].start_index[0] != b[i].start_index[0] ||
+        a[i].start_index[1] != b[i].start_index[1] || a[i].start_index[2] != b[i].start_index[2])
       return false;
   return true;
 }
@@ -121,8 +122,9 @@ TEST(AdjustProcedure, QuestionsComeInOrderLowHighBestThenTheNextTrial) {
     order.push_back({a->trial_index, a->question});
   }
   EXPECT_EQ(p.phase(), Procedure::Phase::finished);
-  const std::vector<std::pair<int, Question>> expected = {{0, Question::low}, {0, Question::high}, {0, Question::best},
-                                                          {1, Question::low}, {1, Question::high}, {1, Question::best}};
+  const std::vector<std::pair<int, Question>> expected = {{0, Question::low},  {0, Question::high},
+                                                          {0, Question::best}, {1, Question::low},
+                                                          {1, Question::high}, {1, Question::best}};
   EXPECT_EQ(order, expected);
   EXPECT_EQ(p.answered_count(), 6);
 }

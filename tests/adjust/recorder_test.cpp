@@ -33,7 +33,8 @@ struct Fixture {
 void answer(SessionRecorder& recorder, Procedure& p, int count) {
   p.press(Key::enter, 0);
   for (int i = 0; i < count; ++i) {
-    while (p.lambda_index() < int(p.question()) + 1) p.press(Key::right, 1), p.release(Key::right, 1);
+    while (p.lambda_index() < int(p.question()) + 1)
+      p.press(Key::right, 1), p.release(Key::right, 1);
     while (p.lambda_index() > int(p.question()) + 1) p.press(Key::left, 1), p.release(Key::left, 1);
     auto a = p.press(Key::enter, 2 + i);
     ASSERT_TRUE(a);
@@ -80,7 +81,8 @@ TEST(AdjustRecorder, RowsCarryEveryColumnAndTheAnalysisReadsThem) {
   EXPECT_EQ(field(1, "trial"), "1");
   EXPECT_EQ(field(1, "stimulus_set"), f.study.manifest_sha256);
   EXPECT_EQ(field(1, "lambda_max"), format_value(f.study.lambda_max(f.plan[0].condition)));
-  for (const auto& r : rows) EXPECT_DOUBLE_EQ(r.lambda_max, f.study.lambda_max(f.plan[0].condition));
+  for (const auto& r : rows)
+    EXPECT_DOUBLE_EQ(r.lambda_max, f.study.lambda_max(f.plan[0].condition));
   EXPECT_EQ(testing::count_lines(testing::read_file(files.keys)) > 5, true);
   auto sidecar = nlohmann::json::parse(testing::read_file(files.sidecar));
   EXPECT_EQ(sidecar["seed"], 99);
@@ -93,7 +95,8 @@ TEST(AdjustRecorder, AnExistingSessionIsNeverOverwritten) {
   { SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false); }
   const auto files = session_files(f.sessions(), "P07", 2);
   const std::string before = testing::read_file(files.csv);
-  std::string message = testing::input_error_of([&] { SessionRecorder again(f.study, f.plan, f.who, f.sessions(), false); });
+  std::string message = testing::input_error_of(
+      [&] { SessionRecorder again(f.study, f.plan, f.who, f.sessions(), false); });
   EXPECT_NE(message.find("already exists"), std::string::npos) << message;
   EXPECT_EQ(testing::read_file(files.csv), before);
   message = testing::input_error_of([&] {
@@ -129,7 +132,8 @@ TEST(AdjustRecorder, ASessionWithoutTheSequenceColumnResumesInItsOwnLayout) {
   const auto files = session_files(f.sessions(), "P07", 2);
   std::string old;
   std::istringstream lines(testing::read_file(files.csv));
-  for (std::string line; std::getline(lines, line);) old += line.substr(0, line.rfind(',')) + "\n";  // drop the last field
+  for (std::string line; std::getline(lines, line);)
+    old += line.substr(0, line.rfind(',')) + "\n";  // drop the last field
   testing::write_file(files.csv, old);
   {
     SessionRecorder resumed(f.study, f.plan, f.who, f.sessions(), true);
@@ -168,8 +172,9 @@ TEST(AdjustRecorder, ResumeRefusesRowsOrPlansFromAnotherStudy) {
   record_session(f, 1);
   const auto files = session_files(f.sessions(), "P07", 2);
   // Another seed gives another plan.
-  std::string message =
-      testing::input_error_of([&] { SessionRecorder r(f.study, f.plan, {"P07", 2, 100}, f.sessions(), true); });
+  std::string message = testing::input_error_of([&] {
+    SessionRecorder r(f.study, f.plan, {"P07", 2, 100}, f.sessions(), true);
+  });
   EXPECT_NE(message.find("plan"), std::string::npos) << message;
   // A row edited to another scene no longer matches its trial.
   std::string text = testing::read_file(files.csv);
@@ -178,7 +183,8 @@ TEST(AdjustRecorder, ResumeRefusesRowsOrPlansFromAnotherStudy) {
   auto at = text.find("\nP07," + scene + ",");
   ASSERT_NE(at, std::string::npos);
   testing::write_file(files.csv, text.replace(at + 5, scene.size(), other));
-  message = testing::input_error_of([&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), true); });
+  message = testing::input_error_of(
+      [&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), true); });
   EXPECT_NE(message.find("does not match trial 1"), std::string::npos) << message;
 }
 

@@ -2,9 +2,9 @@
 
 #include "adjust/study.h"
 
-#include <set>
-
 #include <gtest/gtest.h>
+
+#include <set>
 
 #include "adjust/input_script.h"
 #include "stimuli/set_test_util.h"
@@ -28,12 +28,14 @@ TEST(AdjustStudy, ConditionsAreEverySceneMethodSigmaWithTheReferenceAtIndexZero)
     ASSERT_EQ(images.size(), 7u);
     EXPECT_EQ(study.image_of(images[0]).relative, k.scene + "/reference.png");
     // λ = 0 is the identity: the set's λ = 0 image is the reference, byte for byte.
-    EXPECT_EQ(study.image_of(images[1]).relative, k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-0.png");
+    EXPECT_EQ(study.image_of(images[1]).relative,
+              k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-0.png");
     EXPECT_EQ(study.image_of(images[1]).sha256, study.image_of(images[0]).sha256);
     EXPECT_EQ(study.image_of(images[6]).relative,
               k.scene + "/usm3d/sigma-" + format_value(k.sigma) + "/lambda-2.png");
   }
-  EXPECT_EQ(names, (std::set<std::string>{"front/usm3d/0.03", "front/usm3d/0.08", "small/usm3d/0.03", "small/usm3d/0.08"}));
+  EXPECT_EQ(names, (std::set<std::string>{"front/usm3d/0.03", "front/usm3d/0.08",
+                                          "small/usm3d/0.03", "small/usm3d/0.08"}));
   EXPECT_DOUBLE_EQ(study.lambda(3), 1.2);
   EXPECT_EQ(study.max_width(), 96);
   EXPECT_EQ(study.max_height(), 72);
@@ -43,10 +45,11 @@ TEST(AdjustStudy, ConditionsAreEverySceneMethodSigmaWithTheReferenceAtIndexZero)
 
 TEST(AdjustStudy, ConfigurationFromTheExperimentSelectsConditionsAndSettings) {
   testing::TempDir dir;
-  Study study = load_study(testing::make_tiny_set(dir, R"({"repetitions": 3, "side": "left", "start": "zero",
+  Study study =
+      load_study(testing::make_tiny_set(dir, R"({"repetitions": 3, "side": "left", "start": "zero",
       "conditions": [{"scene": "small", "method": "usm3d", "sigma": 0.08}],
       "instructions": {"low": "Wann sehen Sie einen Unterschied?"}, "repeat": {"delay_ms": 300, "interval_ms": 50}})"),
-                           std::nullopt);
+                 std::nullopt);
   ASSERT_EQ(study.conditions.size(), 1u);
   EXPECT_EQ(study.conditions[0].scene, "small");
   EXPECT_EQ(study.config.plan.repetitions, 3);
@@ -65,7 +68,8 @@ TEST(AdjustStudy, BadConfigurationsAndSetsAreOneLineErrors) {
   } cases[] = {
       {R"({"repetitions": 0})", "repetitions"},
       {R"({"side": "top"})", "side"},
-      {R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.5}]})", "no condition scene 'front'"},
+      {R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.5}]})",
+       "no condition scene 'front'"},
       {R"({"instructions": {"lo": "typo"}})", "instructions.lo"},
       {R"({"surround": 300})", "surround"},
   };
@@ -81,7 +85,9 @@ TEST(AdjustStudy, BadConfigurationsAndSetsAreOneLineErrors) {
   auto at = text.find("\"lambda_index\": 3");
   ASSERT_NE(at, std::string::npos);
   testing::write_file(dir / "set/holey.json", text.replace(at, 17, "\"lambda_index\": 9"));
-  EXPECT_NE(testing::input_error_of([&] { load_study(dir / "set/holey.json", std::nullopt); }).find("outside the λ grid"),
+  EXPECT_NE(testing::input_error_of([&] {
+              load_study(dir / "set/holey.json", std::nullopt);
+            }).find("outside the λ grid"),
             std::string::npos);
 }
 
@@ -112,9 +118,11 @@ TEST(AdjustStudy, ASequenceIsAStimulusOfFramesLoopedOnTheSessionClock) {
     const Stimulus& s = study.stimuli[size_t(slots[slot])];
     ASSERT_EQ(s.frames.size(), 4u);
     EXPECT_EQ(s.fps, 4.0);
-    EXPECT_EQ(s.sequence, slot == 0 ? "orbit/reference" : "orbit/usm2d/sigma-2/lambda-" + std::to_string(slot - 1));
+    EXPECT_EQ(s.sequence, slot == 0 ? "orbit/reference"
+                                    : "orbit/usm2d/sigma-2/lambda-" + std::to_string(slot - 1));
     for (int f = 0; f < 4; ++f)
-      EXPECT_EQ(study.images[size_t(s.frames[size_t(f)])].relative, s.sequence + "/frame-000" + std::to_string(f) + ".png");
+      EXPECT_EQ(study.images[size_t(s.frames[size_t(f)])].relative,
+                s.sequence + "/frame-000" + std::to_string(f) + ".png");
     // Frame k shows during [k/4, (k+1)/4) s of every second: the same on every side and every λ.
     EXPECT_EQ(s.frame_at(0.0), s.frames[0]);
     EXPECT_EQ(s.frame_at(0.26), s.frames[1]);
@@ -128,14 +136,16 @@ TEST(AdjustStudy, ASequenceIsAStimulusOfFramesLoopedOnTheSessionClock) {
   for (size_t i = 0; i < stimuli.size(); ++i)
     if (stimuli[i]["file"] == "orbit/usm2d/sigma-2/lambda-1/frame-0002.png") stimuli.erase(i);
   testing::write_file(dir / "set/short.json", m.dump());
-  const std::string message = testing::input_error_of([&] { load_study(dir / "set/short.json", std::nullopt); });
+  const std::string message =
+      testing::input_error_of([&] { load_study(dir / "set/short.json", std::nullopt); });
   EXPECT_NE(message.find("has 3 frames, its reference 4"), std::string::npos) << message;
   // Nor one that lists a frame twice.
   m = testing::manifest_json(manifest.parent_path());
   for (auto& s : m["stimuli"])
     if (s["file"] == "orbit/usm2d/sigma-2/lambda-1/frame-0002.png") s["frame"] = 1;
   testing::write_file(dir / "set/twice.json", m.dump());
-  const std::string twice = testing::input_error_of([&] { load_study(dir / "set/twice.json", std::nullopt); });
+  const std::string twice =
+      testing::input_error_of([&] { load_study(dir / "set/twice.json", std::nullopt); });
   EXPECT_NE(twice.find("frame 1 of"), std::string::npos) << twice;
   EXPECT_NE(twice.find("listed twice"), std::string::npos) << twice;
 }
@@ -143,15 +153,18 @@ TEST(AdjustStudy, ASequenceIsAStimulusOfFramesLoopedOnTheSessionClock) {
 TEST(AdjustStudy, SubjectIdsMustBePlainFileNames) {
   for (const char* good : {"P01", "anna_k", "s-7"}) EXPECT_NO_THROW(check_subject_id(good));
   for (const char* bad : {"", "../x", "a/b", "a b", "P01.csv", "x\\y"})
-    EXPECT_NE(testing::input_error_of([&] { check_subject_id(bad); }).find("--subject"), std::string::npos) << bad;
+    EXPECT_NE(testing::input_error_of([&] { check_subject_id(bad); }).find("--subject"),
+              std::string::npos)
+        << bad;
   EXPECT_NE(session_seed(1, "P01", 1), session_seed(1, "P02", 1));
   EXPECT_NE(session_seed(1, "P01", 1), session_seed(1, "P01", 2));
   EXPECT_EQ(session_seed(1, "P01", 1), session_seed(1, "P01", 1));
 }
 
 TEST(AdjustScript, TimesAccumulateAndHoldsBecomePressAndRelease) {
-  auto events = parse_key_script_text("# start\n500 enter\n100 right  # one step\n0 hold up 1200\n250 screenshot\n10 close\n",
-                                      "keys.txt");
+  auto events = parse_key_script_text(
+      "# start\n500 enter\n100 right  # one step\n0 hold up 1200\n250 screenshot\n10 close\n",
+      "keys.txt");
   ASSERT_EQ(events.size(), 8u);
   EXPECT_DOUBLE_EQ(events[0].time_s, 0.5);
   EXPECT_EQ(events[0].kind, InputEvent::Kind::press);
@@ -171,12 +184,15 @@ TEST(AdjustScript, TimesAccumulateAndHoldsBecomePressAndRelease) {
   EXPECT_NEAR(events[7].time_s, 1.8, 1e-12);
   EXPECT_EQ(events[7].kind, InputEvent::Kind::release);
 
-  for (const char* bad : {"x enter", "100", "100 jump", "-5 enter", "100 hold up", "100 enter now"}) {
-    std::string message = testing::input_error_of([&] { parse_key_script_text(std::string("10 enter\n") + bad, "keys.txt"); });
+  for (const char* bad :
+       {"x enter", "100", "100 jump", "-5 enter", "100 hold up", "100 enter now"}) {
+    std::string message = testing::input_error_of(
+        [&] { parse_key_script_text(std::string("10 enter\n") + bad, "keys.txt"); });
     EXPECT_NE(message.find("keys.txt: line 2"), std::string::npos) << bad << " -> " << message;
   }
   EXPECT_EQ(parse_observer_spec("simulated:42"), 42u);
-  EXPECT_NE(testing::input_error_of([] { parse_observer_spec("human"); }).find("--observer"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([] { parse_observer_spec("human"); }).find("--observer"),
+            std::string::npos);
 }
 
 TEST(AdjustObserver, AnswersAreTheFirstGridValueAtOrAboveItsLatentThresholds) {
@@ -186,7 +202,8 @@ TEST(AdjustObserver, AnswersAreTheFirstGridValueAtOrAboveItsLatentThresholds) {
   int ordered = 0;
   for (int c = 0; c < 4; ++c)
     for (int r = 1; r <= 3; ++r) {
-      double low = a.latent_lambda(c, r, Question::low), high = a.latent_lambda(c, r, Question::high);
+      double low = a.latent_lambda(c, r, Question::low),
+             high = a.latent_lambda(c, r, Question::high);
       ordered += low < high;
       for (Question q : {Question::low, Question::high, Question::best}) {
         int index = a.answer_index(c, r, q);
@@ -208,7 +225,8 @@ namespace countershade::adjust {
 namespace {
 
 // A set with one enhanced condition and one whose images never change (method "none").
-std::filesystem::path make_set_with_control(const testing::TempDir& dir, const std::string& adjust) {
+std::filesystem::path make_set_with_control(const testing::TempDir& dir,
+                                            const std::string& adjust) {
   testing::write_file(dir / "cube.json", testing::kLitCubeScene);
   testing::write_file(dir / "experiment.json", R"({"version": 1, "name": "control", "seed": 3,
       "lambda": {"min": 0, "max": 1, "step": 0.5},
@@ -225,7 +243,8 @@ std::filesystem::path make_set_with_control(const testing::TempDir& dir, const s
 // a study with nothing to practise on refuses practice trials.
 TEST(AdjustStudy, PracticeNeverShowsAConditionWhoseImagesDoNotChange) {
   testing::TempDir dir;
-  const Study study = load_study(make_set_with_control(dir, R"({"practice_trials": 6})"), std::nullopt);
+  const Study study =
+      load_study(make_set_with_control(dir, R"({"practice_trials": 6})"), std::nullopt);
   ASSERT_EQ(study.conditions.size(), 2u);
   int control = -1;
   for (int c = 0; c < 2; ++c)
@@ -243,7 +262,9 @@ TEST(AdjustStudy, PracticeNeverShowsAConditionWhoseImagesDoNotChange) {
 
   testing::TempDir named;
   const Study chosen = load_study(
-      make_set_with_control(named, R"({"practice_trials": 2, "practice_conditions": [{"scene": "front", "method": "none", "sigma": 0}]})"),
+      make_set_with_control(
+          named,
+          R"({"practice_trials": 2, "practice_conditions": [{"scene": "front", "method": "none", "sigma": 0}]})"),
       std::nullopt);
   for (const Trial& t : plan_trials(chosen.conditions, chosen.config.plan)) {
     if (!t.practice) continue;

@@ -13,13 +13,15 @@ namespace countershade::testing {
 
 // make_tiny_set on the scene already written to dir/cube.json.
 inline std::filesystem::path make_tiny_set_of(const TempDir& dir, const std::string& extra = "",
-                                              const std::string& adjust = "", int width = 96, int height = 72,
-                                              double lambda_step = 0.4) {
+                                              const std::string& adjust = "", int width = 96,
+                                              int height = 72, double lambda_step = 0.4) {
   std::string text = R"({
-    "version": 1, "name": "tiny", "seed": 5, )" + extra + R"(
-    "lambda": {"min": 0, "max": 2, "step": )" + format_value(lambda_step) + R"(},
-    "scenes": [{"name": "front", "file": "cube.json", "width": )" + std::to_string(width) + R"(, "height": )" +
-                     std::to_string(height) + R"(},
+    "version": 1, "name": "tiny", "seed": 5, )" +
+                     extra + R"(
+    "lambda": {"min": 0, "max": 2, "step": )" +
+                     format_value(lambda_step) + R"(},
+    "scenes": [{"name": "front", "file": "cube.json", "width": )" +
+                     std::to_string(width) + R"(, "height": )" + std::to_string(height) + R"(},
                {"name": "small", "file": "cube.json", "width": 80, "height": 60}],
     "methods": [{"method": "usm3d", "sigma_fraction": [0.03, 0.08]}])" +
                      (adjust.empty() ? std::string() : ",\n    \"adjust\": " + adjust) + "\n}";
@@ -34,7 +36,8 @@ inline std::filesystem::path make_tiny_set_of(const TempDir& dir, const std::str
 // and generates the set into dir/set; returns the manifest's path. `extra`: more top-level keys
 // of the experiment, each followed by a comma.
 inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string& adjust = "",
-                                           int width = 96, int height = 72, double lambda_step = 0.4,
+                                           int width = 96, int height = 72,
+                                           double lambda_step = 0.4,
                                            const std::string& extra = "") {
   write_file(dir / "cube.json", kLitCubeScene);
   return make_tiny_set_of(dir, extra, adjust, width, height, lambda_step);
@@ -42,19 +45,21 @@ inline std::filesystem::path make_tiny_set(const TempDir& dir, const std::string
 
 // A set of sequences for the playback tests: the orbiting box, all 4 frames at the given size,
 // usm2d at one σ over λ ∈ {0, 1}, so each condition is a reference and two sequences.
-inline std::filesystem::path make_sequence_set(const TempDir& dir, const std::string& adjust = "", int width = 64,
-                                               int height = 48) {
+inline std::filesystem::path make_sequence_set(const TempDir& dir, const std::string& adjust = "",
+                                               int width = 64, int height = 48) {
   write_file(dir / "orbit.json", kOrbitingBoxScene);
-  const std::string text = R"({
+  const std::string text =
+      R"({
     "version": 1, "name": "sequences", "seed": 7,
     "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "orbit", "file": "orbit.json", "frames": "all", "spp": 1, "width": )" +
-                           std::to_string(width) + R"(, "height": )" + std::to_string(height) + R"(}],
+      std::to_string(width) + R"(, "height": )" + std::to_string(height) + R"(}],
     "methods": [{"method": "usm2d", "sigma_percent": [2]}])" +
-                           (adjust.empty() ? std::string() : ",\n    \"adjust\": " + adjust) + "\n}";
+      (adjust.empty() ? std::string() : ",\n    \"adjust\": " + adjust) + "\n}";
   GenerateOptions options;
   options.contact_sheets = false;
-  generate_stimulus_set(load_experiment(write_file(dir / "experiment.json", text)), dir / "set", options);
+  generate_stimulus_set(load_experiment(write_file(dir / "experiment.json", text)), dir / "set",
+                        options);
   return dir / "set" / "manifest.json";
 }
 

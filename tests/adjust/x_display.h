@@ -29,8 +29,8 @@ class XvfbServer {
       ::dup2(null, 1);
       ::dup2(null, 2);
       const std::string fd = std::to_string(fds[1]);
-      ::execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", screen.c_str(), "-nolisten", "tcp",
-               "-noreset", nullptr);
+      ::execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", screen.c_str(),
+               "-nolisten", "tcp", "-noreset", nullptr);
       ::_exit(127);
     }
     ::close(fds[1]);
@@ -40,7 +40,9 @@ class XvfbServer {
     char c;
     while (::poll(&p, 1, 20000) > 0 && ::read(fds[0], &c, 1) == 1 && c != '\n') number += c;
     ::close(fds[0]);
-    if (number.empty()) throw std::runtime_error("Xvfb did not start (is the xvfb package installed? see scripts/setup)");
+    if (number.empty())
+      throw std::runtime_error(
+          "Xvfb did not start (is the xvfb package installed? see scripts/setup)");
     display_ = ":" + number;
   }
   ~XvfbServer() {
@@ -93,7 +95,8 @@ class Child {
   // Waits up to `seconds`; returns the exit status, or -1 if it is still running.
   int wait(double seconds) {
     auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (running() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    while (running() && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
     return done_ ? exit_code_ : -1;
   }
   void kill_hard() {

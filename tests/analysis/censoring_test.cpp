@@ -70,7 +70,8 @@ TEST(Censoring, AGridStartingAtAQuarterIsFittedWithItsOwnFirstValue) {
   EXPECT_NEAR(fit.threshold, median, 0.01);
   EXPECT_NEAR(fit.scale, sd, 0.02);
   const Fit wrong = fit_threshold(misread, ThresholdModel::log_normal);
-  EXPECT_GT(std::abs(wrong.scale - sd), 0.03) << "the misread grid should distort the fit: " << wrong.scale;
+  EXPECT_GT(std::abs(wrong.scale - sd), 0.03)
+      << "the misread grid should distort the fit: " << wrong.scale;
 }
 
 // The logistic is left-censored with F(λ_1), not F(λ_1) − F(0): a population with mass below 0
@@ -91,7 +92,8 @@ TEST(Censoring, LogisticFirstStepIsLeftCensored) {
 
 TEST(Censoring, AllAnswersAtTheFirstStepAreUnidentified) {
   const std::vector<AnswerInterval> answers(12, answer_interval(0.05, 0, 0.05, 3.0));
-  for (ThresholdModel model : {ThresholdModel::logistic, ThresholdModel::log_normal, ThresholdModel::weibull}) {
+  for (ThresholdModel model :
+       {ThresholdModel::logistic, ThresholdModel::log_normal, ThresholdModel::weibull}) {
     const Fit fit = fit_threshold(answers, model);
     EXPECT_FALSE(fit.identified) << threshold_model_name(model);
     EXPECT_FALSE(fit.converged) << threshold_model_name(model);
@@ -141,7 +143,9 @@ TEST(Censoring, WeibullLogMedianStandardErrorByTheDeltaMethod) {
       };
       h[a][b] = (at(e, e) - at(e, -e) - at(-e, e) + at(-e, -e)) / (4 * e * e);
     }
-  auto log_median = [](double mu, double log_sigma) { return mu + std::exp(log_sigma) * std::log(std::log(2.0)); };
+  auto log_median = [](double mu, double log_sigma) {
+    return mu + std::exp(log_sigma) * std::log(std::log(2.0));
+  };
   const double g[2] = {(log_median(q[0] + e, q[1]) - log_median(q[0] - e, q[1])) / (2 * e),
                        (log_median(q[0], q[1] + e) - log_median(q[0], q[1] - e)) / (2 * e)};
   const double det = h[0][0] * h[1][1] - h[0][1] * h[1][0];

@@ -1,15 +1,15 @@
 // Adjustment against forced choice: per condition, each subject's mean λ_Low beside their own
 // forced-choice threshold, and a paired t-test on the log ratio computed here by hand.
 
+#include "analysis/method_comparison.h"
+
 #include <gtest/gtest.h>
 
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <map>
 
-#include <boost/math/distributions/students_t.hpp>
-
 #include "analysis/forced_choice_simulation.h"
-#include "analysis/method_comparison.h"
 #include "analysis/simulate.h"
 
 namespace countershade::analysis {
@@ -59,7 +59,9 @@ TEST(MethodComparison, PairsEachSubjectsLambdaLowWithTheirThreshold) {
   const double t = mean / std::sqrt(ss / 7 / 8);
   EXPECT_NEAR(c.t, t, 1e-9 * std::abs(t));
   EXPECT_EQ(c.df, 7);
-  EXPECT_NEAR(c.p, 2 * boost::math::cdf(boost::math::complement(boost::math::students_t(7), std::abs(t))), 1e-12);
+  EXPECT_NEAR(
+      c.p, 2 * boost::math::cdf(boost::math::complement(boost::math::students_t(7), std::abs(t))),
+      1e-12);
 }
 
 }  // namespace

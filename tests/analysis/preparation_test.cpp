@@ -56,7 +56,8 @@ TEST(Preparation, ALowOfZeroExcludesOnlyUnderSubjectNormalisation) {
   EXPECT_TRUE(blocks[0].excluded.empty());
   EXPECT_EQ(blocks[0].json["n_subjects"], 6);
   int zero_warnings = 0;
-  for (const auto& w : blocks[0].warnings) zero_warnings += w.find("answers of lambda = 0") != std::string::npos;
+  for (const auto& w : blocks[0].warnings)
+    zero_warnings += w.find("answers of lambda = 0") != std::string::npos;
   EXPECT_EQ(zero_warnings, 2);  // scene b at both σ
 }
 

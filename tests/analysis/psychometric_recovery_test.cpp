@@ -36,7 +36,8 @@ TEST(PsychometricRecovery, BootstrapIntervalsHoldTheTrueThreshold) {
   const int with_guess = coverage(0.5, truth), naive = coverage(0.0, truth);
   EXPECT_GE(with_guess, 90);
   EXPECT_LT(naive, 50);
-  std::printf("true threshold %.4f: covered by %d of 100 CIs with γ = 1/2, by %d ignoring γ\n", truth, with_guess, naive);
+  std::printf("true threshold %.4f: covered by %d of 100 CIs with γ = 1/2, by %d ignoring γ\n",
+              truth, with_guess, naive);
 }
 
 TEST(PsychometricRecovery, TheDevianceOfTheTrueModelIsNotRejected) {

@@ -23,13 +23,16 @@ struct ModelCase {
   bool free_lapse;
 };
 constexpr ModelCase kCases[] = {
-    {"mafc.cloglog", ThresholdModel::weibull, false},   {"mafc.logit", ThresholdModel::log_logistic, false},
-    {"mafc.probit", ThresholdModel::log_normal, false}, {"weibull_lapse", ThresholdModel::weibull, true},
+    {"mafc.cloglog", ThresholdModel::weibull, false},
+    {"mafc.logit", ThresholdModel::log_logistic, false},
+    {"mafc.probit", ThresholdModel::log_normal, false},
+    {"weibull_lapse", ThresholdModel::weibull, true},
     {"probit_lapse", ThresholdModel::log_normal, true},
 };
 
 // "S02|keys|0.01" or "keys|0.01" → its cells.
-const std::vector<BinomialCell>& cells_of(const std::map<ConditionKey, ConditionCells>& conditions, const std::string& key) {
+const std::vector<BinomialCell>& cells_of(const std::map<ConditionKey, ConditionCells>& conditions,
+                                          const std::string& key) {
   std::vector<std::string> parts;
   std::stringstream s(key);
   for (std::string part; std::getline(s, part, '|');) parts.push_back(part);
@@ -48,15 +51,19 @@ void check_fixed_lapse(const PsychometricFit& fit, const json& e, const std::str
   EXPECT_EQ(fit.well_defined, e["well_defined"].get<bool>()) << what;
   EXPECT_EQ(fit.df, e["df_residual"].get<int>()) << what;
   EXPECT_EQ(fit.n_trials, e["n_trials"].get<long long>()) << what;
-  if (e["deviance_step_limit"].is_number()) near_relative(fit.deviance_step_limit, e["deviance_step_limit"], 1e-9, what + " step limit");
-  else EXPECT_TRUE(std::isinf(fit.deviance_step_limit)) << what;
-  if (!e["well_defined"].get<bool>()) {  // separation: only the infimum of the deviance and the threshold
+  if (e["deviance_step_limit"].is_number())
+    near_relative(fit.deviance_step_limit, e["deviance_step_limit"], 1e-9, what + " step limit");
+  else
+    EXPECT_TRUE(std::isinf(fit.deviance_step_limit)) << what;
+  if (!e["well_defined"]
+           .get<bool>()) {  // separation: only the infimum of the deviance and the threshold
     EXPECT_FALSE(fit.converged) << what;
     EXPECT_NEAR(fit.deviance, e["deviance"].get<double>(), 1e-4) << what;
     // The threshold runs to the step's level as the slope grows: λ·exp(−η_step/b1). The reference's
     // is where R stopped (b1 = 392: 0.2·exp(−0.847/392) = 0.19957); countershade reports the limit,
     // the level of the step, which is the reference's threshold rounded to its λ grid (0.05).
-    near_relative(fit.threshold, json(std::round(e["threshold"].get<double>() / 0.05) * 0.05), 1e-12, what + " threshold");
+    near_relative(fit.threshold, json(std::round(e["threshold"].get<double>() / 0.05) * 0.05),
+                  1e-12, what + " threshold");
     near_relative(fit.threshold, e["threshold"], 2.5e-3, what + " threshold");
     return;
   }
@@ -75,14 +82,17 @@ void check_free_lapse(const PsychometricFit& fit, const json& e, const std::stri
   EXPECT_EQ(fit.df, e["df_residual"].get<int>()) << what;
   near_relative(fit.deviance_step_limit, e["deviance_step_limit"], 1e-9, what + " step limit");
   if (!e["well_defined"].get<bool>()) {  // a finite local optimum, or a step-like solution
-    const bool local = std::abs(fit.deviance - e["deviance"].get<double>()) <= 1e-6 * e["deviance"].get<double>();
-    EXPECT_TRUE(local || fit.deviance >= fit.deviance_step_limit - 1e-6) << what << ": deviance " << fit.deviance;
+    const bool local =
+        std::abs(fit.deviance - e["deviance"].get<double>()) <= 1e-6 * e["deviance"].get<double>();
+    EXPECT_TRUE(local || fit.deviance >= fit.deviance_step_limit - 1e-6)
+        << what << ": deviance " << fit.deviance;
     return;
   }
   EXPECT_TRUE(fit.well_defined) << what;
   near_relative(fit.deviance, e["deviance"], 1e-6, what + " deviance");
   EXPECT_EQ(fit.lapse_at_bound, e["lapse_at_bound"].get<bool>()) << what << ": lapse " << fit.lapse;
-  EXPECT_NEAR(fit.lapse, e["lapse"].get<double>(), e["lapse_at_bound"].get<bool>() ? 1e-9 : 1e-4) << what;
+  EXPECT_NEAR(fit.lapse, e["lapse"].get<double>(), e["lapse_at_bound"].get<bool>() ? 1e-9 : 1e-4)
+      << what;
   near_relative(fit.intercept, e["intercept"], 1e-4, what + " intercept");
   near_relative(fit.slope, e["slope"], 1e-4, what + " slope");
   near_relative(fit.threshold, e["threshold_F50"], 1e-4, what + " threshold");
@@ -91,8 +101,10 @@ void check_free_lapse(const PsychometricFit& fit, const json& e, const std::stri
 }
 
 void check_data_set(const std::string& name) {
-  const json expected = parse_json_file(testing::reference_path("psychometric/" + name + ".expected.json"));
-  const auto trials = read_forced_choice_trials({testing::reference_path("psychometric/" + name + ".csv")});
+  const json expected =
+      parse_json_file(testing::reference_path("psychometric/" + name + ".expected.json"));
+  const auto trials =
+      read_forced_choice_trials({testing::reference_path("psychometric/" + name + ".csv")});
   const auto conditions = aggregate_cells(trials);
   for (const char* scope : {"pooled", "per_subject"})
     for (const auto& [key, e] : expected["cells"][scope].items()) {
@@ -108,13 +120,16 @@ void check_data_set(const std::string& name) {
   for (const ModelCase& c : kCases)
     for (const char* scope : {"pooled", "per_subject"})
       for (const auto& [key, e] : expected["fits"][c.reference][scope].items()) {
-        const PsychometricOptions options{c.model, expected["guess_rate"].get<double>(), c.free_lapse};
+        const PsychometricOptions options{c.model, expected["guess_rate"].get<double>(),
+                                          c.free_lapse};
         const PsychometricFit fit = fit_psychometric(cells_of(conditions, key), options);
         const std::string what = name + " " + c.reference + " " + key;
         c.free_lapse ? check_free_lapse(fit, e, what) : check_fixed_lapse(fit, e, what);
         ++compared;
       }
-  EXPECT_EQ(compared, 5 * int(expected["cells"]["pooled"].size() + expected["cells"]["per_subject"].size())) << name;
+  EXPECT_EQ(compared,
+            5 * int(expected["cells"]["pooled"].size() + expected["cells"]["per_subject"].size()))
+      << name;
 }
 
 TEST(PsychometricFit, EqualsPsyphyOnTheTwoAlternativeData) { check_data_set("afc2_a"); }

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 
 #include "analysis/fit.h"
 #include "analysis/simulate.h"
@@ -16,14 +16,19 @@ namespace {
 
 // The answers to one question as the analysis fits them (methods.md, threshold fits); with
 // `ceiling` false, answers at the top count as exact, as earlier versions fitted them.
-std::vector<AnswerInterval> intervals_of(const std::vector<Response>& rows, Question q, bool ceiling = true) {
+std::vector<AnswerInterval> intervals_of(const std::vector<Response>& rows, Question q,
+                                         bool ceiling = true) {
   std::vector<AnswerInterval> out;
   for (const auto& r : rows)
-    if (r.question == q) out.push_back(answer_interval(r.lambda, r.lambda_index, r.lambda_step, ceiling ? r.lambda_max : 0.0));
+    if (r.question == q)
+      out.push_back(
+          answer_interval(r.lambda, r.lambda_index, r.lambda_step, ceiling ? r.lambda_max : 0.0));
   return out;
 }
 
-AnswerGrid grid_of(const SimulationDesign& d) { return {d.lambda_min, d.lambda_step, d.lambda_max}; }
+AnswerGrid grid_of(const SimulationDesign& d) {
+  return {d.lambda_min, d.lambda_step, d.lambda_max};
+}
 
 std::vector<AnswerInterval> on_grid(const std::vector<double>& answers, double step) {
   std::vector<AnswerInterval> out;
@@ -75,7 +80,8 @@ TEST(Recovery, ThresholdNearTheTopOfTheGridIsRecoveredWithRightCensoring) {
     design.seed = seed;
     const auto rows = simulate_responses(design);
     Fit fit = fit_threshold(intervals_of(rows, Question::high), ThresholdModel::log_normal);
-    Fit naive = fit_threshold(intervals_of(rows, Question::high, false), ThresholdModel::log_normal);
+    Fit naive =
+        fit_threshold(intervals_of(rows, Question::high, false), ThresholdModel::log_normal);
     ASSERT_TRUE(fit.converged) << "seed " << seed;
     censored += int(fit.right_censored);
     answers_seen += int(fit.n);
@@ -92,10 +98,13 @@ TEST(Recovery, ThresholdNearTheTopOfTheGridIsRecoveredWithRightCensoring) {
   EXPECT_LT(share, 0.42);
   EXPECT_GE(covered, 90) << "Wald intervals of the censored fit";
   EXPECT_GE(covered_bootstrap, 90) << "bootstrap intervals of the censored fit";
-  EXPECT_LT(covered_naive, 90) << "the fit without right-censoring covers the truth " << covered_naive << " times";
-  std::printf("right-censored answers %.0f %%; 95 %% CI covers the true median: censored fit %d/100 (Wald), "
-              "%d/100 (bootstrap); without censoring %d/100\n",
-              100 * share, covered, covered_bootstrap, covered_naive);
+  EXPECT_LT(covered_naive, 90) << "the fit without right-censoring covers the truth "
+                               << covered_naive << " times";
+  std::printf(
+      "right-censored answers %.0f %%; 95 %% CI covers the true median: censored fit %d/100 "
+      "(Wald), "
+      "%d/100 (bootstrap); without censoring %d/100\n",
+      100 * share, covered, covered_bootstrap, covered_naive);
 }
 
 TEST(Recovery, SameSeedGivesTheSameBootstrapInterval) {
@@ -113,7 +122,8 @@ TEST(Recovery, SameSeedGivesTheSameBootstrapInterval) {
 // a NaN became a grid index (undefined behaviour). Such a model is not resampled.
 TEST(Recovery, AModelThatRanOffToInfinityIsNotBootstrapped) {
   const auto answers = on_grid({0.25, 0.3, 0.3, 0.35, 0.2}, 0.05);
-  for (ThresholdModel model : {ThresholdModel::log_normal, ThresholdModel::weibull, ThresholdModel::logistic}) {
+  for (ThresholdModel model :
+       {ThresholdModel::log_normal, ThresholdModel::weibull, ThresholdModel::logistic}) {
     Fit fit = fit_threshold(answers, model);
     fit.location = -std::numeric_limits<double>::infinity();
     bootstrap_threshold(fit, {0.0, 0.05, 0.5}, 20, 3);

@@ -22,15 +22,18 @@ json load(const std::string& name) {
 }
 
 // statistics: 1e-6 relative; p-values: 1e-6 absolute; fit parameters: 1e-4 relative.
-void expect_close(const std::string& where, const std::string& key, double expected, double actual, bool fit) {
-  bool p_value = key == "p" || key == "p_holm" || key == "mauchly_p" || key == "p_gg" || key == "p_hf";
+void expect_close(const std::string& where, const std::string& key, double expected, double actual,
+                  bool fit) {
+  bool p_value =
+      key == "p" || key == "p_holm" || key == "mauchly_p" || key == "p_gg" || key == "p_hf";
   double tolerance = p_value ? 1e-6 : (fit ? 1e-4 : 1e-6) * std::max(1.0, std::abs(expected));
   if (!p_value && !fit) tolerance = 1e-6 * std::abs(expected) + 1e-12;
   if (fit) tolerance = 1e-4 * std::abs(expected) + 1e-12;
   EXPECT_NEAR(actual, expected, tolerance) << where << "." << key;
 }
 
-void compare_rows(const std::string& name, const json& expected, const json& actual, bool fit = false) {
+void compare_rows(const std::string& name, const json& expected, const json& actual,
+                  bool fit = false) {
   ASSERT_EQ(expected.size(), actual.size()) << name;
   for (size_t i = 0; i < expected.size(); ++i) {
     // What R leaves out (e.g. a sphericity test with too few subjects) is left out here too; fits
@@ -66,7 +69,8 @@ void compare_clusters(const json& expected, const json& actual) {
   EXPECT_EQ(images.size(), relabel.size()) << "two expected groups merged into one";
   for (auto [e, a] : relabel) {
     EXPECT_EQ(expected["sizes"][size_t(e - 1)], actual["sizes"][size_t(a - 1)]);
-    EXPECT_NEAR(expected["mean_best"][size_t(e - 1)].get<double>(), actual["mean_best"][size_t(a - 1)].get<double>(),
+    EXPECT_NEAR(expected["mean_best"][size_t(e - 1)].get<double>(),
+                actual["mean_best"][size_t(a - 1)].get<double>(),
                 1e-6 * std::abs(expected["mean_best"][size_t(e - 1)].get<double>()));
   }
 }
@@ -82,7 +86,8 @@ void check_study(const std::string& study) {
   EXPECT_DOUBLE_EQ(expected["lambda_step"].get<double>(), actual["lambda_step"].get<double>());
   EXPECT_EQ(expected["jnd_normalization"], actual["jnd_normalization"]);
   compare_rows("descriptives", expected["descriptives"], actual["descriptives"]);
-  compare_rows("descriptives_by_sigma", expected["descriptives_by_sigma"], actual["descriptives_by_sigma"]);
+  compare_rows("descriptives_by_sigma", expected["descriptives_by_sigma"],
+               actual["descriptives_by_sigma"]);
   compare_rows("anova", expected["anova"], actual["anova"]);
   compare_rows("anova_best_sigma", expected["anova_best_sigma"], actual["anova_best_sigma"]);
   compare_rows("pairwise", expected["pairwise"], actual["pairwise"]);
@@ -92,10 +97,14 @@ void check_study(const std::string& study) {
 }
 
 TEST(AnalysisReference, StudyAMatchesR) { check_study("study_a"); }
-TEST(AnalysisReference, StudyBWithRepetitionsAndAnIncompleteSubjectMatchesR) { check_study("study_b"); }
+TEST(AnalysisReference, StudyBWithRepetitionsAndAnIncompleteSubjectMatchesR) {
+  check_study("study_b");
+}
 // A grid from 0.2 to 2.0: 55 answers at its first value (left-censored) and 25 λ_High answers at
 // its top (right-censored), as R's survreg fits interval2 data with open ends.
-TEST(AnalysisReference, StudyCWithAGridFromAFifthAndAnswersAtBothEndsMatchesR) { check_study("study_c"); }
+TEST(AnalysisReference, StudyCWithAGridFromAFifthAndAnswersAtBothEndsMatchesR) {
+  check_study("study_c");
+}
 
 }  // namespace
 }  // namespace countershade::analysis

@@ -81,8 +81,8 @@ TEST(Cluster, WardSeparatesTwoObviousGroupsAndLabelsByFirstAppearance) {
   EXPECT_EQ(d.order.size(), 6u);
 }
 
-// Distances that overflow (inf − inf in the update is NaN) still give a full tree: every step merges
-// some pair. The first closest-pair search found none and indexed cluster −1.
+// Distances that overflow (inf − inf in the update is NaN) still give a full tree: every step
+// merges some pair. The first closest-pair search found none and indexed cluster −1.
 TEST(Cluster, WardMergesEverythingEvenWhenDistancesAreNotNumbers) {
   Eigen::MatrixXd x(4, 1);
   x << 1e300, -1e300, 0, 1;

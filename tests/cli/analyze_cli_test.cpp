@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
@@ -19,9 +18,9 @@ TEST(AnalyzeCli, WritesResultsTablesFiguresAndReport) {
   std::string study = testing::reference_path("analysis/study_a.csv").string();
   auto r = run_cli("analyze " + study + " -o " + (dir / "out").string() + " --bootstrap 20");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"results.json", "descriptives.csv", "anova.csv", "pairwise.csv", "fits.csv", "clusters.csv",
-                        "fig12_questions_by_scene.svg", "fig13_lambda_by_sigma.svg", "fits.svg", "dendrogram.svg",
-                        "report.html"})
+  for (const char* f : {"results.json", "descriptives.csv", "anova.csv", "pairwise.csv", "fits.csv",
+                        "clusters.csv", "fig12_questions_by_scene.svg", "fig13_lambda_by_sigma.svg",
+                        "fits.svg", "dendrogram.svg", "report.html"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
   auto results = nlohmann::json::parse(testing::read_file(dir / "out/results.json"));
   EXPECT_EQ(results["n_subjects"], 15);
@@ -40,13 +39,16 @@ TEST(AnalyzeCli, AnEffectWithMoreContrastsThanSubjectsHasNoSphericityTest) {
   std::string study = testing::reference_path("analysis/study_b.csv").string();
   auto r = run_cli("analyze " + study + " -o " + (dir / "out").string() + " --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("question:scene:sigma: 11 subjects are too few for a sphericity test of 12 contrasts"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find(
+          "question:scene:sigma: 11 subjects are too few for a sphericity test of 12 contrasts"),
+      std::string::npos)
       << r.output;
   const std::string anova = testing::read_file(dir / "out/anova.csv");
   const size_t row = anova.find("question*scene*sigma,question:scene:sigma,12,120,");
   ASSERT_NE(row, std::string::npos) << anova;
-  EXPECT_NE(anova.find(",,,,,,\n", row), std::string::npos) << anova.substr(row, 200);  // six empty cells
+  EXPECT_NE(anova.find(",,,,,,\n", row), std::string::npos)
+      << anova.substr(row, 200);  // six empty cells
   EXPECT_EQ(anova.find("nan"), std::string::npos) << anova;
   EXPECT_EQ(testing::read_file(dir / "out/report.html").find("nan<"), std::string::npos);
 }
@@ -59,7 +61,8 @@ std::string same_answers_csv(const std::string& low) {
       for (const char* sigma : {"0.1", "0.2"})
         for (const auto& [question, lambda] :
              {std::pair<std::string, std::string>{"low", low}, {"best", "0.6"}, {"high", "1.2"}})
-          csv += std::string(subject) + "," + scene + "," + sigma + "," + question + "," + lambda + ",0.05\n";
+          csv += std::string(subject) + "," + scene + "," + sigma + "," + question + "," + lambda +
+                 ",0.05\n";
   return csv;
 }
 
@@ -71,7 +74,8 @@ TEST(AnalyzeCli, AnswersThatDoNotVaryBetweenSubjectsGiveInfAndNaWithWarnings) {
   auto file = testing::write_file(dir / "same.csv", same_answers_csv("0.3"));
   auto r = run_cli("analyze " + file.string() + " -o " + (dir / "out").string() + " --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("anova question: F = Inf, the answers do not vary between subjects"), std::string::npos)
+  EXPECT_NE(r.output.find("anova question: F = Inf, the answers do not vary between subjects"),
+            std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("pairwise best − low: t = Inf"), std::string::npos) << r.output;
   const std::string anova = testing::read_file(dir / "out/anova.csv");
@@ -84,7 +88,8 @@ TEST(AnalyzeCli, SimulatedStudyRoundTripsWithMethodBlocks) {
   testing::TempDir dir;
   auto r = run_cli("simulate -o " + (dir / "sim.csv").string() + " --subjects 12 --seed 3");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = run_cli("analyze " + (dir / "sim.csv").string() + " -o " + (dir / "out").string() + " --bootstrap 0 --no-figures");
+  r = run_cli("analyze " + (dir / "sim.csv").string() + " -o " + (dir / "out").string() +
+              " --bootstrap 0 --no-figures");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   auto results = nlohmann::json::parse(testing::read_file(dir / "out/results.json"));
   EXPECT_EQ(results["method"], "simulated");
@@ -94,8 +99,10 @@ TEST(AnalyzeCli, SimulatedStudyRoundTripsWithMethodBlocks) {
 
 TEST(AnalyzeCli, BadInputExitsWithTwoAndOneLine) {
   testing::TempDir dir;
-  auto missing_column = testing::write_file(dir / "a.csv", "subject,scene,sigma,question\nS1,a,0.1,low\n");
-  auto no_step = testing::write_file(dir / "b.csv", "subject,scene,sigma,question,lambda\nS1,a,0.1,low,0.5\n");
+  auto missing_column =
+      testing::write_file(dir / "a.csv", "subject,scene,sigma,question\nS1,a,0.1,low\n");
+  auto no_step =
+      testing::write_file(dir / "b.csv", "subject,scene,sigma,question,lambda\nS1,a,0.1,low,0.5\n");
   auto no_low = testing::write_file(dir / "c.csv", same_answers_csv("0"));
   struct Case {
     std::string args, expected;
@@ -106,10 +113,13 @@ TEST(AnalyzeCli, BadInputExitsWithTwoAndOneLine) {
       {no_step.string() + " -o " + (dir / "o").string() + " --model gamma", "--model"},
       {no_step.string() + " -o " + (dir / "o").string() + " --lambda-step 0.05",
        "b.csv: only 0 subjects have answers in every cell"},
-      {no_step.string() + " -o " + (dir / "b.csv/o").string() + " --lambda-step 0.05", "is not a folder"},
-      // The group mean of λ_Low is 0 there: every JND would be λ / 0 (it gave tables of NA and Inf).
+      {no_step.string() + " -o " + (dir / "b.csv/o").string() + " --lambda-step 0.05",
+       "is not a folder"},
+      // The group mean of λ_Low is 0 there: every JND would be λ / 0 (it gave tables of NA and
+      // Inf).
       {no_low.string() + " -o " + (dir / "o").string() + " --normalization group",
-       "c.csv: scene a, sigma 0.1: every λ_Low is 0, so --normalization group has no JND scale there"},
+       "c.csv: scene a, sigma 0.1: every λ_Low is 0, so --normalization group has no JND scale "
+       "there"},
   };
   for (const auto& c : cases) {
     auto r = run_cli("analyze " + c.args);

@@ -39,18 +39,19 @@ uint32_t crc32(const std::string& bytes) {
   return ~crc;
 }
 
-std::string big_endian(uint32_t v) {
-  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-}
+std::string big_endian(uint32_t v) { return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; }
 
 std::string png_chunk(const std::string& type_and_data) {
-  return big_endian(uint32_t(type_and_data.size() - 4)) + type_and_data + big_endian(crc32(type_and_data));
+  return big_endian(uint32_t(type_and_data.size() - 4)) + type_and_data +
+         big_endian(crc32(type_and_data));
 }
 
 // A PNG whose header claims width × height pixels, with an empty image data chunk.
 std::string png_header_only(uint32_t width, uint32_t height) {
-  const std::string ihdr = "IHDR" + big_endian(width) + big_endian(height) + std::string("\x08\x02\x00\x00\x00", 5);
-  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk(ihdr) + png_chunk("IDAT") + png_chunk("IEND");
+  const std::string ihdr =
+      "IHDR" + big_endian(width) + big_endian(height) + std::string("\x08\x02\x00\x00\x00", 5);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk(ihdr) + png_chunk("IDAT") +
+         png_chunk("IEND");
 }
 
 struct Case {
@@ -70,26 +71,38 @@ TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
   testing::TempDir dir;
   const std::string scene = testing::write_file(dir / "s.json", scene_with("")).string();
   const std::string singular =
-      testing::write_file(dir / "singular.json",
-                          scene_with(R"(, "transform": {"matrix": [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]})"))
+      testing::write_file(
+          dir / "singular.json",
+          scene_with(R"(, "transform": {"matrix": [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]})"))
           .string();
   // Found by the fuzzer: a translation beyond float's range made positions infinite.
   const std::string far =
-      testing::write_file(dir / "far.json", scene_with(R"(, "transform": {"translate": [0, 0, 4e88]})")).string();
+      testing::write_file(dir / "far.json",
+                          scene_with(R"(, "transform": {"translate": [0, 0, 4e88]})"))
+          .string();
   std::string box = scene_with("");
-  box.replace(box.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48, R"("type": "box", "subdivisions": 4096)");
+  box.replace(box.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48,
+              R"("type": "box", "subdivisions": 4096)");
   const std::string huge_box = testing::write_file(dir / "huge_box.json", box).string();
   const std::string out = (dir / "o.png").string();
   for (const Case& c : std::vector<Case>{
-           {"render " + singular + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1", "singular"},
+           {"render " + singular + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1",
+            "singular"},
            {"render " + far + " -o " + out, "objects[0].transform: puts vertices outside ±1e15"},
-           {"render " + huge_box + " -o " + out, "would make about 201720000 triangles (the limit is 50000000)"},
+           {"render " + huge_box + " -o " + out,
+            "would make about 201720000 triangles (the limit is 50000000)"},
            {"render " + scene + " -o " + out + " --exposure nan", "finite"},
            {"render " + scene + " -o " + out + " --exposure inf", "finite"},
-           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 1e300", "smoothing iterations"},
-           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --iterations 2147483647", "--iterations"},
-           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1 --refine 1e-9", "the limit is 50000000"},
-           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1 --refine nan", "--refine"},
+           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --sigma 1e300",
+            "smoothing iterations"},
+           {"render " + scene + " -o " + out + " --method usm3d --lambda 1 --iterations 2147483647",
+            "--iterations"},
+           {"render " + scene + " -o " + out +
+                " --method usm3d --lambda 1 --sigma 0.1 --refine 1e-9",
+            "the limit is 50000000"},
+           {"render " + scene + " -o " + out +
+                " --method usm3d --lambda 1 --sigma 0.1 --refine nan",
+            "--refine"},
        })
     expect_refused(c);
   EXPECT_FALSE(fs::exists(out));
@@ -97,21 +110,28 @@ TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
 
 TEST(BadInput, ImagesThatClaimHugeSizesOrHoldNaNAreRefusedByName) {
   testing::TempDir dir;
-  const std::string bomb = testing::write_file(dir / "bomb.png", png_header_only(60000, 60000)).string();
+  const std::string bomb =
+      testing::write_file(dir / "bomb.png", png_header_only(60000, 60000)).string();
   Image nan_texture(4, 4, 3);
   nan_texture.pixels[5] = std::numeric_limits<float>::quiet_NaN();
   write_image(dir / "nan.exr", nan_texture);
   nan_texture.pixels[5] = std::numeric_limits<float>::infinity();
   write_image(dir / "inf.exr", nan_texture);
-  std::string plane = scene_with(R"(, "material": {"texture": ")" + (dir / "nan.exr").string() + R"("})");
-  plane.replace(plane.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48, R"("type": "plane", "size": 2)");
+  std::string plane =
+      scene_with(R"(, "material": {"texture": ")" + (dir / "nan.exr").string() + R"("})");
+  plane.replace(plane.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48,
+                R"("type": "plane", "size": 2)");
   const std::string textured = testing::write_file(dir / "textured.json", plane).string();
   plane.replace(plane.find("nan.exr"), 7, "inf.exr");
   const std::string infinite = testing::write_file(dir / "infinite.json", plane).string();
   for (const Case& c : std::vector<Case>{
-           {"image-usm " + bomb + " -o " + (dir / "o.png").string() + " --method usm2d --lambda 1 --sigma-px 2", "16384"},
-           {"render " + textured + " -o " + (dir / "t.png").string(), "pixel (1, 0) channel 2 is not a number"},
-           {"render " + infinite + " -o " + (dir / "t.png").string(), "pixel (1, 0) channel 2 is not a finite number"},
+           {"image-usm " + bomb + " -o " + (dir / "o.png").string() +
+                " --method usm2d --lambda 1 --sigma-px 2",
+            "16384"},
+           {"render " + textured + " -o " + (dir / "t.png").string(),
+            "pixel (1, 0) channel 2 is not a number"},
+           {"render " + infinite + " -o " + (dir / "t.png").string(),
+            "pixel (1, 0) channel 2 is not a finite number"},
        })
     expect_refused(c);
 }
@@ -124,20 +144,25 @@ TEST(BadInput, TruncatedAndDamagedPngsAreOneLine) {
   for (size_t i = 0; i < picture.pixels.size(); ++i) picture.pixels[i] = float(i % 97) / 96.0f;
   write_image(dir / "whole.png", picture);
   const std::string whole = testing::read_file(dir / "whole.png");
-  const std::string truncated = testing::write_file(dir / "truncated.png", whole.substr(0, whole.size() / 2)).string();
+  const std::string truncated =
+      testing::write_file(dir / "truncated.png", whole.substr(0, whole.size() / 2)).string();
   std::string flipped = whole;
   flipped[flipped.size() / 2] = char(flipped[flipped.size() / 2] ^ 0x5a);
   const std::string damaged = testing::write_file(dir / "damaged.png", flipped).string();
-  const std::string no_end = testing::write_file(dir / "no_end.png", whole.substr(0, whole.size() - 12)).string();
+  const std::string no_end =
+      testing::write_file(dir / "no_end.png", whole.substr(0, whole.size() - 12)).string();
   std::string plane = scene_with(R"(, "material": {"texture": ")" + truncated + R"("})");
-  plane.replace(plane.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48, R"("type": "plane", "size": 2)");
+  plane.replace(plane.find(R"("type": "sphere", "radius": 1, "subdivisions": 3)"), 48,
+                R"("type": "plane", "size": 2)");
   const std::string textured = testing::write_file(dir / "textured.json", plane).string();
-  const std::string usm = " -o " + (dir / "o.png").string() + " --method usm2d --lambda 1 --sigma-px 2";
+  const std::string usm =
+      " -o " + (dir / "o.png").string() + " --method usm2d --lambda 1 --sigma-px 2";
   for (const Case& c : std::vector<Case>{
            {"image-usm " + truncated + usm, "truncated.png: truncated PNG: chunk IDAT at byte"},
            {"image-usm " + damaged + usm, "damaged.png: damaged PNG: chunk IDAT at byte"},
            {"image-usm " + no_end + usm, "no_end.png: truncated PNG: the file ends at byte"},
-           {"render " + textured + " -o " + (dir / "t.png").string(), "truncated.png: truncated PNG"},
+           {"render " + textured + " -o " + (dir / "t.png").string(),
+            "truncated.png: truncated PNG"},
        })
     expect_refused(c);
 }
@@ -151,17 +176,19 @@ TEST(BadInput, OutputsAreCheckedBeforeAnythingIsWritten) {
   testing::write_file(dir / "keep.png", "keep");
   const std::string before = testing::read_file(dir / "exist.png");
   expect_refused({"image-usm " + (dir / "in.png").string() + " -o " + (dir / "exist.png").string() +
-                      " --method usm2d --lambda 1 --sigma-px 2 --aux " + (dir / "keep.png").string(),
+                      " --method usm2d --lambda 1 --sigma-px 2 --aux " +
+                      (dir / "keep.png").string(),
                   "is a file, not a folder"});
   EXPECT_EQ(testing::read_file(dir / "exist.png"), before);
   EXPECT_EQ(testing::read_file(dir / "keep.png"), "keep");
   const std::string scene = testing::write_file(dir / "s.json", scene_with("")).string();
   expect_refused({"render " + scene + " -o /proc/o.png", "not writable"});
-  expect_refused({"render " + scene + " -o " + (dir / "o.png").string() + " --aux " + (dir / "keep.png").string(),
+  expect_refused({"render " + scene + " -o " + (dir / "o.png").string() + " --aux " +
+                      (dir / "keep.png").string(),
                   "is a file, not a folder"});
   EXPECT_FALSE(fs::exists(dir / "o.png"));
-  expect_refused({"sheet " + (dir / "in.png").string() + "=a " + (dir / "missing.png").string() + "=b -o " +
-                      (dir / "sheet.png").string(),
+  expect_refused({"sheet " + (dir / "in.png").string() + "=a " + (dir / "missing.png").string() +
+                      "=b -o " + (dir / "sheet.png").string(),
                   "missing.png: no such image"});
   EXPECT_FALSE(fs::exists(dir / "sheet.png"));
 }
@@ -173,25 +200,29 @@ TEST(SheetCommand, PlacesEveryImageInRowsAtItsThumbnailSize) {
   testing::TempDir dir;
   write_image(dir / "a.png", Image(64, 48, 3, 1.0f));
   write_image(dir / "b.png", Image(64, 48, 3, 0.0f));
-  const auto r = testing::run_cli("sheet " + (dir / "a.png").string() + "=w " + (dir / "b.png").string() + "=k " +
-                                  (dir / "a.png").string() + " -o " + (dir / "s.png").string() + " --columns 2 --width 32");
+  const auto r = testing::run_cli("sheet " + (dir / "a.png").string() + "=w " +
+                                  (dir / "b.png").string() + "=k " + (dir / "a.png").string() +
+                                  " -o " + (dir / "s.png").string() + " --columns 2 --width 32");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Image sheet = read_image(dir / "s.png");
   // 10 px margin, thumbnails 32×24 with a 24-px gap, 56 px above the first row.
   EXPECT_EQ(sheet.width, 10 + 2 * (32 + 24));
   EXPECT_EQ(sheet.height, 56 + 2 * (24 + 24));
-  EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 12, 0), 1.0f);                  // a, row 1
-  EXPECT_FLOAT_EQ(sheet.at(10 + 56 + 16, 56 + 12, 0), 0.0f);             // b, row 1
-  EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 48 + 12, 0), 1.0f);             // a again, row 2
-  EXPECT_NEAR(sheet.at(10 + 56 + 16, 56 + 48 + 12, 0), 0.5f, 1.0f / 255);  // nothing: the grey surround
+  EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 12, 0), 1.0f);       // a, row 1
+  EXPECT_FLOAT_EQ(sheet.at(10 + 56 + 16, 56 + 12, 0), 0.0f);  // b, row 1
+  EXPECT_FLOAT_EQ(sheet.at(10 + 16, 56 + 48 + 12, 0), 1.0f);  // a again, row 2
+  EXPECT_NEAR(sheet.at(10 + 56 + 16, 56 + 48 + 12, 0), 0.5f,
+              1.0f / 255);  // nothing: the grey surround
   const std::string caption = "usm3d, σ = 0.12, λ = 3";
   const auto wide = testing::run_cli("sheet '" + (dir / "a.png").string() + "=" + caption + "' " +
-                                     (dir / "b.png").string() + " -o " + (dir / "w.png").string() + " --columns 2 --width 32");
+                                     (dir / "b.png").string() + " -o " + (dir / "w.png").string() +
+                                     " --columns 2 --width 32");
   ASSERT_EQ(wide.exit_code, 0) << wide.output;
   const int pitch = 24 + text_width(caption, 12);
   ASSERT_GT(pitch, 32 + 24);
   EXPECT_EQ(read_image(dir / "w.png").width, 10 + 2 * pitch);
-  EXPECT_FLOAT_EQ(read_image(dir / "w.png").at(10 + pitch + 16, 56 + 12, 0), 0.0f);  // b, one pitch on
+  EXPECT_FLOAT_EQ(read_image(dir / "w.png").at(10 + pitch + 16, 56 + 12, 0),
+                  0.0f);  // b, one pitch on
 }
 
 TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {
@@ -204,9 +235,11 @@ TEST(BadInput, SimulateRefusesNonFiniteDesignsAndRunawaySizes) {
            {"simulate" + out + " --weak-fraction nan", "finite"},
            {"simulate" + out + " --lambda-step 0", "--lambda-step: must be 1e-09 to 1e+06, not 0"},
            // A step of 1e-300 wrote lambda_index -2147483648 and λ -0: a corrupt CSV.
-           {"simulate" + out + " --lambda-step 1e-300", "--lambda-step: must be 1e-09 to 1e+06, not 1e-300"},
+           {"simulate" + out + " --lambda-step 1e-300",
+            "--lambda-step: must be 1e-09 to 1e+06, not 1e-300"},
            {"simulate" + out + " --lambda-max 1e300", "--lambda-max: must be 1e-09 to 1e+06"},
-           {"simulate" + out + " --lambda-max 1e6 --lambda-step 1e-3", "more than 100000 grid values"},
+           {"simulate" + out + " --lambda-max 1e6 --lambda-step 1e-3",
+            "more than 100000 grid values"},
            {"simulate" + out + " --subjects 100000 --repetitions 100", "the limit is 10000000"},
        })
     expect_refused(c);
@@ -225,10 +258,12 @@ TEST(BadInput, ScenesNameTheKeyOfAnOutOfRangeSeed) {
 // readable line.
 TEST(BadInput, MessagesQuotingBinaryBytesOrNewlinesStayOneReadableLine) {
   testing::TempDir dir;
-  const std::string png = testing::write_file(dir / "not-a-manifest.json", png_header_only(4, 4)).string();
+  const std::string png =
+      testing::write_file(dir / "not-a-manifest.json", png_header_only(4, 4)).string();
   expect_refused({"audit " + png + " -o " + (dir / "report").string(), "\\x89"});
-  expect_refused({"render '" + (dir / "two\nlines.json").string() + "' -o " + (dir / "o.png").string(),
-                  "two\\x0alines.json"});
+  expect_refused(
+      {"render '" + (dir / "two\nlines.json").string() + "' -o " + (dir / "o.png").string(),
+       "two\\x0alines.json"});
 }
 
 }  // namespace

@@ -14,11 +14,13 @@ namespace {
 TEST(CongruenceCli, ScoresARenderAndWritesItsMap) {
   testing::TempDir dir;
   const auto scene = testing::write_file(dir / "cube.json", testing::kLitCubeScene);
-  const auto render = testing::run_cli("render " + scene.string() + " -o " + (dir / "cube.png").string() + " --aux " +
-                                       (dir / "aux").string());
+  const auto render =
+      testing::run_cli("render " + scene.string() + " -o " + (dir / "cube.png").string() +
+                       " --aux " + (dir / "aux").string());
   ASSERT_EQ(render.exit_code, 0) << render.output;
-  const auto r = testing::run_cli("congruence " + (dir / "cube.png").string() + " --depth " + (dir / "aux/depth.exr").string() +
-                                  " --map " + (dir / "map.png").string());
+  const auto r =
+      testing::run_cli("congruence " + (dir / "cube.png").string() + " --depth " +
+                       (dir / "aux/depth.exr").string() + " --map " + (dir / "map.png").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(testing::count_lines(r.output), 1) << r.output;
   const double score = std::stod(r.output.substr(r.output.rfind(' ') + 1));
@@ -36,10 +38,13 @@ TEST(CongruenceCli, BadInputIsOneLine) {
   struct Case {
     std::string arguments, expected;
   } cases[] = {
-      {"congruence " + image + " --depth " + (dir / "d.exr").string(), "depth map is 7x6 but the image is 8x6"},
-      {"congruence " + image + " --depth " + (dir / "none.exr").string(), "none.exr: no such image file"},
+      {"congruence " + image + " --depth " + (dir / "d.exr").string(),
+       "depth map is 7x6 but the image is 8x6"},
+      {"congruence " + image + " --depth " + (dir / "none.exr").string(),
+       "none.exr: no such image file"},
       {"congruence " + image, "--depth is required"},
-      {"congruence " + image + " --depth " + (dir / "d.exr").string() + " --map " + (dir / "no/map.png").string(),
+      {"congruence " + image + " --depth " + (dir / "d.exr").string() + " --map " +
+           (dir / "no/map.png").string(),
        "output folder does not exist"},
   };
   for (const Case& c : cases) {

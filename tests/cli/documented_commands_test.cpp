@@ -61,7 +61,9 @@ void collect_commands(const std::filesystem::path& file, std::vector<DocumentedC
       if (continues) continue;
       std::vector<std::string> words = command_words(split_words(joined));
       joined.clear();
-      if (words.size() >= 2) out.push_back({file.filename().string() + ":" + std::to_string(first_line), std::move(words)});
+      if (words.size() >= 2)
+        out.push_back(
+            {file.filename().string() + ":" + std::to_string(first_line), std::move(words)});
     }
   }
 }
@@ -103,22 +105,27 @@ AcceptedFlags accepted_flags(const std::string& subcommand) {
   for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line[0] != ' ') {
       const bool own = line.starts_with("Options:") || line.starts_with("Filter keys:");
-      section = own ? Section::options : line.starts_with("Method parameters") ? Section::methods : Section::other;
+      section = own                                     ? Section::options
+                : line.starts_with("Method parameters") ? Section::methods
+                                                        : Section::other;
       if (!line.starts_with("Filter keys:")) continue;  // its flags start on the header line
     }
     std::smatch m;
     std::set<std::string>* into = nullptr;
     if (section == Section::options) into = &accepted.options;
-    if (section == Section::methods && std::regex_match(line, m, method_line)) into = &accepted.method_flags[m[1].str()];
+    if (section == Section::methods && std::regex_match(line, m, method_line))
+      into = &accepted.method_flags[m[1].str()];
     if (!into) continue;
-    for (auto it = std::sregex_iterator(line.begin(), line.end(), flag); it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(line.begin(), line.end(), flag);
+         it != std::sregex_iterator(); ++it)
       into->insert(it->str());
   }
   return accepted;
 }
 
 // Why `flag` is wrong in `command` ("" when the subcommand takes it).
-std::string check_flag(const std::string& flag, const std::vector<std::string>& words, const AcceptedFlags& accepted) {
+std::string check_flag(const std::string& flag, const std::vector<std::string>& words,
+                       const AcceptedFlags& accepted) {
   if (accepted.options.count(flag)) return "";
   auto method_at = std::find(words.begin(), words.end(), "--method");
   if (method_at == words.end() || method_at + 1 == words.end()) {
@@ -128,10 +135,13 @@ std::string check_flag(const std::string& flag, const std::vector<std::string>& 
     return "is not an option of this subcommand";
   }
   const std::string method = *(method_at + 1);
-  if (!accepted.method_flags.count(method)) return "names method '" + method + "', which the subcommand does not list";
+  if (!accepted.method_flags.count(method))
+    return "names method '" + method + "', which the subcommand does not list";
   const std::set<std::string>& flags = accepted.method_flags.at(method);
   const bool negated = flag.starts_with("--no-") && flags.count("--" + flag.substr(5));
-  return flags.count(flag) || negated ? "" : "is neither an option of this subcommand nor a parameter of " + method;
+  return flags.count(flag) || negated
+             ? ""
+             : "is neither an option of this subcommand nor a parameter of " + method;
 }
 
 TEST(DocumentedCommands, EveryCommandInTheDocsUsesOnlyFlagsItsSubcommandAccepts) {
@@ -162,7 +172,8 @@ TEST(DocumentedCommands, EveryCommandInTheDocsUsesOnlyFlagsItsSubcommandAccepts)
 TEST(DocumentedCommands, TheCheckRejectsAnUnknownFlagAndAParameterOfAnotherMethod) {
   const AcceptedFlags render = accepted_flags("render");
   ASSERT_TRUE(render.exists);
-  const std::vector<std::string> usm3d = split_words("countershade render s.json -o x.png --method usm3d --sigma 0.1");
+  const std::vector<std::string> usm3d =
+      split_words("countershade render s.json -o x.png --method usm3d --sigma 0.1");
   EXPECT_EQ(check_flag("--sigma", usm3d, render), "");
   EXPECT_EQ(check_flag("--no-adapt", usm3d, render), "");
   EXPECT_NE(check_flag("--kernel", usm3d, render), "");

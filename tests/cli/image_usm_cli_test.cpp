@@ -36,7 +36,8 @@ std::vector<bool> depth_edges(const Image& object, const Image& depth) {
     for (int x = 0; x < depth.width; ++x)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = std::clamp(x + dx, 0, depth.width - 1), ny = std::clamp(y + dy, 0, depth.height - 1);
+          const int nx = std::clamp(x + dx, 0, depth.width - 1),
+                    ny = std::clamp(y + dy, 0, depth.height - 1);
           const float d = depth.at(x, y), e = depth.at(nx, ny);
           if (object.at(x, y) != object.at(nx, ny) || valid(d) != valid(e) ||
               (valid(d) && std::abs(d - e) > 0.05f * std::min(d, e)))
@@ -50,7 +51,8 @@ std::vector<bool> depth_edges(const Image& object, const Image& depth) {
 struct Difference {
   int off_edges = 0, on_edges = 0;
 };
-Difference code_difference(const std::filesystem::path& a, const std::filesystem::path& b, const std::vector<bool>& edge) {
+Difference code_difference(const std::filesystem::path& a, const std::filesystem::path& b,
+                           const std::vector<bool>& edge) {
   const Image first = read_image(a), second = read_image(b);
   EXPECT_EQ(first.pixels.size(), second.pixels.size());
   Difference d;
@@ -71,30 +73,38 @@ TEST(ImageUsmCli, ImagePlusDepthRoundTripEqualsTheRendererPath) {
   testing::TempDir dir;
   auto scene = testing::write_file(dir / "s.json", kScene);
   ASSERT_EQ(run_cli("render " + scene.string() + " -o " + (dir / "photo.png").string() + " --aux " +
-                    (dir / "aux").string()).exit_code, 0);
-  const std::vector<bool> edge = depth_edges(read_image(dir / "aux/object_id.exr"), read_image(dir / "aux/depth.exr"));
+                    (dir / "aux").string())
+                .exit_code,
+            0);
+  const std::vector<bool> edge =
+      depth_edges(read_image(dir / "aux/object_id.exr"), read_image(dir / "aux/depth.exr"));
   struct Case {
     std::string options;
     int off_edges = 0;  // the largest difference allowed off the depth edges
     bool edges_differ = true;
-  } cases[] = {{"--method depth-usm --operator darken --lambda 0.8 --kernel 5%"},
-               {"--method depth-usm --operator color --lambda 1.5 --kernel 3 --space rgb"},
-               {"--method depth-usm --operator contrast --contrast equalize --lambda 2 --sigma-px 4 --space lab"},
-               {"--method depth-usm --operator add --lambda -0.5 --kernel 4% --depth-mapping zbuffer"},
-               {"--method usm2d --lambda 1.2 --sigma-percent 1", 1, false}};
+  } cases[] = {
+      {"--method depth-usm --operator darken --lambda 0.8 --kernel 5%"},
+      {"--method depth-usm --operator color --lambda 1.5 --kernel 3 --space rgb"},
+      {"--method depth-usm --operator contrast --contrast equalize --lambda 2 --sigma-px 4 --space "
+       "lab"},
+      {"--method depth-usm --operator add --lambda -0.5 --kernel 4% --depth-mapping zbuffer"},
+      {"--method usm2d --lambda 1.2 --sigma-percent 1", 1, false}};
   int k = 0;
   for (const auto& c : cases) {
-    std::string a = (dir / ("a" + std::to_string(k) + ".png")).string(), b = (dir / ("b" + std::to_string(k) + ".png")).string();
+    std::string a = (dir / ("a" + std::to_string(k) + ".png")).string(),
+                b = (dir / ("b" + std::to_string(k) + ".png")).string();
     ++k;
     auto r1 = run_cli("render " + scene.string() + " -o " + a + " " + c.options);
     ASSERT_EQ(r1.exit_code, 0) << r1.output;
-    auto r2 = run_cli("image-usm " + (dir / "photo.png").string() + " --depth " + (dir / "aux/depth.exr").string() +
-                      " -o " + b + " " + c.options);
+    auto r2 = run_cli("image-usm " + (dir / "photo.png").string() + " --depth " +
+                      (dir / "aux/depth.exr").string() + " -o " + b + " " + c.options);
     ASSERT_EQ(r2.exit_code, 0) << r2.output;
     const Difference d = code_difference(a, b, edge);
     EXPECT_LE(d.off_edges, c.off_edges) << c.options;
-    if (c.edges_differ) EXPECT_GT(d.on_edges, 0) << c.options;  // the edges were sampled again
-    else EXPECT_LE(d.on_edges, c.off_edges) << c.options;
+    if (c.edges_differ)
+      EXPECT_GT(d.on_edges, 0) << c.options;  // the edges were sampled again
+    else
+      EXPECT_LE(d.on_edges, c.off_edges) << c.options;
     EXPECT_NE(testing::read_file(a), testing::read_file(dir / "photo.png")) << c.options;
   }
 }
@@ -107,11 +117,14 @@ TEST(ImageUsmCli, DisparityMapsAndAuxiliaryOutput) {
     for (int x = 0; x < 40; ++x) disparity.at(x, y) = x == 39 ? 0.0f : (x < 20 ? 40.0f : 10.0f);
   write_image(dir / "im.png", photo);
   write_image(dir / "disp.pfm", disparity);
-  auto r = run_cli("image-usm " + (dir / "im.png").string() + " --depth " + (dir / "disp.pfm").string() +
-                   " --depth-kind disparity -o " + (dir / "out.png").string() +
-                   " --method depth-usm --operator darken --lambda 1 --sigma-px 3 --aux " + (dir / "aux").string());
+  auto r =
+      run_cli("image-usm " + (dir / "im.png").string() + " --depth " + (dir / "disp.pfm").string() +
+              " --depth-kind disparity -o " + (dir / "out.png").string() +
+              " --method depth-usm --operator darken --lambda 1 --sigma-px 3 --aux " +
+              (dir / "aux").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  Image d = read_image(dir / "aux/depth_normalized.exr"), dd = read_image(dir / "aux/spatial_importance.exr");
+  Image d = read_image(dir / "aux/depth_normalized.exr"),
+        dd = read_image(dir / "aux/spatial_importance.exr");
   EXPECT_FLOAT_EQ(d.at(5, 10), 0.0f);   // near (largest disparity)
   EXPECT_FLOAT_EQ(d.at(30, 10), 1.0f);  // far
   EXPECT_FLOAT_EQ(d.at(39, 10), 1.0f);  // invalid counts as background
@@ -133,21 +146,31 @@ TEST(ImageUsmCli, BadInputExitsWithTwoAndWritesNothing) {
   struct Case {
     std::string args, expected;
   } cases[] = {
-      {im + " --depth " + (dir / "small.exr").string() + " -o " + out + " --method depth-usm --lambda 1 --kernel 5%",
+      {im + " --depth " + (dir / "small.exr").string() + " -o " + out +
+           " --method depth-usm --lambda 1 --kernel 5%",
        "depth map is 10x10 but the image is 20x10"},
-      {(dir / "empty.png").string() + depth + " -o " + out + " --method depth-usm --lambda 1 --kernel 5%", "empty.png"},
-      {(dir / "missing.png").string() + depth + " -o " + out + " --method depth-usm --lambda 1 --kernel 5%",
+      {(dir / "empty.png").string() + depth + " -o " + out +
+           " --method depth-usm --lambda 1 --kernel 5%",
+       "empty.png"},
+      {(dir / "missing.png").string() + depth + " -o " + out +
+           " --method depth-usm --lambda 1 --kernel 5%",
        "no such image file"},
       {im + depth + " -o " + out + " --method depth-usm --lambda 1 --kernel 0%", "--kernel"},
       {im + depth + " -o " + out + " --method depth-usm --lambda 1 --kernel 60%", "--kernel"},
       {im + depth + " -o " + out + " --method depth-usm --lambda 1 --kernel five", "--kernel"},
-      {im + depth + " -o " + out + " --method depth-usm --operator blur --lambda 1 --kernel 5%", "--operator"},
+      {im + depth + " -o " + out + " --method depth-usm --operator blur --lambda 1 --kernel 5%",
+       "--operator"},
       {im + depth + " -o " + out + " --method depth-usm --lambda nan --kernel 5%", "--lambda"},
       {im + " -o " + out + " --method depth-usm --lambda 1 --kernel 5%", "--depth"},
-      {im + depth + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1", "--method: usm3d works on a rendered scene"},
-      {im + depth + " -o " + out + " --method usm3d --lambda 1 --kernel 5%", "--kernel: usm3d has no parameter"},
-      {im + depth + " -o " + (dir / "out.gif").string() + " --method usm2d --lambda 1 --kernel 5%", "output must be"},
-      {im + depth + " -o " + out + " --method depth-usm --operator color --cold 1,2 --lambda 1 --kernel 5%", "--cold"},
+      {im + depth + " -o " + out + " --method usm3d --lambda 1 --sigma 0.1",
+       "--method: usm3d works on a rendered scene"},
+      {im + depth + " -o " + out + " --method usm3d --lambda 1 --kernel 5%",
+       "--kernel: usm3d has no parameter"},
+      {im + depth + " -o " + (dir / "out.gif").string() + " --method usm2d --lambda 1 --kernel 5%",
+       "output must be"},
+      {im + depth + " -o " + out +
+           " --method depth-usm --operator color --cold 1,2 --lambda 1 --kernel 5%",
+       "--cold"},
   };
   for (const auto& c : cases) {
     auto r = run_cli("image-usm " + c.args);

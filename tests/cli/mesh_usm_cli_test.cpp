@@ -24,7 +24,8 @@ std::string step_edge_ply(bool with_colors = true) {
   ply << "ply\nformat ascii 1.0\nelement vertex " << grid.vertex_count()
       << "\nproperty float x\nproperty float y\nproperty float z\n";
   if (with_colors) ply << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-  ply << "element face " << grid.triangle_count() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  ply << "element face " << grid.triangle_count()
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& p : grid.positions) {
     ply << p.x << " " << p.y << " " << p.z;
     if (with_colors) ply << (p.x < -1e-6 ? " 90 70 60" : " 170 150 140");
@@ -48,9 +49,10 @@ TEST(MeshUsmCli, EnhancesColoursAndKeepsEverythingElse) {
   int darker = 0, lighter = 0;
   for (size_t v = 0; v < before.vertex_count(); ++v) {
     double x = before.positions[v].x;
-    double L0 = srgb_to_lab(glm::dvec3(before.vertex_colors[v])).L, L1 = srgb_to_lab(glm::dvec3(after.vertex_colors[v])).L;
-    if (x < -0.05 && x > -0.25) darker += L1 < L0 - 1.0;   // undershoot on the dark side of the edge
-    if (x > 0.05 && x < 0.25) lighter += L1 > L0 + 1.0;    // overshoot on the light side
+    double L0 = srgb_to_lab(glm::dvec3(before.vertex_colors[v])).L,
+           L1 = srgb_to_lab(glm::dvec3(after.vertex_colors[v])).L;
+    if (x < -0.05 && x > -0.25) darker += L1 < L0 - 1.0;  // undershoot on the dark side of the edge
+    if (x > 0.05 && x < 0.25) lighter += L1 > L0 + 1.0;   // overshoot on the light side
     if (std::abs(x) > 0.95 && std::abs(before.positions[v].z) < 0.9) {
       EXPECT_NEAR(L1, L0, 1.0) << "far from the edge the colour stays";
     }
@@ -84,8 +86,10 @@ TEST(MeshUsmCli, BadInputExitsWithTwoAndWritesNothing) {
       {good.string() + " -o " + out + " --lambda 1", "exactly one of --sigma or --iterations"},
       {good.string() + " -o " + out + " --lambda 1 --sigma 0.1 --iterations 4", "exactly one of"},
       {good.string() + " -o " + out + " --lambda 1 --iterations 0", "--iterations"},
-      {good.string() + " -o " + (dir / "out.obj").string() + " --lambda 1 --sigma 0.1", "must be a .ply"},
-      {(dir / "missing.ply").string() + " -o " + out + " --lambda 1 --sigma 0.1", "no such mesh file"},
+      {good.string() + " -o " + (dir / "out.obj").string() + " --lambda 1 --sigma 0.1",
+       "must be a .ply"},
+      {(dir / "missing.ply").string() + " -o " + out + " --lambda 1 --sigma 0.1",
+       "no such mesh file"},
   };
   for (const auto& c : cases) {
     auto r = run_cli("mesh-usm " + c.args);
@@ -95,7 +99,8 @@ TEST(MeshUsmCli, BadInputExitsWithTwoAndWritesNothing) {
   }
   EXPECT_FALSE(std::filesystem::exists(out));
   for (auto& entry : std::filesystem::directory_iterator(dir.path()))
-    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "temporary file left behind";
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+        << "temporary file left behind";
 }
 
 }  // namespace

@@ -32,8 +32,8 @@ TEST(RenderCli, HelpIsAvailableEverywhere) {
 TEST(RenderCli, RendersPngExrAndAuxiliaryBuffers) {
   testing::TempDir dir;
   auto scene = testing::write_file(dir / "s.json", kScene);
-  auto r = run_cli("render " + scene.string() + " -o " + (dir / "out.png").string() + " --width 20 --height 16 --aux " +
-                   (dir / "aux").string());
+  auto r = run_cli("render " + scene.string() + " -o " + (dir / "out.png").string() +
+                   " --width 20 --height 16 --aux " + (dir / "aux").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   Image png = read_image(dir / "out.png");
   EXPECT_EQ(png.width, 20);
@@ -70,7 +70,8 @@ TEST(RenderCli, Usm3dAtLambdaZeroMatchesTheUnenhancedPngByteForByte) {
   auto r = run_cli(base + (dir / "zero.png").string() + " --method usm3d --lambda 0 --sigma 0.2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(testing::read_file(dir / "zero.png"), testing::read_file(dir / "none.png"));
-  r = run_cli(base + (dir / "strong.png").string() + " --method usm3d --lambda 2 --sigma-fraction 0.1 --refine 0.05");
+  r = run_cli(base + (dir / "strong.png").string() +
+              " --method usm3d --lambda 2 --sigma-fraction 0.1 --refine 0.05");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("clipped pixels"), std::string::npos) << r.output;
@@ -92,13 +93,16 @@ TEST(RenderCli, TheReferenceComesFromTheSameSamplesAsTheStimulus) {
     "lights": [{"type": "ambient", "radiance": 1.0}]
   })");
   for (const char* lambda : {"1", "0"}) {
-    auto r = run_cli("render " + scene.string() + " -o " + (dir / "enhanced.png").string() + " --reference " +
-                     (dir / "plain.png").string() + " --method usm3d --sigma 0.3 --lambda " + lambda);
+    auto r = run_cli("render " + scene.string() + " -o " + (dir / "enhanced.png").string() +
+                     " --reference " + (dir / "plain.png").string() +
+                     " --method usm3d --sigma 0.3 --lambda " + lambda);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_EQ(read_image(dir / "enhanced.png").pixels, read_image(dir / "plain.png").pixels) << "lambda " << lambda;
+    EXPECT_EQ(read_image(dir / "enhanced.png").pixels, read_image(dir / "plain.png").pixels)
+        << "lambda " << lambda;
   }
-  auto bad = run_cli("render " + scene.string() + " -o " + (dir / "x.png").string() + " --reference " +
-                     (dir / "plain.exr").string() + " --method usm3d --sigma 0.3 --lambda 1");
+  auto bad =
+      run_cli("render " + scene.string() + " -o " + (dir / "x.png").string() + " --reference " +
+              (dir / "plain.exr").string() + " --method usm3d --sigma 0.3 --lambda 1");
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("plain.exr"), std::string::npos) << bad.output;
 }
@@ -127,15 +131,20 @@ TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
   } cases[] = {
       {"render " + bad.string() + " -o " + out, "bad.json: malformed JSON"},
       {"render " + (dir / "missing.json").string() + " -o " + out, "missing.json: no such file"},
-      {"render " + scene.string() + " -o " + (dir / "nofolder/o.png").string(), "output folder does not exist"},
+      {"render " + scene.string() + " -o " + (dir / "nofolder/o.png").string(),
+       "output folder does not exist"},
       {"render " + scene.string() + " -o " + (dir / "o.jpg").string(), "output must be"},
       {"render " + scene.string() + " -o " + out + " --spp 0", "--spp"},
       {"render " + scene.string() + " -o " + out + " --bits 12", "--bits"},
       {"render " + scene.string() + " -o " + out + " --method magic", "--method"},
-      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1", "exactly one of --sigma"},
-      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1 --sigma -2", "--sigma"},
-      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda nan --sigma 0.1", "--lambda"},
-      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1 --sigma-fraction 3", "--sigma-fraction"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1",
+       "exactly one of --sigma"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1 --sigma -2",
+       "--sigma"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda nan --sigma 0.1",
+       "--lambda"},
+      {"render " + scene.string() + " -o " + out + " --method usm3d --lambda 1 --sigma-fraction 3",
+       "--sigma-fraction"},
       {"render " + scene.string(), "--output is required"},
       {"frobnicate", "frobnicate"},
   };

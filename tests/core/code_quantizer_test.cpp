@@ -15,7 +15,8 @@ namespace {
 
 // A lookup against the reference at a million random values over the decades of [0, 1] and
 // at and beside values stepping through every threshold.
-void expect_lookup_exact(const std::function<uint32_t(double)>& lookup, const std::function<uint32_t(double)>& reference) {
+void expect_lookup_exact(const std::function<uint32_t(double)>& lookup,
+                         const std::function<uint32_t(double)>& reference) {
   std::mt19937_64 random(7);
   std::uniform_real_distribution<double> exponent(-32.0, 0.0);
   for (int i = 0; i < 1000000; ++i) {
@@ -47,7 +48,8 @@ void expect_exact(const DisplayEncoding& encoding, int bits, bool expect_table) 
   auto reference = [&](double x) { return quantize(float(encoding.encode(x)), bits); };
   auto code = [&](double x) { return q.code(x); };
   auto packed = [&](double x) { return expect_table ? packed_code(q.table(), x) : q.code(x); };
-  for (auto lookup : {std::function<uint32_t(double)>(code), std::function<uint32_t(double)>(packed)})
+  for (auto lookup :
+       {std::function<uint32_t(double)>(code), std::function<uint32_t(double)>(packed)})
     expect_lookup_exact(lookup, reference);
   for (double x : {-1.0, 0.0, 1.0, 2.0, std::nan("")}) EXPECT_EQ(q.code(x), reference(x)) << x;
   for (double x : {0.0, -0.0, 1.0, 1e-300}) EXPECT_EQ(packed(x), reference(x)) << x;
@@ -69,7 +71,8 @@ TEST(CodeQuantizer, CodeFractionEqualsTheDivisionForEveryCode) {
     const uint32_t max_code = (1u << bits) - 1u;
     const float levels = float(max_code);
     const double inverse = 1.0 / double(levels);
-    for (uint32_t k = 0; k <= max_code; ++k) ASSERT_EQ(code_fraction(k, inverse), float(k) / levels) << bits << " " << k;
+    for (uint32_t k = 0; k <= max_code; ++k)
+      ASSERT_EQ(code_fraction(k, inverse), float(k) / levels) << bits << " " << k;
   }
 }
 

@@ -59,7 +59,8 @@ TEST(Color, Ciede2000MatchesTheReference) {
   for (const auto& v : rows) {
     const Lab first{v[0], v[1], v[2]}, second{v[3], v[4], v[5]};
     const double tolerance = 1e-6 * std::max(1.0, v[6]);
-    EXPECT_NEAR(ciede2000(first, second), v[6], tolerance) << v[0] << "," << v[1] << "," << v[2] << " / " << v[3];
+    EXPECT_NEAR(ciede2000(first, second), v[6], tolerance)
+        << v[0] << "," << v[1] << "," << v[2] << " / " << v[3];
     EXPECT_NEAR(ciede2000(second, first), v[6], tolerance) << "symmetric";
   }
 }
@@ -77,7 +78,8 @@ TEST(Color, LightnessOnlyChangeKeepsHueAndSaturation) {
   Lab changed = with_lightness(lab, 65.0);
   EXPECT_DOUBLE_EQ(changed.L, 65.0);
   EXPECT_NEAR(std::atan2(changed.b, changed.a), std::atan2(lab.b, lab.a), 1e-12);
-  EXPECT_NEAR(std::hypot(changed.a, changed.b) / changed.L, std::hypot(lab.a, lab.b) / lab.L, 1e-12);
+  EXPECT_NEAR(std::hypot(changed.a, changed.b) / changed.L, std::hypot(lab.a, lab.b) / lab.L,
+              1e-12);
   EXPECT_DOUBLE_EQ(with_lightness(lab, 130.0).L, 100.0);
   EXPECT_DOUBLE_EQ(with_lightness(lab, -5.0).L, 0.0);
   Lab black{0.0, 0.0, 0.0};

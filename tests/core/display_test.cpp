@@ -13,7 +13,8 @@ TEST(Display, EncodingsInvertEachOther) {
   DisplayEncoding encodings[] = {DisplayEncoding::srgb(), DisplayEncoding::gamma(2.4),
                                  DisplayEncoding::lut({0, 0.5, 1}, {0, 0.2, 1})};
   for (const auto& e : encodings)
-    for (double x = 0; x <= 1.0; x += 0.01) EXPECT_NEAR(e.decode(e.encode(x)), x, 1e-9) << e.describe();
+    for (double x = 0; x <= 1.0; x += 0.01)
+      EXPECT_NEAR(e.decode(e.encode(x)), x, 1e-9) << e.describe();
 }
 
 TEST(Display, KnownValues) {

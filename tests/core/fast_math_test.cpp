@@ -13,7 +13,8 @@ TEST(FastMath, SinAndCosOfTurnsMatchTheLibrary) {
     const double turns = i / 4000.0 + 1e-7 * i;
     double s, c;
     sincos_turns(turns, s, c);
-    worst = std::max({worst, std::abs(s - std::sin(2 * M_PI * turns)), std::abs(c - std::cos(2 * M_PI * turns))});
+    worst = std::max({worst, std::abs(s - std::sin(2 * M_PI * turns)),
+                      std::abs(c - std::cos(2 * M_PI * turns))});
   }
   EXPECT_LT(worst, 1e-14);
   double s, c;

@@ -17,7 +17,8 @@ std::vector<float> test_image(int w, int h, uint64_t seed) {
   SampleStream random(seed, 0, 0, 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      img[size_t(y) * w + x] = 0.3f * float(random.next()) + (x > w / 3 ? 0.4f : 0.0f) + (y > h / 2 ? 0.2f : 0.0f);
+      img[size_t(y) * w + x] =
+          0.3f * float(random.next()) + (x > w / 3 ? 0.4f : 0.0f) + (y > h / 2 ? 0.2f : 0.0f);
   img[size_t(h / 2) * w + size_t(w / 2)] = 3.0f;
   return img;
 }
@@ -28,7 +29,8 @@ double max_error_over_range(const std::vector<float>& img, int w, int h, double 
   gaussian_blur_exact(img.data(), exact.data(), w, h, sigma);
   auto [lo, hi] = std::minmax_element(img.begin(), img.end());
   double range = *hi > *lo ? double(*hi - *lo) : 1.0, worst = 0;
-  for (size_t i = 0; i < img.size(); ++i) worst = std::max(worst, std::abs(double(fast[i]) - exact[i]) / range);
+  for (size_t i = 0; i < img.size(); ++i)
+    worst = std::max(worst, std::abs(double(fast[i]) - exact[i]) / range);
   return worst;
 }
 
@@ -39,7 +41,8 @@ TEST(Gaussian, FastMatchesExactFirWithinOneThousandthOfTheRange) {
   for (const auto& s : sizes)
     for (double sigma : {1.0, 2.0, 2.9, 3.0, 4.5, 8.0, 15.0, 30.0, 60.0}) {
       auto img = test_image(s.w, s.h, uint64_t(s.w * 7 + s.h));
-      EXPECT_LT(max_error_over_range(img, s.w, s.h, sigma), 1e-3) << s.w << "x" << s.h << " sigma " << sigma;
+      EXPECT_LT(max_error_over_range(img, s.w, s.h, sigma), 1e-3)
+          << s.w << "x" << s.h << " sigma " << sigma;
     }
 }
 
@@ -53,7 +56,8 @@ double step_response_error(double sigma, bool along_x) {
   gaussian_blur(step.data(), fast.data(), w, h, sigma, 2);
   gaussian_blur_exact(step.data(), exact.data(), w, h, sigma, 2);
   double worst = 0;
-  for (size_t i = 0; i < step.size(); ++i) worst = std::max(worst, std::abs(double(fast[i]) - exact[i]));
+  for (size_t i = 0; i < step.size(); ++i)
+    worst = std::max(worst, std::abs(double(fast[i]) - exact[i]));
   return worst;
 }
 
@@ -62,7 +66,8 @@ double step_response_error(double sigma, bool along_x) {
 // fitted constants, with double recursions for large σ, by 8.2e-5).
 TEST(Gaussian, StepResponseWithinOneTenThousandthOfTheStepAtEverySigma) {
   for (double sigma : {0.5, 1.0, 2.9, 3.0, 5.0, 12.0, 47.0, 49.0, 150.0, 500.0})
-    for (bool along_x : {true, false}) EXPECT_LT(step_response_error(sigma, along_x), 1e-4) << "sigma " << sigma;
+    for (bool along_x : {true, false})
+      EXPECT_LT(step_response_error(sigma, along_x), 1e-4) << "sigma " << sigma;
 }
 
 TEST(Gaussian, ExactFirPreservesConstantsAndMass) {

@@ -21,10 +21,12 @@ TEST(Image, PngRoundTripIsExactAt8And16Bits) {
   ASSERT_EQ(back.channels, 3);
   for (size_t i = 0; i < image.pixels.size(); ++i) EXPECT_FLOAT_EQ(back.pixels[i], image.pixels[i]);
 
-  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i * 1000 % 65536) / 65535.0f;
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = float(i * 1000 % 65536) / 65535.0f;
   write_image(dir / "b.png", image, {16});
   back = read_image(dir / "b.png");
-  for (size_t i = 0; i < image.pixels.size(); ++i) EXPECT_NEAR(back.pixels[i], image.pixels[i], 1e-7);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    EXPECT_NEAR(back.pixels[i], image.pixels[i], 1e-7);
 }
 
 TEST(Image, ExrKeepsFloatsAndWritesAtomically) {

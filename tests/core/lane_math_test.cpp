@@ -44,7 +44,8 @@ TEST(LaneMath, SinCosMatchTheLibraryFromZeroToPi) {
 TEST(LaneMath, LanesEqualTheScalarBitForBit) {
   for (int k = 0; k < 1000; ++k) {
     const Lanes x = {-1.0 + k / 500.0, 0.5 + 1e-3 * k / 1000, -0.5 - 1e-9 * k, std::sin(0.1 * k)};
-    const Lanes theta = {std::numbers::pi * k / 1000.0, 0.785 + k * 1e-6, 1e-3 * k, std::numbers::pi - 1e-3 * k};
+    const Lanes theta = {std::numbers::pi * k / 1000.0, 0.785 + k * 1e-6, 1e-3 * k,
+                         std::numbers::pi - 1e-3 * k};
     const Lanes a = acos_lanes(x), r = sqrt_lanes(x * x);
     Lanes s, c;
     sincos_lanes(theta, s, c);

@@ -8,7 +8,8 @@ namespace {
 TEST(OneLine, KeepsPrintableTextAndWellFormedUtf8) {
   EXPECT_EQ(one_line("scene.json: camera: fov: must be in (0, 180), got 200"),
             "scene.json: camera: fov: must be in (0, 180), got 200");
-  EXPECT_EQ(one_line("σ = 0.5, λ ≥ 0, 🙂"), "σ = 0.5, λ ≥ 0, 🙂");  // two, three and four bytes
+  EXPECT_EQ(one_line("σ = 0.5, λ ≥ 0, 🙂"),
+            "σ = 0.5, λ ≥ 0, 🙂");  // two, three and four bytes
 }
 
 TEST(OneLine, EscapesControlCharactersAndBytesThatAreNotUtf8) {
@@ -18,7 +19,9 @@ TEST(OneLine, EscapesControlCharactersAndBytesThatAreNotUtf8) {
   EXPECT_EQ(one_line("\x7f"), "\\x7f");
   // Broken sequences: a lead byte without its continuation, cut off at the end, overlong,
   // a surrogate, past U+10FFFF.
-  EXPECT_EQ(one_line("\xcf" "a"), "\\xcfa");
+  EXPECT_EQ(one_line("\xcf"
+                     "a"),
+            "\\xcfa");
   EXPECT_EQ(one_line("\xe2\x89"), "\\xe2\\x89");
   EXPECT_EQ(one_line("\xc0\xaf"), "\\xc0\\xaf");
   EXPECT_EQ(one_line("\xed\xa0\x80"), "\\xed\\xa0\\x80");

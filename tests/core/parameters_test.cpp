@@ -1,12 +1,13 @@
 // ParameterBag: the one parser of method parameters from experiment files and command lines.
 // Every read's conversions and every message, which name the value's place in the input.
 
+#include "core/parameters.h"
+
 #include <gtest/gtest.h>
 
 #include <functional>
 
 #include "core/error.h"
-#include "core/parameters.h"
 
 namespace countershade {
 namespace {
@@ -21,17 +22,24 @@ std::string message_of(const std::function<void()>& f) {
   return "";
 }
 
-ParameterBag json_bag(const nlohmann::json& j) { return ParameterBag::from_json(j, "exp.json", "methods[1]"); }
+ParameterBag json_bag(const nlohmann::json& j) {
+  return ParameterBag::from_json(j, "exp.json", "methods[1]");
+}
 
 TEST(ParameterBag, CommandLineWordsBecomeSnakeCaseKeysInEveryForm) {
-  const ParameterBag bag = ParameterBag::from_arguments({"--sigma-px", "4", "--lambda=2.5", "--adapt", "--no-clamp"});
+  const ParameterBag bag =
+      ParameterBag::from_arguments({"--sigma-px", "4", "--lambda=2.5", "--adapt", "--no-clamp"});
   EXPECT_EQ(bag.number("sigma_px", 0), 4.0);
   EXPECT_EQ(bag.number("lambda", 0), 2.5);
   EXPECT_TRUE(bag.boolean("adapt", false));
   EXPECT_FALSE(bag.boolean("clamp", true));
   EXPECT_EQ(bag.where("sigma_px"), "--sigma-px");
-  EXPECT_EQ(message_of([] { ParameterBag::from_arguments({"--a", "1", "--a", "2"}); }), "--a: given twice");
-  EXPECT_NE(message_of([] { ParameterBag::from_arguments({"4"}); }).find("unexpected argument '4'"), std::string::npos);
+  EXPECT_EQ(message_of([] {
+              ParameterBag::from_arguments({"--a", "1", "--a", "2"});
+            }),
+            "--a: given twice");
+  EXPECT_NE(message_of([] { ParameterBag::from_arguments({"4"}); }).find("unexpected argument '4'"),
+            std::string::npos);
 }
 
 TEST(ParameterBag, AbsentKeysGiveTheFallbackAndRecordIt) {
@@ -52,21 +60,30 @@ TEST(ParameterBag, AbsentKeysGiveTheFallbackAndRecordIt) {
 }
 
 TEST(ParameterBag, WrongTypesAndRangesNameTheKeysPlace) {
-  const ParameterBag bag = json_bag({{"sigma", "wide"}, {"scales", 2.5}, {"lambda", 7}, {"adapt", 1}, {"mode", "x"}});
-  EXPECT_EQ(message_of([&] { bag.number("sigma", 0); }), "exp.json: methods[1].sigma: expected a number, got a string");
+  const ParameterBag bag =
+      json_bag({{"sigma", "wide"}, {"scales", 2.5}, {"lambda", 7}, {"adapt", 1}, {"mode", "x"}});
+  EXPECT_EQ(message_of([&] { bag.number("sigma", 0); }),
+            "exp.json: methods[1].sigma: expected a number, got a string");
   EXPECT_EQ(message_of([&] { bag.integer_in("scales", 1, 1, 8); }),
             "exp.json: methods[1].scales: expected an integer in [1, 8], got 2.5");
-  EXPECT_EQ(message_of([&] { bag.number_in("lambda", 1, 0, 5); }), "exp.json: methods[1].lambda: must be in [0, 5], got 7");
-  EXPECT_NE(message_of([&] { bag.boolean("adapt", false); }).find("methods[1].adapt: expected true or false"),
+  EXPECT_EQ(message_of([&] { bag.number_in("lambda", 1, 0, 5); }),
+            "exp.json: methods[1].lambda: must be in [0, 5], got 7");
+  EXPECT_NE(message_of([&] {
+              bag.boolean("adapt", false);
+            }).find("methods[1].adapt: expected true or false"),
             std::string::npos);
-  EXPECT_EQ(message_of([&] { bag.choice("mode", "a", {"a", "b"}); }),
+  EXPECT_EQ(message_of([&] {
+              bag.choice("mode", "a", {"a", "b"});
+            }),
             "exp.json: methods[1].mode: unknown value 'x' (expected one of: a, b)");
 }
 
 TEST(ParameterBag, CommandLineTextIsConvertedOnReadAndNonFiniteNumbersRefused) {
   const ParameterBag bag = ParameterBag::from_arguments(
-      {"--lambda", "nan", "--sigma", "0.1,0.2,0.3", "--tint", "0.5", "--flag", "off", "--size", "5%", "--n", "3e0", "--pair", "1,2"});
-  EXPECT_EQ(message_of([&] { bag.number("lambda", 0); }), "--lambda: expected a finite number, got 'nan'");
+      {"--lambda", "nan", "--sigma", "0.1,0.2,0.3", "--tint", "0.5", "--flag", "off", "--size",
+       "5%", "--n", "3e0", "--pair", "1,2"});
+  EXPECT_EQ(message_of([&] { bag.number("lambda", 0); }),
+            "--lambda: expected a finite number, got 'nan'");
   EXPECT_EQ(bag.numbers("sigma", {}), (std::vector<double>{0.1, 0.2, 0.3}));
   EXPECT_EQ(bag.vec3("tint", {}), glm::dvec3(0.5));  // one value: all three channels
   EXPECT_FALSE(bag.boolean("flag", true));
@@ -76,16 +93,20 @@ TEST(ParameterBag, CommandLineTextIsConvertedOnReadAndNonFiniteNumbersRefused) {
 }
 
 TEST(ParameterBag, JsonListsScalarsAndTextForms) {
-  const ParameterBag bag = json_bag({{"sigma", {0.1, 0.2}}, {"one", 0.3}, {"tint", {1, 2}}, {"size", 12}});
+  const ParameterBag bag =
+      json_bag({{"sigma", {0.1, 0.2}}, {"one", 0.3}, {"tint", {1, 2}}, {"size", 12}});
   EXPECT_EQ(bag.numbers("sigma", {}), (std::vector<double>{0.1, 0.2}));
   EXPECT_EQ(bag.numbers("one", {}), (std::vector<double>{0.3}));
-  EXPECT_EQ(message_of([&] { bag.vec3("tint", {}); }), "exp.json: methods[1].tint: expected an array of 3 numbers");
+  EXPECT_EQ(message_of([&] { bag.vec3("tint", {}); }),
+            "exp.json: methods[1].tint: expected an array of 3 numbers");
   EXPECT_EQ(bag.text("size"), "12");
-  EXPECT_EQ(message_of([] { json_bag(nlohmann::json::array()); }), "exp.json: methods[1]: expected an object, got an array");
+  EXPECT_EQ(message_of([] { json_bag(nlohmann::json::array()); }),
+            "exp.json: methods[1]: expected an object, got an array");
 }
 
 TEST(ParameterBag, FinishNamesTheFirstUnreadKeyInTheOrderGivenAndTheParametersRead) {
-  const ParameterBag cli = ParameterBag::from_arguments({"--sigma-px", "2", "--zeta", "1", "--alpha", "1"});
+  const ParameterBag cli =
+      ParameterBag::from_arguments({"--sigma-px", "2", "--zeta", "1", "--alpha", "1"});
   cli.number("sigma_px", 1);
   cli.number("lambda", 1);
   EXPECT_EQ(message_of([&] { cli.finish("usm2d"); }),
@@ -93,7 +114,8 @@ TEST(ParameterBag, FinishNamesTheFirstUnreadKeyInTheOrderGivenAndTheParametersRe
   const ParameterBag none = json_bag({{"x", 1}});
   EXPECT_EQ(message_of([&] { none.finish("none"); }),
             "exp.json: methods[1].x: none has no parameter 'x' (it takes no parameters)");
-  const ParameterBag skipped = ParameterBag::from_json({{"method", "usm2d"}}, "exp.json", "methods[0]", {"method"});
+  const ParameterBag skipped =
+      ParameterBag::from_json({{"method", "usm2d"}}, "exp.json", "methods[0]", {"method"});
   EXPECT_EQ(message_of([&] { skipped.finish("usm2d"); }), "");  // a key the caller reads itself
   EXPECT_EQ(skipped.to_json(), nlohmann::ordered_json::object());
 }

@@ -34,7 +34,8 @@ TEST(Sampler, EveryPowerOfTwoPrefixOfTheScrambledSequenceIsANet) {
       points.push_back(p);
       const uint32_t n = i + 1;
       if ((n & (n - 1)) == 0) {
-        EXPECT_TRUE(is_net(points, int(std::log2(double(n))))) << "seed " << seed << ", " << n << " points";
+        EXPECT_TRUE(is_net(points, int(std::log2(double(n)))))
+            << "seed " << seed << ", " << n << " points";
       }
     }
   }
@@ -61,7 +62,8 @@ TEST(Sampler, ValuesArePureFunctionsOfTheirArguments) {
   Sampler a(SamplingMode::sobol, 3, 2, 99, 17), b(SamplingMode::sobol, 3, 2, 99, 17);
   for (int i = 0; i < 8; ++i) EXPECT_EQ(a.next2d(), b.next2d());
   EXPECT_EQ(a.next1d(), b.next1d());
-  Sampler other_pixel(SamplingMode::sobol, 3, 2, 100, 17), other_seed(SamplingMode::sobol, 4, 2, 99, 17);
+  Sampler other_pixel(SamplingMode::sobol, 3, 2, 100, 17),
+      other_seed(SamplingMode::sobol, 4, 2, 99, 17);
   Sampler c(SamplingMode::sobol, 3, 2, 99, 17);
   const glm::dvec2 first = c.next2d();
   EXPECT_NE(first, other_pixel.next2d());

@@ -25,7 +25,8 @@ TEST(SvgPlot, ALongLegendLabelFitsInTheFigure) {
   plot.series.push_back({label, {0, 1}, {0, 1}});
   const std::string svg = plot.to_svg();
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(svg, m, std::regex("<text x=\"([0-9.]+)\" y=\"[0-9.]+\">" + label)));
+  ASSERT_TRUE(
+      std::regex_search(svg, m, std::regex("<text x=\"([0-9.]+)\" y=\"[0-9.]+\">" + label)));
   EXPECT_LE(std::stod(m[1]) + 7.0 * double(label.size()), 640.0);
 }
 

@@ -8,9 +8,9 @@
 #include "core/error.h"
 #include "enhance/lightness.h"
 #include "enhance/view.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -34,19 +34,21 @@ TEST(BlackLevel, LiftsEveryChannelInProportionAndLightnessSeesIt) {
   // The corner sees the background: linear 0.05, sRGB code 0.2478 (8-bit 63), L* 26.73.
   EXPECT_EQ(plain->display.pixels[0], 0.0f);
   EXPECT_NEAR(lifted->display.pixels[0] * 255.0, 63.0, 1e-3);
-  EXPECT_NEAR(view_lightness(*lifted)[0], 26.65, 0.01);  // of code 63 as shown
+  EXPECT_NEAR(view_lightness(*lifted)[0], 26.65, 0.01);         // of code 63 as shown
   EXPECT_NEAR(view_signal_lightness(*lifted)[0], 26.73, 0.01);  // before quantisation
   // Every channel: 0.05 + 0.95·x of the plain display's linear value x, within a code.
   const DisplayEncoding srgb = DisplayEncoding::srgb();
   for (size_t i = 0; i < plain->display.pixels.size(); ++i) {
-    const double x = srgb.decode(plain->display.pixels[i]), y = srgb.decode(lifted->display.pixels[i]);
+    const double x = srgb.decode(plain->display.pixels[i]),
+                 y = srgb.decode(lifted->display.pixels[i]);
     ASSERT_NEAR(srgb.encode(0.05 + 0.95 * x), srgb.encode(y), 1.0 / 255) << i;
   }
 }
 
 TEST(BlackLevel, IsAShareOfFullScaleUpToAHalf) {
   testing::TempDir dir;
-  const std::string error = testing::input_error_of([&] { cube_view(dir, R"(, "black_level": 0.6)"); });
+  const std::string error =
+      testing::input_error_of([&] { cube_view(dir, R"(, "black_level": 0.6)"); });
   EXPECT_NE(error.find("black_level"), std::string::npos) << error;
 }
 

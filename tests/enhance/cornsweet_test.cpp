@@ -6,10 +6,10 @@
 #include "enhance/cornsweet_profile.h"
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
-#include "render/ray_tracer.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/ray_tracer.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -26,10 +26,12 @@ TEST(Cornsweet, ImageProfileFollowsTheDefinition) {
     size_t i = size_t(3 * 101 + x);
     double d = (x + 0.5) - 50.5;
     double expected = (d > 0 ? 1 : -1) * lambda * 4.0 * std::exp(-std::abs(d) / 6.0);
-    double actual = display_pixel_to_lab(&out.display.pixels[3 * i], view.encoding).L - view.lab[i].L;
+    double actual =
+        display_pixel_to_lab(&out.display.pixels[3 * i], view.encoding).L - view.lab[i].L;
     EXPECT_NEAR(actual, expected, 1e-3) << x;
   }
-  EXPECT_EQ(prepare_method("cornsweet", shared, o)->compose(0.0).display.pixels, view.display.pixels);
+  EXPECT_EQ(prepare_method("cornsweet", shared, o)->compose(0.0).display.pixels,
+            view.display.pixels);
 }
 
 // The lightness literature's profile (Boyaci et al. 2007; stimupy): within w of the edge
@@ -66,10 +68,14 @@ TEST(Cornsweet, PowerProfileReachesTheEdgeValuesOnAUniformField) {
   auto shared = make_image_view(grey, {}, DisplayEncoding::srgb(), 16);
   const View& view = *shared;
   const double plateau = view.lab[0].L;
-  const nlohmann::json o = {{"profile", "power"}, {"sigma_px", 6.0}, {"edges", {plateau - 10, plateau + 12}},
+  const nlohmann::json o = {{"profile", "power"},
+                            {"sigma_px", 6.0},
+                            {"edges", {plateau - 10, plateau + 12}},
                             {"plateau", plateau}};
   Composed out = prepare_method("cornsweet", shared, o)->compose(1.0);
-  auto lightness = [&](int x) { return display_pixel_to_lab(&out.display.pixels[3 * size_t(40 + x)], view.encoding).L; };
+  auto lightness = [&](int x) {
+    return display_pixel_to_lab(&out.display.pixels[3 * size_t(40 + x)], view.encoding).L;
+  };
   EXPECT_NEAR(lightness(19), plateau - 10, 2e-3);
   EXPECT_NEAR(lightness(20), plateau + 12, 2e-3);
   EXPECT_NEAR(lightness(22), plateau + 12 * std::pow(1 - 2 / 6.0, 2.75), 2e-3);
@@ -77,13 +83,20 @@ TEST(Cornsweet, PowerProfileReachesTheEdgeValuesOnAUniformField) {
   EXPECT_NEAR(lightness(37), plateau, 2e-3);
   // Bad parameters, each named.
   auto refused = [&](nlohmann::json bad, const std::string& key) {
-    const std::string message = testing::input_error_of([&] { prepare_method("cornsweet", shared, bad); });
+    const std::string message =
+        testing::input_error_of([&] { prepare_method("cornsweet", shared, bad); });
     EXPECT_NE(message.find(key), std::string::npos) << message;
   };
   refused({{"profile", "power"}, {"sigma_px", 6.0}, {"edges", {40, 60}}}, "plateau");
   refused({{"profile", "power"}, {"sigma_px", 6.0}, {"edges", {40}}, {"plateau", 50}}, "edges");
-  refused({{"profile", "power"}, {"sigma_px", 6.0}, {"edges", {40, 160}}, {"plateau", 50}}, "edges");
-  refused({{"profile", "power"}, {"sigma_px", 6.0}, {"edges", {40, 60}}, {"plateau", 50}, {"amplitude", 3}}, "amplitude");
+  refused({{"profile", "power"}, {"sigma_px", 6.0}, {"edges", {40, 160}}, {"plateau", 50}},
+          "edges");
+  refused({{"profile", "power"},
+           {"sigma_px", 6.0},
+           {"edges", {40, 60}},
+           {"plateau", 50},
+           {"amplitude", 3}},
+          "amplitude");
   refused({{"profile", "power"}, {"sigma_px", 6.0}, {"exponent", -1}}, "exponent");
   refused({{"profile", "square"}, {"sigma_px", 6.0}}, "profile");
 }
@@ -100,8 +113,11 @@ TEST(Cornsweet, SurfaceProfileBrightensOneFaceAndDarkensTheOther) {
   })")));
   ViewOptions vo;
   vo.bits = 16;
-  nlohmann::json o = {{"mode", "surface"}, {"sigma", 0.1}, {"edge_point", {0, 0.5, 0.5}},  // the top/front edge
-                      {"edge_direction", {1, 0, 0}}, {"bright_normal", {0, 1, 0}}};
+  nlohmann::json o = {{"mode", "surface"},
+                      {"sigma", 0.1},
+                      {"edge_point", {0, 0.5, 0.5}},  // the top/front edge
+                      {"edge_direction", {1, 0, 0}},
+                      {"bright_normal", {0, 1, 0}}};
   auto shared = render_view(scene, plan_for("cornsweet", o, 1.0), vo);
   const View& view = *shared;
   Composed out = prepare_method("cornsweet", shared, o)->compose(1.0);

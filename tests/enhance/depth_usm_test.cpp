@@ -8,10 +8,10 @@
 #include "core/gaussian.h"
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
-#include "render/ray_tracer.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/ray_tracer.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -25,7 +25,9 @@ Rendered render_test_view(const testing::TempDir& dir, const std::string& json) 
   return {render_view(scene)};
 }
 
-nlohmann::json op(const std::string& name, double kernel = 5.0) { return {{"operator", name}, {"kernel_percent", kernel}}; }
+nlohmann::json op(const std::string& name, double kernel = 5.0) {
+  return {{"operator", name}, {"kernel_percent", kernel}};
+}
 
 double sigma_of(const View& view, double kernel = 5.0) {
   return kernel / 100.0 * std::hypot(double(view.width()), double(view.height())) / 4.0;
@@ -58,7 +60,8 @@ TEST(DepthUsm, LambdaZeroIsTheIdentityForEveryOperator) {
   Rendered r = render_test_view(dir, kThreeRectangles);
   for (const char* name : {"add", "contrast", "darken", "color"})
     for (const char* space : {"rgb", "lab"}) {
-      if (std::string(name) == "color" && std::string(space) == "lab") continue;  // refused (hue shift)
+      if (std::string(name) == "color" && std::string(space) == "lab")
+        continue;  // refused (hue shift)
       nlohmann::json o = op(name);
       o["space"] = space;
       Composed out = prepare_method("depth-usm", r.view, o)->compose(0.0);
@@ -74,7 +77,8 @@ TEST(DepthUsm, SpatialImportanceMatchesTheExactGaussian) {
   Rendered r = render_test_view(dir, kThreeRectangles);
   SpatialImportance si = spatial_importance(*r.view, DepthMapping{}, 10.0);
   Image exact(si.depth.width, si.depth.height, 1);
-  gaussian_blur_exact(si.depth.pixels.data(), exact.pixels.data(), si.depth.width, si.depth.height, 10.0);
+  gaussian_blur_exact(si.depth.pixels.data(), exact.pixels.data(), si.depth.width, si.depth.height,
+                      10.0);
   double worst = 0;
   for (size_t i = 0; i < exact.pixels.size(); ++i)
     worst = std::max(worst, std::abs(double(si.blurred.pixels[i]) - double(exact.pixels[i])));
@@ -110,7 +114,8 @@ TEST(DepthUsm, AddAndDarkenAgreeOnTheBackgroundSide) {
     int compared = 0;
     for (size_t i = 0; i < r.view->lab.size(); ++i) {
       if (si.importance.pixels[i] > 0) continue;  // background side: ΔD ≤ 0
-      for (int c = 0; c < 3; ++c) EXPECT_EQ(add.display.pixels[3 * i + c], darken.display.pixels[3 * i + c]);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(add.display.pixels[3 * i + c], darken.display.pixels[3 * i + c]);
       compared += si.importance.pixels[i] < 0;
     }
     EXPECT_GT(compared, 500);
@@ -120,7 +125,8 @@ TEST(DepthUsm, AddAndDarkenAgreeOnTheBackgroundSide) {
 TEST(DepthUsm, ColorAddsColdBehindAndWarmInFront) {
   testing::TempDir dir;
   std::string grey = kThreeRectangles;  // mid-grey surfaces so nothing clips
-  for (size_t p; (p = grey.find("\"albedo\": 1.0")) != std::string::npos;) grey.replace(p, 13, "\"albedo\": 0.3");
+  for (size_t p; (p = grey.find("\"albedo\": 1.0")) != std::string::npos;)
+    grey.replace(p, 13, "\"albedo\": 0.3");
   Rendered r = render_test_view(dir, grey);
   const glm::dvec3 cold(-0.1, -0.05, 0.15), warm(0.15, 0.1, -0.1);  // the defaults
   SpatialImportance si = spatial_importance(*r.view, DepthMapping{}, sigma_of(*r.view));
@@ -131,7 +137,8 @@ TEST(DepthUsm, ColorAddsColdBehindAndWarmInFront) {
     double d = si.importance.pixels[i];
     if (std::abs(d) < 1e-3) continue;
     glm::dvec3 shift;
-    for (int c = 0; c < 3; ++c) shift[c] = out.display.pixels[3 * i + c] - r.view->display.pixels[3 * i + c];
+    for (int c = 0; c < 3; ++c)
+      shift[c] = out.display.pixels[3 * i + c] - r.view->display.pixels[3 * i + c];
     const glm::dvec3& colour = d < 0 ? cold : warm;
     // The shift is a positive multiple of the one colour: parallel, same direction.
     double scale = glm::dot(shift, colour) / glm::dot(colour, colour);
@@ -153,10 +160,12 @@ TEST(DepthUsm, FigureFourDarkenSeparatesEveryRectangleContrastCannotSeparateWhit
   // Walk along a row through back | middle | front and look just beside each edge.
   int y = g.height / 2 - 4;
   auto id = [&](int x) { return g.object[g.index(x, y)]; };
-  std::vector<std::pair<int, int>> edges;  // x of the far-side pixel next to an edge, and the far object
+  std::vector<std::pair<int, int>>
+      edges;  // x of the far-side pixel next to an edge, and the far object
   for (int x = 1; x < g.width; ++x)
     if (id(x) != id(x - 1)) {
-      int far_x = id(x) < id(x - 1) ? x : x - 1;  // lower object id = farther (back 0, middle 1, front 2)
+      int far_x =
+          id(x) < id(x - 1) ? x : x - 1;  // lower object id = farther (back 0, middle 1, front 2)
       edges.emplace_back(far_x, std::min(id(x), id(x - 1)));
     }
   ASSERT_GE(edges.size(), 2u);
@@ -206,28 +215,35 @@ TEST(DepthUsm, DarkeningFollowsTheWallsShareOfAnOutlinePixel) {
   testing::TempDir dir;
   const auto view = render_test_view(dir, kTurnedCard).view;
   const double lambda = 0.5, sigma = 4.0;
-  const Composed out = prepare_method("depth-usm", view, {{"operator", "darken"}, {"sigma_px", sigma}})->compose(lambda);
+  const Composed out =
+      prepare_method("depth-usm", view, {{"operator", "darken"}, {"sigma_px", sigma}})
+          ->compose(lambda);
   const SpatialImportance si = spatial_importance(*view, {}, sigma);
   const int w = view->width();
   auto linear = [&](size_t p) { return view->encoding.decode(view->display.pixels[3 * p]); };
   const size_t wall = 0, card = size_t(60) * w + 80;  // a corner and the centre
-  const double wall_linear = linear(wall), card_linear = linear(card), wall_depth = si.depth.pixels[wall];
+  const double wall_linear = linear(wall), card_linear = linear(card),
+               wall_depth = si.depth.pixels[wall];
   int outline_pixels = 0;
   for (size_t p = 0; p < si.depth.pixels.size(); ++p) {
-    const double share = (linear(p) - card_linear) / (wall_linear - card_linear);  // of the pixel's area
+    const double share =
+        (linear(p) - card_linear) / (wall_linear - card_linear);  // of the pixel's area
     const double full = lambda * std::min(double(si.blurred.pixels[p]) - wall_depth, 0.0);
     if (share < 0.2 || share > 0.8 || full > -0.05) continue;
     ++outline_pixels;
     const double change = double(out.display.pixels[3 * p]) - double(view->display.pixels[3 * p]);
-    EXPECT_NEAR(change, share * full, 0.25 * -full + 2.0 / 255.0) << "pixel " << p % w << "," << p / w << " wall share " << share;
+    EXPECT_NEAR(change, share * full, 0.25 * -full + 2.0 / 255.0)
+        << "pixel " << p % w << "," << p / w << " wall share " << share;
   }
   EXPECT_GT(outline_pixels, 100);
 }
 
 TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
-  auto view = make_image_view(Image(4, 1, 3, 0.5f), {0.0f, 2.0f, 4.0f, INFINITY}, DisplayEncoding::srgb(), 8);
+  auto view = make_image_view(Image(4, 1, 3, 0.5f), {0.0f, 2.0f, 4.0f, INFINITY},
+                              DisplayEncoding::srgb(), 8);
   SpatialImportance si = spatial_importance(*view, DepthMapping{}, 1.0);
-  EXPECT_EQ(std::vector<float>(si.depth.pixels.begin(), si.depth.pixels.end()), (std::vector<float>{1.0f, 0.0f, 1.0f, 1.0f}));
+  EXPECT_EQ(std::vector<float>(si.depth.pixels.begin(), si.depth.pixels.end()),
+            (std::vector<float>{1.0f, 0.0f, 1.0f, 1.0f}));
   DepthMapping zbuffer;
   zbuffer.zbuffer = true;
   zbuffer.z_near = 1.0;
@@ -243,11 +259,15 @@ TEST(DepthUsm, BackgroundIsFarAndDepthIsNormalisedOverValidPixels) {
 TEST(DepthUsm, AFixedDepthRangeMakesDIndependentOfTheRestOfTheImage) {
   DepthMapping fixed;
   fixed.range = std::make_pair(1.0, 9.0);
-  const std::vector<float> without = {5.0f, 3.0f, 7.0f, INFINITY}, with_near_object = {5.0f, 3.0f, 0.5f, INFINITY};
+  const std::vector<float> without = {5.0f, 3.0f, 7.0f, INFINITY},
+                           with_near_object = {5.0f, 3.0f, 0.5f, INFINITY};
   const auto a = make_image_view(Image(4, 1, 3, 0.5f), without, DisplayEncoding::srgb(), 8);
-  const auto b = make_image_view(Image(4, 1, 3, 0.5f), with_near_object, DisplayEncoding::srgb(), 8);
-  EXPECT_NE(spatial_importance(*a, DepthMapping{}, 1.0).depth.pixels[0], spatial_importance(*b, DepthMapping{}, 1.0).depth.pixels[0]);
-  const SpatialImportance sa = spatial_importance(*a, fixed, 1.0), sb = spatial_importance(*b, fixed, 1.0);
+  const auto b =
+      make_image_view(Image(4, 1, 3, 0.5f), with_near_object, DisplayEncoding::srgb(), 8);
+  EXPECT_NE(spatial_importance(*a, DepthMapping{}, 1.0).depth.pixels[0],
+            spatial_importance(*b, DepthMapping{}, 1.0).depth.pixels[0]);
+  const SpatialImportance sa = spatial_importance(*a, fixed, 1.0),
+                          sb = spatial_importance(*b, fixed, 1.0);
   EXPECT_EQ(sa.depth.pixels[0], 0.5f);
   EXPECT_EQ(sb.depth.pixels[0], 0.5f);
   EXPECT_EQ(sa.depth.pixels[1], 0.25f);
@@ -256,7 +276,8 @@ TEST(DepthUsm, AFixedDepthRangeMakesDIndependentOfTheRestOfTheImage) {
 }
 
 std::shared_ptr<const MethodParameters> parse(const nlohmann::json& j) {
-  return method_named("depth-usm", "test").parse(ParameterBag::from_json(j, "exp.json", "methods[1]"));
+  return method_named("depth-usm", "test")
+      .parse(ParameterBag::from_json(j, "exp.json", "methods[1]"));
 }
 
 TEST(DepthUsm, ValidatesItsOptions) {
@@ -269,12 +290,16 @@ TEST(DepthUsm, ValidatesItsOptions) {
   nlohmann::json cold = op("darken");
   cold["cold"] = {0, 0, 1};
   std::string message = testing::input_error_of([&] { parse(cold); });
-  EXPECT_NE(message.find("methods[1].cold: depth-usm has no parameter 'cold'"), std::string::npos) << message;
-  for (const nlohmann::json& range : {nlohmann::json::array({9, 1}), nlohmann::json::array({-1, 2}), nlohmann::json::array({3})}) {
+  EXPECT_NE(message.find("methods[1].cold: depth-usm has no parameter 'cold'"), std::string::npos)
+      << message;
+  for (const nlohmann::json& range : {nlohmann::json::array({9, 1}), nlohmann::json::array({-1, 2}),
+                                      nlohmann::json::array({3})}) {
     nlohmann::json j = op("darken");
     j["depth_range"] = range;
     message = testing::input_error_of([&] { parse(j); });
-    EXPECT_NE(message.find("methods[1].depth_range: expected NEAR,FAR with 0 <= NEAR < FAR"), std::string::npos) << message;
+    EXPECT_NE(message.find("methods[1].depth_range: expected NEAR,FAR with 0 <= NEAR < FAR"),
+              std::string::npos)
+        << message;
   }
   nlohmann::json ok = op("darken");
   ok["depth_range"] = {2, 12};

@@ -7,8 +7,8 @@
 
 #include <cmath>
 #include <map>
-#include <set>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -37,7 +37,8 @@ std::optional<nlohmann::json> documented_value(const std::string& text) {
 }
 
 bool same_value(const nlohmann::json& documented, const nlohmann::json& read) {
-  if (documented.is_number() && read.is_number()) return std::abs(documented.get<double>() - read.get<double>()) <= 1e-12;
+  if (documented.is_number() && read.is_number())
+    return std::abs(documented.get<double>() - read.get<double>()) <= 1e-12;
   if (documented.is_array() && read.is_array() && documented.size() == read.size()) {
     for (size_t i = 0; i < read.size(); ++i)
       if (!same_value(documented[i], read[i])) return false;
@@ -55,7 +56,8 @@ const std::map<std::string, std::vector<nlohmann::json>> kModes = {
 // The fallbacks a method's parser reads, over its plain parse and those of its modes, each bag
 // holding nothing else but one of its σ keys (a value each takes), or nothing: the first that
 // parses. `width_keys` gets the σ keys used.
-std::map<std::string, nlohmann::json> parsed_fallbacks(const EnhancementMethod& method, std::set<std::string>& width_keys) {
+std::map<std::string, nlohmann::json> parsed_fallbacks(const EnhancementMethod& method,
+                                                       std::set<std::string>& width_keys) {
   std::vector<nlohmann::json> settings = {nlohmann::json::object()};
   if (kModes.count(method.name()))
     for (const auto& mode : kModes.at(method.name())) settings.push_back(mode);
@@ -79,7 +81,9 @@ std::map<std::string, nlohmann::json> parsed_fallbacks(const EnhancementMethod& 
       width_keys.insert(keys[k]);
       for (const auto& [key, fallback] : bag.fallbacks()) out[key] = fallback;
     }
-    if (!parsed) ADD_FAILURE() << method.name() << " " << setting << " parses with none of its σ keys alone:" << errors;
+    if (!parsed)
+      ADD_FAILURE() << method.name() << " " << setting
+                    << " parses with none of its σ keys alone:" << errors;
   }
   return out;
 }
@@ -97,16 +101,18 @@ TEST(DocumentedParameters, EveryMethodDocumentsTheDefaultsItsParserReads) {
       if (!value) continue;
       const auto it = read.find(doc.key);
       if (it == read.end()) {
-        ADD_FAILURE() << name << ": '" << doc.key << "' is documented with default " << doc.default_value
-                      << " but the parser reads no such key with a default";
+        ADD_FAILURE() << name << ": '" << doc.key << "' is documented with default "
+                      << doc.default_value << " but the parser reads no such key with a default";
         continue;
       }
       EXPECT_TRUE(same_value(*value, it->second))
-          << name << ": '" << doc.key << "' is documented as " << doc.default_value << ", the parser's default is " << it->second;
+          << name << ": '" << doc.key << "' is documented as " << doc.default_value
+          << ", the parser's default is " << it->second;
       ++compared;
     }
     for (const auto& [key, fallback] : read)
-      EXPECT_TRUE(documented.count(key) || width_keys.count(key)) << name << ": '" << key << "' (default " << fallback << ") is not documented";
+      EXPECT_TRUE(documented.count(key) || width_keys.count(key))
+          << name << ": '" << key << "' (default " << fallback << ") is not documented";
   }
   EXPECT_GT(compared, 30u);
 }
@@ -119,8 +125,10 @@ TEST(DocumentedParameters, TheDocsTablesAreTheMethodsMarkdown) {
   for (const std::string& name : method_names()) {
     const std::string begin = "<!-- countershade methods --markdown " + name + " -->\n";
     const size_t at = doc.find(begin);
-    ASSERT_NE(at, std::string::npos) << "docs/enhancement-methods.md has no generated table for " << name;
-    const size_t start = at + begin.size(), end = doc.find("<!-- end of generated table -->", start);
+    ASSERT_NE(at, std::string::npos)
+        << "docs/enhancement-methods.md has no generated table for " << name;
+    const size_t start = at + begin.size(),
+                 end = doc.find("<!-- end of generated table -->", start);
     ASSERT_NE(end, std::string::npos) << name;
     const auto r = testing::run_cli("methods --markdown " + name);
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -128,7 +136,9 @@ TEST(DocumentedParameters, TheDocsTablesAreTheMethodsMarkdown) {
         << name << ": the docs' table differs from `countershade methods --markdown " << name
         << "`; run scripts/update-method-docs";
     if (!find_method(name)->parameter_docs().empty()) {
-      EXPECT_NE(r.output.find("| `" + find_method(name)->parameter_docs()[0].key + "` |"), std::string::npos) << name;
+      EXPECT_NE(r.output.find("| `" + find_method(name)->parameter_docs()[0].key + "` |"),
+                std::string::npos)
+          << name;
     }
   }
 }

@@ -10,9 +10,9 @@
 #include "enhance/method.h"
 #include "enhance/registry.h"
 #include "enhance/view.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -38,8 +38,10 @@ const std::map<std::string, std::vector<nlohmann::json>>& parameters_of_every_me
       {"usm3d", {{{"sigma", 0.3}}}},
       {"usm2d", {{{"sigma_px", 2}}}},
       {"depth-usm",
-       {{{"sigma_px", 2}, {"operator", "darken"}}, {{"sigma_px", 2}, {"operator", "add"}},
-        {{"sigma_px", 2}, {"operator", "color"}}, {{"sigma_px", 2}, {"operator", "contrast"}},
+       {{{"sigma_px", 2}, {"operator", "darken"}},
+        {{"sigma_px", 2}, {"operator", "add"}},
+        {{"sigma_px", 2}, {"operator", "color"}},
+        {{"sigma_px", 2}, {"operator", "contrast"}},
         {{"sigma_px", 2}, {"operator", "add"}, {"space", "lab"}}}},
       {"cornsweet", {{{"sigma_px", 3}}, {{"mode", "surface"}, {"sigma", 0.2}}}},
       {"lla", {{{"sigma", 0.1}}}},
@@ -47,7 +49,8 @@ const std::map<std::string, std::vector<nlohmann::json>>& parameters_of_every_me
       {"radiance-scaling", {nlohmann::json::object()}},
       {"light-warping", {nlohmann::json::object()}},
       {"texture-filter",
-       {{{"mode", "post"}, {"filter", "unsharp"}}, {{"mode", "mip"}, {"filter", "dog"}},
+       {{{"mode", "post"}, {"filter", "unsharp"}},
+        {{"mode", "mip"}, {"filter", "dog"}},
         {{"mode", "texture"}, {"filter", "bilateral"}}}},
   };
   return table;
@@ -55,7 +58,8 @@ const std::map<std::string, std::vector<nlohmann::json>>& parameters_of_every_me
 
 TEST(ExtremeLambda, EveryMethodSaturatesToNumbersInRange) {
   testing::TempDir dir;
-  auto scene = std::make_shared<const Scene>(load_scene(testing::write_file(dir / "s.json", kScene)));
+  auto scene =
+      std::make_shared<const Scene>(load_scene(testing::write_file(dir / "s.json", kScene)));
   const auto& table = parameters_of_every_method();
   for (const std::string& name : method_names()) {
     ASSERT_TRUE(table.count(name)) << "no parameters for " << name << " in this test";

@@ -27,8 +27,12 @@ class IdentityMethod final : public EnhancementMethod {
  public:
   std::string name() const override { return "identity"; }
   std::string summary() const override { return "a test method: the view unchanged at every λ"; }
-  MethodAxes axes() const override { return {"none", {{"width", "arbitrary units", "recorded, unused"}}}; }
-  std::vector<ParameterDoc> parameter_docs() const override { return {{"width", "1", "recorded, unused"}}; }
+  MethodAxes axes() const override {
+    return {"none", {{"width", "arbitrary units", "recorded, unused"}}};
+  }
+  std::vector<ParameterDoc> parameter_docs() const override {
+    return {{"width", "1", "recorded, unused"}};
+  }
   std::shared_ptr<const MethodParameters> parse(const ParameterBag& bag) const override {
     auto p = std::make_shared<IdentityParameters>();
     p->width = bag.number("width", 1.0);
@@ -36,7 +40,8 @@ class IdentityMethod final : public EnhancementMethod {
     if (!(p->width > 0)) bag.fail("width", "must be positive");
     return p;
   }
-  std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context, const MethodParameters&) const override {
+  std::unique_ptr<PreparedEnhancement> prepare(const PrepareContext& context,
+                                               const MethodParameters&) const override {
     return std::make_unique<Unchanged>(context.view);
   }
 };

@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <random>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "test_util.h"
 
@@ -33,10 +32,12 @@ TEST(LightAlignment, WeightIsMonotoneFromZeroToOneAndTheIdentityForGammaZero) {
 // A ridge on a flat base (z up): two facets tilted by 30° towards +x and −x, lit from above, tilted
 // towards +x by 0.1 and by 0.001 (so that the light has a side: straight along z it has none, and
 // eq. 1 turns neither facet's light). Without enhancement the facets differ by about the tilt; at
-// s = 1 the facet facing the light turns fully lit and the other nearly unlit, however small the tilt.
+// s = 1 the facet facing the light turns fully lit and the other nearly unlit, however small the
+// tilt.
 TEST(LightAlignment, ARidgeGetsOneLitAndOneUnlitSide) {
   const double a = 30.0 * std::acos(-1.0) / 180.0;
-  const glm::dvec3 up(0, 0, 1), plus(std::sin(a), 0, std::cos(a)), minus(-std::sin(a), 0, std::cos(a));
+  const glm::dvec3 up(0, 0, 1), plus(std::sin(a), 0, std::cos(a)),
+      minus(-std::sin(a), 0, std::cos(a));
   for (double tilt : {0.1, 0.001}) {
     const glm::dvec3 light = glm::normalize(glm::dvec3(tilt, 0, 1));
     const double plain = glm::dot(plus, light) - glm::dot(minus, light);
@@ -45,7 +46,8 @@ TEST(LightAlignment, ARidgeGetsOneLitAndOneUnlitSide) {
     EXPECT_LT(plain, 1.1 * tilt);
     EXPECT_GT(glm::dot(plus, lit), 0.99) << tilt;
     EXPECT_LT(glm::dot(minus, unlit), 0.2) << tilt;
-    EXPECT_GT(glm::dot(plus, lit) - glm::dot(minus, unlit), 0.5) << tilt;  // at least half the range [0, 1]
+    EXPECT_GT(glm::dot(plus, lit) - glm::dot(minus, unlit), 0.5)
+        << tilt;  // at least half the range [0, 1]
     EXPECT_NEAR(glm::length(lit), 1.0, 1e-12);
   }
   const glm::dvec3 above(0, 0, 1);  // no side: left as it is
@@ -55,14 +57,16 @@ TEST(LightAlignment, ARidgeGetsOneLitAndOneUnlitSide) {
 
 TEST(LightAlignment, ZeroStrengthOrNoFeatureLeavesTheLightExactlyAsItWas) {
   const glm::dvec3 light = glm::normalize(glm::dvec3(0.3, -0.2, 0.9));
-  const std::vector<glm::dvec3> normals = {glm::normalize(glm::dvec3(0.4, 0.1, 1)), glm::normalize(glm::dvec3(0.1, 0, 1)),
+  const std::vector<glm::dvec3> normals = {glm::normalize(glm::dvec3(0.4, 0.1, 1)),
+                                           glm::normalize(glm::dvec3(0.1, 0, 1)),
                                            glm::dvec3(0, 0, 1)};
   const std::vector<double> zero = {0.0, 0.0};
   const glm::dvec3 same = align_light(light, normals, zero, 3.0);
   EXPECT_EQ(same.x, light.x);
   EXPECT_EQ(same.y, light.y);
   EXPECT_EQ(same.z, light.z);
-  const glm::dvec3 flat = align_one_scale(light, glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), 1.0, 3.0);
+  const glm::dvec3 flat =
+      align_one_scale(light, glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), 1.0, 3.0);
   EXPECT_EQ(flat, light);  // λ2 = 0: the finer normal does not stand out from the coarser one
 }
 
@@ -71,11 +75,14 @@ TEST(LightAlignment, ZeroStrengthOrNoFeatureLeavesTheLightExactlyAsItWas) {
 TEST(LightAlignment, NoJumpWhereTheGuideSwitchesSides) {
   const glm::dvec3 up(0, 0, 1), normal = glm::normalize(glm::dvec3(0.5, 0, 1));
   double largest_step = 0;
-  glm::dvec3 previous = align_one_scale(glm::normalize(glm::dvec3(-0.2, 1, 0.3)), normal, up, 1.0, 3.0);
+  glm::dvec3 previous =
+      align_one_scale(glm::normalize(glm::dvec3(-0.2, 1, 0.3)), normal, up, 1.0, 3.0);
   for (int k = 1; k <= 4000; ++k) {
     const double t = -0.2 + 0.4 * k / 4000.0;  // the light sweeps across dot(l, x) = 0
-    const glm::dvec3 aligned = align_one_scale(glm::normalize(glm::dvec3(t, 1, 0.3)), normal, up, 1.0, 3.0);
-    largest_step = std::max(largest_step, std::abs(glm::dot(normal, aligned) - glm::dot(normal, previous)));
+    const glm::dvec3 aligned =
+        align_one_scale(glm::normalize(glm::dvec3(t, 1, 0.3)), normal, up, 1.0, 3.0);
+    largest_step =
+        std::max(largest_step, std::abs(glm::dot(normal, aligned) - glm::dot(normal, previous)));
     previous = aligned;
   }
   EXPECT_LT(largest_step, 0.01);
@@ -83,8 +90,8 @@ TEST(LightAlignment, NoJumpWhereTheGuideSwitchesSides) {
 
 // eq. 1 as written in docs/methods.md, with the C library's acos, sin and cos: the reference the
 // lane-generic code must follow.
-glm::dvec3 reference_one_scale(const glm::dvec3& light, const glm::dvec3& fine, const glm::dvec3& z, double strength,
-                               double gamma) {
+glm::dvec3 reference_one_scale(const glm::dvec3& light, const glm::dvec3& fine, const glm::dvec3& z,
+                               double strength, double gamma) {
   const glm::dvec3 across = fine - z * glm::dot(fine, z);
   const double lambda2 = glm::length(across);
   if (strength <= 0 || lambda2 < 1e-12) return light;
@@ -95,7 +102,8 @@ glm::dvec3 reference_one_scale(const glm::dvec3& light, const glm::dvec3& fine, 
   const glm::dvec3 light_across = light - z * glm::dot(light, z);
   if (glm::length(light_across) < 1e-12) return light;
   const glm::dvec3 side = light_across / glm::length(light_across);
-  const double lambda1 = 1 - 2 * std::acos(std::clamp(glm::dot(side, bright ? x : -x), -1.0, 1.0)) / std::numbers::pi;
+  const double lambda1 =
+      1 - 2 * std::acos(std::clamp(glm::dot(side, bright ? x : -x), -1.0, 1.0)) / std::numbers::pi;
   const double theta = std::min(strength, 1.0) * alignment_weight(lambda1 * lambda2, gamma) * angle;
   const glm::dvec3 axis = glm::cross(light, guide);
   if (theta <= 0 || glm::length(axis) < 1e-12) return light;
@@ -112,7 +120,9 @@ struct AlignmentCase {
 std::vector<AlignmentCase> alignment_cases(size_t count) {
   std::mt19937 random(7);
   std::normal_distribution<double> gauss;
-  auto unit = [&] { return glm::normalize(glm::dvec3(gauss(random), gauss(random), gauss(random))); };
+  auto unit = [&] {
+    return glm::normalize(glm::dvec3(gauss(random), gauss(random), gauss(random)));
+  };
   std::vector<AlignmentCase> cases(count);
   for (size_t k = 0; k < count; ++k) {
     AlignmentCase& c = cases[k];
@@ -131,8 +141,10 @@ TEST(LightAlignment, FollowsTheDefinitionWithTheLibrarysFunctions) {
   const std::vector<double> strengths = {0.8, 0.5};
   double worst = 0, worst_on_a_guide = 0;
   for (const AlignmentCase& c : alignment_cases(5000)) {
-    const glm::dvec3 mid = reference_one_scale(c.light, c.normals[1], c.normals[2], strengths[1], 3.0);
-    const glm::dvec3 expected = reference_one_scale(mid, c.normals[0], c.normals[1], strengths[0], 3.0);
+    const glm::dvec3 mid =
+        reference_one_scale(c.light, c.normals[1], c.normals[2], strengths[1], 3.0);
+    const glm::dvec3 expected =
+        reference_one_scale(mid, c.normals[0], c.normals[1], strengths[0], 3.0);
     const double error = glm::length(align_light(c.light, c.normals, strengths, 3.0) - expected);
     // A light on the finer normal is at an angle of rounding size to its guide, where acos's slope
     // is unbounded: there a last-bit difference turns it by up to ~1e-8 either way.
@@ -149,7 +161,8 @@ TEST(LightAlignment, ABlockAlignsEveryPointAsAlignLightDoesBitForBit) {
     const AlignmentWeight weight(2.5);
     const std::vector<AlignmentCase> cases = alignment_cases(3 * kAlignmentBlock);
     AlignmentBlock block;
-    for (size_t first = 0; first < cases.size(); first += kAlignmentBlock - 3) {  // blocks not filled to the end
+    for (size_t first = 0; first < cases.size();
+         first += kAlignmentBlock - 3) {  // blocks not filled to the end
       const size_t count = std::min(kAlignmentBlock - 3, cases.size() - first);
       for (size_t j = 0; j < count; ++j)
         for (int c = 0; c < 3; ++c) {
@@ -158,7 +171,8 @@ TEST(LightAlignment, ABlockAlignsEveryPointAsAlignLightDoesBitForBit) {
         }
       align_light_block(block, count, 3, strengths, weight.damping());
       for (size_t j = 0; j < count; ++j) {
-        const glm::dvec3 one = align_light(cases[first + j].light, cases[first + j].normals, strengths, weight);
+        const glm::dvec3 one =
+            align_light(cases[first + j].light, cases[first + j].normals, strengths, weight);
         for (int c = 0; c < 3; ++c) ASSERT_EQ(block.aligned[c][j], one[c]) << "point " << first + j;
       }
     }

@@ -41,7 +41,8 @@ TEST(Lightness, DisplayToLabEqualsThePixelFunction) {
         }
         // The mean L* alone (the mean hold measures it once per offset it tries): the same sum.
         double sum = 0;
-        for (size_t i = 0; i < lab.size(); ++i) sum += display_pixel_to_lab(&image.pixels[3 * i], encoding).L;
+        for (size_t i = 0; i < lab.size(); ++i)
+          sum += display_pixel_to_lab(&image.pixels[3 * i], encoding).L;
         EXPECT_EQ(mean_display_lightness(image, encoding, bits), sum / double(lab.size()));
       }
     }
@@ -54,7 +55,8 @@ TEST(Lightness, CubeRootIsAccurate) {
   std::uniform_real_distribution<double> exponent(-60.0, 30.0);
   for (int i = 0; i < 200000; ++i) {
     const double t = std::exp2(exponent(random));
-    ASSERT_NEAR(color_constants::cube_root(t), std::cbrt(t), 8 * std::abs(std::nextafter(std::cbrt(t), 0.0) - std::cbrt(t)))
+    ASSERT_NEAR(color_constants::cube_root(t), std::cbrt(t),
+                8 * std::abs(std::nextafter(std::cbrt(t), 0.0) - std::cbrt(t)))
         << t;
   }
 }
@@ -70,14 +72,16 @@ void expect_compose_equals_the_scalar_definition() {
   auto view = make_image_view(display, {}, DisplayEncoding::srgb(), 8);
   LightnessChange change;
   std::normal_distribution<double> delta(0.0, 20.0);
-  for (size_t i = 0; i < view->lab.size(); ++i) change.amount.push_back(i % 7 == 0 ? 0.0 : delta(random));
+  for (size_t i = 0; i < view->lab.size(); ++i)
+    change.amount.push_back(i % 7 == 0 ? 0.0 : delta(random));
   for (double lambda : {0.0, 0.3, 1.0, 3.0}) {
     Composed out = compose_lightness(*view, change, lambda);
     size_t clipped = 0;
     for (size_t i = 0; i < view->lab.size(); ++i) {
       const double d = lambda * change.amount[i];
       if (d == 0.0) {
-        for (int c = 0; c < 3; ++c) ASSERT_EQ(out.display.pixels[3 * i + c], view->display.pixels[3 * i + c]);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_EQ(out.display.pixels[3 * i + c], view->display.pixels[3 * i + c]);
         continue;
       }
       const double target = view->lab[i].L + d;
@@ -85,7 +89,8 @@ void expect_compose_equals_the_scalar_definition() {
       bool clip = target < 0.0 || target > 100.0;
       for (int c = 0; c < 3; ++c) {
         clip |= rgb[c] < -1e-9 || rgb[c] > 1.0 + 1e-9;
-        const float expected = float(quantize(float(view->encoding.encode(std::clamp(rgb[c], 0.0, 1.0))), 8)) / 255.0f;
+        const float expected =
+            float(quantize(float(view->encoding.encode(std::clamp(rgb[c], 0.0, 1.0))), 8)) / 255.0f;
         ASSERT_EQ(out.display.pixels[3 * i + c], expected) << i << " " << c << " λ " << lambda;
       }
       clipped += clip;
@@ -116,7 +121,8 @@ TEST(Lightness, DetailChangeEqualsTheStoredDifference) {
     stored.amount.push_back(double(signal[i]) - double(detail.smooth[i]));
   }
   for (double lambda : {0.0, 0.5, 2.0}) {
-    const Composed a = compose_lightness(*view, detail, lambda), b = compose_lightness(*view, stored, lambda);
+    const Composed a = compose_lightness(*view, detail, lambda),
+                   b = compose_lightness(*view, stored, lambda);
     ASSERT_EQ(a.display.pixels, b.display.pixels) << lambda;
     EXPECT_EQ(a.clipped_pixels, b.clipped_pixels) << lambda;
   }
@@ -124,7 +130,8 @@ TEST(Lightness, DetailChangeEqualsTheStoredDifference) {
   const auto auxiliary = prepared.auxiliary();
   ASSERT_EQ(auxiliary.size(), 1u);
   EXPECT_EQ(auxiliary[0].first, "lightness_blurred");
-  EXPECT_TRUE(std::equal(detail.smooth.begin(), detail.smooth.end(), auxiliary[0].second.pixels.begin()));
+  EXPECT_TRUE(
+      std::equal(detail.smooth.begin(), detail.smooth.end(), auxiliary[0].second.pixels.begin()));
 }
 
 }  // namespace

@@ -36,21 +36,26 @@ fs::path write_identity_experiment(const testing::TempDir& dir) {
 TEST(MethodExtension, ATestMethodRendersLikeAnyOther) {
   testing::TempDir dir;
   const std::string scene = testing::write_file(dir / "cube.json", testing::kLitCubeScene).string();
-  auto plain = run_identity("render " + scene + " -o " + (dir / "plain.png").string() + " --width 48 --height 36");
+  auto plain = run_identity("render " + scene + " -o " + (dir / "plain.png").string() +
+                            " --width 48 --height 36");
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   auto same = run_identity("render " + scene + " -o " + (dir / "same.png").string() +
                            " --width 48 --height 36 --method identity --lambda 2 --width 3");
-  EXPECT_EQ(same.exit_code, 2) << "--width is the command's own option, given twice: " << same.output;
+  EXPECT_EQ(same.exit_code, 2) << "--width is the command's own option, given twice: "
+                               << same.output;
   same = run_identity("render " + scene + " -o " + (dir / "same.png").string() +
                       " --width 48 --height 36 --method identity --lambda 2");
   ASSERT_EQ(same.exit_code, 0) << same.output;
   EXPECT_EQ(testing::read_file(dir / "same.png"), testing::read_file(dir / "plain.png"));
   EXPECT_NE(run_identity("methods identity").output.find("a test method"), std::string::npos);
   // Its parameters are checked by its own parser, and the regular program does not know it.
-  auto bad = run_identity("render " + scene + " -o " + (dir / "bad.png").string() + " --method identity --sigma 1");
+  auto bad = run_identity("render " + scene + " -o " + (dir / "bad.png").string() +
+                          " --method identity --sigma 1");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.output.find("--sigma: identity has no parameter 'sigma'"), std::string::npos) << bad.output;
-  auto unknown = testing::run_cli("render " + scene + " -o " + (dir / "x.png").string() + " --method identity");
+  EXPECT_NE(bad.output.find("--sigma: identity has no parameter 'sigma'"), std::string::npos)
+      << bad.output;
+  auto unknown = testing::run_cli("render " + scene + " -o " + (dir / "x.png").string() +
+                                  " --method identity");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.output.find("unknown method 'identity'"), std::string::npos) << unknown.output;
 }
@@ -73,9 +78,10 @@ TEST(MethodExtension, ATestMethodMakesAStimulusSetAndRunsInTheApp) {
   EXPECT_TRUE(fs::exists(dir / "set/contact-sheets/cube-identity.png"));
 
   testing::XvfbServer x;
-  testing::Child app({COUNTERSHADE_IDENTITY_BINARY, "adjust", (dir / "set/manifest.json").string(), "--subject", "M1",
-                      "--sessions", (dir / "sessions").string(), "--observer", "simulated:4"},
-                     x.display(), (dir / "log.txt").string());
+  testing::Child app(
+      {COUNTERSHADE_IDENTITY_BINARY, "adjust", (dir / "set/manifest.json").string(), "--subject",
+       "M1", "--sessions", (dir / "sessions").string(), "--observer", "simulated:4"},
+      x.display(), (dir / "log.txt").string());
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
   auto rows = analysis::read_responses(dir / "sessions/M1_s01.csv");
   ASSERT_EQ(rows.size(), 2u * 3u);  // two conditions (the widths) × three questions

@@ -9,9 +9,9 @@
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
 #include "enhance/view.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -30,7 +30,8 @@ constexpr const char* kLitWall = R"({
 })";
 
 std::shared_ptr<const View> lit_wall(const testing::TempDir& dir) {
-  return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "wall.json", kLitWall))));
+  return render_view(
+      std::make_shared<Scene>(load_scene(testing::write_file(dir / "wall.json", kLitWall))));
 }
 
 TEST(SignalLightness, IsTheLightnessOfTheRenderBeforeQuantisation) {
@@ -44,11 +45,13 @@ TEST(SignalLightness, IsTheLightnessOfTheRenderBeforeQuantisation) {
   size_t off_code = 0;
   for (size_t i = 0; i < signal.size(); ++i) {
     const float* c = &view->render.radiance.pixels[3 * i];
-    EXPECT_NEAR(signal[i], cielab_lightness(display_luminance({c[0], c[1], c[2]}, Exposure{})), 1e-4) << i;
+    EXPECT_NEAR(signal[i], cielab_lightness(display_luminance({c[0], c[1], c[2]}, Exposure{})),
+                1e-4)
+        << i;
     largest = std::max(largest, std::abs(double(signal[i]) - quantised[i]));
     off_code += signal[i] != quantised[i];
   }
-  EXPECT_LT(largest, 0.5);  // half an 8-bit step of sRGB is below 0.5 L* above black
+  EXPECT_LT(largest, 0.5);                 // half an 8-bit step of sRGB is below 0.5 L* above black
   EXPECT_GT(off_code, signal.size() / 2);  // and the two planes do differ
   // A view read from an image file has nothing before its codes.
   const auto image = make_image_view(view->display, {}, view->encoding, 8);
@@ -77,7 +80,8 @@ TEST(SignalLightness, AGainDoesNotTurnEightBitStepsIntoContours) {
   const auto view = lit_wall(dir);
   const nlohmann::json usm2d = {{"sigma_px", 4}};
   const nlohmann::json post = {{"mode", "post"}, {"filter", "unsharp"}, {"sigma", 4}};
-  for (const auto& [method, parameters] : {std::pair{"usm2d", usm2d}, std::pair{"texture-filter", post}}) {
+  for (const auto& [method, parameters] :
+       {std::pair{"usm2d", usm2d}, std::pair{"texture-filter", post}}) {
     const Composed enhanced = prepare_method(method, view, parameters)->compose(3.0);
     // The gradient's own detail at σ = 4 px is far below a step: nothing may move by two.
     EXPECT_LE(largest_code_change(*view, enhanced, 12), 1) << method;

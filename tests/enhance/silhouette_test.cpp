@@ -11,23 +11,26 @@
 #include "core/image.h"
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
-#include "render/ray_tracer.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/ray_tracer.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
 
 // Uniform radiance: one ambient light without occlusion, so every hit of an object has
 // radiance albedo × 0.7 whatever its position or normal.
-std::string uniform_scene(const std::string& objects, const std::string& lights = R"({"type": "ambient", "radiance": 0.7})") {
+std::string uniform_scene(const std::string& objects,
+                          const std::string& lights = R"({"type": "ambient", "radiance": 0.7})") {
   return R"({
     "version": 1,
     "camera": {"eye": [0.4, 1.6, 4.2], "target": [0, 0.1, 0], "fov": 34, "width": 120, "height": 90},
     "display": {"background": 0.05},
-    "objects": [)" + objects + R"(],
-    "lights": [)" + lights + R"(]
+    "objects": [)" +
+         objects + R"(],
+    "lights": [)" +
+         lights + R"(]
   })";
 }
 
@@ -46,7 +49,8 @@ const std::string kOverlapping = R"(
   {"shape": {"type": "sphere", "radius": 0.5, "subdivisions": 4}, "transform": {"translate": [0.2, 0.3, 0.2]},
    "material": {"albedo": 0.9}})";
 
-// A dark cylinder well in front of a light box, hiding part of it: an occlusion boundary with depth.
+// A dark cylinder well in front of a light box, hiding part of it: an occlusion boundary with
+// depth.
 const std::string kOccluded = R"(
   {"shape": {"type": "box", "size": [1.8, 1.0, 0.6], "subdivisions": 8}, "transform": {"translate": [0, 0, -0.8]},
    "material": {"albedo": 0.85}},
@@ -63,7 +67,8 @@ LevelDifference compare_levels(const Image& a, const Image& b) {
   for (size_t p = 0; p < a.pixels.size() / 3; ++p) {
     int worst = 0;
     for (int c = 0; c < 3; ++c)
-      worst = std::max(worst, std::abs(int(quantize(a.pixels[3 * p + c], 8)) - int(quantize(b.pixels[3 * p + c], 8))));
+      worst = std::max(worst, std::abs(int(quantize(a.pixels[3 * p + c], 8)) -
+                                       int(quantize(b.pixels[3 * p + c], 8))));
     d.max_levels = std::max(d.max_levels, worst);
     d.changed_pixels += worst > 0;
   }
@@ -90,8 +95,8 @@ int usm3d_largest_change(const std::string& scene_json, const std::string& what)
     for (double lambda = -3; lambda <= 3; lambda += 0.5) {
       LevelDifference d = compare_levels(usm->compose(lambda).display, view->display);
       largest = std::max(largest, d.max_levels);
-      EXPECT_EQ(d.changed_pixels, 0u) << what << " σ=" << sigma << " λ=" << lambda << " (" << d.changed_pixels
-                                 << " pixels changed)";
+      EXPECT_EQ(d.changed_pixels, 0u) << what << " σ=" << sigma << " λ=" << lambda << " ("
+                                      << d.changed_pixels << " pixels changed)";
     }
   }
   return largest;
@@ -109,9 +114,11 @@ TEST(Silhouettes, UniformPrimitivesOnAContrastingBackgroundAreUnchanged) {
 TEST(Silhouettes, ShadedPrimitivesDoChange) {
   const std::string sun = R"({"type": "directional", "direction": [0.6, 1, 0.4], "irradiance": 2})";
   testing::TempDir dir;
-  auto scene = std::make_shared<Scene>(load_scene(testing::write_file(dir / "s.json", uniform_scene(kPrimitives, sun))));
+  auto scene = std::make_shared<Scene>(
+      load_scene(testing::write_file(dir / "s.json", uniform_scene(kPrimitives, sun))));
   auto view = render_view(scene, plan_for("usm3d", {{"sigma", 0.3}}, 3.0), ViewOptions{});
-  LevelDifference d = compare_levels(prepare_method("usm3d", view, {{"sigma", 0.3}})->compose(3.0).display, view->display);
+  LevelDifference d = compare_levels(
+      prepare_method("usm3d", view, {{"sigma", 0.3}})->compose(3.0).display, view->display);
   EXPECT_GT(d.max_levels, 10);
   EXPECT_GT(d.changed_pixels, 300u);
 }
@@ -144,11 +151,16 @@ TEST(Silhouettes, APlaneSeenFromBehindIsUnchangedUnderEvenLight) {
 // never more than the largest change of a fully covered neighbour, so no outline appears.
 TEST(Silhouettes, CornsweetSurfaceProfileDrawsNoOutline) {
   testing::TempDir dir;
-  auto scene = std::make_shared<Scene>(load_scene(testing::write_file(dir / "s.json", uniform_scene(
-      R"({"shape": {"type": "box", "size": [1.2, 1.2, 1.2], "subdivisions": 12}, "transform": {"rotate": [0, 25, 0]},
+  auto scene = std::make_shared<Scene>(load_scene(testing::write_file(
+      dir / "s.json",
+      uniform_scene(
+          R"({"shape": {"type": "box", "size": [1.2, 1.2, 1.2], "subdivisions": 12}, "transform": {"rotate": [0, 25, 0]},
           "material": {"albedo": 0.5}})"))));
-  const nlohmann::json o = {{"mode", "surface"}, {"sigma", 0.15}, {"edge_point", {0, 0.6, 0}},
-                            {"edge_direction", {1, 0, 0}}, {"bright_normal", {0, 1, 0}}};
+  const nlohmann::json o = {{"mode", "surface"},
+                            {"sigma", 0.15},
+                            {"edge_point", {0, 0.6, 0}},
+                            {"edge_direction", {1, 0, 0}},
+                            {"bright_normal", {0, 1, 0}}};
   auto view = render_view(scene, plan_for("cornsweet", o, 3.0), ViewOptions{});
   const GBuffer& g = view->render.gbuffer;
   const int w = view->display.width, h = view->display.height;
@@ -161,7 +173,8 @@ TEST(Silhouettes, CornsweetSurfaceProfileDrawsNoOutline) {
     int silhouette_pixels = 0;
     for (int y = 1; y + 1 < h; ++y)
       for (int x = 1; x + 1 < w; ++x) {
-        if (g.object[size_t(y) * w + x] >= 0) continue;  // background at the centre: an edge pixel at most
+        if (g.object[size_t(y) * w + x] >= 0)
+          continue;  // background at the centre: an edge pixel at most
         double inside = 0;
         bool next_to_object = false;
         for (int dy = -1; dy <= 1; ++dy)

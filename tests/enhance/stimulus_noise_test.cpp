@@ -33,7 +33,9 @@ TEST(StimulusNoise, QuantisedNoiseMatchesASimulation) {
       const double d = std::round(x + error(rng)) - std::round(x + error(rng));
       sum += d * d / 2.0;
     }
-    EXPECT_NEAR(quantized_noise_steps(r), std::sqrt(sum / n), 0.01 * quantized_noise_steps(r) + 2e-3) << r;
+    EXPECT_NEAR(quantized_noise_steps(r), std::sqrt(sum / n),
+                0.01 * quantized_noise_steps(r) + 2e-3)
+        << r;
   }
 }
 

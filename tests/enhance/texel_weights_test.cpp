@@ -3,16 +3,17 @@
 // ambient occlusion, a glossy material, a repeated texture), and texture-filter's λ composed from
 // them matches its λ rendered again.
 
+#include "enhance/texel_weights.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 
 #include "enhance/method.h"
-#include "enhance/texel_weights.h"
 #include "enhance/view.h"
+#include "enhance/view_plan.h"
 #include "render/rich_scene.h"
 #include "test_util.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -26,7 +27,9 @@ class HalfTexture final : public TextureHook {
       for (auto& texel : level.texels) texel *= 0.5f;
     half_ = Texture::from_levels(std::move(levels));
   }
-  const Texture* texture(unsigned, const Material& material) const override { return material.texture ? &half_ : nullptr; }
+  const Texture* texture(unsigned, const Material& material) const override {
+    return material.texture ? &half_ : nullptr;
+  }
 
  private:
   Texture half_;
@@ -48,7 +51,8 @@ TEST(TexelWeights, ChangedTexelsGiveWhatRenderingWithThemGives) {
     const auto weights = TexelWeights::of_view(*view, {&plain}, 2);
     ASSERT_GT(weights->texels().size(), 100u);
     std::vector<glm::dvec3> change;
-    for (const auto& t : weights->texels()) change.push_back(-0.5 * glm::dvec3(plain.levels()[t.level].texels[t.index]));
+    for (const auto& t : weights->texels())
+      change.push_back(-0.5 * glm::dvec3(plain.levels()[t.level].texels[t.index]));
     const Image composed = weights->radiance_with(view->render.radiance, change, 2);
     // The same samples, each shaded with the halved texture (the log replays them all).
     RenderOptions options;
@@ -69,14 +73,18 @@ TEST(TexelWeights, ChangedTexelsGiveWhatRenderingWithThemGives) {
     // Without the log the samples are traced again: the same weights.
     auto untraced = std::make_shared<View>(*view);
     untraced->render.trace = nullptr;
-    EXPECT_EQ(TexelWeights::of_view(*untraced, {&plain}, 2)->radiance_with(view->render.radiance, change, 2).pixels,
+    EXPECT_EQ(TexelWeights::of_view(*untraced, {&plain}, 2)
+                  ->radiance_with(view->render.radiance, change, 2)
+                  .pixels,
               composed.pixels);
     // Weights that would outgrow their limit are given up.
     EXPECT_EQ(TexelWeights::of_view(*view, {&plain}, 2, 16 * (weights->entries() - 1)), nullptr);
     EXPECT_NE(TexelWeights::of_view(*view, {&plain}, 2, 16 * weights->entries()), nullptr);
     // No change: the view's radiance, bit for bit.
-    EXPECT_EQ(weights->radiance_with(view->render.radiance, std::vector<glm::dvec3>(change.size()), 2).pixels,
-              view->render.radiance.pixels);
+    EXPECT_EQ(
+        weights->radiance_with(view->render.radiance, std::vector<glm::dvec3>(change.size()), 2)
+            .pixels,
+        view->render.radiance.pixels);
   }
 }
 
@@ -101,7 +109,8 @@ TEST(TexelWeights, TextureFilterComposedFromSamplesMatchesRenderingAgain) {
       size_t differing = 0, changed = 0;
       for (size_t i = 0; i < a.pixels.size(); ++i) {
         differing += a.pixels[i] != b.pixels[i];
-        ASSERT_LE(std::abs(a.pixels[i] - b.pixels[i]), 1.01 / 255) << mode << " λ " << lambda << " at " << i;
+        ASSERT_LE(std::abs(a.pixels[i] - b.pixels[i]), 1.01 / 255)
+            << mode << " λ " << lambda << " at " << i;
         changed += b.pixels[i] != view->display.pixels[i];
       }
       EXPECT_LE(differing, a.pixels.size() / 1000) << mode << " λ " << lambda;

@@ -9,10 +9,10 @@
 #include "core/file_bytes.h"
 #include "enhance/filtered_pyramid.h"
 #include "enhance/method.h"
+#include "enhance/view_plan.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
 #include "test_util.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -36,7 +36,8 @@ TEST(LightnessFilters, UnsharpDetailOfASinusoidIsAnalytic) {
   const auto d = lightness_detail(L, 64, 8, f, Borders::wrap);
   const double passed = std::exp(-2 * kPi * kPi * f.sigma * f.sigma / (period * period));
   for (int x = 0; x < 64; ++x)
-    EXPECT_NEAR(d[size_t(3 * 64 + x)], (1 - passed) * 20 * std::sin(2 * kPi * x / period), 2e-3) << x;
+    EXPECT_NEAR(d[size_t(3 * 64 + x)], (1 - passed) * 20 * std::sin(2 * kPi * x / period), 2e-3)
+        << x;
 }
 
 TEST(LightnessFilters, BilateralKeepsAStepAndBlursLikeAGaussianWithAWideRange) {
@@ -45,13 +46,15 @@ TEST(LightnessFilters, BilateralKeepsAStepAndBlursLikeAGaussianWithAWideRange) {
   f.kind = FilterKind::bilateral;
   f.sigma = 2;
   f.sigma_r = 5;
-  for (float d : lightness_detail(step, 32, 4, f, Borders::clamp)) EXPECT_NEAR(d, 0.0, 1e-6);  // 60 L* ≫ σ_r
+  for (float d : lightness_detail(step, 32, 4, f, Borders::clamp))
+    EXPECT_NEAR(d, 0.0, 1e-6);  // 60 L* ≫ σ_r
   // A flat range kernel leaves a Gaussian (over ±3σ): the detail is minus unsharp masking's.
   const auto wave = plane(64, 8, [](int x, int) { return 50 + 10 * std::sin(2 * kPi * x / 16); });
   f.sigma_r = 1e4;
   const auto d = lightness_detail(wave, 64, 8, f, Borders::wrap);
   const double passed = std::exp(-2 * kPi * kPi * f.sigma * f.sigma / (16 * 16));
-  for (int x = 0; x < 64; ++x) EXPECT_NEAR(d[size_t(64 + x)], -(1 - passed) * 10 * std::sin(2 * kPi * x / 16), 0.05) << x;
+  for (int x = 0; x < 64; ++x)
+    EXPECT_NEAR(d[size_t(64 + x)], -(1 - passed) * 10 * std::sin(2 * kPi * x / 16), 0.05) << x;
 }
 
 TEST(LightnessFilters, DogDrawsLinesOnTheDarkSideOfAnEdgeOnly) {
@@ -63,7 +66,7 @@ TEST(LightnessFilters, DogDrawsLinesOnTheDarkSideOfAnEdgeOnly) {
   const size_t row = 2 * 48;
   EXPECT_LT(d[row + 22], -5.0);  // just left of the edge, on the dark side: a line
   for (int x = 24; x < 48; ++x) EXPECT_EQ(d[row + size_t(x)], 0.0f) << x;  // the bright side: none
-  EXPECT_EQ(d[row + 2], 0.0f);   // far from the edge: none
+  EXPECT_EQ(d[row + 2], 0.0f);  // far from the edge: none
 }
 
 TextureLevel noise_level(int width, int height) {
@@ -87,15 +90,18 @@ TEST(FilteredPyramid, MipModeFiltersEveryLevelWithSigmaInItsTexelsAndCachesIt) {
   ASSERT_EQ(at.levels().size(), plain->levels().size());
   for (size_t k = 0; k < plain->levels().size(); ++k) {
     const TextureLevel& level = plain->levels()[k];
-    const auto detail = lightness_detail(level_lightness(level), level.width, level.height, f, Borders::wrap);
+    const auto detail =
+        lightness_detail(level_lightness(level), level.width, level.height, f, Borders::wrap);
     const TextureLevel expected = with_detail(level, detail, 0.8 * (k == 0 ? 1 : 2));
     for (size_t i = 0; i < expected.texels.size(); ++i)
-      for (int c = 0; c < 3; ++c) ASSERT_NEAR(at.levels()[k].texels[i][c], expected.texels[i][c], 1e-6) << k << " " << i;
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(at.levels()[k].texels[i][c], expected.texels[i][c], 1e-6) << k << " " << i;
   }
   const FilteredPyramid second = filter_pyramid(plain, TextureMode::mip, f, {1, 2}, cache.path());
   EXPECT_EQ(second.detail, first.detail);
   size_t files = 0;
-  for (const auto& e : std::filesystem::directory_iterator(cache.path() / "pyramids")) files += e.is_regular_file();
+  for (const auto& e : std::filesystem::directory_iterator(cache.path() / "pyramids"))
+    files += e.is_regular_file();
   EXPECT_EQ(files, 1u);
 }
 
@@ -115,22 +121,35 @@ TEST(FilteredPyramid, StrengthZeroKeepsEveryTexel) {
 }
 
 TEST(TextureFilter, KeysOfAnotherFilterOrModeAreErrors) {
-  EXPECT_EQ(testing::input_error_of([] { parse_method("texture-filter", {{"filter", "dog"}, {"sigma_r", 4}}); }),
+  EXPECT_EQ(testing::input_error_of([] {
+              parse_method("texture-filter", {{"filter", "dog"}, {"sigma_r", 4}});
+            }),
             "texture-filter: parameters.sigma_r: applies to filter bilateral only");
-  EXPECT_EQ(testing::input_error_of([] { parse_method("texture-filter", {{"mode", "post"}, {"level_strengths", {1, 2}}}); }),
+  EXPECT_EQ(testing::input_error_of([] {
+              parse_method("texture-filter", {{"mode", "post"}, {"level_strengths", {1, 2}}});
+            }),
             "texture-filter: parameters.level_strengths: applies to mode mip only");
-  EXPECT_EQ(testing::input_error_of([] { parse_method("texture-filter", {{"filter", "bilateral"}, {"sigma", 20}}); }),
-            "texture-filter: parameters.sigma: must be at most 8 for filter bilateral (its cost grows with σ²)");
+  EXPECT_EQ(testing::input_error_of([] {
+              parse_method("texture-filter", {{"filter", "bilateral"}, {"sigma", 20}});
+            }),
+            "texture-filter: parameters.sigma: must be at most 8 for filter bilateral (its cost "
+            "grows with σ²)");
 }
 
 TEST(TextureFilter, AnUntexturedSceneIsRefusedBeforeAnythingRenders) {
   testing::TempDir dir;
-  testing::write_file(dir / "ball.json", R"({"version": 1, "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 16, "height": 12},
+  testing::write_file(
+      dir / "ball.json",
+      R"({"version": 1, "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 16, "height": 12},
     "objects": [{"shape": {"type": "sphere"}}], "lights": [{"type": "directional", "direction": [0, 1, 1]}]})");
-  const auto file = testing::write_file(dir / "e.json", R"({"version": 1, "scenes": [{"name": "ball", "file": "ball.json"}],
+  const auto file = testing::write_file(
+      dir / "e.json", R"({"version": 1, "scenes": [{"name": "ball", "file": "ball.json"}],
     "methods": [{"method": "texture-filter", "sigma": [1]}]})");
-  const std::string error = testing::input_error_of([&] { generate_stimulus_set(load_experiment(file), dir / "set", {}); });
-  EXPECT_NE(error.find("texture-filter in mode mip filters textures, and no object of"), std::string::npos) << error;
+  const std::string error = testing::input_error_of(
+      [&] { generate_stimulus_set(load_experiment(file), dir / "set", {}); });
+  EXPECT_NE(error.find("texture-filter in mode mip filters textures, and no object of"),
+            std::string::npos)
+      << error;
   EXPECT_FALSE(std::filesystem::exists(dir / "set/ball"));
 }
 

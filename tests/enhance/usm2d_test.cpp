@@ -5,8 +5,8 @@
 #include "enhance/image_width.h"
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
-#include "test_util.h"
 #include "enhance/view_plan.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -32,7 +32,8 @@ TEST(Usm2d, LambdaZeroAndFlatImagesAreUnchanged) {
   auto prepared = prepare_method("usm2d", edge, sigma_px(4));
   EXPECT_EQ(prepared->compose(0.0).display.pixels, edge->display.pixels);
   auto flat = step_view(0.5f, 0.5f);
-  EXPECT_EQ(prepare_method("usm2d", flat, sigma_px(4))->compose(2.0).display.pixels, flat->display.pixels);
+  EXPECT_EQ(prepare_method("usm2d", flat, sigma_px(4))->compose(2.0).display.pixels,
+            flat->display.pixels);
 }
 
 TEST(Usm2d, ComposesLambdaTimesLightnessMinusItsBlur) {
@@ -49,8 +50,10 @@ TEST(Usm2d, ComposesLambdaTimesLightnessMinusItsBlur) {
     EXPECT_NEAR(actual, expected, 0.05) << i;  // the fast blur is within 1e-3 of the L* range
   }
   // Overshoot on the light side, undershoot on the dark side of the edge.
-  EXPECT_GT(display_pixel_to_lab(&out.display.pixels[3 * (8 * 64 + 33)], edge.encoding).L, edge.lab[8 * 64 + 33].L + 1);
-  EXPECT_LT(display_pixel_to_lab(&out.display.pixels[3 * (8 * 64 + 30)], edge.encoding).L, edge.lab[8 * 64 + 30].L - 1);
+  EXPECT_GT(display_pixel_to_lab(&out.display.pixels[3 * (8 * 64 + 33)], edge.encoding).L,
+            edge.lab[8 * 64 + 33].L + 1);
+  EXPECT_LT(display_pixel_to_lab(&out.display.pixels[3 * (8 * 64 + 30)], edge.encoding).L,
+            edge.lab[8 * 64 + 30].L - 1);
 }
 
 TEST(Usm2d, WidthOptionsAreExclusiveAndChecked) {

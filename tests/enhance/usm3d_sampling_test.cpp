@@ -13,10 +13,10 @@
 #include "core/image.h"
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
-#include "render/ray_tracer.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/ray_tracer.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {

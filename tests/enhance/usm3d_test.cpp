@@ -11,10 +11,10 @@
 #include "core/svg_plot.h"
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
-#include "render/ray_tracer.h"
-#include "test_util.h"
-#include "render/scene_loader.h"
 #include "enhance/view_plan.h"
+#include "render/ray_tracer.h"
+#include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -27,8 +27,8 @@ struct Rendered {
 nlohmann::json with_sigma(double sigma) { return {{"sigma", sigma}}; }
 
 // Loads a scene from JSON text and renders its view for usm3d with each of `uses` (parameters).
-Rendered render_test_view(const testing::TempDir& dir, const std::string& json, const std::vector<nlohmann::json>& uses,
-                          int bits = 8) {
+Rendered render_test_view(const testing::TempDir& dir, const std::string& json,
+                          const std::vector<nlohmann::json>& uses, int bits = 8) {
   Rendered r;
   r.scene = load_scene(testing::write_file(dir / "scene.json", json));
   ViewPlan plan;
@@ -93,7 +93,8 @@ TEST(Usm3d, LambdaZeroIsByteIdenticalToNone) {
 
 TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
   testing::TempDir dir;
-  // An orthographic view filled by a plane lit head-on: every vertex and pixel has the same radiance.
+  // An orthographic view filled by a plane lit head-on: every vertex and pixel has the same
+  // radiance.
   Rendered r = render_test_view(dir, R"({
     "version": 1,
     "camera": {"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 0, -1], "projection": "orthographic",
@@ -101,7 +102,8 @@ TEST(Usm3d, ConstantLightnessSurfaceIsUnchangedForEveryLambdaAndSigma) {
     "render": {"spp": 4},
     "objects": [{"shape": {"type": "plane", "size": 4, "subdivisions": 24}, "material": {"albedo": [0.6, 0.4, 0.3]}}],
     "lights": [{"type": "directional", "direction": [0, 1, 0], "irradiance": 1.5}]
-  })", {with_ring(0.05), with_ring(0.5)});
+  })",
+                                {with_ring(0.05), with_ring(0.5)});
   auto reference = bytes_of(r.view->display);
   for (double sigma : {0.05, 0.5})
     for (double lambda : {0.5, 3.0, -2.0}) {
@@ -125,12 +127,15 @@ TEST(Usm3d, KeepsHueAndSaturationWhereNotClipped) {
     if (std::abs(after.L - before.L) < 1e-3) continue;
     // Clipped, or so dark (L* < 5) that the code values do not resolve hue.
     bool clipped = after.L <= 5.0 || after.L >= 99.99;
-    for (int c = 0; c < 3; ++c) clipped |= out.display.pixels[3 * i + c] <= 0.0f || out.display.pixels[3 * i + c] >= 1.0f;
+    for (int c = 0; c < 3; ++c)
+      clipped |= out.display.pixels[3 * i + c] <= 0.0f || out.display.pixels[3 * i + c] >= 1.0f;
     double chroma = std::hypot(before.a, before.b);
     if (clipped || chroma < 2.0) continue;  // hue is undefined for neutral pixels
     // 16-bit code values move a* and b* by up to about 0.01: the tolerances allow for that.
-    EXPECT_NEAR(std::atan2(after.b, after.a), std::atan2(before.b, before.a), 1e-3 + 0.01 / chroma) << i;
-    EXPECT_NEAR(std::hypot(after.a, after.b) / after.L, chroma / before.L, 1e-3 + 0.01 / after.L) << i;
+    EXPECT_NEAR(std::atan2(after.b, after.a), std::atan2(before.b, before.a), 1e-3 + 0.01 / chroma)
+        << i;
+    EXPECT_NEAR(std::hypot(after.a, after.b) / after.L, chroma / before.L, 1e-3 + 0.01 / after.L)
+        << i;
     ++checked;
   }
   EXPECT_GT(checked, 500);
@@ -196,9 +201,14 @@ TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
       ++compared;
       if (near_bar_in_a(x, y)) {
         ++around_silhouette;
-        double delta_a = display_pixel_to_lab(&ea.display.pixels[3 * i], a.scene.display.encoding).L - a.view->lab[i].L;
-        double delta_b = display_pixel_to_lab(&eb.display.pixels[3 * i], b.scene.display.encoding).L - b.view->lab[i].L;
-        EXPECT_NEAR(delta_a, delta_b, 1e-3) << "the occluder changed the wall beside it at " << x << "," << y;
+        double delta_a =
+            display_pixel_to_lab(&ea.display.pixels[3 * i], a.scene.display.encoding).L -
+            a.view->lab[i].L;
+        double delta_b =
+            display_pixel_to_lab(&eb.display.pixels[3 * i], b.scene.display.encoding).L -
+            b.view->lab[i].L;
+        EXPECT_NEAR(delta_a, delta_b, 1e-3)
+            << "the occluder changed the wall beside it at " << x << "," << y;
       }
     }
   EXPECT_GT(compared, 2000);
@@ -206,7 +216,8 @@ TEST(Usm3d, ContrastSignalIsSceneCoherentUnderAMovingOccluder) {
   EXPECT_GT(largest_contrast, 5.0) << "the wall's shadow edge should carry a real contrast signal";
 }
 
-// Lightness profile down the image column that crosses the edge between a cube's front and top faces.
+// Lightness profile down the image column that crosses the edge between a cube's front and top
+// faces.
 struct Profile {
   std::vector<double> offset, delta_L;  // pixels from the edge (negative: top face), L' - L
   double peak = 0, half_width = 0;      // on the front face
@@ -219,13 +230,16 @@ Profile cube_profile(const std::shared_ptr<const View>& shared, double sigma, do
   const GBuffer& g = view.render.gbuffer;
   int x = g.width / 2, edge = -1;
   for (int y = 1; y < g.height; ++y)  // the first row whose normal faces the camera (front face)
-    if (g.object[g.index(x, y)] == 0 && g.normal[g.index(x, y)].z > 0.9f && g.normal[g.index(x, y - 1)].y > 0.9f) edge = y;
+    if (g.object[g.index(x, y)] == 0 && g.normal[g.index(x, y)].z > 0.9f &&
+        g.normal[g.index(x, y - 1)].y > 0.9f)
+      edge = y;
   EXPECT_GT(edge, 0);
   Profile p;
   for (int y = 0; y < g.height; ++y) {
     size_t i = g.index(x, y);
     if (g.object[i] != 0) continue;
-    double d = display_pixel_to_lab(&out.display.pixels[3 * i], view.scene->display.encoding).L - view.lab[i].L;
+    double d = display_pixel_to_lab(&out.display.pixels[3 * i], view.scene->display.encoding).L -
+               view.lab[i].L;
     p.offset.push_back(y - edge);
     p.delta_L.push_back(d);
   }
@@ -244,7 +258,8 @@ Profile cube_profile(const std::shared_ptr<const View>& shared, double sigma, do
 
 TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
   testing::TempDir dir;
-  Rendered r = render_test_view(dir, R"({
+  Rendered r =
+      render_test_view(dir, R"({
     "version": 1,
     "camera": {"eye": [0, 4, 4], "target": [0, 0, 0], "projection": "orthographic", "height_world": 2.6,
                "width": 160, "height": 160},
@@ -254,7 +269,8 @@ TEST(Usm3d, CornsweetCubeProfileOvershootsAndScalesWithLambdaAndSigma) {
                  "material": {"albedo": 0.5}}],
     "lights": [{"type": "directional", "direction": [0, 0.35, 1], "irradiance": 1.2},
                {"type": "ambient", "radiance": 0.2}]
-  })", {with_sigma(0.1), with_sigma(0.15), with_sigma(0.2), with_sigma(0.3)});
+  })",
+                       {with_sigma(0.1), with_sigma(0.15), with_sigma(0.2), with_sigma(0.3)});
   // Amplitude grows linearly with λ.
   std::vector<double> lambdas = {0.5, 1.0, 2.0}, peaks;
   for (double l : lambdas) peaks.push_back(cube_profile(r.view, 0.15, l).peak);
@@ -310,17 +326,21 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
         {"name": "a", "shape": {"type": "sphere", "radius": 1, "subdivisions": 4}, "transform": {"translate": [-1.2, 0, 0]},
          "material": {"albedo": 0.5}},
         {"name": "b", "shape": {"type": "sphere", "radius": 1, "subdivisions": 4}, "transform": {"translate": [1.2, 0, 0]},
-         "material": {"albedo": )" + std::to_string(albedo_b) + R"(}}
+         "material": {"albedo": )" +
+           std::to_string(albedo_b) + R"(}}
       ],
       "lights": [{"type": "directional", "direction": [0, 0, 1], "irradiance": 2}, {"type": "ambient", "radiance": 0.1}]
     })";
   };
   testing::TempDir d1, d2;
   const std::vector<nlohmann::json> uses = {with_sigma(0.2), with_sigma(1.0)};
-  Rendered bright = render_test_view(d1, scene(0.95), uses), dark = render_test_view(d2, scene(0.05), uses);
+  Rendered bright = render_test_view(d1, scene(0.95), uses),
+           dark = render_test_view(d2, scene(0.05), uses);
   for (double sigma : {0.2, 1.0}) {
-    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertices.front[0], bright.scene.display, width_of(sigma));
-    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertices.front[0], dark.scene.display, width_of(sigma));
+    auto sa = surface_contrast(bright.scene.objects[0], bright.view->render.vertices.front[0],
+                               bright.scene.display, width_of(sigma));
+    auto sb = surface_contrast(dark.scene.objects[0], dark.view->render.vertices.front[0],
+                               dark.scene.display, width_of(sigma));
     EXPECT_EQ(sa.smooth_lightness, sb.smooth_lightness);
     Composed ea = prepare_method("usm3d", bright.view, with_sigma(sigma))->compose(2.0);
     Composed eb = prepare_method("usm3d", dark.view, with_sigma(sigma))->compose(2.0);
@@ -328,7 +348,8 @@ TEST(Usm3d, NothingLeaksBetweenDisconnectedObjects) {
     int pixels = 0;
     for (size_t i = 0; i < g.object.size(); ++i) {
       if (g.object[i] != 0) continue;
-      for (int c = 0; c < 3; ++c) EXPECT_EQ(ea.display.pixels[3 * i + c], eb.display.pixels[3 * i + c]);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(ea.display.pixels[3 * i + c], eb.display.pixels[3 * i + c]);
       ++pixels;
     }
     EXPECT_GT(pixels, 200);
@@ -351,7 +372,8 @@ TEST(Usm3d, MeanLightnessDriftFollowsWhatTheCameraSees) {
   auto sphere_seen_from = [](const std::string& eye) {
     return R"({
       "version": 1,
-      "camera": {"eye": [)" + eye + R"(], "target": [0, 0, 0], "fov": 30, "width": 96, "height": 72},
+      "camera": {"eye": [)" +
+           eye + R"(], "target": [0, 0, 0], "fov": 30, "width": 96, "height": 72},
       "render": {"spp": 4},
       "display": {"background": [0.18, 0.18, 0.18]},
       "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 5}, "material": {"albedo": 0.5}}],
@@ -359,8 +381,8 @@ TEST(Usm3d, MeanLightnessDriftFollowsWhatTheCameraSees) {
     })";
   };
   std::map<std::string, double> drift;
-  for (const auto& [view, eye] : std::map<std::string, std::string>{{"top", "0, 4.6, 2"}, {"side", "0, 0, 5"},
-                                                                     {"bottom", "0, -4.6, 2"}}) {
+  for (const auto& [view, eye] : std::map<std::string, std::string>{
+           {"top", "0, 4.6, 2"}, {"side", "0, 0, 5"}, {"bottom", "0, -4.6, 2"}}) {
     testing::TempDir dir;
     const Rendered r = render_test_view(dir, sphere_seen_from(eye), {with_sigma(0.6)});
     const auto usm = prepare_method("usm3d", r.view, with_sigma(0.6));
@@ -388,16 +410,19 @@ TEST(Usm3d, ADecalWithoutAHiddenSideKeepsItsLightness) {
       "objects": [
         {"name": "die", "shape": {"type": "box", "size": [1, 1, 1], "subdivisions": 24}, "transform": {"translate": [0, 0, 0]},
          "material": {"albedo": 0.8}},
-        {"name": "pip", )" + pip + R"(, "material": {"albedo": 0.04}}
+        {"name": "pip", )" +
+           pip + R"(, "material": {"albedo": 0.04}}
       ],
       "lights": [{"type": "directional", "direction": [0.3, 1, 0.2], "irradiance": 2}, {"type": "ambient", "radiance": 0.1}]
     })";
   };
   const std::string sunk = R"("shape": {"type": "sphere", "radius": 1, "subdivisions": 3},
       "transform": {"matrix": [0.12, 0, 0, 0, 0, 0.04, 0, 0.47, 0, 0, 0.12, 0, 0, 0, 0, 1]})";
-  const std::string disc = R"("shape": {"type": "disc", "radius": 0.075, "segments": 48}, "transform": {"translate": [0, 0.502, 0]})";
+  const std::string disc =
+      R"("shape": {"type": "disc", "radius": 0.075, "segments": 48}, "transform": {"translate": [0, 0.502, 0]})";
   std::map<std::string, double> change;  // mean L* change over the pip's pixels at λ = 1
-  for (const auto& [name, pip] : std::map<std::string, std::string>{{"sunk", sunk}, {"disc", disc}}) {
+  for (const auto& [name, pip] :
+       std::map<std::string, std::string>{{"sunk", sunk}, {"disc", disc}}) {
     testing::TempDir dir;
     const Rendered r = render_test_view(dir, scene(pip), {with_sigma(0.1)});
     const Composed out = prepare_method("usm3d", r.view, with_sigma(0.1))->compose(1.0);
@@ -407,13 +432,15 @@ TEST(Usm3d, ADecalWithoutAHiddenSideKeepsItsLightness) {
     int pixels = 0;
     const int w = r.view->width();
     for (size_t i = 0; i < g.object.size(); ++i)  // the pip's pixels away from its rim
-      if (g.object[i] == 1 && g.object[i - 1] == 1 && g.object[i + 1] == 1 && g.object[i - w] == 1 && g.object[i + w] == 1)
+      if (g.object[i] == 1 && g.object[i - 1] == 1 && g.object[i + 1] == 1 &&
+          g.object[i - w] == 1 && g.object[i + w] == 1)
         sum += lab[i].L - r.view->lab[i].L, ++pixels;
     ASSERT_GT(pixels, 100) << name;
     change[name] = sum / pixels;
   }
   EXPECT_GT(change["sunk"], 4.0);  // 11.5 L*
-  EXPECT_LT(std::abs(change["disc"]), 0.5) << change["disc"];  // 0: the disc's signal is its own mean
+  EXPECT_LT(std::abs(change["disc"]), 0.5)
+      << change["disc"];  // 0: the disc's signal is its own mean
 }
 
 TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
@@ -423,7 +450,8 @@ TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   std::string negative = base;
   negative.replace(negative.find("\"fit\": true"), 11, "\"fit\": true, \"importance\": -1");
   Rendered minus = render_test_view(d2, negative, {with_sigma(0.1)});
-  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertices.front[1], plus.scene.display, width_of(0.1));
+  auto sc = surface_contrast(plus.scene.objects[1], plus.view->render.vertices.front[1],
+                             plus.scene.display, width_of(0.1));
   for (double g : sc.gain_factor) {
     EXPECT_GE(g, 1.0);
     EXPECT_LE(g, std::sqrt(1.25));  // Var of values in [0,1] is at most 1/4
@@ -438,7 +466,9 @@ TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
   auto inside_cow = [&](int x, int y) {
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx)
-        if (g.object[g.index(std::clamp(x + dx, 0, g.width - 1), std::clamp(y + dy, 0, g.height - 1))] != 1) return false;
+        if (g.object[g.index(std::clamp(x + dx, 0, g.width - 1),
+                             std::clamp(y + dy, 0, g.height - 1))] != 1)
+          return false;
     return true;
   };
   int cow_pixels = 0;
@@ -449,8 +479,8 @@ TEST(Usm3d, GainAdaptsWithinBoundsAndNegativeWeightsReverseTheEffect) {
         ++cow_pixels;
       }
   EXPECT_GT(cow_pixels, 300);
-  auto flat = surface_contrast(plus.scene.objects[1], plus.view->render.vertices.front[1], plus.scene.display,
-                               SmoothingWidth{0.1, std::nullopt, false});
+  auto flat = surface_contrast(plus.scene.objects[1], plus.view->render.vertices.front[1],
+                               plus.scene.display, SmoothingWidth{0.1, std::nullopt, false});
   for (double g : flat.gain_factor) EXPECT_EQ(g, 1.0);
 }
 
@@ -471,7 +501,9 @@ TEST(Usm3d, RingSamplesLieInsideTheTriangleAndSpreadOverIt) {
 
 TEST(Usm3d, ParsesItsParametersAndRejectsTheRest) {
   const EnhancementMethod& m = method_named("usm3d", "test");
-  auto parse = [&](const nlohmann::json& j) { return m.parse(ParameterBag::from_json(j, "exp.json", "methods[0]")); };
+  auto parse = [&](const nlohmann::json& j) {
+    return m.parse(ParameterBag::from_json(j, "exp.json", "methods[0]"));
+  };
   EXPECT_THROW(parse(nlohmann::json::object()), InputError);
   EXPECT_THROW(parse({{"sigma", 0.1}, {"iterations", 3}}), InputError);
   EXPECT_THROW(parse(with_sigma(-1)), InputError);
@@ -481,13 +513,18 @@ TEST(Usm3d, ParsesItsParametersAndRejectsTheRest) {
   std::string message = testing::input_error_of([&] { parse({{"sigma", 0.1}, {"kernel", 5}}); });
   EXPECT_NE(message.find("exp.json: methods[0].kernel"), std::string::npos) << message;
   EXPECT_NE(message.find("usm3d has no parameter 'kernel'"), std::string::npos) << message;
-  message = testing::input_error_of(
-      [&] { m.parse(ParameterBag::from_arguments({"--kernel", "5%", "--operator", "add"})); });
-  EXPECT_NE(message.find("--kernel: usm3d has no parameter 'kernel'"), std::string::npos) << message;
+  message = testing::input_error_of([&] {
+    m.parse(ParameterBag::from_arguments({"--kernel", "5%", "--operator", "add"}));
+  });
+  EXPECT_NE(message.find("--kernel: usm3d has no parameter 'kernel'"), std::string::npos)
+      << message;
   // Of several, the first one typed.
-  message = testing::input_error_of(
-      [&] { m.parse(ParameterBag::from_arguments({"--sigma", "0.1", "--operator", "add", "--kernel", "5%"})); });
-  EXPECT_NE(message.find("--operator: usm3d has no parameter 'operator'"), std::string::npos) << message;
+  message = testing::input_error_of([&] {
+    m.parse(
+        ParameterBag::from_arguments({"--sigma", "0.1", "--operator", "add", "--kernel", "5%"}));
+  });
+  EXPECT_NE(message.find("--operator: usm3d has no parameter 'operator'"), std::string::npos)
+      << message;
 }
 
 }  // namespace

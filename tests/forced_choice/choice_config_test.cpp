@@ -2,11 +2,12 @@
 // line naming the file and key and exit 2; and the experiment refuses them already when the set
 // is made. The run's plan: seeded, balanced, and practice only on conditions that change with λ.
 
+#include "forced_choice/choice_config.h"
+
 #include <gtest/gtest.h>
 
 #include "../adjust/tiny_set.h"
 #include "adjust/study.h"
-#include "forced_choice/choice_config.h"
 #include "forced_choice/choice_run.h"
 
 namespace countershade::forced_choice {
@@ -14,27 +15,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kQuestArguments = R"("tGuess": -0.3, "tGuessSd": 1, "beta": 3.5, "delta": 0.01, "gamma": 0.5, "grain": 0.01)";
+constexpr const char* kQuestArguments =
+    R"("tGuess": -0.3, "tGuessSd": 1, "beta": 3.5, "delta": 0.01, "gamma": 0.5, "grain": 0.01)";
 
 TEST(ChoiceConfig, ProceduresThatCannotWorkAreOneLineAndExitTwo) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir, "", 96, 72, 0.1);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"procedure": {"type": "staircase", "startVal": 0.5, "nDown": 0}})", "procedure.nDown"},
-      {R"({"procedure": {"type": "staircase", "startVal": 0.5, "stepSizes": []}})", "procedure.stepSizes"},
-      {std::string(R"({"procedure": {"type": "quest", "pThreshold": 0.45, )") + kQuestArguments + "}}", "procedure.pThreshold"},
+      {R"({"procedure": {"type": "staircase", "startVal": 0.5, "stepSizes": []}})",
+       "procedure.stepSizes"},
+      {std::string(R"({"procedure": {"type": "quest", "pThreshold": 0.45, )") + kQuestArguments +
+           "}}",
+       "procedure.pThreshold"},
       // log10 λ from 3 to 7: the grid (0.1 … 2) lies far below every threshold QUEST considers.
       {R"({"procedure": {"type": "quest", "tGuess": 5, "tGuessSd": 1, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01, "gamma": 0.5, "range": 4}})",
        "procedure.range"},
       {R"({"procedure": {"type": "constant", "lambdas": [0.25]}})", "procedure.lambdas"},
       {R"({"n_afc": 5, "procedure": {"type": "constant", "lambdas": [0.2]}})", "n_afc"},
       {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "practice_trials": 2,
-           "practice_conditions": [{"scene": "nowhere", "method": "usm3d", "sigma": 0.03}]})", "practice_conditions[0]"},
+           "practice_conditions": [{"scene": "nowhere", "method": "usm3d", "sigma": 0.03}]})",
+       "practice_conditions[0]"},
   };
   for (const auto& [text, key] : cases) {
     testing::write_file(dir / "fc.json", text);
-    const auto run = testing::run_cli("choose " + manifest.string() + " --subject P01 --sessions " + (dir / "s").string() +
-                                      " --procedure " + (dir / "fc.json").string());
+    const auto run =
+        testing::run_cli("choose " + manifest.string() + " --subject P01 --sessions " +
+                         (dir / "s").string() + " --procedure " + (dir / "fc.json").string());
     EXPECT_EQ(run.exit_code, 2) << text << "\n" << run.output;
     EXPECT_NE(run.output.find(key), std::string::npos) << run.output;
     EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
@@ -45,21 +52,28 @@ TEST(ChoiceConfig, ProceduresThatCannotWorkAreOneLineAndExitTwo) {
 TEST(ChoiceConfig, TheExperimentRefusesABadBlockWhenTheSetIsMade) {
   testing::TempDir dir;
   testing::write_file(dir / "cube.json", testing::kLitCubeScene);
-  testing::write_file(dir / "experiment.json", R"({"version": 1, "scenes": [{"name": "front", "file": "cube.json", "width": 32, "height": 24}],
+  testing::write_file(
+      dir / "experiment.json",
+      R"({"version": 1, "scenes": [{"name": "front", "file": "cube.json", "width": 32, "height": 24}],
       "methods": [{"method": "usm3d", "sigma_fraction": [0.03]}],
       "forced_choice": {"procedure": {"type": "staircase", "startVal": 0.5, "nDown": 0}}})");
-  const auto run = testing::run_cli("stimuli " + (dir / "experiment.json").string() + " -o " + (dir / "set").string());
+  const auto run = testing::run_cli("stimuli " + (dir / "experiment.json").string() + " -o " +
+                                    (dir / "set").string());
   EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_NE(run.output.find("experiment.json: forced_choice.procedure.nDown"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("experiment.json: forced_choice.procedure.nDown"), std::string::npos)
+      << run.output;
 }
 
 // Constant stimuli: every listed λ exactly `repetitions` times per condition, each condition's
 // targets balanced, the same order for the same seed and another for another seed.
 TEST(ChoiceRun, ConstantStimuliAreBalancedAndSeeded) {
   testing::TempDir dir;
-  const adjust::Study study = adjust::load_study(testing::make_tiny_set(dir, "", 96, 72, 0.1), std::nullopt);
+  const adjust::Study study =
+      adjust::load_study(testing::make_tiny_set(dir, "", 96, 72, 0.1), std::nullopt);
   const ChoiceConfig config = parse_choice_config(
-      nlohmann::json::parse(R"({"procedure": {"type": "constant", "lambdas": [0.2, 0.6, 1.2], "repetitions": 4}})"), "t", "");
+      nlohmann::json::parse(
+          R"({"procedure": {"type": "constant", "lambdas": [0.2, 0.6, 1.2], "repetitions": 4}})"),
+      "t", "");
   auto trials_of = [&](uint64_t seed) {
     ChoiceRun run(study, config, seed);
     std::vector<std::tuple<int, int, int>> trials;  // condition, λ index, target

@@ -1,18 +1,18 @@
 // The forced-choice app end to end: the real binary in a real window on a private Xvfb server,
 // driven by a key script, the simulated observer and SIGKILL.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "../adjust/tiny_set.h"
 #include "../adjust/x_display.h"
 #include "core/image.h"
-#include "formats/responses.h"
 #include "forced_choice/quest.h"
+#include "formats/responses.h"
 
 namespace countershade::forced_choice {
 namespace {
@@ -29,8 +29,11 @@ fs::path make_set(const testing::TempDir& dir, const std::string& block) {
   return testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block + ",");
 }
 
-std::vector<std::string> choose_args(const fs::path& manifest, const fs::path& sessions, std::vector<std::string> extra) {
-  std::vector<std::string> args = {COUNTERSHADE_BINARY, "choose", manifest.string(), "--subject", "P01", "--sessions", sessions.string()};
+std::vector<std::string> choose_args(const fs::path& manifest, const fs::path& sessions,
+                                     std::vector<std::string> extra) {
+  std::vector<std::string> args = {COUNTERSHADE_BINARY, "choose", manifest.string(),
+                                   "--subject",         "P01",    "--sessions",
+                                   sessions.string()};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -45,14 +48,18 @@ CsvTable trials_of(const fs::path& sessions) {
 // the script's key; targets are balanced in pairs.
 TEST(ChoiceGui, AScriptedQuestSessionWritesTheExpectedRows) {
   testing::TempDir dir;
-  const auto manifest = make_set(dir, R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
-                                          "procedure": )" + std::string(kQuest) + "10}}");
+  const auto manifest =
+      make_set(dir, R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
+                                          "procedure": )" +
+                        std::string(kQuest) + "10}}");
   std::string script = "300 enter\n";
-  const std::string keys[] = {"left", "right", "right", "left", "left", "right", "left", "left", "right", "right"};
+  const std::string keys[] = {"left",  "right", "right", "left",  "left",
+                              "right", "left",  "left",  "right", "right"};
   for (const auto& k : keys) script += "100 " + k + "\n";
   testing::write_file(dir / "keys.txt", script);
   testing::XvfbServer x;
-  testing::Child app(choose_args(manifest, dir / "sessions", {"--script", (dir / "keys.txt").string(), "--frame-clock"}),
+  testing::Child app(choose_args(manifest, dir / "sessions",
+                                 {"--script", (dir / "keys.txt").string(), "--frame-clock"}),
                      x.display(), (dir / "log.txt").string());
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
   const CsvTable table = trials_of(dir / "sessions");
@@ -91,26 +98,34 @@ std::vector<std::vector<std::string>> timeless(const CsvTable& table) {
 // run's row for row (none lost, none repeated), and so does every QUEST's final state.
 TEST(ChoiceGui, KilledSessionsResumeWithTheSameTrialsAndQuestState) {
   testing::TempDir dir;
-  const auto manifest = make_set(dir, R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03},
+  const auto manifest =
+      make_set(dir, R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03},
                                                           {"scene": "small", "method": "usm3d", "sigma": 0.08}],
-                                          "procedure": )" + std::string(kQuest) + "12}}");
+                                          "procedure": )" +
+                        std::string(kQuest) + "12}}");
   testing::XvfbServer x;
   const std::vector<std::string> observer = {"--observer", "weibull:0.4,3,11"};
   std::vector<std::string> at_once = observer;
   at_once.push_back("--frame-clock");  // the same answers: they depend on the trial, not the clock
-  testing::Child whole(choose_args(manifest, dir / "whole", at_once), x.display(), (dir / "whole.txt").string());
+  testing::Child whole(choose_args(manifest, dir / "whole", at_once), x.display(),
+                       (dir / "whole.txt").string());
   ASSERT_EQ(whole.wait(300), 0) << testing::read_file(dir / "whole.txt");
 
   std::mt19937 random(7);
   std::uniform_real_distribution<double> kill_after(0.0, 0.9);
   int kills = 0;
   const fs::path killed_sidecar = dir / "killed/P01_s01.forced-choice.json";
-  auto runs_recorded = [&] { return fs::exists(killed_sidecar) ? json::parse(testing::read_file(killed_sidecar))["runs"].size() : size_t(0); };
+  auto runs_recorded = [&] {
+    return fs::exists(killed_sidecar)
+               ? json::parse(testing::read_file(killed_sidecar))["runs"].size()
+               : size_t(0);
+  };
   for (int launch = 0; launch < 40; ++launch) {
     std::vector<std::string> extra = observer;
     if (fs::exists(killed_sidecar)) extra.push_back("--resume");
     const size_t runs_before = runs_recorded();
-    testing::Child app(choose_args(manifest, dir / "killed", extra), x.display(), (dir / "killed.txt").string());
+    testing::Child app(choose_args(manifest, dir / "killed", extra), x.display(),
+                       (dir / "killed.txt").string());
     // The kill's moment is drawn from when the run has registered itself (so the sidecar can know
     // of it): while the stimuli load, between trials, or while a row is written.
     for (int i = 0; i < 2000 && runs_recorded() == runs_before && app.running(); ++i)
@@ -145,7 +160,8 @@ long pixels_differing(const Image& shot, const json& image, const fs::path& set)
   for (int y = 0; y < stimulus.height; ++y)
     for (int x = 0; x < stimulus.width; ++x)
       for (int c = 0; c < 3; ++c)
-        differing += std::lround(stimulus.at(x, y, c) * 255) != std::lround(shot.at(x0 + x, y0 + y, c) * 255);
+        differing += std::lround(stimulus.at(x, y, c) * 255) !=
+                     std::lround(shot.at(x0 + x, y0 + y, c) * 255);
   return differing;
 }
 
@@ -153,27 +169,34 @@ long pixels_differing(const Image& shot, const json& image, const fs::path& set)
 // centred on the uniform surround; one interval is the reference, the other the enhanced image.
 TEST(ChoiceGui, TheScreenshotsShowBothIntervalsPixelExact) {
   testing::TempDir dir;
-  const auto manifest = make_set(dir, R"({"layout": "temporal", "interval_frames": 30, "blank_frames": 30,
+  const auto manifest =
+      make_set(dir, R"({"layout": "temporal", "interval_frames": 30, "blank_frames": 30,
       "conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
       "procedure": {"type": "constant", "lambdas": [1.5], "repetitions": 2}})");
-  // Enter at 0.3 s starts the trial; interval 1 spans 0–0.5 s of it, the blank 0.5–1 s, interval 2 1–1.5 s.
-  testing::write_file(dir / "keys.txt", "300 enter\n250 screenshot\n1000 screenshot\n600 left\n300 close\n");
+  // Enter at 0.3 s starts the trial; interval 1 spans 0–0.5 s of it, the blank 0.5–1 s, interval 2
+  // 1–1.5 s.
+  testing::write_file(dir / "keys.txt",
+                      "300 enter\n250 screenshot\n1000 screenshot\n600 left\n300 close\n");
   testing::XvfbServer x;
   testing::Child app(choose_args(manifest, dir / "sessions",
-                                 {"--script", (dir / "keys.txt").string(), "--frame-clock", "--screenshot", (dir / "shot.png").string()}),
+                                 {"--script", (dir / "keys.txt").string(), "--frame-clock",
+                                  "--screenshot", (dir / "shot.png").string()}),
                      x.display(), (dir / "log.txt").string());
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
   std::set<std::string> shown;
   for (const char* name : {"shot.png", "shot-2.png"}) {
     const json info = json::parse(testing::read_file(dir / (std::string(name) + ".json")));
     ASSERT_EQ(info["images"].size(), 1u) << name << ": " << info.dump();
-    EXPECT_EQ(info["interval"], std::string(name) == "shot.png" ? "Interval 1 of 2" : "Interval 2 of 2");
+    EXPECT_EQ(info["interval"],
+              std::string(name) == "shot.png" ? "Interval 1 of 2" : "Interval 2 of 2");
     const Image shot = read_image(dir / name);
     const json& image = info["images"][0];
     EXPECT_EQ(image["x"].get<int>(), (shot.width - image["width"].get<int>()) / 2) << "centred";
     EXPECT_EQ(pixels_differing(shot, image, dir / "set"), 0) << name;
     for (int c = 0; c < 3; ++c)
-      EXPECT_EQ(std::lround(shot.at(image["x"].get<int>() - 20, image["y"].get<int>() + 5, c) * 255), 128) << "surround";
+      EXPECT_EQ(
+          std::lround(shot.at(image["x"].get<int>() - 20, image["y"].get<int>() + 5, c) * 255), 128)
+          << "surround";
     shown.insert(image["file"].get<std::string>());
   }
   EXPECT_EQ(shown.size(), 2u);
@@ -188,12 +211,15 @@ TEST(ChoiceGui, TheScreenshotsShowBothIntervalsPixelExact) {
 // number keys answer, and each row records the key's position.
 TEST(ChoiceGui, ThreeAlternativesInARowAnsweredWithNumberKeys) {
   testing::TempDir dir;
-  const auto manifest = make_set(dir, R"({"n_afc": 3, "conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
+  const auto manifest = make_set(
+      dir, R"({"n_afc": 3, "conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03}],
       "procedure": {"type": "constant", "lambdas": [2], "repetitions": 3}})");
-  testing::write_file(dir / "keys.txt", "300 enter\n100 screenshot\n100 1\n100 2\n100 3\n200 enter\n");
+  testing::write_file(dir / "keys.txt",
+                      "300 enter\n100 screenshot\n100 1\n100 2\n100 3\n200 enter\n");
   testing::XvfbServer x;
   testing::Child app(choose_args(manifest, dir / "sessions",
-                                 {"--script", (dir / "keys.txt").string(), "--frame-clock", "--screenshot", (dir / "shot.png").string()}),
+                                 {"--script", (dir / "keys.txt").string(), "--frame-clock",
+                                  "--screenshot", (dir / "shot.png").string()}),
                      x.display(), (dir / "log.txt").string());
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
   const json info = json::parse(testing::read_file(dir / "shot.png.json"));

@@ -6,9 +6,9 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
-#include "formats/responses.h"
 #include "forced_choice/procedure_spec.h"
 #include "forced_choice/replay.h"
+#include "formats/responses.h"
 #include "test_util.h"
 
 namespace countershade::forced_choice {
@@ -34,15 +34,19 @@ ProcedureSpec spec_from(json arguments, const std::string& type) {
 }
 
 void expect_relative(double got, double expected, double tolerance, const std::string& what) {
-  EXPECT_LE(std::abs(got - expected), tolerance * std::abs(expected)) << what << ": " << got << " against " << expected;
+  EXPECT_LE(std::abs(got - expected), tolerance * std::abs(expected))
+      << what << ": " << got << " against " << expected;
 }
 
 TEST(Staircase, EveryReferenceSequenceOfStairHandlersRules) {
-  const json expected = parse_json_file(testing::reference_path("psychometric/staircase.expected.json"));
+  const json expected =
+      parse_json_file(testing::reference_path("psychometric/staircase.expected.json"));
   ASSERT_EQ(expected["sequences"].size(), 5u);
   for (const auto& [name, e] : expected["sequences"].items()) {
     const ProcedureSpec spec = spec_from(e["StairHandler"], "staircase");
-    const CsvTable rows = parse_csv(testing::read_file(testing::reference_path("psychometric/" + e["csv"].get<std::string>())), name);
+    const CsvTable rows = parse_csv(
+        testing::read_file(testing::reference_path("psychometric/" + e["csv"].get<std::string>())),
+        name);
     Staircase stair(spec.staircase);
     EXPECT_EQ(stair.effective_reversals(), e["effective_nReversals"].get<int>()) << name;
     const auto responses = answers(e["responses"]);
@@ -50,20 +54,25 @@ TEST(Staircase, EveryReferenceSequenceOfStairHandlersRules) {
     for (size_t t = 0; t < responses.size(); ++t) {
       ASSERT_FALSE(stair.finished()) << name << " trial " << t + 1;
       const auto& row = rows.rows[t + 1];
-      expect_relative(stair.next_intensity(), std::stod(row[1]), 1e-9, name + " intensity " + row[0]);
+      expect_relative(stair.next_intensity(), std::stod(row[1]), 1e-9,
+                      name + " intensity " + row[0]);
       at_max += spec.staircase.max_value && stair.next_intensity() == *spec.staircase.max_value;
       at_min += spec.staircase.min_value && stair.next_intensity() == *spec.staircase.min_value;
-      EXPECT_EQ(stair.add_response(responses[t]), row[3] == "1") << name << " reversal at trial " << row[0];
+      EXPECT_EQ(stair.add_response(responses[t]), row[3] == "1")
+          << name << " reversal at trial " << row[0];
     }
     EXPECT_TRUE(stair.finished()) << name;
     EXPECT_EQ(int(responses.size()), e["n_trials"].get<int>()) << name;
     EXPECT_EQ(stair.reversal_trials(), e["reversal_trials"].get<std::vector<int>>()) << name;
     const auto reversals = e["reversal_intensities"].get<std::vector<double>>();
     ASSERT_EQ(stair.reversal_intensities().size(), reversals.size()) << name;
-    for (size_t i = 0; i < reversals.size(); ++i) expect_relative(stair.reversal_intensities()[i], reversals[i], 1e-9, name);
+    for (size_t i = 0; i < reversals.size(); ++i)
+      expect_relative(stair.reversal_intensities()[i], reversals[i], 1e-9, name);
     expect_relative(stair.estimate(), e["final_estimate"], 1e-9, name + " estimate");
-    expect_relative(stair.geometric_estimate(), e["final_estimate_geometric"], 1e-9, name + " geometric estimate");
-    expect_relative(stair.next_intensity(), e["next_intensity_after_last_trial"], 1e-9, name + " next intensity");
+    expect_relative(stair.geometric_estimate(), e["final_estimate_geometric"], 1e-9,
+                    name + " geometric estimate");
+    expect_relative(stair.next_intensity(), e["next_intensity_after_last_trial"], 1e-9,
+                    name + " next intensity");
     EXPECT_EQ(at_max, e["n_at_maxVal"].get<int>()) << name;
     EXPECT_EQ(at_min, e["n_at_minVal"].get<int>()) << name;
   }
@@ -77,7 +86,8 @@ void expect_quest_state(const Quest& q, const json& e, const std::string& what) 
 }
 
 TEST(Quest, EveryReferenceSequenceOfPsychtoolbox) {
-  const json expected = parse_json_file(testing::reference_path("psychometric/quest.expected.json"));
+  const json expected =
+      parse_json_file(testing::reference_path("psychometric/quest.expected.json"));
   ASSERT_EQ(expected["sequences"].size(), 3u);
   for (const auto& [name, e] : expected["sequences"].items()) {
     Quest q(spec_from(e["QuestCreate"], "quest").quest);
@@ -85,14 +95,18 @@ TEST(Quest, EveryReferenceSequenceOfPsychtoolbox) {
     EXPECT_NEAR(q.x_threshold(), e["derived"]["xThreshold"].get<double>(), 1e-12) << name;
     EXPECT_NEAR(q.quantile_order(), e["derived"]["quantileOrder"].get<double>(), 1e-12) << name;
     expect_quest_state(q, e["initial"], name + " before the first trial");
-    const CsvTable rows = parse_csv(testing::read_file(testing::reference_path("psychometric/" + e["csv"].get<std::string>())), name);
+    const CsvTable rows = parse_csv(
+        testing::read_file(testing::reference_path("psychometric/" + e["csv"].get<std::string>())),
+        name);
     ASSERT_EQ(rows.rows.size(), 41u) << name;
     for (size_t t = 1; t < rows.rows.size(); ++t) {
       const auto& row = rows.rows[t];
       EXPECT_NEAR(q.quantile(), std::stod(row[1]), 1e-9) << name << " trial " << row[0];
       q.update(std::stod(row[1]), row[2] == "1");
-      const json after = {{"quest_mean", std::stod(row[3])}, {"quest_mode", std::stod(row[4])},
-                          {"quest_sd", std::stod(row[5])}, {"quest_quantile", std::stod(row[6])}};
+      const json after = {{"quest_mean", std::stod(row[3])},
+                          {"quest_mode", std::stod(row[4])},
+                          {"quest_sd", std::stod(row[5])},
+                          {"quest_quantile", std::stod(row[6])}};
       expect_quest_state(q, after, name + " after trial " + row[0]);
     }
     expect_quest_state(q, e["final"], name + " after the last trial");
@@ -102,13 +116,15 @@ TEST(Quest, EveryReferenceSequenceOfPsychtoolbox) {
 // Replay through the command line writes the same sequences as the reference files.
 TEST(Replay, CommandLineWritesTheReferenceQuestSequence) {
   testing::TempDir dir;
-  const json expected = parse_json_file(testing::reference_path("psychometric/quest.expected.json"));
+  const json expected =
+      parse_json_file(testing::reference_path("psychometric/quest.expected.json"));
   json procedure = expected["sequences"]["q2_4afc"]["QuestCreate"];
   procedure["type"] = "quest";
   testing::write_file(dir / "quest.json", procedure.dump());
   const auto reference = testing::reference_path("psychometric/quest_q2_4afc.csv");
-  const auto run = testing::run_cli("simulate --procedure " + (dir / "quest.json").string() + " --responses " +
-                                    reference.string() + " -o " + (dir / "out.csv").string());
+  const auto run =
+      testing::run_cli("simulate --procedure " + (dir / "quest.json").string() + " --responses " +
+                       reference.string() + " -o " + (dir / "out.csv").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const CsvTable got = parse_csv(testing::read_file(dir / "out.csv"), "out.csv");
   const CsvTable want = parse_csv(testing::read_file(reference), "reference");
@@ -116,7 +132,8 @@ TEST(Replay, CommandLineWritesTheReferenceQuestSequence) {
   EXPECT_EQ(got.rows[0], want.rows[0]);
   for (size_t r = 1; r < want.rows.size(); ++r)
     for (size_t c = 1; c < want.rows[r].size(); ++c)
-      EXPECT_NEAR(std::stod(got.rows[r][c]), std::stod(want.rows[r][c]), 1e-9) << "row " << r << " column " << c;
+      EXPECT_NEAR(std::stod(got.rows[r][c]), std::stod(want.rows[r][c]), 1e-9)
+          << "row " << r << " column " << c;
 }
 
 // Each bad procedure exits 2 with one line naming the file and the key.
@@ -126,18 +143,24 @@ TEST(Replay, BadProceduresAreRefusedWithOneLine) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"type": "staircase", "startVal": 0.5, "nDown": 0})", "nDown"},
       {R"({"type": "staircase", "startVal": 0.5, "stepSizes": []})", "stepSizes"},
-      {R"({"type": "staircase", "startVal": 0.5, "stepType": "lin", "stepSizes": [0.1, -0.1]})", "stepSizes"},
+      {R"({"type": "staircase", "startVal": 0.5, "stepType": "lin", "stepSizes": [0.1, -0.1]})",
+       "stepSizes"},
       {R"({"type": "staircase", "startVal": 0, "stepType": "log"})", "startVal"},
-      {R"({"type": "staircase", "startVal": 0.5, "minVal": 0.6, "maxVal": 1, "stepType": "lin"})", "startVal"},
-      {R"({"type": "quest", "tGuess": -1, "tGuessSd": 2, "pThreshold": 0.4, "beta": 3.5, "delta": 0.01, "gamma": 0.5})", "pThreshold"},
-      {R"({"type": "quest", "tGuess": -1, "tGuessSd": 2, "pThreshold": 1.0, "beta": 3.5, "delta": 0.01, "gamma": 0.5})", "pThreshold"},
-      {R"({"type": "quest", "tGuess": -1, "tGuessSd": 2, "pThreshold": 0.8, "beta": 3.5, "delta": 0.01, "gamma": 0.5, "grian": 1})", "grian"},
+      {R"({"type": "staircase", "startVal": 0.5, "minVal": 0.6, "maxVal": 1, "stepType": "lin"})",
+       "startVal"},
+      {R"({"type": "quest", "tGuess": -1, "tGuessSd": 2, "pThreshold": 0.4, "beta": 3.5, "delta": 0.01, "gamma": 0.5})",
+       "pThreshold"},
+      {R"({"type": "quest", "tGuess": -1, "tGuessSd": 2, "pThreshold": 1.0, "beta": 3.5, "delta": 0.01, "gamma": 0.5})",
+       "pThreshold"},
+      {R"({"type": "quest", "tGuess": -1, "tGuessSd": 2, "pThreshold": 0.8, "beta": 3.5, "delta": 0.01, "gamma": 0.5, "grian": 1})",
+       "grian"},
       {R"({"type": "adaptive"})", "type"},
   };
   for (const auto& [text, key] : cases) {
     testing::write_file(dir / "p.json", text);
-    const auto run = testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
-                                      (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
+    const auto run =
+        testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
+                         (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
     EXPECT_EQ(run.exit_code, 2) << text << "\n" << run.output;
     EXPECT_NE(run.output.find("p.json: " + key), std::string::npos) << run.output;
     EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
@@ -145,10 +168,13 @@ TEST(Replay, BadProceduresAreRefusedWithOneLine) {
   }
   testing::write_file(dir / "p.json", R"({"type": "staircase", "startVal": 0.5})");
   testing::write_file(dir / "answers.csv", "trial,response\n1,1\n2,yes\n");
-  const auto run = testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
-                                    (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
+  const auto run =
+      testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
+                       (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.output.find("answers.csv:3: response: expected 0 or 1, got 'yes'"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("answers.csv:3: response: expected 0 or 1, got 'yes'"),
+            std::string::npos)
+      << run.output;
 }
 
 }  // namespace

@@ -11,8 +11,8 @@
 
 #include "enhance/usm3d.h"
 #include "mesh/mesh_io.h"
-#include "mesh/surface_graph.h"
 #include "mesh/smoothing.h"
+#include "mesh/surface_graph.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -64,7 +64,8 @@ TEST(ChebyshevSmoothing, EqualsThePlainIterationsWithinATenThousandthOfTheRange)
 }
 
 TEST(ChebyshevSmoothing, ComponentsKeepTheirOwnStepCounts) {
-  const VertexAdjacency adjacency = adjacency_from_triangles(7, {{0, 1, 2}, {3, 4, 5}});  // vertex 6 alone
+  const VertexAdjacency adjacency =
+      adjacency_from_triangles(7, {{0, 1, 2}, {3, 4, 5}});  // vertex 6 alone
   const Components components = connected_components(adjacency);
   ASSERT_EQ(components.count, 3u);
   std::vector<double> values = {100, 0, 0, 7, 8, 9, 42}, expected = values;
@@ -84,7 +85,8 @@ TEST(ChebyshevSmoothing, ShortSmoothingsTakeThePlainSteps) {
   const VertexAdjacency adjacency = adjacency_from_triangles(mesh.vertex_count(), mesh.triangles);
   const Components components = connected_components(adjacency);
   std::vector<double> signal(mesh.vertex_count());
-  for (size_t v = 0; v < signal.size(); ++v) signal[v] = 50.0 + 10.0 * std::sin(3000.0 * mesh.positions[v].x);
+  for (size_t v = 0; v < signal.size(); ++v)
+    signal[v] = 50.0 + 10.0 * std::sin(3000.0 * mesh.positions[v].x);
   for (int n : {1, 9, 20, 40}) {
     const std::vector<int> steps(components.count, n);
     std::vector<double> plain = signal, chosen = signal, expanded = signal;
@@ -106,14 +108,16 @@ TEST(ChebyshevSmoothing, Usm3dSmoothsTheSameEitherWay) {
   const TriangleMesh mesh = load_mesh(testing::mesh_path("stanford-bunny.obj"));
   const SurfaceGraph surface = surface_graph(mesh.positions, mesh.triangles);
   std::vector<double> lightness(mesh.vertex_count());
-  for (size_t v = 0; v < lightness.size(); ++v) lightness[v] = 50 + 40 * std::sin(200.0 * mesh.positions[v].y);
+  for (size_t v = 0; v < lightness.size(); ++v)
+    lightness[v] = 50 + 40 * std::sin(200.0 * mesh.positions[v].y);
   SmoothingWidth width{std::nullopt, 300, true};
   const SurfaceContrast iterated = surface_contrast(surface, lightness, {}, width);
   width.scheme = SmoothingScheme::chebyshev;
   const SurfaceContrast expanded = surface_contrast(surface, lightness, {}, width);
   double largest = 0, moved = 0;
   for (size_t v = 0; v < lightness.size(); ++v) {
-    largest = std::max(largest, std::abs(expanded.smooth_lightness[v] - iterated.smooth_lightness[v]));
+    largest =
+        std::max(largest, std::abs(expanded.smooth_lightness[v] - iterated.smooth_lightness[v]));
     moved = std::max(moved, std::abs(iterated.smooth_lightness[v] - lightness[v]));
   }
   EXPECT_LT(largest, 1e-4 * 80);

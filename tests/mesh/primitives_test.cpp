@@ -4,10 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <map>
 #include <numbers>
-
-#include <glm/geometric.hpp>
 
 namespace countershade {
 namespace {
@@ -16,7 +15,9 @@ namespace {
 double signed_volume(const TriangleMesh& m) {
   double v = 0;
   for (const auto& t : m.triangles)
-    v += glm::dot(glm::dvec3(m.positions[t.x]), glm::cross(glm::dvec3(m.positions[t.y]), glm::dvec3(m.positions[t.z]))) / 6.0;
+    v += glm::dot(glm::dvec3(m.positions[t.x]),
+                  glm::cross(glm::dvec3(m.positions[t.y]), glm::dvec3(m.positions[t.z]))) /
+         6.0;
   return v;
 }
 
@@ -26,7 +27,8 @@ bool closed_and_oriented(const TriangleMesh& m) {
   for (const auto& t : m.triangles)
     for (int c = 0; c < 3; ++c) ++edges[{t[c], t[(c + 1) % 3]}];
   for (const auto& [e, count] : edges)
-    if (count != 1 || edges.count({e.second, e.first}) == 0 || edges.at({e.second, e.first}) != 1) return false;
+    if (count != 1 || edges.count({e.second, e.first}) == 0 || edges.at({e.second, e.first}) != 1)
+      return false;
   return true;
 }
 
@@ -37,9 +39,10 @@ TEST(Primitives, BoxesAreClosedWeldedAndHaveTheRightVolume) {
   const double ia = a - 2 * r, ib = b - 2 * r, ic = c - 2 * r;
   const double faces = ia * ib * ic + 2 * r * (ia * ib + ib * ic + ia * ic);
   const double edge_sum = 4 * (ia + ib + ic);
-  const double expected[] = {a * b * c,
-                             faces + edge_sum * std::numbers::pi * r * r / 4 + 4.0 / 3.0 * std::numbers::pi * r * r * r,
-                             faces + edge_sum * r * r / 2 + 4.0 / 3.0 * r * r * r};
+  const double expected[] = {
+      a * b * c,
+      faces + edge_sum * std::numbers::pi * r * r / 4 + 4.0 / 3.0 * std::numbers::pi * r * r * r,
+      faces + edge_sum * r * r / 2 + 4.0 / 3.0 * r * r * r};
   int i = 0;
   for (EdgeProfile profile : {EdgeProfile::sharp, EdgeProfile::bevel, EdgeProfile::chamfer}) {
     TriangleMesh box = make_box({a, b, c}, profile, r, 4, 16);
@@ -93,7 +96,8 @@ TEST(Primitives, DiscIsAFlatOpenCapFacingUp) {
   }
   std::map<std::pair<unsigned, unsigned>, int> edges;
   for (const auto& t : disc.triangles)
-    for (int c = 0; c < 3; ++c) ++edges[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}];
+    for (int c = 0; c < 3; ++c)
+      ++edges[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}];
   int rim = 0;
   for (const auto& [e, count] : edges) {
     EXPECT_LE(count, 2);
@@ -130,9 +134,12 @@ TEST(Primitives, ReliefRaisesThePlaneByItsHeightField) {
     const double du = std::cos(angle), dv = std::sin(angle);
     for (double r : {0.5, 0.8, 1.1}) {
       const double f = relief_fine(-0.35 + r * du, 1.25 + r * dv);
-      EXPECT_NEAR(relief_fine(-0.35 + (r + 1.0 / 14.0) * du, 1.25 + (r + 1.0 / 14.0) * dv), f, 1e-9);
-      EXPECT_NEAR(relief_fine(-0.35 + (r + 0.5 / 14.0) * du, 1.25 + (r + 0.5 / 14.0) * dv), -f, 1e-9);
-      EXPECT_NEAR(relief_fine(-0.35 + r * std::cos(angle + 0.1), 1.25 + r * std::sin(angle + 0.1)), f, 1e-9);
+      EXPECT_NEAR(relief_fine(-0.35 + (r + 1.0 / 14.0) * du, 1.25 + (r + 1.0 / 14.0) * dv), f,
+                  1e-9);
+      EXPECT_NEAR(relief_fine(-0.35 + (r + 0.5 / 14.0) * du, 1.25 + (r + 0.5 / 14.0) * dv), -f,
+                  1e-9);
+      EXPECT_NEAR(relief_fine(-0.35 + r * std::cos(angle + 0.1), 1.25 + r * std::sin(angle + 0.1)),
+                  f, 1e-9);
     }
   }
   // Smooth: on a fine lattice no step is larger than the steepest slope allows.

@@ -30,8 +30,10 @@ TEST(Refine, SplitsUntilNoEdgeIsLongerThanTheTarget) {
   EXPECT_EQ(weights.size(), box.vertex_count());
   for (float w : weights) EXPECT_FLOAT_EQ(w, 2.0f);
   // Still one welded, closed surface whose corner normals stay on the cube's axes (creases kept).
-  EXPECT_EQ(connected_components(adjacency_from_triangles(box.vertex_count(), box.triangles)).count, 1u);
-  for (const auto& n : box.corner_normals) EXPECT_NEAR(std::abs(n.x) + std::abs(n.y) + std::abs(n.z), 1.0f, 1e-5f);
+  EXPECT_EQ(connected_components(adjacency_from_triangles(box.vertex_count(), box.triangles)).count,
+            1u);
+  for (const auto& n : box.corner_normals)
+    EXPECT_NEAR(std::abs(n.x) + std::abs(n.y) + std::abs(n.z), 1.0f, 1e-5f);
   std::map<std::pair<unsigned, unsigned>, int> directed;
   for (const auto& t : box.triangles)
     for (int c = 0; c < 3; ++c) ++directed[{t[c], t[(c + 1) % 3]}];

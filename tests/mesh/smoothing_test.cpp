@@ -4,7 +4,6 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <cmath>
 
 #include "mesh/mesh_io.h"

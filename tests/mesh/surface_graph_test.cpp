@@ -5,9 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include <cmath>
+#include <random>
 
 #include "enhance/usm3d.h"
 #include "mesh/primitives.h"
@@ -28,7 +27,8 @@ TriangleMesh split_along_seam(const TriangleMesh& welded, std::vector<uint32_t>*
       split.positions.push_back(welded.positions[v]);
     }
   for (auto& t : split.triangles) {
-    const float centre_x = (welded.positions[t.x].x + welded.positions[t.y].x + welded.positions[t.z].x) / 3.0f;
+    const float centre_x =
+        (welded.positions[t.x].x + welded.positions[t.y].x + welded.positions[t.z].x) / 3.0f;
     if (centre_x <= 0) continue;
     for (int c = 0; c < 3; ++c)
       if ((*copy_of)[t[c]] != UINT32_MAX) t[c] = (*copy_of)[t[c]];
@@ -48,7 +48,8 @@ TEST(SurfaceGraph, WeldingJoinsPointsWithinTheToleranceAndNoOthers) {
     std::vector<std::pair<uint32_t, uint32_t>> edges;
     for (int k = 0; k < 2000; ++k) {
       const glm::vec3 p(anywhere(random), anywhere(random), anywhere(random));
-      const glm::vec3 d = glm::normalize(glm::vec3(direction(random), direction(random), direction(random)));
+      const glm::vec3 d =
+          glm::normalize(glm::vec3(direction(random), direction(random), direction(random)));
       positions.push_back(p);
       positions.push_back(glm::vec3(glm::dvec3(p) + apart * tolerance * glm::dvec3(d)));
     }
@@ -62,12 +63,13 @@ TEST(SurfaceGraph, WeldingJoinsPointsWithinTheToleranceAndNoOthers) {
 // Two loose triangles, sides 3-4-5 and an equilateral one of side 2: each component's mean edge
 // length is its own, and measuring at doubled positions doubles them.
 TEST(SurfaceGraph, EachComponentKnowsItsMeanEdgeLength) {
-  std::vector<glm::vec3> positions = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0},
+  std::vector<glm::vec3> positions = {{0, 0, 0},  {3, 0, 0},  {0, 4, 0},
                                       {10, 0, 0}, {12, 0, 0}, {11, float(std::sqrt(3.0)), 0}};
   SurfaceGraph g = surface_graph(positions, std::vector<glm::uvec3>{{0, 1, 2}, {3, 4, 5}});
   ASSERT_EQ(g.components.count, 2u);
   ASSERT_EQ(g.mean_edge_length.size(), 2u);
-  const uint32_t right = g.components.label[g.point_of[0]], equilateral = g.components.label[g.point_of[3]];
+  const uint32_t right = g.components.label[g.point_of[0]],
+                 equilateral = g.components.label[g.point_of[3]];
   EXPECT_NEAR(g.mean_edge_length[right], 4.0, 1e-6);
   EXPECT_NEAR(g.mean_edge_length[equilateral], 2.0, 1e-6);
   for (auto& p : positions) p *= 2.0f;
@@ -93,7 +95,9 @@ TEST(SurfaceGraph, ASeamDoesNotStopTheSmoothing) {
   const TriangleMesh split = split_along_seam(welded, &copy_of);
   ASSERT_GT(split.vertex_count(), welded.vertex_count());
   // Without welding the seam cuts the plane in two.
-  EXPECT_EQ(connected_components(adjacency_from_triangles(split.vertex_count(), split.triangles)).count, 2u);
+  EXPECT_EQ(
+      connected_components(adjacency_from_triangles(split.vertex_count(), split.triangles)).count,
+      2u);
   // A step in lightness across the plane, the same at a vertex and at its copy.
   auto step = [](const glm::vec3& p) { return p.z < 0 ? 30.0 : 70.0; };
   std::vector<double> a(welded.vertex_count()), b(split.vertex_count());
@@ -131,14 +135,16 @@ TEST(SurfaceGraph, PolygonsUseTheTriangulated1Ring) {
       quads.push_back({v, v + 1, v + uint32_t(n) + 2, v + uint32_t(n) + 1});
     }
   std::vector<double> checker(positions.size());
-  for (size_t v = 0; v < positions.size(); ++v) checker[v] = (int(positions[v].x) + int(positions[v].y)) % 2 ? 1.0 : -1.0;
+  for (size_t v = 0; v < positions.size(); ++v)
+    checker[v] = (int(positions[v].x) + int(positions[v].y)) % 2 ? 1.0 : -1.0;
   auto after = [&](const std::vector<std::pair<uint32_t, uint32_t>>& edges) {
     const SurfaceGraph g = surface_graph(positions, edges);
     std::vector<double> values = checker;
     laplacian_smooth(g.adjacency, g.components.label, {20}, values);
     double interior = 0;
     for (size_t v = 0; v < positions.size(); ++v)
-      if (positions[v].x > 2 && positions[v].x < n - 2 && positions[v].y > 2 && positions[v].y < n - 2)
+      if (positions[v].x > 2 && positions[v].x < n - 2 && positions[v].y > 2 &&
+          positions[v].y < n - 2)
         interior = std::max(interior, std::abs(values[v]));
     return interior;
   };

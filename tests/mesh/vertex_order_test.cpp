@@ -25,7 +25,8 @@ ShuffledGrid shuffled_grid() {
   std::vector<uint32_t> shuffle(plane.vertex_count());
   std::iota(shuffle.begin(), shuffle.end(), 0u);
   std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937(7));
-  const VertexAdjacency adjacency = renumbered(adjacency_from_triangles(plane.vertex_count(), plane.triangles), shuffle);
+  const VertexAdjacency adjacency =
+      renumbered(adjacency_from_triangles(plane.vertex_count(), plane.triangles), shuffle);
   return {adjacency, connected_components(adjacency).label};
 }
 
@@ -58,8 +59,10 @@ TEST(VertexOrder, SmoothingInBreadthFirstOrderGivesTheSameBitsAsTheGivenOrder) {
   for (double& v : signal) v = std::uniform_real_distribution<double>(0, 100)(random);
   for (SmoothingScheme scheme : {SmoothingScheme::iterate, SmoothingScheme::chebyshev}) {
     std::vector<double> given = signal, reordered = signal;
-    if (scheme == SmoothingScheme::iterate) laplacian_smooth(grid.adjacency, grid.label, {kReorderSteps}, given, 2);
-    else chebyshev_smooth(grid.adjacency, grid.label, {kReorderSteps}, given, 2);
+    if (scheme == SmoothingScheme::iterate)
+      laplacian_smooth(grid.adjacency, grid.label, {kReorderSteps}, given, 2);
+    else
+      chebyshev_smooth(grid.adjacency, grid.label, {kReorderSteps}, given, 2);
     smooth_over_rings(grid.adjacency, grid.label, {kReorderSteps}, reordered, scheme, 2);
     EXPECT_EQ(given, reordered);
     EXPECT_NE(given, signal);

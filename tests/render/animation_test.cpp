@@ -5,18 +5,17 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
-
 #include <glm/geometric.hpp>
+#include <limits>
 
 #include "core/image.h"
 #include "enhance/view.h"
+#include "enhance/view_plan.h"
 #include "render/camera.h"
 #include "render/scene_animation.h"
+#include "render/scene_loader.h"
 #include "stimuli/perspective_coherence.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -40,25 +39,31 @@ TEST(Track, CatmullRomIsContinuouslyDifferentiable) {
   const double h = 1e-6;
   for (size_t k = 1; k + 1 < kTimes.size(); ++k) {
     const double t = kTimes[k];
-    const glm::dvec3 left = (track.at(t) - track.at(t - h)) / h, right = (track.at(t + h) - track.at(t)) / h;
+    const glm::dvec3 left = (track.at(t) - track.at(t - h)) / h,
+                     right = (track.at(t + h) - track.at(t)) / h;
     EXPECT_LT(glm::length(left - right), 1e-4 * (1 + glm::length(left))) << "key " << k;
     EXPECT_LT(glm::length(track.at(t - h) - track.at(t)), 1e-4);
   }
   // A linear path has corners there: the test can tell.
   const Track linear(kTimes, kValues, Interpolation::linear);
   const double t = kTimes[1];
-  EXPECT_GT(glm::length((linear.at(t) - linear.at(t - h)) / h - (linear.at(t + h) - linear.at(t)) / h), 1.0);
+  EXPECT_GT(
+      glm::length((linear.at(t) - linear.at(t - h)) / h - (linear.at(t + h) - linear.at(t)) / h),
+      1.0);
 }
 
 TEST(Track, FewKeysOrTimesThatDoNotIncreaseAreRefused) {
   EXPECT_THROW(Track({0.0}, {{1, 1, 1}}, Interpolation::linear), std::invalid_argument);
-  EXPECT_THROW(Track({0.0, 1.0, 1.0}, {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, Interpolation::linear), std::invalid_argument);
-  EXPECT_THROW(Track({0.0, 2.0, 1.0}, {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, Interpolation::linear), std::invalid_argument);
+  EXPECT_THROW(Track({0.0, 1.0, 1.0}, {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, Interpolation::linear),
+               std::invalid_argument);
+  EXPECT_THROW(Track({0.0, 2.0, 1.0}, {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}, Interpolation::linear),
+               std::invalid_argument);
 }
 
 std::string scene_json(const std::string& eye, const std::string& animation) {
   return R"({"version": 1,
-    "camera": {"eye": )" + eye + R"(, "target": [0, 0.3, 0], "fov": 35, "width": 48, "height": 36},
+    "camera": {"eye": )" +
+         eye + R"(, "target": [0, 0.3, 0], "fov": 35, "width": 48, "height": 36},
     "render": {"spp": 2},
     "objects": [{"name": "ground", "shape": {"type": "plane", "size": 6}},
                 {"name": "box", "shape": {"type": "box", "size": [0.6, 0.6, 0.6]}, "transform": {"translate": [0, 0.3, 0]}}],
@@ -73,13 +78,16 @@ const char* kOrbit = R"({"duration": 1.5, "fps": 2,
 
 TEST(SceneAnimation, ThePosedSceneMovesCameraLightsAndObjects) {
   testing::TempDir dir;
-  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
+  const Scene base =
+      load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
   ASSERT_TRUE(base.animation);
   EXPECT_EQ(base.animation->frame_count(), 3);
   const Scene end = scene_at(base, 1.0);
   EXPECT_EQ(end.camera.eye, glm::dvec3(4, 1, 0));
-  EXPECT_LT(glm::length(end.directional_lights[0].direction - glm::dvec3(0, 1, 0)), 1e-12);  // normalised
-  const glm::dvec3 moved = glm::dvec3(end.objects[1].mesh.positions[0]) - glm::dvec3(base.objects[1].mesh.positions[0]);
+  EXPECT_LT(glm::length(end.directional_lights[0].direction - glm::dvec3(0, 1, 0)),
+            1e-12);  // normalised
+  const glm::dvec3 moved =
+      glm::dvec3(end.objects[1].mesh.positions[0]) - glm::dvec3(base.objects[1].mesh.positions[0]);
   EXPECT_LT(glm::length(moved - glm::dvec3(1, 0, 0)), 1e-6);
   EXPECT_EQ(end.objects[0].mesh.positions, base.objects[0].mesh.positions);  // the ground stays
 }
@@ -97,34 +105,52 @@ TEST(SceneAnimation, AScaledObjectsEdgeLengthsAreMeasuredAgain) {
   ASSERT_EQ(before.size(), 1u);
   ASSERT_EQ(after.size(), 1u);
   EXPECT_NEAR(after[0], 2 * before[0], 1e-6);
-  EXPECT_EQ(end.objects[0].surface.mean_edge_length, base.objects[0].surface.mean_edge_length);  // the ground stays
+  EXPECT_EQ(end.objects[0].surface.mean_edge_length,
+            base.objects[0].surface.mean_edge_length);  // the ground stays
 }
 
 TEST(SceneAnimation, BadPathsNameTheKey) {
   testing::TempDir dir;
   auto error = [&](const std::string& animation) {
-    return testing::input_error_of([&] { load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", animation))); });
+    return testing::input_error_of([&] {
+      load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", animation)));
+    });
   };
-  EXPECT_NE(error(R"({"camera": {"eye": {"times": [0, 0.5, 0.5], "values": [[0,1,4], [1,1,4], [2,1,4]]}}})")
-                .find("animation.camera.eye.times: times must increase strictly (key 3)"), std::string::npos);
+  EXPECT_NE(
+      error(
+          R"({"camera": {"eye": {"times": [0, 0.5, 0.5], "values": [[0,1,4], [1,1,4], [2,1,4]]}}})")
+          .find("animation.camera.eye.times: times must increase strictly (key 3)"),
+      std::string::npos);
   EXPECT_NE(error(R"({"camera": {"fov": {"times": [0], "values": [30]}}})")
-                .find("animation.camera.fov.times: a path needs at least two keys"), std::string::npos);
-  EXPECT_NE(error(R"({"objects": [{"name": "cube", "translate": {"times": [0, 1], "values": [[0,0,0], [1,0,0]]}}]})")
-                .find("animation.objects[0].name: no object of the scene is called 'cube'"), std::string::npos);
-  EXPECT_NE(error(R"({"lights": [{"light": 0, "position": {"times": [0, 1], "values": [[0,0,0], [1,0,0]]}}]})")
-                .find("animation.lights[0].position: applies to a point light only"), std::string::npos);
-  EXPECT_NE(error(R"({"duration": 1, "camera": {"eye": {"times": [0, 2], "values": [[0,1,4], [1,1,4]]}}})")
-                .find("animation.camera.eye.times: must lie in [0, duration]"), std::string::npos);
-  EXPECT_NE(error(R"({"camera": {"eye": {"times": [0, 1], "values": [[0,1,4], [1,1,4]], "ease": 1}}})")
-                .find("animation.camera.eye.ease: unknown key"), std::string::npos);
+                .find("animation.camera.fov.times: a path needs at least two keys"),
+            std::string::npos);
+  EXPECT_NE(
+      error(
+          R"({"objects": [{"name": "cube", "translate": {"times": [0, 1], "values": [[0,0,0], [1,0,0]]}}]})")
+          .find("animation.objects[0].name: no object of the scene is called 'cube'"),
+      std::string::npos);
+  EXPECT_NE(
+      error(
+          R"({"lights": [{"light": 0, "position": {"times": [0, 1], "values": [[0,0,0], [1,0,0]]}}]})")
+          .find("animation.lights[0].position: applies to a point light only"),
+      std::string::npos);
+  EXPECT_NE(
+      error(
+          R"({"duration": 1, "camera": {"eye": {"times": [0, 2], "values": [[0,1,4], [1,1,4]]}}})")
+          .find("animation.camera.eye.times: must lie in [0, duration]"),
+      std::string::npos);
+  EXPECT_NE(
+      error(R"({"camera": {"eye": {"times": [0, 1], "values": [[0,1,4], [1,1,4]], "ease": 1}}})")
+          .find("animation.camera.eye.ease: unknown key"),
+      std::string::npos);
 }
 
 // Frame 2 of the orbit (t = 1) is the scene with every path at its last key, written still.
 TEST(SceneAnimation, RenderFramesWritesNumberedFramesLikeStillScenes) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
-  const auto r = testing::run_cli("render " + (dir / "orbit.json").string() + " -o " + (dir / "f.png").string() +
-                                  " --frames 1:2");
+  const auto r = testing::run_cli("render " + (dir / "orbit.json").string() + " -o " +
+                                  (dir / "f.png").string() + " --frames 1:2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "f-0000.png"));
   ASSERT_TRUE(std::filesystem::exists(dir / "f-0001.png"));
@@ -132,12 +158,18 @@ TEST(SceneAnimation, RenderFramesWritesNumberedFramesLikeStillScenes) {
   still.replace(still.find("\"direction\": [0.4, 1, 0.3]"), 26, "\"direction\": [0, 1, 0]");
   still.replace(still.find("\"translate\": [0, 0.3, 0]"), 24, "\"translate\": [1, 0.3, 0]");
   testing::write_file(dir / "still.json", still);
-  ASSERT_EQ(testing::run_cli("render " + (dir / "still.json").string() + " -o " + (dir / "still.png").string()).exit_code, 0);
+  ASSERT_EQ(testing::run_cli("render " + (dir / "still.json").string() + " -o " +
+                             (dir / "still.png").string())
+                .exit_code,
+            0);
   EXPECT_EQ(testing::read_file(dir / "f-0002.png"), testing::read_file(dir / "still.png"));
   EXPECT_NE(testing::read_file(dir / "f-0001.png"), testing::read_file(dir / "still.png"));
-  const auto bad = testing::run_cli("render " + (dir / "still.json").string() + " -o " + (dir / "x.png").string() + " --frames 0:0");
+  const auto bad = testing::run_cli("render " + (dir / "still.json").string() + " -o " +
+                                    (dir / "x.png").string() + " --frames 0:0");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.output.find("--frames: " + (dir / "still.json").string() + " has no animation"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("--frames: " + (dir / "still.json").string() + " has no animation"),
+            std::string::npos)
+      << bad.output;
 }
 
 // A pattern painted on the box (a function of its own x) as a per-pixel layer at time t.
@@ -146,9 +178,12 @@ std::vector<float> painted_box(const View& v, double t) {
   std::vector<float> out(v.depth.size(), 0.0f);
   for (size_t i = 0; i < out.size(); ++i) {
     if (v.render.gbuffer.object[i] != 1) continue;
-    const Ray r = rays.ray(double(i % size_t(v.width())) + 0.5, double(i / size_t(v.width())) + 0.5);
-    const glm::dvec3 p = r.origin + r.direction * (double(v.depth[i]) / glm::dot(r.direction, rays.forward()));
-    out[i] = float(5 * std::sin(2 * 3.141592653589793 * (p.x - t) / 0.5));  // the box moves by (t, 0, 0)
+    const Ray r =
+        rays.ray(double(i % size_t(v.width())) + 0.5, double(i / size_t(v.width())) + 0.5);
+    const glm::dvec3 p =
+        r.origin + r.direction * (double(v.depth[i]) / glm::dot(r.direction, rays.forward()));
+    out[i] =
+        float(5 * std::sin(2 * 3.141592653589793 * (p.x - t) / 0.5));  // the box moves by (t, 0, 0)
   }
   return out;
 }
@@ -157,7 +192,8 @@ std::vector<float> painted_box(const View& v, double t) {
 // reprojects onto itself; left where it was, it does not.
 TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
   testing::TempDir dir;
-  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", R"({"duration": 1, "fps": 10,
+  const Scene base = load_scene(
+      testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", R"({"duration": 1, "fps": 10,
     "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]]}}]})")));
   const auto a = render_view(std::make_shared<Scene>(scene_at(base, 0.3)));
   const auto b = render_view(std::make_shared<Scene>(scene_at(base, 0.4)));
@@ -165,9 +201,11 @@ TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
     return object < 0 ? p : carry_point(base, size_t(object), 0.3, 0.4, p);
   };
   const auto pa = painted_box(*a, 0.3), pb = painted_box(*b, 0.4);
-  const Reprojection carried = reprojection_rms(*a, pa, *b, pb, carry), left = reprojection_rms(*a, pa, *b, pb);
+  const Reprojection carried = reprojection_rms(*a, pa, *b, pb, carry),
+                     left = reprojection_rms(*a, pa, *b, pb);
   EXPECT_LT(glm::length(carry_point(base, 1, 0.3, 0.4, {0, 0, 0}) - glm::dvec3(0.1, 0, 0)), 1e-12);
-  EXPECT_EQ(carry_point(base, 0, 0.3, 0.4, {2, 0, 1}), glm::dvec3(2, 0, 1));  // the ground has no path
+  EXPECT_EQ(carry_point(base, 0, 0.3, 0.4, {2, 0, 1}),
+            glm::dvec3(2, 0, 1));  // the ground has no path
   EXPECT_LT(carried.rms, 0.2) << "left behind: " << left.rms;
   EXPECT_GT(left.rms, 1.0) << "carried: " << carried.rms;
 }
@@ -177,13 +215,15 @@ TEST(SceneAnimation, PointsOfAMovingObjectAreCarriedAlongItsMotion) {
 // not shimmer.
 TEST(SceneAnimation, TheVertexSignalOfAStaticDiffuseSceneDoesNotDependOnTheCamera) {
   testing::TempDir dir;
-  const Scene base = load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
+  const Scene base =
+      load_scene(testing::write_file(dir / "s.json", scene_json("[0, 1, 4]", kOrbit)));
   Scene a = base, b = base;
   a.animation.reset();
   b.animation.reset();
   b.camera.eye = {1.5, 1.2, 3.6};
   const ViewPlan plan = plan_for("usm3d", {{"sigma", 0.1}}, 1.0);
-  const auto va = render_view(std::make_shared<Scene>(a), plan, {}), vb = render_view(std::make_shared<Scene>(b), plan, {});
+  const auto va = render_view(std::make_shared<Scene>(a), plan, {}),
+             vb = render_view(std::make_shared<Scene>(b), plan, {});
   ASSERT_EQ(va->render.vertices.front.size(), 2u);
   // Vertices that no pixel of a view can depend on are not shaded in it (value 0); every vertex
   // both views shade has the same value.
@@ -203,8 +243,8 @@ TEST(SceneAnimation, TheVertexSignalOfAStaticDiffuseSceneDoesNotDependOnTheCamer
 TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
-  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --csv " + (dir / "f.csv").string() +
-                                  " --maps " + (dir / "maps").string());
+  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --csv " +
+                                  (dir / "f.csv").string() + " --maps " + (dir / "maps").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 frame pairs, mean flicker 0.0000 L*"), std::string::npos) << r.output;
   EXPECT_EQ(testing::count_lines(testing::read_file(dir / "f.csv")), 3);
@@ -212,8 +252,9 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/flicker-0002.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "maps/plain-0002.png"));
   // --width alone scales the frames and keeps the scene's 4:3.
-  const auto small = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --width 24 --frames 0:1 --maps " +
-                                      (dir / "small").string());
+  const auto small =
+      testing::run_cli("flicker " + (dir / "orbit.json").string() +
+                       " --width 24 --frames 0:1 --maps " + (dir / "small").string());
   ASSERT_EQ(small.exit_code, 0) << small.output;
   const Image map = read_image(dir / "small/flicker-0001.png");
   EXPECT_EQ(map.width, 24);
@@ -221,7 +262,8 @@ TEST(Flicker, TheUnenhancedRenderHasNoneAndABadRangeIsOneLine) {
   const auto bad = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --frames 1:1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(testing::count_lines(bad.output), 1) << bad.output;
-  const auto unknown = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --object nothing");
+  const auto unknown =
+      testing::run_cli("flicker " + (dir / "orbit.json").string() + " --object nothing");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.output.find("--object"), std::string::npos) << unknown.output;
   EXPECT_EQ(testing::count_lines(unknown.output), 1) << unknown.output;
@@ -233,7 +275,8 @@ TEST(Flicker, AnObjectLeftOutTakesItsMotionAlong) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
   const std::string base = "flicker " + (dir / "orbit.json").string();
-  const auto r = testing::run_cli(base + " --without ground --object box --csv " + (dir / "f.csv").string());
+  const auto r =
+      testing::run_cli(base + " --without ground --object box --csv " + (dir / "f.csv").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("box: largest change 0.00 code levels"), std::string::npos) << r.output;
   const auto gone = testing::run_cli(base + " --without box --object box");
@@ -250,9 +293,12 @@ TEST(Flicker, AnObjectLeftOutTakesItsMotionAlong) {
     "lights": [{"type": "directional", "direction": [0.4, 1, 0.3], "irradiance": 2.5}],
     "animation": {"duration": 1, "fps": 2,
                   "objects": [{"name": "box", "translate": {"times": [0, 1], "values": [[0, 0, 0], [1, 0, 0]]}}]}})");
-  const auto empty = testing::run_cli("flicker " + (dir / "alone.json").string() + " --without box");
+  const auto empty =
+      testing::run_cli("flicker " + (dir / "alone.json").string() + " --without box");
   EXPECT_EQ(empty.exit_code, 2);
-  EXPECT_NE(empty.output.find("no surface point is seen in two consecutive frames"), std::string::npos) << empty.output;
+  EXPECT_NE(empty.output.find("no surface point is seen in two consecutive frames"),
+            std::string::npos)
+      << empty.output;
   EXPECT_EQ(testing::count_lines(empty.output), 1) << empty.output;
 }
 
@@ -261,13 +307,17 @@ TEST(Flicker, AnObjectLeftOutTakesItsMotionAlong) {
 TEST(Flicker, AtAScaleTheLayersAreComparedBlurred) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
-  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() + " --scale-px 2 --csv " + (dir / "f.csv").string());
+  const auto r = testing::run_cli("flicker " + (dir / "orbit.json").string() +
+                                  " --scale-px 2 --csv " + (dir / "f.csv").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("at 2 px: 0.0000 L*"), std::string::npos) << r.output;
   EXPECT_NE(testing::read_file(dir / "f.csv").find("plain_at_scale_lstar"), std::string::npos);
   double plain = 0, at_scale = 0;
-  ASSERT_EQ(std::sscanf(r.output.substr(r.output.find("own reprojection ")).c_str(), "own reprojection %lf", &plain), 1);
-  ASSERT_EQ(std::sscanf(r.output.substr(r.output.find("(plain ")).c_str(), "(plain %lf", &at_scale), 1);
+  ASSERT_EQ(std::sscanf(r.output.substr(r.output.find("own reprojection ")).c_str(),
+                        "own reprojection %lf", &plain),
+            1);
+  ASSERT_EQ(std::sscanf(r.output.substr(r.output.find("(plain ")).c_str(), "(plain %lf", &at_scale),
+            1);
   EXPECT_GT(plain, 0.0);
   EXPECT_LT(at_scale, plain) << r.output;
 }
@@ -277,10 +327,12 @@ TEST(Flicker, AtAScaleTheLayersAreComparedBlurred) {
 TEST(Flicker, AnObjectsChangeIsCountedInCodeLevels) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
-  const std::string base = "flicker " + (dir / "orbit.json").string() + " --object box --csv " + (dir / "f.csv").string();
+  const std::string base = "flicker " + (dir / "orbit.json").string() + " --object box --csv " +
+                           (dir / "f.csv").string();
   const auto plain = testing::run_cli(base);
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  EXPECT_NE(plain.output.find("box: largest change 0.00 code levels"), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("box: largest change 0.00 code levels"), std::string::npos)
+      << plain.output;
   EXPECT_NE(testing::read_file(dir / "f.csv").find("object_max_levels"), std::string::npos);
   const auto usm2d = testing::run_cli(base + " --method usm2d --sigma-px 3 --lambda 3");
   ASSERT_EQ(usm2d.exit_code, 0) << usm2d.output;
@@ -306,28 +358,38 @@ TEST(Flicker, TheStableRmsLeavesOutPixelsWhosePlainRenderChanges) {
 TEST(Flicker, TheStableFlickerWithALooseToleranceIsTheFullOne) {
   testing::TempDir dir;
   testing::write_file(dir / "orbit.json", scene_json("[0, 1, 4]", kOrbit));
-  const std::string base = "flicker " + (dir / "orbit.json").string() + " --method usm2d --sigma-px 3 --lambda 2";
-  const auto loose = testing::run_cli(base + " --stable 100 --object box --csv " + (dir / "f.csv").string());
+  const std::string base =
+      "flicker " + (dir / "orbit.json").string() + " --method usm2d --sigma-px 3 --lambda 2";
+  const auto loose =
+      testing::run_cli(base + " --stable 100 --object box --csv " + (dir / "f.csv").string());
   ASSERT_EQ(loose.exit_code, 0) << loose.output;
   double full = 0, stable = 0;
-  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("mean flicker ")).c_str(), "mean flicker %lf", &full), 1);
-  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("within 100: ")).c_str(), "within 100: %lf", &stable), 1);
+  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("mean flicker ")).c_str(),
+                        "mean flicker %lf", &full),
+            1);
+  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("within 100: ")).c_str(),
+                        "within 100: %lf", &stable),
+            1);
   EXPECT_GT(full, 0.1);
   EXPECT_DOUBLE_EQ(stable, full);
   EXPECT_NE(testing::read_file(dir / "f.csv").find("flicker_stable_lstar"), std::string::npos);
   EXPECT_NE(testing::read_file(dir / "f.csv").find("object_stable_p99_levels"), std::string::npos);
   double object_max = 0, object_p99 = 0, stable_max = 0, stable_p99 = 0;
-  ASSERT_EQ(std::sscanf(loose.output.substr(loose.output.find("box: largest change ")).c_str(),
-                        "box: largest change %lf code levels (p99 %lf, worst pair), where stable %lf (p99 %lf)", &object_max,
-                        &object_p99, &stable_max, &stable_p99),
-            4)
+  ASSERT_EQ(
+      std::sscanf(
+          loose.output.substr(loose.output.find("box: largest change ")).c_str(),
+          "box: largest change %lf code levels (p99 %lf, worst pair), where stable %lf (p99 %lf)",
+          &object_max, &object_p99, &stable_max, &stable_p99),
+      4)
       << loose.output;
   EXPECT_GT(object_max, 1.0);
   EXPECT_EQ(stable_max, object_max);
   EXPECT_EQ(stable_p99, object_p99);
   const auto tight = testing::run_cli(base + " --stable 0.2 --bits 16");
   ASSERT_EQ(tight.exit_code, 0) << tight.output;
-  ASSERT_EQ(std::sscanf(tight.output.substr(tight.output.find("within 0.2: ")).c_str(), "within 0.2: %lf", &stable), 1);
+  ASSERT_EQ(std::sscanf(tight.output.substr(tight.output.find("within 0.2: ")).c_str(),
+                        "within 0.2: %lf", &stable),
+            1);
   EXPECT_LT(stable, full) << tight.output;
   EXPECT_EQ(testing::run_cli(base + " --bits 12").exit_code, 2);
 }

@@ -7,8 +7,8 @@
 
 #include "render/camera.h"
 #include "render/renderer.h"
-#include "test_util.h"
 #include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -32,8 +32,8 @@ Scene two_objects(const testing::TempDir& dir, const std::string& render) {
 // sampler's Latin hypercubes and the single centre sample.
 TEST(CameraSamples, TheHitsTracedAheadAreThePixelPassOwn) {
   testing::TempDir dir;
-  for (const char* settings : {R"({"spp": 8})", R"({"spp": 5, "sampler": "independent"})", R"({"spp": 1})",
-                               R"({"spp": 11})"}) {
+  for (const char* settings : {R"({"spp": 8})", R"({"spp": 5, "sampler": "independent"})",
+                               R"({"spp": 1})", R"({"spp": 11})"}) {
     const Scene scene = two_objects(dir, settings);
     const RayTracer tracer(scene);
     ASSERT_NE(trace_camera_samples(scene, tracer, 2), nullptr) << settings;
@@ -44,9 +44,11 @@ TEST(CameraSamples, TheHitsTracedAheadAreThePixelPassOwn) {
     for (const RenderOptions& options : {RenderOptions{}, rings}) {
       RenderOptions in_pixel_pass = options;
       in_pixel_pass.trace_ahead = false;
-      const RenderResult ahead = render(scene, tracer, options), traced = render(scene, tracer, in_pixel_pass);
+      const RenderResult ahead = render(scene, tracer, options),
+                         traced = render(scene, tracer, in_pixel_pass);
       EXPECT_EQ(ahead.radiance.pixels, traced.radiance.pixels) << settings;
-      EXPECT_EQ(ahead.rays.primary, traced.rays.primary) << settings << ": every camera ray counted once";
+      EXPECT_EQ(ahead.rays.primary, traced.rays.primary)
+          << settings << ": every camera ray counted once";
     }
   }
 }

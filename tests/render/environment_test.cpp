@@ -3,9 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
+#include <numbers>
 
 #include "core/random.h"
 
@@ -21,7 +20,8 @@ glm::dvec3 integrate(const EnvironmentMap& map) {
   for (int i = 0; i < nt; ++i)
     for (int j = 0; j < np; ++j) {
       double v = (i + 0.5) / nt, u = (j + 0.5) / np;
-      sum += map.radiance(equirect_direction(u, v)) * std::sin(kPi * v) * (kPi / nt) * (2 * kPi / np);
+      sum +=
+          map.radiance(equirect_direction(u, v)) * std::sin(kPi * v) * (kPi / nt) * (2 * kPi / np);
     }
   return sum;
 }
@@ -73,7 +73,8 @@ TEST(Environment, AMapOfConstantRowsGivesTheBilinearRadiance) {
     const glm::dvec3 a = same_rows.radiance(d), b = bilinear.radiance(d);
     for (int k = 0; k < 3; ++k) ASSERT_NEAR(a[k], b[k], 1e-12 * (1 + b[k])) << i;
   }
-  EXPECT_NE(same_rows.radiance(equirect_direction(0.0, 0.999))[0], bilinear.radiance(equirect_direction(0.0, 0.999))[0]);
+  EXPECT_NE(same_rows.radiance(equirect_direction(0.0, 0.999))[0],
+            bilinear.radiance(equirect_direction(0.0, 0.999))[0]);
 }
 
 TEST(Environment, ConstantMapIntegratesToFourPi) {

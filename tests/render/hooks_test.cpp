@@ -1,16 +1,17 @@
 // The rendering hooks: a shading hook changes how light is reflected but never what is in
 // shadow; a texture hook replaces what a material samples; without hooks nothing changes.
 
+#include "render/hooks.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "enhance/method.h"
-#include "render/hooks.h"
+#include "enhance/view_plan.h"
+#include "render/scene_loader.h"
 #include "render/shading.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -28,22 +29,26 @@ const char* kShadowScene = R"({
 
 class PlainHook final : public ShadingHook {
  public:
-  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi,
+                     const glm::dvec3& incident) const override {
     return reflect_plain(s, wi, incident);
   }
 };
 
 // Shades as if every light came straight along the normal, optionally fading out over a band of
-// the terminator. With `dark_side`, it shades the dark side too, where the light mirrored across the
-// tangent plane is open (as exaggerated shading does).
+// the terminator. With `dark_side`, it shades the dark side too, where the light mirrored across
+// the tangent plane is open (as exaggerated shading does).
 class HeadOnHook final : public ShadingHook {
  public:
-  explicit HeadOnHook(double band = 0, bool dark_side = false) : band_(band), dark_side_(dark_side) {}
-  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&, const glm::dvec3& incident) const override {
+  explicit HeadOnHook(double band = 0, bool dark_side = false)
+      : band_(band), dark_side_(dark_side) {}
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3&,
+                     const glm::dvec3& incident) const override {
     return reflect_plain(s, s.normal, incident);
   }
   bool shades_dark_side() const override { return dark_side_; }
-  std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s, const glm::dvec3& wi) const override {
+  std::optional<glm::dvec3> dark_side_direction(const ShadingInputs& s,
+                                                const glm::dvec3& wi) const override {
     return wi - 2 * glm::dot(s.normal, wi) * s.normal;
   }
   double terminator_band() const override { return band_; }
@@ -63,7 +68,8 @@ class ConstantTexture final : public TextureHook {
 };
 
 std::shared_ptr<const View> base_view(const testing::TempDir& dir, const std::string& json) {
-  return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "s.json", json))), {}, {});
+  return render_view(std::make_shared<Scene>(load_scene(testing::write_file(dir / "s.json", json))),
+                     {}, {});
 }
 
 TEST(Hooks, APlainShadingHookRendersThePlainImage) {
@@ -89,7 +95,8 @@ TEST(Hooks, AShadingHookChangesShadingButNotShadows) {
   const double head_on = 0.6 / M_PI * 2.0;  // albedo/π · irradiance · cos 0
   for (size_t i = 0; i < g.object.size(); ++i) {
     if (g.object[i] != 0) continue;  // the floor only
-    const float before = view->render.radiance.pixels[3 * i], after = hooked->render.radiance.pixels[3 * i];
+    const float before = view->render.radiance.pixels[3 * i],
+                after = hooked->render.radiance.pixels[3 * i];
     if (before == 0.0f) {  // in the box's shadow: stays dark
       EXPECT_EQ(after, 0.0f) << i;
       ++shadow;
@@ -113,7 +120,8 @@ TEST(Hooks, TheTerminatorFadeRisesSmoothlyFromZeroToOne) {
   const double h = 1e-6;  // flat at both ends: no kink where the fade starts or ends
   EXPECT_LT(terminator_fade(h, band) / h, 1e-4);
   EXPECT_LT((1 - terminator_fade(band - h, band)) / h, 1e-4);
-  for (double c = 0; c < band; c += 0.01) EXPECT_LT(terminator_fade(c, band), terminator_fade(c + 0.01, band));
+  for (double c = 0; c < band; c += 0.01)
+    EXPECT_LT(terminator_fade(c, band), terminator_fade(c + 0.01, band));
   // No band: the whole change wherever the light faces the normal, none behind it.
   EXPECT_EQ(terminator_fade(1e-9, 0.0), 1.0);
   EXPECT_EQ(terminator_fade(0.0, 0.0), 0.0);
@@ -127,7 +135,8 @@ TEST(Hooks, AHookChangesLightNearTheTerminatorOnlyInPartWithABand) {
   testing::TempDir dir;
   std::string scene = kShadowScene;
   const double cos_i = 0.1, sin_i = std::sqrt(1 - cos_i * cos_i);
-  scene.replace(scene.find("[1, 0.6, 0]"), 11, "[" + std::to_string(sin_i) + ", " + std::to_string(cos_i) + ", 0]");
+  scene.replace(scene.find("[1, 0.6, 0]"), 11,
+                "[" + std::to_string(sin_i) + ", " + std::to_string(cos_i) + ", 0]");
   auto view = base_view(dir, scene);
   RenderRequest request;
   request.shading_hook = std::make_shared<HeadOnHook>(0.25);
@@ -179,7 +188,8 @@ TEST(Hooks, AHookMayShadeTheDarkSideWhereItsOwnDirectionIsOpen) {
     if (mirrored->render.radiance.pixels[3 * i] == 0.0f) {
       EXPECT_EQ(after, 0.0f) << i;
       ++shadow;
-    } else if (mirrored->render.radiance.pixels[3 * i] > 0.99f * float(0.6 / M_PI * 2.0 * 0.6 / std::sqrt(1.36))) {
+    } else if (mirrored->render.radiance.pixels[3 * i] >
+               0.99f * float(0.6 / M_PI * 2.0 * 0.6 / std::sqrt(1.36))) {
       EXPECT_NEAR(after, lit_value, 1e-5) << i;
       ++lit;
     }
@@ -200,8 +210,8 @@ TEST(Hooks, ATextureHookReplacesWhatTheMaterialSamples) {
     if (g.object[i] != 0 || view->render.radiance.pixels[3 * i] == 0.0f) continue;
     // Albedo 0.6 before; (0.25, 0.5, 0.75) after: each channel scales by its ratio.
     for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(hooked->render.radiance.pixels[3 * i + c], view->render.radiance.pixels[3 * i + c] * (0.25 + 0.25 * c) / 0.6,
-                  1e-5);
+      EXPECT_NEAR(hooked->render.radiance.pixels[3 * i + c],
+                  view->render.radiance.pixels[3 * i + c] * (0.25 + 0.25 * c) / 0.6, 1e-5);
   }
 }
 

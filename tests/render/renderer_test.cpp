@@ -3,16 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
+#include <numbers>
 
 #include "enhance/usm3d.h"
 #include "render/camera.h"
 #include "render/camera_samples.h"
+#include "render/scene_loader.h"
 #include "render/shading.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {
@@ -61,7 +60,8 @@ TEST(Renderer, LambertianSphereMatchesAnalyticRadiance) {
   EXPECT_GT(checked, 3000);
 }
 
-// Furnace test: a closed convex object inside a uniform white environment reflects exactly its albedo.
+// Furnace test: a closed convex object inside a uniform white environment reflects exactly its
+// albedo.
 TEST(Renderer, FurnaceReproducesAlbedo) {
   testing::TempDir dir;
   for (std::string sampling : {"cosine", "importance"}) {
@@ -70,7 +70,8 @@ TEST(Renderer, FurnaceReproducesAlbedo) {
       "camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov": 40, "width": 48, "height": 48},
       "render": {"spp": 16, "seed": 9},
       "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 5}, "material": {"albedo": 0.6}}],
-      "lights": [{"type": "environment", "constant": 1, "samples": 16, "sampling": ")" + sampling + R"("}]
+      "lights": [{"type": "environment", "constant": 1, "samples": 16, "sampling": ")" +
+                                      sampling + R"("}]
     })");
     RayTracer tracer(scene);
     RenderResult result = render(scene, tracer);
@@ -83,7 +84,8 @@ TEST(Renderer, FurnaceReproducesAlbedo) {
         bool interior = true;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
-            interior &= result.gbuffer.object[result.gbuffer.index(std::clamp(x + dx, 0, 47), std::clamp(y + dy, 0, 47))] == 0;
+            interior &= result.gbuffer.object[result.gbuffer.index(std::clamp(x + dx, 0, 47),
+                                                                   std::clamp(y + dy, 0, 47))] == 0;
         if (!interior) continue;
         double v = result.radiance.at(x, y, 1);
         if (sampling == "cosine") {
@@ -146,7 +148,8 @@ TEST(Renderer, PointInShadowReceivesNoDirectLight) {
   glm::dvec3 lit = shader.radiance(ground_point(1.5, 0.0), up, false, random, counts);
   EXPECT_NEAR(lit.x, 0.5 / kPi * 2.0 * std::sqrt(0.5), 1e-9);
   EXPECT_GT(counts.shadow, 0u);
-  // "shadows": false: the shadowed point gets the same light as the lit one, and no shadow ray is cast.
+  // "shadows": false: the shadowed point gets the same light as the lit one, and no shadow ray is
+  // cast.
   scene.directional_lights[0].shadows = false;
   Shader unshadowed(scene, tracer);
   RayCounts none;
@@ -175,11 +178,13 @@ TEST(Renderer, SameSeedGivesByteIdenticalPngsAtOneAndTwoThreads) {
   auto png_bytes = [&](int threads, const std::string& name) {
     RenderOptions options;
     options.threads = threads;
-    Image display = encode_for_display(render(scene, tracer, options).radiance, scene.display.exposure(), scene.display.encoding);
+    Image display = encode_for_display(render(scene, tracer, options).radiance,
+                                       scene.display.exposure(), scene.display.encoding);
     write_image(dir / name, display);
     return testing::read_file(dir / name);
   };
-  std::string one = png_bytes(1, "one.png"), two = png_bytes(2, "two.png"), again = png_bytes(2, "again.png");
+  std::string one = png_bytes(1, "one.png"), two = png_bytes(2, "two.png"),
+              again = png_bytes(2, "again.png");
   EXPECT_EQ(one, two);
   EXPECT_EQ(two, again);
   scene.settings.seed = 43;
@@ -211,10 +216,12 @@ TEST(Renderer, AFixedCountRenderWithoutItsNoiseEstimateGivesTheSamePixels) {
 
 // A sphere on a plane under a point light with a radius (a soft shadow) and ambient occlusion, at
 // `size` pixels, with `render` as its render block.
-Scene soft_shadow_scene(const testing::TempDir& dir, const std::string& size, const std::string& render) {
+Scene soft_shadow_scene(const testing::TempDir& dir, const std::string& size,
+                        const std::string& render) {
   return scene_from(dir, R"({
     "version": 1,
-    "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], )" + size + R"(},
+    "camera": {"eye": [1.5, 1.2, 2.0], "target": [0, 0.3, 0], )" +
+                             size + R"(},
     "render": )" + render + R"(,
     "objects": [
       {"shape": {"type": "plane", "size": 4, "subdivisions": 8}},
@@ -245,8 +252,10 @@ TEST(Renderer, AdaptiveSamplingIsByteIdenticalAtOneAndTwoThreads) {
   EXPECT_EQ(one.noise, two.noise);
   EXPECT_EQ(one.vertices.front, two.vertices.front);
   EXPECT_EQ(one.vertices.front_noise, two.vertices.front_noise);
-  EXPECT_GT(one.sampling.pixels.max, one.sampling.pixels.min) << "the soft shadow should need more samples";
-  EXPECT_TRUE(one.sampling.budget_met) << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
+  EXPECT_GT(one.sampling.pixels.max, one.sampling.pixels.min)
+      << "the soft shadow should need more samples";
+  EXPECT_TRUE(one.sampling.budget_met)
+      << one.sampling.stopped_by << " " << one.sampling.pixels.mean;
 }
 
 // The vertex signal's error estimate (from its two replicates) against the spread of the signal
@@ -259,7 +268,8 @@ TEST(Renderer, TheVertexErrorEstimateAtAFixedCountFollowsTheSpreadBetweenSeeds) 
   testing::TempDir dir;
   constexpr int kSeeds = 12;
   for (auto [spp, ring] : {std::pair{8, 3}, std::pair{16, 3}, std::pair{4, 0}}) {
-    Scene scene = soft_shadow_scene(dir, R"("width": 32, "height": 24)", R"({"spp": )" + std::to_string(spp) + "}");
+    Scene scene = soft_shadow_scene(dir, R"("width": 32, "height": 24)",
+                                    R"({"spp": )" + std::to_string(spp) + "}");
     RayTracer tracer(scene);
     const Exposure exposure = scene.display.exposure();
     const size_t nv = scene.objects[1].mesh.vertex_count();  // the sphere
@@ -271,10 +281,12 @@ TEST(Renderer, TheVertexErrorEstimateAtAFixedCountFollowsTheSpreadBetweenSeeds) 
       options.ring_samples = ring;
       const RenderResult result = render(scene, tracer, options);
       for (size_t v = 0; v < nv; ++v) {
-        const double L = cielab_lightness(display_luminance(glm::dvec3(result.vertices.front[1][v]), exposure));
+        const double L =
+            cielab_lightness(display_luminance(glm::dvec3(result.vertices.front[1][v]), exposure));
         sum[v] += L;
         sum2[v] += L * L;
-        estimate[v] += result.vertices.front_noise[1][v] * result.vertices.front_noise[1][v] / kSeeds;
+        estimate[v] +=
+            result.vertices.front_noise[1][v] * result.vertices.front_noise[1][v] / kSeeds;
       }
     }
     double spread = 0, estimated = 0;  // mean squares over the vertices
@@ -283,8 +295,10 @@ TEST(Renderer, TheVertexErrorEstimateAtAFixedCountFollowsTheSpreadBetweenSeeds) 
       estimated += estimate[v] / double(nv);
     }
     const double ratio = std::sqrt(estimated / spread);
-    EXPECT_GT(ratio, 0.8) << "spp " << spp << ", ring " << ring << ": RMS spread " << std::sqrt(spread);
-    EXPECT_LT(ratio, 2.0) << "spp " << spp << ", ring " << ring << ": RMS spread " << std::sqrt(spread);
+    EXPECT_GT(ratio, 0.8) << "spp " << spp << ", ring " << ring << ": RMS spread "
+                          << std::sqrt(spread);
+    EXPECT_LT(ratio, 2.0) << "spp " << spp << ", ring " << ring << ": RMS spread "
+                          << std::sqrt(spread);
   }
 }
 
@@ -295,8 +309,9 @@ TEST(Renderer, TheVertexErrorEstimateAtAFixedCountFollowsTheSpreadBetweenSeeds) 
 TEST(Renderer, ANoiseBudgetOverTheImageTakesFewerSamplesForTheSameRms) {
   testing::TempDir dir;
   auto scene_with = [&](const std::string& allocation) {
-    return soft_shadow_scene(dir, R"("width": 64, "height": 48)",
-                             R"({"seed": 7, "noise": {"target": 0.5, "allocation": ")" + allocation + R"("}})");
+    return soft_shadow_scene(
+        dir, R"("width": 64, "height": 48)",
+        R"({"seed": 7, "noise": {"target": 0.5, "allocation": ")" + allocation + R"("}})");
   };
   const auto rms = [](const std::vector<float>& v) {
     double sum = 0;
@@ -304,20 +319,22 @@ TEST(Renderer, ANoiseBudgetOverTheImageTakesFewerSamplesForTheSameRms) {
     return std::sqrt(sum / double(v.size()));
   };
   const Scene per_pixel = scene_with("pixel"), per_image = scene_with("image");
-  const RenderResult a = render(per_pixel, RayTracer(per_pixel), {}), b = render(per_image, RayTracer(per_image), {});
+  const RenderResult a = render(per_pixel, RayTracer(per_pixel), {}),
+                     b = render(per_image, RayTracer(per_image), {});
   EXPECT_LT(b.sampling.pixels.mean, 0.8 * a.sampling.pixels.mean);
   EXPECT_LE(rms(a.noise), 0.5);
   EXPECT_LE(rms(b.noise), 0.5);
   EXPECT_GT(rms(b.noise), rms(a.noise));
-  EXPECT_GT(*std::max_element(b.noise.begin(), b.noise.end()), 0.6) << "some pixel carries more than the target";
+  EXPECT_GT(*std::max_element(b.noise.begin(), b.noise.end()), 0.6)
+      << "some pixel carries more than the target";
   EXPECT_TRUE(b.sampling.budget_met);
 }
 
 // The smoothed signal and the gain of two renders' vertex signals agree exactly at every vertex of
 // a triangle a pixel can read: one that a camera sample hits (a fixed count), or that meets the
 // view's frustum (a budget).
-void expect_same_smoothing_in_view(const Scene& scene, const RayTracer& tracer, const RenderResult& a,
-                                   const RenderResult& b, int iterations) {
+void expect_same_smoothing_in_view(const Scene& scene, const RayTracer& tracer,
+                                   const RenderResult& a, const RenderResult& b, int iterations) {
   const CameraRays camera(scene.camera);
   const std::shared_ptr<const CameraHits> hits = trace_camera_samples(scene, tracer, 2);
   for (unsigned o = 0; o < scene.objects.size(); ++o) {
@@ -332,7 +349,8 @@ void expect_same_smoothing_in_view(const Scene& scene, const RayTracer& tracer, 
       const auto& p = object.mesh.positions;
       if (hits ? !hits->triangles_hit(o)[i] : !camera.may_see(p[t.x], p[t.y], p[t.z])) continue;
       for (uint32_t v : {t.x, t.y, t.z}) {
-        ASSERT_EQ(sa.smooth_lightness[v], sb.smooth_lightness[v]) << "object " << o << " vertex " << v;
+        ASSERT_EQ(sa.smooth_lightness[v], sb.smooth_lightness[v])
+            << "object " << o << " vertex " << v;
         ASSERT_EQ(sa.gain_factor[v], sb.gain_factor[v]) << "object " << o << " vertex " << v;
         ++compared;
       }
@@ -342,10 +360,10 @@ void expect_same_smoothing_in_view(const Scene& scene, const RayTracer& tracer, 
 }
 
 // The vertex pass shades only what can reach a pixel: vertices within the smoothing's support
-// (and one ring past it, or past the refinement's) of a triangle in view. On a large, finely divided
-// ground most of it lies outside the view; the smoothed signal and the gain at every vertex of a
-// triangle in view are still exactly those of shading every vertex, with a fixed count and with the
-// budget.
+// (and one ring past it, or past the refinement's) of a triangle in view. On a large, finely
+// divided ground most of it lies outside the view; the smoothed signal and the gain at every vertex
+// of a triangle in view are still exactly those of shading every vertex, with a fixed count and
+// with the budget.
 TEST(Renderer, TheVertexPassSkipsWhatNoPixelCanDependOnWithoutChangingWhatOneDoes) {
   testing::TempDir dir;
   Scene scene = scene_from(dir, R"({
@@ -372,7 +390,8 @@ TEST(Renderer, TheVertexPassSkipsWhatNoPixelCanDependOnWithoutChangingWhatOneDoe
     const RenderResult culled = run(kSupport), all = run(-1);
     size_t skipped = 0;  // ground vertices left unshaded (value 0)
     for (size_t v = 0; v < all.vertices.front[0].size(); ++v)
-      skipped += culled.vertices.front[0][v] == glm::vec3(0.0f) && all.vertices.front[0][v] != glm::vec3(0.0f);
+      skipped += culled.vertices.front[0][v] == glm::vec3(0.0f) &&
+                 all.vertices.front[0][v] != glm::vec3(0.0f);
     EXPECT_GT(skipped, all.vertices.front[0].size() / 2) << "most of the ground is out of view";
     expect_same_smoothing_in_view(scene, tracer, culled, all, kSupport);
   }
@@ -414,7 +433,8 @@ TEST(Renderer, VertexRadianceEqualsPixelRadianceAtAProjectedVertex) {
     const auto& vertex_radiance = result.vertices.front;
     ASSERT_EQ(result.gbuffer.object[result.gbuffer.index(16, 16)], 0);
     for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(result.radiance.at(16, 16, c), vertex_radiance[0][v][c], 1e-4 * (1.0 + vertex_radiance[0][v][c]))
+      EXPECT_NEAR(result.radiance.at(16, 16, c), vertex_radiance[0][v][c],
+                  1e-4 * (1.0 + vertex_radiance[0][v][c]))
           << "vertex " << v;
     ++compared;
   }

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "render/scene.h"
-#include "test_util.h"
 #include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade::testing {
 

@@ -1,11 +1,11 @@
 // Where shadow rays start: on the smooth surface that the corner normals describe, so that a
 // terminator follows the shading normal instead of the mesh's facets.
 
+#include "render/shading.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
-
-#include "render/shading.h"
 
 namespace countershade {
 namespace {
@@ -22,7 +22,9 @@ Scene one_triangle(const glm::vec3& n0, const glm::vec3& n1, const glm::vec3& n2
 }
 
 // Corner normals tilted away from the triangle's centre, as on a convex surface.
-Scene convex_triangle() { return one_triangle({-0.3f, -0.3f, 1}, {0.5f, -0.2f, 1}, {-0.2f, 0.5f, 1}); }
+Scene convex_triangle() {
+  return one_triangle({-0.3f, -0.3f, 1}, {0.5f, -0.2f, 1}, {-0.2f, 0.5f, 1});
+}
 
 TEST(ShadowOrigin, LiftsAPointOfAConvexFacetOntoTheCornersTangentPlanes) {
   const Scene scene = convex_triangle();

@@ -7,16 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <iostream>
 #include <numbers>
 
-#include <glm/geometric.hpp>
-
 #include "core/random.h"
 #include "render/renderer.h"
+#include "render/scene_loader.h"
 #include "render/shading.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {
@@ -24,7 +23,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // ∫ pdf dω over the cone of half-angle `angle` around `axis`, by midpoint quadrature.
-double pdf_in_cone(const Material& m, const glm::dvec3& n, const glm::dvec3& wo, const glm::dvec3& axis, double angle) {
+double pdf_in_cone(const Material& m, const glm::dvec3& n, const glm::dvec3& wo,
+                   const glm::dvec3& axis, double angle) {
   const int steps = 600;
   const TangentFrame frame(axis);
   double sum = 0;
@@ -53,7 +53,10 @@ TEST(SpecularLobe, ItsDensityIsThatOfTheDirectionsItDraws) {
     const Material m = glossy(model);
     // Cones around the mirror direction and around a direction off it.
     const glm::dvec3 off = glm::normalize(mirror + glm::dvec3(0, 0.25, 0));
-    const struct { glm::dvec3 axis; double angle; } cones[] = {{mirror, 0.1}, {mirror, 0.3}, {off, 0.15}};
+    const struct {
+      glm::dvec3 axis;
+      double angle;
+    } cones[] = {{mirror, 0.1}, {mirror, 0.3}, {off, 0.15}};
     const int n_samples = 400000;
     int inside[3] = {0, 0, 0};
     SampleStream random(11, 0, 0, 0);
@@ -63,13 +66,17 @@ TEST(SpecularLobe, ItsDensityIsThatOfTheDirectionsItDraws) {
       if (!wi) continue;
       ASSERT_NEAR(glm::length(*wi), 1.0, 1e-12);
       ASSERT_GT(specular_lobe_pdf(m, n, wo, *wi), 0.0);
-      for (int c = 0; c < 3; ++c) inside[c] += std::acos(std::clamp(glm::dot(*wi, cones[c].axis), -1.0, 1.0)) < cones[c].angle;
+      for (int c = 0; c < 3; ++c)
+        inside[c] +=
+            std::acos(std::clamp(glm::dot(*wi, cones[c].axis), -1.0, 1.0)) < cones[c].angle;
     }
     for (int c = 0; c < 3; ++c) {
       const double expected = pdf_in_cone(m, n, wo, cones[c].axis, cones[c].angle);
-      const double share = double(inside[c]) / n_samples, sd = std::sqrt(expected * (1 - expected) / n_samples);
+      const double share = double(inside[c]) / n_samples,
+                   sd = std::sqrt(expected * (1 - expected) / n_samples);
       EXPECT_GT(expected, 0.01) << "cone " << c;
-      EXPECT_NEAR(share, expected, 4 * sd + 1e-3 * expected) << "model " << int(model) << " cone " << c;
+      EXPECT_NEAR(share, expected, 4 * sd + 1e-3 * expected)
+          << "model " << int(model) << " cone " << c;
     }
   }
 }
@@ -90,7 +97,9 @@ Scene glossy_sphere(const testing::TempDir& dir, const std::string& sampling, in
     "render": {"spp": )" + std::to_string(spp) + R"(, "seed": 5},
     "objects": [{"shape": {"type": "sphere", "radius": 1, "subdivisions": 5},
                  "material": {"albedo": 0.5, "specular": {"model": "cook-torrance", "f0": 0.05, "roughness": 0.5}}}],
-    "lights": [{"type": "environment", "sky": {}, "samples": 4, "sampling": ")" + sampling + R"(", "visible": false}],
+    "lights": [{"type": "environment", "sky": {}, "samples": 4, "sampling": ")" +
+                                                                        sampling +
+                                                                        R"(", "visible": false}],
     "display": {"background": 0.2}
   })"));
 }
@@ -112,7 +121,8 @@ TEST(SpecularLobe, MixedEnvironmentSamplingKeepsTheMeanAndCutsTheNoise) {
   testing::TempDir dir;
   // At 4096 samples the image means of three seeds spread by 0.03 % with either sampling; a wrong
   // density in the mixture moves the mean by far more.
-  const Scene cosine = glossy_sphere(dir, "cosine", 4096), mixed = glossy_sphere(dir, "cosine+specular", 4096);
+  const Scene cosine = glossy_sphere(dir, "cosine", 4096),
+              mixed = glossy_sphere(dir, "cosine+specular", 4096);
   const RenderResult a = render(cosine, RayTracer(cosine)), b = render(mixed, RayTracer(mixed));
   const double mean_a = mean_green(a), mean_b = mean_green(b);
   EXPECT_NEAR(mean_b, mean_a, 0.001 * mean_a);

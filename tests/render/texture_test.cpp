@@ -1,6 +1,8 @@
 // Mip-mapped textures: the pyramid's levels, the level a pixel's footprint picks, and that a
 // minified pattern does not alias.
 
+#include "render/texture.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,9 +12,8 @@
 #include "render/procedural_texture.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
-#include "render/texture.h"
-#include "test_util.h"
 #include "render/scene_loader.h"
+#include "test_util.h"
 
 namespace countershade {
 namespace {
@@ -20,7 +21,8 @@ namespace {
 TextureLevel pattern(int width, int height, const std::function<float(int, int)>& value) {
   TextureLevel level{width, height, std::vector<glm::vec3>(size_t(width) * size_t(height))};
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) level.texels[size_t(y) * size_t(width) + size_t(x)] = glm::vec3(value(x, y));
+    for (int x = 0; x < width; ++x)
+      level.texels[size_t(y) * size_t(width) + size_t(x)] = glm::vec3(value(x, y));
   return level;
 }
 
@@ -46,7 +48,8 @@ TEST(Texture, OddSizesKeepTheMeanByAreaWeights) {
   const Texture texture(pattern(7, 5, [](int x, int y) { return float((x * 37 + y * 11) % 9); }));
   ASSERT_EQ(texture.levels()[1].width, 3);
   ASSERT_EQ(texture.levels()[1].height, 2);
-  for (const TextureLevel& level : texture.levels()) EXPECT_NEAR(mean(level), mean(texture.levels()[0]), 1e-5);
+  for (const TextureLevel& level : texture.levels())
+    EXPECT_NEAR(mean(level), mean(texture.levels()[0]), 1e-5);
 }
 
 TEST(Texture, WithoutFootprintOrMagnifiedTheLookupIsLevelZeroBilinear) {
@@ -60,15 +63,18 @@ TEST(Texture, WithoutFootprintOrMagnifiedTheLookupIsLevelZeroBilinear) {
 
 // An elongated footprint takes several probes along its longer axis at the level of its shorter.
 TEST(Texture, AnElongatedFootprintIsFilteredAnisotropically) {
-  const Texture texture(pattern(64, 64, [](int x, int y) { return float(((x / 2) ^ (y / 2)) & 1); }));
+  const Texture texture(
+      pattern(64, 64, [](int x, int y) { return float(((x / 2) ^ (y / 2)) & 1); }));
   EXPECT_EQ(texture.probes_of({8.0 / 64, 0}, {0, 2.0 / 64}), 4);
   EXPECT_DOUBLE_EQ(texture.level_of({8.0 / 64, 0}, {0, 2.0 / 64}), 1.0);
   EXPECT_EQ(texture.probes_of({64.0 / 64, 0}, {0, 1.0 / 64}), Texture::kMaxAnisotropy);
-  EXPECT_DOUBLE_EQ(texture.level_of({64.0 / 64, 0}, {0, 1.0 / 64}), 3.0);  // 64 texels over 8 probes
+  EXPECT_DOUBLE_EQ(texture.level_of({64.0 / 64, 0}, {0, 1.0 / 64}),
+                   3.0);  // 64 texels over 8 probes
   // Four probes at level 1 along x, 2 texels apart: their mean.
   const glm::dvec2 uv(0.5, 0.5), dx(8.0 / 64, 0);
   glm::dvec3 mean(0.0);
-  for (int i = 0; i < 4; ++i) mean += texture.levels()[1].bilinear(uv + dx * ((i + 0.5) / 4 - 0.5)) / 4.0;
+  for (int i = 0; i < 4; ++i)
+    mean += texture.levels()[1].bilinear(uv + dx * ((i + 0.5) / 4 - 0.5)) / 4.0;
   const glm::dvec3 got = texture.sample(uv, dx, {0, 2.0 / 64});
   EXPECT_NEAR(got.x, mean.x, 1e-12);
 }
@@ -76,13 +82,17 @@ TEST(Texture, AnElongatedFootprintIsFilteredAnisotropically) {
 // The taps are what a lookup reads: Σ weight·texel is the lookup, for magnified, trilinear,
 // anisotropic and coarsest-level footprints, with weights summing to 1.
 TEST(Texture, TapsReproduceEveryKindOfLookup) {
-  const Texture texture(pattern(37, 24, [](int x, int y) { return float((x * 13 + y * 7) % 11) / 10.0f; }));
+  const Texture texture(
+      pattern(37, 24, [](int x, int y) { return float((x * 13 + y * 7) % 11) / 10.0f; }));
   const std::vector<std::array<glm::dvec2, 3>> lookups = {
-      {glm::dvec2(0.3, 0.7), glm::dvec2(0.0), glm::dvec2(0.0)},                // no footprint
-      {glm::dvec2(0.99, 0.01), glm::dvec2(0.5 / 37, 0), glm::dvec2(0, 0.5 / 24)},  // magnified, at the wrap
-      {glm::dvec2(0.41, 0.28), glm::dvec2(2.7 / 37, 0.4 / 24), glm::dvec2(-0.3 / 37, 3.1 / 24)},  // trilinear
+      {glm::dvec2(0.3, 0.7), glm::dvec2(0.0), glm::dvec2(0.0)},  // no footprint
+      {glm::dvec2(0.99, 0.01), glm::dvec2(0.5 / 37, 0),
+       glm::dvec2(0, 0.5 / 24)},  // magnified, at the wrap
+      {glm::dvec2(0.41, 0.28), glm::dvec2(2.7 / 37, 0.4 / 24),
+       glm::dvec2(-0.3 / 37, 3.1 / 24)},                                            // trilinear
       {glm::dvec2(0.12, 0.83), glm::dvec2(20.0 / 37, 0), glm::dvec2(0, 3.0 / 24)},  // anisotropic
-      {glm::dvec2(0.5, 0.5), glm::dvec2(200.0 / 37, 0), glm::dvec2(0, 150.0 / 24)}};  // past the coarsest level
+      {glm::dvec2(0.5, 0.5), glm::dvec2(200.0 / 37, 0),
+       glm::dvec2(0, 150.0 / 24)}};  // past the coarsest level
   for (const auto& [uv, dx, dy] : lookups) {
     std::vector<TextureTap> taps;
     texture.taps(uv, dx, dy, taps);
@@ -114,9 +124,12 @@ TEST(ProceduralTexture, CheckerNoiseAlternatesSquaresStaysInRangeAndFollowsItsSe
 // ambient radiance of 1 so that each pixel's radiance is the albedo it looked up.
 Scene head_on_plane(double distance, int pixels) {
   testing::TempDir dir;
-  const std::string json = R"({"version": 1,
-    "camera": {"eye": [0, )" + std::to_string(distance) + R"(, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
-               "width": )" + std::to_string(pixels) + ", \"height\": " + std::to_string(pixels) + R"(},
+  const std::string json =
+      R"({"version": 1,
+    "camera": {"eye": [0, )" +
+      std::to_string(distance) + R"(, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+               "width": )" +
+      std::to_string(pixels) + ", \"height\": " + std::to_string(pixels) + R"(},
     "render": {"spp": 1},
     "display": {"background": [0, 0, 0]},
     "objects": [{"name": "plane", "shape": {"type": "plane", "size": 2, "subdivisions": 1}}],
@@ -141,7 +154,8 @@ TEST(Texture, APlaneAtAKnownDistanceSamplesTheExpectedLevel) {
     Scene scene = head_on_plane(distance, 64);
     scene.objects[0].material.texture = texture;
     // A pixel at the centre spans 2·d·tan(20°)/64 world units; the texture has 256 texels per 2.
-    const double expected = std::log2(2 * distance * std::tan(20 * std::numbers::pi / 180) / 64 * 128);
+    const double expected =
+        std::log2(2 * distance * std::tan(20 * std::numbers::pi / 180) / 64 * 128);
     EXPECT_NEAR(16 * centre_radiance(scene), expected, 0.5) << "distance " << distance;
     EXPECT_NEAR(16 * centre_radiance(scene), expected, 0.05) << "distance " << distance;
   }
@@ -166,18 +180,24 @@ double centre_ac_rms(const Scene& scene) {
 // frequency, so everything it leaves in a one-sample-per-pixel image is aliasing. A box pyramid
 // leaves the most at whole levels (4 texels per pixel: RMS ratio 0.16).
 TEST(Texture, AMinifiedCheckerboardDoesNotAlias) {
-  const TextureLevel checker = pattern(512, 512, [](int x, int y) { return float(((x / 3) + (y / 3)) % 2); });
+  const TextureLevel checker =
+      pattern(512, 512, [](int x, int y) { return float(((x / 3) + (y / 3)) % 2); });
   for (double texels_per_pixel : {3.0, 4.0, 5.3, 8.0}) {
-    const double distance = texels_per_pixel * 64 / (2 * std::tan(20 * std::numbers::pi / 180) * 256);
+    const double distance =
+        texels_per_pixel * 64 / (2 * std::tan(20 * std::numbers::pi / 180) * 256);
     Scene scene = head_on_plane(distance, 64);
-    scene.objects[0].material.texture = std::make_shared<const Texture>(Texture::from_levels({checker}));
+    scene.objects[0].material.texture =
+        std::make_shared<const Texture>(Texture::from_levels({checker}));
     const double single_level = centre_ac_rms(scene) / 0.5;
     scene.objects[0].material.texture = std::make_shared<const Texture>(checker);
     const double pyramid = centre_ac_rms(scene) / 0.5;
-    EXPECT_GT(single_level, 0.3) << texels_per_pixel;  // without the pyramid the pattern aliases into the image
-    // The stated bound (docs/enhancement-methods.md): the aliased energy is below 4 % of the pattern's.
-    EXPECT_LT(pyramid * pyramid, 0.04) << texels_per_pixel << " texels per pixel: RMS ratio " << pyramid
-                                       << " (without the pyramid " << single_level << ")";
+    EXPECT_GT(single_level, 0.3)
+        << texels_per_pixel;  // without the pyramid the pattern aliases into the image
+    // The stated bound (docs/enhancement-methods.md): the aliased energy is below 4 % of the
+    // pattern's.
+    EXPECT_LT(pyramid * pyramid, 0.04)
+        << texels_per_pixel << " texels per pixel: RMS ratio " << pyramid
+        << " (without the pyramid " << single_level << ")";
   }
 }
 

@@ -1,21 +1,22 @@
 // Replaying a render's rays: a render that records its ray answers (and its shading records) gives
 // the plain image, and a render with hooks that reads them back gives, bit for bit, the image it
-// gives by tracing, with (almost) no rays traced. The scene uses every kind of light, soft shadows, ambient occlusion, a
-// texture, a glossy material and adaptive sampling, so that every shadow-ray path is exercised.
+// gives by tracing, with (almost) no rays traced. The scene uses every kind of light, soft shadows,
+// ambient occlusion, a texture, a glossy material and adaptive sampling, so that every shadow-ray
+// path is exercised.
+
+#include "render/trace_log.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-
 #include <glm/geometric.hpp>
 
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "enhance/view_plan.h"
 #include "render/hooks.h"
-#include "render/trace_log.h"
 #include "render/rich_scene.h"
 #include "test_util.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -28,7 +29,8 @@ using testing::rich_scene;
 // specular lobe.
 class TiltHook final : public ShadingHook {
  public:
-  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi, const glm::dvec3& incident) const override {
+  glm::dvec3 reflect(const ShadingInputs& s, const glm::dvec3& wi,
+                     const glm::dvec3& incident) const override {
     return 0.8 * reflect_plain(s, glm::normalize(wi + 0.6 * s.wo + 0.3 * s.normal), incident);
   }
 };
@@ -50,7 +52,8 @@ class HalfTexture final : public TextureHook {
 };
 
 // `radiance_only`: as a method's render of one λ, which keeps nothing else.
-RenderResult render_with(const Scene& scene, const RayTracer& tracer, std::shared_ptr<const ShadingHook> hook,
+RenderResult render_with(const Scene& scene, const RayTracer& tracer,
+                         std::shared_ptr<const ShadingHook> hook,
                          std::shared_ptr<const TraceLog> replay = nullptr, bool record = false,
                          bool radiance_only = false) {
   RenderOptions options;
@@ -65,7 +68,8 @@ RenderResult render_with(const Scene& scene, const RayTracer& tracer, std::share
 void expect_same_pixels(const RenderResult& a, const RenderResult& b) {
   ASSERT_EQ(a.radiance.pixels.size(), b.radiance.pixels.size());
   size_t differing = 0;
-  for (size_t i = 0; i < a.radiance.pixels.size(); ++i) differing += a.radiance.pixels[i] != b.radiance.pixels[i];
+  for (size_t i = 0; i < a.radiance.pixels.size(); ++i)
+    differing += a.radiance.pixels[i] != b.radiance.pixels[i];
   EXPECT_EQ(differing, 0u);
   EXPECT_EQ(a.spp, b.spp);
 }
@@ -97,7 +101,8 @@ TEST(TraceLog, AReplayedRenderWithAShadingHookEqualsTracingIt) {
   EXPECT_EQ(replayed.gbuffer.object, traced.gbuffer.object);
   // Only samples beyond the base render's are traced.
   uint64_t beyond = 0;
-  for (size_t p = 0; p < base.spp.size(); ++p) beyond += replayed.spp[p] > base.spp[p] ? replayed.spp[p] - base.spp[p] : 0;
+  for (size_t p = 0; p < base.spp.size(); ++p)
+    beyond += replayed.spp[p] > base.spp[p] ? replayed.spp[p] - base.spp[p] : 0;
   EXPECT_EQ(replayed.rays.primary, beyond);
   EXPECT_LT(replayed.rays.primary, traced.rays.primary / 4);
   EXPECT_NE(traced.radiance.pixels, base.radiance.pixels);  // the hook does change the image
@@ -141,10 +146,12 @@ TEST(TraceLog, ALogOverItsLimitIsGivenUpAndTheImageStaysTheSame) {
 
 // A render that records its rays under a limit that fits them but not the shading records; the
 // same image as the render that keeps its records (`whole`).
-RenderResult render_without_records(const Scene& scene, const RayTracer& tracer, const RenderResult& whole) {
+RenderResult render_without_records(const Scene& scene, const RayTracer& tracer,
+                                    const RenderResult& whole) {
   uint64_t samples = 0;
   for (uint32_t n : whole.spp) samples += n;
-  const uint64_t rays = whole.trace->projected_bytes(samples, false), shading = whole.trace->projected_bytes(samples, true);
+  const uint64_t rays = whole.trace->projected_bytes(samples, false),
+                 shading = whole.trace->projected_bytes(samples, true);
   EXPECT_LT(4 * rays, shading);  // the records are the bulk of the log
   RenderOptions options;
   options.threads = 2;
@@ -193,7 +200,8 @@ TEST(TraceLog, ARadianceOnlyReplayWithoutRecordsRendersInFull) {
   testing::TempDir dir;
   auto scene = fixed_count_scene(dir);
   const RayTracer tracer(*scene);
-  const RenderResult base = render_without_records(*scene, tracer, render_with(*scene, tracer, nullptr, nullptr, true));
+  const RenderResult base =
+      render_without_records(*scene, tracer, render_with(*scene, tracer, nullptr, nullptr, true));
   ASSERT_NE(base.trace, nullptr);
   const auto hook = std::make_shared<TiltHook>();
   const RenderResult replayed = render_with(*scene, tracer, hook, base.trace, false, true);
@@ -219,8 +227,10 @@ void every_method_composes_the_same(const std::shared_ptr<const Scene>& scene) {
     const auto without = prepare_method(method, untraced, parameters, 2);
     for (double lambda : {0.5, 1.0}) {
       const Image image = with_log->compose(lambda).display;
-      EXPECT_EQ(image.pixels, without->compose(lambda).display.pixels) << method << " at " << lambda;
-      EXPECT_NE(image.pixels, view->display.pixels) << method << " at " << lambda;  // the method does change it
+      EXPECT_EQ(image.pixels, without->compose(lambda).display.pixels)
+          << method << " at " << lambda;
+      EXPECT_NE(image.pixels, view->display.pixels)
+          << method << " at " << lambda;  // the method does change it
     }
   }
 }
@@ -229,7 +239,8 @@ TEST(TraceLog, EveryMethodThatRendersAgainComposesTheSameWithAndWithoutTheLog) {
   testing::TempDir dir;
   ::setenv("COUNTERSHADE_CACHE", (dir / "cache").c_str(), 1);  // texture-filter's pyramids
   // Adaptive sampling (the whole pixel pass replays) and a fixed count (the records alone).
-  for (const auto& scene : {rich_scene(dir), fixed_count_scene(dir)}) every_method_composes_the_same(scene);
+  for (const auto& scene : {rich_scene(dir), fixed_count_scene(dir)})
+    every_method_composes_the_same(scene);
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ fs::path write_experiment(const testing::TempDir& dir, int bits) {
   cube.replace(cube.find("\"width\": 640, \"height\": 480"), 27, "\"width\": 160, \"height\": 120");
   testing::write_file(dir / "cube.json", cube);
   return testing::write_file(dir / ("experiment-" + std::to_string(bits) + ".json"), R"({
-    "version": 1, "name": "quantisation", "seed": 4, "output": {"bits": )" + std::to_string(bits) + R"(},
+    "version": 1, "name": "quantisation", "seed": 4, "output": {"bits": )" + std::to_string(bits) +
+                                                                                         R"(},
     "lambda": {"min": 0, "max": 1, "step": 0.05},
     "scenes": [{"name": "cube", "file": "cube.json"}],
     "methods": [{"method": "usm3d", "sigma": [0.1]}],
@@ -48,10 +49,13 @@ std::vector<double> lightness(const fs::path& file) {
 
 TEST(AuditQuantisation, TheLossMatchesThe8BitSetOfTheSameRender) {
   testing::TempDir dir;
-  generate_stimulus_set(load_experiment(write_experiment(dir, 16)), dir / "16", testing::with_jobs(2));
-  generate_stimulus_set(load_experiment(write_experiment(dir, 8)), dir / "8", testing::with_jobs(2));
+  generate_stimulus_set(load_experiment(write_experiment(dir, 16)), dir / "16",
+                        testing::with_jobs(2));
+  generate_stimulus_set(load_experiment(write_experiment(dir, 8)), dir / "8",
+                        testing::with_jobs(2));
   const AuditReport report = audit_stimulus_set(dir / "16" / "manifest.json");
-  const std::vector<double> ref16 = lightness(dir / "16" / "cube/reference.png"), ref8 = lightness(dir / "8" / "cube/reference.png");
+  const std::vector<double> ref16 = lightness(dir / "16" / "cube/reference.png"),
+                            ref8 = lightness(dir / "8" / "cube/reference.png");
   int compared = 0;
   double at_small = 0, at_large = 0;
   for (const StimulusAudit& s : report.stimuli) {
@@ -60,7 +64,8 @@ TEST(AuditQuantisation, TheLossMatchesThe8BitSetOfTheSameRender) {
       EXPECT_FALSE(s.quantisation_loss.has_value());
       continue;
     }
-    const std::vector<double> own16 = lightness(dir / "16" / s.file), own8 = lightness(dir / "8" / s.file);
+    const std::vector<double> own16 = lightness(dir / "16" / s.file),
+                              own8 = lightness(dir / "8" / s.file);
     double ideal = 0, error = 0;
     for (size_t p = 0; p < own16.size(); ++p) {
       const double change = own16[p] - ref16[p], rounded = own8[p] - ref8[p];
@@ -77,10 +82,12 @@ TEST(AuditQuantisation, TheLossMatchesThe8BitSetOfTheSameRender) {
   EXPECT_GT(at_small, 0.25);  // the low end of the grid loses much at 8 bits ...
   EXPECT_LT(at_large, 0.1);   // ... the high end little
   bool noted = false;
-  for (const std::string& note : report.notes) noted = noted || note.find("lambda 0.05 to") != std::string::npos;
+  for (const std::string& note : report.notes)
+    noted = noted || note.find("lambda 0.05 to") != std::string::npos;
   EXPECT_TRUE(noted) << "no note names the lambda range";
   // An 8-bit set has no ideal to compare with.
-  for (const StimulusAudit& s : audit_stimulus_set(dir / "8" / "manifest.json").stimuli) EXPECT_FALSE(s.quantisation_loss);
+  for (const StimulusAudit& s : audit_stimulus_set(dir / "8" / "manifest.json").stimuli)
+    EXPECT_FALSE(s.quantisation_loss);
 }
 
 }  // namespace

@@ -33,7 +33,8 @@ Image grey_image(int width, int height, const std::vector<int>& codes) {
   return image;
 }
 
-ManifestEntry entry_for(const fs::path& set, const std::string& file, double lambda, bool reference) {
+ManifestEntry entry_for(const fs::path& set, const std::string& file, double lambda,
+                        bool reference) {
   ManifestEntry e;
   e.file = file;
   e.scene = "grey";
@@ -57,11 +58,13 @@ TEST(Audit, MeasuresMatchHandComputedImages) {
   fs::create_directories(set / "grey/usm2d");
   write_image(set / "grey/reference.png", grey_image(4, 2, std::vector<int>(8, 100)));
   write_image(set / "grey/usm2d/lambda-0.png", grey_image(4, 2, std::vector<int>(8, 100)));
-  write_image(set / "grey/usm2d/lambda-1.png", grey_image(4, 2, {100, 200, 100, 200, 100, 200, 100, 255}));
+  write_image(set / "grey/usm2d/lambda-1.png",
+              grey_image(4, 2, {100, 200, 100, 200, 100, 200, 100, 255}));
   Manifest m;
   m.experiment_name = "hand";
   m.lambda_grid = {0.0, 1.0, 1.0, 2};
-  m.stimuli = {entry_for(set, "grey/reference.png", 0, true), entry_for(set, "grey/usm2d/lambda-0.png", 0, false),
+  m.stimuli = {entry_for(set, "grey/reference.png", 0, true),
+               entry_for(set, "grey/usm2d/lambda-0.png", 0, false),
                entry_for(set, "grey/usm2d/lambda-1.png", 1, false)};
   write_manifest(set / "manifest.json", m);
   const AuditReport r = audit_stimulus_set(set / "manifest.json");
@@ -73,7 +76,8 @@ TEST(Audit, MeasuresMatchHandComputedImages) {
   const StimulusAudit& s = r.stimuli[2];
   const double mean = (4 * L100 + 3 * L200 + L255) / 8;
   EXPECT_NEAR(s.mean_lightness, mean, 1e-5);
-  const double variance = (4 * std::pow(L100 - mean, 2) + 3 * std::pow(L200 - mean, 2) + std::pow(L255 - mean, 2)) / 8;
+  const double variance =
+      (4 * std::pow(L100 - mean, 2) + 3 * std::pow(L200 - mean, 2) + std::pow(L255 - mean, 2)) / 8;
   EXPECT_NEAR(s.rms_contrast, std::sqrt(variance), 1e-5);
   EXPECT_DOUBLE_EQ(s.changed_fraction, 0.5);
   EXPECT_DOUBLE_EQ(s.clipped_fraction, 0.125);  // the one pixel driven to 255
@@ -82,7 +86,8 @@ TEST(Audit, MeasuresMatchHandComputedImages) {
     const double m = 0.5 * (a + b), d = (m - 50) * (m - 50);
     return std::abs(b - a) / (1 + 0.015 * d / std::sqrt(20 + d));
   };
-  EXPECT_NEAR(s.delta_e_mean, (3 * grey_difference(L100, L200) + grey_difference(L100, L255)) / 8, 1e-5);
+  EXPECT_NEAR(s.delta_e_mean, (3 * grey_difference(L100, L200) + grey_difference(L100, L255)) / 8,
+              1e-5);
   // The 99th percentile is the value at ⌊0.99·(n − 1)⌋ = 6 of the 8 sorted differences.
   EXPECT_NEAR(s.delta_e_p99, grey_difference(L100, L200), 1e-4);
   // λ = 0 equals the reference; λ = 1 drifts by far more than 1 L* and clips 12.5 %.
@@ -102,8 +107,10 @@ TEST(Audit, LimitsComeFromTheExperimentAndTheScreenMustHoldTwoImages) {
   EXPECT_EQ(limits.max_drift, 0.5);
   EXPECT_EQ(limits.max_clipped, 0.01);
   EXPECT_EQ(limits.screen_width, 1000);
-  EXPECT_THROW(read_audit_limits(JsonObject({{"max_drfit", 1}}, "experiment.json", "audit")), InputError);
-  EXPECT_THROW(read_audit_limits(JsonObject({{"max_clipped", 2}}, "experiment.json", "audit")), InputError);
+  EXPECT_THROW(read_audit_limits(JsonObject({{"max_drfit", 1}}, "experiment.json", "audit")),
+               InputError);
+  EXPECT_THROW(read_audit_limits(JsonObject({{"max_clipped", 2}}, "experiment.json", "audit")),
+               InputError);
   Manifest m;
   ManifestEntry e;
   e.width = 512;
@@ -149,16 +156,20 @@ TEST(Audit, AFailedCheckSaysFromWhichLambdaTheLimitIsPassed) {
   EXPECT_FALSE(clipping->passed);
   EXPECT_EQ(clipping->detail, "3 % at lambda 2 (limit 1 %; past it from lambda 1.5)");
   // The summary line counts the failures of each kind.
-  EXPECT_EQ(r.summary().rfind("5 images, 5 checks, 2 failed (1 mean L* drift, 1 clipped pixels): scan usm3d", 0), 0u)
+  EXPECT_EQ(r.summary().rfind(
+                "5 images, 5 checks, 2 failed (1 mean L* drift, 1 clipped pixels): scan usm3d", 0),
+            0u)
       << r.summary();
   r.limits.max_drift = 3;
   r.checks.clear();
   add_audit_checks(r, Manifest{});
-  EXPECT_EQ(check_named(r, "mean L* drift")->detail, "+2.5 L* at lambda 2 (limit 3)");  // passed: no clause
+  EXPECT_EQ(check_named(r, "mean L* drift")->detail,
+            "+2.5 L* at lambda 2 (limit 3)");  // passed: no clause
 }
 
 // One condition's stimuli from (λ, frame, checksum, share of pixels changed against the reference).
-AuditReport condition_of_images(const std::vector<std::tuple<double, int, std::string, double>>& images) {
+AuditReport condition_of_images(
+    const std::vector<std::tuple<double, int, std::string, double>>& images) {
   AuditReport r;
   for (const auto& [lambda, frame, sha, changed] : images) {
     StimulusAudit s;
@@ -177,29 +188,42 @@ AuditReport condition_of_images(const std::vector<std::tuple<double, int, std::s
 TEST(Audit, AnEnhancementThatStopsChangingAlongTheGridIsFlagged) {
   const std::string steps = "every lambda step changes the image";
   // Saturation from λ = 1 on (the manifest's order does not matter).
-  auto saturated = check_named(condition_of_images({{2, -1, "c", 0.3}, {0, -1, "r", 0}, {0.5, -1, "b", 0.2},
-                                                    {1, -1, "c", 0.3}, {1.5, -1, "c", 0.3}}),
+  auto saturated = check_named(condition_of_images({{2, -1, "c", 0.3},
+                                                    {0, -1, "r", 0},
+                                                    {0.5, -1, "b", 0.2},
+                                                    {1, -1, "c", 0.3},
+                                                    {1.5, -1, "c", 0.3}}),
                                steps);
   ASSERT_TRUE(saturated);
   EXPECT_FALSE(saturated->passed);
-  EXPECT_EQ(saturated->detail, "the same image from lambda 1 to 2 (3 grid values): the enhancement stops changing");
+  EXPECT_EQ(saturated->detail,
+            "the same image from lambda 1 to 2 (3 grid values): the enhancement stops changing");
   // A control scene: every image is the reference's, nothing is enhanced, nothing to flag.
-  EXPECT_TRUE(check_named(condition_of_images({{0, -1, "r", 0}, {1, -1, "r", 0}, {2, -1, "r", 0}}), steps)->passed);
+  EXPECT_TRUE(
+      check_named(condition_of_images({{0, -1, "r", 0}, {1, -1, "r", 0}, {2, -1, "r", 0}}), steps)
+          ->passed);
   // Clamped at 0 below: negative λ repeat the reference while positive ones enhance.
-  auto below = check_named(condition_of_images({{-1, -1, "r", 0}, {-0.5, -1, "r", 0}, {0, -1, "r", 0}, {0.5, -1, "b", 0.2}}),
-                           steps);
+  auto below =
+      check_named(condition_of_images(
+                      {{-1, -1, "r", 0}, {-0.5, -1, "r", 0}, {0, -1, "r", 0}, {0.5, -1, "b", 0.2}}),
+                  steps);
   EXPECT_FALSE(below->passed);
-  EXPECT_EQ(below->detail, "the same image from lambda -1 to 0 (3 grid values): the enhancement stops changing");
+  EXPECT_EQ(below->detail,
+            "the same image from lambda -1 to 0 (3 grid values): the enhancement stops changing");
   // A sequence: frames are compared with the same frame at the next λ, not with each other.
-  auto frames = check_named(condition_of_images({{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3},
-                                                 {2, 1, "f0", 0.2}}),
-                            steps);
+  auto frames =
+      check_named(condition_of_images(
+                      {{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3}, {2, 1, "f0", 0.2}}),
+                  steps);
   EXPECT_FALSE(frames->passed);
-  EXPECT_EQ(frames->detail, "the same image from lambda 1 to 2 (2 grid values, frame 1): the enhancement stops changing");
-  EXPECT_TRUE(check_named(condition_of_images({{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3},
-                                               {2, 1, "g1", 0.3}}),
-                          steps)
-                  ->passed);
+  EXPECT_EQ(
+      frames->detail,
+      "the same image from lambda 1 to 2 (2 grid values, frame 1): the enhancement stops changing");
+  EXPECT_TRUE(
+      check_named(condition_of_images(
+                      {{1, 0, "f0", 0.2}, {1, 1, "f0", 0.2}, {2, 0, "g0", 0.3}, {2, 1, "g1", 0.3}}),
+                  steps)
+          ->passed);
 }
 
 // The failing checks of one kind, as "scene/condition".
@@ -230,14 +254,16 @@ Image brightened(const Image& in, double lightness) {
     const Lab lab = display_pixel_to_lab(&in.pixels[3 * p], srgb);
     const glm::dvec3 rgb = lab_to_linear_rgb(with_lightness(lab, lab.L + lightness));
     for (int c = 0; c < 3; ++c)
-      out.pixels[3 * p + size_t(c)] = float(quantize(float(srgb_encode(std::clamp(rgb[c], 0.0, 1.0))), 8)) / 255.0f;
+      out.pixels[3 * p + size_t(c)] =
+          float(quantize(float(srgb_encode(std::clamp(rgb[c], 0.0, 1.0))), 8)) / 255.0f;
   }
   return out;
 }
 
 std::string condition_of(const fs::path& manifest_path, const std::string& file) {
   for (const auto& e : read_manifest(manifest_path).stimuli)
-    if (e.file == file) return e.scene + "/" + e.condition_method() + " sigma " + format_value(*e.sigma);
+    if (e.file == file)
+      return e.scene + "/" + e.condition_method() + " sigma " + format_value(*e.sigma);
   return "";
 }
 
@@ -262,15 +288,22 @@ TEST(Audit, ABrokenSetIsCaught) {
   auto drift_after = failing(broken, "mean L* drift");
   for (const auto& c : drift_before) drift_after.erase(c);
   EXPECT_EQ(drift_after, std::set<std::string>{bright_condition});
-  EXPECT_EQ(failing(broken, "lambda 0 equals reference"), std::set<std::string>{condition_of(manifest, zero)});
+  EXPECT_EQ(failing(broken, "lambda 0 equals reference"),
+            std::set<std::string>{condition_of(manifest, zero)});
   // The CLI: --strict exits 1 on failed checks; without it the audit succeeds.
-  EXPECT_EQ(testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report").string()).exit_code, 0);
-  EXPECT_EQ(testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report").string() + " --strict").exit_code, 1);
+  EXPECT_EQ(
+      testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report").string()).exit_code,
+      0);
+  EXPECT_EQ(testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report").string() +
+                             " --strict")
+                .exit_code,
+            1);
   EXPECT_TRUE(fs::exists(dir / "report/report.html"));
   // An image changed without its manifest: refused before any measurement, exit 2.
   write_image(manifest.parent_path() / bright, read_image(manifest.parent_path() / zero));
   EXPECT_THROW(audit_stimulus_set(manifest), InputError);
-  const auto refused = testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report2").string());
+  const auto refused =
+      testing::run_cli("audit " + manifest.string() + " -o " + (dir / "report2").string());
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_EQ(testing::count_lines(refused.output), 1) << refused.output;
 }
@@ -280,15 +313,20 @@ TEST(Audit, ABrokenSetIsCaught) {
 TEST(Audit, ARealSetWhoseMethodSaturatesIsFlagged) {
   testing::TempDir dir;
   const fs::path scene = testing::source_dir() / "experiments/drift/scenes/top.json";
-  const fs::path experiment = testing::write_file(dir / "experiment.json", R"({
+  const fs::path experiment =
+      testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "saturation", "seed": 1,
     "lambda": {"min": 0, "max": 2, "step": 0.5},
-    "scenes": [{"name": "ball", "file": ")" + scene.string() + R"(", "width": 64, "height": 48, "spp": 4}],
+    "scenes": [{"name": "ball", "file": ")" + scene.string() +
+                                                       R"(", "width": 64, "height": 48, "spp": 4}],
     "methods": [{"method": "exaggerated-shading", "sigma": [0.2]}, {"method": "usm3d", "sigma": [0.6]}]
   })");
-  ASSERT_EQ(testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "set").string()).exit_code, 0);
+  ASSERT_EQ(testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "set").string())
+                .exit_code,
+            0);
   const AuditReport r = audit_stimulus_set(dir / "set/manifest.json");
-  EXPECT_EQ(failing(r, "every lambda step changes the image"), std::set<std::string>{"ball/exaggerated-shading sigma 0.2"});
+  EXPECT_EQ(failing(r, "every lambda step changes the image"),
+            std::set<std::string>{"ball/exaggerated-shading sigma 0.2"});
 }
 
 }  // namespace

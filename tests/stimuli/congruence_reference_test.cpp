@@ -15,10 +15,10 @@
 #include "core/random.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
+#include "enhance/view_plan.h"
+#include "render/scene_loader.h"
 #include "stimuli/congruence.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -51,7 +51,8 @@ double reference_derivative(const Field& f, int x, int y, int dx, int dy) {
   const int n = dx ? f.w : f.h, k = dx ? x : y;
   const int lo = std::max(0, k - 1), hi = std::min(n - 1, k + 1);
   const double span = hi - lo;
-  return (f.at(x + dx * (hi - k), y + dy * (hi - k)) - f.at(x - dx * (k - lo), y - dy * (k - lo))) / span;
+  return (f.at(x + dx * (hi - k), y + dy * (hi - k)) - f.at(x - dx * (k - lo), y - dy * (k - lo))) /
+         span;
 }
 
 // The Gaussian of σ = 2 over ±8 pixels as one 2D window, clamp-to-edge.
@@ -59,14 +60,16 @@ Plane reference_blur(const Plane& in, int w, int h) {
   constexpr int r = 8, side = 2 * r + 1;
   double window[side][side], total = 0;
   for (int j = -r; j <= r; ++j)
-    for (int i = -r; i <= r; ++i) total += window[j + r][i + r] = std::exp(-(i * i + j * j) / (2 * 2.0 * 2.0));
+    for (int i = -r; i <= r; ++i)
+      total += window[j + r][i + r] = std::exp(-(i * i + j * j) / (2 * 2.0 * 2.0));
   Plane out(in.size());
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       double sum = 0;
       for (int j = -r; j <= r; ++j)
         for (int i = -r; i <= r; ++i)
-          sum += window[j + r][i + r] * in[size_t(std::clamp(y + j, 0, h - 1)) * w + std::clamp(x + i, 0, w - 1)];
+          sum += window[j + r][i + r] *
+                 in[size_t(std::clamp(y + j, 0, h - 1)) * w + std::clamp(x + i, 0, w - 1)];
       out[size_t(y) * w + x] = sum / total;
     }
   return out;
@@ -83,10 +86,12 @@ ReferenceFlow reference_flow(const Field& f, const std::vector<bool>& interior) 
     for (int x = 0; x < f.w; ++x) {
       const size_t i = size_t(y) * f.w + x;
       if (!interior[i]) continue;
-      const double gx = reference_derivative(f, x, y, 1, 0), gy = reference_derivative(f, x, y, 0, 1);
+      const double gx = reference_derivative(f, x, y, 1, 0),
+                   gy = reference_derivative(f, x, y, 0, 1);
       xx[i] = gx * gx, xy[i] = gx * gy, yy[i] = gy * gy;
     }
-  xx = reference_blur(xx, f.w, f.h), xy = reference_blur(xy, f.w, f.h), yy = reference_blur(yy, f.w, f.h);
+  xx = reference_blur(xx, f.w, f.h), xy = reference_blur(xy, f.w, f.h),
+  yy = reference_blur(yy, f.w, f.h);
   ReferenceFlow out{Plane(n, 0.0), Plane(n, 0.0), Plane(n, 0.0)};
   for (size_t i = 0; i < n; ++i) {
     const double a = xx[i], b = xy[i], c = yy[i];
@@ -107,7 +112,8 @@ void reference_normalise(Plane& e, const std::vector<bool>& interior) {
   if (!inside.empty()) {
     const double h = 0.99 * double(inside.size() - 1);
     const size_t k = size_t(h);
-    p = k + 1 < inside.size() ? inside[k] + (h - double(k)) * (inside[k + 1] - inside[k]) : inside[k];
+    p = k + 1 < inside.size() ? inside[k] + (h - double(k)) * (inside[k + 1] - inside[k])
+                              : inside[k];
   }
   for (double& v : e) v = p > 0 ? std::clamp(v / p, 0.0, 1.0) : 0.0;
 }
@@ -138,7 +144,8 @@ Reference reference_congruence(const Field& lightness, const Field& depth, bool 
   double sum = 0, weight = 0;
   for (size_t i = 0; i < interior.size(); ++i) {
     if (!interior[i]) continue;
-    out.map[i] = c.e[i] * (1 - reference_penalty(c.e[i], s.e[i], absolute)) * std::abs(c.vx[i] * s.vx[i] + c.vy[i] * s.vy[i]);
+    out.map[i] = c.e[i] * (1 - reference_penalty(c.e[i], s.e[i], absolute)) *
+                 std::abs(c.vx[i] * s.vx[i] + c.vy[i] * s.vy[i]);
     sum += out.map[i], weight += c.e[i];
   }
   out.score = weight > 0 ? sum / weight : 0.0;
@@ -158,38 +165,47 @@ Fields make_scene(int w, int h, uint64_t seed, double noise) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const double u = double(x) / w, v = double(y) / h;
-      const bool inside = (u - 0.35) * (u - 0.35) + (v - 0.6) * (v - 0.6) < 0.2 || (u > 0.55 && v > 0.3 && u + v < 1.5);
+      const bool inside = (u - 0.35) * (u - 0.35) + (v - 0.6) * (v - 0.6) < 0.2 ||
+                          (u > 0.55 && v > 0.3 && u + v < 1.5);
       const double bump = std::exp(-((u - 0.3) * (u - 0.3) + (v - 0.5) * (v - 0.5)) / 0.02) +
                           0.5 * std::exp(-((u - 0.7) * (u - 0.7) + (v - 0.6) * (v - 0.6)) / 0.005);
       const double z = 10.0 + 3.0 * u + 2.0 * v - 2.0 * bump;
-      s.depth.at(x, y) = inside ? float(z) : (x % 7 == 0 ? 0.0f : std::numeric_limits<float>::infinity());
+      s.depth.at(x, y) =
+          inside ? float(z) : (x % 7 == 0 ? 0.0f : std::numeric_limits<float>::infinity());
       double l = 50.0 + 30.0 * std::sin(9.0 * u + 4.0 * bump) + noise * (random.next() - 0.5);
       if (u > 0.6 && u < 0.7 && v > 0.4 && v < 0.5) l = 40.0;  // flat: isotropic tensors
-      if (v > 0.8) l += 25.0;                                   // a step
+      if (v > 0.8) l += 25.0;                                  // a step
       s.lightness.at(x, y) = float(std::clamp(l, 0.0, 100.0));
     }
   return s;
 }
 
-Field field_of(const Image& image) { return {image.width, image.height, Plane(image.pixels.begin(), image.pixels.end())}; }
+Field field_of(const Image& image) {
+  return {image.width, image.height, Plane(image.pixels.begin(), image.pixels.end())};
+}
 
 void expect_agreement(const Image& lightness, const Image& depth, const std::string& what) {
   for (bool absolute : {false, true}) {
     const Congruence ours =
-        congruence(lightness, depth, {absolute ? CongruencePenalty::absolute : CongruencePenalty::signed_clamp});
+        congruence(lightness, depth,
+                   {absolute ? CongruencePenalty::absolute : CongruencePenalty::signed_clamp});
     const Reference ref = reference_congruence(field_of(lightness), field_of(depth), absolute);
     EXPECT_GT(ref.score, 0.05) << what;
     EXPECT_NEAR(ours.score, ref.score, 1e-5) << what << (absolute ? ", absolute" : ", signed");
     double worst = 0;
-    for (size_t i = 0; i < ref.map.size(); ++i) worst = std::max(worst, std::abs(double(ours.map.pixels[i]) - ref.map[i]));
+    for (size_t i = 0; i < ref.map.size(); ++i)
+      worst = std::max(worst, std::abs(double(ours.map.pixels[i]) - ref.map[i]));
     EXPECT_LT(worst, 1e-4) << what << (absolute ? ", absolute" : ", signed");
   }
 }
 
 TEST(CongruenceReference, AgreesWithASeparateImplementationOfTheDefinition) {
-  for (const auto& [w, h, seed, noise] : {std::tuple{96, 64, 1u, 0.0}, std::tuple{80, 72, 2u, 20.0}, std::tuple{64, 96, 3u, 100.0}}) {
+  for (const auto& [w, h, seed, noise] :
+       {std::tuple{96, 64, 1u, 0.0}, std::tuple{80, 72, 2u, 20.0}, std::tuple{64, 96, 3u, 100.0}}) {
     const Fields scene = make_scene(w, h, seed, noise);
-    expect_agreement(scene.lightness, scene.depth, std::to_string(w) + "x" + std::to_string(h) + " noise " + std::to_string(noise));
+    expect_agreement(
+        scene.lightness, scene.depth,
+        std::to_string(w) + "x" + std::to_string(h) + " noise " + std::to_string(noise));
   }
 }
 
@@ -207,8 +223,10 @@ TEST(CongruenceReference, AgreesWithASeparateImplementationOnARenderedMesh) {
   })")));
   const auto view = render_view(scene);
   const LabPixels lab = display_to_lab(view->display, view->encoding, 0);
-  Image lightness(view->display.width, view->display.height, 1), depth(lightness.width, lightness.height, 1);
-  for (size_t i = 0; i < lab.size(); ++i) lightness.pixels[i] = float(lab[i].L), depth.pixels[i] = view->depth[i];
+  Image lightness(view->display.width, view->display.height, 1),
+      depth(lightness.width, lightness.height, 1);
+  for (size_t i = 0; i < lab.size(); ++i)
+    lightness.pixels[i] = float(lab[i].L), depth.pixels[i] = view->depth[i];
   expect_agreement(lightness, depth, "rendered ball");
 }
 
@@ -218,8 +236,10 @@ TEST(CongruenceReference, AgreesWithASeparateImplementationOnARenderedMesh) {
 TEST(CongruenceReference, TheSignedClampDoesNotPenaliseExaggeration) {
   const Fields scene = make_scene(96, 64, 1, 20.0);
   const Congruence ours = congruence(scene.lightness, scene.depth);
-  const Congruence absolute = congruence(scene.lightness, scene.depth, {CongruencePenalty::absolute});
-  for (size_t i = 0; i < ours.map.pixels.size(); ++i) ASSERT_GE(ours.map.pixels[i], absolute.map.pixels[i]) << i;
+  const Congruence absolute =
+      congruence(scene.lightness, scene.depth, {CongruencePenalty::absolute});
+  for (size_t i = 0; i < ours.map.pixels.size(); ++i)
+    ASSERT_GE(ours.map.pixels[i], absolute.map.pixels[i]) << i;
   EXPECT_GT(ours.score, absolute.score + 0.01);
 }
 
@@ -228,7 +248,8 @@ TEST(CongruenceReference, TheComparisonSeesAChangedImage) {
   const Fields scene = make_scene(96, 64, 1, 0.0);
   Image turned = scene.lightness;
   for (int y = 0; y < turned.height; ++y)
-    for (int x = 0; x < turned.width; ++x) turned.at(x, y) = scene.lightness.at(x, (y + 5) % turned.height);
+    for (int x = 0; x < turned.width; ++x)
+      turned.at(x, y) = scene.lightness.at(x, (y + 5) % turned.height);
   const Reference ref = reference_congruence(field_of(scene.lightness), field_of(scene.depth));
   EXPECT_GT(std::abs(congruence(turned, scene.depth).score - ref.score), 1e-3);
 }

@@ -6,16 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
+#include "enhance/view_plan.h"
 #include "render/camera.h"
 #include "stimuli/congruence.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
 #include "test_util.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -33,7 +32,8 @@ fs::path write_ball_experiment(const testing::TempDir& dir, const std::string& d
   return testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "sweep", "seed": 3, "congruence": true,
     "lambda": {"min": 1, "max": 1, "step": 1},
-    "scenes": [{"name": "ball", "file": "ball.json", "light_directions": )" + directions + R"(}],
+    "scenes": [{"name": "ball", "file": "ball.json", "light_directions": )" +
+                                                          directions + R"(}],
     "methods": [{"method": "none"}, {"method": "radiance-scaling", "tau": 4}]
   })");
 }
@@ -42,19 +42,24 @@ TEST(CongruenceSet, LightDirectionsAreRelativeToTheView) {
   Camera camera;
   camera.eye = {0, 1, 5}, camera.target = {0, 0, 0};
   const CameraRays rays(camera);
-  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0}) + rays.forward()), 1e-12);  // towards the viewer
+  EXPECT_LT(glm::length(view_light_direction(camera, {0, 0}) + rays.forward()),
+            1e-12);  // towards the viewer
   EXPECT_LT(glm::length(view_light_direction(camera, {0, 90}) - rays.right()), 1e-12);
-  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200}), rays.up()), std::sqrt(3.0) / 2, 1e-12);
-  // Around the image plane: azimuth 0 from the right, 90 from above, the elevation towards the viewer.
+  EXPECT_NEAR(glm::dot(view_light_direction(camera, {60, 200}), rays.up()), std::sqrt(3.0) / 2,
+              1e-12);
+  // Around the image plane: azimuth 0 from the right, 90 from above, the elevation towards the
+  // viewer.
   EXPECT_LT(glm::length(view_light_direction(camera, {0, 0, true}) - rays.right()), 1e-12);
   EXPECT_LT(glm::length(view_light_direction(camera, {0, 90, true}) - rays.up()), 1e-12);
   for (double azimuth : {0.0, 102.9, 205.7, 308.6})
-    EXPECT_NEAR(glm::dot(view_light_direction(camera, {15, azimuth, true}), -rays.forward()), std::sin(15.0 * M_PI / 180.0), 1e-12);
+    EXPECT_NEAR(glm::dot(view_light_direction(camera, {15, azimuth, true}), -rays.forward()),
+                std::sin(15.0 * M_PI / 180.0), 1e-12);
 }
 
 TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   testing::TempDir dir;
-  const Experiment e = load_experiment(write_ball_experiment(dir, R"({"elevations": [0, 60], "azimuths": 4})"));
+  const Experiment e =
+      load_experiment(write_ball_experiment(dir, R"({"elevations": [0, 60], "azimuths": 4})"));
   ASSERT_EQ(e.scenes.size(), 8u);
   EXPECT_EQ(e.scenes[1].name, "ball-e0-a90");
   EXPECT_EQ(e.scenes[7].name, "ball-e60-a270");
@@ -67,9 +72,9 @@ TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   const Manifest manifest = read_manifest(dir / "set/manifest.json");
   ASSERT_EQ(manifest.stimuli.size(), 8u * 3u);  // reference, none, radiance-scaling per scene
   const auto view = render_view(std::make_shared<Scene>(load_experiment_scene(e, e.scenes[0])));
-  const ManifestEntry& reference = *std::find_if(manifest.stimuli.begin(), manifest.stimuli.end(), [&](const ManifestEntry& s) {
-    return s.is_reference() && s.scene == e.scenes[0].name;
-  });
+  const ManifestEntry& reference = *std::find_if(
+      manifest.stimuli.begin(), manifest.stimuli.end(),
+      [&](const ManifestEntry& s) { return s.is_reference() && s.scene == e.scenes[0].name; });
   int bits = 0;
   const Image written = read_image(dir / "set" / reference.file, &bits);
   const double score = display_congruence(written, view->encoding, bits, view->depth).score;
@@ -77,7 +82,9 @@ TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   EXPECT_GT(score, 0.3);  // a lit ball's shading follows its shape
   for (const auto& s : manifest.stimuli) EXPECT_TRUE(s.extra.contains("congruence_map")) << s.file;
   // The method `none` is a condition of its own, not a second reference.
-  EXPECT_EQ(std::count_if(manifest.stimuli.begin(), manifest.stimuli.end(), [](const ManifestEntry& s) { return s.is_reference(); }), 8);
+  EXPECT_EQ(std::count_if(manifest.stimuli.begin(), manifest.stimuli.end(),
+                          [](const ManifestEntry& s) { return s.is_reference(); }),
+            8);
 
   // The figures: one table row per scene and condition, the plot and a sheet per condition.
   std::ifstream csv(dir / "set/congruence.csv");
@@ -86,7 +93,8 @@ TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   EXPECT_EQ(lines, 1 + 8 * 3);
   EXPECT_TRUE(fs::is_regular_file(dir / "set/congruence.svg"));
   EXPECT_TRUE(fs::is_regular_file(dir / "set/contact-sheets/congruence-radiance-scaling.png"));
-  EXPECT_FALSE(fs::exists(dir / "set/contact-sheets/ball-e0-a0-radiance-scaling.png"));  // one image: no sheet
+  EXPECT_FALSE(fs::exists(
+      dir / "set/contact-sheets/ball-e0-a0-radiance-scaling.png"));  // one image: no sheet
 
   // A changed map is reported.
   const std::string map = manifest.stimuli[2].extra["congruence_map"]["file"].get<std::string>();
@@ -119,9 +127,10 @@ TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
     std::ifstream in(svg);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     size_t count = 0;
-    for (size_t at = text.find("points=\""); at != std::string::npos; at = text.find("points=\"", at + 1)) {
+    for (size_t at = text.find("points=\""); at != std::string::npos;
+         at = text.find("points=\"", at + 1)) {
       const size_t begin = at + 8, end = text.find('"', begin);
-      count += size_t(std::count(text.begin() + long(begin), text.begin() + long(end), ',')) ;
+      count += size_t(std::count(text.begin() + long(begin), text.begin() + long(end), ','));
     }
     return count;
   };
@@ -130,7 +139,9 @@ TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
   EXPECT_EQ(points_in(dir / "set/congruence-near.svg"), 3u * 2u);
   EXPECT_EQ(points_in(dir / "set/congruence-far.svg"), 4u * 2u);
   // One swept entry: no figure of its own besides congruence.svg.
-  generate_stimulus_set(load_experiment(write_ball_experiment(dir, R"({"elevations": [0], "azimuths": 2})")), dir / "one", options);
+  generate_stimulus_set(
+      load_experiment(write_ball_experiment(dir, R"({"elevations": [0], "azimuths": 2})")),
+      dir / "one", options);
   EXPECT_TRUE(fs::is_regular_file(dir / "one/congruence.svg"));
   EXPECT_FALSE(fs::exists(dir / "one/congruence-ball.svg"));
 }
@@ -138,10 +149,13 @@ TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
 TEST(CongruenceSet, BadLightDirectionsAreOneLine) {
   testing::TempDir dir;
   auto error_of = [&](const std::string& directions) {
-    return testing::input_error_of([&] { load_experiment(write_ball_experiment(dir, directions)); });
+    return testing::input_error_of(
+        [&] { load_experiment(write_ball_experiment(dir, directions)); });
   };
-  EXPECT_NE(error_of(R"({"elevations": [90], "azimuths": 2})").find("(-90, 90)"), std::string::npos);
-  EXPECT_NE(error_of(R"({"elevations": [], "azimuths": 2})").find("at least one elevation"), std::string::npos);
+  EXPECT_NE(error_of(R"({"elevations": [90], "azimuths": 2})").find("(-90, 90)"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"elevations": [], "azimuths": 2})").find("at least one elevation"),
+            std::string::npos);
   EXPECT_NE(error_of(R"({"elevations": [10], "azimuths": 0})").find("azimuths"), std::string::npos);
   EXPECT_NE(error_of(R"({"elevations": [10], "tilt": 3})").find("tilt"), std::string::npos);
 }

@@ -6,15 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "adjust/study.h"
 #include "forced_choice/choice_config.h"
 #include "render/scene.h"
+#include "render/scene_loader.h"
 #include "stimuli/experiment.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {
@@ -66,7 +65,8 @@ TEST(DocumentedFormats, TheExperimentExampleLoads) {
   ASSERT_EQ(blocks.size(), 1u);
   testing::TempDir dir;
   fs::create_directories(dir / "scenes");
-  fs::copy_file(source_dir() / "experiments/ritschel2008/scenes/chamfer.json", dir / "scenes/chamfer.json");
+  fs::copy_file(source_dir() / "experiments/ritschel2008/scenes/chamfer.json",
+                dir / "scenes/chamfer.json");
   const Experiment e = load_experiment(write_file(dir / "experiment.json", blocks[0]));
   EXPECT_EQ(e.methods.size(), 3u);
   EXPECT_EQ(e.lambda.count(), 61);  // 0 … 3 in steps of 0.05
@@ -75,7 +75,8 @@ TEST(DocumentedFormats, TheExperimentExampleLoads) {
 TEST(DocumentedFormats, TheProcedureExampleParses) {
   const auto blocks = json_blocks(source_dir() / "docs/adjustment-study.md");
   ASSERT_EQ(blocks.size(), 1u);
-  const adjust::StudyConfig config = adjust::parse_study_config(json::parse(blocks[0]), "adjustment-study.md", "");
+  const adjust::StudyConfig config =
+      adjust::parse_study_config(json::parse(blocks[0]), "adjustment-study.md", "");
   EXPECT_EQ(config.plan.repetitions, 2);
   EXPECT_EQ(config.plan.practice_trials, 2);
   ASSERT_EQ(config.conditions.size(), 1u);
@@ -85,7 +86,8 @@ TEST(DocumentedFormats, TheProcedureExampleParses) {
 TEST(DocumentedFormats, TheForcedChoiceExampleParses) {
   const auto blocks = json_blocks(source_dir() / "docs/forced-choice.md");
   ASSERT_EQ(blocks.size(), 1u);
-  const auto config = forced_choice::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
+  const auto config =
+      forced_choice::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
   EXPECT_EQ(config.kind, forced_choice::ProcedureKind::quest);
   EXPECT_EQ(config.trials, 40);
   EXPECT_EQ(config.practice_trials, 2);

@@ -10,10 +10,10 @@
 
 #include "core/error.h"
 #include "formats/manifest.h"
+#include "set_test_util.h"
 #include "stimuli/audit.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
-#include "set_test_util.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -36,13 +36,29 @@ TEST(Headroom, TheSearchFindsTheSmallestExposureDropAgainstWhite) {
   EXPECT_LE(calls, 10);
   // Already within the limit: no change, one look.
   calls = 0;
-  const Headroom none = find_headroom([&](const Headroom&) { return ++calls, Clipped{0.005, 0.004}; }, 0.01);
+  const Headroom none = find_headroom(
+      [&](const Headroom&) {
+        return ++calls, Clipped{0.005, 0.004};
+      },
+      0.01);
   EXPECT_EQ(none.exposure_stops, 0.0);
   EXPECT_EQ(none.black_level, 0.0);
   EXPECT_EQ(calls, 1);
   // A share that does not fall: no change is worth making.
-  EXPECT_EQ(find_headroom([](const Headroom&) { return Clipped{0.2, 0.0}; }, 0.01).exposure_stops, 0.0);
-  EXPECT_EQ(find_headroom([](const Headroom&) { return Clipped{0.0, 0.2}; }, 0.01).black_level, 0.0);
+  EXPECT_EQ(find_headroom(
+                [](const Headroom&) {
+                  return Clipped{0.2, 0.0};
+                },
+                0.01)
+                .exposure_stops,
+            0.0);
+  EXPECT_EQ(find_headroom(
+                [](const Headroom&) {
+                  return Clipped{0.0, 0.2};
+                },
+                0.01)
+                .black_level,
+            0.0);
   // One that falls but never far enough: the end's neighbour, where it gave up.
   auto slow = [](const Headroom& h) { return Clipped{0.5 + 0.01 * h.exposure_stops, 0.0}; };
   EXPECT_EQ(find_headroom(slow, 0.01, {-0.25, -2, 0.05}).exposure_stops, -1.0);
@@ -83,7 +99,9 @@ TEST(Headroom, TheSearchRaisesTheBlackLevelAgainstBlackAtTheExposureItChose) {
   EXPECT_FALSE((Clipped{0.008, 0.008}).within(0.01));
   // A black level that clips white beyond the limit (more than at the start) ends the search
   // where it stood.
-  auto spoils = [](const Headroom& h) { return Clipped{h.black_level > 0.01 ? 0.05 : 0.0, 0.03 - 0.1 * h.black_level}; };
+  auto spoils = [](const Headroom& h) {
+    return Clipped{h.black_level > 0.01 ? 0.05 : 0.0, 0.03 - 0.1 * h.black_level};
+  };
   EXPECT_EQ(find_headroom(spoils, 0.01).black_level, 0.0);
 }
 
@@ -94,7 +112,8 @@ struct HeadroomSets {
   std::set<std::pair<double, double>> changes;  // (exposure_stops, black_level) over the entries
 };
 
-HeadroomSets make_sets(const std::vector<std::pair<std::string, std::string>>& replaced, const std::string& method) {
+HeadroomSets make_sets(const std::vector<std::pair<std::string, std::string>>& replaced,
+                       const std::string& method) {
   testing::TempDir dir;
   std::string scene = testing::kLitCubeScene;
   for (const auto& [from, to] : replaced) scene.replace(scene.find(from), from.size(), to);
@@ -110,11 +129,13 @@ HeadroomSets make_sets(const std::vector<std::pair<std::string, std::string>>& r
       "methods": [)" + method + R"(], "audit": {"max_drift": 100, "max_clipped": 0.01},
       "headroom": )" + (headroom ? "true" : "false") + "}"));
     generate_stimulus_set(e, dir / name, options);
-    const size_t failed = testing::failed_checks(audit_stimulus_set(dir / name / "manifest.json"), "clipped pixels");
+    const size_t failed =
+        testing::failed_checks(audit_stimulus_set(dir / name / "manifest.json"), "clipped pixels");
     (headroom ? sets.failed_with : sets.failed_without) = failed;
     if (!headroom) continue;
     for (const auto& entry : read_manifest(dir / name / "manifest.json").stimuli)
-      sets.changes.insert({entry.extra.at("exposure_stops").get<double>(), entry.extra.at("black_level").get<double>()});
+      sets.changes.insert({entry.extra.at("exposure_stops").get<double>(),
+                           entry.extra.at("black_level").get<double>()});
   }
   return sets;
 }
@@ -124,8 +145,9 @@ HeadroomSets make_sets(const std::vector<std::pair<std::string, std::string>>& r
 // (nothing clips at black).
 TEST(Headroom, ASetWithHeadroomPassesTheClippingCheck) {
   // Bright all over (strong ambient light), so that what clips, clips at white.
-  const HeadroomSets sets = make_sets({{"\"irradiance\": 1.6", "\"irradiance\": 2.0"}, {"\"radiance\": 0.25", "\"radiance\": 1.2"}},
-                                      R"({"method": "usm3d", "sigma_fraction": [0.1]})");
+  const HeadroomSets sets = make_sets(
+      {{"\"irradiance\": 1.6", "\"irradiance\": 2.0"}, {"\"radiance\": 0.25", "\"radiance\": 1.2"}},
+      R"({"method": "usm3d", "sigma_fraction": [0.1]})");
   EXPECT_EQ(sets.failed_without, 1u);
   EXPECT_EQ(sets.failed_with, 0u);
   ASSERT_EQ(sets.changes.size(), 1u);
@@ -137,7 +159,8 @@ TEST(Headroom, ASetWithHeadroomPassesTheClippingCheck) {
 // halos at λ = 3 clip a fifth of the image at black. Headroom lowers the exposure for the white
 // the halos also clip, then lifts the black level until the set passes.
 TEST(Headroom, ADarkSetPassesWithABlackLevel) {
-  const HeadroomSets sets = make_sets({{"\"radiance\": 0.25", "\"radiance\": 0.02"}, {"\"background\": 0.18", "\"background\": 0.01"}},
+  const HeadroomSets sets = make_sets({{"\"radiance\": 0.25", "\"radiance\": 0.02"},
+                                       {"\"background\": 0.18", "\"background\": 0.01"}},
                                       R"({"method": "usm2d", "sigma_percent": [4]})");
   EXPECT_EQ(sets.failed_without, 1u);
   EXPECT_EQ(sets.failed_with, 0u);
@@ -154,7 +177,8 @@ TEST(Headroom, SequencesAreRefused) {
     "version": 1, "name": "s", "headroom": true, "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "orbit", "file": "orbit.json", "frames": "all"}],
     "methods": [{"method": "usm2d", "sigma_percent": [2]}]})");
-  EXPECT_NE(testing::input_error_of([&] { load_experiment(file); }).find("still scenes only"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { load_experiment(file); }).find("still scenes only"),
+            std::string::npos);
 }
 
 }  // namespace

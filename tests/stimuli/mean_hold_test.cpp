@@ -13,10 +13,10 @@
 #include "core/image.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
+#include "set_test_util.h"
 #include "stimuli/audit.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
-#include "set_test_util.h"
 #include "test_util.h"
 
 namespace countershade {
@@ -38,7 +38,9 @@ ReferenceLab reference_lab(const float* rgb, bool rounded = true) {
   const double X = 0.4124564 * linear[0] + 0.3575761 * linear[1] + 0.1804375 * linear[2];
   const double Y = 0.2126729 * linear[0] + 0.7151522 * linear[1] + 0.0721750 * linear[2];
   const double Z = 0.0193339 * linear[0] + 0.1191920 * linear[1] + 0.9503041 * linear[2];
-  auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
+  auto f = [](double t) {
+    return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0;
+  };
   const double fx = f(X / 0.95047), fy = f(Y), fz = f(Z / 1.08883);
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
@@ -48,7 +50,8 @@ ReferenceLab reference_lab(const float* rgb, bool rounded = true) {
 double largest_rounding_error(const Image& image, const std::vector<double>& ideal) {
   double largest = 0;
   for (size_t p = 0; p < ideal.size(); ++p)
-    if (std::isfinite(ideal[p])) largest = std::max(largest, std::abs(reference_lab(&image.pixels[3 * p]).L - ideal[p]));
+    if (std::isfinite(ideal[p]))
+      largest = std::max(largest, std::abs(reference_lab(&image.pixels[3 * p]).L - ideal[p]));
   return largest;
 }
 
@@ -68,7 +71,8 @@ std::shared_ptr<const View> striped_view() {
       const size_t i = size_t(y) * w + x;
       const bool object = x >= 12 && x < 52 && y >= 8 && y < 40;
       const float t = float((x / 4) % 5) / 4.0f;
-      const float rgb[3] = {object ? 0.3f + 0.5f * t : 0.2f, object ? 0.35f + 0.2f * t : 0.2f, object ? 0.5f - 0.3f * t : 0.2f};
+      const float rgb[3] = {object ? 0.3f + 0.5f * t : 0.2f, object ? 0.35f + 0.2f * t : 0.2f,
+                            object ? 0.5f - 0.3f * t : 0.2f};
       for (int c = 0; c < 3; ++c) display.pixels[3 * i + size_t(c)] = rgb[c];
       if (object) depth[i] = 1.0f;
     }
@@ -77,13 +81,16 @@ std::shared_ptr<const View> striped_view() {
 
 TEST(MeanHold, AnEnhancedImageGetsItsReferencesMeanByOneOffsetOnItsObject) {
   const auto view = striped_view();
-  // An "enhancement" that brightens the object: every channel of its pixels up by 20 codes (some clip).
+  // An "enhancement" that brightens the object: every channel of its pixels up by 20 codes (some
+  // clip).
   Image enhanced = view->display;
   for (size_t p = 0; p < view->depth.size(); ++p)
     for (int c = 0; std::isfinite(view->depth[p]) && c < 3; ++c)
-      enhanced.pixels[3 * p + size_t(c)] = std::min(1.0f, enhanced.pixels[3 * p + size_t(c)] + 20.0f / 255.0f);
+      enhanced.pixels[3 * p + size_t(c)] =
+          std::min(1.0f, enhanced.pixels[3 * p + size_t(c)] + 20.0f / 255.0f);
   const double target = reference_mean(view->display);
-  ASSERT_GT(std::abs(reference_mean(enhanced) - target), 0.3) << "the enhancement must move the mean to test anything";
+  ASSERT_GT(std::abs(reference_mean(enhanced) - target), 0.3)
+      << "the enhancement must move the mean to test anything";
   const HeldMean held = hold_mean_lightness(*view, {enhanced, 0});
   EXPECT_NEAR(reference_mean(held.display), target, 0.05);
   EXPECT_NEAR(mean_display_lightness(held.display, view->encoding, 8), target, 0.05);
@@ -123,8 +130,10 @@ TEST(MeanHold, TheOffsetComposedBeforeRoundingHoldsAFlatFaceFinerThanWholeCodes)
   PixelDoubles where(size_t(w) * h, 0.0);
   for (size_t i = 0; i < depth.size(); ++i) {
     const bool object = int(i % w) < w / 2;
-    for (int c = 0; c < 3; ++c) display.pixels[3 * i + size_t(c)] = object ? 128.0f / 255.0f : 40.0f / 255.0f;
-    if (object) depth[i] = 1.0f, ramp.amount[i] = 0.5 * double(i % w) / double(w / 2 - 1), where[i] = 1.0;
+    for (int c = 0; c < 3; ++c)
+      display.pixels[3 * i + size_t(c)] = object ? 128.0f / 255.0f : 40.0f / 255.0f;
+    if (object)
+      depth[i] = 1.0f, ramp.amount[i] = 0.5 * double(i % w) / double(w / 2 - 1), where[i] = 1.0;
   }
   const auto view = make_image_view(display, depth, DisplayEncoding::srgb(), 8);
   const LightnessPrepared prepared(view, ramp, nlohmann::json::object(), {}, 1);
@@ -132,9 +141,10 @@ TEST(MeanHold, TheOffsetComposedBeforeRoundingHoldsAFlatFaceFinerThanWholeCodes)
   const double lambda = 1.0;
   const Composed enhanced = prepared.compose(lambda);
   const HeldMean on_codes = hold_mean_lightness(*view, enhanced);
-  const HeldMean composed = hold_mean_lightness(*view, enhanced, 0.005, [&](double offset, std::span<const double> at) {
-    return prepared.compose_offset(lambda, offset, at);
-  });
+  const HeldMean composed =
+      hold_mean_lightness(*view, enhanced, 0.005, [&](double offset, std::span<const double> at) {
+        return prepared.compose_offset(lambda, offset, at);
+      });
   EXPECT_LT(std::abs(reference_mean(composed.display) - target), 0.01);
   std::vector<double> ideal_composed(depth.size(), NAN), ideal_on_codes(depth.size(), NAN);
   for (size_t i = 0; i < depth.size(); ++i) {
@@ -147,7 +157,8 @@ TEST(MeanHold, TheOffsetComposedBeforeRoundingHoldsAFlatFaceFinerThanWholeCodes)
   EXPECT_LT(largest_rounding_error(composed.display, ideal_composed), half_code + 1e-3);
   EXPECT_GT(largest_rounding_error(on_codes.display, ideal_on_codes), half_code + 0.05);
   // The held stimulus is the method's own composition at the offset it records: rounded once.
-  EXPECT_EQ(composed.display.pixels, prepared.compose_offset(lambda, composed.offset, where)->display.pixels);
+  EXPECT_EQ(composed.display.pixels,
+            prepared.compose_offset(lambda, composed.offset, where)->display.pixels);
 }
 
 // The same flat face under a method that composes in display RGB without rounding (as depth-usm's
@@ -161,14 +172,16 @@ TEST(MeanHold, AnRgbMethodsUnroundedStimulusTakesTheOffsetBeforeItsRounding) {
   PixelDoubles where(size_t(w) * h, 0.0);
   for (size_t i = 0; i < depth.size(); ++i) {
     const bool object = int(i % w) < w / 2;
-    for (int c = 0; c < 3; ++c) display.pixels[3 * i + size_t(c)] = object ? 128.0f / 255.0f : 40.0f / 255.0f;
+    for (int c = 0; c < 3; ++c)
+      display.pixels[3 * i + size_t(c)] = object ? 128.0f / 255.0f : 40.0f / 255.0f;
     if (object) depth[i] = 1.0f, where[i] = 1.0;
   }
   const auto view = make_image_view(display, depth, DisplayEncoding::srgb(), 8);
   Composed unrounded{view->display, 0};
   for (size_t i = 0; i < depth.size(); ++i)
     for (int c = 0; where[i] == 1.0 && c < 3; ++c)
-      unrounded.display.pixels[3 * i + size_t(c)] += float(1.25 * double(i % w) / double(w / 2 - 1) / 255.0);
+      unrounded.display.pixels[3 * i + size_t(c)] +=
+          float(1.25 * double(i % w) / double(w / 2 - 1) / 255.0);
   Composed rounded = unrounded;
   quantize_in_place(rounded.display, 8);
   const double target = reference_mean(view->display);
@@ -187,7 +200,8 @@ TEST(MeanHold, AnRgbMethodsUnroundedStimulusTakesTheOffsetBeforeItsRounding) {
     ideal_composed[i] = L + composed.offset;
     ideal_on_codes[i] = L + on_codes.offset;
   }
-  EXPECT_LT(largest_rounding_error(composed.display, ideal_composed), 0.2);  // half of 0.39 L*, codes 129 to 130
+  EXPECT_LT(largest_rounding_error(composed.display, ideal_composed),
+            0.2);  // half of 0.39 L*, codes 129 to 130
   EXPECT_GT(largest_rounding_error(on_codes.display, ideal_on_codes), 0.25);
 }
 
@@ -209,17 +223,21 @@ TEST(MeanHold, TheSearchFindsTheOffsetBetweenTwoFlatGreysThresholds) {
   const auto view = make_image_view(display, depth, DisplayEncoding::srgb(), 8);
   Composed unrounded{view->display, 0};
   for (size_t i = 0; i < 12; ++i)  // a patch of 12 pixels darkened by 40.3 codes, unrounded
-    for (int c = 0; c < 3; ++c) unrounded.display.pixels[3 * (i + 20 * size_t(w)) + size_t(c)] -= 40.3f / 255.0f;
+    for (int c = 0; c < 3; ++c)
+      unrounded.display.pixels[3 * (i + 20 * size_t(w)) + size_t(c)] -= 40.3f / 255.0f;
   Composed rounded = unrounded;
   quantize_in_place(rounded.display, 8);
   const double target = reference_mean(view->display);
-  ASSERT_LT(reference_mean(rounded.display) - target, -0.05) << "the patch must move the mean past the bound";
+  ASSERT_LT(reference_mean(rounded.display) - target, -0.05)
+      << "the patch must move the mean past the bound";
   const HeldMean held = hold_mean_lightness(*view, unrounded);
   EXPECT_LT(std::abs(reference_mean(held.display) - target), 0.05);
   // Between the thresholds: of the flat greys' channels, some have moved a code and some not.
   size_t moved = 0, flat = 0;
   for (size_t i = 0; i < depth.size(); ++i)
-    for (int c = 0; std::isfinite(depth[i]) && !(i >= 20 * size_t(w) && i < 20 * size_t(w) + 12) && c < 3; ++c) {
+    for (int c = 0;
+         std::isfinite(depth[i]) && !(i >= 20 * size_t(w) && i < 20 * size_t(w) + 12) && c < 3;
+         ++c) {
       ++flat;
       moved += held.display.pixels[3 * i + size_t(c)] != view->display.pixels[3 * i + size_t(c)];
     }
@@ -233,7 +251,8 @@ TEST(MeanHold, ASetWithHoldMeanPassesTheDriftCheck) {
   testing::TempDir dir;
   testing::write_file(dir / "cube.json", testing::kLitCubeScene);
   auto experiment = [&](bool hold) {
-    return load_experiment(testing::write_file(dir / (hold ? "held.json" : "free.json"), std::string(R"({
+    return load_experiment(testing::write_file(dir / (hold ? "held.json" : "free.json"),
+                                               std::string(R"({
       "version": 1, "name": "held", "seed": 5, "lambda": {"min": 0, "max": 3, "step": 1.5},
       "scenes": [{"name": "cube", "file": "cube.json", "width": 96, "height": 72}],
       "methods": [{"method": "usm3d", "sigma_fraction": [0.1]}], "audit": {"max_drift": 0.1})") +

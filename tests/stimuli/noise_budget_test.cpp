@@ -36,7 +36,8 @@ Measured two_seed_noise(const fs::path& a, const fs::path& b) {
   std::vector<double> d(size_t(ia.width) * ia.height);
   double sum = 0;
   for (size_t p = 0; p < d.size(); ++p) {
-    d[p] = std::abs(display_pixel_to_lab(&ia.pixels[3 * p], srgb).L - display_pixel_to_lab(&ib.pixels[3 * p], srgb).L) /
+    d[p] = std::abs(display_pixel_to_lab(&ia.pixels[3 * p], srgb).L -
+                    display_pixel_to_lab(&ib.pixels[3 * p], srgb).L) /
            std::sqrt(2.0);
     sum += d[p] * d[p];
   }
@@ -44,14 +45,20 @@ Measured two_seed_noise(const fs::path& a, const fs::path& b) {
   return {std::sqrt(sum / double(d.size())), d[size_t(0.99 * double(d.size() - 1))]};
 }
 
-// One preview scene at 256×192, the reference and usm3d (σ = 0.12) on the grid {0, 3}, with the given seed.
+// One preview scene at 256×192, the reference and usm3d (σ = 0.12) on the grid {0, 3}, with the
+// given seed.
 fs::path generate(const testing::TempDir& dir, const std::string& scene, int seed) {
-  const fs::path scene_file = testing::source_dir() / "experiments/ritschel2008/scenes" / (scene + ".json");
+  const fs::path scene_file =
+      testing::source_dir() / "experiments/ritschel2008/scenes" / (scene + ".json");
   const std::string name = "seed-" + std::to_string(seed);
-  const fs::path experiment = testing::write_file(dir / (name + ".json"), R"({
-    "version": 1, "name": "noise", "seed": )" + std::to_string(seed) + R"(,
+  const fs::path experiment =
+      testing::write_file(dir / (name + ".json"), R"({
+    "version": 1, "name": "noise", "seed": )" + std::to_string(seed) +
+                                                      R"(,
     "lambda": {"min": 0, "max": 3, "step": 3},
-    "scenes": [{"name": ")" + scene + R"(", "file": ")" + scene_file.string() + R"(", "width": 256, "height": 192}],
+    "scenes": [{"name": ")" + scene + R"(", "file": ")" +
+                                                      scene_file.string() +
+                                                      R"(", "width": 256, "height": 192}],
     "methods": [{"method": "usm3d", "sigma": [0.12], "ring_samples": 3}]
   })");
   GenerateOptions options;
@@ -90,7 +97,8 @@ TEST_P(PreviewSceneNoise, MeetsTheBudgetAndTheManifestSaysSo) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Ritschel2008, PreviewSceneNoise, ::testing::Values("chamfer", "dice", "scan", "clutter"));
+INSTANTIATE_TEST_SUITE_P(Ritschel2008, PreviewSceneNoise,
+                         ::testing::Values("chamfer", "dice", "scan", "clutter"));
 
 }  // namespace
 }  // namespace countershade

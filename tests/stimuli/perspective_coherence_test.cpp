@@ -1,23 +1,22 @@
 // Perspective coherence: a layer attached to the surface survives the dolly's reprojection, a layer
 // fixed to the screen does not; and a set that asks for the metric records it and plots it.
 
+#include "stimuli/perspective_coherence.h"
+
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <map>
 #include <numbers>
 
-#include <glm/geometric.hpp>
-
+#include "enhance/view_plan.h"
+#include "render/scene_loader.h"
 #include "stimuli/experiment.h"
-#include "stimuli/perspective_coherence.h"
-#include "stimuli/stimulus_set.h"
 #include "stimuli/set_test_util.h"
+#include "stimuli/stimulus_set.h"
 #include "stimuli/surface_values.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -45,7 +44,8 @@ std::vector<float> attached(const View& v, const std::function<double(const glm:
 
 std::vector<float> screen_fixed(const View& v) {
   std::vector<float> out(v.depth.size());
-  for (size_t i = 0; i < out.size(); ++i) out[i] = float(5 * std::sin(2 * kPi * double(i % size_t(v.width())) / 12));
+  for (size_t i = 0; i < out.size(); ++i)
+    out[i] = float(5 * std::sin(2 * kPi * double(i % size_t(v.width())) / 12));
   return out;
 }
 
@@ -61,16 +61,21 @@ TEST(PerspectiveCoherence, ALayerOnTheSurfaceIsCoherentAndOneOnTheScreenIsNot) {
   testing::TempDir dir;
   const fs::path file = testing::write_file(dir / "ground.json", kGround);
   const auto first = ground_view(file, 0), moved = ground_view(file, 0.02);
-  auto wave = [](const glm::dvec3& p) { return 5 * std::sin(2 * kPi * p.x / 3) * std::cos(2 * kPi * p.z / 4); };
-  const Reprojection on_surface = reprojection_rms(*first, attached(*first, wave), *moved, attached(*moved, wave));
-  const Reprojection on_screen = reprojection_rms(*first, screen_fixed(*first), *moved, screen_fixed(*moved));
+  auto wave = [](const glm::dvec3& p) {
+    return 5 * std::sin(2 * kPi * p.x / 3) * std::cos(2 * kPi * p.z / 4);
+  };
+  const Reprojection on_surface =
+      reprojection_rms(*first, attached(*first, wave), *moved, attached(*moved, wave));
+  const Reprojection on_screen =
+      reprojection_rms(*first, screen_fixed(*first), *moved, screen_fixed(*moved));
   // The ground fills the lower half of the frame; the rows nearest the horizon (depth changing
   // fast) and the borders drop out.
   EXPECT_GT(on_surface.pixels, size_t(96 * 72 / 4));
   EXPECT_EQ(on_screen.pixels, on_surface.pixels);
   EXPECT_LT(on_surface.rms, 0.05);
   EXPECT_GT(on_screen.rms, 0.5) << "on the surface " << on_surface.rms;
-  const Reprojection same = reprojection_rms(*first, screen_fixed(*first), *first, screen_fixed(*first));
+  const Reprojection same =
+      reprojection_rms(*first, screen_fixed(*first), *first, screen_fixed(*first));
   EXPECT_LT(same.rms, 1e-5);  // no motion: every pixel lands on itself
 }
 
@@ -119,7 +124,7 @@ TEST(PerspectiveCoherence, ASetRecordsEveryStimulusAndPlotsIt) {
   EXPECT_NE(manifest.find("\"coherence_pixels\""), std::string::npos);
   // Every enhanced stimulus also over the pixels where the plain render is stable, a subset; there
   // texture mode, on the surface, changes less than post mode, on the screen.
-  std::map<std::string, double> stable;  // "mode λ" → coherence_stable
+  std::map<std::string, double> stable;                       // "mode λ" → coherence_stable
   const OrderedJson m = testing::manifest_json(dir / "set");  // alive while iterating
   for (const auto& s : m["stimuli"]) {
     if (s["method"] == "none") continue;
@@ -127,7 +132,8 @@ TEST(PerspectiveCoherence, ASetRecordsEveryStimulusAndPlotsIt) {
     const size_t all = s["coherence_pixels"], within = s["coherence_stable_pixels"];
     EXPECT_GT(within, all / 10);
     EXPECT_LE(within, all);
-    stable[s["parameters"]["mode"].get<std::string>() + " " + std::to_string(s["lambda"].get<double>())] = s["coherence_stable"];
+    stable[s["parameters"]["mode"].get<std::string>() + " " +
+           std::to_string(s["lambda"].get<double>())] = s["coherence_stable"];
   }
   ASSERT_EQ(stable.size(), 4u);
   EXPECT_LT(stable.at("texture 1.000000"), stable.at("post 1.000000"));
@@ -140,7 +146,8 @@ TEST(PerspectiveCoherence, ADollyOutOfRangeIsAnError) {
   const fs::path file = testing::write_file(dir / "experiment.json", R"({
     "version": 1, "coherence": {"dolly": 0.9}, "scenes": [{"name": "g", "file": "ground.json"}],
     "methods": [{"method": "none"}]})");
-  EXPECT_NE(testing::input_error_of([&] { load_experiment(file); }).find("coherence.dolly"), std::string::npos);
+  EXPECT_NE(testing::input_error_of([&] { load_experiment(file); }).find("coherence.dolly"),
+            std::string::npos);
 }
 
 }  // namespace

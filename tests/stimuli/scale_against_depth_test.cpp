@@ -2,18 +2,18 @@
 // ground (width ∝ 1/depth, slope −1) and of one of fixed screen size (slope 0), and an edge probe
 // set that records and plots them.
 
+#include "stimuli/scale_against_depth.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <numbers>
 
-#include <glm/geometric.hpp>
-
+#include "render/scene_loader.h"
 #include "stimuli/flicker.h"
-#include "stimuli/scale_against_depth.h"
 #include "stimuli/set_test_util.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {
@@ -24,7 +24,8 @@ TEST(HaloWidth, AnExponentialFallOffGivesItsWidthFromThePeak) {
   for (double offset : {0.0, 0.3, 0.9})
     for (double width : {1.7, 4.0, 12.5}) {
       std::vector<double> d, v;
-      for (int i = 0; i < 60; ++i) d.push_back(offset + i), v.push_back(3 * std::exp(-(offset + i) / width));
+      for (int i = 0; i < 60; ++i)
+        d.push_back(offset + i), v.push_back(3 * std::exp(-(offset + i) / width));
       EXPECT_NEAR(halo_width(d, v), width, 1e-9) << offset << " " << width;
     }
   const std::vector<double> d{0, 1, 2}, flat{1, 1, 1}, none{0, 0, 0};
@@ -76,7 +77,8 @@ std::vector<float> screen_layer(const View& v, double w) {
     const double k = std::round(p[i].x);
     const glm::dvec2 a = rays.film_position({k, 0, -2}), b = rays.film_position({k, 0, -10});
     const glm::dvec2 n = glm::normalize(glm::dvec2(b.y - a.y, a.x - b.x));
-    const glm::dvec2 pixel(double(i % size_t(v.width())) + 0.5, double(i / size_t(v.width())) + 0.5);
+    const glm::dvec2 pixel(double(i % size_t(v.width())) + 0.5,
+                           double(i / size_t(v.width())) + 0.5);
     layer[i] = float((p[i].x > k ? 8 : -8) * std::exp(-std::abs(glm::dot(pixel - a, n)) / w));
   }
   return layer;
@@ -84,21 +86,27 @@ std::vector<float> screen_layer(const View& v, double w) {
 
 TEST(ScaleAgainstDepth, ASyntheticHaloOfKnownWidthIsMeasuredAtThreeDepths) {
   testing::TempDir dir;
-  const auto view = geometry_view(std::make_shared<const Scene>(load_scene(testing::write_file(dir / "g.json", kGround))), 1);
+  const auto view = geometry_view(
+      std::make_shared<const Scene>(load_scene(testing::write_file(dir / "g.json", kGround))), 1);
   const double W = 0.05, focal = 96 / std::tan(20 * std::numbers::pi / 180);
-  const std::vector<HaloSample> samples = halo_samples({view->scene->camera, view->depth, attached_layer(*view, W)}, kEdges, 1);
+  const std::vector<HaloSample> samples =
+      halo_samples({view->scene->camera, view->depth, attached_layer(*view, W)}, kEdges, 1);
   int checked = 0;
   for (double depth : {3.0, 6.0, 10.0}) {
     const HaloSample* nearest = nullptr;  // the edge straight ahead, x = 0, upright in the image
     for (const HaloSample& s : samples)
-      if (s.edge_x == 0 && (!nearest || std::abs(s.depth - depth) < std::abs(nearest->depth - depth))) nearest = &s;
+      if (s.edge_x == 0 &&
+          (!nearest || std::abs(s.depth - depth) < std::abs(nearest->depth - depth)))
+        nearest = &s;
     ASSERT_NE(nearest, nullptr);
-    EXPECT_NEAR(nearest->width_px, W * focal / nearest->depth, 0.2) << "at depth " << nearest->depth;
+    EXPECT_NEAR(nearest->width_px, W * focal / nearest->depth, 0.2)
+        << "at depth " << nearest->depth;
     checked += std::abs(nearest->depth - depth) < 0.5;
   }
   EXPECT_EQ(checked, 3);
   EXPECT_NEAR(depth_slope(samples).slope, -1.0, 0.03);
-  const std::vector<HaloSample> fixed = halo_samples({view->scene->camera, view->depth, screen_layer(*view, 4.0)}, kEdges, 1);
+  const std::vector<HaloSample> fixed =
+      halo_samples({view->scene->camera, view->depth, screen_layer(*view, 4.0)}, kEdges, 1);
   EXPECT_NEAR(depth_slope(fixed).slope, 0.0, 0.03);
   for (const HaloSample& s : fixed) {
     if (s.edge_x == 0 && s.depth < 8) {
@@ -109,8 +117,11 @@ TEST(ScaleAgainstDepth, ASyntheticHaloOfKnownWidthIsMeasuredAtThreeDepths) {
 
 TEST(ScaleAgainstDepth, AProbeSetRecordsWidthsAndSlopesAndPlotsThem) {
   testing::TempDir dir;
-  testing::write_file(dir / "ground.json", std::string(kGround).replace(std::string(kGround).find("\"shape\""), 0,
-      R"("material": {"texture": {"pattern": "stripes", "size": 64, "stripes": 2}, "texture_repeat": 8}, )"));
+  testing::write_file(
+      dir / "ground.json",
+      std::string(kGround).replace(
+          std::string(kGround).find("\"shape\""), 0,
+          R"("material": {"texture": {"pattern": "stripes", "size": 64, "stripes": 2}, "texture_repeat": 8}, )"));
   const fs::path experiment = testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "probe", "seed": 1, "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "probe", "file": "ground.json", "edge_probe": {"edges_x": [-3, -2, -1, 0, 1, 2, 3]}}],
@@ -123,7 +134,8 @@ TEST(ScaleAgainstDepth, AProbeSetRecordsWidthsAndSlopesAndPlotsThem) {
     EXPECT_NEAR(s["depth_slope"].get<double>(), 0.0, 0.15);  // usm2d keeps one screen size
   }
   EXPECT_TRUE(fs::exists(dir / "set" / "scale-against-depth-probe.svg"));
-  EXPECT_NE(testing::read_file(dir / "set" / "scale-against-depth.csv").find("probe,usm2d,1,0,"), std::string::npos);
+  EXPECT_NE(testing::read_file(dir / "set" / "scale-against-depth.csv").find("probe,usm2d,1,0,"),
+            std::string::npos);
 }
 
 TEST(ScaleAgainstDepth, AProbeNeedsEdgesInOrderOnAStillScene) {
@@ -132,7 +144,8 @@ TEST(ScaleAgainstDepth, AProbeNeedsEdgesInOrderOnAStillScene) {
   const auto load = [&](const std::string& probe) {
     return load_experiment(testing::write_file(dir / "e.json", R"({"version": 1, "name": "p",
       "lambda": {"min": 0, "max": 1, "step": 1},
-      "scenes": [{"name": "probe", "file": "ground.json", "edge_probe": )" + probe + R"(}],
+      "scenes": [{"name": "probe", "file": "ground.json", "edge_probe": )" +
+                                                                   probe + R"(}],
       "methods": [{"method": "usm2d", "sigma_px": [3]}]})"));
   };
   EXPECT_THROW(load(R"({"edges_x": [1, 0]})"), InputError);

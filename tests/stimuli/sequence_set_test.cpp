@@ -12,15 +12,15 @@
 #include "core/sha256.h"
 #include "enhance/registry.h"
 #include "enhance/view.h"
+#include "enhance/view_plan.h"
+#include "render/scene_loader.h"
 #include "stimuli/audit.h"
 #include "stimuli/flicker.h"
 #include "stimuli/lossless_video.h"
 #include "stimuli/set_journal.h"
-#include "stimuli/stimulus_set.h"
 #include "stimuli/set_test_util.h"
+#include "stimuli/stimulus_set.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
-#include "enhance/view_plan.h"
 
 namespace countershade {
 namespace {
@@ -33,8 +33,10 @@ fs::path write_experiment(const testing::TempDir& dir, const std::string& frames
   testing::write_file(dir / "orbit.json", testing::kOrbitingBoxScene);
   return testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "sequence", "seed": 7,
-    "lambda": {"min": 0, "max": 1, "step": 1}, )" + extra + R"(
-    "scenes": [{"name": "orbit", "file": "orbit.json", "frames": )" + frames + R"(}],
+    "lambda": {"min": 0, "max": 1, "step": 1}, )" + extra +
+                                                          R"(
+    "scenes": [{"name": "orbit", "file": "orbit.json", "frames": )" +
+                                                          frames + R"(}],
     "methods": [{"method": "usm3d", "sigma": [0.1]}, {"method": "usm2d", "sigma_percent": [3]}]
   })");
 }
@@ -99,8 +101,10 @@ TEST(SequenceSet, ResumesFrameByFrame) {
   {
     SetJournal journal(dir / "cut/.journal.shard-1-of-1.jsonl", e.sha256);
     for (const ManifestEntry& s : whole.stimuli)
-      if (s.frame->index == 2) fs::remove(dir / "cut" / s.file);
-      else journal.append(s);
+      if (s.frame->index == 2)
+        fs::remove(dir / "cut" / s.file);
+      else
+        journal.append(s);
   }
   GenerateOptions resume = testing::with_jobs(2);
   resume.resume = true;
@@ -128,8 +132,10 @@ std::map<int, CommandFlicker> rendered_flicker(const fs::path& scene_file) {
   options.stable = kStableTolerance;
   std::map<int, CommandFlicker> out;
   measure_rendered_flicker(base, 0, base.animation->frame_count() - 1, render, options,
-                           [&](int frame, const FlickerFrame&, const FlickerFrame&, const PlainChange& plain,
-                               const PairFlicker& pair) { out[frame] = {pair.layer.rms, plain.rms.rms, pair.stable.rms}; });
+                           [&](int frame, const FlickerFrame&, const FlickerFrame&,
+                               const PlainChange& plain, const PairFlicker& pair) {
+                             out[frame] = {pair.layer.rms, plain.rms.rms, pair.stable.rms};
+                           });
   return out;
 }
 
@@ -180,10 +186,12 @@ TEST(SequenceSet, VideosDecodeToTheirFramesAndAreReproducible) {
     const std::vector<Image> frames = read_video_frames(dir / "one" / v["file"].get<std::string>());
     ASSERT_EQ(frames.size(), 4u);
     for (int f = 0; f < 4; ++f) {
-      const Image png = read_image(dir / "one" / sequence / ("frame-000" + std::to_string(f) + ".png"));
+      const Image png =
+          read_image(dir / "one" / sequence / ("frame-000" + std::to_string(f) + ".png"));
       long differing = 0;
       for (size_t i = 0; i < png.pixels.size(); ++i)
-        differing += std::lround(png.pixels[i] * 255) != std::lround(frames[size_t(f)].pixels[i] * 255);
+        differing +=
+            std::lround(png.pixels[i] * 255) != std::lround(frames[size_t(f)].pixels[i] * 255);
       EXPECT_EQ(differing, 0) << sequence << " frame " << f;
     }
   }
@@ -191,7 +199,9 @@ TEST(SequenceSet, VideosDecodeToTheirFramesAndAreReproducible) {
   testing::write_file(dir / "one/orbit/reference.mkv", "changed");
   EXPECT_EQ(verify_stimulus_set(dir / "one/manifest.json").size(), 1u);
   // 16-bit frames have no 8-bit video.
-  EXPECT_THROW(load_experiment(write_experiment(dir, "\"all\"", R"("video": true, "output": {"bits": 16},)")), InputError);
+  EXPECT_THROW(load_experiment(
+                   write_experiment(dir, "\"all\"", R"("video": true, "output": {"bits": 16},)")),
+               InputError);
 }
 
 TEST(SequenceSet, FramesOfAStillSceneOrOutsideTheAnimationAreRefused) {
@@ -207,8 +217,10 @@ TEST(SequenceSet, FramesOfAStillSceneOrOutsideTheAnimationAreRefused) {
     load_experiment(dir / "experiment.json");
     FAIL() << "a still scene with frames was accepted";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("scenes[0].frames"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("has no animation"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("scenes[0].frames"), std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("has no animation"), std::string::npos)
+        << error.what();
   }
 }
 

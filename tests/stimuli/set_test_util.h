@@ -12,7 +12,8 @@
 
 namespace countershade::testing {
 
-inline OrderedJson manifest_json(const std::filesystem::path& dir, const std::string& name = "manifest.json") {
+inline OrderedJson manifest_json(const std::filesystem::path& dir,
+                                 const std::string& name = "manifest.json") {
   std::ifstream in(dir / name);
   return OrderedJson::parse(in);
 }

@@ -7,9 +7,9 @@
 #include <set>
 
 #include "render/scene.h"
+#include "render/scene_loader.h"
 #include "stimuli/experiment.h"
 #include "test_util.h"
-#include "render/scene_loader.h"
 
 namespace countershade {
 namespace {

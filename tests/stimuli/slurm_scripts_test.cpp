@@ -3,13 +3,14 @@
 // refused; a merge with shards missing names them all and writes nothing. (A real Slurm runs
 // them in tests/cluster/slurm_test.sh.)
 
+#include "stimuli/slurm_scripts.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <sstream>
 
 #include "core/error.h"
-#include "stimuli/slurm_scripts.h"
 #include "stimuli/set_test_util.h"
 #include "test_util.h"
 
@@ -46,15 +47,18 @@ TEST(SlurmScripts, TheSbatchLinesAreExactlyTheOptionsGiven) {
   const SlurmScripts s = write_slurm_scripts(e, file, dir / "set", "/opt/bin/countershade", o);
   const std::string logs = (dir / "set" / "slurm" / "logs").string();
   EXPECT_EQ(sbatch_lines(s.array),
-            (std::vector<std::string>{"#SBATCH --job-name=countershade-cluster_s_test", "#SBATCH --array=1-5",
-                                      "#SBATCH --cpus-per-task=3", "#SBATCH --time=00:30:00", "#SBATCH --account=vision",
+            (std::vector<std::string>{"#SBATCH --job-name=countershade-cluster_s_test",
+                                      "#SBATCH --array=1-5", "#SBATCH --cpus-per-task=3",
+                                      "#SBATCH --time=00:30:00", "#SBATCH --account=vision",
                                       "#SBATCH --output=" + logs + "/shard-%a.log"}));
   EXPECT_EQ(sbatch_lines(s.merge),
-            (std::vector<std::string>{"#SBATCH --job-name=countershade-cluster_s_test-merge", "#SBATCH --cpus-per-task=3",
-                                      "#SBATCH --time=00:30:00", "#SBATCH --account=vision",
+            (std::vector<std::string>{"#SBATCH --job-name=countershade-cluster_s_test-merge",
+                                      "#SBATCH --cpus-per-task=3", "#SBATCH --time=00:30:00",
+                                      "#SBATCH --account=vision",
                                       "#SBATCH --output=" + logs + "/merge.log"}));
   const std::string array = testing::read_file(s.array);
-  EXPECT_NE(array.find("exec '/opt/bin/countershade' stimuli '" + fs::absolute(file).lexically_normal().string() + "'"),
+  EXPECT_NE(array.find("exec '/opt/bin/countershade' stimuli '" +
+                       fs::absolute(file).lexically_normal().string() + "'"),
             std::string::npos);
   EXPECT_NE(array.find("--shard \"${SLURM_ARRAY_TASK_ID}/5\" --resume"), std::string::npos);
   EXPECT_NE(array.find("--experiment-sha256 " + e.sha256), std::string::npos);
@@ -79,7 +83,8 @@ TEST(SlurmScripts, WhatAScriptCannotPassOnIsRefused) {
   EXPECT_THROW(write_slurm_scripts(e, file, dir / "c\nd", "/bin/countershade", {}), InputError);
   // A quote in a path is passed on intact.
   const SlurmScripts s = write_slurm_scripts(e, file, dir / "it's", "/bin/countershade", {});
-  EXPECT_NE(testing::read_file(s.array).find("'" + (dir / "it'\\''s").string() + "'"), std::string::npos);
+  EXPECT_NE(testing::read_file(s.array).find("'" + (dir / "it'\\''s").string() + "'"),
+            std::string::npos);
   EXPECT_EQ(std::system(("bash -n \"" + s.array.string() + "\"").c_str()), 0);
 }
 
@@ -96,8 +101,11 @@ TEST(SlurmScripts, AMergeWithShardsMissingNamesThemAllAndWritesNothing) {
     merge_shard_manifests(e, dir / "set");
     FAIL() << "merged with shards missing";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("shards 1,3,5 of 5 have not finished"), std::string::npos) << error.what();
-    EXPECT_NE(std::string(error.what()).find("sbatch --array=1,3,5"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("shards 1,3,5 of 5 have not finished"),
+              std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("sbatch --array=1,3,5"), std::string::npos)
+        << error.what();
   }
   EXPECT_FALSE(fs::exists(dir / "set" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "set" / "flicker.csv"));

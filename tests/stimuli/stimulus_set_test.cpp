@@ -4,7 +4,6 @@
 #include "stimuli/stimulus_set.h"
 
 #include <gtest/gtest.h>
-
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,10 +26,12 @@ namespace fs = std::filesystem;
 
 // A small experiment: the Cornsweet cube, sampled adaptively to a noise budget, and a grey control
 // with a fixed count; three methods.
-fs::path write_experiment(const testing::TempDir& dir, int width = 96, int height = 72, double step = 0.5) {
+fs::path write_experiment(const testing::TempDir& dir, int width = 96, int height = 72,
+                          double step = 0.5) {
   std::string cube = testing::kLitCubeScene;
   const std::string fixed = R"("render": {"spp": 2})";
-  cube.replace(cube.find(fixed), fixed.size(), R"("render": {"noise": {"target": 0.8, "max_spp": 64}})");
+  cube.replace(cube.find(fixed), fixed.size(),
+               R"("render": {"noise": {"target": 0.8, "max_spp": 64}})");
   testing::write_file(dir / "cube.json", cube);
   testing::write_file(dir / "grey.json", R"({
     "version": 1,
@@ -42,9 +43,12 @@ fs::path write_experiment(const testing::TempDir& dir, int width = 96, int heigh
   })");
   return testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "test", "seed": 5,
-    "lambda": {"min": 0, "max": 2, "step": )" + format_value(step) + R"(},
-    "scenes": [{"name": "cube", "file": "cube.json", "width": )" + std::to_string(width) + R"(, "height": )" +
-                                                                  std::to_string(height) + R"(},
+    "lambda": {"min": 0, "max": 2, "step": )" + format_value(step) +
+                                                          R"(},
+    "scenes": [{"name": "cube", "file": "cube.json", "width": )" +
+                                                          std::to_string(width) +
+                                                          R"(, "height": )" +
+                                                          std::to_string(height) + R"(},
                {"name": "grey", "file": "grey.json"}],
     "methods": [{"method": "usm3d", "sigma_fraction": [0.03, 0.08]},
                 {"method": "depth-usm", "operator": "darken", "kernel_percent": [4]},
@@ -86,7 +90,8 @@ TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
   EXPECT_EQ(testing::without_run(testing::manifest_json(dir / "single")),
             testing::without_run(testing::manifest_json(dir / "sharded")));
   EXPECT_TRUE(verify_stimulus_set(dir / "sharded/manifest.json").empty());
-  // One finish for both: the same files (sheets and figures included), apart from the parts' manifests.
+  // One finish for both: the same files (sheets and figures included), apart from the parts'
+  // manifests.
   std::set<std::string> merged = files_under(dir / "sharded");
   std::erase_if(merged, [](const std::string& f) { return f.rfind("manifest.shard-", 0) == 0; });
   EXPECT_EQ(files_under(dir / "single"), merged);
@@ -102,7 +107,8 @@ TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
   Experiment e = load_experiment(write_experiment(dir));
   generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
-  const OrderedJson manifest = testing::manifest_json(dir / "set");  // keep it alive while iterating
+  const OrderedJson manifest =
+      testing::manifest_json(dir / "set");  // keep it alive while iterating
   for (const auto& s : manifest["stimuli"]) {
     std::string file = s["file"].get<std::string>();
     EXPECT_EQ(file.find(".."), std::string::npos);
@@ -145,10 +151,12 @@ TEST(StimulusSet, LambdaZeroEqualsTheReferenceAndUsm3dGrowsWithLambda) {
   for (double sigma : {0.03, 0.08}) {
     double previous = -1;
     for (int l = 0; l < e.lambda.count(); ++l) {
-      std::string file = "cube/usm3d/sigma-" + format_value(sigma) + "/lambda-" + format_value(e.lambda.value(l)) + ".png";
+      std::string file = "cube/usm3d/sigma-" + format_value(sigma) + "/lambda-" +
+                         format_value(e.lambda.value(l)) + ".png";
       auto lab = display_to_lab(read_image(dir / "set" / file), DisplayEncoding::srgb());
       double mean = 0;
-      for (size_t i = 0; i < lab.size(); ++i) mean += std::abs(lab[i].L - ref_lab[i].L) / double(lab.size());
+      for (size_t i = 0; i < lab.size(); ++i)
+        mean += std::abs(lab[i].L - ref_lab[i].L) / double(lab.size());
       EXPECT_GT(mean, previous) << file;
       previous = mean;
     }
@@ -163,8 +171,8 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   generate_stimulus_set(e, dir / "whole", testing::with_jobs(2));
   pid_t child = ::fork();
   if (child == 0) {
-    ::execl(COUNTERSHADE_BINARY, COUNTERSHADE_BINARY, "stimuli", experiment.c_str(), "-o", (dir / "cut").c_str(),
-            "--jobs", "1", "--no-contact-sheets", (char*)nullptr);
+    ::execl(COUNTERSHADE_BINARY, COUNTERSHADE_BINARY, "stimuli", experiment.c_str(), "-o",
+            (dir / "cut").c_str(), "--jobs", "1", "--no-contact-sheets", (char*)nullptr);
     ::_exit(127);
   }
   fs::path journal = dir / "cut/.journal.shard-1-of-1.jsonl";
@@ -182,7 +190,8 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   // A write cut short by the kill may have left its temporary file; make sure one is there.
   testing::write_file(dir / "cut/cube/.lambda-9.tmp-1-0.png", "partial");
   auto again = testing::run_cli("stimuli " + experiment.string() + " -o " + (dir / "cut").string());
-  EXPECT_EQ(again.exit_code, 2) << "an unfinished set must not be overwritten without --resume: " << again.output;
+  EXPECT_EQ(again.exit_code, 2) << "an unfinished set must not be overwritten without --resume: "
+                                << again.output;
   GenerateOptions resume = testing::with_jobs(2);
   resume.resume = true;
   // Resuming with another experiment file is refused rather than mixing two designs.
@@ -220,11 +229,15 @@ TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
       {variant("\"step\": 0.5", "\"step\": 1e-12"), "more than 100000 λ values"},
       {variant("{\"name\": \"grey\"", "{\"name\": \"cube\""), "duplicate scene name 'cube'"},
       {variant("\"method\": \"usm2d\"", "\"method\": \"blur\""), "unknown method 'blur'"},
-      {variant("\"sigma_fraction\": [0.03, 0.08]", "\"sigma_fraction\": []"), "the σ list is empty"},
+      {variant("\"sigma_fraction\": [0.03, 0.08]", "\"sigma_fraction\": []"),
+       "the σ list is empty"},
       {variant("\"seed\": 5", "\"seed\": 5, \"colour\": 1"), "colour: unknown key"},
-      // The adjustment procedure is checked with the experiment, not first in front of a participant.
-      {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitions\": -1}"), "adjust.repetitions"},
-      {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitons\": 2}"), "adjust.repetitons: unknown key"},
+      // The adjustment procedure is checked with the experiment, not first in front of a
+      // participant.
+      {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitions\": -1}"),
+       "adjust.repetitions"},
+      {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitons\": 2}"),
+       "adjust.repetitons: unknown key"},
       {variant("\"seed\": 5", "\"seed\": 5, \"audit\": {\"max_drift\": -1}"), "audit.max_drift"},
   };
   int i = 0;
@@ -238,7 +251,8 @@ TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
   EXPECT_FALSE(fs::exists(dir / "out/cube")) << "nothing rendered";
   // An output folder that cannot be written.
   testing::write_file(dir / "blocker", "a file, not a folder");
-  auto r = testing::run_cli("stimuli " + (dir / "experiment.json").string() + " -o " + (dir / "blocker/set").string());
+  auto r = testing::run_cli("stimuli " + (dir / "experiment.json").string() + " -o " +
+                            (dir / "blocker/set").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("cannot create the output folder"), std::string::npos) << r.output;
 }

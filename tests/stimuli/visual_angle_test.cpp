@@ -1,13 +1,14 @@
 // Sizes in degrees of visual angle: the screen's pixels per degree, σ and image sizes given in
 // degrees (the same bytes as in pixels), and what the manifest records.
 
+#include "core/visual_angle.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "core/error.h"
 #include "core/file_bytes.h"
-#include "core/visual_angle.h"
 #include "stimuli/experiment.h"
 #include "stimuli/set_test_util.h"
 #include "stimuli/stimulus_set.h"
@@ -37,14 +38,21 @@ TEST(VisualAngle, SigmaInDegreesGivesTheSameStimuliAsInPixels) {
   const double ppd = pixels_per_degree(531.4, 1920, 570), sigma_px = 0.05 * ppd;
   char pixels[64];
   std::snprintf(pixels, sizeof pixels, "%.17g", sigma_px);
-  auto experiment = [&](const std::string& name, const std::string& size, const std::string& sigma) {
-    return load_experiment(testing::write_file(dir / (name + ".json"), R"({"version": 1, "name": ")" + name + R"(", "seed": 3,
+  auto experiment = [&](const std::string& name, const std::string& size,
+                        const std::string& sigma) {
+    return load_experiment(testing::write_file(
+        dir / (name + ".json"), R"({"version": 1, "name": ")" + name + R"(", "seed": 3,
       )" + std::string(kScreen) + R"(, "lambda": {"min": 0, "max": 1, "step": 1},
-      "scenes": [{"name": "cube", "file": "cube.json", )" + size + R"(}],
-      "methods": [{"method": "usm2d", )" + sigma + R"(}, {"method": "depth-usm", "operator": "darken", )" + sigma + R"(}]})"));
+      "scenes": [{"name": "cube", "file": "cube.json", )" +
+                                    size + R"(}],
+      "methods": [{"method": "usm2d", )" +
+                                    sigma + R"(}, {"method": "depth-usm", "operator": "darken", )" +
+                                    sigma + R"(}]})"));
   };
-  const Experiment degrees = experiment("degrees", R"("width_deg": 2.5, "height_deg": 2)", R"("sigma_deg": [0.05])");
-  const Experiment px = experiment("pixels", R"("width": 90, "height": 72)", std::string(R"("sigma_px": [)") + pixels + "]");
+  const Experiment degrees =
+      experiment("degrees", R"("width_deg": 2.5, "height_deg": 2)", R"("sigma_deg": [0.05])");
+  const Experiment px = experiment("pixels", R"("width": 90, "height": 72)",
+                                   std::string(R"("sigma_px": [)") + pixels + "]");
   EXPECT_EQ(degrees.scenes[0].width, 90);   // 2.5° × 35.945 = 89.9
   EXPECT_EQ(degrees.scenes[0].height, 72);  // 2° × 35.945 = 71.9
   generate_stimulus_set(degrees, dir / "a", testing::with_jobs(2));
@@ -64,14 +72,17 @@ TEST(VisualAngle, SigmaInDegreesGivesTheSameStimuliAsInPixels) {
 TEST(VisualAngle, DegreesWithoutAScreenAreRefused) {
   testing::TempDir dir;
   testing::write_file(dir / "cube.json", testing::kLitCubeScene);
-  const fs::path file = testing::write_file(dir / "e.json", R"({"version": 1, "lambda": {"min": 0, "max": 1, "step": 1},
+  const fs::path file = testing::write_file(
+      dir / "e.json", R"({"version": 1, "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "cube", "file": "cube.json"}], "methods": [{"method": "usm2d", "sigma_deg": [0.1]}]})");
   try {
     load_experiment(file);
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("sigma_deg: a size in degrees needs the experiment's \"screen\" block"),
-              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(
+                  "sigma_deg: a size in degrees needs the experiment's \"screen\" block"),
+              std::string::npos)
+        << e.what();
   }
 }
 

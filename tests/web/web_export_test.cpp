@@ -5,18 +5,17 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <random>
+#include <set>
 
 #include "../adjust/tiny_set.h"
+#include "../adjust/x_display.h"
 #include "adjust/procedure.h"
 #include "adjust/study.h"
 #include "core/image.h"
 #include "formats/responses.h"
-#include "../adjust/x_display.h"
-
-#include <cmath>
-#include <random>
-#include <set>
 
 namespace countershade::adjust {
 namespace {
@@ -29,18 +28,30 @@ std::string node(const std::string& arguments, const std::string& environment = 
   return "cd " + testing::source_dir().string() + " && " + environment + " node " + arguments;
 }
 
-json plan_case(const std::vector<int>& grid_sizes, PlanSettings s, uint64_t study_seed, const std::string& subject, int session) {
+json plan_case(const std::vector<int>& grid_sizes, PlanSettings s, uint64_t study_seed,
+               const std::string& subject, int session) {
   std::vector<Condition> conditions;
   for (int g : grid_sizes) conditions.push_back({"scene", "method", 0.1, g});
   s.seed = session_seed(study_seed, subject, session);
   json plan = json::array();
   for (const Trial& t : plan_trials(conditions, s))
-    plan.push_back({{"number", t.number}, {"practice", t.practice}, {"condition", t.condition}, {"repetition", t.repetition},
-                    {"side", side_name(t.side)}, {"start", {t.start_index[0], t.start_index[1], t.start_index[2]}}});
-  return {{"grid_sizes", grid_sizes}, {"study_seed", std::to_string(study_seed)}, {"subject", subject}, {"session", session},
-          {"session_seed", std::to_string(s.seed)}, {"repetitions", s.repetitions}, {"side", side_name(s.side)},
-          {"start", s.start == StartMode::zero ? "zero" : "random"}, {"practice_trials", s.practice_trials},
-          {"practice_conditions", s.practice_conditions}, {"plan", plan}};
+    plan.push_back({{"number", t.number},
+                    {"practice", t.practice},
+                    {"condition", t.condition},
+                    {"repetition", t.repetition},
+                    {"side", side_name(t.side)},
+                    {"start", {t.start_index[0], t.start_index[1], t.start_index[2]}}});
+  return {{"grid_sizes", grid_sizes},
+          {"study_seed", std::to_string(study_seed)},
+          {"subject", subject},
+          {"session", session},
+          {"session_seed", std::to_string(s.seed)},
+          {"repetitions", s.repetitions},
+          {"side", side_name(s.side)},
+          {"start", s.start == StartMode::zero ? "zero" : "random"},
+          {"practice_trials", s.practice_trials},
+          {"practice_conditions", s.practice_conditions},
+          {"plan", plan}};
 }
 
 TEST(WebExport, TheBrowserPlansTheAppsTrialsRowForRow) {
@@ -51,7 +62,8 @@ TEST(WebExport, TheBrowserPlansTheAppsTrialsRowForRow) {
   counterbalanced.practice_trials = 4;
   cases.push_back(plan_case({11, 6, 61, 7}, counterbalanced, 1970, "P01", 1));
   cases.push_back(plan_case({11, 6, 61, 7}, counterbalanced, 1970, "P02", 1));
-  cases.push_back(plan_case({11, 6, 61, 7}, counterbalanced, (1ull << 63) + 12345, "sim-3_b", 7));  // beyond 2^53
+  cases.push_back(plan_case({11, 6, 61, 7}, counterbalanced, (1ull << 63) + 12345, "sim-3_b",
+                            7));  // beyond 2^53
   PlanSettings fixed;
   fixed.side = Side::left;
   fixed.start = StartMode::zero;
@@ -60,7 +72,8 @@ TEST(WebExport, TheBrowserPlansTheAppsTrialsRowForRow) {
   fixed.practice_conditions = {2, 0};
   cases.push_back(plan_case({5, 9, 13}, fixed, 5, "Z", 99));
   testing::write_file(dir / "cases.json", cases.dump());
-  const auto run = testing::run_program("bash -c", "'" + node("web/tools/check-plan.mjs " + (dir / "cases.json").string()) + "'");
+  const auto run = testing::run_program(
+      "bash -c", "'" + node("web/tools/check-plan.mjs " + (dir / "cases.json").string()) + "'");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("4 plans"), std::string::npos) << run.output;
 }
@@ -76,12 +89,16 @@ TEST(WebExport, TheBrowserLogicPassesItsTests) {
 TEST(WebExport, BothStimuliArePixelExactAtEveryDeviceScaleFactor) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
-  const auto exported = testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
+  const auto exported =
+      testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
   for (const char* dpr : {"1", "1.25", "2"}) {
     const fs::path shot = dir / (std::string("shot-") + dpr + ".png");
-    const auto run = testing::run_program("bash -c", "'" + node("web/tools/browser-shot.mjs " + (dir / "web").string() + " " + dpr +
-                                                                " " + shot.string()) + "'");
+    const auto run = testing::run_program(
+        "bash -c", "'" +
+                       node("web/tools/browser-shot.mjs " + (dir / "web").string() + " " + dpr +
+                            " " + shot.string()) +
+                       "'");
     ASSERT_EQ(run.exit_code, 0) << dpr << ": " << run.output;
     const json info = json::parse(testing::read_file(shot.string() + ".json"));
     const Image screen = read_image(shot);
@@ -93,8 +110,10 @@ TEST(WebExport, BothStimuliArePixelExactAtEveryDeviceScaleFactor) {
       for (int y = 0; y < stimulus.height; ++y)
         for (int x = 0; x < stimulus.width; ++x)
           for (int c = 0; c < 3; ++c)
-            differing += std::lround(stimulus.at(x, y, c) * 255) != std::lround(screen.at(x0 + x, y0 + y, c) * 255);
-      EXPECT_EQ(differing, 0) << "device scale factor " << dpr << ", " << side << " at " << x0 << "," << y0;
+            differing += std::lround(stimulus.at(x, y, c) * 255) !=
+                         std::lround(screen.at(x0 + x, y0 + y, c) * 255);
+      EXPECT_EQ(differing, 0) << "device scale factor " << dpr << ", " << side << " at " << x0
+                              << "," << y0;
     }
   }
 }
@@ -108,7 +127,8 @@ std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
   for (const auto& row : table.rows) {
     std::vector<std::string> kept;
     for (const std::string& c : keep) {
-      const auto at = std::find(table.rows[0].begin(), table.rows[0].end(), c) - table.rows[0].begin();
+      const auto at =
+          std::find(table.rows[0].begin(), table.rows[0].end(), c) - table.rows[0].begin();
       kept.push_back(size_t(at) < row.size() ? row[size_t(at)] : "?");
     }
     rows.push_back(kept);
@@ -117,23 +137,27 @@ std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
 }
 
 // The app's session of the simulated observer `seed`, on the frame clock, into `sessions`.
-void app_session(const fs::path& manifest, const fs::path& sessions, const std::string& subject, int seed) {
+void app_session(const fs::path& manifest, const fs::path& sessions, const std::string& subject,
+                 int seed) {
   testing::XvfbServer x;
-  testing::Child app({COUNTERSHADE_BINARY, "adjust", manifest.string(), "--subject", subject, "--sessions", sessions.string(),
-                      "--observer", "simulated:" + std::to_string(seed), "--frame-clock"},
-                     x.display(), (sessions.parent_path() / "app-log.txt").string());
+  testing::Child app(
+      {COUNTERSHADE_BINARY, "adjust", manifest.string(), "--subject", subject, "--sessions",
+       sessions.string(), "--observer", "simulated:" + std::to_string(seed), "--frame-clock"},
+      x.display(), (sessions.parent_path() / "app-log.txt").string());
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(sessions.parent_path() / "app-log.txt");
 }
 
 // The browser's session of the same observer (reloading after the given numbers of answers);
 // returns the CSV the page offers; the rows its server accepted are in CSV.posted.
-fs::path browser_session(const fs::path& study, const fs::path& out, const std::string& subject, int seed,
-                         const std::string& reloads = "", int refuse = 0) {
+fs::path browser_session(const fs::path& study, const fs::path& out, const std::string& subject,
+                         int seed, const std::string& reloads = "", int refuse = 0) {
   const fs::path csv = out / (subject + "_s01.csv");
   const auto run = testing::run_program(
-      "bash -c", "'" + node("web/tools/browser-session.mjs " + study.string() + " " + subject + " " + std::to_string(seed) + " " +
-                                csv.string() + " " + reloads,
-                            "REFUSE=" + std::to_string(refuse)) + "'");
+      "bash -c", "'" +
+                     node("web/tools/browser-session.mjs " + study.string() + " " + subject + " " +
+                              std::to_string(seed) + " " + csv.string() + " " + reloads,
+                          "REFUSE=" + std::to_string(refuse)) +
+                     "'");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   return csv;
 }
@@ -143,7 +167,10 @@ fs::path browser_session(const fs::path& study, const fs::path& out, const std::
 TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --post-url /collect").exit_code, 0);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
+                             " --post-url /collect")
+                .exit_code,
+            0);
   fs::create_directories(dir / "browser");
   std::string app_csvs, browser_csvs;
   for (int s = 1; s <= 3; ++s) {
@@ -157,11 +184,18 @@ TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
     app_csvs += " " + (dir / "app" / (subject + "_s01.csv")).string();
     browser_csvs += " " + csv.string();
   }
-  ASSERT_EQ(testing::run_cli("analyze" + app_csvs + " -o " + (dir / "app-report").string() + " --no-figures").exit_code, 0);
-  const auto browser = testing::run_cli("analyze" + browser_csvs + " -o " + (dir / "browser-report").string());
+  ASSERT_EQ(testing::run_cli("analyze" + app_csvs + " -o " + (dir / "app-report").string() +
+                             " --no-figures")
+                .exit_code,
+            0);
+  const auto browser =
+      testing::run_cli("analyze" + browser_csvs + " -o " + (dir / "browser-report").string());
   ASSERT_EQ(browser.exit_code, 0) << browser.output;
-  EXPECT_EQ(testing::read_file(dir / "app-report/results.json"), testing::read_file(dir / "browser-report/results.json"));
-  EXPECT_NE(testing::read_file(dir / "browser-report/report.html").find("36 answers came from a browser"), std::string::npos);
+  EXPECT_EQ(testing::read_file(dir / "app-report/results.json"),
+            testing::read_file(dir / "browser-report/results.json"));
+  EXPECT_NE(
+      testing::read_file(dir / "browser-report/report.html").find("36 answers came from a browser"),
+      std::string::npos);
 }
 
 // Ten reloads at random moments lose and repeat no answer, and a server that refuses the first two
@@ -169,7 +203,10 @@ TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
 TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir, R"({"repetitions": 2})");  // 24 answers
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --post-url /collect").exit_code, 0);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
+                             " --post-url /collect")
+                .exit_code,
+            0);
   std::mt19937 random(46);
   std::set<int> points;
   while (points.size() < 10) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
@@ -191,26 +228,36 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
 TEST(WebExport, TheChinrestIsRecordedInEveryRowAndNotAskedForAgainAfterAReload) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() + " --chinrest").exit_code, 0);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
+                             " --chinrest")
+                .exit_code,
+            0);
   const fs::path csv = dir / "chinrest.csv";
   const auto run = testing::run_program(
-      "bash -c", "'" + node("web/tools/browser-chinrest.mjs " + (dir / "web").string() + " 5 " + csv.string()) + "'");
+      "bash -c",
+      "'" +
+          node("web/tools/browser-chinrest.mjs " + (dir / "web").string() + " 5 " + csv.string()) +
+          "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const json page = json::parse(run.output);
   EXPECT_FALSE(page["asked_again"].get<bool>());
   EXPECT_EQ(page["transform"], "");
-  // The plugin's definitions: a credit card is 85.6 mm wide; the blind spot lies 13.5° from fixation.
+  // The plugin's definitions: a credit card is 85.6 mm wide; the blind spot lies 13.5° from
+  // fixation.
   auto round2 = [](double v) { return std::round(v * 100) / 100; };
   const double px_per_mm = round2(page["card_px"].get<double>() / 85.6);
   double ball = 0;
   for (const auto& x : page["ball_x"]) ball += x.get<double>() / double(page["ball_x"].size());
-  const double distance = (page["square_x"].get<double>() - round2(ball)) / px_per_mm / std::tan(13.5 * M_PI / 180);
+  const double distance =
+      (page["square_x"].get<double>() - round2(ball)) / px_per_mm / std::tan(13.5 * M_PI / 180);
   ASSERT_GT(distance, 0);
   const auto table = parse_csv(testing::read_file(csv), csv.string());
   ASSERT_EQ(table.rows.size(), 1u + 12u);  // four conditions × three questions
   const auto& header = table.rows[0];
-  const size_t mm = size_t(std::find(header.begin(), header.end(), "css_px_per_mm") - header.begin());
-  const size_t view = size_t(std::find(header.begin(), header.end(), "viewing_distance_mm") - header.begin());
+  const size_t mm =
+      size_t(std::find(header.begin(), header.end(), "css_px_per_mm") - header.begin());
+  const size_t view =
+      size_t(std::find(header.begin(), header.end(), "viewing_distance_mm") - header.begin());
   ASSERT_LT(view, header.size());
   for (size_t r = 1; r < table.rows.size(); ++r) {
     EXPECT_DOUBLE_EQ(std::stod(table.rows[r][mm]), px_per_mm) << r;
@@ -223,9 +270,13 @@ TEST(WebExport, TheChinrestIsRecordedInEveryRowAndNotAskedForAgainAfterAReload) 
 TEST(WebExport, MarkupInTheSetsTextsShowsAsText) {
   testing::TempDir dir;
   const std::string welcome = "<b>bold</b><script>window.injected = 1</script> & \\u2028";
-  const fs::path manifest = testing::make_tiny_set(dir, R"({"instructions": {"welcome": ")" + welcome + R"("}})");
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string()).exit_code, 0);
-  const auto run = testing::run_program("bash -c", "'" + node("web/tools/browser-welcome.mjs " + (dir / "web").string()) + "'");
+  const fs::path manifest =
+      testing::make_tiny_set(dir, R"({"instructions": {"welcome": ")" + welcome + R"("}})");
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string())
+                .exit_code,
+            0);
+  const auto run = testing::run_program(
+      "bash -c", "'" + node("web/tools/browser-welcome.mjs " + (dir / "web").string()) + "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const json page = json::parse(run.output);
   EXPECT_EQ(page["text"], "<b>bold</b><script>window.injected = 1</script> & \u2028");
@@ -254,8 +305,10 @@ TEST(WebExport, ASetWithAMissingOrAlteredImageIsRefused) {
 // A browser shows 8 bits: a 16-bit set is refused rather than shown rounded without a word.
 TEST(WebExport, ASixteenBitSetIsRefused) {
   testing::TempDir dir;
-  const fs::path manifest = testing::make_tiny_set(dir, "", 96, 72, 0.4, R"("output": {"bits": 16},)");
-  const auto run = testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
+  const fs::path manifest =
+      testing::make_tiny_set(dir, "", 96, 72, 0.4, R"("output": {"bits": 16},)");
+  const auto run =
+      testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("16-bit"), std::string::npos) << run.output;
   EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
