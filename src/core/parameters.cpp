@@ -53,6 +53,8 @@ std::string kebab_case(const std::string& key) {
 ParameterBag ParameterBag::from_json(const nlohmann::json& object, const std::string& file,
                                      const std::string& path, const std::set<std::string>& skip) {
   ParameterBag bag;
+  bag.prefix_ = file + ": " + (path.empty() ? "" : path + ".");
+  bag.location_ = file + (path.empty() ? "" : ": " + path);
   if (!object.is_object())
     throw_input_error(file + (path.empty() ? "" : ": " + path),
                       "expected an object, got " + json_type_name(object));
@@ -109,10 +111,15 @@ const ParameterBag::Entry* ParameterBag::find(const std::string& key) const {
 
 bool ParameterBag::has(const std::string& key) const { return find(key) != nullptr; }
 
+bool ParameterBag::given(const std::string& key) const {
+  const Entry* e = find(key);
+  return e && !e->value.is_null();
+}
+
 std::string ParameterBag::where(const std::string& key) const {
   auto it = entries_.find(key);
   if (it != entries_.end()) return it->second.where;
-  return command_line_ ? "--" + kebab_case(key) : key;
+  return command_line_ ? "--" + kebab_case(key) : prefix_ + key;
 }
 
 void ParameterBag::fail(const std::string& key, const std::string& what) const {
@@ -131,6 +138,12 @@ std::optional<double> ParameterBag::optional_number(const std::string& key) cons
   double v = e->value.get<double>();
   if (!std::isfinite(v)) fail(key, "must be finite");
   return v;
+}
+
+double ParameterBag::required_number(const std::string& key) const {
+  const auto v = optional_number(key);
+  if (!v) fail(key, "missing required key");
+  return *v;
 }
 
 double ParameterBag::number(const std::string& key, double fallback) const {
@@ -228,6 +241,13 @@ std::vector<double> ParameterBag::numbers(const std::string& key,
     out.push_back(v.get<double>());
   }
   return out;
+}
+
+std::vector<double> ParameterBag::required_numbers(const std::string& key) const {
+  if (!has(key)) fail(key, "missing required key");
+  std::vector<double> values = numbers(key, {});
+  fallbacks_.erase(key);  // there is none
+  return values;
 }
 
 glm::dvec3 ParameterBag::vec3(const std::string& key, const glm::dvec3& fallback) const {

@@ -16,6 +16,12 @@
 
 namespace countershade {
 
+// A documented parameter of a bag's owner (a method, a procedure), for `countershade methods`,
+// `countershade procedures` and --help.
+struct ParameterDoc {
+  std::string key, default_value, help;
+};
+
 class ParameterBag {
  public:
   ParameterBag() = default;
@@ -30,11 +36,15 @@ class ParameterBag {
   void set(const std::string& key, nlohmann::json value, const std::string& where);
 
   bool has(const std::string& key) const;
+  // Given with a value other than JSON null (null means "not set", as in PsychoPy's arguments).
+  bool given(const std::string& key) const;
 
   // Typed reads; each marks the key as a parameter of the reader. A value of the wrong type, or
   // NaN or infinity, is an InputError naming the key.
   double number(const std::string& key, double fallback) const;
   std::optional<double> optional_number(const std::string& key) const;
+  // A number the owner cannot do without: its absence is an InputError naming the key.
+  double required_number(const std::string& key) const;
   double number_in(const std::string& key, double fallback, double lo, double hi) const;
   long long integer_in(const std::string& key, long long fallback, long long lo,
                        long long hi) const;
@@ -45,10 +55,14 @@ class ParameterBag {
                      const std::vector<std::string>& choices) const;
   glm::dvec3 vec3(const std::string& key, const glm::dvec3& fallback) const;
   std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback) const;
+  // A list the owner cannot do without: its absence is an InputError naming the key.
+  std::vector<double> required_numbers(const std::string& key) const;
   // The value as written (a JSON number, or the command line's text), for parameters with their
   // own syntax such as "5%".
   std::optional<std::string> text(const std::string& key) const;
 
+  // "experiment.json: methods[1]": the object itself (empty on the command line).
+  const std::string& location() const { return location_; }
   // "--sigma-px" or "experiment.json: methods[1].sigma_px".
   std::string where(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
@@ -74,6 +88,8 @@ class ParameterBag {
 
   std::map<std::string, Entry> entries_;
   bool command_line_ = false;
+  std::string prefix_;    // "<file>: <path>." of a JSON object, to name keys it lacks
+  std::string location_;  // "<file>: <path>"
   mutable std::set<std::string> known_;
   mutable std::map<std::string, nlohmann::json> fallbacks_;
 };

@@ -45,11 +45,6 @@ struct MethodAxes {
   std::vector<WidthAxis> widths;  // the σ alternatives (exactly one is given); empty: no σ
 };
 
-// A documented parameter, for `countershade methods` and --help.
-struct ParameterDoc {
-  std::string key, default_value, help;
-};
-
 struct Composed {
   Image display;  // the stimulus: code values of the view's bit depth, as values in [0,1]
   size_t clipped_pixels = 0;  // pixels where L' left [0,100] or an RGB channel left [0,1]
