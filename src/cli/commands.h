@@ -25,6 +25,7 @@ void add_adjust_command(CLI::App& app);
 void add_choose_command(CLI::App& app);
 void add_export_web_command(CLI::App& app);
 void add_methods_command(CLI::App& app);
+void add_procedures_command(CLI::App& app);
 void add_audit_command(CLI::App& app);
 void add_congruence_command(CLI::App& app);
 void add_image_filter_command(CLI::App& app);

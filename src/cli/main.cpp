@@ -26,6 +26,7 @@ void add_commands(CLI::App& app) {
   add_choose_command(app);
   add_export_web_command(app);
   add_methods_command(app);
+  add_procedures_command(app);
   add_audit_command(app);
   add_congruence_command(app);
   add_image_filter_command(app);

@@ -10,17 +10,18 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "forced_choice/replay.h"
 #include "formats/responses.h"
+#include "procedures/answer_file.h"
+#include "procedures/registry.h"
 
 namespace countershade::cli {
 namespace {
 
 // Prints the summary (JSON) on stdout, so that a script can read the final estimate.
 void replay(const std::string& procedure, const std::string& responses, const std::string& output) {
-  const auto spec = forced_choice::read_procedure_file(procedure);
-  const auto answers = forced_choice::read_binary_responses(responses);
-  const auto result = forced_choice::replay_procedure(spec, answers);
+  const auto block = procedures::read_procedure_file(procedure);
+  const auto answers = procedures::read_binary_responses(responses);
+  const auto result = block.settings->replay(answers, procedure);
   write_text_atomically(output, result.csv);
   std::printf("%s\n", result.summary.dump(2).c_str());
   const size_t left = result.summary["responses_left"].get<size_t>();

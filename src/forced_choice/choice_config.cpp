@@ -9,18 +9,6 @@ const char* layout_name(Layout layout) {
   return layout == Layout::spatial ? "spatial" : "temporal";
 }
 
-const char* procedure_kind_name(ProcedureKind kind) {
-  switch (kind) {
-    case ProcedureKind::constant:
-      return "constant";
-    case ProcedureKind::staircase:
-      return "staircase";
-    case ProcedureKind::quest:
-      return "quest";
-  }
-  return "?";
-}
-
 namespace {
 
 std::vector<ConditionSelection> selections(const JsonObject& o, const std::string& key) {
@@ -31,27 +19,6 @@ std::vector<ConditionSelection> selections(const JsonObject& o, const std::strin
     s.finish();
   }
   return out;
-}
-
-void read_procedure_block(const JsonObject& p, ChoiceConfig& c) {
-  c.procedure_source = p.value();
-  p.string("type");
-  const std::string type = p.choice("type", "", {"constant", "staircase", "quest"});
-  if (type == "constant") {
-    c.kind = ProcedureKind::constant;
-    c.levels = p.numbers("lambdas");
-    if (c.levels.empty()) p.fail("lambdas", "must list at least one λ");
-    for (double l : c.levels)
-      if (!(l > 0)) p.fail("lambdas", "every λ must be above 0");
-    c.repetitions = int(p.integer_in("repetitions", 20, 1, 10000));
-    p.finish();
-    return;
-  }
-  c.kind = type == "staircase" ? ProcedureKind::staircase : ProcedureKind::quest;
-  c.adaptive = read_procedure(p);
-  if (c.kind == ProcedureKind::quest) c.trials = c.adaptive.n_trials > 0 ? c.adaptive.n_trials : 40;
-  p.finish();
-  if (c.kind == ProcedureKind::quest) Quest check(c.adaptive.quest, p.file() + ": " + p.path());
 }
 
 }  // namespace
@@ -76,7 +43,9 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   c.practice_conditions = selections(o, "practice_conditions");
   c.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
   if (o.has("seed")) c.seed = uint64_t(o.integer_in("seed", 1, 0, 1ll << 53));
-  read_procedure_block(o.object("procedure"), c);
+  o.object("procedure");  // required, and an object
+  c.procedure_source = o.raw("procedure");
+  c.procedure = procedures::read_procedure_block(c.procedure_source, file, o.key_path("procedure"));
   o.finish();
   return c;
 }
@@ -109,7 +78,7 @@ nlohmann::ordered_json ChoiceConfig::to_json() const {
                               {"procedure", procedure_source},
                               {"max_trials", max_trials},
                               {"practice_trials", practice_trials}};
-  if (kind == ProcedureKind::quest) j["trials"] = trials;
+  procedure.settings->describe(j);
   if (seed) j["seed"] = *seed;
   return j;
 }

@@ -10,15 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "forced_choice/procedure_spec.h"
+#include "procedures/registry.h"
 
 namespace countershade::forced_choice {
 
 enum class Layout { spatial, temporal };
 const char* layout_name(Layout layout);
-
-enum class ProcedureKind { constant, staircase, quest };
-const char* procedure_kind_name(ProcedureKind kind);
 
 struct ConditionSelection {
   std::string scene, method;
@@ -34,12 +31,8 @@ struct ChoiceConfig {
   std::string question = "Which image is enhanced?";
   // Empty: a text that fits the layout and the number of alternatives (welcome_text()).
   std::string welcome;
-  ProcedureKind kind = ProcedureKind::quest;
-  ProcedureSpec adaptive;      // staircase or QUEST (QUEST intensities are log10 λ)
-  std::vector<double> levels;  // constant stimuli: the λ shown
-  int repetitions = 20;        // constant stimuli: trials per level
-  int trials = 40;             // QUEST: trials per condition
-  int max_trials = 200;        // any procedure: a condition ends after this many trials
+  procedures::ProcedureBlock procedure;  // the plug-in that picks each condition's λ
+  int max_trials = 200;                  // any procedure: a condition ends after this many trials
   std::vector<ConditionSelection> conditions;  // empty: every condition of the set
   std::vector<ConditionSelection>
       practice_conditions;  // empty: conditions whose images change with λ

@@ -136,8 +136,8 @@ void ChoiceRecorder::record(const ChoiceTrial& t, int response, bool correct, do
        format_value(c.sigma), format_value(t.lambda), std::to_string(t.lambda_index),
        format_value(round_to(t.intensity.requested, 9)), std::to_string(config_.n_afc),
        layout_name(config_.layout), std::to_string(t.target), std::to_string(response),
-       correct ? "1" : "0", rt, procedure_kind_name(config_.kind),
-       std::to_string(t.condition_trial), study_.manifest_sha256, utc_timestamp()}));
+       correct ? "1" : "0", rt, config_.procedure.type, std::to_string(t.condition_trial),
+       study_.manifest_sha256, utc_timestamp()}));
   csv_.sync();
   ++rows_;
   ++run_.answers;

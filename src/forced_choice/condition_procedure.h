@@ -1,32 +1,20 @@
 #pragma once
-// One condition's procedure in λ units on the stimulus set's grid (docs/forced-choice.md,
-// "Intensities"): a staircase steps in λ and shows the nearest grid λ; QUEST works in log10 λ,
-// its recommendation is rounded to the nearest grid λ and updated with the λ shown; constant
-// stimuli show each listed λ (which must be on the grid) a number of times in a seeded order.
+// One condition's procedure in a forced-choice study: the plug-in the experiment names
+// (procedures/registry.h) on the condition's λ grid (docs/forced-choice.md, "Intensities"), ended
+// by its own rule or by the study's max_trials.
 
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
-#include <optional>
-#include <vector>
+#include <string>
 
 #include "forced_choice/choice_config.h"
-#include "forced_choice/quest.h"
-#include "forced_choice/staircase.h"
+#include "procedures/procedure.h"
 
 namespace countershade::forced_choice {
 
-// The λ > 0 a set shows, with their grid indices, increasing.
-struct ChoiceGrid {
-  std::vector<double> lambdas;
-  std::vector<int> indices;
-  // The grid point nearest λ (linear distance; the lower one on a tie).
-  size_t nearest(double lambda) const;
-};
-
-struct Intensity {
-  double requested = 0;  // what the procedure asked for
-  size_t grid = 0;       // the grid point shown
-};
+using ChoiceGrid = procedures::Grid;
+using Intensity = procedures::Intensity;
 
 class ConditionProcedure {
  public:
@@ -34,20 +22,16 @@ class ConditionProcedure {
   ConditionProcedure(const ChoiceConfig& config, const ChoiceGrid& grid, uint64_t seed,
                      const std::string& where);
 
-  Intensity next() const;
+  Intensity next() const { return procedure_->next(); }
   void record(const Intensity& shown, bool correct);
-  bool finished() const;
+  bool finished() const { return trials_ >= max_trials_ || procedure_->finished(); }
   int trials() const { return trials_; }
-  // The procedure's state after the last answer, for the record (QUEST's mean and SD; a
-  // staircase's reversals and estimate).
-  nlohmann::ordered_json state() const;
+  // The procedure's state after the last answer, for the record.
+  nlohmann::ordered_json state() const { return procedure_->state(); }
 
  private:
-  const ChoiceConfig& config_;
-  const ChoiceGrid& grid_;
-  std::optional<Staircase> staircase_;
-  std::optional<Quest> quest_;
-  std::vector<size_t> constant_order_;  // grid points in the order shown
+  std::unique_ptr<procedures::Procedure> procedure_;
+  int max_trials_ = 0;
   int trials_ = 0;
 };
 

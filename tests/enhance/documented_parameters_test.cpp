@@ -118,7 +118,7 @@ TEST(DocumentedParameters, EveryMethodDocumentsTheDefaultsItsParserReads) {
 }
 
 // docs/enhancement-methods.md shows every method's axes and parameters as `countershade methods
-// --markdown NAME` prints them, between its markers (scripts/update-method-docs rewrites them):
+// --markdown NAME` prints them, between its markers (scripts/update-parameter-docs rewrites them):
 // the tables come from the code's own documentation, which the test above holds to the parsers.
 TEST(DocumentedParameters, TheDocsTablesAreTheMethodsMarkdown) {
   const std::string doc = testing::read_file(testing::source_dir() / "docs/enhancement-methods.md");
@@ -134,7 +134,7 @@ TEST(DocumentedParameters, TheDocsTablesAreTheMethodsMarkdown) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(doc.substr(start, end - start), r.output)
         << name << ": the docs' table differs from `countershade methods --markdown " << name
-        << "`; run scripts/update-method-docs";
+        << "`; run scripts/update-parameter-docs";
     if (!find_method(name)->parameter_docs().empty()) {
       EXPECT_NE(r.output.find("| `" + find_method(name)->parameter_docs()[0].key + "` |"),
                 std::string::npos)

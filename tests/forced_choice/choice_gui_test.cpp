@@ -11,8 +11,8 @@
 #include "../adjust/tiny_set.h"
 #include "../adjust/x_display.h"
 #include "core/image.h"
-#include "forced_choice/quest.h"
 #include "formats/responses.h"
+#include "procedures/quest.h"
 
 namespace countershade::forced_choice {
 namespace {
@@ -64,7 +64,7 @@ TEST(ChoiceGui, AScriptedQuestSessionWritesTheExpectedRows) {
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "log.txt");
   const CsvTable table = trials_of(dir / "sessions");
   ASSERT_EQ(table.rows.size(), 11u) << testing::read_file(dir / "log.txt");
-  Quest quest({-0.3, 1, 0.82, 3.5, 0.01, 0.5, 0.01, 4.0});
+  procedures::Quest quest({-0.3, 1, 0.82, 3.5, 0.01, 0.5, 0.01, 4.0});
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const double requested = std::pow(10.0, quest.quantile());

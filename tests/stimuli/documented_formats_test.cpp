@@ -88,8 +88,8 @@ TEST(DocumentedFormats, TheForcedChoiceExampleParses) {
   ASSERT_EQ(blocks.size(), 1u);
   const auto config =
       forced_choice::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
-  EXPECT_EQ(config.kind, forced_choice::ProcedureKind::quest);
-  EXPECT_EQ(config.trials, 40);
+  EXPECT_EQ(config.procedure.type, "quest");
+  EXPECT_EQ(config.to_json()["trials"], 40);
   EXPECT_EQ(config.practice_trials, 2);
 }
 

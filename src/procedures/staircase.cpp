@@ -1,11 +1,76 @@
-#include "forced_choice/staircase.h"
+#include "procedures/staircase.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
-namespace countershade::forced_choice {
+namespace countershade::procedures {
+namespace {
+
+constexpr int kMostTrials = 100000;
+
+// minVal / maxVal: absent and null both mean no bound, as in StairHandler.
+std::optional<double> optional_bound(const ParameterBag& bag, const std::string& key) {
+  if (!bag.given(key)) return std::nullopt;
+  return bag.required_number(key);
+}
+
+std::vector<double> step_sizes(const ParameterBag& bag) {
+  const std::vector<double> steps = bag.numbers("stepSizes", {4.0});
+  if (steps.empty()) bag.fail("stepSizes", "must list at least one step size");
+  for (double s : steps)
+    if (!(s > 0)) bag.fail("stepSizes", "step sizes must be above 0");
+  return steps;
+}
+
+void check_staircase_rules(const StaircaseRules& r, const ParameterBag& bag,
+                           const std::string& type) {
+  if (r.min_value && r.max_value && !(*r.min_value < *r.max_value))
+    bag.fail("maxVal", "must be above minVal");
+  if ((r.min_value && r.start < *r.min_value) || (r.max_value && r.start > *r.max_value))
+    bag.fail("startVal", "must lie within [minVal, maxVal]");
+  if (r.step_type == StepType::lin) return;
+  if (!(r.start > 0))
+    bag.fail("startVal", "must be above 0 for " + type + " steps (they multiply)");
+  if (r.min_value && !(*r.min_value > 0))
+    bag.fail("minVal", "must be above 0 for " + type + " steps (they multiply)");
+}
+
+}  // namespace
+
+StaircaseRules read_staircase_rules(const ParameterBag& bag) {
+  StaircaseRules r;
+  r.start = bag.required_number("startVal");
+  r.step_sizes = step_sizes(bag);
+  const std::string type = bag.choice("stepType", "db", {"lin", "log", "db"});
+  r.step_type = type == "lin" ? StepType::lin : type == "log" ? StepType::log : StepType::db;
+  r.n_up = int(bag.integer_in("nUp", 1, 1, 1000));
+  r.n_down = int(bag.integer_in("nDown", 3, 1, 1000));
+  r.n_trials = int(bag.integer_in("nTrials", 0, 0, kMostTrials));
+  if (bag.given("nReversals")) r.n_reversals = int(bag.integer_in("nReversals", 0, 0, kMostTrials));
+  r.min_value = optional_bound(bag, "minVal");
+  r.max_value = optional_bound(bag, "maxVal");
+  r.apply_initial_rule = bag.boolean("applyInitialRule", true);
+  check_staircase_rules(r, bag, type);
+  return r;
+}
+
+std::vector<ParameterDoc> staircase_parameter_docs() {
+  return {
+      {"startVal", "", "First intensity (λ), required"},
+      {"stepSizes", "4", "Step size, or a list that advances one entry at each reversal"},
+      {"stepType", "db", "lin (add), log (log10 units) or db (20·log10 units)"},
+      {"nUp", "1", "Wrong answers in a row that make the task easier"},
+      {"nDown", "3", "Right answers in a row that make it harder"},
+      {"nTrials", "0", "Trials at least (the staircase also waits for its reversals)"},
+      {"nReversals", "", "Reversals at least; at least the number of step sizes (null: that)"},
+      {"minVal", "", "Lowest intensity (null: none)"},
+      {"maxVal", "", "Highest intensity (null: none)"},
+      {"applyInitialRule", "true", "1-up 1-down until the first reversal"},
+  };
+}
 
 Staircase::Staircase(StaircaseRules rules) : rules_(std::move(rules)) {
   next_ = rules_.start;
@@ -97,4 +162,4 @@ double Staircase::geometric_estimate(int count) const {
   return std::exp(sum / double(n));
 }
 
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures

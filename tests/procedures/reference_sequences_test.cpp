@@ -6,12 +6,12 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
-#include "forced_choice/procedure_spec.h"
-#include "forced_choice/replay.h"
 #include "formats/responses.h"
+#include "procedures/quest.h"
+#include "procedures/staircase.h"
 #include "test_util.h"
 
-namespace countershade::forced_choice {
+namespace countershade::procedures {
 namespace {
 
 using json = nlohmann::json;
@@ -22,15 +22,15 @@ std::vector<bool> answers(const std::string& text) {
   return out;
 }
 
-// A procedure block made from the reference's own argument object, with "type" added.
-ProcedureSpec spec_from(json arguments, const std::string& type) {
-  arguments["type"] = type;
+// The engines' settings read from the reference's own argument objects, as a procedure block's.
+StaircaseRules staircase_from(const json& arguments) {
+  return read_staircase_rules(ParameterBag::from_json(arguments, "reference", ""));
+}
+// QuestCreate's empty arguments ([], null here) mean its defaults: they are left out.
+QuestParameters quest_from(json arguments) {
   for (auto it = arguments.begin(); it != arguments.end();)
-    it = it.value().is_null() && type == "quest" ? arguments.erase(it) : std::next(it);
-  JsonObject block(arguments, "reference", "");
-  ProcedureSpec spec = read_procedure(block);
-  block.finish();
-  return spec;
+    it = it.value().is_null() ? arguments.erase(it) : std::next(it);
+  return read_quest_parameters(ParameterBag::from_json(arguments, "reference", ""));
 }
 
 void expect_relative(double got, double expected, double tolerance, const std::string& what) {
@@ -43,11 +43,11 @@ TEST(Staircase, EveryReferenceSequenceOfStairHandlersRules) {
       parse_json_file(testing::reference_path("psychometric/staircase.expected.json"));
   ASSERT_EQ(expected["sequences"].size(), 5u);
   for (const auto& [name, e] : expected["sequences"].items()) {
-    const ProcedureSpec spec = spec_from(e["StairHandler"], "staircase");
+    const StaircaseRules rules = staircase_from(e["StairHandler"]);
     const CsvTable rows = parse_csv(
         testing::read_file(testing::reference_path("psychometric/" + e["csv"].get<std::string>())),
         name);
-    Staircase stair(spec.staircase);
+    Staircase stair(rules);
     EXPECT_EQ(stair.effective_reversals(), e["effective_nReversals"].get<int>()) << name;
     const auto responses = answers(e["responses"]);
     int at_max = 0, at_min = 0;
@@ -56,8 +56,8 @@ TEST(Staircase, EveryReferenceSequenceOfStairHandlersRules) {
       const auto& row = rows.rows[t + 1];
       expect_relative(stair.next_intensity(), std::stod(row[1]), 1e-9,
                       name + " intensity " + row[0]);
-      at_max += spec.staircase.max_value && stair.next_intensity() == *spec.staircase.max_value;
-      at_min += spec.staircase.min_value && stair.next_intensity() == *spec.staircase.min_value;
+      at_max += rules.max_value && stair.next_intensity() == *rules.max_value;
+      at_min += rules.min_value && stair.next_intensity() == *rules.min_value;
       EXPECT_EQ(stair.add_response(responses[t]), row[3] == "1")
           << name << " reversal at trial " << row[0];
     }
@@ -90,7 +90,7 @@ TEST(Quest, EveryReferenceSequenceOfPsychtoolbox) {
       parse_json_file(testing::reference_path("psychometric/quest.expected.json"));
   ASSERT_EQ(expected["sequences"].size(), 3u);
   for (const auto& [name, e] : expected["sequences"].items()) {
-    Quest q(spec_from(e["QuestCreate"], "quest").quest);
+    Quest q(quest_from(e["QuestCreate"]));
     EXPECT_EQ(q.dim(), e["derived"]["dim"].get<int>()) << name;
     EXPECT_NEAR(q.x_threshold(), e["derived"]["xThreshold"].get<double>(), 1e-12) << name;
     EXPECT_NEAR(q.quantile_order(), e["derived"]["quantileOrder"].get<double>(), 1e-12) << name;
@@ -178,4 +178,4 @@ TEST(Replay, BadProceduresAreRefusedWithOneLine) {
 }
 
 }  // namespace
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures

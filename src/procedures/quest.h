@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace countershade::forced_choice {
+#include "core/parameters.h"
+
+namespace countershade::procedures {
 
 struct QuestParameters {
   double t_guess = 0, t_guess_sd = 3;
@@ -18,6 +20,12 @@ struct QuestParameters {
   double grain = 0.01;
   std::optional<double> range;  // absent: 500 grain steps
 };
+
+// Reads QuestCreate's arguments (tGuess, tGuessSd, pThreshold, beta, delta, gamma, grain, range)
+// and checks them together.
+QuestParameters read_quest_parameters(const ParameterBag& bag);
+// Their documentation, with the defaults read_quest_parameters uses.
+std::vector<ParameterDoc> quest_parameter_docs();
 
 class Quest {
  public:
@@ -52,4 +60,4 @@ class Quest {
   int trials_ = 0;
 };
 
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures

@@ -8,7 +8,9 @@
 #include <optional>
 #include <vector>
 
-namespace countershade::forced_choice {
+#include "core/parameters.h"
+
+namespace countershade::procedures {
 
 enum class StepType { lin, log, db };
 
@@ -22,6 +24,12 @@ struct StaircaseRules {
   std::optional<double> min_value, max_value;
   bool apply_initial_rule = true;
 };
+
+// Reads StairHandler's arguments (startVal, stepSizes, stepType, nUp, nDown, nTrials,
+// nReversals, minVal, maxVal, applyInitialRule) and checks them together.
+StaircaseRules read_staircase_rules(const ParameterBag& bag);
+// Their documentation, with the defaults read_staircase_rules uses.
+std::vector<ParameterDoc> staircase_parameter_docs();
 
 class Staircase {
  public:
@@ -61,4 +69,4 @@ class Staircase {
   std::vector<int> reversal_trials_;
 };
 
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures

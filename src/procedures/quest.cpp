@@ -1,13 +1,14 @@
-#include "forced_choice/quest.h"
+#include "procedures/quest.h"
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
 
-namespace countershade::forced_choice {
+namespace countershade::procedures {
 namespace {
 
 // Linear interpolation of y at v on increasing xs (v inside [xs.front(), xs.back()]).
@@ -22,7 +23,49 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
 // x·ln x written as x·ln(x + eps), so that 0 gives 0 (Pelli's formula for the quantile order).
 double x_log_x(double x) { return x * std::log(x + DBL_EPSILON); }
 
+constexpr double kHuge = std::numeric_limits<double>::max();
+
+void check_quest_parameters(const QuestParameters& q, const ParameterBag& bag) {
+  const double top = 1 - q.delta * (1 - q.gamma);  // the function's ceiling
+  if (!(q.p_threshold > q.gamma && q.p_threshold < top))
+    bag.fail("pThreshold", "must lie strictly between gamma (" + std::to_string(q.gamma) +
+                               ") and 1 − delta·(1 − gamma) (" + std::to_string(top) + ")");
+  const double steps = q.range ? *q.range / q.grain : 500;
+  if (steps > 1e6)
+    bag.fail(q.range ? "range" : "grain", "range / grain gives more than 1000000 grid points");
+}
+
 }  // namespace
+
+QuestParameters read_quest_parameters(const ParameterBag& bag) {
+  QuestParameters q;
+  q.t_guess = bag.required_number("tGuess");
+  q.t_guess_sd = bag.required_number("tGuessSd");
+  if (!(q.t_guess_sd >= 1e-9)) bag.fail("tGuessSd", "must be above 0");
+  q.beta = bag.required_number("beta");
+  if (!(q.beta >= 1e-9 && q.beta <= 1e6)) bag.fail("beta", "must be in (0, 1e6]");
+  q.delta = bag.number_in("delta", 0, 0, 0.999);
+  q.gamma = bag.number_in("gamma", 0, 0, 0.999);
+  q.p_threshold = bag.required_number("pThreshold");
+  q.grain = bag.number_in("grain", 0.01, 1e-9, kHuge);
+  if (bag.given("range")) q.range = bag.required_number("range");
+  if (q.range && !(*q.range >= 1e-9)) bag.fail("range", "must be above 0");
+  check_quest_parameters(q, bag);
+  return q;
+}
+
+std::vector<ParameterDoc> quest_parameter_docs() {
+  return {
+      {"tGuess", "", "Prior mean of the threshold (log10 λ), required"},
+      {"tGuessSd", "", "Prior standard deviation (log10 units), required"},
+      {"pThreshold", "", "Proportion correct the threshold is defined at, required"},
+      {"beta", "", "Slope of the Weibull, required"},
+      {"delta", "0", "Lapse rate"},
+      {"gamma", "0", "Guess rate: 1/n for n alternatives"},
+      {"grain", "0.01", "Step of the posterior's grid (log10 units)"},
+      {"range", "", "Width of the posterior's grid (null: 500 grain steps)"},
+  };
+}
 
 double Quest::psychometric(double x) const {
   return p_.delta * p_.gamma +
@@ -127,4 +170,4 @@ double Quest::sd() const {
   return std::sqrt(second / sum - std::pow(first / sum, 2));
 }
 
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures

@@ -1,0 +1,35 @@
+#include "procedures/procedure.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/number_format.h"
+
+namespace countershade::procedures {
+
+size_t Grid::nearest(double lambda) const {
+  const size_t hi =
+      size_t(std::lower_bound(lambdas.begin(), lambdas.end(), lambda) - lambdas.begin());
+  if (hi == 0) return 0;
+  if (hi == lambdas.size()) return hi - 1;
+  return lambda - lambdas[hi - 1] <= lambdas[hi] - lambda ? hi - 1 : hi;
+}
+
+size_t Grid::point_of(double lambda, const std::string& where) const {
+  const size_t i = nearest(lambda);
+  if (std::abs(lambdas[i] - lambda) > 1e-9)
+    throw_input_error(where, "λ " + format_value(lambda) + " is not on the set's λ grid (" +
+                                 format_value(lambdas.front()) + " to " +
+                                 format_value(lambdas.back()) + ")");
+  return i;
+}
+
+std::string exact_number(double v) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace countershade::procedures
