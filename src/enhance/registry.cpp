@@ -1,9 +1,7 @@
 #include "enhance/registry.h"
 
-#include <mutex>
-#include <stdexcept>
-
 #include "core/error.h"
+#include "core/named_registry.h"
 
 namespace countershade {
 
@@ -26,17 +24,13 @@ COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_DECLARE_FACTORY)
 
 namespace {
 
-struct Registry {
-  std::mutex mutex;
-  std::vector<std::unique_ptr<const EnhancementMethod>> methods;
-};
-
-Registry& registry() {
-  static Registry* r = [] {
-    auto* reg = new Registry;  // never destroyed: registrations may run during static destruction
-#define COUNTERSHADE_ADD_BUILTIN(id) reg->methods.push_back(make_##id##_method());
+NamedRegistry<EnhancementMethod>& registry() {
+  // Never destroyed: registrations may run during static destruction.
+  static auto* r = [] {
+    std::vector<std::unique_ptr<const EnhancementMethod>> builtins;
+#define COUNTERSHADE_ADD_BUILTIN(id) builtins.push_back(make_##id##_method());
     COUNTERSHADE_BUILTIN_METHODS(COUNTERSHADE_ADD_BUILTIN)
-    return reg;
+    return new NamedRegistry<EnhancementMethod>(std::move(builtins));
   }();
   return *r;
 }
@@ -44,35 +38,15 @@ Registry& registry() {
 }  // namespace
 
 void register_method(std::unique_ptr<const EnhancementMethod> method) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  for (const auto& m : r.methods)
-    if (m->name() == method->name())
-      throw std::logic_error("method '" + method->name() + "' is registered twice");
-  r.methods.push_back(std::move(method));
+  registry().add(std::move(method), "method");
 }
 
-const EnhancementMethod* find_method(const std::string& name) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  for (const auto& m : r.methods)
-    if (m->name() == name) return m.get();
-  return nullptr;
-}
+const EnhancementMethod* find_method(const std::string& name) { return registry().find(name); }
 
-std::vector<std::string> method_names() {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  std::vector<std::string> names;
-  for (const auto& m : r.methods) names.push_back(m->name());
-  return names;
-}
+std::vector<std::string> method_names() { return registry().names(); }
 
-const EnhancementMethod& unenhanced_method() {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  return *r.methods.front();  // the first built-in
-}
+// The first built-in.
+const EnhancementMethod& unenhanced_method() { return registry().first(); }
 
 const EnhancementMethod& method_named(const std::string& name, const std::string& where) {
   if (const EnhancementMethod* m = find_method(name)) return *m;
