@@ -36,18 +36,6 @@ int draw_start(const Condition& c, const PlanSettings& s, uint64_t trial_key, in
 
 }  // namespace
 
-const char* side_name(Side side) {
-  switch (side) {
-    case Side::left:
-      return "left";
-    case Side::right:
-      return "right";
-    case Side::counterbalanced:
-      return "counterbalanced";
-  }
-  return "?";
-}
-
 namespace {
 
 // Every condition × repetition, in a seeded random order. Counterbalanced, the first side of each

@@ -11,15 +11,16 @@
 #include <vector>
 
 #include "formats/responses.h"
+#include "procedures/adjustment_block.h"
 
 namespace countershade::adjust {
 
-// Which side the enhanced image is shown on. `counterbalanced` only appears in the configuration;
-// every planned trial has a concrete side.
-enum class Side { left, right, counterbalanced };
-const char* side_name(Side side);
-
-enum class StartMode { random, zero };
+// The block's settings, read with the experiment (procedures/adjustment_block.h).
+using procedures::PlanSettings;
+using procedures::RepeatTiming;
+using procedures::Side;
+using procedures::side_name;
+using procedures::StartMode;
 
 // One condition of the study: a scene × method × σ with its λ grid. Grid index 0 is λ = 0, the
 // unenhanced image; λ(i) = lambda_min + i · lambda_step, derived from the index, never accumulated.
@@ -36,17 +37,6 @@ struct Trial {
   int repetition = 1;       // 1-based
   Side side = Side::right;  // side of the enhanced image
   int start_index[kQuestionCount] = {0, 0, 0};
-};
-
-struct PlanSettings {
-  uint64_t seed = 1;
-  int repetitions = 1;
-  Side side = Side::counterbalanced;
-  StartMode start = StartMode::random;
-  int practice_trials = 0;
-  // The conditions practice may show (indices); empty: every condition. A study fills it with
-  // those whose images change with λ, so practice always has something to find.
-  std::vector<int> practice_conditions;
 };
 
 // The full trial list of a session: practice trials first, then every condition × repetition in a
@@ -73,12 +63,6 @@ struct Answer {
 struct PastAnswer {
   int lambda_index = 0;
   int revision = 0;
-};
-
-// Auto-repeat of a held arrow key.
-struct RepeatTiming {
-  double repeat_delay_s = 0.40;     // a held arrow key starts repeating after this
-  double repeat_interval_s = 0.10;  // then steps at this interval
 };
 
 class Procedure {

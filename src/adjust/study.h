@@ -14,55 +14,10 @@
 
 namespace countershade::adjust {
 
-struct Instructions {
-  std::string welcome =
-      "Two images of the same scene are shown side by side. One of them is enhanced; use the arrow "
-      "keys to make the enhancement stronger (Up or Right) or weaker (Down or Left), and press "
-      "Enter "
-      "to give your answer. There are three questions for each pair. Press Esc at any time to "
-      "pause.\n\n"
-      "Press Enter to begin.";
-  std::string resume =
-      "Welcome back. The session continues where it stopped.\n\nPress Enter to continue.";
-  std::string practice = "Practice";
-  std::string practice_done =
-      "The practice trials are over. The study itself begins now.\n\nPress Enter to continue.";
-  std::string questions[kQuestionCount] = {
-      "When is a difference between the two images first visible?",
-      "When is the difference too strong or objectionable?",
-      "Which setting gives the best contrast?",
-  };
-  std::string keys_hint =
-      "Up/Right: stronger    Down/Left: weaker    Enter: confirm    Backspace: previous question   "
-      " Esc: pause";
-  std::string paused = "Paused.\n\nPress Enter to resume, or Q to quit and save.";
-  std::string finished = "Thank you. All answers are saved.\n\nPress Enter to close.";
-};
-
-struct StudyConfig {
-  PlanSettings plan;             // plan.seed is the configured base seed
-  std::optional<uint64_t> seed;  // unset: the manifest's seed
-  // Conditions to run ({scene, method, sigma}); empty: every condition in the set.
-  struct Selection {
-    std::string scene, method;
-    double sigma = 0;
-  };
-  std::vector<Selection> conditions;
-  // Conditions practice trials show; empty: those whose images change with λ.
-  std::vector<Selection> practice_conditions;
-  Instructions text;
-  RepeatTiming timing;
-  int surround = 128;  // grey level of the background, 0–255 (display values, no gamma change)
-  int gap_px = 48;     // between the two images
-  double font_px = 22;
-
-  nlohmann::ordered_json to_json() const;
-};
-
-// Reads the procedure configuration: a JSON object (a file of its own, or the "adjust" object of
-// an experiment file). `file` and `path` name it in messages.
-StudyConfig parse_study_config(const nlohmann::json& value, const std::string& file,
-                               const std::string& path);
+// The block as the experiment file gives it (procedures/adjustment_block.h).
+using procedures::Instructions;
+using procedures::parse_study_config;
+using procedures::StudyConfig;
 
 struct StimulusImage {
   std::filesystem::path file;  // absolute or relative to the working directory

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "adjust/study.h"
-#include "forced_choice/choice_config.h"
 #include "forced_choice/condition_procedure.h"
+#include "procedures/choice_block.h"
 
 namespace countershade::forced_choice {
 

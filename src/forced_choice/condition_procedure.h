@@ -8,10 +8,17 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "forced_choice/choice_config.h"
+#include "procedures/choice_block.h"
 #include "procedures/procedure.h"
 
 namespace countershade::forced_choice {
+
+// The block as the experiment file gives it (procedures/choice_block.h).
+using procedures::ChoiceConfig;
+using procedures::ConditionSelection;
+using procedures::Layout;
+using procedures::layout_name;
+using procedures::parse_choice_config;
 
 using ChoiceGrid = procedures::Grid;
 using Intensity = procedures::Intensity;

@@ -9,15 +9,15 @@
 #include <set>
 #include <sstream>
 
-#include "adjust/study.h"
 #include "core/error.h"
 #include "core/file_bytes.h"
 #include "core/json_reader.h"
 #include "core/sha256.h"
 #include "enhance/registry.h"
 #include "enhance/view_plan.h"
-#include "forced_choice/choice_config.h"
 #include "formats/responses.h"
+#include "procedures/adjustment_block.h"
+#include "procedures/choice_block.h"
 #include "render/camera.h"
 #include "render/frame_range.h"
 #include "render/scene_loader.h"
@@ -284,9 +284,10 @@ Experiment load_experiment(const std::filesystem::path& path) {
   if (root.has("description")) root.string("description");
   // The adjustment procedure: parsed now as `adjust` will parse it, so a typo fails here, not
   // in front of the first participant.
-  if (root.has("adjust")) adjust::parse_study_config(root.raw("adjust"), path.string(), "adjust");
+  if (root.has("adjust"))
+    procedures::parse_study_config(root.raw("adjust"), path.string(), "adjust");
   if (root.has("forced_choice"))
-    forced_choice::parse_choice_config(root.raw("forced_choice"), path.string(), "forced_choice");
+    procedures::parse_choice_config(root.raw("forced_choice"), path.string(), "forced_choice");
   // The audit's limits, checked now; headroom keeps to its clipping limit.
   if (root.has("audit")) e.max_clipped = read_audit_limits(root.object("audit")).max_clipped;
   e.seed = uint64_t(root.integer_in("seed", 1, 0, 1ll << 53));

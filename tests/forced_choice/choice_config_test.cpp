@@ -2,13 +2,12 @@
 // line naming the file and key and exit 2; and the experiment refuses them already when the set
 // is made. The run's plan: seeded, balanced, and practice only on conditions that change with λ.
 
-#include "forced_choice/choice_config.h"
-
 #include <gtest/gtest.h>
 
 #include "../adjust/tiny_set.h"
 #include "adjust/study.h"
 #include "forced_choice/choice_run.h"
+#include "procedures/choice_block.h"
 
 namespace countershade::forced_choice {
 namespace {

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adjust/study.h"
-#include "forced_choice/choice_config.h"
+#include "procedures/choice_block.h"
 #include "render/scene.h"
 #include "render/scene_loader.h"
 #include "stimuli/experiment.h"
@@ -87,7 +87,7 @@ TEST(DocumentedFormats, TheForcedChoiceExampleParses) {
   const auto blocks = json_blocks(source_dir() / "docs/forced-choice.md");
   ASSERT_EQ(blocks.size(), 1u);
   const auto config =
-      forced_choice::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
+      procedures::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
   EXPECT_EQ(config.procedure.type, "quest");
   EXPECT_EQ(config.to_json()["trials"], 40);
   EXPECT_EQ(config.practice_trials, 2);

@@ -1,8 +1,9 @@
 #pragma once
-// The forced-choice study as the app runs it (docs/forced-choice.md): an experiment's
-// "forced_choice" block or a file of its own. n = 2 to 4 alternatives, side by side (spatial) or
-// one after the other (temporal), the question, optional feedback, and the procedure that picks
-// each condition's λ: constant stimuli, a staircase or QUEST.
+// The forced-choice study's block of an experiment file, or a file of its own
+// (docs/forced-choice.md): n = 2 to 4 alternatives, side by side (spatial) or one after the other
+// (temporal), the question, optional feedback, and the procedure (registry.h) that picks each
+// condition's λ. It is read here, apart from the app, so that an experiment is checked when its
+// set is made; the app (src/forced_choice) runs it.
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -12,7 +13,7 @@
 
 #include "procedures/registry.h"
 
-namespace countershade::forced_choice {
+namespace countershade::procedures {
 
 enum class Layout { spatial, temporal };
 const char* layout_name(Layout layout);
@@ -31,8 +32,8 @@ struct ChoiceConfig {
   std::string question = "Which image is enhanced?";
   // Empty: a text that fits the layout and the number of alternatives (welcome_text()).
   std::string welcome;
-  procedures::ProcedureBlock procedure;  // the plug-in that picks each condition's λ
-  int max_trials = 200;                  // any procedure: a condition ends after this many trials
+  ProcedureBlock procedure;  // the plug-in that picks each condition's λ
+  int max_trials = 200;      // any procedure: a condition ends after this many trials
   std::vector<ConditionSelection> conditions;  // empty: every condition of the set
   std::vector<ConditionSelection>
       practice_conditions;  // empty: conditions whose images change with λ
@@ -51,4 +52,4 @@ struct ChoiceConfig {
 ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
                                  const std::string& path);
 
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures

@@ -1,9 +1,9 @@
-#include "forced_choice/choice_config.h"
+#include "procedures/choice_block.h"
 
 #include "core/error.h"
 #include "core/json_reader.h"
 
-namespace countershade::forced_choice {
+namespace countershade::procedures {
 
 const char* layout_name(Layout layout) {
   return layout == Layout::spatial ? "spatial" : "temporal";
@@ -45,7 +45,7 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   if (o.has("seed")) c.seed = uint64_t(o.integer_in("seed", 1, 0, 1ll << 53));
   o.object("procedure");  // required, and an object
   c.procedure_source = o.raw("procedure");
-  c.procedure = procedures::read_procedure_block(c.procedure_source, file, o.key_path("procedure"));
+  c.procedure = read_procedure_block(c.procedure_source, file, o.key_path("procedure"));
   o.finish();
   return c;
 }
@@ -83,4 +83,4 @@ nlohmann::ordered_json ChoiceConfig::to_json() const {
   return j;
 }
 
-}  // namespace countershade::forced_choice
+}  // namespace countershade::procedures
