@@ -12,6 +12,8 @@
 
 #include "formats/responses.h"
 #include "procedures/adjustment_block.h"
+#include "runtime/key_script.h"
+#include "runtime/study.h"
 
 namespace countershade::adjust {
 
@@ -21,14 +23,9 @@ using procedures::RepeatTiming;
 using procedures::Side;
 using procedures::side_name;
 using procedures::StartMode;
-
-// One condition of the study: a scene × method × σ with its λ grid. Grid index 0 is λ = 0, the
-// unenhanced image; λ(i) = lambda_min + i · lambda_step, derived from the index, never accumulated.
-struct Condition {
-  std::string scene, method;
-  double sigma = 0;
-  int grid_size = 2;  // indices 0 .. grid_size − 1
-};
+// The study's conditions and the keys (src/runtime).
+using runtime::Condition;
+using runtime::Key;
 
 struct Trial {
   int number = 0;  // 1-based position among the real trials; 0 for practice trials
@@ -44,9 +41,6 @@ struct Trial {
 // balances the first side over the conditions. The same settings always give the same plan.
 std::vector<Trial> plan_trials(const std::vector<Condition>& conditions,
                                const PlanSettings& settings);
-
-// one … four: the number keys (top row or keypad), for forced-choice answers.
-enum class Key { up, down, left, right, enter, backspace, escape, quit, one, two, three, four };
 
 // A confirmed answer, returned by the procedure for the recorder to write.
 struct Answer {

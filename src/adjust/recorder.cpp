@@ -21,6 +21,11 @@
 
 namespace countershade::adjust {
 
+// From the study runtime (src/runtime).
+using runtime::run_end_name;
+using runtime::RunEnd;
+using runtime::Study;
+
 namespace fs = std::filesystem;
 using OrderedJson = nlohmann::ordered_json;
 

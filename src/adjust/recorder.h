@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "adjust/procedure.h"
-#include "adjust/session_run.h"
-#include "adjust/study.h"
 #include "core/append_file.h"
+#include "runtime/session_run.h"
+#include "runtime/study.h"
 
 namespace countershade::adjust {
 
@@ -40,7 +40,7 @@ struct RecordedAnswers {
 // Reads a session's responses and checks every row against the plan: the trial number, scene,
 // method, σ and λ must be those the plan gives, or the session is refused (InputError), since
 // resuming it would mix two different studies.
-RecordedAnswers read_recorded_answers(const std::filesystem::path& csv, const Study& study,
+RecordedAnswers read_recorded_answers(const std::filesystem::path& csv, const runtime::Study& study,
                                       const std::vector<Trial>& plan);
 
 class SessionRecorder {
@@ -53,7 +53,7 @@ class SessionRecorder {
 
   // New session: creates the three files (none may exist). Resume: they must exist, the sidecar's
   // plan must equal `plan`, and the recorded answers are read back.
-  SessionRecorder(const Study& study, const std::vector<Trial>& plan, const Identity& who,
+  SessionRecorder(const runtime::Study& study, const std::vector<Trial>& plan, const Identity& who,
                   const std::filesystem::path& dir, bool resume);
 
   const RecordedAnswers& recorded() const { return recorded_; }
@@ -70,7 +70,7 @@ class SessionRecorder {
                 const std::string& lambda_index);
 
   // The current run, for the session to fill in; save() writes the sidecar.
-  SessionRun& run() { return run_; }
+  runtime::SessionRun& run() { return run_; }
   // The sidecar as save() writes it: the session's record, the earlier runs and this one.
   nlohmann::ordered_json sidecar() const;
   void save();
@@ -82,17 +82,17 @@ class SessionRecorder {
   // The folder of the sequence an answer chose (the `sequence` column); empty for a still.
   std::string answered_sequence(int condition, int lambda_index) const;
 
-  const Study& study_;
+  const runtime::Study& study_;
   const std::vector<Trial>& plan_;
   Identity who_;
   SessionFiles files_;
   AppendOnlyFile csv_, keys_;
   RecordedAnswers recorded_;
   nlohmann::ordered_json sidecar_;  // all but the current run
-  SessionRun run_;
+  runtime::SessionRun run_;
 };
 
 // The plan as stored in the sidecar (one compact object per trial), for the resume check.
-nlohmann::ordered_json plan_to_json(const Study& study, const std::vector<Trial>& plan);
+nlohmann::ordered_json plan_to_json(const runtime::Study& study, const std::vector<Trial>& plan);
 
 }  // namespace countershade::adjust

@@ -9,17 +9,39 @@
 #include <cstdlib>
 #include <memory>
 
-#include "adjust/image_decode.h"
-#include "adjust/input_script.h"
-#include "adjust/presenter.h"
 #include "adjust/recorder.h"
-#include "adjust/session_run.h"
-#include "adjust/study.h"
+#include "adjust/simulated_observer.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/time.h"
+#include "runtime/image_decode.h"
+#include "runtime/key_script.h"
+#include "runtime/presenter.h"
+#include "runtime/session_run.h"
+#include "runtime/study.h"
 
 namespace countershade::adjust {
+
+// From the study runtime (src/runtime).
+using runtime::check_subject_id;
+using runtime::DisplayOptions;
+using runtime::FrameContent;
+using runtime::InputEvent;
+using runtime::key_name;
+using runtime::load_study;
+using runtime::parse_key_script;
+using runtime::Preload;
+using runtime::preload_textures;
+using runtime::Presenter;
+using runtime::require_achromatic_images;
+using runtime::run_end_name;
+using runtime::RunEnd;
+using runtime::session_seed;
+using runtime::StimulusLayout;
+using runtime::Study;
+using runtime::study_display;
+using runtime::verify_study_images;
+using runtime::WindowEvent;
 
 namespace fs = std::filesystem;
 using OrderedJson = nlohmann::ordered_json;
@@ -299,7 +321,7 @@ class SessionLoop {
 
   FrameContent frame_content(double t) const {
     FrameContent content;
-    const Instructions& text = study_.config.text;
+    const procedures::Instructions& text = study_.config.text;
     switch (procedure_.phase()) {
       case Procedure::Phase::instructions:
         content.message = o_.resume ? text.resume : text.welcome;

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "adjust/fine_levels.h"
+#include "runtime/fine_levels.h"
 
 namespace countershade::adjust {
 
@@ -26,8 +26,8 @@ struct SessionOptions {
   bool frame_clock = false;  // DisplayOptions::frame_clock (with a script or an observer)
   std::optional<double>
       monitor_width_mm;  // overrides the size the monitor reports (visual angle check)
-  adjust::OutputPathChoice output_path;  // 16-bit sets: --output-path
-  std::optional<uint32_t> dither_seed;   // default: the session seed
+  runtime::OutputPathChoice output_path;  // 16-bit sets: --output-path
+  std::optional<uint32_t> dither_seed;    // default: the session seed
 };
 
 // Returns the exit status: 0 when the run ended normally (finished, quit and saved, closed or

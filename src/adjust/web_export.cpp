@@ -10,6 +10,14 @@
 
 namespace countershade::adjust {
 
+// From the study runtime (src/runtime) and the adjustment block (src/procedures).
+using procedures::Instructions;
+using procedures::StudyConfig;
+using runtime::Condition;
+using runtime::Stimulus;
+using runtime::Study;
+using runtime::verify_study_images;
+
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
@@ -105,7 +113,7 @@ json web_study(const Study& study, const WebExportOptions& o) {
                    study.manifest_seed))},  // a string: JavaScript numbers hold 53 bits
       {"repetitions", c.plan.repetitions},
       {"side", side_name(c.plan.side)},
-      {"start", c.plan.start == StartMode::zero ? "zero" : "random"},
+      {"start", c.plan.start == procedures::StartMode::zero ? "zero" : "random"},
       {"practice_trials", c.plan.practice_trials},
       {"practice_conditions", c.plan.practice_conditions},
       {"timing", {{"delay", c.timing.repeat_delay_s}, {"interval", c.timing.repeat_interval_s}}},

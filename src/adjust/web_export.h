@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "adjust/study.h"
+#include "runtime/study.h"
 
 namespace countershade::adjust {
 
@@ -23,10 +23,10 @@ struct WebExportOptions {
 
 // What the plugin reads (study.js): the set, the plan's inputs, the texts, and per condition its
 // λ grid (as the app writes the numbers) and image files.
-nlohmann::ordered_json web_study(const Study& study, const WebExportOptions& options);
+nlohmann::ordered_json web_study(const runtime::Study& study, const WebExportOptions& options);
 
 // Writes the folder; returns the number of images copied. Throws InputError for a set that
 // cannot be exported (missing or altered images, sequences) or missing assets.
-size_t export_web_study(const Study& study, const WebExportOptions& options);
+size_t export_web_study(const runtime::Study& study, const WebExportOptions& options);
 
 }  // namespace countershade::adjust

@@ -2,11 +2,11 @@
 
 namespace countershade::cli {
 
-void add_output_path_flags(CLI::App* cmd, adjust::OutputPathChoice& path,
+void add_output_path_flags(CLI::App* cmd, runtime::OutputPathChoice& path,
                            std::optional<uint32_t>& dither_seed) {
   cmd->add_option_function<std::string>(
          "--output-path",
-         [&path](const std::string& text) { path = *adjust::parse_output_path(text); },
+         [&path](const std::string& text) { path = *runtime::parse_output_path(text); },
          "How a 16-bit set reaches the screen: ten-bit (a 10-bit framebuffer, checked by reading "
          "it back), dither "
          "(a seeded dither to 8 bits whose mean over 64 frames is the 16-bit value), pseudo-grey "

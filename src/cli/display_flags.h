@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <optional>
 
-#include "adjust/fine_levels.h"
+#include "runtime/fine_levels.h"
 
 namespace countershade::cli {
 
 // --output-path auto|ten-bit|dither and --dither-seed N.
-void add_output_path_flags(CLI::App* cmd, adjust::OutputPathChoice& path,
+void add_output_path_flags(CLI::App* cmd, runtime::OutputPathChoice& path,
                            std::optional<uint32_t>& dither_seed);
 
 }  // namespace countershade::cli

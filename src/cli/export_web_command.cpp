@@ -32,7 +32,7 @@ void run(const ExportArgs& a) {
     throw_input_error(
         "--post-url",
         "must start with http://, https:// or / (a path on the server that hosts the study)");
-  const adjust::Study study = adjust::load_study(a.manifest, std::nullopt);
+  const runtime::Study study = runtime::load_study(a.manifest, std::nullopt);
   adjust::WebExportOptions o;
   o.output = a.output;
   o.assets = assets_folder(a);

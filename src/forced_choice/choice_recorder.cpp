@@ -50,7 +50,7 @@ void move_partial_line_aside(const fs::path& csv, json& sidecar) {
 }
 
 std::string row_mismatch(const std::vector<std::string>& row, const ChoiceTrial& t,
-                         const adjust::Study& study) {
+                         const runtime::Study& study) {
   const auto& c = study.conditions[size_t(t.condition)];
   const std::vector<std::pair<size_t, std::string>> expected = {{2, std::to_string(t.number)},
                                                                 {3, c.scene},
@@ -67,7 +67,7 @@ std::string row_mismatch(const std::vector<std::string>& row, const ChoiceTrial&
 
 }  // namespace
 
-ChoiceRecorder::ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& config,
+ChoiceRecorder::ChoiceRecorder(const runtime::Study& study, const ChoiceConfig& config,
                                const Identity& who, const fs::path& dir, bool resume,
                                ChoiceRun& run)
     : study_(study),
@@ -99,8 +99,8 @@ ChoiceRecorder::ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& c
     throw_input_error(files_.sidecar.string(),
                       "this session was begun with another set, seed or configuration");
   for (auto& r : sidecar_["runs"])  // a run that never recorded its end was killed
-    if (r.value("end", std::string()) == adjust::run_end_name(adjust::RunEnd::running))
-      r["end"] = adjust::run_end_name(adjust::RunEnd::interrupted);
+    if (r.value("end", std::string()) == runtime::run_end_name(runtime::RunEnd::running))
+      r["end"] = runtime::run_end_name(runtime::RunEnd::interrupted);
   move_partial_line_aside(files_.csv, sidecar_);
   replay(run);
   csv_ = AppendOnlyFile::open_existing(files_.csv);

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "adjust/session_run.h"
-#include "adjust/study.h"
 #include "core/append_file.h"
 #include "forced_choice/choice_run.h"
+#include "runtime/session_run.h"
+#include "runtime/study.h"
 
 namespace countershade::forced_choice {
 
@@ -37,12 +37,12 @@ class ChoiceRecorder {
 
   // New session: creates both files (neither may exist). Resume: both must exist and the
   // sidecar's seed and configuration must be this session's; the rows are replayed into `run`.
-  ChoiceRecorder(const adjust::Study& study, const ChoiceConfig& config, const Identity& who,
+  ChoiceRecorder(const runtime::Study& study, const ChoiceConfig& config, const Identity& who,
                  const std::filesystem::path& dir, bool resume, ChoiceRun& run);
 
   // Appends the trial's row and fsyncs it before returning.
   void record(const ChoiceTrial& trial, int response, bool correct, double rt_s);
-  adjust::SessionRun& current_run() { return run_; }
+  runtime::SessionRun& current_run() { return run_; }
   int rows() const { return rows_; }
   const ChoiceFiles& files() const { return files_; }
   // Writes the sidecar, with each condition's procedure state after the last recorded trial.
@@ -51,13 +51,13 @@ class ChoiceRecorder {
  private:
   void replay(ChoiceRun& run);
 
-  const adjust::Study& study_;
+  const runtime::Study& study_;
   const ChoiceConfig& config_;
   Identity who_;
   ChoiceFiles files_;
   AppendOnlyFile csv_;
   nlohmann::ordered_json sidecar_;
-  adjust::SessionRun run_;
+  runtime::SessionRun run_;
   int rows_ = 0;
 };
 

@@ -13,17 +13,17 @@ namespace {
 // Streams of the session seed, apart from the procedures' own.
 enum : uint64_t { kStreamCondition = 301, kStreamTarget = 302, kStreamPractice = 303 };
 
-bool matches(const ConditionSelection& s, const adjust::Condition& c) {
+bool matches(const ConditionSelection& s, const runtime::Condition& c) {
   return s.scene == c.scene && s.method == c.method && std::abs(s.sigma - c.sigma) < 1e-12;
 }
 
-std::vector<int> select(const adjust::Study& study, const std::vector<ConditionSelection>& wanted,
+std::vector<int> select(const runtime::Study& study, const std::vector<ConditionSelection>& wanted,
                         const std::string& source, const std::string& key) {
   std::vector<int> out;
   for (size_t w = 0; w < wanted.size(); ++w) {
     const auto& c = study.conditions;
-    const auto it = std::find_if(c.begin(), c.end(),
-                                 [&](const adjust::Condition& x) { return matches(wanted[w], x); });
+    const auto it = std::find_if(
+        c.begin(), c.end(), [&](const runtime::Condition& x) { return matches(wanted[w], x); });
     if (it == c.end())
       throw_input_error(source + key + "[" + std::to_string(w) + "]",
                         "no condition " + wanted[w].scene + " / " + wanted[w].method + " / σ " +
@@ -33,7 +33,7 @@ std::vector<int> select(const adjust::Study& study, const std::vector<ConditionS
   return out;
 }
 
-ChoiceGrid grid_of(const adjust::Study& study, int condition) {
+ChoiceGrid grid_of(const runtime::Study& study, int condition) {
   ChoiceGrid g;
   const int size = int(study.condition_images[size_t(condition)].size()) - 1;
   for (int i = 0; i < size; ++i)
@@ -57,7 +57,7 @@ int balanced_target(uint64_t seed, int condition, int k, int n) {
 
 }  // namespace
 
-ChoiceRun::ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uint64_t seed)
+ChoiceRun::ChoiceRun(const runtime::Study& study, const ChoiceConfig& config, uint64_t seed)
     : study_(study), config_(config), seed_(seed) {
   conditions_ = select(study, config.conditions, config.source, "conditions");
   if (conditions_.empty())

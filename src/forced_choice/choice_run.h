@@ -10,9 +10,9 @@
 #include <optional>
 #include <vector>
 
-#include "adjust/study.h"
 #include "forced_choice/condition_procedure.h"
 #include "procedures/choice_block.h"
+#include "runtime/study.h"
 
 namespace countershade::forced_choice {
 
@@ -29,7 +29,7 @@ struct ChoiceTrial {
 
 class ChoiceRun {
  public:
-  ChoiceRun(const adjust::Study& study, const ChoiceConfig& config, uint64_t seed);
+  ChoiceRun(const runtime::Study& study, const ChoiceConfig& config, uint64_t seed);
   ChoiceRun(const ChoiceRun&) = delete;
   ChoiceRun& operator=(const ChoiceRun&) = delete;
 
@@ -48,7 +48,7 @@ class ChoiceRun {
   ChoiceTrial practice_trial(int k) const;
   int slot_of(int condition) const;
 
-  const adjust::Study& study_;
+  const runtime::Study& study_;
   const ChoiceConfig& config_;
   uint64_t seed_;
   std::vector<int> conditions_, practice_conditions_;

@@ -5,9 +5,6 @@
 #include <cstdio>
 #include <memory>
 
-#include "adjust/image_decode.h"
-#include "adjust/input_script.h"
-#include "adjust/presenter.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json_reader.h"
@@ -15,14 +12,17 @@
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_recorder.h"
 #include "forced_choice/choice_run.h"
+#include "runtime/image_decode.h"
+#include "runtime/key_script.h"
+#include "runtime/presenter.h"
 
 namespace countershade::forced_choice {
 
 namespace fs = std::filesystem;
-using adjust::FrameContent;
-using adjust::InputEvent;
-using adjust::Key;
-using adjust::RunEnd;
+using runtime::FrameContent;
+using runtime::InputEvent;
+using runtime::Key;
+using runtime::RunEnd;
 using json = nlohmann::ordered_json;
 
 namespace {
@@ -42,9 +42,9 @@ ChoiceConfig load_config(const ChoiceSessionOptions& o) {
                              "experiment.forced_choice");
 }
 
-adjust::DisplayOptions display_options(const ChoiceSessionOptions& o, const adjust::Study& study,
-                                       const ChoiceConfig& config, uint64_t session_seed) {
-  adjust::DisplayOptions d = adjust::study_display(study, "choose");
+runtime::DisplayOptions display_options(const ChoiceSessionOptions& o, const runtime::Study& study,
+                                        const ChoiceConfig& config, uint64_t session_seed) {
+  runtime::DisplayOptions d = runtime::study_display(study, "choose");
   d.columns = config.layout == Layout::spatial ? config.n_afc : 1;
   d.fullscreen = o.fullscreen;
   d.monitor = o.monitor;
@@ -70,15 +70,15 @@ std::optional<int> chosen(Key key, int n) {
 // The event loop: key events drive the run, answers go to the recorder, each frame is drawn.
 class ChoiceLoop {
  public:
-  ChoiceLoop(const ChoiceSessionOptions& o, const adjust::Study& study, const ChoiceConfig& config,
-             ChoiceRun& run, ChoiceRecorder& recorder, adjust::Presenter& presenter)
+  ChoiceLoop(const ChoiceSessionOptions& o, const runtime::Study& study, const ChoiceConfig& config,
+             ChoiceRun& run, ChoiceRecorder& recorder, runtime::Presenter& presenter)
       : o_(o),
         study_(study),
         config_(config),
         run_(run),
         recorder_(recorder),
         presenter_(presenter) {
-    if (o.script) script_ = adjust::parse_key_script(*o.script);
+    if (o.script) script_ = runtime::parse_key_script(*o.script);
     if (o.observer) observer_ = parse_choice_observer(*o.observer);
   }
 
@@ -101,21 +101,21 @@ class ChoiceLoop {
  private:
   void preload() {
     const double start = presenter_.now();
-    auto textures = adjust::preload_textures(presenter_, study_);
+    auto textures = runtime::preload_textures(presenter_, study_);
     if (textures)
       texture_ = std::move(*textures);
     else
       end_ = RunEnd::closed;
     recorder_.current_run().preload =
-        adjust::Preload{study_.images.size(), presenter_.now() - start};
+        runtime::Preload{study_.images.size(), presenter_.now() - start};
     recorder_.save(run_);
   }
 
   void take_input(double now) {
     for (const auto& w : presenter_.poll_events()) {
-      if (w.kind == adjust::WindowEvent::Kind::close) end_ = RunEnd::closed;
-      if (w.kind == adjust::WindowEvent::Kind::press) press(w.key, w.time_s - t0_);
-      if (w.kind == adjust::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(now);
+      if (w.kind == runtime::WindowEvent::Kind::close) end_ = RunEnd::closed;
+      if (w.kind == runtime::WindowEvent::Kind::press) press(w.key, w.time_s - t0_);
+      if (w.kind == runtime::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(now);
     }
     while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_)
       scripted(script_[next_script_++]);
@@ -316,13 +316,13 @@ class ChoiceLoop {
                                       std::to_string(screenshots_ + 1) + base.extension().string());
     }
     const FrameContent content = frame_content(now);
-    const adjust::StimulusLayout layout = presenter_.draw(content, shot);
+    const runtime::StimulusLayout layout = presenter_.draw(content, shot);
     if (!shot.empty()) describe_screenshot(shot, content, layout, now);
     presenter_.pace();
   }
 
   void describe_screenshot(const fs::path& shot, const FrameContent& content,
-                           const adjust::StimulusLayout& layout, double t) {
+                           const runtime::StimulusLayout& layout, double t) {
     json info = {{"phase", int(phase_)}};
     if (phase_ == Phase::trial && (content.left_texture || !content.row.empty())) {
       const ChoiceTrial& trial = *run_.current();
@@ -351,11 +351,11 @@ class ChoiceLoop {
   }
 
   const ChoiceSessionOptions& o_;
-  const adjust::Study& study_;
+  const runtime::Study& study_;
   const ChoiceConfig& config_;
   ChoiceRun& run_;
   ChoiceRecorder& recorder_;
-  adjust::Presenter& presenter_;
+  runtime::Presenter& presenter_;
   std::vector<InputEvent> script_;
   std::optional<ChoiceObserver> observer_;
   std::vector<unsigned> texture_;
@@ -370,17 +370,17 @@ class ChoiceLoop {
 }  // namespace
 
 int run_choice_session(const ChoiceSessionOptions& o) {
-  adjust::check_subject_id(o.subject);
+  runtime::check_subject_id(o.subject);
   if (o.session < 1 || o.session > 99) throw_input_error("--session", "must be between 1 and 99");
   if (o.script && o.observer) throw_input_error("--observer", "cannot be combined with --script");
   if (o.observer) parse_choice_observer(*o.observer);
-  if (o.script) adjust::parse_key_script(*o.script);
-  const adjust::Study study = adjust::load_study(o.manifest, std::nullopt);
+  if (o.script) runtime::parse_key_script(*o.script);
+  const runtime::Study study = runtime::load_study(o.manifest, std::nullopt);
   const ChoiceConfig config = load_config(o);
-  adjust::verify_study_images(study);
-  adjust::require_achromatic_images(study, o.output_path);
+  runtime::verify_study_images(study);
+  runtime::require_achromatic_images(study, o.output_path);
   const uint64_t seed =
-      adjust::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
+      runtime::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
   ChoiceRun run(study, config, seed);
   std::error_code ec;
   if (!o.resume) fs::create_directories(o.sessions_dir, ec);
@@ -393,7 +393,7 @@ int run_choice_session(const ChoiceSessionOptions& o) {
                 o.session, recorder.rows(), recorder.files().csv.string().c_str());
     return 0;
   }
-  auto presenter = std::make_unique<adjust::Presenter>(display_options(o, study, config, seed));
+  auto presenter = std::make_unique<runtime::Presenter>(display_options(o, study, config, seed));
   recorder.current_run().display = presenter->display_info();
   g_signal = 0;
   auto term = std::signal(SIGTERM, on_signal), interrupt = std::signal(SIGINT, on_signal);
@@ -406,7 +406,7 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   recorder.save(run);
   presenter.reset();
   std::printf("%s session %d: %s; %d trials recorded in %s\n", o.subject.c_str(), o.session,
-              adjust::run_end_name(end), recorder.rows(), recorder.files().csv.string().c_str());
+              runtime::run_end_name(end), recorder.rows(), recorder.files().csv.string().c_str());
   return 0;
 }
 

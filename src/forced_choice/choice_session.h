@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "adjust/fine_levels.h"
+#include "runtime/fine_levels.h"
 
 namespace countershade::forced_choice {
 
@@ -25,8 +25,8 @@ struct ChoiceSessionOptions {
   std::optional<std::filesystem::path> screenshot;
   std::optional<std::string> observer;  // "weibull:ALPHA,BETA,SEED"
   bool frame_clock = false;
-  adjust::OutputPathChoice output_path;  // 16-bit sets: --output-path
-  std::optional<uint32_t> dither_seed;   // default: the session seed
+  runtime::OutputPathChoice output_path;  // 16-bit sets: --output-path
+  std::optional<uint32_t> dither_seed;    // default: the session seed
 };
 
 // Returns 0 when the run ended normally. Bad input throws InputError before any window opens.

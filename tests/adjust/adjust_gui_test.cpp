@@ -11,16 +11,21 @@
 #include <set>
 #include <sstream>
 
-#include "adjust/input_script.h"
 #include "adjust/recorder.h"
-#include "adjust/study.h"
+#include "adjust/simulated_observer.h"
 #include "analysis/responses.h"
 #include "app_runner.h"
 #include "core/image.h"
+#include "runtime/key_script.h"
+#include "runtime/study.h"
 #include "tiny_set.h"
 #include "x_display.h"
 
 namespace countershade::adjust {
+
+// From the study runtime (src/runtime).
+using runtime::load_study;
+using runtime::Study;
 namespace {
 
 // The position of a column in the responses CSV the app writes.

@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "adjust/fine_levels.h"
 #include "app_runner.h"
 #include "core/image.h"
+#include "runtime/fine_levels.h"
 #include "tiny_set.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 namespace {
 
 namespace fs = std::filesystem;
@@ -154,4 +154,4 @@ TEST(DeepGui, TenBitIsRefusedWhereTheReadBackFails) {
 }
 
 }  // namespace
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -11,6 +11,11 @@
 #include "tiny_set.h"
 
 namespace countershade::adjust {
+
+// From the study runtime (src/runtime).
+using runtime::load_study;
+using runtime::RunEnd;
+using runtime::Study;
 namespace {
 
 namespace fs = std::filesystem;

@@ -1,16 +1,27 @@
 // Loading a study from a stimulus set, its configuration, key scripts and the simulated observer.
 
-#include "adjust/study.h"
+#include "runtime/study.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "adjust/input_script.h"
+#include "adjust/simulated_observer.h"
+#include "runtime/key_script.h"
 #include "stimuli/set_test_util.h"
 #include "tiny_set.h"
 
 namespace countershade::adjust {
+
+// From the study runtime (src/runtime).
+using runtime::check_subject_id;
+using runtime::InputEvent;
+using runtime::load_study;
+using runtime::parse_key_script_text;
+using runtime::session_seed;
+using runtime::Stimulus;
+using runtime::Study;
+using runtime::verify_study_images;
 namespace {
 
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "../adjust/tiny_set.h"
-#include "adjust/study.h"
 #include "forced_choice/choice_run.h"
 #include "procedures/choice_block.h"
+#include "runtime/study.h"
 
 namespace countershade::forced_choice {
 namespace {
@@ -67,8 +67,8 @@ TEST(ChoiceConfig, TheExperimentRefusesABadBlockWhenTheSetIsMade) {
 // targets balanced, the same order for the same seed and another for another seed.
 TEST(ChoiceRun, ConstantStimuliAreBalancedAndSeeded) {
   testing::TempDir dir;
-  const adjust::Study study =
-      adjust::load_study(testing::make_tiny_set(dir, "", 96, 72, 0.1), std::nullopt);
+  const runtime::Study study =
+      runtime::load_study(testing::make_tiny_set(dir, "", 96, 72, 0.1), std::nullopt);
   const ChoiceConfig config = parse_choice_config(
       nlohmann::json::parse(
           R"({"procedure": {"type": "constant", "lambdas": [0.2, 0.6, 1.2], "repetitions": 4}})"),

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "adjust/study.h"
+#include "procedures/adjustment_block.h"
 #include "procedures/choice_block.h"
 #include "render/scene.h"
 #include "render/scene_loader.h"
@@ -75,8 +75,8 @@ TEST(DocumentedFormats, TheExperimentExampleLoads) {
 TEST(DocumentedFormats, TheProcedureExampleParses) {
   const auto blocks = json_blocks(source_dir() / "docs/adjustment-study.md");
   ASSERT_EQ(blocks.size(), 1u);
-  const adjust::StudyConfig config =
-      adjust::parse_study_config(json::parse(blocks[0]), "adjustment-study.md", "");
+  const procedures::StudyConfig config =
+      procedures::parse_study_config(json::parse(blocks[0]), "adjustment-study.md", "");
   EXPECT_EQ(config.plan.repetitions, 2);
   EXPECT_EQ(config.plan.practice_trials, 2);
   ASSERT_EQ(config.conditions.size(), 1u);

@@ -16,7 +16,7 @@ printf '#include "adjust/study.h"\n' > "$tree/src/stimuli/experiment.cpp"
 if python3 "$check" --holding "$tree" > "$tree/out"; then echo "no cycle found"; exit 1; fi
 grep -q 'src/render: include cycle' "$tree/out" || { cat "$tree/out"; exit 1; }
 grep -q 'src/stimuli/experiment: includes adjust/study.h' "$tree/out" || { cat "$tree/out"; exit 1; }
-grep -q 'src/forced_choice/run' "$tree/out" && { cat "$tree/out"; exit 1; }
+grep -q 'src/forced_choice/run: includes adjust/study.h' "$tree/out" || { cat "$tree/out"; exit 1; }
 if python3 "$check" "$tree" > "$tree/out"; then echo "no rule broken"; exit 1; fi
 grep -q 'src/forced_choice/run: includes adjust/study.h' "$tree/out" || { cat "$tree/out"; exit 1; }
 rm "$tree/src/render/renderer.cpp" "$tree/src/forced_choice/run.cpp" "$tree/src/stimuli/experiment.cpp"

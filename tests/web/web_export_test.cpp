@@ -13,12 +13,15 @@
 #include "../adjust/tiny_set.h"
 #include "../adjust/x_display.h"
 #include "adjust/procedure.h"
-#include "adjust/study.h"
 #include "core/image.h"
 #include "formats/responses.h"
+#include "runtime/study.h"
 
 namespace countershade::adjust {
 namespace {
+
+// From the study runtime (src/runtime).
+using runtime::session_seed;
 
 namespace fs = std::filesystem;
 using nlohmann::json;

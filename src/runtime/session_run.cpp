@@ -1,6 +1,6 @@
-#include "adjust/session_run.h"
+#include "runtime/session_run.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 const char* run_end_name(RunEnd end) {
   switch (end) {
@@ -51,4 +51,4 @@ nlohmann::ordered_json SessionRun::to_json() const {
   return out;
 }
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -1,4 +1,4 @@
-#include "adjust/study.h"
+#include "runtime/study.h"
 
 #include <tbb/parallel_for.h>
 
@@ -16,7 +16,7 @@
 #include "core/sha256.h"
 #include "formats/manifest.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 namespace fs = std::filesystem;
 
@@ -68,11 +68,12 @@ void read_grid(Study& study, const Manifest& manifest, const std::string& mfile)
 void read_config(Study& study, const Manifest& manifest, const std::string& mfile,
                  const std::optional<fs::path>& config_file) {
   if (config_file) {
-    study.config = parse_study_config(parse_json_file(*config_file), config_file->string(), "");
+    study.config =
+        procedures::parse_study_config(parse_json_file(*config_file), config_file->string(), "");
     study.config_source = {{"file", config_file->string()}};
   } else if (manifest.experiment.is_object() && manifest.experiment.contains("adjust")) {
     nlohmann::json adjust = nlohmann::json::parse(manifest.experiment["adjust"].dump());
-    study.config = parse_study_config(adjust, mfile, "experiment.adjust");
+    study.config = procedures::parse_study_config(adjust, mfile, "experiment.adjust");
     study.config_source = "experiment.adjust";
   } else {
     study.config_source = "defaults";
@@ -118,7 +119,8 @@ SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
   return index;
 }
 
-bool selected(const std::vector<StudyConfig::Selection>& wanted, const ConditionKey& key) {
+bool selected(const std::vector<procedures::StudyConfig::Selection>& wanted,
+              const ConditionKey& key) {
   return wanted.empty() || std::any_of(wanted.begin(), wanted.end(), [&](const auto& s) {
            return std::tie(s.scene, s.method, s.sigma) == key;
          });
@@ -309,4 +311,4 @@ uint64_t session_seed(uint64_t study_seed, const std::string& subject, int sessi
   return hash_combine(hash_combine(study_seed, hash_string(subject)), uint64_t(session));
 }
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -1,4 +1,4 @@
-#include "adjust/deep_stimulus.h"
+#include "runtime/deep_stimulus.h"
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 namespace {
 
@@ -194,4 +194,4 @@ bool ten_bit_read_back_holds(const DeepStimulusRenderer& renderer, int framebuff
   return true;
 }
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -13,14 +13,14 @@
 #include <string>
 #include <vector>
 
-#include "adjust/fine_levels.h"
-#include "adjust/procedure.h"
-#include "adjust/study.h"
+#include "runtime/fine_levels.h"
+#include "runtime/key_script.h"
+#include "runtime/study.h"
 
 struct GLFWwindow;
 struct GLFWmonitor;
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 class DeepStimulusRenderer;
 
@@ -41,7 +41,7 @@ struct DisplayOptions {
   // Its width in mm comes from GLFW (the monitor's EDID) unless `monitor_width_mm` is given.
   std::optional<double> pixels_per_degree, distance_mm, monitor_width_mm;
   // 16-bit stimuli reach the screen through a 10-bit framebuffer (used only after a read-back
-  // confirms it) or a seeded dither to 8 bits (adjust/fine_levels.h).
+  // confirms it) or a seeded dither to 8 bits (runtime/fine_levels.h).
   int stimulus_bits = 8;
   OutputPathChoice output_path;
   uint32_t dither_seed = 0;
@@ -159,4 +159,4 @@ class Presenter {
   static void close_callback(GLFWwindow* w);
 };
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -1,4 +1,4 @@
-#include "adjust/presenter.h"
+#include "runtime/presenter.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -16,12 +16,12 @@
 #include <stdexcept>
 #include <thread>
 
-#include "adjust/deep_stimulus.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/visual_angle.h"
+#include "runtime/deep_stimulus.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 namespace {
 
@@ -527,4 +527,4 @@ void Presenter::pace() {
   last_swap_ = glfwGetTime();
 }
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -6,11 +6,11 @@
 #include <optional>
 #include <vector>
 
-#include "adjust/fine_levels.h"
-#include "adjust/presenter.h"
-#include "adjust/study.h"
+#include "runtime/fine_levels.h"
+#include "runtime/presenter.h"
+#include "runtime/study.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 // Decodes a stimulus into 8-bit (or 16-bit) RGBA; the size must be the manifest's. Throws
 // InputError.
@@ -27,4 +27,4 @@ void require_achromatic_images(const Study& study, const OutputPathChoice& path)
 // closed meanwhile.
 std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study);
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

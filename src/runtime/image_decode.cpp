@@ -1,4 +1,4 @@
-#include "adjust/image_decode.h"
+#include "runtime/image_decode.h"
 
 #include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>
@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 namespace {
 
@@ -106,4 +106,4 @@ std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, cons
   return textures;
 }
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

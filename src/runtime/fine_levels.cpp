@@ -1,6 +1,6 @@
-#include "adjust/fine_levels.h"
+#include "runtime/fine_levels.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 const char* output_path_name(OutputPath path) {
   switch (path) {
@@ -70,4 +70,4 @@ uvec3 pseudo_grey_levels(uint v) {
 }
 )";
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

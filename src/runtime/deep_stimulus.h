@@ -1,16 +1,16 @@
 #pragma once
 // 16-bit stimuli on screen: each code's high and low bytes in the two halves of an 8-bit texture,
 // drawn at 1:1 by a shader that joins them and quantises each pixel for the framebuffer, exactly
-// as adjust/fine_levels.h defines it (the nearest 10-bit level, or the seeded dither to 8 bits).
+// as runtime/fine_levels.h defines it (the nearest 10-bit level, or the seeded dither to 8 bits).
 // The bytes keep the 16-bit codes exact up to the shader, so its output is reproducible to the bit
 // and testable against the C++ reference.
 
 #include <cstdint>
 #include <vector>
 
-#include "adjust/fine_levels.h"
+#include "runtime/fine_levels.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 // Where a stimulus goes: its top-left pixel in framebuffer pixels from the top-left, its size,
 // and the framebuffer's height (OpenGL counts rows from the bottom).
@@ -64,4 +64,4 @@ std::vector<uint16_t> ten_bit_probe(int* width, int* height);
 // cannot. The framebuffer must be at least 256 × 12 pixels; what was drawn is left there.
 bool ten_bit_read_back_holds(const DeepStimulusRenderer& renderer, int framebuffer_height);
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -1,6 +1,6 @@
 // The 16-bit output paths on OpenGL (Mesa llvmpipe on a private Xvfb), offscreen: the shader's
 // 10-bit output read back from a GL_RGB10_A2 framebuffer, and its dithered 8-bit frames, against
-// the C++ reference of adjust/fine_levels.h.
+// the C++ reference of runtime/fine_levels.h.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -19,13 +19,14 @@
 #include <cstdlib>
 #include <memory>
 
-#include "adjust/deep_stimulus.h"
-#include "adjust/image_decode.h"
-#include "adjust/study.h"
-#include "tiny_set.h"
-#include "x_display.h"
+#include "../adjust/tiny_set.h"
+#include "../adjust/x_display.h"
+#include "runtime/deep_stimulus.h"
+#include "runtime/image_decode.h"
+#include "runtime/study.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
+
 namespace {
 
 // A hidden window's OpenGL 3.3 core context on a private X server. Mesa's driver keeps
@@ -195,4 +196,4 @@ TEST(DeepOutput, PseudoGreyDrawsEverySixteenBitGreyAsTheReferenceLevels) {
 }
 
 }  // namespace
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

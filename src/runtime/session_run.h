@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 // How a run ended.
 enum class RunEnd {
@@ -57,4 +57,4 @@ struct SessionRun {
   nlohmann::ordered_json to_json() const;
 };
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -17,7 +17,7 @@
 #include <optional>
 #include <string>
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
 enum class OutputPath { eight_bit, ten_bit, dither, pseudo_grey };
 
@@ -81,4 +81,4 @@ inline uint32_t pseudo_grey_level(uint32_t v16, uint32_t mask) {
 // The functions above in GLSL 3.30 (uint arithmetic wraps as C++'s uint32_t does).
 extern const char* const kFineLevelsGlsl;
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -1,7 +1,7 @@
 // The 16-bit output paths' definitions, checked against independent arithmetic: the nearest
 // 10-bit level, and the dither whose mean over 64 frames is the 16-bit value.
 
-#include "adjust/fine_levels.h"
+#include "runtime/fine_levels.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,8 @@
 #include <random>
 #include <set>
 
-namespace countershade::adjust {
+namespace countershade::runtime {
+
 namespace {
 
 TEST(FineLevels, TheTenBitLevelIsTheNearestOneForEverySixteenBitCode) {
@@ -124,4 +125,4 @@ TEST(FineLevels, OutputPathsParseByName) {
 }
 
 }  // namespace
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime

@@ -10,14 +10,17 @@
 #include <string>
 #include <vector>
 
-#include "adjust/procedure.h"
+#include "procedures/adjustment_block.h"
 
-namespace countershade::adjust {
+namespace countershade::runtime {
 
-// The block as the experiment file gives it (procedures/adjustment_block.h).
-using procedures::Instructions;
-using procedures::parse_study_config;
-using procedures::StudyConfig;
+// One condition of the study: a scene × method × σ with its λ grid. Grid index 0 is λ = 0, the
+// unenhanced image; λ(i) = lambda_min + i · lambda_step, derived from the index, never accumulated.
+struct Condition {
+  std::string scene, method;
+  double sigma = 0;
+  int grid_size = 2;  // indices 0 .. grid_size − 1
+};
 
 struct StimulusImage {
   std::filesystem::path file;  // absolute or relative to the working directory
@@ -54,7 +57,7 @@ struct Study {
   std::vector<std::vector<int>> condition_images;
   std::vector<Stimulus> stimuli;
   std::vector<StimulusImage> images;  // every image (frame) the study shows, once each
-  StudyConfig config;
+  procedures::StudyConfig config;     // the adjustment block (the forced-choice app reads its own)
   nlohmann::ordered_json config_source;  // where the configuration came from
 
   // λ of a grid index, derived from the index and rounded to the decimal grid as the set does.
@@ -94,4 +97,4 @@ void check_subject_id(const std::string& subject);
 // so every subject gets their own reproducible order.
 uint64_t session_seed(uint64_t study_seed, const std::string& subject, int session);
 
-}  // namespace countershade::adjust
+}  // namespace countershade::runtime
