@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -18,6 +16,7 @@
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
 #include "runtime/session_run.h"
+#include "runtime/signals.h"
 #include "runtime/study.h"
 
 namespace countershade::adjust {
@@ -48,29 +47,6 @@ using OrderedJson = nlohmann::ordered_json;
 
 namespace {
 
-std::atomic<int> g_signal{0};
-void on_signal(int signal) { g_signal = signal; }
-
-// Routes SIGTERM and SIGINT to g_signal while it lives, so the session saves and ends cleanly;
-// restores the previous handlers on every way out.
-class SignalGuard {
- public:
-  SignalGuard()
-      : term_(std::signal(SIGTERM, on_signal)), interrupt_(std::signal(SIGINT, on_signal)) {
-    g_signal = 0;
-  }
-  ~SignalGuard() {
-    std::signal(SIGTERM, term_);
-    std::signal(SIGINT, interrupt_);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-
- private:
-  void (*term_)(int);
-  void (*interrupt_)(int);
-};
-
 struct FrameTimes {
   std::vector<float> all, held;     // intervals in seconds
   std::vector<float> draw;          // time to build, render and swap a frame
@@ -98,13 +74,6 @@ struct FrameTimes {
     return j;
   }
 };
-
-std::string screenshot_path(const fs::path& base, int count) {
-  if (count == 0) return base.string();
-  return (base.parent_path() /
-          (base.stem().string() + "-" + std::to_string(count + 1) + base.extension().string()))
-      .string();
-}
 
 // What can be wrong with the command's own inputs, found before anything else.
 struct CheckedInputs {
@@ -178,8 +147,7 @@ class SessionLoop {
       draw_frame();
       const bool automated = o_.script.has_value() || observer_.has_value();
       if (automated && procedure_.phase() == Procedure::Phase::finished) end_ = RunEnd::completed;
-      if (o_.script && !observer_ && next_script_ == script_.size() && !end_)
-        end_ = RunEnd::script_ended;
+      if (o_.script && !observer_ && script_.exhausted() && !end_) end_ = RunEnd::script_ended;
     }
     return *end_;
   }
@@ -200,13 +168,12 @@ class SessionLoop {
  private:
   // Every stimulus as a texture, with a progress bar.
   void preload() {
-    const double start = presenter_.now();
-    auto textures = preload_textures(presenter_, study_);
-    if (textures)
-      texture_ = std::move(*textures);
+    auto preloaded = runtime::preload_study(presenter_, study_);
+    if (preloaded.textures)
+      texture_ = std::move(*preloaded.textures);
     else
       end_ = RunEnd::closed;
-    recorder_.run().preload = Preload{study_.images.size(), presenter_.now() - start};
+    recorder_.run().preload = preloaded.record;
     recorder_.save();
   }
 
@@ -222,11 +189,14 @@ class SessionLoop {
   // Window events, the script's due events, the model observer's, and signals.
   void take_input(double now) {
     for (const auto& w : presenter_.poll_events()) window_event(w);
-    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_)
-      handle(script_[next_script_++]);
+    while (!end_)
+      if (const auto e = script_.next_due(now))
+        handle(*e);
+      else
+        break;
     if (observer_)
       for (const auto& e : observer_->act(procedure_, now)) handle(e);
-    if (g_signal) end_ = g_signal == SIGTERM ? RunEnd::terminated : RunEnd::interrupted;
+    if (const auto signal = runtime::SignalGuard::pending()) end_ = signal;
   }
 
   void window_event(const WindowEvent& w) {
@@ -387,7 +357,8 @@ class SessionLoop {
 
   void draw_frame() {
     fs::path shot;
-    if (screenshot_due_ && o_.screenshot) shot = screenshot_path(*o_.screenshot, screenshots_);
+    if (screenshot_due_ && o_.screenshot)
+      shot = runtime::screenshot_path(*o_.screenshot, screenshots_);
     const double draw_start = presenter_.now();
     const StimulusLayout layout = presenter_.draw(frame_content(draw_start - t0_), shot);
     const double draw_seconds = presenter_.now() - draw_start;
@@ -427,12 +398,11 @@ class SessionLoop {
   Procedure& procedure_;
   SessionRecorder& recorder_;
   Presenter& presenter_;
-  std::vector<InputEvent> script_;
+  runtime::ScriptedInput script_;
   std::optional<SimulatedObserver> observer_;
   std::vector<unsigned> texture_;
   std::optional<RunEnd> end_;
   double t0_ = 0, last_frame_ = -1;
-  size_t next_script_ = 0;
   bool screenshot_due_ = false;
   int screenshots_ = 0, frame_ = 0;
   FrameTimes times_;
@@ -462,7 +432,7 @@ std::unique_ptr<Presenter> open_window(const SessionOptions& o, const Study& stu
 // the error that ended it (then rethrown).
 RunEnd run_loop(const SessionOptions& o, const Study& study, Procedure& procedure,
                 SessionRecorder& recorder, Presenter& presenter, CheckedInputs inputs) {
-  SignalGuard signals;
+  runtime::SignalGuard signals;
   SessionLoop loop(o, study, procedure, recorder, presenter, std::move(inputs));
   RunEnd end = RunEnd::running;
   try {

@@ -1,7 +1,5 @@
 #include "forced_choice/choice_session.h"
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 
@@ -15,6 +13,7 @@
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
+#include "runtime/signals.h"
 
 namespace countershade::forced_choice {
 
@@ -26,9 +25,6 @@ using runtime::RunEnd;
 using json = nlohmann::ordered_json;
 
 namespace {
-
-std::atomic<int> g_signal{0};
-void on_signal(int signal) { g_signal = signal; }
 
 // The configuration: --procedure, else the experiment's "forced_choice" block.
 ChoiceConfig load_config(const ChoiceSessionOptions& o) {
@@ -78,7 +74,7 @@ class ChoiceLoop {
         run_(run),
         recorder_(recorder),
         presenter_(presenter) {
-    if (o.script) script_ = runtime::parse_key_script(*o.script);
+    if (o.script) script_ = runtime::ScriptedInput(runtime::parse_key_script(*o.script));
     if (o.observer) observer_ = parse_choice_observer(*o.observer);
   }
 
@@ -92,22 +88,19 @@ class ChoiceLoop {
       if (end_) break;
       advance(now);
       draw_frame(now);
-      if (o_.script && !observer_ && next_script_ == script_.size() && !end_)
-        end_ = RunEnd::script_ended;
+      if (o_.script && !observer_ && script_.exhausted() && !end_) end_ = RunEnd::script_ended;
     }
     return *end_;
   }
 
  private:
   void preload() {
-    const double start = presenter_.now();
-    auto textures = runtime::preload_textures(presenter_, study_);
-    if (textures)
-      texture_ = std::move(*textures);
+    auto preloaded = runtime::preload_study(presenter_, study_);
+    if (preloaded.textures)
+      texture_ = std::move(*preloaded.textures);
     else
       end_ = RunEnd::closed;
-    recorder_.current_run().preload =
-        runtime::Preload{study_.images.size(), presenter_.now() - start};
+    recorder_.current_run().preload = preloaded.record;
     recorder_.save(run_);
   }
 
@@ -117,10 +110,13 @@ class ChoiceLoop {
       if (w.kind == runtime::WindowEvent::Kind::press) press(w.key, w.time_s - t0_);
       if (w.kind == runtime::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(now);
     }
-    while (next_script_ < script_.size() && script_[next_script_].time_s <= now && !end_)
-      scripted(script_[next_script_++]);
+    while (!end_)
+      if (const auto e = script_.next_due(now))
+        scripted(*e);
+      else
+        break;
     if (observer_) observe(now);
-    if (g_signal) end_ = g_signal == SIGTERM ? RunEnd::terminated : RunEnd::interrupted;
+    if (const auto signal = runtime::SignalGuard::pending()) end_ = signal;
   }
 
   void scripted(const InputEvent& e) {
@@ -308,13 +304,8 @@ class ChoiceLoop {
 
   void draw_frame(double now) {
     fs::path shot;
-    if (screenshot_due_ && o_.screenshot) {
-      const fs::path& base = *o_.screenshot;
-      shot = screenshots_ == 0 ? base
-                               : base.parent_path() /
-                                     (base.stem().string() + "-" +
-                                      std::to_string(screenshots_ + 1) + base.extension().string());
-    }
+    if (screenshot_due_ && o_.screenshot)
+      shot = runtime::screenshot_path(*o_.screenshot, screenshots_);
     const FrameContent content = frame_content(now);
     const runtime::StimulusLayout layout = presenter_.draw(content, shot);
     if (!shot.empty()) describe_screenshot(shot, content, layout, now);
@@ -356,13 +347,12 @@ class ChoiceLoop {
   ChoiceRun& run_;
   ChoiceRecorder& recorder_;
   runtime::Presenter& presenter_;
-  std::vector<InputEvent> script_;
+  runtime::ScriptedInput script_;
   std::optional<ChoiceObserver> observer_;
   std::vector<unsigned> texture_;
   std::optional<RunEnd> end_;
   Phase phase_ = Phase::instructions, paused_from_ = Phase::trial;
   double t0_ = 0, phase_since_ = 0;
-  size_t next_script_ = 0;
   bool screenshot_due_ = false, last_correct_ = false, feedback_after_practice_ = false;
   int screenshots_ = 0, practice_index_ = 0;
 };
@@ -395,12 +385,12 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   }
   auto presenter = std::make_unique<runtime::Presenter>(display_options(o, study, config, seed));
   recorder.current_run().display = presenter->display_info();
-  g_signal = 0;
-  auto term = std::signal(SIGTERM, on_signal), interrupt = std::signal(SIGINT, on_signal);
-  ChoiceLoop loop(o, study, config, run, recorder, *presenter);
-  const RunEnd end = loop.run();
-  std::signal(SIGTERM, term);
-  std::signal(SIGINT, interrupt);
+  RunEnd end = RunEnd::running;
+  {
+    runtime::SignalGuard signals;
+    ChoiceLoop loop(o, study, config, run, recorder, *presenter);
+    end = loop.run();
+  }
   recorder.current_run().end = end;
   recorder.current_run().ended_utc = utc_timestamp();
   recorder.save(run);

@@ -106,4 +106,12 @@ std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, cons
   return textures;
 }
 
+Preloaded preload_study(Presenter& presenter, const Study& study) {
+  const double start = presenter.now();
+  Preloaded out;
+  out.textures = preload_textures(presenter, study);
+  out.record = Preload{study.images.size(), presenter.now() - start};
+  return out;
+}
+
 }  // namespace countershade::runtime

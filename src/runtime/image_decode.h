@@ -8,6 +8,7 @@
 
 #include "runtime/fine_levels.h"
 #include "runtime/presenter.h"
+#include "runtime/session_run.h"
 #include "runtime/study.h"
 
 namespace countershade::runtime {
@@ -26,5 +27,12 @@ void require_achromatic_images(const Study& study, const OutputPathChoice& path)
 // with a progress bar. Returns the textures (by image index), or nothing when the window was
 // closed meanwhile.
 std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study);
+
+// preload_textures, timed for the run's record (`preload` in the sidecar).
+struct Preloaded {
+  std::optional<std::vector<unsigned>> textures;  // none: the window was closed meanwhile
+  Preload record;
+};
+Preloaded preload_study(Presenter& presenter, const Study& study);
 
 }  // namespace countershade::runtime

@@ -114,6 +114,12 @@ std::vector<InputEvent> parse_key_script_text(const std::string& text, const std
   return events;
 }
 
+std::filesystem::path screenshot_path(const std::filesystem::path& base, int n) {
+  if (n == 0) return base;
+  return base.parent_path() /
+         (base.stem().string() + "-" + std::to_string(n + 1) + base.extension().string());
+}
+
 std::vector<InputEvent> parse_key_script(const std::filesystem::path& path) {
   return parse_key_script_text(read_file_bytes(path), path.string());
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace countershade::runtime {
@@ -26,6 +27,28 @@ struct InputEvent {
 // "screenshot"; "close" (the window's close button). Throws InputError naming the line.
 std::vector<InputEvent> parse_key_script(const std::filesystem::path& path);
 std::vector<InputEvent> parse_key_script_text(const std::string& text, const std::string& file);
+
+// A key script being played: the events due by a time, in order, each once.
+class ScriptedInput {
+ public:
+  ScriptedInput() = default;
+  explicit ScriptedInput(std::vector<InputEvent> events) : events_(std::move(events)) {}
+  // The next event if it is due at `now` (seconds since the first frame).
+  std::optional<InputEvent> next_due(double now) {
+    if (next_ >= events_.size() || events_[next_].time_s > now) return std::nullopt;
+    return events_[next_++];
+  }
+  bool active() const { return !events_.empty(); }
+  bool exhausted() const { return next_ == events_.size(); }
+
+ private:
+  std::vector<InputEvent> events_;
+  size_t next_ = 0;
+};
+
+// The file of the n-th screenshot (0-based) of a run asked for `base`: base itself, then
+// "stem-2.png", "stem-3.png", …
+std::filesystem::path screenshot_path(const std::filesystem::path& base, int n);
 
 // Key names for scripts and the trajectory log.
 const char* key_name(Key key);

@@ -107,6 +107,10 @@ class Child {
     finish(status);
   }
   bool killed() const { return signalled_; }
+  // Sends a signal (SIGTERM, SIGINT) without waiting.
+  void send(int signal) {
+    if (running()) ::kill(pid_, signal);
+  }
 
  private:
   void finish(int status) {

@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
 
@@ -95,6 +97,28 @@ void kill_then_resume(const std::vector<std::string>& args, const fs::path& csv,
   ASSERT_EQ(app.wait(300), 0) << read_file(log);
 }
 
+// SIGTERM once the file holds `rows` rows: the app saves and exits 0 with the run recorded as
+// terminated; a resume then ends the session.
+void terminate_then_resume(const std::vector<std::string>& args, const fs::path& csv,
+                           const fs::path& sidecar, size_t rows, const fs::path& log) {
+  XvfbServer x;
+  {
+    Child app(args, x.display(), log.string());
+    for (int i = 0; i < 60000 && app.running() && lines_in(csv) < rows; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(app.running()) << "the session ended before the signal: " << read_file(log);
+    app.send(SIGTERM);
+    ASSERT_EQ(app.wait(60), 0) << read_file(log);
+  }
+  const auto runs = nlohmann::json::parse(read_file(sidecar))["runs"];
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(runs[0]["end"], "terminated") << runs;
+  std::vector<std::string> resumed = args;
+  resumed.push_back("--resume");
+  Child app(resumed, x.display(), log.string());
+  ASSERT_EQ(app.wait(300), 0) << read_file(log);
+}
+
 const std::string kQuest =
     R"({"type": "quest", "tGuess": -0.3, "tGuessSd": 1, "pThreshold": 0.82, "beta": 3.5,
         "delta": 0.01, "gamma": 0.5, "grain": 0.01, "range": 4, "nTrials": 10})";
@@ -169,6 +193,24 @@ TEST(SessionRows, QuestResumedAfterSigkill) {
   const auto manifest = choice_set(dir, "{" + kTwoConditions + R"(, "procedure": )" + kQuest + "}");
   kill_then_resume(app_args("choose", manifest, dir / "s", {"--observer", "weibull:0.4,3,11"}),
                    dir / "s/P01_s01.forced-choice.csv", 8, dir / "log.txt");
+  expect_fixture_rows(dir / "s/P01_s01.forced-choice.csv", "choose-quest-resumed");
+}
+
+// Both apps end cleanly on SIGTERM and resume to the same rows as after a SIGKILL.
+TEST(SessionRows, AdjustmentTerminatedBySigtermAndResumed) {
+  TempDir dir;
+  const auto manifest = make_tiny_set(dir, R"({"repetitions": 3})");
+  terminate_then_resume(app_args("adjust", manifest, dir / "s", {"--observer", "simulated:7"}),
+                        dir / "s/P01_s01.csv", dir / "s/P01_s01.json", 9, dir / "log.txt");
+  expect_fixture_rows(dir / "s/P01_s01.csv", "adjust-resumed");
+}
+
+TEST(SessionRows, QuestTerminatedBySigtermAndResumed) {
+  TempDir dir;
+  const auto manifest = choice_set(dir, "{" + kTwoConditions + R"(, "procedure": )" + kQuest + "}");
+  terminate_then_resume(app_args("choose", manifest, dir / "s", {"--observer", "weibull:0.4,3,11"}),
+                        dir / "s/P01_s01.forced-choice.csv", dir / "s/P01_s01.forced-choice.json",
+                        8, dir / "log.txt");
   expect_fixture_rows(dir / "s/P01_s01.forced-choice.csv", "choose-quest-resumed");
 }
 
