@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/time.h"
+#include "runtime/frame_statistics.h"
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
@@ -46,34 +47,6 @@ namespace fs = std::filesystem;
 using OrderedJson = nlohmann::ordered_json;
 
 namespace {
-
-struct FrameTimes {
-  std::vector<float> all, held;     // intervals in seconds
-  std::vector<float> draw;          // time to build, render and swap a frame
-  std::vector<double> dropped_at;   // session time of the first dropped frames
-  std::vector<float> key_to_frame;  // from a key press to the swap of the frame that shows it
-  int key_to_frame_frames = 0;      // the most frames any press took to appear: 1 is the next frame
-
-  // period > 0: also counts the values over 1.2 periods as dropped frames.
-  static OrderedJson summary(std::vector<float> v, double period) {
-    OrderedJson j = {{"count", v.size()}};
-    if (v.empty()) return j;
-    std::sort(v.begin(), v.end());
-    double sum = 0;
-    for (float x : v) sum += x;
-    auto pct = [&](double p) {
-      return 1000.0 * v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
-    };
-    j["mean_ms"] = 1000.0 * sum / double(v.size());
-    j["median_ms"] = pct(0.5);
-    j["p95_ms"] = pct(0.95);
-    j["p99_ms"] = pct(0.99);
-    j["max_ms"] = 1000.0 * v.back();
-    if (period > 0)
-      j["dropped"] = std::count_if(v.begin(), v.end(), [&](float x) { return x > 1.2 * period; });
-    return j;
-  }
-};
 
 // What can be wrong with the command's own inputs, found before anything else.
 struct CheckedInputs {
@@ -153,16 +126,7 @@ class SessionLoop {
   }
 
   OrderedJson frame_statistics() const {
-    const double period = 1.0 / presenter_.refresh_hz();
-    return {{"pacing", presenter_.pacing()},
-            {"period_ms", 1000 * period},
-            {"dropped_threshold_ms", 1200 * period},
-            {"all", FrameTimes::summary(times_.all, period)},
-            {"key_held", FrameTimes::summary(times_.held, period)},
-            {"draw", FrameTimes::summary(times_.draw, period)},
-            {"dropped_at_s", times_.dropped_at},
-            {"key_to_frame", FrameTimes::summary(times_.key_to_frame, 0)},
-            {"key_to_frame_frames_max", times_.key_to_frame_frames}};
+    return frames_.to_json(presenter_.pacing(), presenter_.refresh_hz());
   }
 
  private:
@@ -247,7 +211,7 @@ class SessionLoop {
   }
 
   void press(const InputEvent& e) {
-    pending_presses_.push_back({e.time_s, frame_});
+    frames_.pressed(e.time_s);
     const auto before = procedure_.phase();
     if (before == Procedure::Phase::finished) {
       log(e.time_s, "press", key_name(e.key));
@@ -329,7 +293,7 @@ class SessionLoop {
   void describe_screenshot(const fs::path& shot, const StimulusLayout& layout, double t) const {
     // output_frame: the frame index the dither used (16-bit sets), counted from the window's first
     // frame.
-    OrderedJson info = {{"frame", frame_},
+    OrderedJson info = {{"frame", frames_.frames()},
                         {"output_frame", presenter_.frames_drawn() - 1},
                         {"phase", int(procedure_.phase())}};
     if (procedure_.phase() == Procedure::Phase::question) {
@@ -362,35 +326,15 @@ class SessionLoop {
     const double draw_start = presenter_.now();
     const StimulusLayout layout = presenter_.draw(frame_content(draw_start - t0_), shot);
     const double draw_seconds = presenter_.now() - draw_start;
-    // The frame just swapped is the first to show these presses: frame_ counts the frames before
-    // it.
-    for (const auto& [pressed, frames_before] : pending_presses_) {
-      times_.key_to_frame.push_back(float(presenter_.now() - t0_ - pressed));
-      times_.key_to_frame_frames = std::max(times_.key_to_frame_frames, frame_ + 1 - frames_before);
-    }
-    pending_presses_.clear();
+    frames_.shown(presenter_.now() - t0_);
     if (!shot.empty()) {
       describe_screenshot(shot, layout, draw_start - t0_);
       ++screenshots_;
       screenshot_due_ = false;
     }
     presenter_.pace();
-    record_interval(draw_seconds, !shot.empty());
-  }
-
-  // A frame that wrote a screenshot (a test's or a demo's, never a participant's) is not timed.
-  void record_interval(double draw_seconds, bool screenshot) {
-    const double t = presenter_.now();
-    if (last_frame_ >= 0 && frame_ > 20 && !screenshot) {  // the first frames calibrate the pacing
-      const double interval = t - last_frame_;
-      times_.all.push_back(float(interval));
-      times_.draw.push_back(float(draw_seconds));
-      if (procedure_.key_held()) times_.held.push_back(float(interval));
-      if (interval > 1.2 / presenter_.refresh_hz() && times_.dropped_at.size() < 100)
-        times_.dropped_at.push_back(t - t0_);
-    }
-    last_frame_ = t;
-    ++frame_;
+    frames_.swapped(presenter_.now() - t0_, draw_seconds, shot.empty(), procedure_.key_held(),
+                    presenter_.refresh_hz());
   }
 
   const SessionOptions& o_;
@@ -402,13 +346,11 @@ class SessionLoop {
   std::optional<SimulatedObserver> observer_;
   std::vector<unsigned> texture_;
   std::optional<RunEnd> end_;
-  double t0_ = 0, last_frame_ = -1;
+  double t0_ = 0;
   bool screenshot_due_ = false;
-  int screenshots_ = 0, frame_ = 0;
-  FrameTimes times_;
+  int screenshots_ = 0;
+  runtime::FrameStatistics frames_;
   std::optional<double> pause_started_;
-  std::vector<std::pair<double, int>>
-      pending_presses_;  // presses not yet on screen: time, frames drawn before
 };
 
 // Opens the window; a failure is recorded, and a new session without answers leaves no files.

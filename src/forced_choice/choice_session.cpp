@@ -10,6 +10,7 @@
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_recorder.h"
 #include "forced_choice/choice_run.h"
+#include "runtime/frame_statistics.h"
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
@@ -76,6 +77,10 @@ class ChoiceLoop {
         presenter_(presenter) {
     if (o.script) script_ = runtime::ScriptedInput(runtime::parse_key_script(*o.script));
     if (o.observer) observer_ = parse_choice_observer(*o.observer);
+  }
+
+  nlohmann::ordered_json frame_statistics() const {
+    return frames_.to_json(presenter_.pacing(), presenter_.refresh_hz());
   }
 
   RunEnd run() {
@@ -160,6 +165,7 @@ class ChoiceLoop {
   }
 
   void press(Key key, double now) {
+    frames_.pressed(now);
     switch (phase_) {
       case Phase::instructions:
         if (key == Key::enter) next_trial(now);
@@ -306,10 +312,15 @@ class ChoiceLoop {
     fs::path shot;
     if (screenshot_due_ && o_.screenshot)
       shot = runtime::screenshot_path(*o_.screenshot, screenshots_);
+    const double draw_start = presenter_.now();
     const FrameContent content = frame_content(now);
     const runtime::StimulusLayout layout = presenter_.draw(content, shot);
+    const double draw_seconds = presenter_.now() - draw_start;
+    frames_.shown(presenter_.now() - t0_);
     if (!shot.empty()) describe_screenshot(shot, content, layout, now);
     presenter_.pace();
+    frames_.swapped(presenter_.now() - t0_, draw_seconds, shot.empty(), false,
+                    presenter_.refresh_hz());
   }
 
   void describe_screenshot(const fs::path& shot, const FrameContent& content,
@@ -355,6 +366,7 @@ class ChoiceLoop {
   double t0_ = 0, phase_since_ = 0;
   bool screenshot_due_ = false, last_correct_ = false, feedback_after_practice_ = false;
   int screenshots_ = 0, practice_index_ = 0;
+  runtime::FrameStatistics frames_;
 };
 
 }  // namespace
@@ -390,6 +402,8 @@ int run_choice_session(const ChoiceSessionOptions& o) {
     runtime::SignalGuard signals;
     ChoiceLoop loop(o, study, config, run, recorder, *presenter);
     end = loop.run();
+    recorder.current_run().frames = loop.frame_statistics();
+    recorder.current_run().system_key_repeats_ignored = presenter->system_repeats_ignored();
   }
   recorder.current_run().end = end;
   recorder.current_run().ended_utc = utc_timestamp();

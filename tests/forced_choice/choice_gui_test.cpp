@@ -80,6 +80,12 @@ TEST(ChoiceGui, AScriptedQuestSessionWritesTheExpectedRows) {
       EXPECT_NE(table.rows[r][11], table.rows[r - 1][11]) << "targets balanced in pairs";
     }
   }
+  // The run's frame timing, as the adjustment app records it: every key reached the screen.
+  const json run =
+      json::parse(testing::read_file(dir / "sessions/P01_s01.forced-choice.json"))["runs"][0];
+  EXPECT_GT(run["frames"]["all"]["count"].get<int>(), 20) << run;
+  EXPECT_EQ(run["frames"]["key_to_frame"]["count"].get<int>(), 11) << run;
+  EXPECT_EQ(run["frames"]["key_to_frame_frames_max"].get<int>(), 1) << run;
 }
 
 json final_states(const fs::path& sessions) {
