@@ -12,10 +12,10 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/time.h"
-#include "runtime/frame_statistics.h"
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
+#include "runtime/run_loop.h"
 #include "runtime/session_run.h"
 #include "runtime/signals.h"
 #include "runtime/study.h"
@@ -31,7 +31,6 @@ using runtime::key_name;
 using runtime::load_study;
 using runtime::parse_key_script;
 using runtime::Preload;
-using runtime::preload_textures;
 using runtime::Presenter;
 using runtime::require_achromatic_images;
 using runtime::run_end_name;
@@ -90,55 +89,44 @@ DisplayOptions display_options(const SessionOptions& o, const Study& study, uint
   return display;
 }
 
-// The event loop of one run: routes key events to the procedure and answers to the recorder,
-// draws each frame and keeps the frame statistics.
-class SessionLoop {
+// One run of the adjustment procedure on the runtime's loop: key events go to the procedure,
+// answers to the recorder, and every key and λ step to the trajectory.
+class SessionLoop final : public runtime::RunLoop {
  public:
   SessionLoop(const SessionOptions& o, const Study& study, Procedure& procedure,
               SessionRecorder& recorder, Presenter& presenter, CheckedInputs inputs)
-      : o_(o),
+      : RunLoop(presenter, study, run_inputs(o, inputs)),
+        o_(o),
         study_(study),
         procedure_(procedure),
-        recorder_(recorder),
-        presenter_(presenter),
-        script_(std::move(inputs.script)) {
+        recorder_(recorder) {
     if (inputs.observer_seed) observer_.emplace(*inputs.observer_seed, study);
   }
 
-  // Runs until the session ends; returns how.
-  RunEnd run() {
-    preload();
-    if (end_) return *end_;
-    t0_ = presenter_.now();
-    while (!end_) {
-      const double now = presenter_.now() - t0_;
-      take_input(now);
-      if (end_) break;
-      const int index_before = procedure_.lambda_index();
-      procedure_.tick(now);
-      log_repeats(now, index_before);
-      draw_frame();
-      const bool automated = o_.script.has_value() || observer_.has_value();
-      if (automated && procedure_.phase() == Procedure::Phase::finished) end_ = RunEnd::completed;
-      if (o_.script && !observer_ && script_.exhausted() && !end_) end_ = RunEnd::script_ended;
-    }
-    return *end_;
-  }
-
-  OrderedJson frame_statistics() const {
-    return frames_.to_json(presenter_.pacing(), presenter_.refresh_hz());
-  }
-
  private:
-  // Every stimulus as a texture, with a progress bar.
-  void preload() {
-    auto preloaded = runtime::preload_study(presenter_, study_);
-    if (preloaded.textures)
-      texture_ = std::move(*preloaded.textures);
-    else
-      end_ = RunEnd::closed;
-    recorder_.run().preload = preloaded.record;
+  static runtime::RunInputs run_inputs(const SessionOptions& o, CheckedInputs& inputs) {
+    return {runtime::ScriptedInput(std::move(inputs.script)), o.script.has_value(),
+            inputs.observer_seed.has_value(), o.screenshot};
+  }
+
+  void preloaded(const Preload& record) override {
+    recorder_.run().preload = record;
     recorder_.save();
+  }
+
+  void observe(double now) override {
+    for (const auto& e : observer_->act(procedure_, now)) input(e);
+  }
+
+  void advance(double now) override {
+    const int index_before = procedure_.lambda_index();
+    procedure_.tick(now);
+    log_repeats(now, index_before);
+  }
+
+  bool key_held() const override { return procedure_.key_held(); }
+  bool finished_unattended() const override {
+    return procedure_.phase() == Procedure::Phase::finished;
   }
 
   void log(double t, const std::string& event, const std::string& key) {
@@ -150,30 +138,15 @@ class SessionLoop {
       log(t, "repeat", "");
   }
 
-  // Window events, the script's due events, the model observer's, and signals.
-  void take_input(double now) {
-    for (const auto& w : presenter_.poll_events()) window_event(w);
-    while (!end_)
-      if (const auto e = script_.next_due(now))
-        handle(*e);
-      else
-        break;
-    if (observer_)
-      for (const auto& e : observer_->act(procedure_, now)) handle(e);
-    if (const auto signal = runtime::SignalGuard::pending()) end_ = signal;
-  }
-
-  void window_event(const WindowEvent& w) {
-    const double t = w.time_s - t0_;
+  void window_event(const WindowEvent& w, double t) override {
     switch (w.kind) {
       case WindowEvent::Kind::press:
-        handle({t, InputEvent::Kind::press, w.key});
+        input({t, InputEvent::Kind::press, w.key});
         break;
       case WindowEvent::Kind::release:
-        handle({t, InputEvent::Kind::release, w.key});
+        input({t, InputEvent::Kind::release, w.key});
         break;
-      case WindowEvent::Kind::close:
-        end_ = RunEnd::closed;
+      case WindowEvent::Kind::close:  // the loop ends the run
         break;
       case WindowEvent::Kind::focus_gained:
         log(t, "focus-gained", "");
@@ -183,19 +156,16 @@ class SessionLoop {
         recorder_.run().focus_losses.push_back({t, utc_timestamp()});
         // Another window took the keyboard: pause, so the trial does not run on unattended.
         if (procedure_.phase() == Procedure::Phase::question)
-          handle({t, InputEvent::Kind::press, Key::escape});
+          input({t, InputEvent::Kind::press, Key::escape});
         recorder_.save();
         break;
     }
   }
 
-  void handle(const InputEvent& e) {
+  void input(const InputEvent& e) override {
     switch (e.kind) {
-      case InputEvent::Kind::screenshot:
-        screenshot_due_ = true;
-        return;
+      case InputEvent::Kind::screenshot:  // the loop takes these
       case InputEvent::Kind::close:
-        end_ = RunEnd::closed;
         return;
       case InputEvent::Kind::release: {
         const int index_before = procedure_.lambda_index();
@@ -211,11 +181,11 @@ class SessionLoop {
   }
 
   void press(const InputEvent& e) {
-    frames_.pressed(e.time_s);
+    note_press(e.time_s);
     const auto before = procedure_.phase();
     if (before == Procedure::Phase::finished) {
       log(e.time_s, "press", key_name(e.key));
-      if (e.key == Key::enter || e.key == Key::escape) end_ = RunEnd::completed;
+      if (e.key == Key::enter || e.key == Key::escape) end(RunEnd::completed);
       return;
     }
     // Logged after the procedure took the key, so an arrow's line shows the new λ index.
@@ -241,7 +211,7 @@ class SessionLoop {
     if (after == Procedure::Phase::quit) {
       if (pause_started_)
         recorder_.run().pauses.push_back({*pause_started_, t - *pause_started_, true});
-      end_ = RunEnd::quit;
+      end(RunEnd::quit);
     }
   }
 
@@ -253,7 +223,7 @@ class SessionLoop {
             study_.stimuli[size_t(stimuli[size_t(1 + procedure_.lambda_index())])].frame_at(t)};
   }
 
-  FrameContent frame_content(double t) const {
+  FrameContent content(double t) const override {
     FrameContent content;
     const procedures::Instructions& text = study_.config.text;
     switch (procedure_.phase()) {
@@ -274,8 +244,8 @@ class SessionLoop {
       case Procedure::Phase::question: {
         const Trial& trial = procedure_.trial();
         const auto [reference, enhanced] = question_images(t);
-        content.left_texture = texture_[size_t(trial.side == Side::left ? enhanced : reference)];
-        content.right_texture = texture_[size_t(trial.side == Side::left ? reference : enhanced)];
+        content.left_texture = textures()[size_t(trial.side == Side::left ? enhanced : reference)];
+        content.right_texture = textures()[size_t(trial.side == Side::left ? reference : enhanced)];
         content.image_width = study_.width(trial.condition);
         content.image_height = study_.height(trial.condition);
         content.header = trial.practice ? text.practice
@@ -290,11 +260,12 @@ class SessionLoop {
   }
 
   // The screenshot's sidecar: what was on screen and where.
-  void describe_screenshot(const fs::path& shot, const StimulusLayout& layout, double t) const {
+  void describe(const fs::path& shot, const FrameContent&, const StimulusLayout& layout,
+                double t) const override {
     // output_frame: the frame index the dither used (16-bit sets), counted from the window's first
     // frame.
-    OrderedJson info = {{"frame", frames_.frames()},
-                        {"output_frame", presenter_.frames_drawn() - 1},
+    OrderedJson info = {{"frame", frames_drawn()},
+                        {"output_frame", presenter().frames_drawn() - 1},
                         {"phase", int(procedure_.phase())}};
     if (procedure_.phase() == Procedure::Phase::question) {
       const Trial& trial = procedure_.trial();
@@ -319,37 +290,11 @@ class SessionLoop {
     write_text_atomically(shot.string() + ".json", info.dump(2) + "\n");
   }
 
-  void draw_frame() {
-    fs::path shot;
-    if (screenshot_due_ && o_.screenshot)
-      shot = runtime::screenshot_path(*o_.screenshot, screenshots_);
-    const double draw_start = presenter_.now();
-    const StimulusLayout layout = presenter_.draw(frame_content(draw_start - t0_), shot);
-    const double draw_seconds = presenter_.now() - draw_start;
-    frames_.shown(presenter_.now() - t0_);
-    if (!shot.empty()) {
-      describe_screenshot(shot, layout, draw_start - t0_);
-      ++screenshots_;
-      screenshot_due_ = false;
-    }
-    presenter_.pace();
-    frames_.swapped(presenter_.now() - t0_, draw_seconds, shot.empty(), procedure_.key_held(),
-                    presenter_.refresh_hz());
-  }
-
   const SessionOptions& o_;
   const Study& study_;
   Procedure& procedure_;
   SessionRecorder& recorder_;
-  Presenter& presenter_;
-  runtime::ScriptedInput script_;
   std::optional<SimulatedObserver> observer_;
-  std::vector<unsigned> texture_;
-  std::optional<RunEnd> end_;
-  double t0_ = 0;
-  bool screenshot_due_ = false;
-  int screenshots_ = 0;
-  runtime::FrameStatistics frames_;
   std::optional<double> pause_started_;
 };
 

@@ -10,10 +10,10 @@
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_recorder.h"
 #include "forced_choice/choice_run.h"
-#include "runtime/frame_statistics.h"
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
+#include "runtime/run_loop.h"
 #include "runtime/signals.h"
 
 namespace countershade::forced_choice {
@@ -64,74 +64,47 @@ std::optional<int> chosen(Key key, int n) {
   return std::nullopt;
 }
 
-// The event loop: key events drive the run, answers go to the recorder, each frame is drawn.
-class ChoiceLoop {
+// One run of a forced-choice session on the runtime's loop: key events drive the trials, each
+// answer goes to the recorder.
+class ChoiceLoop final : public runtime::RunLoop {
  public:
   ChoiceLoop(const ChoiceSessionOptions& o, const runtime::Study& study, const ChoiceConfig& config,
              ChoiceRun& run, ChoiceRecorder& recorder, runtime::Presenter& presenter)
-      : o_(o),
+      : RunLoop(presenter, study, run_inputs(o)),
+        o_(o),
         study_(study),
         config_(config),
         run_(run),
-        recorder_(recorder),
-        presenter_(presenter) {
-    if (o.script) script_ = runtime::ScriptedInput(runtime::parse_key_script(*o.script));
+        recorder_(recorder) {
     if (o.observer) observer_ = parse_choice_observer(*o.observer);
   }
 
-  nlohmann::ordered_json frame_statistics() const {
-    return frames_.to_json(presenter_.pacing(), presenter_.refresh_hz());
-  }
-
-  RunEnd run() {
-    preload();
-    if (end_) return *end_;
-    t0_ = presenter_.now();
-    while (!end_) {
-      const double now = presenter_.now() - t0_;
-      take_input(now);
-      if (end_) break;
-      advance(now);
-      draw_frame(now);
-      if (o_.script && !observer_ && script_.exhausted() && !end_) end_ = RunEnd::script_ended;
-    }
-    return *end_;
-  }
-
  private:
-  void preload() {
-    auto preloaded = runtime::preload_study(presenter_, study_);
-    if (preloaded.textures)
-      texture_ = std::move(*preloaded.textures);
-    else
-      end_ = RunEnd::closed;
-    recorder_.current_run().preload = preloaded.record;
+  static runtime::RunInputs run_inputs(const ChoiceSessionOptions& o) {
+    runtime::RunInputs in;
+    if (o.script) in.script = runtime::ScriptedInput(runtime::parse_key_script(*o.script));
+    in.scripted = o.script.has_value();
+    in.observed = o.observer.has_value();
+    in.screenshot = o.screenshot;
+    return in;
+  }
+
+  void preloaded(const runtime::Preload& record) override {
+    recorder_.current_run().preload = record;
     recorder_.save(run_);
   }
 
-  void take_input(double now) {
-    for (const auto& w : presenter_.poll_events()) {
-      if (w.kind == runtime::WindowEvent::Kind::close) end_ = RunEnd::closed;
-      if (w.kind == runtime::WindowEvent::Kind::press) press(w.key, w.time_s - t0_);
-      if (w.kind == runtime::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(now);
-    }
-    while (!end_)
-      if (const auto e = script_.next_due(now))
-        scripted(*e);
-      else
-        break;
-    if (observer_) observe(now);
-    if (const auto signal = runtime::SignalGuard::pending()) end_ = signal;
+  void window_event(const runtime::WindowEvent& w, double t) override {
+    if (w.kind == runtime::WindowEvent::Kind::press) press(w.key, t);
+    if (w.kind == runtime::WindowEvent::Kind::focus_lost && phase_ == Phase::trial) pause(t);
   }
 
-  void scripted(const InputEvent& e) {
-    if (e.kind == InputEvent::Kind::screenshot) screenshot_due_ = true;
-    if (e.kind == InputEvent::Kind::close) end_ = RunEnd::closed;
+  void input(const InputEvent& e) override {
     if (e.kind == InputEvent::Kind::press) press(e.key, e.time_s);
   }
 
   // The simulated observer: Enter on every message screen, an answer once one is allowed.
-  void observe(double now) {
+  void observe(double now) override {
     if (now < phase_since_ + observer_->delay_s) return;
     if (phase_ == Phase::trial && answer_allowed(now)) {
       const ChoiceTrial& t = *run_.current();
@@ -149,7 +122,7 @@ class ChoiceLoop {
     const int frames =
         config_.n_afc * config_.interval_frames + (config_.n_afc - 1) * config_.blank_frames;
     return config_.layout == Layout::spatial ? phase_since_
-                                             : phase_since_ + frames / presenter_.refresh_hz();
+                                             : phase_since_ + frames / presenter().refresh_hz();
   }
   bool answer_allowed(double now) const { return now + 1e-9 >= answer_from(); }
 
@@ -165,7 +138,7 @@ class ChoiceLoop {
   }
 
   void press(Key key, double now) {
-    frames_.pressed(now);
+    note_press(now);
     switch (phase_) {
       case Phase::instructions:
         if (key == Key::enter) next_trial(now);
@@ -176,7 +149,7 @@ class ChoiceLoop {
       case Phase::feedback:
         break;
       case Phase::finished:
-        if (key == Key::enter || key == Key::escape) end_ = RunEnd::completed;
+        if (key == Key::enter || key == Key::escape) end(RunEnd::completed);
         break;
       case Phase::paused:
         resume_or_quit(key, now);
@@ -193,7 +166,7 @@ class ChoiceLoop {
   void resume_or_quit(Key key, double now) {
     if (key == Key::quit) {
       recorder_.current_run().pauses.back().quit = true;
-      end_ = RunEnd::quit;
+      end(RunEnd::quit);
     } else if (key == Key::enter) {
       recorder_.current_run().pauses.back().seconds =
           now - recorder_.current_run().pauses.back().at_s;
@@ -226,9 +199,9 @@ class ChoiceLoop {
     enter_phase(run_.finished() ? Phase::finished : Phase::trial, now);
   }
 
-  void advance(double now) {
+  void advance(double now) override {
     if (phase_ == Phase::feedback &&
-        now >= phase_since_ + config_.feedback_frames / presenter_.refresh_hz())
+        now >= phase_since_ + config_.feedback_frames / presenter().refresh_hz())
       after_answer(feedback_after_practice_, now);
   }
 
@@ -239,7 +212,7 @@ class ChoiceLoop {
     const int reference = study_.stimuli[size_t(stimuli[0])].frame_at(t);
     const int enhanced =
         study_.stimuli[size_t(stimuli[size_t(1 + trial.lambda_index)])].frame_at(t);
-    return {texture_[size_t(reference)], texture_[size_t(enhanced)]};
+    return {textures()[size_t(reference)], textures()[size_t(enhanced)]};
   }
 
   FrameContent trial_content(double t) const {
@@ -256,7 +229,7 @@ class ChoiceLoop {
       c.hint = config_.answer_keys() + ": choose    Esc: pause";
       return c;
     }
-    const int interval = interval_at((t - phase_since_) * presenter_.refresh_hz());
+    const int interval = interval_at((t - phase_since_) * presenter().refresh_hz());
     if (interval >= 0 && interval < config_.n_afc) {
       c.centred = true;
       c.left_texture = trial.target == interval ? enhanced : reference;
@@ -280,7 +253,7 @@ class ChoiceLoop {
     return frames - k * period < config_.interval_frames ? k : -1;
   }
 
-  FrameContent frame_content(double t) const {
+  FrameContent content(double t) const override {
     FrameContent c;
     switch (phase_) {
       case Phase::instructions:
@@ -308,31 +281,16 @@ class ChoiceLoop {
     return c;
   }
 
-  void draw_frame(double now) {
-    fs::path shot;
-    if (screenshot_due_ && o_.screenshot)
-      shot = runtime::screenshot_path(*o_.screenshot, screenshots_);
-    const double draw_start = presenter_.now();
-    const FrameContent content = frame_content(now);
-    const runtime::StimulusLayout layout = presenter_.draw(content, shot);
-    const double draw_seconds = presenter_.now() - draw_start;
-    frames_.shown(presenter_.now() - t0_);
-    if (!shot.empty()) describe_screenshot(shot, content, layout, now);
-    presenter_.pace();
-    frames_.swapped(presenter_.now() - t0_, draw_seconds, shot.empty(), false,
-                    presenter_.refresh_hz());
-  }
-
-  void describe_screenshot(const fs::path& shot, const FrameContent& content,
-                           const runtime::StimulusLayout& layout, double t) {
+  void describe(const fs::path& shot, const FrameContent& content,
+                const runtime::StimulusLayout& layout, double) const override {
     json info = {{"phase", int(phase_)}};
     if (phase_ == Phase::trial && (content.left_texture || !content.row.empty())) {
       const ChoiceTrial& trial = *run_.current();
       info["trial"] = trial.number;
       info["target"] = trial.target;
       auto file_of = [&](unsigned texture) {
-        for (size_t i = 0; i < texture_.size(); ++i)
-          if (texture_[i] == texture) return study_.images[i].relative;
+        for (size_t i = 0; i < textures().size(); ++i)
+          if (textures()[i] == texture) return study_.images[i].relative;
         return std::string();
       };
       const std::vector<unsigned> shown =
@@ -346,10 +304,7 @@ class ChoiceLoop {
                                   {"file", file_of(shown[i])}});
       info["interval"] = content.centred ? content.hint : "";
     }
-    (void)t;
     write_text_atomically(shot.string() + ".json", info.dump(2) + "\n");
-    ++screenshots_;
-    screenshot_due_ = false;
   }
 
   const ChoiceSessionOptions& o_;
@@ -357,16 +312,11 @@ class ChoiceLoop {
   const ChoiceConfig& config_;
   ChoiceRun& run_;
   ChoiceRecorder& recorder_;
-  runtime::Presenter& presenter_;
-  runtime::ScriptedInput script_;
   std::optional<ChoiceObserver> observer_;
-  std::vector<unsigned> texture_;
-  std::optional<RunEnd> end_;
   Phase phase_ = Phase::instructions, paused_from_ = Phase::trial;
-  double t0_ = 0, phase_since_ = 0;
-  bool screenshot_due_ = false, last_correct_ = false, feedback_after_practice_ = false;
-  int screenshots_ = 0, practice_index_ = 0;
-  runtime::FrameStatistics frames_;
+  double phase_since_ = 0;
+  bool last_correct_ = false, feedback_after_practice_ = false;
+  int practice_index_ = 0;
 };
 
 }  // namespace
