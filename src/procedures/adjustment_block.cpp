@@ -83,13 +83,8 @@ StudyConfig parse_study_config(const nlohmann::json& value, const std::string& f
   c.plan.start = o.choice("start", "random", {"random", "zero"}) == "zero" ? StartMode::zero
                                                                            : StartMode::random;
   c.plan.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
-  for (const char* key : {"conditions", "practice_conditions"})
-    if (o.has(key))
-      for (const auto& s : o.objects(key)) {
-        StudyConfig::Selection sel{s.string("scene"), s.string("method"), s.number("sigma")};
-        s.finish();
-        (std::string(key) == "conditions" ? c.conditions : c.practice_conditions).push_back(sel);
-      }
+  c.conditions = read_condition_selections(o, "conditions");
+  c.practice_conditions = read_condition_selections(o, "practice_conditions");
   if (o.has("repeat")) read_repeat(o.object("repeat"), c.timing);
   c.surround = int(o.integer_in("surround", 128, 0, 255));
   c.gap_px = int(o.integer_in("gap_px", 48, 0, 4096));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "formats/responses.h"
+#include "procedures/condition_selection.h"
 
 namespace countershade::procedures {
 
@@ -66,10 +67,7 @@ struct StudyConfig {
   PlanSettings plan;             // plan.seed is the configured base seed
   std::optional<uint64_t> seed;  // unset: the manifest's seed
   // Conditions to run ({scene, method, sigma}); empty: every condition in the set.
-  struct Selection {
-    std::string scene, method;
-    double sigma = 0;
-  };
+  using Selection = ConditionSelection;
   std::vector<Selection> conditions;
   // Conditions practice trials show; empty: those whose images change with λ.
   std::vector<Selection> practice_conditions;

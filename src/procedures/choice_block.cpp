@@ -9,20 +9,6 @@ const char* layout_name(Layout layout) {
   return layout == Layout::spatial ? "spatial" : "temporal";
 }
 
-namespace {
-
-std::vector<ConditionSelection> selections(const JsonObject& o, const std::string& key) {
-  std::vector<ConditionSelection> out;
-  if (!o.has(key)) return out;
-  for (const auto& s : o.objects(key)) {
-    out.push_back({s.string("scene"), s.string("method"), s.number("sigma")});
-    s.finish();
-  }
-  return out;
-}
-
-}  // namespace
-
 ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
                                  const std::string& path) {
   if (!value.is_object())
@@ -39,8 +25,8 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   c.question = o.string_or("question", c.question);
   c.welcome = o.string_or("welcome", c.welcome);
   c.max_trials = int(o.integer_in("max_trials", 200, 1, 100000));
-  c.conditions = selections(o, "conditions");
-  c.practice_conditions = selections(o, "practice_conditions");
+  c.conditions = read_condition_selections(o, "conditions");
+  c.practice_conditions = read_condition_selections(o, "practice_conditions");
   c.practice_trials = int(o.integer_in("practice_trials", 0, 0, 100));
   if (o.has("seed")) c.seed = uint64_t(o.integer_in("seed", 1, 0, 1ll << 53));
   o.object("procedure");  // required, and an object

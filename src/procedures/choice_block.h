@@ -11,17 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "procedures/condition_selection.h"
 #include "procedures/registry.h"
 
 namespace countershade::procedures {
 
 enum class Layout { spatial, temporal };
 const char* layout_name(Layout layout);
-
-struct ConditionSelection {
-  std::string scene, method;
-  double sigma = 0;
-};
 
 struct ChoiceConfig {
   int n_afc = 2;

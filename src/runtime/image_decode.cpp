@@ -76,6 +76,9 @@ void require_achromatic_images(const Study& study, const OutputPathChoice& path)
   });
 }
 
+namespace {
+
+// The textures, or nothing when the window was closed meanwhile.
 std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study) {
   std::vector<unsigned> textures(study.images.size());
   bool closed = false;
@@ -105,6 +108,8 @@ std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, cons
   if (closed) return std::nullopt;
   return textures;
 }
+
+}  // namespace
 
 Preloaded preload_study(Presenter& presenter, const Study& study) {
   const double start = presenter.now();

@@ -23,12 +23,8 @@ std::vector<uint16_t> decode_rgba16(const StimulusImage& image);
 // pixel that is not. Run before a window opens or a session file is written.
 void require_achromatic_images(const Study& study, const OutputPathChoice& path);
 
-// Every image of the study as a texture, decoded in parallel and uploaded in batches of eight,
-// with a progress bar. Returns the textures (by image index), or nothing when the window was
-// closed meanwhile.
-std::optional<std::vector<unsigned>> preload_textures(Presenter& presenter, const Study& study);
-
-// preload_textures, timed for the run's record (`preload` in the sidecar).
+// Every image of the study as a texture (by image index), decoded in parallel and uploaded in
+// batches of eight, with a progress bar; timed for the run's record (`preload` in the sidecar).
 struct Preloaded {
   std::optional<std::vector<unsigned>> textures;  // none: the window was closed meanwhile
   Preload record;

@@ -38,7 +38,6 @@ class ScriptedInput {
     if (next_ >= events_.size() || events_[next_].time_s > now) return std::nullopt;
     return events_[next_++];
   }
-  bool active() const { return !events_.empty(); }
   bool exhausted() const { return next_ == events_.size(); }
 
  private:

@@ -1,0 +1,21 @@
+#pragma once
+// A condition an experiment block names ({scene, method, sigma}): which conditions a study runs,
+// and which its practice trials show. Both studies' blocks read them the same way.
+
+#include <string>
+#include <vector>
+
+#include "core/json_reader.h"
+
+namespace countershade::procedures {
+
+struct ConditionSelection {
+  std::string scene, method;
+  double sigma = 0;
+};
+
+// The array under `key` (none when the key is absent); each entry's unknown keys are refused.
+std::vector<ConditionSelection> read_condition_selections(const JsonObject& block,
+                                                          const std::string& key);
+
+}  // namespace countershade::procedures
