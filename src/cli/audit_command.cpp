@@ -3,12 +3,12 @@
 #include <cstdio>
 #include <memory>
 
+#include "audit/audit.h"
+#include "audit/audit_report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
-#include "stimuli/audit.h"
-#include "stimuli/audit_report.h"
 
 namespace countershade::cli {
 

@@ -9,7 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/display.h"
 #include "core/false_colour.h"
-#include "stimuli/congruence.h"
+#include "measures/congruence.h"
 
 namespace countershade::cli {
 namespace {

@@ -14,10 +14,10 @@
 #include "core/false_colour.h"
 #include "core/progress.h"
 #include "enhance/view_plan.h"
+#include "measures/flicker.h"
+#include "measures/flicker_table.h"
 #include "render/frame_range.h"
 #include "render/scene_loader.h"
-#include "stimuli/flicker.h"
-#include "stimuli/flicker_table.h"
 
 namespace countershade::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "stimuli/contact_sheet.h"
+#include "figures/contact_sheet.h"
 
 namespace countershade::cli {
 namespace {

@@ -4,9 +4,10 @@
 #include <filesystem>
 #include <memory>
 
+#include "audit/audit.h"
 #include "cli/commands.h"
 #include "core/error.h"
-#include "stimuli/audit.h"
+#include "figures/set_figures.h"
 #include "stimuli/slurm_scripts.h"
 #include "stimuli/stimulus_set.h"
 
@@ -61,21 +62,26 @@ void check_cluster_options(const StimuliArgs& args, const Experiment& experiment
                      "); write them again with --slurm, or restore the file");
 }
 
+// A complete set's last two steps: its sheets and figures, drawn from the manifest, then the audit.
+void finish_complete_set(const Experiment& experiment, const StimuliArgs& args) {
+  const std::filesystem::path manifest = std::filesystem::path(args.output) / "manifest.json";
+  write_set_figures(experiment, args.output, read_manifest(manifest), !args.no_sheets);
+  print_audit_summary(manifest, args.jobs);
+}
+
 void run_stimuli(const StimuliArgs& args) {
   Experiment experiment = load_experiment(args.experiment);
   check_cluster_options(args, experiment);
   if (args.slurm) return write_cluster_scripts(args, experiment);
   if (args.merge) {
-    auto path = merge_shard_manifests(experiment, args.output, {args.jobs, !args.no_sheets});
+    auto path = merge_shard_manifests(experiment, args.output, args.jobs);
     std::fprintf(stderr, "stimuli: merged shards into %s\n", path.string().c_str());
-    print_audit_summary(path, args.jobs);
-    return;
+    return finish_complete_set(experiment, args);
   }
   GenerateOptions options;
   options.jobs = args.jobs;
   std::tie(options.shard, options.shards) = parse_shard(args.shard);
   options.resume = args.resume;
-  options.contact_sheets = !args.no_sheets;
   options.masks = !args.no_masks;
   GenerateReport r = generate_stimulus_set(experiment, args.output, options);
   std::fprintf(
@@ -84,8 +90,7 @@ void run_stimuli(const StimuliArgs& args) {
       "compose %.1f s, encode %.1f s (thread time), total %.1f s\n",
       r.images_written, r.images_skipped, r.render_seconds, r.prepare_seconds, r.compose_seconds,
       r.encode_seconds, r.total_seconds);
-  if (options.shards == 1)
-    print_audit_summary(std::filesystem::path(args.output) / "manifest.json", args.jobs);
+  if (options.shards == 1) finish_complete_set(experiment, args);
 }
 
 void add_cluster_options(CLI::App* cmd, StimuliArgs& args) {

@@ -21,7 +21,7 @@
 #include "render/camera.h"
 #include "render/frame_range.h"
 #include "render/scene_loader.h"
-#include "stimuli/audit.h"
+#include "stimuli/audit_limits.h"
 
 namespace countershade {
 

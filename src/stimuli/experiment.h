@@ -11,9 +11,9 @@
 
 #include "core/number_format.h"
 #include "enhance/method.h"
+#include "measures/congruence.h"
 #include "render/render_request.h"
 #include "render/scene.h"
-#include "stimuli/congruence.h"
 #include "stimuli/screen.h"
 
 namespace countershade {

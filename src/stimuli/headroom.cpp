@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "enhance/method.h"
-#include "stimuli/audit.h"
+#include "stimuli/audit_limits.h"
 #include "stimuli/mean_hold.h"
 
 namespace countershade {

@@ -8,8 +8,8 @@
 #include "core/number_format.h"
 #include "core/parallel.h"
 #include "enhance/lightness.h"
+#include "measures/flicker.h"
 #include "render/scene_animation.h"
-#include "stimuli/flicker.h"
 #include "stimuli/mask_file.h"
 
 namespace countershade {

@@ -21,18 +21,13 @@
 #include "enhance/lightness.h"
 #include "enhance/stimulus_noise.h"
 #include "enhance/view_plan.h"
+#include "measures/congruence.h"
+#include "measures/perspective_coherence.h"
+#include "measures/scale_against_depth.h"
 #include "render/scene_animation.h"
-#include "stimuli/coherence_figures.h"
-#include "stimuli/congruence.h"
-#include "stimuli/congruence_figures.h"
-#include "stimuli/contact_sheet.h"
-#include "stimuli/depth_scale_figures.h"
-#include "stimuli/flicker_figures.h"
 #include "stimuli/headroom.h"
 #include "stimuli/mask_file.h"
 #include "stimuli/mean_hold.h"
-#include "stimuli/perspective_coherence.h"
-#include "stimuli/scale_against_depth.h"
 #include "stimuli/sequence_flicker.h"
 #include "stimuli/sequence_videos.h"
 #include "stimuli/set_journal.h"
@@ -268,24 +263,19 @@ std::shared_ptr<Scene> set_scene(const Experiment& e, size_t s) {
   return scene;
 }
 
-// The end of a complete set, made in one run or merged from shards: the figures measured from its
-// files (flicker), the videos, manifest.json with the run record `run()` gives at that moment, and
-// the sheets and figures drawn from the manifest.
+// The end of a complete set, made in one run or merged from shards: the flicker measured from its
+// files, the videos, and manifest.json with the run record `run()` gives at that moment. (The
+// sheets and figures are drawn from the manifest afterwards: figures/set_figures.h.)
 void finish_set(const Experiment& e, const fs::path& dir, Manifest& manifest,
                 const std::function<std::shared_ptr<const Scene>(size_t)>& scene_of,
-                const std::function<nlohmann::json()>& run, const FinishOptions& options) {
+                const std::function<nlohmann::json()>& run, int jobs) {
   sort_entries(manifest.stimuli);
   for (size_t s = 0; s < e.scenes.size(); ++s)
     if (e.scenes[s].is_sequence())
-      measure_sequence_flicker(e, dir, e.scenes[s], *scene_of(s), manifest.stimuli, options.jobs);
-  if (e.video) write_sequence_videos(dir, manifest, options.jobs);
+      measure_sequence_flicker(e, dir, e.scenes[s], *scene_of(s), manifest.stimuli, jobs);
+  if (e.video) write_sequence_videos(dir, manifest, jobs);
   manifest.run = run();
   write_manifest(dir / "manifest.json", manifest);
-  if (options.contact_sheets) write_set_contact_sheets(e, dir, manifest);
-  if (e.congruence) write_congruence_figures(e, dir, manifest, options.contact_sheets);
-  write_coherence_figures(e, dir, manifest);
-  write_flicker_figures(e, dir, manifest);
-  write_depth_scale_figures(e, dir, manifest);
 }
 
 class SetGenerator {
@@ -576,8 +566,8 @@ void SetGenerator::finish() {
     manifest.run = run();
     write_manifest(manifest_path_, manifest);
   } else {
-    finish_set(e_, dir_, manifest, [&](size_t s) { return scenes_[s]; }, run,
-               {options_.jobs, options_.contact_sheets});
+    finish_set(
+        e_, dir_, manifest, [&](size_t s) { return scenes_[s]; }, run, options_.jobs);
   }
   std::error_code ec;
   fs::remove(journal_path_, ec);
@@ -623,8 +613,7 @@ GenerateReport generate_stimulus_set(const Experiment& e, const fs::path& dir,
   return SetGenerator(e, dir, options).run();
 }
 
-fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir,
-                               const FinishOptions& options) {
+fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir, int jobs) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     throw_input_error(dir.string(), "no such folder (nothing to merge)");
@@ -668,7 +657,7 @@ fs::path merge_shard_manifests(const Experiment& e, const fs::path& dir,
   const nlohmann::json run = {
       {"started_utc", started}, {"finished_utc", finished}, {"merged_shards", count}};
   finish_set(
-      e, dir, manifest, [&](size_t s) { return set_scene(e, s); }, [&] { return run; }, options);
+      e, dir, manifest, [&](size_t s) { return set_scene(e, s); }, [&] { return run; }, jobs);
   return dir / "manifest.json";
 }
 

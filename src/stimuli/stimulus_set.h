@@ -17,7 +17,6 @@ struct GenerateOptions {
   int jobs = 0;               // threads (0 = all cores)
   int shard = 1, shards = 1;  // this run's part, I of N
   bool resume = false;
-  bool contact_sheets = true;
   // Keep each sequence frame's method mask and record its mask flicker (false: neither, to save
   // the files or to measure what they cost).
   bool masks = true;
@@ -33,17 +32,10 @@ struct GenerateReport {
 GenerateReport generate_stimulus_set(const Experiment& experiment, const std::filesystem::path& dir,
                                      const GenerateOptions& options);
 
-// How a complete set is finished, in one run or by a merge.
-struct FinishOptions {
-  int jobs = 0;  // threads (0 = all cores)
-  bool contact_sheets = true;
-};
-
 // Joins manifest.shard-*-of-N.json in `dir` into manifest.json and finishes the set as a run on
-// one machine does: the same flicker figures, videos, sheets and figures.
+// one machine does: the same flicker measures and videos. `jobs`: threads (0 = all cores).
 std::filesystem::path merge_shard_manifests(const Experiment& experiment,
-                                            const std::filesystem::path& dir,
-                                            const FinishOptions& options = {});
+                                            const std::filesystem::path& dir, int jobs = 0);
 
 // Parses "I/N"; throws InputError.
 std::pair<int, int> parse_shard(const std::string& text);

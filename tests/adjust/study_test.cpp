@@ -245,7 +245,6 @@ std::filesystem::path make_set_with_control(const testing::TempDir& dir,
       "methods": [{"method": "usm3d", "sigma_fraction": [0.05]}, {"method": "none"}],
       "adjust": )" + adjust + "}");
   GenerateOptions options;
-  options.contact_sheets = false;
   generate_stimulus_set(load_experiment(dir / "experiment.json"), dir / "set", options);
   return dir / "set" / "manifest.json";
 }

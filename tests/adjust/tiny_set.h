@@ -27,7 +27,6 @@ inline std::filesystem::path make_tiny_set_of(const TempDir& dir, const std::str
                      (adjust.empty() ? std::string() : ",\n    \"adjust\": " + adjust) + "\n}";
   auto experiment_file = write_file(dir / "experiment.json", text);
   GenerateOptions options;
-  options.contact_sheets = false;
   generate_stimulus_set(load_experiment(experiment_file), dir / "set", options);
   return dir / "set" / "manifest.json";
 }
@@ -57,7 +56,6 @@ inline std::filesystem::path make_sequence_set(const TempDir& dir, const std::st
     "methods": [{"method": "usm2d", "sigma_percent": [2]}])" +
       (adjust.empty() ? std::string() : ",\n    \"adjust\": " + adjust) + "\n}";
   GenerateOptions options;
-  options.contact_sheets = false;
   generate_stimulus_set(load_experiment(write_file(dir / "experiment.json", text)), dir / "set",
                         options);
   return dir / "set" / "manifest.json";

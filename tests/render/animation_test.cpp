@@ -11,10 +11,10 @@
 #include "core/image.h"
 #include "enhance/view.h"
 #include "enhance/view_plan.h"
+#include "measures/perspective_coherence.h"
 #include "render/camera.h"
 #include "render/scene_animation.h"
 #include "render/scene_loader.h"
-#include "stimuli/perspective_coherence.h"
 #include "test_util.h"
 
 namespace countershade {

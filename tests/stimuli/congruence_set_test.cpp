@@ -10,9 +10,10 @@
 
 #include "core/error.h"
 #include "enhance/view_plan.h"
+#include "measures/congruence.h"
 #include "render/camera.h"
-#include "stimuli/congruence.h"
 #include "stimuli/experiment.h"
+#include "stimuli/set_test_util.h"
 #include "stimuli/stimulus_set.h"
 #include "test_util.h"
 
@@ -66,6 +67,7 @@ TEST(CongruenceSet, EveryStimulusIsScoredAndItsMapCheckedLikeTheStimuli) {
   GenerateOptions options;
   options.jobs = 2;
   generate_stimulus_set(e, dir / "set", options);
+  testing::draw_figures(e, dir / "set");
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
 
   // The recorded score is the score of the written pixels against the scene's depth.
@@ -121,8 +123,8 @@ TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
   EXPECT_EQ(e.scenes[4].swept_from, "far");
   GenerateOptions options;
   options.jobs = 2;
-  options.contact_sheets = false;
   generate_stimulus_set(e, dir / "set", options);
+  testing::draw_figures(e, dir / "set", false);
   auto points_in = [](const fs::path& svg) {  // the vertices of every line's polyline
     std::ifstream in(svg);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -139,9 +141,10 @@ TEST(CongruenceSet, EachSweptSceneGetsAFigureOfItsOwn) {
   EXPECT_EQ(points_in(dir / "set/congruence-near.svg"), 3u * 2u);
   EXPECT_EQ(points_in(dir / "set/congruence-far.svg"), 4u * 2u);
   // One swept entry: no figure of its own besides congruence.svg.
-  generate_stimulus_set(
-      load_experiment(write_ball_experiment(dir, R"({"elevations": [0], "azimuths": 2})")),
-      dir / "one", options);
+  const Experiment one =
+      load_experiment(write_ball_experiment(dir, R"({"elevations": [0], "azimuths": 2})"));
+  generate_stimulus_set(one, dir / "one", options);
+  testing::draw_figures(one, dir / "one", false);
   EXPECT_TRUE(fs::is_regular_file(dir / "one/congruence.svg"));
   EXPECT_FALSE(fs::exists(dir / "one/congruence-ball.svg"));
 }

@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <set>
 
+#include "audit/audit.h"
 #include "core/error.h"
 #include "formats/manifest.h"
 #include "set_test_util.h"
-#include "stimuli/audit.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
 #include "test_util.h"
@@ -119,7 +119,6 @@ HeadroomSets make_sets(const std::vector<std::pair<std::string, std::string>>& r
   for (const auto& [from, to] : replaced) scene.replace(scene.find(from), from.size(), to);
   testing::write_file(dir / "cube.json", scene);
   GenerateOptions options;
-  options.contact_sheets = false;
   HeadroomSets sets;
   for (bool headroom : {false, true}) {
     const std::string name = headroom ? "room" : "full";

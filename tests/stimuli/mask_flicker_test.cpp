@@ -12,9 +12,9 @@
 #include "enhance/lightness.h"
 #include "enhance/registry.h"
 #include "enhance/view_plan.h"
+#include "measures/flicker.h"
 #include "render/scene_animation.h"
 #include "render/scene_loader.h"
-#include "stimuli/flicker.h"
 #include "stimuli/mask_file.h"
 #include "stimuli/set_test_util.h"
 #include "stimuli/surface_values.h"
@@ -167,7 +167,9 @@ TEST(MaskFlicker, ASequenceSetRecordsTheMaskFlickerOfTheFlickerCommand) {
     "version": 1, "name": "masks", "seed": 7, "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "orbit", "file": "orbit.json", "frames": "all"}],
     "methods": [{"method": "usm2d", "sigma_percent": [3]}, {"method": "none"}]})");
-  generate_stimulus_set(load_experiment(experiment), dir / "set", testing::with_jobs(2));
+  const Experiment e = load_experiment(experiment);
+  generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
+  testing::draw_figures(e, dir / "set", false);
   const std::map<int, double> command =
       command_mask_flicker(dir / "orbit.json", "usm2d", {{"sigma_percent", 3}});
   const OrderedJson manifest = testing::manifest_json(dir / "set");

@@ -10,11 +10,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "audit/audit.h"
 #include "core/image.h"
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "set_test_util.h"
-#include "stimuli/audit.h"
 #include "stimuli/experiment.h"
 #include "stimuli/stimulus_set.h"
 #include "test_util.h"
@@ -259,7 +259,6 @@ TEST(MeanHold, ASetWithHoldMeanPassesTheDriftCheck) {
                                                    (hold ? R"(, "hold_mean": true})" : "}")));
   };
   GenerateOptions options;
-  options.contact_sheets = false;
   for (bool hold : {false, true}) {
     const fs::path set = dir / (hold ? "held" : "free");
     generate_stimulus_set(experiment(hold), set, options);

@@ -62,7 +62,6 @@ fs::path generate(const testing::TempDir& dir, const std::string& scene, int see
     "methods": [{"method": "usm3d", "sigma": [0.12], "ring_samples": 3}]
   })");
   GenerateOptions options;
-  options.contact_sheets = false;
   generate_stimulus_set(load_experiment(experiment), dir / name, options);
   return dir / name;
 }

@@ -1,7 +1,7 @@
 // Perspective coherence: a layer attached to the surface survives the dolly's reprojection, a layer
 // fixed to the screen does not; and a set that asks for the metric records it and plots it.
 
-#include "stimuli/perspective_coherence.h"
+#include "measures/perspective_coherence.h"
 
 #include <gtest/gtest.h>
 
@@ -112,9 +112,9 @@ TEST(PerspectiveCoherence, ASetRecordsEveryStimulusAndPlotsIt) {
     "scenes": [{"name": "ground", "file": "ground.json"}],
     "methods": [{"method": "texture-filter", "mode": "texture", "sigma": [1]},
                 {"method": "texture-filter", "mode": "post", "sigma": [1]}]})");
-  GenerateOptions options;
-  options.contact_sheets = false;
-  generate_stimulus_set(load_experiment(file), dir / "set", options);
+  const Experiment e = load_experiment(file);
+  generate_stimulus_set(e, dir / "set", {});
+  testing::draw_figures(e, dir / "set", false);
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
   const std::string csv = testing::read_file(dir / "set/coherence.csv");
   EXPECT_EQ(testing::count_lines(csv), 1 + 1 + 2 * 2);  // header, plain, two methods at two λ

@@ -2,7 +2,7 @@
 // ground (width ∝ 1/depth, slope −1) and of one of fixed screen size (slope 0), and an edge probe
 // set that records and plots them.
 
-#include "stimuli/scale_against_depth.h"
+#include "measures/scale_against_depth.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 
+#include "measures/flicker.h"
 #include "render/scene_loader.h"
-#include "stimuli/flicker.h"
 #include "stimuli/set_test_util.h"
 #include "test_util.h"
 
@@ -126,7 +126,9 @@ TEST(ScaleAgainstDepth, AProbeSetRecordsWidthsAndSlopesAndPlotsThem) {
     "version": 1, "name": "probe", "seed": 1, "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "probe", "file": "ground.json", "edge_probe": {"edges_x": [-3, -2, -1, 0, 1, 2, 3]}}],
     "methods": [{"method": "usm2d", "sigma_px": [3]}]})");
-  generate_stimulus_set(load_experiment(experiment), dir / "set", testing::with_jobs(2));
+  const Experiment e = load_experiment(experiment);
+  generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
+  testing::draw_figures(e, dir / "set", false);
   const OrderedJson manifest = testing::manifest_json(dir / "set");
   for (const auto& s : manifest["stimuli"]) {
     if (s["method"] != "usm2d" || s["lambda"] != 1.0) continue;

@@ -8,14 +8,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "audit/audit.h"
 #include "core/error.h"
 #include "core/sha256.h"
 #include "enhance/registry.h"
 #include "enhance/view.h"
 #include "enhance/view_plan.h"
+#include "measures/flicker.h"
 #include "render/scene_loader.h"
-#include "stimuli/audit.h"
-#include "stimuli/flicker.h"
 #include "stimuli/lossless_video.h"
 #include "stimuli/set_journal.h"
 #include "stimuli/set_test_util.h"
@@ -43,7 +43,9 @@ fs::path write_experiment(const testing::TempDir& dir, const std::string& frames
 
 TEST(SequenceSet, EveryFrameIsAStimulusWithItsChecksumAndTheFrameRate) {
   testing::TempDir dir;
-  generate_stimulus_set(load_experiment(write_experiment(dir)), dir / "set", testing::with_jobs(2));
+  const Experiment e = load_experiment(write_experiment(dir));
+  generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
+  testing::draw_figures(e, dir / "set");
   const OrderedJson m = testing::manifest_json(dir / "set");
   ASSERT_EQ(m["stimuli"].size(), 4u * (1 + 2 * 2));  // per frame: the reference and 2 methods × 2 λ
   std::map<int, int> per_frame;

@@ -6,8 +6,9 @@
 #include <fstream>
 #include <string>
 
+#include "audit/audit.h"
+#include "figures/set_figures.h"
 #include "formats/manifest.h"
-#include "stimuli/audit.h"
 #include "stimuli/stimulus_set.h"
 
 namespace countershade::testing {
@@ -29,6 +30,13 @@ inline size_t failed_checks(const AuditReport& report, const std::string& check)
   size_t failed = 0;
   for (const auto& c : report.checks) failed += c.check == check && !c.passed;
   return failed;
+}
+
+// A finished set's sheets and figures, drawn as `countershade stimuli` draws them after
+// generating or merging it.
+inline void draw_figures(const Experiment& e, const std::filesystem::path& dir,
+                         bool contact_sheets = true) {
+  write_set_figures(e, dir, read_manifest(dir / "manifest.json"), contact_sheets);
 }
 
 inline GenerateOptions with_jobs(int n) {

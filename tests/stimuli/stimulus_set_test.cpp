@@ -62,6 +62,7 @@ TEST(StimulusSet, ReproducibleAcrossRunsAndThreadCounts) {
   Experiment e = load_experiment(write_experiment(dir));
   generate_stimulus_set(e, dir / "a", testing::with_jobs(1));
   generate_stimulus_set(e, dir / "b", testing::with_jobs(2));
+  testing::draw_figures(e, dir / "a");
   OrderedJson a = testing::manifest_json(dir / "a"), b = testing::manifest_json(dir / "b");
   EXPECT_EQ(testing::without_run(a), testing::without_run(b));
   EXPECT_EQ(a["stimuli"].size(), 2u * (1 + 4 * 5));  // per scene: reference + 4 (method, σ) × 5 λ
@@ -87,18 +88,20 @@ TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
   testing::generate_in_shards(e, dir / "sharded", 3);
   EXPECT_FALSE(fs::exists(dir / "sharded/manifest.json"));
   merge_shard_manifests(e, dir / "sharded");
+  testing::draw_figures(e, dir / "single");
+  testing::draw_figures(e, dir / "sharded");
   EXPECT_EQ(testing::without_run(testing::manifest_json(dir / "single")),
             testing::without_run(testing::manifest_json(dir / "sharded")));
   EXPECT_TRUE(verify_stimulus_set(dir / "sharded/manifest.json").empty());
-  // One finish for both: the same files (sheets and figures included), apart from the parts'
-  // manifests.
+  // The same files (sheets and figures included), apart from the parts' manifests.
   std::set<std::string> merged = files_under(dir / "sharded");
   std::erase_if(merged, [](const std::string& f) { return f.rfind("manifest.shard-", 0) == 0; });
   EXPECT_EQ(files_under(dir / "single"), merged);
   EXPECT_TRUE(merged.count("contact-sheets/cube-usm3d.png"));
-  // Without sheets, a merge writes none, as a single run without them does.
+  // Without sheets, the figures of a merged set have none.
   testing::generate_in_shards(e, dir / "bare", 2);
-  merge_shard_manifests(e, dir / "bare", {.jobs = 2, .contact_sheets = false});
+  merge_shard_manifests(e, dir / "bare", 2);
+  testing::draw_figures(e, dir / "bare", false);
   EXPECT_FALSE(fs::exists(dir / "bare/contact-sheets"));
 }
 
@@ -237,7 +240,7 @@ TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
       {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitions\": -1}"),
        "adjust.repetitions"},
       {variant("\"seed\": 5", "\"seed\": 5, \"adjust\": {\"repetitons\": 2}"),
-       "adjust.repetitons: unknown key"},
+       "adjust.repetitons: the adjust block has no parameter 'repetitons'"},
       {variant("\"seed\": 5", "\"seed\": 5, \"audit\": {\"max_drift\": -1}"), "audit.max_drift"},
   };
   int i = 0;

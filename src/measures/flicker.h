@@ -14,8 +14,8 @@
 
 #include "enhance/method.h"
 #include "enhance/view.h"
+#include "measures/perspective_coherence.h"
 #include "render/scene.h"
-#include "stimuli/perspective_coherence.h"
 
 namespace countershade {
 

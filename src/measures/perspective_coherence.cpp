@@ -1,4 +1,4 @@
-#include "stimuli/perspective_coherence.h"
+#include "measures/perspective_coherence.h"
 
 #include <cmath>
 #include <glm/geometric.hpp>

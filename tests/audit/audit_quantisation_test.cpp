@@ -8,8 +8,8 @@
 #include <cmath>
 #include <map>
 
+#include "audit/audit.h"
 #include "core/image.h"
-#include "stimuli/audit.h"
 #include "stimuli/set_test_util.h"
 #include "test_util.h"
 

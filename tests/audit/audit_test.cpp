@@ -1,6 +1,6 @@
 // The stimulus audit: its measures on hand-made images, and broken sets it must catch.
 
-#include "stimuli/audit.h"
+#include "audit/audit.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "stimuli/coherence_figures.h"
+#include "figures/coherence_figures.h"
 
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "core/svg_plot.h"
-#include "stimuli/condition_lines.h"
+#include "figures/condition_lines.h"
 
 namespace countershade {
 namespace {

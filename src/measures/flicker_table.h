@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "stimuli/flicker.h"
+#include "measures/flicker.h"
 
 namespace countershade {
 

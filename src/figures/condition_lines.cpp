@@ -1,4 +1,4 @@
-#include "stimuli/condition_lines.h"
+#include "figures/condition_lines.h"
 
 #include <algorithm>
 

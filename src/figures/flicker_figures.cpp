@@ -1,4 +1,4 @@
-#include "stimuli/flicker_figures.h"
+#include "figures/flicker_figures.h"
 
 #include <algorithm>
 #include <sstream>
@@ -6,8 +6,8 @@
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "core/svg_plot.h"
-#include "stimuli/condition_lines.h"
-#include "stimuli/perspective_coherence.h"
+#include "figures/condition_lines.h"
+#include "measures/perspective_coherence.h"
 
 namespace countershade {
 namespace {

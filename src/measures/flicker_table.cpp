@@ -1,4 +1,4 @@
-#include "stimuli/flicker_table.h"
+#include "measures/flicker_table.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "stimuli/audit.h"
+#include "audit/audit.h"
 
 namespace countershade {
 

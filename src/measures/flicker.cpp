@@ -1,4 +1,4 @@
-#include "stimuli/flicker.h"
+#include "measures/flicker.h"
 
 #include <algorithm>
 #include <cmath>

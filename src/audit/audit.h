@@ -14,20 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "core/json_reader.h"
 #include "formats/manifest.h"
+#include "stimuli/audit_limits.h"
 
 namespace countershade {
-
-struct AuditLimits {
-  double max_drift = 1.0;                          // |mean L*(λ) − mean L*(reference)|, L*
-  double max_clipped = 0.01;                       // share of pixels clipped by the enhancement
-  std::optional<int> screen_width, screen_height;  // pixels; images shown side by side 1:1
-  int gap_px = 48;  // between the two images, as the adjustment app shows them
-};
-
-// The experiment file's "audit" block (docs/stimulus-sets.md); throws InputError.
-AuditLimits read_audit_limits(const JsonObject& o);
 
 struct StimulusAudit {
   std::string file, scene, condition;  // condition: "<label> sigma <σ>", empty for references
@@ -87,18 +77,6 @@ std::vector<AuditCondition> audit_conditions(const AuditReport& report);
 // The checks of measured stimuli against the report's limits, per condition and per set
 // (appended to report.checks).
 void add_audit_checks(AuditReport& report, const Manifest& manifest);
-
-// Whether the enhancement clipped a pixel: its codes (three channels) differ from the reference's,
-// and a channel sits at 0 or at `top` (full scale) where the reference's does not.
-inline bool clipped_by_enhancement(const uint16_t* stimulus, const uint16_t* reference,
-                                   uint16_t top) {
-  if (stimulus[0] == reference[0] && stimulus[1] == reference[1] && stimulus[2] == reference[2])
-    return false;
-  bool at_limit = false;
-  for (int k = 0; k < 3; ++k)
-    at_limit |= (stimulus[k] == 0 || stimulus[k] == top) && stimulus[k] != reference[k];
-  return at_limit;
-}
 
 // Checks the set's integrity first (every file listed with its size and sha256, nothing
 // unlisted): a tampered set is an InputError (exit 2). Then measures every stimulus.

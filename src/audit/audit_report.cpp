@@ -1,4 +1,4 @@
-#include "stimuli/audit_report.h"
+#include "audit/audit_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +10,8 @@
 #include "core/number_format.h"
 #include "core/svg_plot.h"
 #include "core/xml.h"
+#include "figures/contact_sheet.h"
 #include "formats/responses.h"
-#include "stimuli/contact_sheet.h"
 
 namespace countershade {
 namespace {

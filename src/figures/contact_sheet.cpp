@@ -1,4 +1,4 @@
-#include "stimuli/contact_sheet.h"
+#include "figures/contact_sheet.h"
 
 #include <algorithm>
 #include <cmath>

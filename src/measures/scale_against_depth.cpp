@@ -1,4 +1,4 @@
-#include "stimuli/scale_against_depth.h"
+#include "measures/scale_against_depth.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "stimuli/congruence_figures.h"
+#include "figures/congruence_figures.h"
 
 #include <algorithm>
 #include <map>
@@ -8,7 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "core/svg_plot.h"
-#include "stimuli/contact_sheet.h"
+#include "figures/contact_sheet.h"
 
 namespace countershade {
 namespace {

@@ -1,4 +1,4 @@
-#include "stimuli/congruence.h"
+#include "measures/congruence.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "stimuli/depth_scale_figures.h"
+#include "figures/depth_scale_figures.h"
 
 #include <cmath>
 #include <sstream>
@@ -6,7 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "core/svg_plot.h"
-#include "stimuli/condition_lines.h"
+#include "figures/condition_lines.h"
 
 namespace countershade {
 namespace {

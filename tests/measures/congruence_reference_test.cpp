@@ -16,8 +16,8 @@
 #include "enhance/lightness.h"
 #include "enhance/method.h"
 #include "enhance/view_plan.h"
+#include "measures/congruence.h"
 #include "render/scene_loader.h"
-#include "stimuli/congruence.h"
 #include "test_util.h"
 
 namespace countershade {

@@ -6,8 +6,8 @@
 #include <map>
 #include <tuple>
 
+#include "audit/audit.h"
 #include "core/number_format.h"
-#include "stimuli/audit.h"
 
 namespace countershade {
 namespace {
