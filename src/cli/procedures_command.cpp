@@ -1,5 +1,6 @@
-// `countershade procedures`: the forced-choice procedures an experiment's `procedure` block (or a
-// `simulate --procedure` file) may name, and the parameters each takes.
+// `countershade procedures`: the procedures an experiment may run (the adjust block, and those a
+// forced_choice block's `procedure` or a `simulate --procedure` file may name), and the parameters
+// each takes.
 
 #include <cstdio>
 #include <memory>
@@ -14,10 +15,18 @@ std::string shown_default(const ParameterDoc& p) {
   return p.default_value.empty() ? "" : " [default " + p.default_value + "]";
 }
 
+// Where an experiment gives the procedure.
+std::string given_as(const procedures::ProcedureType& p) {
+  return p.study() == procedures::Study::adjustment
+             ? "the experiment's \"adjust\" block"
+             : "a \"forced_choice\" block's \"procedure\": {\"type\": \"" + p.name() + "\", …}";
+}
+
 void print_procedure(const procedures::ProcedureType& p) {
-  std::printf("%s: %s\n", p.name().c_str(), p.summary().c_str());
+  std::printf("%s: %s\n  given as %s\n", p.name().c_str(), p.summary().c_str(),
+              given_as(p).c_str());
   for (const auto& d : p.parameter_docs())
-    std::printf("  %-18s %s%s\n", d.key.c_str(), d.help.c_str(), shown_default(d).c_str());
+    std::printf("  %-20s %s%s\n", d.key.c_str(), d.help.c_str(), shown_default(d).c_str());
   std::printf("\n");
 }
 
@@ -30,7 +39,10 @@ std::string cell(const std::string& text) {
 
 // The table docs/forced-choice.md shows (DocumentedParameters.TheDocsTablesAreTheProcedures…).
 void print_markdown(const procedures::ProcedureType& p) {
-  std::printf("`{\"type\": \"%s\", …}`: %s.\n", p.name().c_str(), cell(p.summary()).c_str());
+  if (p.study() == procedures::Study::adjustment)
+    std::printf("The experiment's `\"adjust\"` block: %s.\n", cell(p.summary()).c_str());
+  else
+    std::printf("`{\"type\": \"%s\", …}`: %s.\n", p.name().c_str(), cell(p.summary()).c_str());
   if (p.parameter_docs().empty()) return;
   std::printf("\n| key | default | meaning |\n|---|---|---|\n");
   for (const auto& d : p.parameter_docs())
@@ -45,9 +57,11 @@ void add_procedures_command(CLI::App& app) {
   auto name = std::make_shared<std::string>();
   auto markdown = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
-      "procedures", "List the forced-choice procedures and the parameters each takes.");
+      "procedures",
+      "List the procedures (adjustment, forced choice) and the parameters each takes.");
   cmd->add_option("name", *name, "Show only this procedure");
-  cmd->add_flag("--markdown", *markdown, "As Markdown: the tables of docs/forced-choice.md");
+  cmd->add_flag("--markdown", *markdown,
+                "As Markdown: the tables of docs/forced-choice.md and docs/adjustment-study.md");
   cmd->callback([name, markdown] {
     const auto show = [&](const procedures::ProcedureType& p) {
       *markdown ? print_markdown(p) : print_procedure(p);
@@ -60,7 +74,8 @@ void add_procedures_command(CLI::App& app) {
     }
   });
   cmd->footer(
-      "In an experiment's forced_choice block: \"procedure\": {\"type\": NAME, its parameters}, "
+      "The adjustment procedure is the experiment's \"adjust\" block. In a forced_choice block: "
+      "\"procedure\": {\"type\": NAME, its parameters}, "
       "e.g.\n"
       "{\"type\": \"staircase\", \"startVal\": 1.0, \"stepSizes\": [0.4, 0.2], \"nDown\": 2}.\n"
       "The same object as a file of its own: countershade simulate --procedure P.json "

@@ -55,6 +55,8 @@ ParameterBag ParameterBag::from_json(const nlohmann::json& object, const std::st
   ParameterBag bag;
   bag.prefix_ = file + ": " + (path.empty() ? "" : path + ".");
   bag.location_ = file + (path.empty() ? "" : ": " + path);
+  bag.file_ = file;
+  bag.path_ = path;
   if (!object.is_object())
     throw_input_error(file + (path.empty() ? "" : ": " + path),
                       "expected an object, got " + json_type_name(object));
@@ -189,6 +191,13 @@ bool ParameterBag::boolean(const std::string& key, bool fallback) const {
   if (t == "true" || t == "1" || t == "yes" || t == "on") return true;
   if (t == "false" || t == "0" || t == "no" || t == "off") return false;
   fail(key, "expected true or false, got '" + t + "'");
+}
+
+std::optional<ParameterBag::Structured> ParameterBag::structured(const std::string& key) const {
+  const Entry* e = find(key);
+  if (!e) return std::nullopt;
+  if (command_line_) fail(key, "has a structure of its own; give it in a JSON file");
+  return Structured{e->value, file_, path_.empty() ? key : path_ + "." + key};
 }
 
 std::optional<std::string> ParameterBag::text(const std::string& key) const {

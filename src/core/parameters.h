@@ -61,6 +61,15 @@ class ParameterBag {
   // own syntax such as "5%".
   std::optional<std::string> text(const std::string& key) const;
 
+  // A value with a structure of its own (an object, a list of objects), for its owner to read
+  // strictly with JsonObject: the value, and the file and key path that name it in messages.
+  // Marks the key as read; nullopt when absent. On the command line such a key is an InputError.
+  struct Structured {
+    const nlohmann::json& value;
+    std::string file, path;
+  };
+  std::optional<Structured> structured(const std::string& key) const;
+
   // "experiment.json: methods[1]": the object itself (empty on the command line).
   const std::string& location() const { return location_; }
   // "--sigma-px" or "experiment.json: methods[1].sigma_px".
@@ -88,8 +97,9 @@ class ParameterBag {
 
   std::map<std::string, Entry> entries_;
   bool command_line_ = false;
-  std::string prefix_;    // "<file>: <path>." of a JSON object, to name keys it lacks
-  std::string location_;  // "<file>: <path>"
+  std::string prefix_;       // "<file>: <path>." of a JSON object, to name keys it lacks
+  std::string file_, path_;  // of a JSON object
+  std::string location_;     // "<file>: <path>"
   mutable std::set<std::string> known_;
   mutable std::map<std::string, nlohmann::json> fallbacks_;
 };

@@ -13,4 +13,16 @@ std::vector<ConditionSelection> read_condition_selections(const JsonObject& bloc
   return out;
 }
 
+std::vector<ConditionSelection> read_condition_selections(const ParameterBag& bag,
+                                                          const std::string& key) {
+  const auto list = bag.structured(key);
+  if (!list) return {};
+  // JsonObject reads a list of objects from the object that holds it: give it one.
+  const nlohmann::json holder = {{key, list->value}};
+  const std::string& path = list->path;
+  const std::string parent =
+      path.size() > key.size() ? path.substr(0, path.size() - key.size() - 1) : "";
+  return read_condition_selections(JsonObject(holder, list->file, parent), key);
+}
+
 }  // namespace countershade::procedures

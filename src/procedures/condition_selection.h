@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/json_reader.h"
+#include "core/parameters.h"
 
 namespace countershade::procedures {
 
@@ -16,6 +17,9 @@ struct ConditionSelection {
 
 // The array under `key` (none when the key is absent); each entry's unknown keys are refused.
 std::vector<ConditionSelection> read_condition_selections(const JsonObject& block,
+                                                          const std::string& key);
+// The same, from a procedure's parameter bag.
+std::vector<ConditionSelection> read_condition_selections(const ParameterBag& bag,
                                                           const std::string& key);
 
 }  // namespace countershade::procedures

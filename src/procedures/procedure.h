@@ -71,11 +71,16 @@ class ProcedureSettings {
   virtual Replay replay(const std::vector<bool>& responses, const std::string& where) const = 0;
 };
 
+// Where an experiment gives a procedure: per condition, as a forced_choice block's "procedure"
+// ({"type": NAME, …}), or as the whole adjust block (one plan of trials for the study).
+enum class Study { forced_choice, adjustment };
+
 class ProcedureType {
  public:
   virtual ~ProcedureType() = default;
   virtual std::string name() const = 0;  // the block's "type"
   virtual std::string summary() const = 0;
+  virtual Study study() const { return Study::forced_choice; }
   virtual std::vector<ParameterDoc> parameter_docs() const = 0;
   // The one parser: reads every key of the block but "type", checks the values together, and
   // ends with bag.finish(name()), so that an unknown key is an InputError naming it.

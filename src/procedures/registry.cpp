@@ -8,6 +8,7 @@ namespace countershade::procedures {
 
 // The built-in procedures, one line each. Every procedure file defines its factory.
 #define COUNTERSHADE_BUILTIN_PROCEDURES(X) \
+  X(adjustment)                            \
   X(constant)                              \
   X(staircase)                             \
   X(quest)
@@ -51,6 +52,10 @@ ProcedureBlock read_procedure_block(const nlohmann::json& block, const std::stri
   const JsonObject object(block, file, path);
   const std::string type = object.string("type");  // required: an absent type is named as such
   const ProcedureType& procedure = procedure_named(type, file + ": " + object.key_path("type"));
+  if (procedure.study() != Study::forced_choice)
+    throw_input_error(
+        file + ": " + object.key_path("type"),
+        "'" + type + "' is given as the experiment's adjust block, not as a procedure");
   return {type, procedure.parse(ParameterBag::from_json(block, file, path, {"type"}))};
 }
 

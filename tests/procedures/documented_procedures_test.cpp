@@ -16,6 +16,7 @@ namespace {
 
 // The least each built-in procedure needs to parse: its required keys.
 const std::map<std::string, nlohmann::json> kRequired = {
+    {"adjustment", nlohmann::json::object()},
     {"constant", {{"lambdas", {0.5}}}},
     {"staircase", {{"startVal", 1.0}}},
     {"quest", {{"tGuess", -0.5}, {"tGuessSd", 1.0}, {"pThreshold", 0.82}, {"beta", 3.5}}},
@@ -52,14 +53,17 @@ TEST(DocumentedProcedures, EveryProcedureDocumentsTheDefaultsItsParserReads) {
   }
 }
 
-// docs/forced-choice.md shows every procedure's parameters as `countershade procedures --markdown
-// NAME` prints them, between its markers (scripts/update-parameter-docs rewrites them).
+// The docs show every procedure's parameters as `countershade procedures --markdown NAME` prints
+// them, between its markers (scripts/update-parameter-docs rewrites them): the forced-choice
+// procedures in docs/forced-choice.md, the adjustment procedure in docs/adjustment-study.md.
 TEST(DocumentedProcedures, TheDocsTablesAreTheProceduresMarkdown) {
-  const std::string doc = testing::read_file(testing::source_dir() / "docs/forced-choice.md");
   for (const std::string& name : procedure_names()) {
+    const bool adjustment = procedure_named(name, "test").study() == Study::adjustment;
+    const std::string doc_name = adjustment ? "docs/adjustment-study.md" : "docs/forced-choice.md";
+    const std::string doc = testing::read_file(testing::source_dir() / doc_name);
     const std::string begin = "<!-- countershade procedures --markdown " + name + " -->\n";
     const size_t at = doc.find(begin);
-    ASSERT_NE(at, std::string::npos) << "docs/forced-choice.md has no generated table for " << name;
+    ASSERT_NE(at, std::string::npos) << doc_name << " has no generated table for " << name;
     const size_t start = at + begin.size(),
                  end = doc.find("<!-- end of generated table -->", start);
     ASSERT_NE(end, std::string::npos) << name;
