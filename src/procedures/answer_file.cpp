@@ -19,10 +19,11 @@ std::vector<bool> read_binary_responses(const std::filesystem::path& path) {
   for (size_t r = 1; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const std::string value = column < row.size() ? row[column] : "";
-    if (value != "0" && value != "1")
+    const bool correct = value == "1" || value == "Correct";
+    if (!correct && value != "0" && value != "Incorrect")
       throw_input_error(file + ":" + std::to_string(table.lines[r]),
-                        "response: expected 0 or 1, got '" + value + "'");
-    responses.push_back(value == "1");
+                        "response: expected 1 or Correct, 0 or Incorrect, got '" + value + "'");
+    responses.push_back(correct);
   }
   return responses;
 }

@@ -7,8 +7,8 @@
 
 namespace countershade::procedures {
 
-// The `response` column (0 or 1, one row per trial) of a CSV; anything else is an InputError
-// naming the file, line and column.
+// The `response` column (1 or Correct, 0 or Incorrect; one row per trial) of a CSV; anything else
+// is an InputError naming the file, line and column.
 std::vector<bool> read_binary_responses(const std::filesystem::path& path);
 
 }  // namespace countershade::procedures

@@ -11,7 +11,8 @@ namespace countershade::procedures {
   X(adjustment)                            \
   X(constant)                              \
   X(staircase)                             \
-  X(quest)
+  X(quest)                                 \
+  X(questplus)
 
 #define COUNTERSHADE_DECLARE_PROCEDURE(id) \
   std::unique_ptr<const ProcedureType> make_##id##_procedure();

@@ -20,6 +20,9 @@ const std::map<std::string, nlohmann::json> kRequired = {
     {"constant", {{"lambdas", {0.5}}}},
     {"staircase", {{"startVal", 1.0}}},
     {"quest", {{"tGuess", -0.5}, {"tGuessSd", 1.0}, {"pThreshold", 0.82}, {"beta", 3.5}}},
+    {"questplus",
+     {{"param_domain",
+       {{"threshold", {-1, 0}}, {"slope", 3}, {"lower_asymptote", 0.5}, {"lapse_rate", 0}}}}},
 };
 
 // A documented default against the parser's fallback: "4" matches 4 and [4], "db" matches "db".

@@ -29,7 +29,7 @@ TEST(ProcedureExtension, ProceduresListsEveryProcedure) {
     EXPECT_NE(("\n" + listed.output).find("\n" + name + ": "), std::string::npos) << name << "\n"
                                                                                   << listed.output;
   EXPECT_EQ(procedure_names(), (std::vector<std::string>{"adjustment", "constant", "staircase",
-                                                         "quest"}));
+                                                         "quest", "questplus"}));
   EXPECT_EQ(listed.output.find("\nfixed: "), std::string::npos);
   const auto extended = run_extended("procedures fixed");
   ASSERT_EQ(extended.exit_code, 0) << extended.output;
@@ -37,7 +37,7 @@ TEST(ProcedureExtension, ProceduresListsEveryProcedure) {
   EXPECT_NE(extended.output.find("trials"), std::string::npos) << extended.output;
   const auto unknown = testing::run_cli("procedures fixed");
   EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
-  EXPECT_NE(unknown.output.find("adjustment, constant, staircase, quest"),
+  EXPECT_NE(unknown.output.find("adjustment, constant, staircase, quest, questplus"),
             std::string::npos)
       << unknown.output;
 }

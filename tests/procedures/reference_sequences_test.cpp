@@ -172,8 +172,9 @@ TEST(Replay, BadProceduresAreRefusedWithOneLine) {
       testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
                        (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.output.find("answers.csv:3: response: expected 0 or 1, got 'yes'"),
-            std::string::npos)
+  EXPECT_NE(
+      run.output.find("answers.csv:3: response: expected 1 or Correct, 0 or Incorrect, got 'yes'"),
+      std::string::npos)
       << run.output;
 }
 

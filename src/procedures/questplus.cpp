@@ -1,0 +1,197 @@
+#include "procedures/questplus.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace countershade::procedures {
+namespace {
+
+// −q ln q, with 0 ln 0 = 0.
+double information(double q) { return q > 0 ? -q * std::log(q) : 0.0; }
+
+double binary_entropy(double p) { return information(p) + information(1 - p); }
+
+// The index of each parameter at a flat point (the grid's C order: the last parameter fastest).
+std::array<size_t, kQuestPlusParameters> unflatten(
+    size_t point, const std::array<std::vector<double>, kQuestPlusParameters>& grids) {
+  std::array<size_t, kQuestPlusParameters> index{};
+  for (size_t k = kQuestPlusParameters; k-- > 0;) {
+    index[k] = point % grids[k].size();
+    point /= grids[k].size();
+  }
+  return index;
+}
+
+// The outer product of the per-parameter weights, normalised.
+std::vector<double> joint_prior(const QuestPlusDefinition& d, size_t points) {
+  std::vector<double> prior(points, 1.0);
+  for (size_t point = 0; point < points; ++point) {
+    const auto index = unflatten(point, d.grids);
+    for (size_t k = 0; k < kQuestPlusParameters; ++k)
+      if (!d.prior[k].empty()) prior[point] *= d.prior[k][index[k]];
+  }
+  const double sum = std::accumulate(prior.begin(), prior.end(), 0.0);
+  for (double& p : prior) p /= sum;
+  return prior;
+}
+
+}  // namespace
+
+std::array<std::string, kQuestPlusParameters> parameter_names(PsychometricShape shape) {
+  if (shape == PsychometricShape::norm_cdf) return {"mean", "sd", "lower_asymptote", "lapse_rate"};
+  return {"threshold", "slope", "lower_asymptote", "lapse_rate"};
+}
+
+double psychometric(PsychometricShape shape, StimulusScale scale, double x,
+                    const ParameterPoint& p) {
+  const double guess = p[2], lapse = p[3];
+  if (shape == PsychometricShape::norm_cdf)
+    return guess + (1 - guess - lapse) * 0.5 * std::erfc(-(x - p[0]) / p[1] / std::sqrt(2.0));
+  double growth = 0;  // the Weibull's exponent on each scale
+  switch (scale) {
+    case StimulusScale::log10:
+      growth = std::pow(10.0, p[1] * (x - p[0]));
+      break;
+    case StimulusScale::decibel:
+      growth = std::pow(10.0, p[1] * (x - p[0]) / 20);
+      break;
+    case StimulusScale::linear:
+      growth = std::pow(x / p[0], p[1]);
+      break;
+  }
+  return 1 - lapse - (1 - guess - lapse) * std::exp(-growth);
+}
+
+size_t QuestPlusDefinition::parameter_points() const {
+  size_t n = 1;
+  for (const auto& g : grids) n *= g.size();
+  return n;
+}
+
+double QuestPlusDefinition::bytes() const {
+  double points = 1;
+  for (const auto& g : grids) points *= double(g.size());
+  // Two tables per stimulus and the posterior.
+  return (2 * double(stimuli.size()) + 1) * points * sizeof(double);
+}
+
+QuestPlus::QuestPlus(QuestPlusDefinition definition)
+    : definition_(std::move(definition)), points_(definition_.parameter_points()) {
+  const size_t n = definition_.stimuli.size();
+  likelihood_.resize(n * points_);
+  outcome_entropy_.resize(n * points_);
+  tbb::parallel_for(size_t(0), points_, [&](size_t point) {
+    const auto index = unflatten(point, definition_.grids);
+    ParameterPoint p{};
+    for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = definition_.grids[k][index[k]];
+    for (size_t s = 0; s < n; ++s) {
+      const double psi =
+          psychometric(definition_.shape, definition_.scale, definition_.stimuli[s], p);
+      likelihood_[s * points_ + point] = psi;
+      outcome_entropy_[s * points_ + point] = binary_entropy(psi);
+    }
+  });
+  posterior_ = joint_prior(definition_, points_);
+}
+
+std::vector<double> QuestPlus::expected_entropies() const {
+  const double h = entropy();
+  std::vector<double> out(definition_.stimuli.size());
+  tbb::parallel_for(size_t(0), out.size(), [&](size_t s) {
+    const double* l = &likelihood_[s * points_];
+    const double* e = &outcome_entropy_[s * points_];
+    double correct = 0, within = 0;  // Σ post·ψ and Σ post·h
+    for (size_t i = 0; i < points_; ++i) {
+      correct += posterior_[i] * l[i];
+      within += posterior_[i] * e[i];
+    }
+    out[s] = h + within - binary_entropy(std::clamp(correct, 0.0, 1.0));
+  });
+  return out;
+}
+
+size_t QuestPlus::next() const {
+  const std::vector<double> expected = expected_entropies();
+  const double least = *std::min_element(expected.begin(), expected.end());
+  for (size_t s = 0; s < expected.size(); ++s)
+    if (expected[s] <= least + std::abs(least) * 1e-12) return s;
+  return 0;
+}
+
+void QuestPlus::update(size_t stimulus, bool first_outcome) {
+  multiply(&likelihood_[stimulus * points_], first_outcome);
+}
+
+void QuestPlus::update_at(double x, bool first_outcome) {
+  std::vector<double> l(points_);
+  for (size_t point = 0; point < points_; ++point) {
+    const auto index = unflatten(point, definition_.grids);
+    ParameterPoint p{};
+    for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = definition_.grids[k][index[k]];
+    l[point] = psychometric(definition_.shape, definition_.scale, x, p);
+  }
+  multiply(l.data(), first_outcome);
+}
+
+void QuestPlus::multiply(const double* psi, bool first_outcome) {
+  ++trials_;
+  double sum = 0;
+  for (size_t i = 0; i < points_; ++i) sum += posterior_[i] * (first_outcome ? psi[i] : 1 - psi[i]);
+  // An answer no parameter point allows (with a lapse rate of 0, a miss where ψ = 1 everywhere)
+  // would leave no posterior: it is counted and leaves the posterior as it was.
+  if (!(sum > 0)) {
+    ++impossible_;
+    return;
+  }
+  for (size_t i = 0; i < points_; ++i)
+    posterior_[i] = posterior_[i] * (first_outcome ? psi[i] : 1 - psi[i]) / sum;
+}
+
+double QuestPlus::entropy() const {
+  double h = 0;
+  for (double p : posterior_) h += information(p);
+  return h;
+}
+
+ParameterPoint QuestPlus::mode() const {
+  const size_t best = size_t(std::max_element(posterior_.begin(), posterior_.end()) -
+                             posterior_.begin());  // the first maximum
+  const auto index = unflatten(best, definition_.grids);
+  ParameterPoint out{};
+  for (size_t k = 0; k < kQuestPlusParameters; ++k) out[k] = definition_.grids[k][index[k]];
+  return out;
+}
+
+std::vector<double> QuestPlus::marginal(size_t parameter) const {
+  std::vector<double> out(definition_.grids[parameter].size(), 0.0);
+  for (size_t point = 0; point < points_; ++point)
+    out[unflatten(point, definition_.grids)[parameter]] += posterior_[point];
+  return out;
+}
+
+ParameterPoint QuestPlus::mean() const {
+  ParameterPoint out{};
+  for (size_t k = 0; k < kQuestPlusParameters; ++k) {
+    const std::vector<double> m = marginal(k);
+    for (size_t i = 0; i < m.size(); ++i) out[k] += definition_.grids[k][i] * m[i];
+  }
+  return out;
+}
+
+ParameterPoint QuestPlus::quantile(double probability) const {
+  ParameterPoint out{};
+  for (size_t k = 0; k < kQuestPlusParameters; ++k) {
+    const std::vector<double> m = marginal(k);
+    double cumulative = 0;
+    size_t i = 0;
+    for (; i + 1 < m.size(); ++i)
+      if ((cumulative += m[i]) >= probability) break;
+    out[k] = definition_.grids[k][i];
+  }
+  return out;
+}
+
+}  // namespace countershade::procedures
