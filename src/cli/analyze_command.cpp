@@ -9,6 +9,7 @@
 #include "analysis/analysis.h"
 #include "analysis/forced_choice_analysis.h"
 #include "analysis/method_comparison.h"
+#include "analysis/procedure_estimates.h"
 #include "analysis/report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -50,6 +51,19 @@ void print_warnings(const std::string& block, const std::vector<std::string>& wa
                  one_line((block.empty() ? "" : " (" + block + ")") + ": " + w).c_str());
 }
 
+// The procedures' own estimates (QUEST+'s posterior) beside the fits, when there are any.
+void write_procedure_estimates(const std::vector<fs::path>& files,
+                               const analysis::ForcedChoiceResults& fits, const std::string& output,
+                               nlohmann::ordered_json& block) {
+  std::vector<std::string> warnings;
+  const auto estimates = analysis::procedure_estimates(files, warnings);
+  print_warnings("procedure estimates", warnings);
+  if (estimates.empty()) return;
+  block["procedure_estimates"] = analysis::procedure_estimates_json(estimates);
+  write_text_atomically(fs::path(output) / "procedure_estimates.csv",
+                        analysis::procedure_estimates_csv(estimates, fits));
+}
+
 void run(const AnalyzeArgs& args) {
   analysis::AnalysisOptions options;
   options.normalization = analysis::parse_jnd_normalization(args.normalization);
@@ -81,6 +95,7 @@ void run(const AnalyzeArgs& args) {
     for (const auto& [scene, file] :
          analysis::write_forced_choice_outputs(*fc, args.output, !args.no_figures))
       extra["forced_choice"]["figures"][scene] = file;
+    write_procedure_estimates(forced_choice, *fc, args.output, extra["forced_choice"]);
   }
   if (fc && !results.empty()) {
     const auto comparison = analysis::compare_methods(results, *fc);

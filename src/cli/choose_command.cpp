@@ -35,7 +35,7 @@ void add_choose_command(CLI::App& app) {
   forced_choice::ChoiceSessionOptions* o = &a->options;
   CLI::App* cmd = app.add_subcommand("choose",
                                      "Run a forced-choice session (2 to 4 alternatives; constant "
-                                     "stimuli, staircases or QUEST) over a set.");
+                                     "stimuli, staircases, QUEST or QUEST+) over a set.");
   cmd->add_option("manifest", a->manifest, "The stimulus set's manifest.json")->required();
   cmd->add_option("--subject", o->subject, "Participant id (letters, digits, '-', '_')")
       ->required();

@@ -13,7 +13,9 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/parameters.h"
@@ -69,6 +71,13 @@ class ProcedureSettings {
   // Runs the procedure on the answers, in its own units, until it finishes or they run out.
   // Throws InputError (naming `where`) for a procedure that needs a grid to run.
   virtual Replay replay(const std::vector<bool>& responses, const std::string& where) const = 0;
+  // The procedure's own estimate from a condition's answered trials (λ shown, correct), for
+  // `analyze`: a posterior's summary. None for a procedure that keeps no posterior to report.
+  virtual std::optional<nlohmann::ordered_json> estimate(
+      const std::vector<std::pair<double, bool>>& trials) const {
+    (void)trials;
+    return std::nullopt;
+  }
 };
 
 // Where an experiment gives a procedure: per condition, as a forced_choice block's "procedure"

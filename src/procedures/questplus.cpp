@@ -165,6 +165,32 @@ ParameterPoint QuestPlus::mode() const {
   return out;
 }
 
+std::array<double, 4> QuestPlus::distribution_of(
+    const std::function<double(const ParameterPoint&)>& f) const {
+  std::vector<std::pair<double, double>> weighted(points_);  // (value, probability)
+  double mean = 0;
+  for (size_t point = 0; point < points_; ++point) {
+    const auto index = unflatten(point, definition_.grids);
+    ParameterPoint p{};
+    for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = definition_.grids[k][index[k]];
+    weighted[point] = {f(p), posterior_[point]};
+    mean += weighted[point].first * weighted[point].second;
+  }
+  std::sort(weighted.begin(), weighted.end());
+  std::array<double, 4> out{f(mode()), mean, weighted.back().first, weighted.back().first};
+  double cumulative = 0;
+  bool low = false;
+  for (const auto& [value, probability] : weighted) {
+    cumulative += probability;
+    if (!low && cumulative >= 0.025) out[2] = value, low = true;
+    if (cumulative >= 0.975) {
+      out[3] = value;
+      break;
+    }
+  }
+  return out;
+}
+
 std::vector<double> QuestPlus::marginal(size_t parameter) const {
   std::vector<double> out(definition_.grids[parameter].size(), 0.0);
   for (size_t point = 0; point < points_; ++point)

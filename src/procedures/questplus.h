@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,10 @@ class QuestPlus {
   // Each parameter's marginal quantile: the least grid value whose cumulative probability reaches
   // `probability`.
   ParameterPoint quantile(double probability) const;
+  // The posterior distribution of a function of the parameters: its value at the mode, its mean,
+  // and its 2.5 % and 97.5 % quantiles.
+  std::array<double, 4> distribution_of(
+      const std::function<double(const ParameterPoint&)>& f) const;
   int trials() const { return trials_; }
   // Answers that no parameter point allows, left out of the posterior.
   int impossible_answers() const { return impossible_; }

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -76,6 +77,14 @@ std::optional<std::string> memory_problem(const QuestPlusDefinition& d) {
          format_value(round_to(allowed / (1 << 30), 2)) + " GiB)";
 }
 
+// The λ at which the function is halfway from its guess rate to its top (F = 1/2), where the
+// psychometric fits of `analyze` put their threshold: α·(ln 2)^(1/β) for the Weibull with
+// α = 10^t (log10), 10^(t/20) (dB) or t (linear); the mean for the normal CDF.
+double lambda_at_half(PsychometricShape shape, StimulusScale scale, const ParameterPoint& p) {
+  if (shape == PsychometricShape::norm_cdf) return p[0];
+  return from_scale(scale, p[0]) * std::pow(std::log(2.0), 1 / p[1]);
+}
+
 class QuestPlusProcedure final : public Procedure {
  public:
   QuestPlusProcedure(QuestPlusDefinition definition, std::vector<size_t> points, int trials,
@@ -116,6 +125,7 @@ class QuestPlusSettings final : public ProcedureSettings {
                                    const std::string& where) const override;
   void describe(json& record) const override { record["trials"] = trials(); }
   Replay replay(const std::vector<bool>& responses, const std::string& where) const override;
+  std::optional<json> estimate(const std::vector<std::pair<double, bool>>& trials) const override;
 
  private:
   int trials() const { return block_.trials > 0 ? block_.trials : kDefaultTrials; }
@@ -161,6 +171,29 @@ Replay QuestPlusSettings::replay(const std::vector<bool>& responses,
   out.summary = summary(quest, block_.estimate_mean);
   out.summary["trials"] = n;
   out.summary["responses_left"] = responses.size() - n;
+  return out;
+}
+
+std::optional<json> QuestPlusSettings::estimate(
+    const std::vector<std::pair<double, bool>>& trials) const {
+  QuestPlusDefinition d = block_.definition;
+  d.stimuli.clear();  // the λ shown, on the scale: the posterior needs nothing else
+  for (const auto& [lambda, correct] : trials) d.stimuli.push_back(to_scale(d.scale, lambda));
+  std::sort(d.stimuli.begin(), d.stimuli.end());
+  d.stimuli.erase(std::unique(d.stimuli.begin(), d.stimuli.end()), d.stimuli.end());
+  if (memory_problem(d)) return std::nullopt;
+  QuestPlus quest(d);
+  for (const auto& [lambda, correct] : trials) {
+    const double x = to_scale(d.scale, lambda);
+    quest.update(
+        size_t(std::lower_bound(d.stimuli.begin(), d.stimuli.end(), x) - d.stimuli.begin()),
+        correct);
+  }
+  json out = summary(quest, block_.estimate_mean);
+  const auto half = quest.distribution_of(
+      [&](const ParameterPoint& p) { return lambda_at_half(d.shape, d.scale, p); });
+  out["lambda_at_half"] = {
+      {"mode", half[0]}, {"mean", half[1]}, {"quantile_2.5", half[2]}, {"quantile_97.5", half[3]}};
   return out;
 }
 

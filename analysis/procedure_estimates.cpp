@@ -1,0 +1,122 @@
+#include "analysis/procedure_estimates.h"
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "core/error.h"
+#include "core/json_reader.h"
+#include "core/number_format.h"
+#include "formats/responses.h"
+#include "procedures/registry.h"
+
+namespace countershade::analysis {
+namespace {
+
+namespace fs = std::filesystem;
+using Trials = std::vector<std::pair<double, bool>>;                    // λ shown, correct
+using Key = std::tuple<std::string, std::string, std::string, double>;  // subject, scene, label, σ
+
+std::map<Key, Trials> trials_by_condition(const fs::path& file) {
+  std::map<Key, Trials> out;
+  for (const ForcedChoiceTrial& t : read_forced_choice_trials({file}))
+    out[{t.subject, t.scene, t.label, t.sigma}].push_back({t.lambda, t.correct});
+  return out;
+}
+
+// The estimates of one session file; none when its procedure keeps no posterior.
+std::vector<ProcedureEstimate> estimates_of(const fs::path& file) {
+  fs::path sidecar = file;
+  sidecar.replace_extension(".json");
+  std::vector<ProcedureEstimate> out;
+  if (!fs::exists(sidecar)) return out;
+  const nlohmann::json record = parse_json_file(sidecar);
+  const JsonObject root(record, sidecar.string(), "");
+  const JsonObject config = root.object("config");
+  const procedures::ProcedureBlock block = procedures::read_procedure_block(
+      config.raw("procedure"), sidecar.string(), "config.procedure");
+  const int session = int(root.integer_or("session", 0));
+  for (const auto& [key, trials] : trials_by_condition(file)) {
+    auto estimate = block.settings->estimate(trials);
+    if (!estimate) return {};
+    const auto& [subject, scene, label, sigma] = key;
+    out.push_back({subject, session, scene, label, sigma, trials.size(), std::move(*estimate)});
+  }
+  return out;
+}
+
+std::string number(const nlohmann::ordered_json& v) {
+  if (!v.is_number()) return "NA";
+  const double x = v.get<double>();
+  return std::isfinite(x) ? format_value(round_to(x, 10)) : std::string("NA");
+}
+
+const PsychometricRow* fit_of(const ForcedChoiceResults& fits, const ProcedureEstimate& e) {
+  for (const auto& row : fits.rows)
+    if (!row.pooled && row.subject == e.subject && row.scene == e.scene && row.label == e.label &&
+        row.sigma == e.sigma)
+      return &row;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<ProcedureEstimate> procedure_estimates(const std::vector<fs::path>& files,
+                                                   std::vector<std::string>& warnings) {
+  std::vector<ProcedureEstimate> out;
+  for (const fs::path& file : files) {
+    try {
+      for (auto& e : estimates_of(file)) out.push_back(std::move(e));
+    } catch (const InputError& e) {
+      warnings.push_back(std::string(e.what()) + "; its procedure's own estimates are left out");
+    }
+  }
+  return out;
+}
+
+std::string procedure_estimates_csv(const std::vector<ProcedureEstimate>& estimates,
+                                    const ForcedChoiceResults& fits) {
+  std::string csv = csv_line({"subject", "session", "scene", "label", "sigma", "trials", "quantity",
+                              "mode", "mean", "quantile_2.5", "quantile_97.5", "fit_threshold",
+                              "fit_ci_low", "fit_ci_high"});
+  for (const ProcedureEstimate& e : estimates) {
+    const std::vector<std::string> condition = {
+        e.subject, std::to_string(e.session), e.scene,
+        e.label,   format_value(e.sigma),     std::to_string(e.trials)};
+    auto row = [&](const std::string& quantity, const nlohmann::ordered_json& mode,
+                   const nlohmann::ordered_json& mean, const nlohmann::ordered_json& low,
+                   const nlohmann::ordered_json& high, const PsychometricRow* fit) {
+      std::vector<std::string> fields = condition;
+      for (const std::string& f : {quantity, number(mode), number(mean), number(low), number(high)})
+        fields.push_back(f);
+      for (double v : {fit ? fit->fit.threshold : NAN, fit ? fit->fit.ci_low : NAN,
+                       fit ? fit->fit.ci_high : NAN})
+        fields.push_back(std::isfinite(v) ? format_value(round_to(v, 10)) : "NA");
+      csv += csv_line(fields);
+    };
+    const auto& s = e.estimate;
+    for (const auto& [name, mode] : s["mode"].items())
+      row(name, mode, s["mean"][name], s["quantile_2.5"][name], s["quantile_97.5"][name], nullptr);
+    if (s.contains("lambda_at_half")) {
+      const auto& h = s["lambda_at_half"];
+      row("lambda_at_half", h["mode"], h["mean"], h["quantile_2.5"], h["quantile_97.5"],
+          fit_of(fits, e));
+    }
+  }
+  return csv;
+}
+
+nlohmann::ordered_json procedure_estimates_json(const std::vector<ProcedureEstimate>& estimates) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const ProcedureEstimate& e : estimates)
+    out.push_back({{"subject", e.subject},
+                   {"session", e.session},
+                   {"scene", e.scene},
+                   {"label", e.label},
+                   {"sigma", e.sigma},
+                   {"trials", e.trials},
+                   {"estimate", e.estimate}});
+  return out;
+}
+
+}  // namespace countershade::analysis
