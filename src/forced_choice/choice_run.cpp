@@ -84,7 +84,17 @@ ChoiceRun::ChoiceRun(const runtime::Study& study, const ChoiceConfig& config, ui
                        " / σ " + format_value(c.sigma) + ")");
     }
   }
-  current_ = plan_next();
+}
+
+const std::optional<ChoiceTrial>& ChoiceRun::current() const {
+  if (!planned_) current_ = plan_next(), planned_ = true;
+  return current_;
+}
+
+bool ChoiceRun::ready() const {
+  if (planned_ || in_practice()) return true;
+  const auto slot = next_slot();
+  return !slot || procedures_[*slot]->ready();
 }
 
 int ChoiceRun::slot_of(int condition) const {
@@ -107,14 +117,20 @@ ChoiceTrial ChoiceRun::practice_trial(int k) const {
   return t;
 }
 
-std::optional<ChoiceTrial> ChoiceRun::plan_next() const {
-  if (practice_done_ < config_.practice_trials) return practice_trial(practice_done_);
+std::optional<size_t> ChoiceRun::next_slot() const {
   std::vector<size_t> open;
   for (size_t i = 0; i < procedures_.size(); ++i)
     if (!procedures_[i]->finished()) open.push_back(i);
   if (open.empty()) return std::nullopt;
   SampleStream random(seed_, kStreamCondition, uint64_t(real_done_), 0);
-  const size_t slot = open[std::min(size_t(random.next() * double(open.size())), open.size() - 1)];
+  return open[std::min(size_t(random.next() * double(open.size())), open.size() - 1)];
+}
+
+std::optional<ChoiceTrial> ChoiceRun::plan_next() const {
+  if (in_practice()) return practice_trial(practice_done_);
+  const auto next = next_slot();
+  if (!next) return std::nullopt;
+  const size_t slot = *next;
   ChoiceTrial t;
   t.number = real_done_ + 1;
   t.condition = conditions_[slot];
@@ -127,7 +143,7 @@ std::optional<ChoiceTrial> ChoiceRun::plan_next() const {
 }
 
 bool ChoiceRun::answer(int response) {
-  const ChoiceTrial t = *current_;
+  const ChoiceTrial t = *current();
   const bool correct = response == t.target;
   if (t.practice) {
     ++practice_done_;
@@ -135,7 +151,7 @@ bool ChoiceRun::answer(int response) {
     procedures_[size_t(slot_of(t.condition))]->record(t.intensity, correct);
     ++real_done_;
   }
-  current_ = plan_next();
+  planned_ = false;
   return correct;
 }
 

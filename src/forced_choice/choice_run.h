@@ -33,18 +33,23 @@ class ChoiceRun {
   ChoiceRun(const ChoiceRun&) = delete;
   ChoiceRun& operator=(const ChoiceRun&) = delete;
 
-  // The trial to show now; none when the session is finished.
-  const std::optional<ChoiceTrial>& current() const { return current_; }
+  // The trial to show now; none when the session is finished. After an answer it is planned when
+  // first asked for, and waits for its procedure's choice if that is still under way.
+  const std::optional<ChoiceTrial>& current() const;
+  // Whether current() answers at once (the procedure of the next trial is ready).
+  bool ready() const;
   // The answer to the current trial (a position or interval); returns whether it was correct.
   bool answer(int response);
-  bool finished() const { return !current_.has_value(); }
+  bool finished() const { return !in_practice() && !next_slot(); }
   int real_trials_done() const { return real_done_; }
-  bool in_practice() const { return current_ && current_->practice; }
+  bool in_practice() const { return practice_done_ < config_.practice_trials; }
   const std::vector<int>& conditions() const { return conditions_; }
   nlohmann::ordered_json procedure_state(int condition) const;
 
  private:
   std::optional<ChoiceTrial> plan_next() const;
+  // The procedure (by slot) of the next real trial: an open one drawn in the seeded order.
+  std::optional<size_t> next_slot() const;
   ChoiceTrial practice_trial(int k) const;
   int slot_of(int condition) const;
 
@@ -55,7 +60,8 @@ class ChoiceRun {
   std::vector<ChoiceGrid> grids_;  // per selected condition
   std::vector<std::unique_ptr<ConditionProcedure>> procedures_;
   int practice_done_ = 0, real_done_ = 0;
-  std::optional<ChoiceTrial> current_;
+  mutable std::optional<ChoiceTrial> current_;
+  mutable bool planned_ = false;  // current_ is the trial to show now
 };
 
 }  // namespace countershade::forced_choice

@@ -51,7 +51,9 @@ runtime::DisplayOptions display_options(const ChoiceSessionOptions& o, const run
   return d;
 }
 
-enum class Phase { instructions, trial, feedback, practice_done, paused, finished };
+// `choosing`: the blank surround while the next trial's procedure still chooses its stimulus
+// (QUEST+ on a large grid), so that no frame waits for it.
+enum class Phase { instructions, trial, feedback, practice_done, paused, finished, choosing };
 
 constexpr Key kNumberKeys[] = {Key::one, Key::two, Key::three, Key::four};
 
@@ -148,6 +150,9 @@ class ChoiceLoop final : public runtime::RunLoop {
         break;
       case Phase::feedback:
         break;
+      case Phase::choosing:
+        if (key == Key::escape) pause(now);
+        break;
       case Phase::finished:
         if (key == Key::enter || key == Key::escape) end(RunEnd::completed);
         break;
@@ -196,10 +201,12 @@ class ChoiceLoop final : public runtime::RunLoop {
   }
 
   void next_trial(double now) {
-    enter_phase(run_.finished() ? Phase::finished : Phase::trial, now);
+    if (run_.finished()) return enter_phase(Phase::finished, now);
+    enter_phase(run_.ready() ? Phase::trial : Phase::choosing, now);
   }
 
   void advance(double now) override {
+    if (phase_ == Phase::choosing && run_.ready()) enter_phase(Phase::trial, now);
     if (phase_ == Phase::feedback &&
         now >= phase_since_ + config_.feedback_frames / presenter().refresh_hz())
       after_answer(feedback_after_practice_, now);
@@ -265,6 +272,8 @@ class ChoiceLoop final : public runtime::RunLoop {
         return trial_content(t);
       case Phase::feedback:
         c.message = last_correct_ ? "Correct" : "Wrong";
+        break;
+      case Phase::choosing:
         break;
       case Phase::practice_done:
         c.message =

@@ -30,6 +30,7 @@ class ConditionProcedure {
                      const std::string& where);
 
   Intensity next() const { return procedure_->next(); }
+  bool ready() const { return procedure_->ready(); }
   void record(const Intensity& shown, bool correct);
   bool finished() const { return trials_ >= max_trials_ || procedure_->finished(); }
   int trials() const { return trials_; }

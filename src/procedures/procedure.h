@@ -41,8 +41,12 @@ struct Intensity {
 class Procedure {
  public:
   virtual ~Procedure() = default;
-  // What to show next. Called only while !finished().
+  // What to show next. Called only while !finished(); it waits for a choice made in the background.
   virtual Intensity next() const = 0;
+  // Whether next() answers at once. A procedure that chooses in the background after each answer
+  // (QUEST+ on a large grid) is not ready while it computes, so that the study can keep drawing
+  // frames and show the trial when it is.
+  virtual bool ready() const { return true; }
   // The answer to a trial shown at `shown` (which may differ from what next() asked for).
   virtual void record(const Intensity& shown, bool correct) = 0;
   // Whether the procedure's own rule ends the condition (the study's max_trials ends it too).

@@ -95,6 +95,7 @@ QuestPlus::QuestPlus(QuestPlusDefinition definition)
     }
   });
   posterior_ = joint_prior(definition_, points_);
+  entropy_ = posterior_entropy();
 }
 
 std::vector<double> QuestPlus::expected_entropies() const {
@@ -148,9 +149,11 @@ void QuestPlus::multiply(const double* psi, bool first_outcome) {
   }
   for (size_t i = 0; i < points_; ++i)
     posterior_[i] = posterior_[i] * (first_outcome ? psi[i] : 1 - psi[i]) / sum;
+  entropy_ = posterior_entropy();
+  marginals_.reset();
 }
 
-double QuestPlus::entropy() const {
+double QuestPlus::posterior_entropy() const {
   double h = 0;
   for (double p : posterior_) h += information(p);
   return h;
@@ -191,17 +194,26 @@ std::array<double, 4> QuestPlus::distribution_of(
   return out;
 }
 
-std::vector<double> QuestPlus::marginal(size_t parameter) const {
-  std::vector<double> out(definition_.grids[parameter].size(), 0.0);
-  for (size_t point = 0; point < points_; ++point)
-    out[unflatten(point, definition_.grids)[parameter]] += posterior_[point];
-  return out;
+const std::array<std::vector<double>, kQuestPlusParameters>& QuestPlus::marginals() const {
+  if (marginals_) return *marginals_;
+  const auto& g = definition_.grids;
+  std::array<std::vector<double>, kQuestPlusParameters> m;
+  for (size_t k = 0; k < kQuestPlusParameters; ++k) m[k].assign(g[k].size(), 0.0);
+  size_t point = 0;  // one pass in the grid's C order
+  for (size_t i0 = 0; i0 < g[0].size(); ++i0)
+    for (size_t i1 = 0; i1 < g[1].size(); ++i1)
+      for (size_t i2 = 0; i2 < g[2].size(); ++i2)
+        for (size_t i3 = 0; i3 < g[3].size(); ++i3) {
+          const double p = posterior_[point++];
+          m[0][i0] += p, m[1][i1] += p, m[2][i2] += p, m[3][i3] += p;
+        }
+  return *(marginals_ = std::move(m));
 }
 
 ParameterPoint QuestPlus::mean() const {
   ParameterPoint out{};
   for (size_t k = 0; k < kQuestPlusParameters; ++k) {
-    const std::vector<double> m = marginal(k);
+    const std::vector<double>& m = marginals()[k];
     for (size_t i = 0; i < m.size(); ++i) out[k] += definition_.grids[k][i] * m[i];
   }
   return out;
@@ -210,7 +222,7 @@ ParameterPoint QuestPlus::mean() const {
 ParameterPoint QuestPlus::quantile(double probability) const {
   ParameterPoint out{};
   for (size_t k = 0; k < kQuestPlusParameters; ++k) {
-    const std::vector<double> m = marginal(k);
+    const std::vector<double>& m = marginals()[k];
     double cumulative = 0;
     size_t i = 0;
     for (; i + 1 < m.size(); ++i)

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,7 @@ class QuestPlus {
   // The same at a stimulus outside the domain (its likelihoods computed for this answer).
   void update_at(double x, bool first_outcome);
 
-  double entropy() const;  // of the posterior, nats
+  double entropy() const { return entropy_; }  // of the posterior, nats
   // The joint posterior's mode (the first maximum in the grid's order), and each parameter's
   // marginal mean.
   ParameterPoint mode() const;
@@ -81,7 +82,10 @@ class QuestPlus {
   const QuestPlusDefinition& definition() const { return definition_; }
 
  private:
-  std::vector<double> marginal(size_t parameter) const;
+  // Each parameter's marginal posterior, summed once per answer (on the thread that asks: the
+  // study's, never the background choice's).
+  const std::array<std::vector<double>, kQuestPlusParameters>& marginals() const;
+  double posterior_entropy() const;
   void multiply(const double* psi, bool first_outcome);  // posterior × ψ or 1 − ψ, normalised
 
   QuestPlusDefinition definition_;
@@ -89,6 +93,8 @@ class QuestPlus {
   std::vector<double> likelihood_;       // [stimulus][point]: ψ
   std::vector<double> outcome_entropy_;  // [stimulus][point]: −ψ ln ψ − (1 − ψ) ln(1 − ψ)
   std::vector<double> posterior_;
+  double entropy_ = 0;
+  mutable std::optional<std::array<std::vector<double>, kQuestPlusParameters>> marginals_;
   int trials_ = 0, impossible_ = 0;
 };
 

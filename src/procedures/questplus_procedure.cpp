@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <optional>
 
 #include "core/error.h"
@@ -93,28 +95,52 @@ class QuestPlusProcedure final : public Procedure {
         points_(std::move(points)),
         trials_(trials),
         estimate_mean_(estimate_mean),
-        grid_(grid) {}
+        grid_(grid) {
+    choose_in_background();  // the first trial's stimulus, while the instructions show
+  }
+  ~QuestPlusProcedure() override { settle(); }
   Intensity next() const override {
+    settle();
     if (!next_) next_ = quest_.next();
     return {grid_.lambdas[points_[*next_]], points_[*next_]};
   }
+  bool ready() const override {
+    return next_ || (choosing_.valid() &&
+                     choosing_.wait_for(std::chrono::seconds(0)) == std::future_status::ready);
+  }
+  // Updates the posterior, then chooses the next stimulus on another thread while the
+  // participant sees the feedback or the blank between trials.
   void record(const Intensity& shown, bool correct) override {
+    settle();
     next_.reset();
-    for (size_t s = 0; s < points_.size(); ++s)
-      if (points_[s] == shown.grid) return quest_.update(s, correct);
-    const StimulusScale scale = quest_.definition().scale;
-    quest_.update_at(to_scale(scale, grid_.lambdas[shown.grid]), correct);
+    update(shown, correct);
+    choose_in_background();
   }
   bool finished() const override { return quest_.trials() >= trials_; }
   json state() const override { return summary(quest_, estimate_mean_); }
 
  private:
+  void update(const Intensity& shown, bool correct) {
+    for (size_t s = 0; s < points_.size(); ++s)
+      if (points_[s] == shown.grid) return quest_.update(s, correct);
+    const StimulusScale scale = quest_.definition().scale;
+    quest_.update_at(to_scale(scale, grid_.lambdas[shown.grid]), correct);
+  }
+  void choose_in_background() {
+    choosing_ = std::async(std::launch::async, [this] { return quest_.next(); });
+  }
+  // Takes the background choice, if one is under way.
+  void settle() const {
+    if (choosing_.valid()) next_ = choosing_.get();
+  }
+
   QuestPlus quest_;
   std::vector<size_t> points_;  // the grid point of each stimulus
   int trials_;
   bool estimate_mean_;
   const Grid& grid_;
-  mutable std::optional<size_t> next_;  // chosen once per trial: it costs a pass over the tables
+  mutable std::optional<size_t> next_;    // chosen once per trial: it costs a pass over the tables
+  mutable std::future<size_t> choosing_;  // the choice under way; it only reads quest_
 };
 
 class QuestPlusSettings final : public ProcedureSettings {

@@ -1,0 +1,80 @@
+// QUEST+ in the forced-choice app: the real binary on a private Xvfb server, answered by the
+// simulated observer on the frame clock. The app chooses each next stimulus on another thread while
+// it draws; the trials must be exactly those of the same run made synchronously in-process.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "../adjust/tiny_set.h"
+#include "../adjust/x_display.h"
+#include "forced_choice/choice_observer.h"
+#include "forced_choice/choice_run.h"
+#include "formats/responses.h"
+#include "runtime/study.h"
+
+namespace countershade::forced_choice {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A grid of 121 × 24 × 3 × 3 = 26,136 points over the set's 20 λ: large enough that a choice takes
+// a noticeable pass over the tables, small enough for a test.
+json questplus_block() {
+  json threshold = json::array();
+  for (int i = 0; i <= 120; ++i) threshold.push_back(-1.5 + 0.0125 * i);
+  json slope = json::array();
+  for (int i = 0; i < 24; ++i) slope.push_back(1.0 + 0.25 * i);
+  return {{"conditions", {{{"scene", "front"}, {"method", "usm3d"}, {"sigma", 0.03}}}},
+          {"procedure",
+           {{"type", "questplus"},
+            {"trials", 30},
+            {"param_domain",
+             {{"threshold", threshold},
+              {"slope", slope},
+              {"lower_asymptote", {0.45, 0.5, 0.55}},
+              {"lapse_rate", {0, 0.02, 0.04}}}}}}};
+}
+
+TEST(QuestPlusGui, TheAppsTrialsEqualASynchronousRunAndNoFrameWaits) {
+  testing::TempDir dir;
+  const json block = questplus_block();
+  const fs::path manifest =
+      testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block.dump() + ",");
+  testing::XvfbServer x;
+  testing::Child app(
+      {COUNTERSHADE_BINARY, "choose", manifest.string(), "--subject", "P01", "--sessions",
+       (dir / "s").string(), "--observer", "weibull:0.4,3,11", "--frame-clock"},
+      x.display(), (dir / "app.txt").string());
+  ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "app.txt");
+  const CsvTable rows =
+      parse_csv(testing::read_file(dir / "s/P01_s01.forced-choice.csv"), "session");
+  const json sidecar = json::parse(testing::read_file(dir / "s/P01_s01.forced-choice.json"));
+  ASSERT_EQ(rows.rows.size(), 31u);
+
+  // The same session in-process: every choice made before the trial is asked for.
+  const runtime::Study study = runtime::load_study(manifest, std::nullopt);
+  const ChoiceConfig config = parse_choice_config(block, "test", "");
+  ChoiceRun run(study, config, sidecar["seed"].get<uint64_t>());
+  const ChoiceObserver observer = parse_choice_observer("weibull:0.4,3,11");
+  for (size_t r = 1; r < rows.rows.size(); ++r) {
+    ASSERT_FALSE(run.finished());
+    const ChoiceTrial t = *run.current();
+    EXPECT_EQ(std::stoi(rows.rows[r][7]), t.lambda_index) << "trial " << r;
+    EXPECT_EQ(std::stoi(rows.rows[r][11]), t.target) << "trial " << r;
+    const int response = observer.respond(t.number, 0, t.lambda, t.target, 2);
+    EXPECT_EQ(std::stoi(rows.rows[r][12]), response) << "trial " << r;
+    run.answer(response);
+  }
+  EXPECT_TRUE(run.finished());
+  EXPECT_EQ(sidecar["procedures"][0]["state"], run.procedure_state(run.conditions().front()));
+  // On the frame clock every frame comes one refresh period after the last, and a key shows on
+  // the next frame: no frame waited for a choice.
+  const json& frames = sidecar["runs"].back()["frames"];
+  EXPECT_EQ(frames["all"]["dropped"], 0) << frames;
+  EXPECT_EQ(frames["key_to_frame_frames_max"], 1) << frames;
+}
+
+}  // namespace
+}  // namespace countershade::forced_choice
