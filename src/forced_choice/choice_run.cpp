@@ -13,17 +13,14 @@ namespace {
 // Streams of the session seed, apart from the procedures' own.
 enum : uint64_t { kStreamCondition = 301, kStreamTarget = 302, kStreamPractice = 303 };
 
-bool matches(const ConditionSelection& s, const runtime::Condition& c) {
-  return s.scene == c.scene && s.method == c.method && std::abs(s.sigma - c.sigma) < 1e-12;
-}
-
 std::vector<int> select(const runtime::Study& study, const std::vector<ConditionSelection>& wanted,
                         const std::string& source, const std::string& key) {
   std::vector<int> out;
   for (size_t w = 0; w < wanted.size(); ++w) {
     const auto& c = study.conditions;
-    const auto it = std::find_if(
-        c.begin(), c.end(), [&](const runtime::Condition& x) { return matches(wanted[w], x); });
+    const auto it = std::find_if(c.begin(), c.end(), [&](const runtime::Condition& x) {
+      return wanted[w].names(x.scene, x.method, x.sigma);
+    });
     if (it == c.end())
       throw_input_error(source + key + "[" + std::to_string(w) + "]",
                         "no condition " + wanted[w].scene + " / " + wanted[w].method + " / σ " +

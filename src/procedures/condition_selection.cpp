@@ -1,6 +1,12 @@
 #include "procedures/condition_selection.h"
 
+#include <cmath>
+
 namespace countershade::procedures {
+
+bool ConditionSelection::names(const std::string& s, const std::string& m, double sg) const {
+  return scene == s && method == m && std::abs(sigma - sg) < 1e-12;
+}
 
 std::vector<ConditionSelection> read_condition_selections(const JsonObject& block,
                                                           const std::string& key) {

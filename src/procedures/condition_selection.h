@@ -13,6 +13,9 @@ namespace countershade::procedures {
 struct ConditionSelection {
   std::string scene, method;
   double sigma = 0;
+  // Whether it names that condition: the same scene and method (the set's folder label) and σ
+  // within 1e-12, as both studies select their conditions.
+  bool names(const std::string& scene, const std::string& method, double sigma) const;
 };
 
 // The array under `key` (none when the key is absent); each entry's unknown keys are refused.

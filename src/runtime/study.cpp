@@ -122,7 +122,7 @@ SetIndex index_set(const Manifest& manifest, const std::string& mfile) {
 bool selected(const std::vector<procedures::StudyConfig::Selection>& wanted,
               const ConditionKey& key) {
   return wanted.empty() || std::any_of(wanted.begin(), wanted.end(), [&](const auto& s) {
-           return std::tie(s.scene, s.method, s.sigma) == key;
+           return s.names(std::get<0>(key), std::get<1>(key), std::get<2>(key));
          });
 }
 
