@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "../adjust/tiny_set.h"
 #include "../adjust/x_display.h"
@@ -74,6 +75,62 @@ TEST(QuestPlusGui, TheAppsTrialsEqualASynchronousRunAndNoFrameWaits) {
   const json& frames = sidecar["runs"].back()["frames"];
   EXPECT_EQ(frames["all"]["dropped"], 0) << frames;
   EXPECT_EQ(frames["key_to_frame_frames_max"], 1) << frames;
+}
+
+// The rows without the columns that depend on the clock (rt_ms, time_utc).
+std::vector<std::vector<std::string>> timeless(const fs::path& csv) {
+  std::vector<std::vector<std::string>> rows;
+  for (auto row : parse_csv(testing::read_file(csv), csv.string()).rows) {
+    row.erase(row.begin() + 14);  // rt_ms
+    row.pop_back();               // time_utc
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Killed at random moments and resumed: the rows and the posterior equal an uninterrupted run's.
+TEST(QuestPlusGui, AKilledSessionResumesWithTheSameTrialsAndPosterior) {
+  testing::TempDir dir;
+  const json block = questplus_block();
+  const fs::path manifest =
+      testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block.dump() + ",");
+  testing::XvfbServer x;
+  auto args = [&](const std::string& sessions, bool resume) {
+    std::vector<std::string> a = {COUNTERSHADE_BINARY,
+                                  "choose",
+                                  manifest.string(),
+                                  "--subject",
+                                  "P01",
+                                  "--sessions",
+                                  (dir / sessions).string(),
+                                  "--observer",
+                                  "weibull:0.4,3,11"};
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  testing::Child whole(args("whole", false), x.display(), (dir / "whole.txt").string());
+  ASSERT_EQ(whole.wait(300), 0) << testing::read_file(dir / "whole.txt");
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> kill_after(0.3, 1.2);
+  const fs::path csv = dir / "killed/P01_s01.forced-choice.csv";
+  int kills = 0;
+  for (int launch = 0; launch < 20; ++launch) {
+    testing::Child app(args("killed", fs::exists(csv)), x.display(), (dir / "killed.txt").string());
+    if (kills < 4 && app.wait(kill_after(random)) == -1) {
+      app.kill_hard();
+      ++kills;
+      continue;
+    }
+    ASSERT_EQ(app.wait(300), 0) << testing::read_file(dir / "killed.txt");
+    if (testing::read_file(dir / "killed.txt").find("completed;") != std::string::npos) break;
+  }
+  EXPECT_GE(kills, 1);
+  EXPECT_EQ(timeless(csv), timeless(dir / "whole/P01_s01.forced-choice.csv"));
+  const auto states = [&](const std::string& sessions) {
+    return json::parse(
+        testing::read_file(dir / sessions / "P01_s01.forced-choice.json"))["procedures"];
+  };
+  EXPECT_EQ(states("killed"), states("whole"));
 }
 
 }  // namespace
