@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "../adjust/tiny_set.h"
+#include "core/error.h"
 #include "core/json_reader.h"
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_run.h"
@@ -96,10 +97,9 @@ std::string weibull_block(const std::string& change) {
   return block.dump();
 }
 
-// Each bad block exits 2 with one line naming the file and the key, and writes nothing.
+// Each bad block is refused with one line naming the file and the key; on the command line it
+// exits 2 and writes nothing.
 TEST(QuestPlus, BadBlocksAreRefusedWithOneLine) {
-  testing::TempDir dir;
-  testing::write_file(dir / "answers.csv", "response\nCorrect\nIncorrect\n");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"func": "logistic"})", "func"},
       {R"({"stim_scale": "ln"})", "stim_scale"},
@@ -116,15 +116,25 @@ TEST(QuestPlus, BadBlocksAreRefusedWithOneLine) {
       {R"({"stim_selection_method": "min_n_entropy"})", "stim_selection_method"},
   };
   for (const auto& [change, key] : cases) {
-    testing::write_file(dir / "p.json", weibull_block(change));
-    const auto run =
-        testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
-                         (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
-    EXPECT_EQ(run.exit_code, 2) << change << "\n" << run.output;
-    EXPECT_NE(run.output.find("p.json: " + key), std::string::npos) << run.output;
-    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
-    EXPECT_FALSE(fs::exists(dir / "out.csv"));
+    try {
+      read_procedure_block(json::parse(weibull_block(change)), "p.json", "");
+      ADD_FAILURE() << change << " was accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("p.json: " + key, 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
   }
+  testing::TempDir dir;
+  testing::write_file(dir / "answers.csv", "response\nCorrect\nIncorrect\n");
+  testing::write_file(dir / "p.json", weibull_block(cases.front().first));
+  const auto run =
+      testing::run_cli("simulate --procedure " + (dir / "p.json").string() + " --responses " +
+                       (dir / "answers.csv").string() + " -o " + (dir / "out.csv").string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("p.json: func"), std::string::npos) << run.output;
+  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
 }
 
 std::vector<double> steps(double from, double to, size_t n) {
@@ -160,7 +170,10 @@ TEST(QuestPlus, AForcedChoiceRunConvergesOnTheObserversThreshold) {
       "param_domain": {"slope": [1.5, 2.5, 3.5, 4.5], "lower_asymptote": 0.5,
                        "lapse_rate": [0, 0.02, 0.04]}})");
   block["param_domain"]["threshold"] = steps(-1.5, 0.5, 41);  // log10 λ in steps of 0.05
-  const ChoiceConfig config = parse_choice_config(json{{"procedure", block}}, "t", "");
+  const json choice = {
+      {"procedure", block},
+      {"conditions", {{{"scene", "front"}, {"method", "usm3d"}, {"sigma", 0.03}}}}};
+  const ChoiceConfig config = parse_choice_config(choice, "t", "");
   const double alpha = 0.45;  // the observer's threshold: log10 0.45 ≈ −0.35
   std::vector<double> errors;
   for (uint64_t seed = 1; seed <= 50; ++seed) {
