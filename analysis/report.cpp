@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "analysis/figures.h"
+#include "analysis/html_table.h"
 #include "core/atomic_file.h"
 #include "core/xml.h"
 
@@ -18,14 +19,6 @@ using json = nlohmann::ordered_json;
 void write_text(const std::filesystem::path& path, const std::string& text) {
   write_text_atomically(path, text);
 }
-
-// A value that could not be computed (NaN, e.g. the standard error of a fit that did not
-// converge) is written as R's NA in CSV, "—" in HTML and null in JSON; an infinite one (F with no
-// error variance) as R's Inf, "∞" and null.
-bool not_available(const json& v) {
-  return v.is_null() || (v.is_number_float() && std::isnan(v.get<double>()));
-}
-bool infinite(const json& v) { return v.is_number_float() && std::isinf(v.get<double>()); }
 
 std::string cell(const json& v) {
   if (v.is_string()) return csv_field(v.get<std::string>());
@@ -68,13 +61,6 @@ std::string apa_unit(double v, int decimals) {
   return text;
 }
 std::string apa_p(double p) { return p < 0.001 ? "p < .001" : "p = " + apa_unit(p, 3); }
-std::string fixed(double v, int decimals) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(decimals);
-  s << v;
-  return s.str();
-}
 std::string df_text(double df) {
   return std::abs(df - std::round(df)) < 1e-9 ? fixed(df, 0) : fixed(df, 2);
 }
@@ -88,28 +74,6 @@ std::string anova_statement(const json& r) {
             apa_p(r["mauchly_p"]) + "; Greenhouse–Geisser ε = " + apa_unit(r["gg_epsilon"], 2) +
             ", " + apa_p(r["p_gg"]) + ")";
   return text;
-}
-
-std::string html_table(const json& rows, const std::vector<std::string>& keys) {
-  std::ostringstream out;
-  out << "<table><tr>";
-  for (const auto& k : keys) out << "<th>" << xml_escape(k) << "</th>";
-  out << "</tr>\n";
-  for (const auto& row : rows) {
-    out << "<tr>";
-    for (const auto& k : keys) {
-      std::string v = !row.contains(k)           ? ""
-                      : not_available(row[k])    ? "—"
-                      : infinite(row[k])         ? (row[k].get<double>() > 0 ? "∞" : "−∞")
-                      : row[k].is_number_float() ? fixed(row[k], 4)
-                      : row[k].is_string()       ? row[k].get<std::string>()
-                                                 : row[k].dump();
-      out << "<td>" << xml_escape(v) << "</td>";
-    }
-    out << "</tr>\n";
-  }
-  out << "</table>\n";
-  return out.str();
 }
 
 // The page head, title line and any warnings.

@@ -8,6 +8,7 @@
 
 #include "analysis/analysis.h"
 #include "analysis/forced_choice_analysis.h"
+#include "analysis/forced_choice_report.h"
 #include "analysis/method_comparison.h"
 #include "analysis/procedure_estimates.h"
 #include "analysis/report.h"
@@ -96,6 +97,9 @@ void run(const AnalyzeArgs& args) {
          analysis::write_forced_choice_outputs(*fc, args.output, !args.no_figures))
       extra["forced_choice"]["figures"][scene] = file;
     write_procedure_estimates(forced_choice, *fc, args.output, extra["forced_choice"]);
+    if (!args.no_figures)
+      write_text_atomically(fs::path(args.output) / "forced-choice.html",
+                            analysis::forced_choice_report_html(extra["forced_choice"]));
   }
   if (fc && !results.empty()) {
     const auto comparison = analysis::compare_methods(results, *fc);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 
@@ -99,6 +100,12 @@ TEST(ProcedureEstimates, AQuestPlusSessionsPosteriorIsReportedBesideItsFit) {
   EXPECT_EQ(fits.rows[2][1], "P01");
   EXPECT_EQ(by_quantity["lambda_at_half"][11], fits.rows[2][column]) << "the fit's threshold";
   EXPECT_EQ(by_quantity["threshold"][11], "NA");
+  // The report shows the λ at F = 1/2 beside the fit.
+  const std::string page = testing::read_file(dir / "out/forced-choice.html");
+  EXPECT_NE(page.find("The procedures' own estimates"), std::string::npos);
+  char mean[32];
+  std::snprintf(mean, sizeof mean, "<td>%.4f</td>", half);
+  EXPECT_NE(page.find(mean), std::string::npos) << mean;
   // Without its sidecar, a session has no procedure estimates.
   fs::remove(dir / "P01_s01.forced-choice.json");
   ASSERT_EQ(testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() + " -o " +
