@@ -45,7 +45,8 @@ Measured two_seed_noise(const fs::path& a, const fs::path& b) {
   return {std::sqrt(sum / double(d.size())), d[size_t(0.99 * double(d.size() - 1))]};
 }
 
-// One preview scene at 256×192, the reference and usm3d (σ = 0.12) on the grid {0, 3}, with the
+// One preview scene at 128×96 (pixels enough for the RMS and the 99th percentile of the noise, at a
+// quarter of the preview's cost), the reference and usm3d (σ = 0.12) on the grid {0, 3}, with the
 // given seed.
 fs::path generate(const testing::TempDir& dir, const std::string& scene, int seed) {
   const fs::path scene_file =
@@ -58,7 +59,7 @@ fs::path generate(const testing::TempDir& dir, const std::string& scene, int see
     "lambda": {"min": 0, "max": 3, "step": 3},
     "scenes": [{"name": ")" + scene + R"(", "file": ")" +
                                                       scene_file.string() +
-                                                      R"(", "width": 256, "height": 192}],
+                                                      R"(", "width": 128, "height": 96}],
     "methods": [{"method": "usm3d", "sigma": [0.12], "ring_samples": 3}]
   })");
   GenerateOptions options;
