@@ -37,7 +37,12 @@ std::vector<ProcedureEstimate> estimates_of(const fs::path& file) {
       config.raw("procedure"), sidecar.string(), "config.procedure");
   const int session = int(root.integer_or("session", 0));
   for (const auto& [key, trials] : trials_by_condition(file)) {
-    auto estimate = block.settings->estimate(trials);
+    std::optional<nlohmann::ordered_json> estimate;
+    try {
+      estimate = block.settings->estimate(trials);
+    } catch (const InputError& e) {  // named by the block it comes from
+      throw InputError(sidecar.string() + ": config.procedure." + e.what());
+    }
     if (!estimate) return {};
     const auto& [subject, scene, label, sigma] = key;
     out.push_back({subject, session, scene, label, sigma, trials.size(), std::move(*estimate)});

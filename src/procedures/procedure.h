@@ -76,7 +76,8 @@ class ProcedureSettings {
   // Throws InputError (naming `where`) for a procedure that needs a grid to run.
   virtual Replay replay(const std::vector<bool>& responses, const std::string& where) const = 0;
   // The procedure's own estimate from a condition's answered trials (λ shown, correct), for
-  // `analyze`: a posterior's summary. None for a procedure that keeps no posterior to report.
+  // `analyze`: a posterior's summary. None for a procedure that keeps no posterior to report;
+  // InputError (naming the block's key) when it cannot be computed here, e.g. for lack of memory.
   virtual std::optional<nlohmann::ordered_json> estimate(
       const std::vector<std::pair<double, bool>>& trials) const {
     (void)trials;

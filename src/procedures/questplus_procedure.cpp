@@ -207,7 +207,7 @@ std::optional<json> QuestPlusSettings::estimate(
   for (const auto& [lambda, correct] : trials) d.stimuli.push_back(to_scale(d.scale, lambda));
   std::sort(d.stimuli.begin(), d.stimuli.end());
   d.stimuli.erase(std::unique(d.stimuli.begin(), d.stimuli.end()), d.stimuli.end());
-  if (memory_problem(d)) return std::nullopt;
+  if (const auto problem = memory_problem(d)) throw_input_error("param_domain", *problem);
   QuestPlus quest(d);
   for (const auto& [lambda, correct] : trials) {
     const double x = to_scale(d.scale, lambda);
