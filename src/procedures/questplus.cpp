@@ -25,6 +25,15 @@ std::array<size_t, kQuestPlusParameters> unflatten(
   return index;
 }
 
+// The parameters' values at a flat point.
+ParameterPoint values_at(size_t point,
+                         const std::array<std::vector<double>, kQuestPlusParameters>& grids) {
+  const auto index = unflatten(point, grids);
+  ParameterPoint p{};
+  for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = grids[k][index[k]];
+  return p;
+}
+
 // The outer product of the per-parameter weights, normalised.
 std::vector<double> joint_prior(const QuestPlusDefinition& d, size_t points) {
   std::vector<double> prior(points, 1.0);
@@ -84,9 +93,7 @@ QuestPlus::QuestPlus(QuestPlusDefinition definition)
   likelihood_.resize(n * points_);
   outcome_entropy_.resize(n * points_);
   tbb::parallel_for(size_t(0), points_, [&](size_t point) {
-    const auto index = unflatten(point, definition_.grids);
-    ParameterPoint p{};
-    for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = definition_.grids[k][index[k]];
+    const ParameterPoint p = values_at(point, definition_.grids);
     for (size_t s = 0; s < n; ++s) {
       const double psi =
           psychometric(definition_.shape, definition_.scale, definition_.stimuli[s], p);
@@ -129,9 +136,7 @@ void QuestPlus::update(size_t stimulus, bool first_outcome) {
 void QuestPlus::update_at(double x, bool first_outcome) {
   std::vector<double> l(points_);
   for (size_t point = 0; point < points_; ++point) {
-    const auto index = unflatten(point, definition_.grids);
-    ParameterPoint p{};
-    for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = definition_.grids[k][index[k]];
+    const ParameterPoint p = values_at(point, definition_.grids);
     l[point] = psychometric(definition_.shape, definition_.scale, x, p);
   }
   multiply(l.data(), first_outcome);
@@ -162,10 +167,7 @@ double QuestPlus::posterior_entropy() const {
 ParameterPoint QuestPlus::mode() const {
   const size_t best = size_t(std::max_element(posterior_.begin(), posterior_.end()) -
                              posterior_.begin());  // the first maximum
-  const auto index = unflatten(best, definition_.grids);
-  ParameterPoint out{};
-  for (size_t k = 0; k < kQuestPlusParameters; ++k) out[k] = definition_.grids[k][index[k]];
-  return out;
+  return values_at(best, definition_.grids);
 }
 
 std::array<double, 4> QuestPlus::distribution_of(
@@ -173,9 +175,7 @@ std::array<double, 4> QuestPlus::distribution_of(
   std::vector<std::pair<double, double>> weighted(points_);  // (value, probability)
   double mean = 0;
   for (size_t point = 0; point < points_; ++point) {
-    const auto index = unflatten(point, definition_.grids);
-    ParameterPoint p{};
-    for (size_t k = 0; k < kQuestPlusParameters; ++k) p[k] = definition_.grids[k][index[k]];
+    const ParameterPoint p = values_at(point, definition_.grids);
     weighted[point] = {f(p), posterior_[point]};
     mean += weighted[point].first * weighted[point].second;
   }

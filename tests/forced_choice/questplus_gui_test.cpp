@@ -38,11 +38,15 @@ json questplus_block() {
               {"lapse_rate", {0, 0.02, 0.04}}}}}}};
 }
 
+// The tiny set (λ 0 … 2 in steps of 0.1) with `block` as its forced-choice block.
+fs::path make_set(const testing::TempDir& dir, const json& block) {
+  return testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block.dump() + ",");
+}
+
 TEST(QuestPlusGui, TheAppsTrialsEqualASynchronousRunAndNoFrameWaits) {
   testing::TempDir dir;
   const json block = questplus_block();
-  const fs::path manifest =
-      testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block.dump() + ",");
+  const fs::path manifest = make_set(dir, block);
   testing::XvfbServer x;
   testing::Child app(
       {COUNTERSHADE_BINARY, "choose", manifest.string(), "--subject", "P01", "--sessions",
@@ -92,8 +96,7 @@ std::vector<std::vector<std::string>> timeless(const fs::path& csv) {
 TEST(QuestPlusGui, AKilledSessionResumesWithTheSameTrialsAndPosterior) {
   testing::TempDir dir;
   const json block = questplus_block();
-  const fs::path manifest =
-      testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block.dump() + ",");
+  const fs::path manifest = make_set(dir, block);
   testing::XvfbServer x;
   auto args = [&](const std::string& sessions, bool resume) {
     std::vector<std::string> a = {COUNTERSHADE_BINARY,
