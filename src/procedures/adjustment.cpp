@@ -110,7 +110,6 @@ class AdjustmentSettings final : public ProcedureSettings {
     throw_input_error(where,
                       "the adjustment procedure runs as the adjust block, not per condition");
   }
-  void describe(nlohmann::ordered_json& record) const override { record = config_.to_json(); }
   Replay replay(const std::vector<bool>&, const std::string& where) const override {
     throw_input_error(where,
                       "the adjustment procedure's answers are chosen λ, not correct or incorrect; "
