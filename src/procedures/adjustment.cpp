@@ -9,18 +9,6 @@
 
 namespace countershade::procedures {
 
-const char* side_name(Side side) {
-  switch (side) {
-    case Side::left:
-      return "left";
-    case Side::right:
-      return "right";
-    case Side::counterbalanced:
-      return "counterbalanced";
-  }
-  return "?";
-}
-
 nlohmann::ordered_json StudyConfig::to_json() const {
   nlohmann::ordered_json j;
   j["seed"] = seed ? nlohmann::ordered_json(*seed) : nlohmann::ordered_json("manifest");

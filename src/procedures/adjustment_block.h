@@ -17,7 +17,17 @@ namespace countershade::procedures {
 // Which side the enhanced image is shown on. `counterbalanced` only appears in the configuration;
 // every planned trial has a concrete side.
 enum class Side { left, right, counterbalanced };
-const char* side_name(Side side);
+inline const char* side_name(Side side) {
+  switch (side) {
+    case Side::left:
+      return "left";
+    case Side::right:
+      return "right";
+    case Side::counterbalanced:
+      return "counterbalanced";
+  }
+  return "?";
+}
 
 enum class StartMode { random, zero };
 
