@@ -2,6 +2,7 @@
 // checks the browser (window size, refresh rate), optionally measures the screen with the virtual
 // chinrest (recorded, never used to rescale), runs the adjustment session and offers the CSV.
 
+import { loadEngine } from "./engine.js";
 import { CountershadeAdjustPlugin } from "./plugin-adjust.js";
 
 const study = window.COUNTERSHADE_STUDY;
@@ -58,8 +59,27 @@ function chinrest(key, environment) {
   }];
 }
 
+// The study logic (WebAssembly); without it the page says so and records nothing.
+async function engineOrMessage() {
+  try {
+    const started = performance.now();
+    const engine = await loadEngine();
+    window.countershadeEngineSeconds = (performance.now() - started) / 1000; // for bench/web
+    return engine;
+  } catch (error) {
+    const p = document.createElement("p");
+    p.id = "countershade-unsupported";
+    p.textContent = `This browser cannot run the study (WebAssembly: ${error.message}). Please use a current Chrome, Edge, Firefox or Safari.`;
+    document.body.appendChild(p);
+    return null;
+  }
+}
+
 async function start() {
   document.title = study.title;
+  const engine = await engineOrMessage();
+  if (!engine) return;
+  CountershadeAdjustPlugin.engine = engine;
   const params = new URLSearchParams(window.location.search);
   const subject = SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject();
   const session = Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));

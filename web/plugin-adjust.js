@@ -1,11 +1,10 @@
 // countershade's adjustment trial as a jsPsych 8 plugin (docs/online-study.md). One trial runs a
-// whole session: the app's plan for the subject and seed, the app's procedure and key repeat, the
-// images at 1:1 device pixels, every answer stored before the next question appears, and a reload
-// resuming at the first unanswered question.
+// whole session: the app's plan for the subject and seed, the app's procedure and key repeat (both
+// the app's own code, through the WebAssembly engine), the images at 1:1 device pixels, every
+// answer stored before the next question appears, and a reload resuming at the first unanswered
+// question.
 
-import { SimulatedObserver } from "./observer.js";
-import { planTrials, sessionSeed } from "./plan.js";
-import { Procedure } from "./procedure.js";
+import { AdjustmentProcedure, QUESTIONS, SimulatedObserver, planSession } from "./engine.js";
 import { SessionStore } from "./store.js";
 
 const KEYS = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: "right", Enter: "enter",
@@ -47,22 +46,19 @@ function element(tag, style, parent) {
 }
 
 class AdjustSession {
-  constructor(root, study, subject, session, environment, observer) {
+  constructor(root, engine, study, subject, session, environment, observer) {
     this.study = study;
     this.subject = subject;
     this.session = session;
     this.environment = environment;
-    const gridSizes = study.conditions.map((c) => c.grid.length);
-    const seed = sessionSeed(BigInt(study.seed), subject, session);
-    this.plan = planTrials(gridSizes, { seed, repetitions: study.repetitions, side: study.side, start: study.start,
-                                        practiceTrials: study.practice_trials, practiceConditions: study.practice_conditions });
-    this.procedure = new Procedure(gridSizes, this.plan, study.timing);
+    this.plan = planSession(engine, study, subject, session);
+    this.procedure = new AdjustmentProcedure(engine, study, this.plan);
     this.store = new SessionStore(window.localStorage, `countershade:${study.set.sha256}:${subject}:${session}`, study.post_url);
     this.store.flush(); // rows a reload left unsent
     this.resumed = this.store.rows.length > 0;
     if (this.resumed) this.procedure.resume(this.store.answered());
     this.ignoredRepeats = 0;
-    if (observer != null) this.observer = new SimulatedObserver(observer, study.conditions);
+    if (observer != null) this.observer = new SimulatedObserver(engine, observer, this.procedure);
     this.build(root);
   }
 
@@ -143,7 +139,7 @@ class AdjustSession {
       device_pixel_ratio: window.devicePixelRatio, window_width: window.innerWidth, window_height: window.innerHeight,
       refresh_hz: this.environment.refresh_hz ?? "", user_agent: navigator.userAgent,
       css_px_per_mm: this.environment.css_px_per_mm ?? "", viewing_distance_mm: this.environment.viewing_distance_mm ?? "",
-      plan_index: answer.trialIndex, question_index: ["low", "high", "best"].indexOf(answer.question),
+      plan_index: answer.trialIndex, question_index: QUESTIONS.indexOf(answer.question),
     });
   }
 
@@ -207,7 +203,7 @@ class AdjustSession {
   frame() {
     if (this.ended) return;
     const waiting = this.procedure.phase === "question" && !this.ready();
-    const key = waiting ? null : this.observer?.act(this.procedure, this.now());
+    const key = waiting ? null : this.observer?.act(this.now());
     if (key) this.press(key, this.now());
     if (this.observer && this.procedure.phase === "finished") this.end("completed"); // as the app's automated runs end
     if (this.ended) return;
@@ -261,12 +257,16 @@ export class CountershadeAdjustPlugin {
     },
   };
 
+  // The WebAssembly engine (engine.js's loadEngine), set once before the timeline runs: it is no
+  // trial parameter, because jsPsych copies those and the engine is no plain object.
+  static engine = null;
+
   constructor(jsPsych) {
     this.jsPsych = jsPsych;
   }
 
   async trial(displayElement, trial) {
-    const session = new AdjustSession(displayElement, trial.study, trial.subject, trial.session, trial.environment, trial.observer);
+    const session = new AdjustSession(displayElement, CountershadeAdjustPlugin.engine, trial.study, trial.subject, trial.session, trial.environment, trial.observer);
     window.countershadeSession = session;
     const result = await session.run();
     displayElement.innerHTML = "";

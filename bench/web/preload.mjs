@@ -1,5 +1,6 @@
-// How long an exported study takes to decode one condition's images from a local server, in
-// headless Chromium (the first condition, loaded while the welcome text is shown).
+// How long an exported study takes to start its WebAssembly engine (fetch, compile, instantiate)
+// and to decode one condition's images from a local server, in headless Chromium (the first
+// condition, loaded while the welcome text is shown).
 //   build/bin/countershade export-web SET/manifest.json -o /tmp/study && node bench/web/preload.mjs /tmp/study
 
 import puppeteer from "puppeteer-core";
@@ -16,6 +17,8 @@ try {
   await page.waitForFunction(() => window.countershadeSession?.loaded?.size > 0, { timeout: 120000, polling: 10 });
   const [condition, seconds] = await page.evaluate(() => Object.entries(window.countershadeSession.loadSeconds)[0]);
   const images = await page.evaluate((c) => 1 + window.COUNTERSHADE_STUDY.conditions[c].images.length, Number(condition));
+  const engine = await page.evaluate(() => window.countershadeEngineSeconds);
+  console.log(`engine: countershade-engine.wasm ready in ${engine.toFixed(3)} s`);
   console.log(`preload: condition ${condition}, ${images} images decoded in ${seconds.toFixed(3)} s`);
 } finally {
   await browser.close();

@@ -31,15 +31,15 @@ const std::vector<std::pair<std::string, std::string>> kAssets = {
      "jspsych/plugin-browser-check.js"},
     {"node_modules/@jspsych/plugin-virtual-chinrest/dist/index.browser.min.js",
      "jspsych/plugin-virtual-chinrest.js"},
-    {"web/random.js", "countershade/random.js"},
-    {"web/plan.js", "countershade/plan.js"},
-    {"web/procedure.js", "countershade/procedure.js"},
+    {"web/engine.js", "countershade/engine.js"},
     {"web/store.js", "countershade/store.js"},
-    {"web/observer.js", "countershade/observer.js"},
     {"web/plugin-adjust.js", "countershade/plugin-adjust.js"},
     {"web/main.js", "countershade/main.js"},
     {"web/index.html", "index.html"},
 };
+
+// The study logic as WebAssembly (src/web_engine), beside index.html, where the page loads it.
+const char* const kEngineFiles[] = {"countershade-engine.js", "countershade-engine.wasm"};
 
 std::string image_name(size_t image) {
   char name[32];
@@ -122,6 +122,8 @@ json web_study(const Study& study, const WebExportOptions& o) {
       {"font_px", c.font_px},
       {"texts", texts_json(c.text)},
       {"lambda_step", format_value(study.lambda_step)},
+      // The grid as the app computes λ from an index (runtime::Study::lambda), for the engine.
+      {"lambda_grid", {{"min", study.lambda_min}, {"step", study.lambda_step}}},
       {"conditions", conditions},
       {"post_url", o.post_url ? json(*o.post_url) : json(nullptr)},
       {"chinrest", o.chinrest}};
@@ -133,6 +135,10 @@ size_t export_web_study(const Study& study, const WebExportOptions& o) {
     if (!fs::is_regular_file(o.assets / from))
       throw_input_error((o.assets / from).string(),
                         "missing (run `npm ci` in the source tree, see docs/online-study.md)");
+  for (const char* file : kEngineFiles)
+    if (!fs::is_regular_file(o.engine / file))
+      throw_input_error((o.engine / file).string(),
+                        "missing (build the WebAssembly engine with scripts/build)");
   std::error_code ec;
   fs::create_directories(o.output / "images", ec);
   if (ec) throw_input_error(o.output.string(), "cannot create the folder");
@@ -140,6 +146,8 @@ size_t export_web_study(const Study& study, const WebExportOptions& o) {
     fs::create_directories((o.output / to).parent_path(), ec);
     write_text_atomically(o.output / to, read_file_bytes(o.assets / from));
   }
+  for (const char* file : kEngineFiles)
+    write_text_atomically(o.output / file, read_file_bytes(o.engine / file));
   for (size_t i = 0; i < study.images.size(); ++i)
     write_text_atomically(o.output / image_name(i), read_file_bytes(study.images[i].file));
   // A JavaScript file rather than JSON, so the page also opens where fetch() is not allowed;

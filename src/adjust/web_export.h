@@ -16,6 +16,7 @@ namespace countershade::adjust {
 struct WebExportOptions {
   std::filesystem::path output;
   std::filesystem::path assets;  // holds node_modules/ (jsPsych) and web/ (the plugin)
+  std::filesystem::path engine;  // holds countershade-engine.js and .wasm (src/web_engine)
   std::optional<std::string> post_url;
   bool chinrest = false;
   std::string title;

@@ -25,6 +25,12 @@ std::string assets_folder(const ExportArgs& a) {
   return COUNTERSHADE_WEB_ASSETS;
 }
 
+// The WebAssembly engine's folder: $COUNTERSHADE_WEB_ENGINE, else the build that made the program.
+std::string engine_folder() {
+  if (const char* env = std::getenv("COUNTERSHADE_WEB_ENGINE")) return env;
+  return COUNTERSHADE_WEB_ENGINE;
+}
+
 void run(const ExportArgs& a) {
   check_output_folder(a.output);
   if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 &&
@@ -36,6 +42,7 @@ void run(const ExportArgs& a) {
   adjust::WebExportOptions o;
   o.output = a.output;
   o.assets = assets_folder(a);
+  o.engine = engine_folder();
   if (!a.post_url.empty()) o.post_url = a.post_url;
   o.chinrest = a.chinrest;
   o.title = a.title;

@@ -26,9 +26,12 @@ using runtime::session_seed;
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// A Node.js command run from the source tree (where node_modules/ is); `environment`: VAR=value …
+// A Node.js command run from the source tree (where node_modules/ is), with this build's
+// WebAssembly engine; `environment`: VAR=value …
 std::string node(const std::string& arguments, const std::string& environment = "") {
-  return "cd " + testing::source_dir().string() + " && " + environment + " node " + arguments;
+  return "cd " + testing::source_dir().string() +
+         " && COUNTERSHADE_WEB_ENGINE=" COUNTERSHADE_WEB_ENGINE " " + environment + " node " +
+         arguments;
 }
 
 json plan_case(const std::vector<int>& grid_sizes, PlanSettings s, uint64_t study_seed,

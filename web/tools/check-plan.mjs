@@ -1,20 +1,32 @@
 // Checks the browser's plan against the app's: reads the cases a test wrote (the app's plans from
-// src/adjust/procedure.cpp) and exits 1 naming the first row that differs.
+// src/adjust/procedure.cpp, built natively) and plans them again in the WebAssembly engine the
+// page runs. Exits 1 naming the first row that differs.
 
 import { readFileSync } from "node:fs";
 
-import { planTrials, sessionSeed } from "../plan.js";
+import { planSession, sessionSeed } from "../engine.js";
+import { nodeEngine } from "./node-engine.mjs";
 
+// A study as the page has it, with just what the plan reads.
+function studyOf(c) {
+  return {
+    seed: c.study_seed, repetitions: c.repetitions, side: c.side, start: c.start,
+    practice_trials: c.practice_trials, practice_conditions: c.practice_conditions,
+    lambda_grid: { min: 0, step: 0.05 },
+    conditions: c.grid_sizes.map((n) => ({ scene: "scene", method: "method", sigma_value: 0.1, grid: Array(n).fill("") })),
+  };
+}
+
+const engine = await nodeEngine();
 const cases = JSON.parse(readFileSync(process.argv[2], "utf8"));
 let rows = 0;
 for (const [n, c] of cases.entries()) {
-  const seed = sessionSeed(BigInt(c.study_seed), c.subject, c.session);
-  if (seed.toString() !== c.session_seed) {
+  const seed = sessionSeed(engine, c.study_seed, c.subject, c.session);
+  if (seed !== c.session_seed) {
     console.log(`case ${n}: session seed ${seed} where the app has ${c.session_seed}`);
     process.exit(1);
   }
-  const plan = planTrials(c.grid_sizes, { seed, repetitions: c.repetitions, side: c.side, start: c.start,
-                                          practiceTrials: c.practice_trials, practiceConditions: c.practice_conditions });
+  const plan = planSession(engine, studyOf(c), c.subject, c.session);
   if (plan.length !== c.plan.length) {
     console.log(`case ${n}: ${plan.length} trials where the app has ${c.plan.length}`);
     process.exit(1);

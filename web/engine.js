@@ -1,0 +1,68 @@
+// The page's link to the study logic. The plan, the procedure and the simulated observer are the
+// app's C++ compiled to WebAssembly (countershade-engine.js and .wasm beside index.html, built from
+// src/web_engine); this file only loads that engine and gives its objects the shape the plugin
+// draws from. No study logic lives here, so the browser cannot drift from the app.
+
+export const QUESTIONS = ["low", "high", "best"];
+
+// Starts the engine. In a page, countershade-engine.js defines the factory and fetches the .wasm
+// beside it; Node.js passes the factory and the .wasm's bytes ({ wasmBinary }).
+export function loadEngine(factory = globalThis.CountershadeEngine, options = {}) {
+  if (typeof factory !== "function") throw new Error("countershade-engine.js is not loaded");
+  return factory(options);
+}
+
+// The seed of a subject's session (decimal text: it has 64 bits).
+export function sessionSeed(engine, studySeed, subject, session) {
+  return engine.sessionSeed(String(studySeed), subject, session);
+}
+
+// The app's plan for a subject's session: practice trials first, then every condition ×
+// repetition in the seeded order; each {number, practice, condition, repetition, side, start}.
+export function planSession(engine, study, subject, session) {
+  return JSON.parse(engine.planSession(JSON.stringify(study), subject, session));
+}
+
+// The method-of-adjustment procedure (src/adjust/procedure.cpp) over a plan. Keys by name (up,
+// down, left, right, enter, backspace, escape, q), times in seconds.
+export class AdjustmentProcedure {
+  constructor(engine, study, plan) {
+    this.plan = plan;
+    this.native = new engine.AdjustmentProcedure(JSON.stringify(study), JSON.stringify(plan));
+  }
+
+  get phase() { return this.native.phase(); }
+  get done() { return this.native.done(); }
+  get trial() { return this.native.trialIndex(); }
+  get currentTrial() { return this.plan[this.trial]; }
+  get question() { return this.native.question(); }
+  get index() { return this.native.lambdaIndex(); }
+  get realTrialCount() { return this.native.realTrialCount(); }
+
+  // A key press; the answer it confirmed ({trialIndex, question, lambdaIndex, startIndex,
+  // keypresses, rt, revision}), if any.
+  press(key, time) {
+    const answer = this.native.press(key, time);
+    return answer ? JSON.parse(answer) : undefined;
+  }
+  release(key, time) { this.native.release(key, time); }
+  tick(time) { this.native.tick(time); }
+
+  // Continues from stored answers: a Map "planIndex,question" → {lambdaIndex, revision}.
+  resume(answered) {
+    const rows = [...answered].map(([key, a]) => [...key.split(",").map(Number), a.lambdaIndex, a.revision]);
+    this.native.resume(JSON.stringify(rows));
+  }
+}
+
+// The app's simulated observer (--observer simulated:SEED) watching a procedure: act() gives the
+// key it presses now, or null.
+export class SimulatedObserver {
+  constructor(engine, seed, procedure) {
+    this.native = new engine.AdjustmentObserver(String(seed), procedure.native);
+  }
+
+  act(time) {
+    return this.native.key(time) || null;
+  }
+}
