@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/error.h"
 #include "core/number_format.h"
@@ -28,8 +30,18 @@ size_t Grid::point_of(double lambda, const std::string& where) const {
 
 std::string exact_number(double v) {
   char buffer[64];
+#ifdef __EMSCRIPTEN__
+  // emscripten's libc++ has no floating-point to_chars: the fewest %g digits that read back as v
+  // (the browser writes no replay CSV; this only keeps the function whole there).
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtod(buffer, nullptr) == v) break;
+  }
+  return buffer;
+#else
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
   return std::string(buffer, result.ptr);
+#endif
 }
 
 }  // namespace countershade::procedures

@@ -1,6 +1,8 @@
 #include "procedures/questplus.h"
 
+#ifndef __EMSCRIPTEN__
 #include <tbb/parallel_for.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +10,17 @@
 
 namespace countershade::procedures {
 namespace {
+
+// body(i) for every i < n: on the app's threads, and in order in the browser's WebAssembly build
+// (which has none). Each i writes only its own results, so both give the same numbers.
+template <class Body>
+void for_each_index(size_t n, const Body& body) {
+#ifdef __EMSCRIPTEN__
+  for (size_t i = 0; i < n; ++i) body(i);
+#else
+  tbb::parallel_for(size_t(0), n, body);
+#endif
+}
 
 // −q ln q, with 0 ln 0 = 0.
 double information(double q) { return q > 0 ? -q * std::log(q) : 0.0; }
@@ -92,7 +105,7 @@ QuestPlus::QuestPlus(QuestPlusDefinition definition)
   const size_t n = definition_.stimuli.size();
   likelihood_.resize(n * points_);
   outcome_entropy_.resize(n * points_);
-  tbb::parallel_for(size_t(0), points_, [&](size_t point) {
+  for_each_index(points_, [&](size_t point) {
     const ParameterPoint p = values_at(point, definition_.grids);
     for (size_t s = 0; s < n; ++s) {
       const double psi =
@@ -108,7 +121,7 @@ QuestPlus::QuestPlus(QuestPlusDefinition definition)
 std::vector<double> QuestPlus::expected_entropies() const {
   const double h = entropy();
   std::vector<double> out(definition_.stimuli.size());
-  tbb::parallel_for(size_t(0), out.size(), [&](size_t s) {
+  for_each_index(out.size(), [&](size_t s) {
     const double* l = &likelihood_[s * points_];
     const double* e = &outcome_entropy_[s * points_];
     double correct = 0, within = 0;  // Σ post·ψ and Σ post·h

@@ -127,7 +127,11 @@ class QuestPlusProcedure final : public Procedure {
     quest_.update_at(to_scale(scale, grid_.lambdas[shown.grid]), correct);
   }
   void choose_in_background() {
+#ifdef __EMSCRIPTEN__
+    next_ = quest_.next();  // the browser's WebAssembly build has no threads: choose now
+#else
     choosing_ = std::async(std::launch::async, [this] { return quest_.next(); });
+#endif
   }
   // Takes the background choice, if one is under way.
   void settle() const {

@@ -4,9 +4,7 @@
 // web/engine.js. Structured values cross as JSON text; keys and phases as their names.
 
 #include <emscripten/bind.h>
-#include <emscripten/val.h>
 
-#include <exception>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -15,6 +13,8 @@
 #include "adjust/procedure.h"
 #include "adjust/simulated_observer.h"
 #include "runtime/study.h"
+#include "web_engine/javascript_errors.h"
+#include "web_engine/page_study.h"
 
 namespace countershade::web_engine {
 namespace {
@@ -44,17 +44,6 @@ procedures::Side side_named(const std::string& name) {
   if (name == "left") return procedures::Side::left;
   if (name == "right") return procedures::Side::right;
   return procedures::Side::counterbalanced;
-}
-
-// The study as the page has it (study.js, written by export-web): its conditions and λ grid.
-Study study_of(const json& page) {
-  Study study;
-  study.lambda_min = page.at("lambda_grid").at("min").get<double>();
-  study.lambda_step = page.at("lambda_grid").at("step").get<double>();
-  for (const json& c : page.at("conditions"))
-    study.conditions.push_back({c.at("scene").get<std::string>(), c.at("method").get<std::string>(),
-                                c.at("sigma_value").get<double>(), int(c.at("grid").size())});
-  return study;
 }
 
 procedures::PlanSettings plan_settings_of(const json& page, uint64_t seed) {
@@ -89,17 +78,6 @@ Trial trial_of(const json& j) {
   return t;
 }
 
-// Runs f; an exception it throws reaches the page as a JavaScript Error with the same message.
-template <class F>
-auto errors_to_javascript(F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const std::exception& e) {
-    emscripten::val::global("Error").new_(std::string(e.what())).throw_();
-    std::abort();  // throw_ does not return
-  }
-}
-
 // The seed of a subject's session, as decimal text (JavaScript numbers hold 53 bits).
 std::string session_seed(const std::string& study_seed, const std::string& subject, int session) {
   return errors_to_javascript([&] {
@@ -109,11 +87,10 @@ std::string session_seed(const std::string& study_seed, const std::string& subje
 
 // The plan of a subject's session for the page's study: a JSON array of trials.
 std::string plan_of(const json& page, const std::string& subject, int session) {
-  const uint64_t seed =
-      runtime::session_seed(std::stoull(page.at("seed").get<std::string>()), subject, session);
+  const uint64_t seed = page_session_seed(page, subject, session);
   json plan = json::array();
   for (const Trial& t :
-       adjust::plan_trials(study_of(page).conditions, plan_settings_of(page, seed)))
+       adjust::plan_trials(study_from_page(page).conditions, plan_settings_of(page, seed)))
     plan.push_back(trial_json(t));
   return plan.dump();
 }
@@ -128,7 +105,7 @@ std::string plan_session(const std::string& page_json, const std::string& subjec
 class AdjustmentProcedure {
  public:
   AdjustmentProcedure(const std::string& page_json, const std::string& plan_json)
-      : study_(errors_to_javascript([&] { return study_of(json::parse(page_json)); })),
+      : study_(errors_to_javascript([&] { return study_from_page(json::parse(page_json)); })),
         procedure_(errors_to_javascript([&] { return make(page_json, plan_json); })) {}
 
   std::string phase() const { return kPhaseNames[int(procedure_.phase())]; }
@@ -177,7 +154,7 @@ class AdjustmentProcedure {
     procedures::RepeatTiming timing;
     timing.repeat_delay_s = page.at("timing").at("delay").get<double>();
     timing.repeat_interval_s = page.at("timing").at("interval").get<double>();
-    return Procedure(study_of(page).conditions, std::move(plan), timing);
+    return Procedure(study_from_page(page).conditions, std::move(plan), timing);
   }
 
   Study study_;

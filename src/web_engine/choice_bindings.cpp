@@ -1,0 +1,120 @@
+// The forced-choice study's logic for the exported page, compiled to WebAssembly: the app's
+// session of trials (src/forced_choice/choice_run.cpp) with the procedure plug-ins of
+// src/procedures (constant stimuli, staircase, QUEST, QUEST+) and the simulated observer. The page
+// shows what current() says and feeds answer(); after a reload it replays the stored answers
+// through answer(), so every procedure's state equals that of an uninterrupted run.
+
+#include <emscripten/bind.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "forced_choice/choice_observer.h"
+#include "forced_choice/choice_run.h"
+#include "runtime/study.h"
+#include "web_engine/javascript_errors.h"
+#include "web_engine/page_study.h"
+
+namespace countershade::web_engine {
+
+using forced_choice::ChoiceConfig;
+using forced_choice::ChoiceRun;
+using forced_choice::ChoiceTrial;
+using json = nlohmann::json;
+
+// One participant's forced-choice session over the page's study, whose "forced_choice" is the
+// experiment's block as written.
+class ChoiceSession {
+ public:
+  ChoiceSession(const std::string& page_json, const std::string& subject, int session)
+      : page_(errors_to_javascript([&] { return json::parse(page_json); })),
+        study_(errors_to_javascript([&] { return study_from_page(page_); })),
+        config_(errors_to_javascript([&] {
+          return procedures::parse_choice_config(page_.at("forced_choice"), "study.js",
+                                                 "forced_choice");
+        })),
+        seed_(errors_to_javascript([&] {
+          return config_.seed ? runtime::session_seed(*config_.seed, subject, session)
+                              : page_session_seed(page_, subject, session);
+        })),
+        run_(errors_to_javascript([&] { return ChoiceRun(study_, config_, seed_); })) {}
+
+  std::string session_seed() const { return std::to_string(seed_); }
+  // The trial to show now as JSON, or "null" once the session is finished.
+  std::string current() const {
+    const auto& t = run_.current();
+    if (!t) return "null";
+    return json{{"number", t->number},
+                {"practice", t->practice},
+                {"condition", t->condition},
+                {"condition_trial", t->condition_trial},
+                {"requested", t->intensity.requested},
+                {"lambda_index", t->lambda_index},
+                {"lambda", t->lambda},
+                {"target", t->target}}
+        .dump();
+  }
+  bool ready() const { return run_.ready(); }
+  // The answer to the current trial (a position or interval, 0-based); whether it was correct.
+  bool answer(int response) {
+    return errors_to_javascript([&] {
+      if (!run_.current()) throw std::invalid_argument("the session is finished");
+      if (response < 0 || response >= config_.n_afc)
+        throw std::invalid_argument("an answer is a position from 0 to n_afc - 1");
+      return run_.answer(response);
+    });
+  }
+  bool finished() const { return run_.finished(); }
+  bool in_practice() const { return run_.in_practice(); }
+  int real_trials_done() const { return run_.real_trials_done(); }
+  // The study's conditions that have a procedure, and one's state after its last answer (JSON).
+  std::string conditions() const { return json(run_.conditions()).dump(); }
+  std::string procedure_state(int condition) const {
+    return errors_to_javascript([&] { return run_.procedure_state(condition).dump(); });
+  }
+
+ private:
+  json page_;
+  runtime::Study study_;
+  ChoiceConfig config_;
+  uint64_t seed_;
+  ChoiceRun run_;
+};
+
+// The app's simulated observer (--observer weibull:ALPHA,BETA,SEED).
+class ChoiceObserver {
+ public:
+  explicit ChoiceObserver(const std::string& spec)
+      : observer_(
+            errors_to_javascript([&] { return forced_choice::parse_choice_observer(spec); })) {}
+
+  // The answer to real trial `number` (practice: 0, and the practice trial's index).
+  int respond(int number, int practice_index, double lambda, int target, int n_afc) const {
+    return observer_.respond(number, practice_index, lambda, target, n_afc);
+  }
+  double delay() const { return observer_.delay_s; }
+
+ private:
+  forced_choice::ChoiceObserver observer_;
+};
+
+EMSCRIPTEN_BINDINGS(countershade_forced_choice) {
+  using namespace emscripten;
+  class_<ChoiceSession>("ChoiceSession")
+      .constructor<std::string, std::string, int>()
+      .function("sessionSeed", &ChoiceSession::session_seed)
+      .function("current", &ChoiceSession::current)
+      .function("ready", &ChoiceSession::ready)
+      .function("answer", &ChoiceSession::answer)
+      .function("finished", &ChoiceSession::finished)
+      .function("inPractice", &ChoiceSession::in_practice)
+      .function("realTrialsDone", &ChoiceSession::real_trials_done)
+      .function("conditions", &ChoiceSession::conditions)
+      .function("procedureState", &ChoiceSession::procedure_state);
+  class_<ChoiceObserver>("ChoiceObserver")
+      .constructor<std::string>()
+      .function("respond", &ChoiceObserver::respond)
+      .function("delay", &ChoiceObserver::delay);
+}
+
+}  // namespace countershade::web_engine
