@@ -9,22 +9,13 @@
 #include "core/json_reader.h"
 #include "core/number_format.h"
 #include "core/time.h"
+#include "forced_choice/choice_row.h"
 #include "formats/responses.h"
 
 namespace countershade::forced_choice {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
-
-const std::vector<std::string>& choice_columns() {
-  static const std::vector<std::string> columns = {
-      "subject",          "session",    "trial",   "scene",
-      "method",           "sigma",      "lambda",  "lambda_index",
-      "lambda_requested", "n_afc",      "layout",  "target",
-      "response",         "correct",    "rt_ms",   "procedure",
-      "condition_trial",  "set_sha256", "time_utc"};
-  return columns;
-}
 
 ChoiceFiles choice_files(const fs::path& dir, const std::string& subject, int session) {
   char name[96];
@@ -47,22 +38,6 @@ void move_partial_line_aside(const fs::path& csv, json& sidecar) {
   sidecar["repairs"].push_back({{"at_utc", utc_timestamp()},
                                 {"what", "a partial last line of the trials was moved aside"},
                                 {"file", aside.filename().string()}});
-}
-
-std::string row_mismatch(const std::vector<std::string>& row, const ChoiceTrial& t,
-                         const runtime::Study& study) {
-  const auto& c = study.conditions[size_t(t.condition)];
-  const std::vector<std::pair<size_t, std::string>> expected = {{2, std::to_string(t.number)},
-                                                                {3, c.scene},
-                                                                {4, c.method},
-                                                                {5, format_value(c.sigma)},
-                                                                {7, std::to_string(t.lambda_index)},
-                                                                {11, std::to_string(t.target)}};
-  for (const auto& [column, value] : expected)
-    if (row[column] != value)
-      return choice_columns()[column] + " is '" + row[column] +
-             "' where this session's plan has '" + value + "'";
-  return "";
 }
 
 }  // namespace
@@ -111,33 +86,17 @@ void ChoiceRecorder::replay(ChoiceRun& run) {
   const CsvTable table = parse_csv(read_file_bytes(files_.csv), file);
   if (table.rows.empty() || table.rows.front() != choice_columns())
     throw_input_error(file, "not a forced-choice session (its header differs)");
-  while (run.in_practice()) run.answer(run.current()->target);  // practice is not recorded: skip it
-  for (size_t r = 1; r < table.rows.size(); ++r) {
-    const auto& row = table.rows[r];
-    const std::string where = file + ":" + std::to_string(table.lines[r]);
-    if (row.size() != choice_columns().size())
-      throw_input_error(where, "expected " + std::to_string(choice_columns().size()) + " fields");
-    if (run.finished()) throw_input_error(where, "a trial after the session's last one");
-    const std::string mismatch = row_mismatch(row, *run.current(), study_);
-    if (!mismatch.empty()) throw_input_error(where, mismatch);
-    if (row[12] != "0" && row[12] != "1") throw_input_error(where, "response: expected 0 or 1");
-    run.answer(std::stoi(row[12]));
-    ++rows_;
-  }
+  const std::vector<std::vector<std::string>> rows(table.rows.begin() + 1, table.rows.end());
+  replay_choice_rows(run, rows, study_, config_.n_afc,
+                     [&](size_t r) { return file + ":" + std::to_string(table.lines[r + 1]); });
+  rows_ = int(rows.size());
   run_.answers_before = rows_;
 }
 
 void ChoiceRecorder::record(const ChoiceTrial& t, int response, bool correct, double rt_s) {
-  const auto& c = study_.conditions[size_t(t.condition)];
-  char rt[32];
-  std::snprintf(rt, sizeof rt, "%.1f", rt_s * 1000);
-  csv_.append(csv_line(
-      {who_.subject, std::to_string(who_.session), std::to_string(t.number), c.scene, c.method,
-       format_value(c.sigma), format_value(t.lambda), std::to_string(t.lambda_index),
-       format_value(round_to(t.intensity.requested, 9)), std::to_string(config_.n_afc),
-       layout_name(config_.layout), std::to_string(t.target), std::to_string(response),
-       correct ? "1" : "0", rt, config_.procedure.type, std::to_string(t.condition_trial),
-       study_.manifest_sha256, utc_timestamp()}));
+  csv_.append(
+      csv_line(choice_row(study_, config_, {who_.subject, who_.session, study_.manifest_sha256}, t,
+                          response, correct, rt_s, utc_timestamp())));
   csv_.sync();
   ++rows_;
   ++run_.answers;

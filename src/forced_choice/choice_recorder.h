@@ -13,14 +13,12 @@
 #include <vector>
 
 #include "core/append_file.h"
+#include "forced_choice/choice_row.h"
 #include "forced_choice/choice_run.h"
 #include "runtime/session_run.h"
 #include "runtime/study.h"
 
 namespace countershade::forced_choice {
-
-// The CSV's columns, in order.
-const std::vector<std::string>& choice_columns();
 
 struct ChoiceFiles {
   std::filesystem::path csv, sidecar;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "forced_choice/choice_observer.h"
+#include "forced_choice/choice_row.h"
 #include "forced_choice/choice_run.h"
 #include "runtime/study.h"
 #include "web_engine/javascript_errors.h"
@@ -37,7 +38,8 @@ class ChoiceSession {
           return config_.seed ? runtime::session_seed(*config_.seed, subject, session)
                               : page_session_seed(page_, subject, session);
         })),
-        run_(errors_to_javascript([&] { return ChoiceRun(study_, config_, seed_); })) {}
+        run_(errors_to_javascript([&] { return ChoiceRun(study_, config_, seed_); })),
+        who_{subject, session, page_.contains("set") ? page_["set"].value("sha256", "") : ""} {}
 
   std::string session_seed() const { return std::to_string(seed_); }
   // The trial to show now as JSON, or "null" once the session is finished.
@@ -64,6 +66,28 @@ class ChoiceSession {
       return run_.answer(response);
     });
   }
+  // Answers the current trial and gives {correct, row}: the trials CSV's fields as the app writes
+  // them (an empty row for a practice trial, which is not recorded).
+  std::string answer_with_row(int response, double rt_s, const std::string& time_utc) {
+    return errors_to_javascript([&] {
+      const ChoiceTrial t = run_.current().value();
+      const bool correct = answer(response);
+      const auto row = t.practice ? std::vector<std::string>{}
+                                  : forced_choice::choice_row(study_, config_, who_, t, response,
+                                                              correct, rt_s, time_utc);
+      return json{{"correct", correct}, {"row", row}}.dump();
+    });
+  }
+  // Continues a session from its recorded rows (a JSON array of rows of fields), as the app's
+  // resume does: practice is skipped and each row must be the trial the session shows next.
+  void replay(const std::string& rows_json) {
+    errors_to_javascript([&] {
+      const auto rows = json::parse(rows_json).get<std::vector<std::vector<std::string>>>();
+      forced_choice::replay_choice_rows(run_, rows, study_, config_.n_afc, [](size_t r) {
+        return "stored row " + std::to_string(r + 1);
+      });
+    });
+  }
   bool finished() const { return run_.finished(); }
   bool in_practice() const { return run_.in_practice(); }
   int real_trials_done() const { return run_.real_trials_done(); }
@@ -79,6 +103,7 @@ class ChoiceSession {
   ChoiceConfig config_;
   uint64_t seed_;
   ChoiceRun run_;
+  forced_choice::ChoiceRowContext who_;
 };
 
 // The app's simulated observer (--observer weibull:ALPHA,BETA,SEED).
@@ -106,6 +131,8 @@ EMSCRIPTEN_BINDINGS(countershade_forced_choice) {
       .function("current", &ChoiceSession::current)
       .function("ready", &ChoiceSession::ready)
       .function("answer", &ChoiceSession::answer)
+      .function("answerWithRow", &ChoiceSession::answer_with_row)
+      .function("replay", &ChoiceSession::replay)
       .function("finished", &ChoiceSession::finished)
       .function("inPractice", &ChoiceSession::in_practice)
       .function("realTrialsDone", &ChoiceSession::real_trials_done)

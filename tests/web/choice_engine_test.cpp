@@ -1,7 +1,8 @@
 // The forced-choice engine the exported page runs (the app's C++ compiled to WebAssembly) against
 // the app's native build: for the same study, block, subject and simulated observer, every trial
-// (condition, λ, target, answer, correctness) and every procedure's final state are the same, for
-// constant stimuli, a staircase, QUEST and QUEST+.
+// (condition, λ, target, answer, correctness), every row of the trials CSV and every procedure's
+// final state are the same, for constant stimuli, a staircase, QUEST and QUEST+; and a session
+// rebuilt from its rows half-way (a reload) ends in the same states.
 
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "forced_choice/choice_observer.h"
+#include "forced_choice/choice_row.h"
 #include "forced_choice/choice_run.h"
 #include "test_util.h"
 #include "web_engine/page_study.h"
@@ -38,6 +40,7 @@ json page_study(const json& forced_choice) {
   return {{"seed", "18446744073709551557"},  // beyond 2^53
           {"lambda_grid", {{"min", 0}, {"step", 0.05}}},
           {"conditions", conditions},
+          {"set", {{"sha256", "SET"}}},
           {"forced_choice", forced_choice}};
 }
 
@@ -51,7 +54,7 @@ json native_session(const json& page, const std::string& subject, int session,
                                     : page_session_seed(page, subject, session);
   ChoiceRun run(study, config, seed);
   const auto observer = forced_choice::parse_choice_observer(observer_spec);
-  json trials = json::array();
+  json trials = json::array(), rows = json::array();
   for (int practice_index = 0; run.current();) {
     const auto t = *run.current();
     const int response =
@@ -60,10 +63,14 @@ json native_session(const json& page, const std::string& subject, int session,
     practice_index += t.practice;
     trials.push_back({t.number, t.practice, t.condition, t.condition_trial, t.intensity.requested,
                       t.lambda_index, t.lambda, t.target, response, correct});
+    // The row with a response time the checker can repeat: 0.5 s plus 1 ms per trial.
+    if (!t.practice)
+      rows.push_back(forced_choice::choice_row(study, config, {subject, session, "SET"}, t,
+                                               response, correct, 0.5 + 0.001 * t.number, "T"));
   }
   json states = json::array();
   for (int c : run.conditions()) states.push_back(json::parse(run.procedure_state(c).dump()));
-  return {{"seed", std::to_string(seed)}, {"trials", trials}, {"states", states}};
+  return {{"seed", std::to_string(seed)}, {"trials", trials}, {"rows", rows}, {"states", states}};
 }
 
 json session_case(const json& forced_choice, const std::string& subject, int session,
