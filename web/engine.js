@@ -66,3 +66,41 @@ export class SimulatedObserver {
     return this.native.key(time) || null;
   }
 }
+
+// The trials CSV's columns of a forced-choice session, in order, as the app writes them.
+export function choiceColumns(engine) {
+  return JSON.parse(engine.choiceColumns());
+}
+
+// A forced-choice session (src/forced_choice/choice_run.cpp with the procedure plug-ins): the
+// trial to show, its answer and the app's row for it, and a replay of stored rows after a reload.
+export class ChoiceSession {
+  constructor(engine, study, subject, session) {
+    this.native = new engine.ChoiceSession(JSON.stringify(study), subject, session);
+  }
+
+  // {number, practice, condition, condition_trial, requested, lambda_index, lambda, target}, or
+  // null once the session is finished.
+  get current() { return JSON.parse(this.native.current()); }
+  get finished() { return this.native.finished(); }
+  get inPractice() { return this.native.inPractice(); }
+
+  // Answers the current trial: {correct, row} with the row's fields (empty for practice).
+  answer(response, rtSeconds, timeUtc) {
+    return JSON.parse(this.native.answerWithRow(response, rtSeconds, timeUtc));
+  }
+  // Rebuilds the session from its stored rows (arrays of fields), as the app's resume does.
+  replay(rows) { this.native.replay(JSON.stringify(rows)); }
+}
+
+// The app's simulated forced-choice observer (--observer weibull:ALPHA,BETA,SEED).
+export class ChoiceObserver {
+  constructor(engine, spec) {
+    this.native = new engine.ChoiceObserver(spec);
+  }
+
+  get delay() { return this.native.delay(); }
+  respond(trial, practiceIndex, nAfc) {
+    return this.native.respond(trial.number, practiceIndex, trial.lambda, trial.target, nAfc);
+  }
+}

@@ -1,9 +1,11 @@
 // The page of an exported study: asks for the participant's id (or takes ?subject=…&session=…),
 // checks the browser (window size, refresh rate), optionally measures the screen with the virtual
-// chinrest (recorded, never used to rescale), runs the adjustment session and offers the CSV.
+// chinrest (recorded, never used to rescale), runs the adjustment or forced-choice session and
+// offers the CSV.
 
 import { loadEngine } from "./engine.js";
 import { CountershadeAdjustPlugin } from "./plugin-adjust.js";
+import { CountershadeChoicePlugin } from "./plugin-choice.js";
 
 const study = window.COUNTERSHADE_STUDY;
 const SUBJECT = /^[A-Za-z0-9_-]{1,64}$/;
@@ -29,10 +31,10 @@ function askSubject() {
   });
 }
 
-function offerCsv(csv, subject, session) {
+function offerCsv(csv, subject, session, kind) {
   const link = document.createElement("a");
   link.href = URL.createObjectURL(new Blob([csv], { type: "text/csv" }));
-  link.download = `${subject}_s${String(session).padStart(2, "0")}.csv`;
+  link.download = `${subject}_s${String(session).padStart(2, "0")}${kind}.csv`; // the app's file names
   link.textContent = "Download the answers (CSV)";
   link.id = "countershade-download";
   const p = document.createElement("p");
@@ -80,11 +82,16 @@ async function start() {
   const engine = await engineOrMessage();
   if (!engine) return;
   CountershadeAdjustPlugin.engine = engine;
+  CountershadeChoicePlugin.engine = engine;
+  const choice = study.study === "forced_choice";
   const params = new URLSearchParams(window.location.search);
   const subject = SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject();
   const session = Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));
-  // ?observer=simulated:SEED: the app's simulated observer answers (pilots and tests).
-  const observer = /^simulated:(\d{1,15})$/.exec(params.get("observer") ?? "")?.[1] ?? null;
+  // ?observer=simulated:SEED (adjustment) or weibull:ALPHA,BETA,SEED (forced choice): the app's
+  // simulated observer answers (pilots and tests).
+  const spec = params.get("observer") ?? "";
+  const observer = choice ? (/^weibull:[0-9.]+,[0-9.]+,\d{1,15}$/.test(spec) ? spec : null)
+                          : /^simulated:(\d{1,15})$/.exec(spec)?.[1] ?? null;
   const jsPsych = window.initJsPsych({});
   const environment = {};
   const timeline = [{
@@ -93,8 +100,8 @@ async function start() {
     on_finish: (data) => Object.assign(environment, { refresh_hz: data.vsync_rate, device_pixel_ratio: window.devicePixelRatio }),
   }];
   if (study.chinrest) timeline.push(...chinrest(`countershade-chinrest:${study.set.sha256}:${subject}:${session}`, environment));
-  timeline.push({ type: CountershadeAdjustPlugin, study, subject, session, environment, observer,
-                  on_finish: (data) => offerCsv(data.csv, subject, session) });
+  timeline.push({ type: choice ? CountershadeChoicePlugin : CountershadeAdjustPlugin, study, subject, session, environment, observer,
+                  on_finish: (data) => offerCsv(data.csv, subject, session, choice ? ".forced-choice" : "") });
   await jsPsych.run(timeline);
 }
 

@@ -5,37 +5,16 @@
 // question.
 
 import { AdjustmentProcedure, QUESTIONS, SimulatedObserver, planSession } from "./engine.js";
-import { SessionStore } from "./store.js";
+import { placeImages, rowLayout } from "./layout.js";
+import { SessionStore, browserFields } from "./store.js";
 
 const KEYS = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: "right", Enter: "enter",
                Backspace: "backspace", Escape: "escape", q: "q", Q: "q" };
 
-// The smallest step in device pixels that is a whole number of CSS pixels at this ratio: an image
-// placed on it starts exactly on a device pixel (Chromium rounds an image's position to whole CSS
-// pixels at some ratios, measured at 1.25 and 2).
-function deviceSnap(dpr) {
-  for (let n = 1; n <= 64; ++n) {
-    const css = n / dpr;
-    if (Math.abs(css - Math.round(css)) < 1e-9) return n;
-  }
-  return 1;
-}
-
 // Where the two images go, in device pixels, or null when the window is too small for 1:1.
 export function layout(study, condition, innerWidth, innerHeight, dpr) {
-  const W = Math.round(innerWidth * dpr), H = Math.round(innerHeight * dpr);
-  const { width: w, height: h } = condition;
-  const line = study.font_px * 1.35 * dpr;
-  const side = Math.ceil(study.font_px * dpr), top = Math.ceil(line * 4.5), bottom = Math.ceil(line * 2.5);
-  const pair = 2 * w + study.gap_px;
-  if (pair + 2 * side > W || h + top + bottom > H) return null;
-  const snap = deviceSnap(dpr);
-  const down = (x) => Math.floor(x / snap) * snap;
-  const left = down((W - pair) / 2);
-  const right = Math.ceil((left + w + study.gap_px) / snap) * snap;
-  if (right + w + side > W) return null;
-  const y = down(top + Math.max(0, (H - top - bottom - h) / 2));
-  return { left, right, y, width: w, height: h, dpr };
+  const place = rowLayout(study, condition, 2, innerWidth, innerHeight, dpr);
+  return place && { ...place, left: place.xs[0], right: place.xs[1] };
 }
 
 function element(tag, style, parent) {
@@ -136,9 +115,7 @@ class AdjustSession {
       start_index: answer.startIndex, repetition: trial.repetition, session: this.session, trial: trial.number, side: trial.side,
       n_keypresses: answer.keypresses, rt_ms: (answer.rt * 1000).toFixed(1), revision: answer.revision,
       timestamp_utc: new Date().toISOString(), stimulus_set: this.study.set.sha256, app_version: this.study.app_version, sequence: "",
-      device_pixel_ratio: window.devicePixelRatio, window_width: window.innerWidth, window_height: window.innerHeight,
-      refresh_hz: this.environment.refresh_hz ?? "", user_agent: navigator.userAgent,
-      css_px_per_mm: this.environment.css_px_per_mm ?? "", viewing_distance_mm: this.environment.viewing_distance_mm ?? "",
+      ...browserFields(this.environment),
       plan_index: answer.trialIndex, question_index: QUESTIONS.indexOf(answer.question),
     });
   }
@@ -148,13 +125,7 @@ class AdjustSession {
   }
 
   showImages(place, files) {
-    this.images.forEach((img, i) => {
-      if (!place) return void (img.style.display = "none");
-      const src = this.decoded.get(files[i]).src;
-      if (img.getAttribute("src") !== src) img.setAttribute("src", src);
-      Object.assign(img.style, { display: "block", left: `${(i === 0 ? place.left : place.right) / place.dpr}px`, top: `${place.y / place.dpr}px`,
-                                 width: `${place.width / place.dpr}px`, height: `${place.height / place.dpr}px` });
-    });
+    placeImages(this.images, place, files ?? [], this.decoded);
   }
 
   draw() {

@@ -5,16 +5,27 @@
 // then sent again. Each POST carries an Idempotency-Key header naming the session and the row's
 // place in it, the same on every attempt, so the server keeps the first and acknowledges repeats.
 
-const COLUMNS = [
-  "subject", "scene", "sigma", "question", "lambda", "method", "lambda_step", "lambda_index", "lambda_max",
-  "start_index", "repetition", "session", "trial", "side", "n_keypresses", "rt_ms", "revision", "timestamp_utc",
-  "stimulus_set", "app_version", "sequence",
-  // the browser's own columns (docs/data-formats.md)
+// The browser's own columns, after the app's (docs/data-formats.md); the last two are the virtual
+// chinrest's estimates, with --chinrest (empty otherwise).
+export const BROWSER_COLUMNS = [
   "device_pixel_ratio", "window_width", "window_height", "refresh_hz", "user_agent",
-  // the virtual chinrest's estimates, with --chinrest (empty otherwise)
   "css_px_per_mm", "viewing_distance_mm",
 ];
-export { COLUMNS };
+// The adjustment study's columns: the app's, then the browser's.
+export const COLUMNS = [
+  "subject", "scene", "sigma", "question", "lambda", "method", "lambda_step", "lambda_index", "lambda_max",
+  "start_index", "repetition", "session", "trial", "side", "n_keypresses", "rt_ms", "revision", "timestamp_utc",
+  "stimulus_set", "app_version", "sequence", ...BROWSER_COLUMNS,
+];
+
+// The browser's columns of a row, from what the page measured.
+export function browserFields(environment) {
+  return {
+    device_pixel_ratio: window.devicePixelRatio, window_width: window.innerWidth, window_height: window.innerHeight,
+    refresh_hz: environment.refresh_hz ?? "", user_agent: navigator.userAgent,
+    css_px_per_mm: environment.css_px_per_mm ?? "", viewing_distance_mm: environment.viewing_distance_mm ?? "",
+  };
+}
 
 // One CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
 export function csvField(value) {
@@ -24,7 +35,9 @@ export function csvField(value) {
 export const csvLine = (fields) => fields.map(csvField).join(",") + "\n";
 
 export class SessionStore {
-  constructor(storage, key, postUrl = null, fetchImpl = globalThis.fetch?.bind(globalThis)) {
+  // columns: the CSV's, in order (the adjustment study's by default).
+  constructor(storage, key, postUrl = null, fetchImpl = globalThis.fetch?.bind(globalThis), columns = COLUMNS) {
+    this.columns = columns;
     this.storage = storage;
     this.key = key;
     this.postUrl = postUrl;
@@ -55,7 +68,7 @@ export class SessionStore {
   }
 
   csv() {
-    return csvLine(COLUMNS) + this.rows.map((row) => csvLine(COLUMNS.map((c) => row[c] ?? ""))).join("");
+    return csvLine(this.columns) + this.rows.map((row) => csvLine(this.columns.map((c) => row[c] ?? ""))).join("");
   }
 
   // The Idempotency-Key of row `index`: the session's storage key (URI-encoded: a header holds
@@ -77,7 +90,7 @@ export class SessionStore {
           const response = await this.fetch(this.postUrl, {
             method: "POST",
             headers: { "Content-Type": "text/csv", "Idempotency-Key": this.rowKey(this.posted) },
-            body: csvLine(COLUMNS) + csvLine(COLUMNS.map((c) => row[c] ?? "")),
+            body: csvLine(this.columns) + csvLine(this.columns.map((c) => row[c] ?? "")),
           });
           ok = response.ok;
         } catch {

@@ -32,6 +32,8 @@ const std::vector<std::pair<std::string, std::string>> kAssets = {
     {"node_modules/@jspsych/plugin-virtual-chinrest/dist/index.browser.min.js",
      "jspsych/plugin-virtual-chinrest.js"},
     {"web/engine.js", "countershade/engine.js"},
+    {"web/layout.js", "countershade/layout.js"},
+    {"web/plugin-choice.js", "countershade/plugin-choice.js"},
     {"web/store.js", "countershade/store.js"},
     {"web/plugin-adjust.js", "countershade/plugin-adjust.js"},
     {"web/main.js", "countershade/main.js"},
@@ -54,10 +56,12 @@ json condition_json(const Study& study, int c) {
     return image_name(size_t(study.stimuli[size_t(stimulus)].frames[0]));
   };
   json grid = json::array(), values = json::array(), images = json::array();
+  json hashes = json::array({study.image_of(stimuli[0]).sha256});
   for (size_t k = 1; k < stimuli.size(); ++k) {
     grid.push_back(format_value(study.lambda(int(k) - 1)));  // as the app writes it
     values.push_back(study.lambda(int(k) - 1));              // as the app computes with it
     images.push_back(image_of(stimuli[k]));
+    hashes.push_back(study.image_of(stimuli[k]).sha256);  // which images change with λ
   }
   return {{"scene", condition.scene},
           {"method", condition.method},
@@ -68,6 +72,7 @@ json condition_json(const Study& study, int c) {
           {"lambda_max", format_value(study.lambda_max(c))},
           {"reference", image_of(stimuli[0])},
           {"images", images},
+          {"sha256", hashes},
           {"width", study.width(c)},
           {"height", study.height(c)}};
 }
@@ -97,6 +102,21 @@ void check_exportable(const Study& study) {
   verify_study_images(study);
 }
 
+// The forced-choice study's part: its block and the app's texts for it.
+json choice_json(const WebChoiceStudy& choice) {
+  const procedures::ChoiceConfig& c = choice.config;
+  return {{"block", choice.block},
+          {"n_afc", c.n_afc},
+          {"layout", procedures::layout_name(c.layout)},
+          {"interval_frames", c.interval_frames},
+          {"blank_frames", c.blank_frames},
+          {"feedback_frames", c.feedback_frames},
+          {"texts",
+           {{"welcome", c.welcome_text()},
+            {"question", c.question},
+            {"answer_keys", c.answer_keys()}}}};
+}
+
 }  // namespace
 
 json web_study(const Study& study, const WebExportOptions& o) {
@@ -104,8 +124,9 @@ json web_study(const Study& study, const WebExportOptions& o) {
   json conditions = json::array();
   for (size_t i = 0; i < study.conditions.size(); ++i)
     conditions.push_back(condition_json(study, int(i)));
-  return {
+  json out = {
       {"format", "countershade-web-study"},
+      {"study", o.forced_choice ? "forced_choice" : "adjust"},
       {"title", o.title.empty() ? study.set_name : o.title},
       {"set", {{"name", study.set_name}, {"sha256", study.manifest_sha256}}},
       {"app_version", kVersion},
@@ -127,6 +148,12 @@ json web_study(const Study& study, const WebExportOptions& o) {
       {"conditions", conditions},
       {"post_url", o.post_url ? json(*o.post_url) : json(nullptr)},
       {"chinrest", o.chinrest}};
+  if (o.forced_choice) {
+    out["seed"] = std::to_string(study.manifest_seed);  // the block's own seed comes first
+    out["forced_choice"] = o.forced_choice->block;
+    out["choice"] = choice_json(*o.forced_choice);
+  }
+  return out;
 }
 
 size_t export_web_study(const Study& study, const WebExportOptions& o) {

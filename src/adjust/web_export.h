@@ -9,9 +9,18 @@
 #include <optional>
 #include <string>
 
+#include "procedures/choice_block.h"
 #include "runtime/study.h"
 
 namespace countershade::adjust {
+
+// The forced-choice study of a set, when the page runs it instead of the adjustment study: the
+// experiment's forced_choice block as written (the page's engine reads it as the app does) and as
+// read (for the texts).
+struct WebChoiceStudy {
+  nlohmann::json block;
+  procedures::ChoiceConfig config;
+};
 
 struct WebExportOptions {
   std::filesystem::path output;
@@ -20,10 +29,12 @@ struct WebExportOptions {
   std::optional<std::string> post_url;
   bool chinrest = false;
   std::string title;
+  std::optional<WebChoiceStudy> forced_choice;  // none: the adjustment study
 };
 
 // What the plugin reads (study.js): the set, the plan's inputs, the texts, and per condition its
-// λ grid (as the app writes the numbers) and image files.
+// λ grid (as the app writes the numbers), image files and their sha256. With a forced-choice
+// study, its block and texts instead of the adjustment's.
 nlohmann::ordered_json web_study(const runtime::Study& study, const WebExportOptions& options);
 
 // Writes the folder; returns the number of images copied. Throws InputError for a set that

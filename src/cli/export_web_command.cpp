@@ -8,12 +8,13 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/json_reader.h"
 
 namespace countershade::cli {
 namespace {
 
 struct ExportArgs {
-  std::string manifest, output, post_url, title, assets;
+  std::string manifest, output, post_url, title, assets, study;
   bool chinrest = false;
 };
 
@@ -31,6 +32,21 @@ std::string engine_folder() {
   return COUNTERSHADE_WEB_ENGINE;
 }
 
+// The forced-choice study, when the page is to run it: --study, else whether the experiment has a
+// forced_choice block.
+std::optional<adjust::WebChoiceStudy> choice_study(const ExportArgs& a) {
+  const nlohmann::json manifest = parse_json_file(a.manifest);
+  const nlohmann::json* block = nullptr;
+  if (manifest.contains("experiment") && manifest["experiment"].contains("forced_choice"))
+    block = &manifest["experiment"]["forced_choice"];
+  if (a.study == "adjust" || (a.study.empty() && !block)) return std::nullopt;
+  if (!block)
+    throw_input_error(a.manifest + ": experiment.forced_choice",
+                      "missing, so the set has no forced-choice study to export");
+  return adjust::WebChoiceStudy{
+      *block, procedures::parse_choice_config(*block, a.manifest, "experiment.forced_choice")};
+}
+
 void run(const ExportArgs& a) {
   check_output_folder(a.output);
   if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 &&
@@ -46,12 +62,14 @@ void run(const ExportArgs& a) {
   if (!a.post_url.empty()) o.post_url = a.post_url;
   o.chinrest = a.chinrest;
   o.title = a.title;
+  o.forced_choice = choice_study(a);
   const size_t images = adjust::export_web_study(study, o);
   std::fprintf(
       stderr,
-      "export-web: wrote %s (%zu images, %zu conditions); open it through a web server, e.g. "
-      "`python3 -m http.server -d %s`\n",
-      a.output.c_str(), images, study.conditions.size(), a.output.c_str());
+      "export-web: wrote %s (%s study, %zu images, %zu conditions); open it through a web server, "
+      "e.g. `python3 -m http.server -d %s`\n",
+      a.output.c_str(), o.forced_choice ? "forced-choice" : "adjustment", images,
+      study.conditions.size(), a.output.c_str());
 }
 
 }  // namespace
@@ -68,6 +86,10 @@ void add_export_web_command(CLI::App& app) {
   cmd->add_flag("--chinrest", a->chinrest,
                 "Add jsPsych's virtual chinrest (recorded only: the page is never rescaled)");
   cmd->add_option("--title", a->title, "The page title (default: the set's name)");
+  cmd->add_option("--study", a->study,
+                  "Which study the page runs: forced-choice (the experiment's forced_choice "
+                  "block) or adjust (default: forced-choice when the experiment has the block)")
+      ->check(CLI::IsMember({"adjust", "forced-choice"}));
   cmd->add_option("--assets", a->assets,
                   "The folder with node_modules/ and web/ (default: the source tree)");
   cmd->callback([a] { run(*a); });

@@ -123,8 +123,12 @@ class ChoiceObserver {
   forced_choice::ChoiceObserver observer_;
 };
 
+// The trials CSV's columns, in order (JSON).
+std::string choice_columns() { return json(forced_choice::choice_columns()).dump(); }
+
 EMSCRIPTEN_BINDINGS(countershade_forced_choice) {
   using namespace emscripten;
+  function("choiceColumns", &choice_columns);
   class_<ChoiceSession>("ChoiceSession")
       .constructor<std::string, std::string, int>()
       .function("sessionSeed", &ChoiceSession::session_seed)

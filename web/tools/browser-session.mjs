@@ -2,7 +2,9 @@
 // observer, optionally reloading the page at given moments, and writes the CSV the page offers.
 // The server also takes the study's POSTs to /collect, refusing the first two attempts at every
 // row ($REFUSE to change that), and writes the rows it accepted, in order, to OUT.csv.posted.
-//   node web/tools/browser-session.mjs STUDY_DIR SUBJECT SEED OUT.csv [RELOAD_AFTER_ANSWERS...]
+//   node web/tools/browser-session.mjs STUDY_DIR SUBJECT OBSERVER OUT.csv [RELOAD_AFTER_ANSWERS...]
+// OBSERVER: a number (the adjustment study's simulated:SEED), or a spec the page takes as it is
+// (weibull:ALPHA,BETA,SEED for a forced-choice study).
 
 import { writeFile } from "node:fs/promises";
 
@@ -10,7 +12,8 @@ import puppeteer from "puppeteer-core";
 
 import { serve } from "./static-server.mjs";
 
-const [dir, subject, seed, out, ...reloads] = process.argv.slice(2);
+const [dir, subject, observer, out, ...reloads] = process.argv.slice(2);
+const spec = /^\d+$/.test(observer) ? `simulated:${observer}` : observer;
 const posted = [];
 const server = await serve(dir, (row) => posted.push(row), Number(process.env.REFUSE ?? 2));
 const browser = await puppeteer.launch({ executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium-headless-shell",
@@ -18,7 +21,7 @@ const browser = await puppeteer.launch({ executablePath: process.env.CHROMIUM ??
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
-  const url = `http://127.0.0.1:${server.address().port}/?subject=${subject}&observer=simulated:${seed}`;
+  const url = `http://127.0.0.1:${server.address().port}/?subject=${subject}&observer=${spec}`;
   await page.goto(url);
   // Reload after the given numbers of stored answers: the page must resume where it stopped.
   for (const after of reloads.map(Number)) {

@@ -1,0 +1,163 @@
+// A forced-choice study in the browser: exported from a set whose experiment has a forced_choice
+// block and run in headless Chromium by the simulated observer, it gives the rows of `choose` for
+// the same subject and observer (apart from the clock's and the browser's columns) and the same
+// psychometric fits; reloads at random moments lose and repeat no trial, and every procedure comes
+// back in its state (the rows after a reload are the app's, which were planned from it).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+
+#include "../adjust/tiny_set.h"
+#include "../adjust/x_display.h"
+#include "core/image.h"
+#include "forced_choice/choice_row.h"
+#include "formats/responses.h"
+
+namespace countershade::forced_choice {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A tiny set (two scenes × two σ, λ from 0 to 2 in steps of 0.1) with this forced_choice block.
+fs::path choice_set(const testing::TempDir& dir, const std::string& block) {
+  return testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block + ",");
+}
+
+// The rows of a trials CSV without the clock's columns and the browser's.
+std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
+  const CsvTable table = parse_csv(testing::read_file(csv), csv.string());
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& row : table.rows) {
+    std::vector<std::string> kept;
+    for (size_t c = 0; c < choice_columns().size(); ++c)
+      if (choice_columns()[c] != "rt_ms" && choice_columns()[c] != "time_utc")
+        kept.push_back(c < row.size() ? row[c] : "?");
+    rows.push_back(kept);
+  }
+  return rows;
+}
+
+// The app's session of `observer`, on the frame clock; returns its CSV.
+fs::path app_session(const fs::path& manifest, const fs::path& sessions, const std::string& subject,
+                     const std::string& observer) {
+  testing::XvfbServer x;
+  testing::Child app({COUNTERSHADE_BINARY, "choose", manifest.string(), "--subject", subject,
+                      "--sessions", sessions.string(), "--observer", observer, "--frame-clock"},
+                     x.display(), (sessions.parent_path() / "app-log.txt").string());
+  EXPECT_EQ(app.wait(300), 0) << testing::read_file(sessions.parent_path() / "app-log.txt");
+  return sessions / (subject + "_s01.forced-choice.csv");
+}
+
+// The browser's session (reloading after the given numbers of answers); returns its CSV.
+fs::path browser_session(const fs::path& study, const fs::path& out, const std::string& subject,
+                         const std::string& observer, const std::string& reloads = "") {
+  fs::create_directories(out);
+  const fs::path csv = out / (subject + "_s01.forced-choice.csv");
+  const auto run = testing::run_program(
+      "bash -c", "'cd " + testing::source_dir().string() +
+                     " && node web/tools/browser-session.mjs " + study.string() + " " + subject +
+                     " " + observer + " " + csv.string() + " " + reloads + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return csv;
+}
+
+// Exports the set's forced-choice study, runs it in the app and in the browser, and compares the
+// rows and the psychometric fits; returns the number of trials.
+size_t compare_sessions(const std::string& block, const std::string& observer,
+                        const std::string& reloads = "") {
+  testing::TempDir dir;
+  const fs::path manifest = choice_set(dir, block);
+  const auto exported =
+      testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
+  EXPECT_EQ(exported.exit_code, 0) << exported.output;
+  EXPECT_NE(exported.output.find("forced-choice study"), std::string::npos) << exported.output;
+  const fs::path app = app_session(manifest, dir / "app", "P01", observer);
+  const fs::path browser = browser_session(dir / "web", dir / "browser", "P01", observer, reloads);
+  const auto rows = comparable_rows(app);
+  EXPECT_EQ(comparable_rows(browser), rows);
+  for (const auto& [csv, report] : {std::pair{app, "app-report"}, {browser, "browser-report"}}) {
+    const auto analyzed = testing::run_cli("analyze " + csv.string() + " -o " +
+                                           (dir / report).string() + " --no-figures");
+    EXPECT_EQ(analyzed.exit_code, 0) << analyzed.output;
+  }
+  const std::string fits = testing::read_file(dir / "app-report/psychometric_fits.csv");
+  EXPECT_GT(std::count(fits.begin(), fits.end(), '\n'), 1) << fits;
+  EXPECT_EQ(testing::read_file(dir / "browser-report/psychometric_fits.csv"), fits);
+  return rows.size() - 1;
+}
+
+// A 4AFC spatial trial at device scale factors 1, 1.25 and 2: each of the four images is its PNG
+// pixel for pixel at the device-pixel place the page reports, the target the enhanced one.
+TEST(WebChoice, EveryAlternativeIsPixelExactAtEveryDeviceScaleFactor) {
+  testing::TempDir dir;
+  const fs::path manifest = choice_set(
+      dir, R"({"n_afc": 4, "procedure": {"type": "constant", "lambdas": [2], "repetitions": 1}})");
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string())
+                .exit_code,
+            0);
+  for (const char* dpr : {"1", "1.25", "2"}) {
+    const fs::path shot = dir / (std::string("shot-") + dpr + ".png");
+    const auto run = testing::run_program(
+        "bash -c", "'cd " + testing::source_dir().string() +
+                       " && node web/tools/browser-choice-shot.mjs " + (dir / "web").string() +
+                       " " + dpr + " " + shot.string() + "'");
+    ASSERT_EQ(run.exit_code, 0) << dpr << ": " << run.output;
+    const auto info = nlohmann::json::parse(testing::read_file(shot.string() + ".json"));
+    const Image screen = read_image(shot);
+    ASSERT_EQ(info["files"].size(), 4u);
+    std::set<std::string> shown;
+    for (size_t i = 0; i < 4; ++i) {
+      const std::string file = info["files"][i];
+      shown.insert(file);
+      const Image stimulus = read_image(dir / "web" / file);
+      const int x0 = info["xs"][i], y0 = info["y"];
+      long differing = 0;
+      for (int y = 0; y < stimulus.height; ++y)
+        for (int x = 0; x < stimulus.width; ++x)
+          for (int c = 0; c < 3; ++c)
+            differing += std::lround(stimulus.at(x, y, c) * 255) !=
+                         std::lround(screen.at(x0 + x, y0 + y, c) * 255);
+      EXPECT_EQ(differing, 0) << "device scale factor " << dpr << ", image " << i;
+    }
+    EXPECT_EQ(shown.size(), 2u) << "three references and one enhanced image";
+  }
+}
+
+TEST(WebChoice, SpatialConstantStimuliAndQuestGiveTheAppsRowsAndFits) {
+  EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "practice_trials": 2, "procedure": {"type":
+              "constant", "lambdas": [0.2, 0.5, 1, 2], "repetitions": 2}})",
+                             "weibull:0.5,3,7"),
+            4u * 4u * 2u);
+  EXPECT_EQ(compare_sessions(R"({"n_afc": 4, "feedback_frames": 2, "procedure": {"type": "quest",
+              "tGuess": -0.3, "tGuessSd": 0.6, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01,
+              "gamma": 0.25, "nTrials": 8}})",
+                             "weibull:0.6,3,5"),
+            4u * 8u);
+}
+
+TEST(WebChoice, TemporalStaircaseAndQuestPlusSurviveReloads) {
+  std::mt19937 random(66);
+  std::set<int> points;
+  while (points.size() < 5) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
+  std::string reloads;
+  for (int p : points) reloads += std::to_string(p) + " ";
+  EXPECT_EQ(compare_sessions(R"({"n_afc": 3, "layout": "temporal", "interval_frames": 2,
+              "blank_frames": 1, "practice_trials": 1, "max_trials": 6, "procedure": {"type":
+              "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6}})",
+                             "weibull:0.5,3,11", reloads),
+            4u * 6u);
+  EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "conditions": [{"scene": "front", "method": "usm3d",
+              "sigma": 0.03}], "procedure": {"type": "questplus", "trials": 12, "param_domain":
+              {"threshold": [-1, -0.8, -0.6, -0.4, -0.2, 0, 0.2], "slope": [2, 3.5],
+              "lower_asymptote": 0.5, "lapse_rate": [0, 0.02]}}})",
+                             "weibull:0.5,3,3", "3 7 10"),
+            12u);
+}
+
+}  // namespace
+}  // namespace countershade::forced_choice

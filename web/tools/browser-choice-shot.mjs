@@ -1,0 +1,33 @@
+// Opens an exported forced-choice study (spatial) in Debian's headless Chromium at a device scale
+// factor, starts the session and writes a screenshot of the first trial with what the page says
+// it shows (the files and their device-pixel places), for the pixel test.
+//   node web/tools/browser-choice-shot.mjs STUDY_DIR DPR OUT.png
+
+import { writeFile } from "node:fs/promises";
+
+import puppeteer from "puppeteer-core";
+
+import { serve } from "./static-server.mjs";
+
+const [dir, dpr, out] = process.argv.slice(2);
+
+const server = await serve(dir);
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium-headless-shell",
+  args: ["--no-sandbox", "--force-color-profile=srgb"],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 900, height: 600, deviceScaleFactor: Number(dpr) });
+  await page.goto(`http://127.0.0.1:${server.address().port}/?subject=P01`);
+  await page.waitForFunction(() => window.countershadeSession?.t0 !== undefined, { timeout: 60000 });
+  await page.keyboard.press("Enter");
+  await page.waitForFunction(() => window.countershadeShown?.files?.length > 0, { timeout: 60000 });
+  await new Promise((r) => setTimeout(r, 200));
+  const shown = await page.evaluate(() => window.countershadeShown);
+  await page.screenshot({ path: out });
+  await writeFile(`${out}.json`, JSON.stringify({ ...shown, device_pixel_ratio: Number(dpr) }, null, 1));
+} finally {
+  await browser.close();
+  server.close();
+}
