@@ -31,8 +31,13 @@ export function rowLayout(study, condition, count, innerWidth, innerHeight, dpr)
   return { xs, y, width: w, height: h, dpr };
 }
 
-// Places the page's <img> elements on a layout's places (hidden where files has no entry).
-export function placeImages(images, place, files, decoded) {
+// Places the page's <img> elements on a layout's places (hidden where files has no entry); with
+// `deep` (a 16-bit study's DeepImages) the images are drawn there instead, each frame.
+export function placeImages(images, place, files, decoded, deep = null) {
+  if (deep) {
+    deep.items = place ? files.map((file, i) => ({ file, x: place.xs[i], y: place.y, width: place.width, height: place.height })) : [];
+    files = [];
+  }
   images.forEach((img, i) => {
     if (!place || i >= files.length) return void (img.style.display = "none");
     const src = decoded.get(files[i]).src;
@@ -40,4 +45,14 @@ export function placeImages(images, place, files, decoded) {
     Object.assign(img.style, { display: "block", left: `${place.xs[i] / place.dpr}px`, top: `${place.y / place.dpr}px`,
                                width: `${place.width / place.dpr}px`, height: `${place.height / place.dpr}px` });
   });
+}
+
+// Decodes one of a condition's images for placeImages: an <img> source, or with `deep` its 16-bit
+// codes as a texture (then nothing is returned).
+export async function decodeImage(file, condition, deep = null) {
+  if (deep) return void (await deep.load(file, condition.width, condition.height));
+  const img = new Image();
+  img.src = file;
+  await img.decode();
+  return img;
 }

@@ -77,10 +77,20 @@ async function engineOrMessage() {
   }
 }
 
+// A 16-bit study needs WebGL2 for its dither; without it the page says so and records nothing.
+function hasWebGl2() {
+  if (document.createElement("canvas").getContext("webgl2")) return true;
+  const p = document.createElement("p");
+  p.id = "countershade-unsupported";
+  p.textContent = "This study shows images with more than 8 bits, which needs WebGL2, and this browser has none: please use a current Chrome, Edge, Firefox or Safari with hardware acceleration on.";
+  document.body.appendChild(p);
+  return false;
+}
+
 async function start() {
   document.title = study.title;
   const engine = await engineOrMessage();
-  if (!engine) return;
+  if (!engine || (study.bits === 16 && !hasWebGl2())) return;
   CountershadeAdjustPlugin.engine = engine;
   CountershadeChoicePlugin.engine = engine;
   const choice = study.study === "forced_choice";

@@ -4,8 +4,9 @@
 // answer stored before the next question appears, and a reload resuming at the first unanswered
 // question.
 
-import { AdjustmentProcedure, QUESTIONS, SimulatedObserver, planSession } from "./engine.js";
-import { placeImages, rowLayout } from "./layout.js";
+import { AdjustmentProcedure, QUESTIONS, SimulatedObserver, planSession, sessionSeed } from "./engine.js";
+import { DeepImages } from "./deep-images.js";
+import { decodeImage, placeImages, rowLayout } from "./layout.js";
 import { SessionStore, browserFields } from "./store.js";
 
 const KEYS = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: "right", Enter: "enter",
@@ -37,6 +38,8 @@ class AdjustSession {
     this.resumed = this.store.rows.length > 0;
     if (this.resumed) this.procedure.resume(this.store.answered());
     this.ignoredRepeats = 0;
+    // A 16-bit study draws its images through the app's dither (main.js has checked for WebGL2).
+    if (study.bits === 16) this.deep = new DeepImages(engine, root, sessionSeed(engine, study.seed, subject, session));
     if (observer != null) this.observer = new SimulatedObserver(engine, observer, this.procedure);
     this.build(root);
   }
@@ -64,10 +67,7 @@ class AdjustSession {
       const started = performance.now();
       let done = 0;
       this.loading.set(condition, Promise.all(files.map(async (file) => {
-        const img = new Image();
-        img.src = file;
-        await img.decode();
-        this.decoded.set(file, img);
+        this.decoded.set(file, await decodeImage(file, c, this.deep));
         this.progress = { condition, done: ++done, total: files.length };
       })).then(() => {
         this.loaded.add(condition);
@@ -115,7 +115,7 @@ class AdjustSession {
       start_index: answer.startIndex, repetition: trial.repetition, session: this.session, trial: trial.number, side: trial.side,
       n_keypresses: answer.keypresses, rt_ms: (answer.rt * 1000).toFixed(1), revision: answer.revision,
       timestamp_utc: new Date().toISOString(), stimulus_set: this.study.set.sha256, app_version: this.study.app_version, sequence: "",
-      ...browserFields(this.environment),
+      ...browserFields(this.environment, this.study.bits),
       plan_index: answer.trialIndex, question_index: QUESTIONS.indexOf(answer.question),
     });
   }
@@ -125,7 +125,7 @@ class AdjustSession {
   }
 
   showImages(place, files) {
-    placeImages(this.images, place, files ?? [], this.decoded);
+    placeImages(this.images, place, files ?? [], this.decoded, this.deep);
   }
 
   draw() {
@@ -180,6 +180,7 @@ class AdjustSession {
     if (this.ended) return;
     this.procedure.tick(this.now());
     this.draw();
+    this.deep?.drawNext();
     requestAnimationFrame(() => this.frame());
   }
 

@@ -5,7 +5,8 @@
 // trial without an answer with every procedure rebuilt from the stored rows.
 
 import { ChoiceObserver, ChoiceSession, choiceColumns } from "./engine.js";
-import { placeImages, rowLayout } from "./layout.js";
+import { DeepImages } from "./deep-images.js";
+import { decodeImage, placeImages, rowLayout } from "./layout.js";
 import { BROWSER_COLUMNS, SessionStore, browserFields } from "./store.js";
 
 // The page's key names; with two alternatives Left and Right answer too.
@@ -35,6 +36,8 @@ class ChoiceStudySession {
     // Practice trials answered so far (the simulated observer's stream is keyed by it): a replay
     // has gone through all of them, as an uninterrupted session had.
     this.practiceIndex = this.resumed ? (study.forced_choice.practice_trials ?? 0) : 0;
+    // A 16-bit study draws its images through the app's dither (main.js has checked for WebGL2).
+    if (study.bits === 16) this.deep = new DeepImages(engine, root, this.run.native.sessionSeed());
     this.build(root);
   }
 
@@ -117,7 +120,7 @@ class ChoiceStudySession {
 
   record(fields) {
     const row = Object.fromEntries(fields.map((value, i) => [this.columns[i], value]));
-    Object.assign(row, browserFields(this.environment), { interval_ms: this.intervalDurations() });
+    Object.assign(row, browserFields(this.environment, this.study.bits), { interval_ms: this.intervalDurations() });
     this.store.add(row);
   }
 
@@ -139,10 +142,7 @@ class ChoiceStudySession {
   async loadAll() {
     for (const [c, condition] of this.study.conditions.entries()) {
       await Promise.all([condition.reference, ...condition.images].map(async (file) => {
-        const img = new Image();
-        img.src = file;
-        await img.decode();
-        this.decoded.set(file, img);
+        this.decoded.set(file, await decodeImage(file, condition, this.deep));
       }));
       this.loaded.add(c);
     }
@@ -170,7 +170,7 @@ class ChoiceStudySession {
       feedback: this.lastCorrect ? "Correct" : "Wrong",
     };
     [this.header, this.question, this.hint].forEach((e) => (e.textContent = ""));
-    placeImages(this.images, null, [], this.decoded);
+    placeImages(this.images, null, [], this.decoded, this.deep);
     if (this.phase !== "trial") return void (this.message.textContent = messages[this.phase]);
     if (!this.ready()) return void (this.message.textContent = "Loading the stimuli …");
     this.message.textContent = "";
@@ -206,7 +206,7 @@ class ChoiceStudySession {
         this.answerFrom ??= this.now();
       }
     }
-    placeImages(this.images, place, files, this.decoded);
+    placeImages(this.images, place, files, this.decoded, this.deep);
     window.countershadeShown = { trial: t.number, target: t.target, files, xs: place.xs, y: place.y };
   }
 
@@ -218,6 +218,7 @@ class ChoiceStudySession {
     // A phase counts its frames from the first one drawn; a trial's, once its images are loaded.
     if (this.phaseFrame === null || (this.phase === "trial" && !this.ready())) this.phaseFrame = this.frameCount;
     this.draw();
+    this.deep?.drawNext();
     this.observe();
     ++this.frameCount;
     if (!this.ended) requestAnimationFrame((t) => this.frame(t));

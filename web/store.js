@@ -5,11 +5,12 @@
 // then sent again. Each POST carries an Idempotency-Key header naming the session and the row's
 // place in it, the same on every attempt, so the server keeps the first and acknowledges repeats.
 
-// The browser's own columns, after the app's (docs/data-formats.md); the last two are the virtual
-// chinrest's estimates, with --chinrest (empty otherwise).
+// The browser's own columns, after the app's (docs/data-formats.md): the window, the chinrest's
+// estimates with --chinrest (empty otherwise), and how the stimuli reached the screen (as the
+// app's sidecar records it: 8-bit, or a 16-bit set through the dither).
 export const BROWSER_COLUMNS = [
   "device_pixel_ratio", "window_width", "window_height", "refresh_hz", "user_agent",
-  "css_px_per_mm", "viewing_distance_mm",
+  "css_px_per_mm", "viewing_distance_mm", "stimulus_bits", "output_path",
 ];
 // The adjustment study's columns: the app's, then the browser's.
 export const COLUMNS = [
@@ -18,9 +19,10 @@ export const COLUMNS = [
   "stimulus_set", "app_version", "sequence", ...BROWSER_COLUMNS,
 ];
 
-// The browser's columns of a row, from what the page measured.
-export function browserFields(environment) {
+// The browser's columns of a row, from what the page measured and the study's bits.
+export function browserFields(environment, bits) {
   return {
+    stimulus_bits: bits, output_path: bits === 16 ? "dither" : "8-bit",
     device_pixel_ratio: window.devicePixelRatio, window_width: window.innerWidth, window_height: window.innerHeight,
     refresh_hz: environment.refresh_hz ?? "", user_agent: navigator.userAgent,
     css_px_per_mm: environment.css_px_per_mm ?? "", viewing_distance_mm: environment.viewing_distance_mm ?? "",

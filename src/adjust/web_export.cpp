@@ -1,10 +1,13 @@
 #include "adjust/web_export.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_bytes.h"
+#include "core/image.h"
 #include "core/number_format.h"
 #include "core/version.h"
 
@@ -31,6 +34,7 @@ const std::vector<std::pair<std::string, std::string>> kAssets = {
      "jspsych/plugin-browser-check.js"},
     {"node_modules/@jspsych/plugin-virtual-chinrest/dist/index.browser.min.js",
      "jspsych/plugin-virtual-chinrest.js"},
+    {"web/deep-images.js", "countershade/deep-images.js"},
     {"web/engine.js", "countershade/engine.js"},
     {"web/layout.js", "countershade/layout.js"},
     {"web/plugin-choice.js", "countershade/plugin-choice.js"},
@@ -43,17 +47,34 @@ const std::vector<std::pair<std::string, std::string>> kAssets = {
 // The study logic as WebAssembly (src/web_engine), beside index.html, where the page loads it.
 const char* const kEngineFiles[] = {"countershade-engine.js", "countershade-engine.wasm"};
 
-std::string image_name(size_t image) {
+// A 16-bit set's images go to the page as their codes (.rgb16: width × height × RGB, 16-bit
+// little-endian, top row first), which WebGL2 takes as an integer texture: a browser decodes a
+// 16-bit PNG to 8 bits.
+std::string image_name(size_t image, int bits) {
   char name[32];
-  std::snprintf(name, sizeof name, "images/%05zu.png", image + 1);
+  std::snprintf(name, sizeof name, "images/%05zu.%s", image + 1, bits == 16 ? "rgb16" : "png");
   return name;
+}
+
+std::string rgb16_codes(const fs::path& png) {
+  const Image image = read_image(png);
+  std::string out;
+  out.reserve(size_t(image.width) * size_t(image.height) * 6);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const long code = std::lround(image.at(x, y, std::min(c, image.channels - 1)) * 65535.0f);
+        out.push_back(char(code & 0xff));
+        out.push_back(char(code >> 8));
+      }
+  return out;
 }
 
 json condition_json(const Study& study, int c) {
   const Condition& condition = study.conditions[size_t(c)];
   const auto& stimuli = study.condition_images[size_t(c)];
   auto image_of = [&](int stimulus) {
-    return image_name(size_t(study.stimuli[size_t(stimulus)].frames[0]));
+    return image_name(size_t(study.stimuli[size_t(stimulus)].frames[0]), study.bits);
   };
   json grid = json::array(), values = json::array(), images = json::array();
   json hashes = json::array({study.image_of(stimuli[0]).sha256});
@@ -89,12 +110,6 @@ json texts_json(const Instructions& t) {
 }
 
 void check_exportable(const Study& study) {
-  // A browser shows a 16-bit PNG at 8 bits, rounded as it likes, with no dither or 10-bit check.
-  if (study.bits != 8)
-    throw_input_error(
-        study.manifest_path.string() + ": bits",
-        "a 16-bit set cannot be exported for the web (browsers show 8 bits); make the set with "
-        "\"output\": {\"bits\": 8}, or run it in the app");
   for (const Stimulus& s : study.stimuli)
     if (s.fps > 0)
       throw_input_error(study.manifest_path.string(),
@@ -143,6 +158,7 @@ json web_study(const Study& study, const WebExportOptions& o) {
       {"font_px", c.font_px},
       {"texts", texts_json(c.text)},
       {"lambda_step", format_value(study.lambda_step)},
+      {"bits", study.bits},
       // The grid as the app computes λ from an index (runtime::Study::lambda), for the engine.
       {"lambda_grid", {{"min", study.lambda_min}, {"step", study.lambda_step}}},
       {"conditions", conditions},
@@ -176,7 +192,9 @@ size_t export_web_study(const Study& study, const WebExportOptions& o) {
   for (const char* file : kEngineFiles)
     write_text_atomically(o.output / file, read_file_bytes(o.engine / file));
   for (size_t i = 0; i < study.images.size(); ++i)
-    write_text_atomically(o.output / image_name(i), read_file_bytes(study.images[i].file));
+    write_text_atomically(o.output / image_name(i, study.bits),
+                          study.bits == 16 ? rgb16_codes(study.images[i].file)
+                                           : read_file_bytes(study.images[i].file));
   // A JavaScript file rather than JSON, so the page also opens where fetch() is not allowed;
   // ASCII-only, so no text from the set can end the literal.
   write_text_atomically(o.output / "study.js", "window.COUNTERSHADE_STUDY = " +

@@ -309,16 +309,34 @@ TEST(WebExport, ASetWithAMissingOrAlteredImageIsRefused) {
 }
 
 // A browser shows 8 bits: a 16-bit set is refused rather than shown rounded without a word.
-TEST(WebExport, ASixteenBitSetIsRefused) {
+// A 16-bit set goes to the page as its codes: each image's .rgb16 file holds its PNG's 16-bit
+// values, RGB, little-endian, top row first (the page's WebGL2 dither reads them).
+TEST(WebExport, ASixteenBitSetIsExportedAsItsCodes) {
   testing::TempDir dir;
   const fs::path manifest =
       testing::make_tiny_set(dir, "", 96, 72, 0.4, R"("output": {"bits": 16},)");
   const auto run =
       testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
-  EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_NE(run.output.find("16-bit"), std::string::npos) << run.output;
-  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
-  EXPECT_FALSE(fs::exists(dir / "web"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string page = testing::read_file(dir / "web/study.js");
+  EXPECT_NE(page.find("\"bits\": 16"), std::string::npos);
+  const runtime::Study study = runtime::load_study(manifest, std::nullopt);
+  for (size_t i : {size_t(0), study.images.size() - 1}) {
+    char name[32];
+    std::snprintf(name, sizeof name, "images/%05zu.rgb16", i + 1);
+    const std::string codes = testing::read_file(dir / "web" / name);
+    const Image png = read_image(study.images[i].file);
+    ASSERT_EQ(codes.size(), size_t(png.width) * size_t(png.height) * 6) << name;
+    long differing = 0;
+    for (int y = 0; y < png.height; ++y)
+      for (int x = 0; x < png.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const size_t at = ((size_t(y) * size_t(png.width) + size_t(x)) * 3 + size_t(c)) * 2;
+          const long value = long(uint8_t(codes[at])) | long(uint8_t(codes[at + 1])) << 8;
+          differing += value != std::lround(png.at(x, y, c) * 65535.0f);
+        }
+    EXPECT_EQ(differing, 0) << name;
+  }
 }
 
 }  // namespace
