@@ -78,6 +78,13 @@ ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns
   return t;
 }
 
+// A browser's temporal trial whose intervals ran a frame long or short (docs/online-study.md):
+// recorded, shown again, and not an answer to count.
+bool shown_mistimed(const std::vector<std::string>& row, const Columns& c) {
+  const auto it = c.index.find("interval_timing");
+  return it != c.index.end() && it->second < row.size() && row[it->second] == "mistimed";
+}
+
 }  // namespace
 
 bool is_forced_choice_header(const std::vector<std::string>& header) {
@@ -99,8 +106,9 @@ std::vector<ForcedChoiceTrial> read_forced_choice_trials(
     if (table.rows.empty()) throw_input_error(file, "empty file");
     const Columns columns = header_columns(table.rows.front(), file);
     for (size_t r = 1; r < table.rows.size(); ++r)
-      trials.push_back(
-          parse_trial(table.rows[r], columns, file + ":" + std::to_string(table.lines[r])));
+      if (!shown_mistimed(table.rows[r], columns))
+        trials.push_back(
+            parse_trial(table.rows[r], columns, file + ":" + std::to_string(table.lines[r])));
     if (table.rows.size() < 2) throw_input_error(file, "no trials after the header");
   }
   return trials;

@@ -89,6 +89,10 @@ export class ChoiceSession {
   answer(response, rtSeconds, timeUtc) {
     return JSON.parse(this.native.answerWithRow(response, rtSeconds, timeUtc));
   }
+  // The row of an answer that does not count (the trial stays, to be shown again).
+  rowWithoutAnswer(response, rtSeconds, timeUtc) {
+    return JSON.parse(this.native.rowWithoutAnswer(response, rtSeconds, timeUtc));
+  }
   // Rebuilds the session from its stored rows (arrays of fields), as the app's resume does.
   replay(rows) { this.native.replay(JSON.stringify(rows)); }
 }

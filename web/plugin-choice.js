@@ -11,9 +11,11 @@ import { BROWSER_COLUMNS, SessionStore, browserFields } from "./store.js";
 
 // The page's key names; with two alternatives Left and Right answer too.
 const KEYS = { Enter: "enter", Escape: "escape", q: "q", Q: "q", 1: 0, 2: 1, 3: 2, 4: 3, ArrowLeft: "left", ArrowRight: "right" };
-// The column the page adds: how long each temporal interval was shown, in ms from the frame that
-// showed it first to the frame that replaced it (requestAnimationFrame's times), ';'-separated.
-const TIMING_COLUMNS = ["interval_ms"];
+// The columns the page adds for a temporal trial: how long each interval was shown, in ms from the
+// frame that showed it first to the frame that replaced it (requestAnimationFrame's times),
+// ';'-separated; and "ok", or "mistimed" when one ran a frame or more long or short (that answer
+// does not count, and the trial is shown again at once).
+const TIMING_COLUMNS = ["interval_ms", "interval_timing"];
 
 function element(tag, style, parent) {
   const e = document.createElement(tag);
@@ -31,7 +33,8 @@ class ChoiceStudySession {
                                   study.post_url, undefined, this.columns);
     this.store.flush(); // rows a reload left unsent
     this.resumed = this.store.rows.length > 0;
-    if (this.resumed) this.run.replay(this.store.rows.map((row) => choiceColumns(engine).map((c) => row[c])));
+    const counted = this.store.rows.filter((row) => row.interval_timing !== "mistimed");
+    if (this.resumed) this.run.replay(counted.map((row) => choiceColumns(engine).map((c) => row[c])));
     if (observer) this.observer = new ChoiceObserver(engine, observer);
     // Practice trials answered so far (the simulated observer's stream is keyed by it): a replay
     // has gone through all of them, as an uninterrupted session had.
@@ -109,6 +112,10 @@ class ChoiceStudySession {
     const t = this.trial;
     // From when the answer is allowed: the trial's start, or (temporal) its question's first frame.
     const rt = this.now() - (this.choice.layout === "spatial" ? this.phaseSince : this.answerFrom);
+    if (!t.practice && this.mistimed()) {
+      this.record(this.run.rowWithoutAnswer(response, rt, new Date().toISOString()), "mistimed");
+      return this.enter("trial"); // the same trial again, from its beginning
+    }
     const { correct, row } = this.run.answer(response, rt, new Date().toISOString());
     if (t.practice) ++this.practiceIndex;
     else this.record(row);
@@ -118,19 +125,34 @@ class ChoiceStudySession {
     this.afterAnswer(t.practice);
   }
 
-  record(fields) {
+  record(fields, timing = "ok") {
     const row = Object.fromEntries(fields.map((value, i) => [this.columns[i], value]));
-    Object.assign(row, browserFields(this.environment, this.study.bits), { interval_ms: this.intervalDurations() });
+    const temporal = this.choice.layout === "temporal";
+    Object.assign(row, browserFields(this.environment, this.study.bits), {
+      interval_ms: temporal ? this.intervalDurations().map((ms) => ms.toFixed(1)).join(";") : "",
+      interval_timing: temporal ? timing : "",
+    });
     this.store.add(row);
   }
 
+  // Each interval's measured length in ms (temporal trials).
   intervalDurations() {
-    if (this.choice.layout !== "temporal") return "";
     const { n_afc: n, interval_frames: shown, blank_frames: blank } = this.choice;
     return Array.from({ length: n }, (_, k) => {
       const first = k * (shown + blank);
-      return (this.frameTimes[first + shown] - this.frameTimes[first]).toFixed(1);
-    }).join(";");
+      return this.frameTimes[first + shown] - this.frameTimes[first];
+    });
+  }
+
+  // Whether an interval of this temporal trial ran a frame or more long or short: its length off
+  // by half a frame period or more (lengths come in whole periods), the period being the median
+  // frame-to-frame time of the trial.
+  mistimed() {
+    if (this.choice.layout !== "temporal") return false;
+    const times = this.frameTimes.filter((t) => t !== undefined);
+    const steps = times.slice(1).map((t, i) => t - times[i]).sort((a, b) => a - b);
+    const period = steps[Math.floor(steps.length / 2)];
+    return this.intervalDurations().some((ms) => !(Math.abs(ms - this.choice.interval_frames * period) < period / 2));
   }
 
   afterAnswer(wasPractice) {
@@ -200,6 +222,7 @@ class ChoiceStudySession {
       const interval = this.intervalAt(this.frameCount - this.phaseFrame);
       if (interval >= 0 && interval < n) files = [interval === t.target ? enhanced : c.reference];
       this.frameTimes[this.frameCount - this.phaseFrame] = this.frameTime;
+      this.stallForTest(interval);
       if (interval >= 0 && interval < n) this.hint.textContent = `Interval ${interval + 1} of ${n}`;
       if (interval === n) {
         this.message.textContent = `${this.choice.texts.question}\n\n${this.choice.texts.answer_keys}: the interval`;
@@ -210,13 +233,23 @@ class ChoiceStudySession {
     window.countershadeShown = { trial: t.number, target: t.target, files, xs: place.xs, y: place.y };
   }
 
+  // A test's fault: window.countershadeStallTrial = N holds trial N's first interval for 120 ms once,
+  // as a busy machine would.
+  stallForTest(interval) {
+    if (window.countershadeStallTrial !== this.trial.number || interval !== 0 || this.stalled) return;
+    this.stalled = true;
+    for (const until = performance.now() + 120; performance.now() < until; );
+  }
+
   frame(time) {
     if (this.ended) return;
     this.frameTime = time;
     if (this.phase === "feedback" && this.frameCount - this.phaseFrame >= this.choice.feedback_frames)
       this.afterAnswer(this.feedbackAfterPractice);
-    // A phase counts its frames from the first one drawn; a trial's, once its images are loaded.
-    if (this.phaseFrame === null || (this.phase === "trial" && !this.ready())) this.phaseFrame = this.frameCount;
+    // A phase counts its frames from the first one drawn; a trial's from the first one drawn with
+    // its images loaded.
+    if (this.phaseFrame === null) this.phaseFrame = this.frameCount;
+    if (this.phase === "trial" && !this.ready()) this.phaseFrame = this.frameCount + 1;
     this.draw();
     this.deep?.drawNext();
     this.observe();

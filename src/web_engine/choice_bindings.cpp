@@ -78,6 +78,16 @@ class ChoiceSession {
       return json{{"correct", correct}, {"row", row}}.dump();
     });
   }
+  // The row of an answer to the current trial that does not count (a temporal trial shown with a
+  // mistimed interval): the session stays at this trial, which is shown again.
+  std::string row_without_answer(int response, double rt_s, const std::string& time_utc) const {
+    return errors_to_javascript([&] {
+      const ChoiceTrial t = run_.current().value();
+      return json(forced_choice::choice_row(study_, config_, who_, t, response,
+                                            response == t.target, rt_s, time_utc))
+          .dump();
+    });
+  }
   // Continues a session from its recorded rows (a JSON array of rows of fields), as the app's
   // resume does: practice is skipped and each row must be the trial the session shows next.
   void replay(const std::string& rows_json) {
@@ -136,6 +146,7 @@ EMSCRIPTEN_BINDINGS(countershade_forced_choice) {
       .function("ready", &ChoiceSession::ready)
       .function("answer", &ChoiceSession::answer)
       .function("answerWithRow", &ChoiceSession::answer_with_row)
+      .function("rowWithoutAnswer", &ChoiceSession::row_without_answer)
       .function("replay", &ChoiceSession::replay)
       .function("finished", &ChoiceSession::finished)
       .function("inPractice", &ChoiceSession::in_practice)

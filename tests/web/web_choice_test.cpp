@@ -2,7 +2,9 @@
 // block and run in headless Chromium by the simulated observer, it gives the rows of `choose` for
 // the same subject and observer (apart from the clock's and the browser's columns) and the same
 // psychometric fits; reloads at random moments lose and repeat no trial, and every procedure comes
-// back in its state (the rows after a reload are the app's, which were planned from it).
+// back in its state (the rows after a reload are the app's, which were planned from it); every row
+// reaches a refusing server once, in order; and a temporal trial whose interval ran long is
+// recorded as such and shown again.
 
 #include <gtest/gtest.h>
 
@@ -28,11 +30,16 @@ fs::path choice_set(const testing::TempDir& dir, const std::string& block) {
   return testing::make_tiny_set(dir, "", 96, 72, 0.1, "\"forced_choice\": " + block + ",");
 }
 
-// The rows of a trials CSV without the clock's columns and the browser's.
+// The rows of a trials CSV without the clock's columns and the browser's, and without the answers
+// to trials shown with a mistimed interval (which were shown again).
 std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
   const CsvTable table = parse_csv(testing::read_file(csv), csv.string());
+  const auto& header = table.rows.front();
+  const size_t timing =
+      size_t(std::find(header.begin(), header.end(), "interval_timing") - header.begin());
   std::vector<std::vector<std::string>> rows;
   for (const auto& row : table.rows) {
+    if (timing < row.size() && row[timing] == "mistimed") continue;
     std::vector<std::string> kept;
     for (size_t c = 0; c < choice_columns().size(); ++c)
       if (choice_columns()[c] != "rt_ms" && choice_columns()[c] != "time_utc")
@@ -40,6 +47,19 @@ std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
     rows.push_back(kept);
   }
   return rows;
+}
+
+// Whether the CSV has a row of trial `number` recorded as shown with a mistimed interval.
+bool has_mistimed_row(const fs::path& csv, int number) {
+  const CsvTable table = parse_csv(testing::read_file(csv), csv.string());
+  const auto& header = table.rows.front();
+  const auto column = [&](const char* name) {
+    return size_t(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  return std::any_of(table.rows.begin() + 1, table.rows.end(), [&](const auto& row) {
+    return row.at(column("trial")) == std::to_string(number) &&
+           row.at(column("interval_timing")) == "mistimed";
+  });
 }
 
 // The app's session of `observer`, on the frame clock; returns its CSV.
@@ -53,15 +73,24 @@ fs::path app_session(const fs::path& manifest, const fs::path& sessions, const s
   return sessions / (subject + "_s01.forced-choice.csv");
 }
 
-// The browser's session (reloading after the given numbers of answers); returns its CSV.
+// What a browser session does besides answering: reload after these numbers of answers, hold
+// this trial's first interval once (0: none).
+struct Faults {
+  std::string reloads;
+  int stall_trial = 0;
+};
+
+// The browser's session; returns its CSV. Its server refuses every row's first POST; the rows it
+// took are in CSV.posted.
 fs::path browser_session(const fs::path& study, const fs::path& out, const std::string& subject,
-                         const std::string& observer, const std::string& reloads = "") {
+                         const std::string& observer, const Faults& faults) {
   fs::create_directories(out);
   const fs::path csv = out / (subject + "_s01.forced-choice.csv");
   const auto run = testing::run_program(
       "bash -c", "'cd " + testing::source_dir().string() +
-                     " && node web/tools/browser-session.mjs " + study.string() + " " + subject +
-                     " " + observer + " " + csv.string() + " " + reloads + "'");
+                     " && REFUSE=1 STALL=" + std::to_string(faults.stall_trial) +
+                     " node web/tools/browser-session.mjs " + study.string() + " " + subject + " " +
+                     observer + " " + csv.string() + " " + faults.reloads + "'");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   return csv;
 }
@@ -69,17 +98,24 @@ fs::path browser_session(const fs::path& study, const fs::path& out, const std::
 // Exports the set's forced-choice study, runs it in the app and in the browser, and compares the
 // rows and the psychometric fits; returns the number of trials.
 size_t compare_sessions(const std::string& block, const std::string& observer,
-                        const std::string& reloads = "") {
+                        const Faults& faults = {}) {
   testing::TempDir dir;
   const fs::path manifest = choice_set(dir, block);
-  const auto exported =
-      testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
+  const auto exported = testing::run_cli("export-web " + manifest.string() + " -o " +
+                                         (dir / "web").string() + " --post-url /collect");
   EXPECT_EQ(exported.exit_code, 0) << exported.output;
   EXPECT_NE(exported.output.find("forced-choice study"), std::string::npos) << exported.output;
   const fs::path app = app_session(manifest, dir / "app", "P01", observer);
-  const fs::path browser = browser_session(dir / "web", dir / "browser", "P01", observer, reloads);
+  const fs::path browser = browser_session(dir / "web", dir / "browser", "P01", observer, faults);
   const auto rows = comparable_rows(app);
   EXPECT_EQ(comparable_rows(browser), rows);
+  const std::string table = testing::read_file(browser);
+  EXPECT_EQ(testing::read_file(browser.string() + ".posted"), table.substr(table.find('\n') + 1))
+      << "every row posted once, in order";
+  if (faults.stall_trial > 0)  // (a busy machine may lose a frame elsewhere too)
+    EXPECT_TRUE(has_mistimed_row(browser, faults.stall_trial))
+        << "the held trial is recorded as mistimed (and shown again):\n"
+        << table;
   for (const auto& [csv, report] : {std::pair{app, "app-report"}, {browser, "browser-report"}}) {
     const auto analyzed = testing::run_cli("analyze " + csv.string() + " -o " +
                                            (dir / report).string() + " --no-figures");
@@ -140,22 +176,24 @@ TEST(WebChoice, SpatialConstantStimuliAndQuestGiveTheAppsRowsAndFits) {
             4u * 8u);
 }
 
-TEST(WebChoice, TemporalStaircaseAndQuestPlusSurviveReloads) {
+// Ten reloads, and a trial whose first interval the page held for 120 ms: it is recorded as
+// mistimed, shown again, and the rows that count are still the app's.
+TEST(WebChoice, TemporalStaircaseAndQuestPlusSurviveReloadsAndMistiming) {
   std::mt19937 random(66);
   std::set<int> points;
-  while (points.size() < 5) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
-  std::string reloads;
-  for (int p : points) reloads += std::to_string(p) + " ";
+  while (points.size() < 10) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
+  Faults faults{"", 9};
+  for (int p : points) faults.reloads += std::to_string(p) + " ";
   EXPECT_EQ(compare_sessions(R"({"n_afc": 3, "layout": "temporal", "interval_frames": 2,
               "blank_frames": 1, "practice_trials": 1, "max_trials": 6, "procedure": {"type":
               "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6}})",
-                             "weibull:0.5,3,11", reloads),
+                             "weibull:0.5,3,11", faults),
             4u * 6u);
   EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "conditions": [{"scene": "front", "method": "usm3d",
               "sigma": 0.03}], "procedure": {"type": "questplus", "trials": 12, "param_domain":
               {"threshold": [-1, -0.8, -0.6, -0.4, -0.2, 0, 0.2], "slope": [2, 3.5],
               "lower_asymptote": 0.5, "lapse_rate": [0, 0.02]}}})",
-                             "weibull:0.5,3,3", "3 7 10"),
+                             "weibull:0.5,3,3", {"3 7 10", 0}),
             12u);
 }
 

@@ -21,6 +21,8 @@ const browser = await puppeteer.launch({ executablePath: process.env.CHROMIUM ??
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
+  // $STALL=N: the page holds trial N's first interval once (a forced-choice timing fault).
+  if (process.env.STALL) await page.evaluateOnNewDocument((n) => (window.countershadeStallTrial = n), Number(process.env.STALL));
   const url = `http://127.0.0.1:${server.address().port}/?subject=${subject}&observer=${spec}`;
   await page.goto(url);
   // Reload after the given numbers of stored answers: the page must resume where it stopped.
