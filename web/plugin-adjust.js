@@ -7,6 +7,7 @@
 import { AdjustmentProcedure, QUESTIONS, SimulatedObserver, planSession, sessionSeed } from "./engine.js";
 import { DeepImages } from "./deep-images.js";
 import { decodeImage, placeImages, rowLayout } from "./layout.js";
+import { sessionPlugin } from "./session-plugin.js";
 import { SessionStore, browserFields } from "./store.js";
 
 const KEYS = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: "right", Enter: "enter",
@@ -184,7 +185,7 @@ class AdjustSession {
     requestAnimationFrame(() => this.frame());
   }
 
-  run() {
+  start() {
     return new Promise((resolve) => {
       this.resolve = resolve;
       this.decoded = new Map();
@@ -211,37 +212,5 @@ class AdjustSession {
   }
 }
 
-export class CountershadeAdjustPlugin {
-  static info = {
-    name: "countershade-adjust",
-    version: "1.0.0",
-    parameters: {
-      study: { type: window.jsPsychModule?.ParameterType.OBJECT, default: undefined },
-      subject: { type: window.jsPsychModule?.ParameterType.STRING, default: undefined },
-      session: { type: window.jsPsychModule?.ParameterType.INT, default: 1 },
-      environment: { type: window.jsPsychModule?.ParameterType.OBJECT, default: {} },
-      observer: { type: window.jsPsychModule?.ParameterType.STRING, default: null },
-    },
-    data: {
-      end: { type: window.jsPsychModule?.ParameterType.STRING },
-      answers: { type: window.jsPsychModule?.ParameterType.INT },
-      csv: { type: window.jsPsychModule?.ParameterType.STRING },
-    },
-  };
-
-  // The WebAssembly engine (engine.js's loadEngine), set once before the timeline runs: it is no
-  // trial parameter, because jsPsych copies those and the engine is no plain object.
-  static engine = null;
-
-  constructor(jsPsych) {
-    this.jsPsych = jsPsych;
-  }
-
-  async trial(displayElement, trial) {
-    const session = new AdjustSession(displayElement, CountershadeAdjustPlugin.engine, trial.study, trial.subject, trial.session, trial.environment, trial.observer);
-    window.countershadeSession = session;
-    const result = await session.run();
-    displayElement.innerHTML = "";
-    this.jsPsych.finishTrial(result);
-  }
-}
+export const CountershadeAdjustPlugin = sessionPlugin("countershade-adjust", (page, engine, t) =>
+  new AdjustSession(page, engine, t.study, t.subject, t.session, t.environment, t.observer));

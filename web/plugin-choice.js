@@ -7,6 +7,7 @@
 import { ChoiceObserver, ChoiceSession, choiceColumns } from "./engine.js";
 import { DeepImages } from "./deep-images.js";
 import { decodeImage, placeImages, rowLayout } from "./layout.js";
+import { sessionPlugin } from "./session-plugin.js";
 import { BROWSER_COLUMNS, SessionStore, browserFields } from "./store.js";
 
 // The page's key names; with two alternatives Left and Right answer too.
@@ -281,36 +282,5 @@ class ChoiceStudySession {
   }
 }
 
-export class CountershadeChoicePlugin {
-  static info = {
-    name: "countershade-choice",
-    version: "1.0.0",
-    parameters: {
-      study: { type: window.jsPsychModule?.ParameterType.OBJECT, default: undefined },
-      subject: { type: window.jsPsychModule?.ParameterType.STRING, default: undefined },
-      session: { type: window.jsPsychModule?.ParameterType.INT, default: 1 },
-      environment: { type: window.jsPsychModule?.ParameterType.OBJECT, default: {} },
-      observer: { type: window.jsPsychModule?.ParameterType.STRING, default: null },
-    },
-    data: {
-      end: { type: window.jsPsychModule?.ParameterType.STRING },
-      answers: { type: window.jsPsychModule?.ParameterType.INT },
-      csv: { type: window.jsPsychModule?.ParameterType.STRING },
-    },
-  };
-
-  // The WebAssembly engine, set once before the timeline runs (see CountershadeAdjustPlugin).
-  static engine = null;
-
-  constructor(jsPsych) {
-    this.jsPsych = jsPsych;
-  }
-
-  async trial(displayElement, trial) {
-    const session = new ChoiceStudySession(displayElement, CountershadeChoicePlugin.engine, trial.study, trial.subject, trial.session, trial.environment, trial.observer);
-    window.countershadeSession = session;
-    const result = await session.start();
-    displayElement.innerHTML = "";
-    this.jsPsych.finishTrial(result);
-  }
-}
+export const CountershadeChoicePlugin = sessionPlugin("countershade-choice", (page, engine, t) =>
+  new ChoiceStudySession(page, engine, t.study, t.subject, t.session, t.environment, t.observer));

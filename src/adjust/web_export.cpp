@@ -38,6 +38,7 @@ const std::vector<std::pair<std::string, std::string>> kAssets = {
     {"web/engine.js", "countershade/engine.js"},
     {"web/layout.js", "countershade/layout.js"},
     {"web/plugin-choice.js", "countershade/plugin-choice.js"},
+    {"web/session-plugin.js", "countershade/session-plugin.js"},
     {"web/store.js", "countershade/store.js"},
     {"web/plugin-adjust.js", "countershade/plugin-adjust.js"},
     {"web/main.js", "countershade/main.js"},

@@ -19,6 +19,7 @@
 #include "core/image.h"
 #include "forced_choice/choice_row.h"
 #include "formats/responses.h"
+#include "screen_pixels.h"
 
 namespace countershade::forced_choice {
 namespace {
@@ -151,14 +152,8 @@ TEST(WebChoice, EveryAlternativeIsPixelExactAtEveryDeviceScaleFactor) {
       const std::string file = info["files"][i];
       shown.insert(file);
       const Image stimulus = read_image(dir / "web" / file);
-      const int x0 = info["xs"][i], y0 = info["y"];
-      long differing = 0;
-      for (int y = 0; y < stimulus.height; ++y)
-        for (int x = 0; x < stimulus.width; ++x)
-          for (int c = 0; c < 3; ++c)
-            differing += std::lround(stimulus.at(x, y, c) * 255) !=
-                         std::lround(screen.at(x0 + x, y0 + y, c) * 255);
-      EXPECT_EQ(differing, 0) << "device scale factor " << dpr << ", image " << i;
+      EXPECT_EQ(testing::differing_codes(stimulus, screen, info["xs"][i], info["y"]), 0)
+          << "device scale factor " << dpr << ", image " << i;
     }
     EXPECT_EQ(shown.size(), 2u) << "three references and one enhanced image";
   }

@@ -16,6 +16,7 @@
 #include "core/image.h"
 #include "formats/responses.h"
 #include "runtime/study.h"
+#include "screen_pixels.h"
 
 namespace countershade::adjust {
 namespace {
@@ -112,14 +113,8 @@ TEST(WebExport, BothStimuliArePixelExactAtEveryDeviceScaleFactor) {
     for (const char* side : {"left", "right"}) {
       const Image stimulus = read_image(dir / "web" / info[side]["file"].get<std::string>());
       const int x0 = info[side]["x"], y0 = info[side]["y"];
-      long differing = 0;
-      for (int y = 0; y < stimulus.height; ++y)
-        for (int x = 0; x < stimulus.width; ++x)
-          for (int c = 0; c < 3; ++c)
-            differing += std::lround(stimulus.at(x, y, c) * 255) !=
-                         std::lround(screen.at(x0 + x, y0 + y, c) * 255);
-      EXPECT_EQ(differing, 0) << "device scale factor " << dpr << ", " << side << " at " << x0
-                              << "," << y0;
+      EXPECT_EQ(testing::differing_codes(stimulus, screen, x0, y0), 0)
+          << "device scale factor " << dpr << ", " << side << " at " << x0 << "," << y0;
     }
   }
 }

@@ -8,16 +8,14 @@
 
 import { writeFile } from "node:fs/promises";
 
-import puppeteer from "puppeteer-core";
-
+import { launchChromium } from "./chromium.mjs";
 import { serve } from "./static-server.mjs";
 
 const [dir, subject, observer, out, ...reloads] = process.argv.slice(2);
 const spec = /^\d+$/.test(observer) ? `simulated:${observer}` : observer;
 const posted = [];
 const server = await serve(dir, (row) => posted.push(row), Number(process.env.REFUSE ?? 2));
-const browser = await puppeteer.launch({ executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium-headless-shell",
-                                         args: ["--no-sandbox", "--force-color-profile=srgb"] });
+const browser = await launchChromium();
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });

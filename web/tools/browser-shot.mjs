@@ -5,17 +5,13 @@
 
 import { writeFile } from "node:fs/promises";
 
-import puppeteer from "puppeteer-core";
-
+import { launchChromium } from "./chromium.mjs";
 import { serve } from "./static-server.mjs";
 
 const [dir, dpr, out] = process.argv.slice(2);
 
 const server = await serve(dir);
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium-headless-shell",
-  args: ["--no-sandbox", "--force-color-profile=srgb"],
-});
+const browser = await launchChromium();
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: Number(process.env.WIDTH ?? 900), height: Number(process.env.HEIGHT ?? 600), deviceScaleFactor: Number(dpr) });
