@@ -159,11 +159,14 @@ TEST(WebChoice, EveryAlternativeIsPixelExactAtEveryDeviceScaleFactor) {
   }
 }
 
-TEST(WebChoice, SpatialConstantStimuliAndQuestGiveTheAppsRowsAndFits) {
+TEST(WebChoice, SpatialConstantStimuliWithPracticeGiveTheAppsRowsAndFits) {
   EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "practice_trials": 2, "procedure": {"type":
               "constant", "lambdas": [0.2, 0.5, 1, 2], "repetitions": 2}})",
                              "weibull:0.5,3,7"),
             4u * 4u * 2u);
+}
+
+TEST(WebChoice, FourAlternativeQuestWithFeedbackGivesTheAppsRowsAndFits) {
   EXPECT_EQ(compare_sessions(R"({"n_afc": 4, "feedback_frames": 2, "procedure": {"type": "quest",
               "tGuess": -0.3, "tGuessSd": 0.6, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01,
               "gamma": 0.25, "nTrials": 8}})",
@@ -173,7 +176,7 @@ TEST(WebChoice, SpatialConstantStimuliAndQuestGiveTheAppsRowsAndFits) {
 
 // Ten reloads, and a trial whose first interval the page held for 120 ms: it is recorded as
 // mistimed, shown again, and the rows that count are still the app's.
-TEST(WebChoice, TemporalStaircaseAndQuestPlusSurviveReloadsAndMistiming) {
+TEST(WebChoice, TemporalStaircaseSurvivesTenReloadsAndAMistimedInterval) {
   std::mt19937 random(66);
   std::set<int> points;
   while (points.size() < 10) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
@@ -184,6 +187,9 @@ TEST(WebChoice, TemporalStaircaseAndQuestPlusSurviveReloadsAndMistiming) {
               "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6}})",
                              "weibull:0.5,3,11", faults),
             4u * 6u);
+}
+
+TEST(WebChoice, QuestPlusSurvivesReloadsWithItsPosterior) {
   EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "conditions": [{"scene": "front", "method": "usm3d",
               "sigma": 0.03}], "procedure": {"type": "questplus", "trials": 12, "param_domain":
               {"threshold": [-1, -0.8, -0.6, -0.4, -0.2, 0, 0.2], "slope": [2, 3.5],
