@@ -83,7 +83,10 @@ class ChoiceStudySession {
     return frames - k * (shown + blank) < shown ? k : -1;
   }
 
+  // Whether an answer counts now: once the trial has been drawn, and in a temporal trial once its
+  // last interval has been shown.
   answerAllowed() {
+    if (this.phaseFrame === null || this.frameCount === this.phaseFrame) return false;
     return this.choice.layout === "spatial" || this.intervalAt(this.frameCount - this.phaseFrame) === this.choice.n_afc;
   }
 
