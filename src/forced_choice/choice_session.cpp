@@ -79,6 +79,9 @@ class ChoiceLoop final : public runtime::RunLoop {
         run_(run),
         recorder_(recorder) {
     if (o.observer) observer_ = parse_choice_observer(*o.observer);
+    // A resume has replayed the practice (it is not recorded): the simulated observer's answers
+    // are keyed by the practice trials done, as in an uninterrupted run.
+    if (o.resume) practice_index_ = config.practice_trials;
   }
 
  private:

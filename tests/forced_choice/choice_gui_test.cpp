@@ -101,13 +101,14 @@ std::vector<std::vector<std::string>> timeless(const CsvTable& table) {
 }
 
 // Ten SIGKILLs at random moments, each followed by --resume: the trials equal an uninterrupted
-// run's row for row (none lost, none repeated), and so does every QUEST's final state.
+// run's row for row (none lost, none repeated, the simulated observer answering as it would have
+// after the practice), and so does every QUEST's final state.
 TEST(ChoiceGui, KilledSessionsResumeWithTheSameTrialsAndQuestState) {
   testing::TempDir dir;
   const auto manifest =
       make_set(dir, R"({"conditions": [{"scene": "front", "method": "usm3d", "sigma": 0.03},
                                                           {"scene": "small", "method": "usm3d", "sigma": 0.08}],
-                                          "procedure": )" +
+                                          "practice_trials": 2, "procedure": )" +
                         std::string(kQuest) + "12}}");
   testing::XvfbServer x;
   const std::vector<std::string> observer = {"--observer", "weibull:0.4,3,11"};
