@@ -30,7 +30,17 @@ export function sessionPlugin(name, makeSession) {
     }
 
     async trial(displayElement, trial) {
-      const session = makeSession(displayElement, this.constructor.engine, trial);
+      let session;
+      try {
+        session = makeSession(displayElement, this.constructor.engine, trial);
+      } catch (error) {
+        // e.g. answers stored by another version of the study: say so, and record nothing more
+        const p = document.createElement("p");
+        p.id = "countershade-error";
+        p.textContent = `The study cannot go on: ${error.message}`;
+        displayElement.replaceChildren(p);
+        return;
+      }
       window.countershadeSession = session;
       const result = await session.start();
       displayElement.innerHTML = "";

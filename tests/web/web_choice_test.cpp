@@ -159,6 +159,23 @@ TEST(WebChoice, EveryAlternativeIsPixelExactAtEveryDeviceScaleFactor) {
   }
 }
 
+// Asking for a forced-choice study of a set that has none, or for a study that does not exist,
+// is one line and exit 2, and writes nothing.
+TEST(WebChoice, AStudyTheSetDoesNotHaveIsRefused) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir);
+  for (const char* study : {"forced-choice", "staircase"}) {
+    const auto run = testing::run_cli("export-web " + manifest.string() + " -o " +
+                                      (dir / "web").string() + " --study " + study);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+    EXPECT_NE(run.output.find(std::string(study) == "staircase" ? "--study" : "forced_choice"),
+              std::string::npos)
+        << run.output;
+    EXPECT_FALSE(fs::exists(dir / "web"));
+  }
+}
+
 TEST(WebChoice, SpatialConstantStimuliWithPracticeGiveTheAppsRowsAndFits) {
   EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "practice_trials": 2, "procedure": {"type":
               "constant", "lambdas": [0.2, 0.5, 1, 2], "repetitions": 2}})",
