@@ -1,7 +1,7 @@
 // Opens an exported forced-choice study (spatial) in Debian's headless Chromium at a device scale
 // factor, starts the session and writes a screenshot of the first trial with what the page says
 // it shows (the files and their device-pixel places), for the pixel test.
-//   node web/tools/browser-choice-shot.mjs STUDY_DIR DPR OUT.png
+//   [WIDTH=… HEIGHT=…] node web/tools/browser-choice-shot.mjs STUDY_DIR DPR OUT.png
 
 import { writeFile } from "node:fs/promises";
 
@@ -14,7 +14,7 @@ const server = await serve(dir);
 const browser = await launchChromium();
 try {
   const page = await browser.newPage();
-  await page.setViewport({ width: 900, height: 600, deviceScaleFactor: Number(dpr) });
+  await page.setViewport({ width: Number(process.env.WIDTH ?? 900), height: Number(process.env.HEIGHT ?? 600), deviceScaleFactor: Number(dpr) });
   await page.goto(`http://127.0.0.1:${server.address().port}/?subject=P01`);
   await page.waitForFunction(() => window.countershadeSession?.t0 !== undefined, { timeout: 60000 });
   await page.keyboard.press("Enter");
