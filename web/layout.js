@@ -1,3 +1,23 @@
+export function element(tag, style, parent) {
+  const e = document.createElement(tag);
+  Object.assign(e.style, style);
+  parent.appendChild(e);
+  return e;
+}
+
+// The page a session draws on, over the whole window in the study's surround: the header, question
+// and hint lines around the images, a message line, and `imageCount` hidden <img> elements.
+export function buildPage(root, study, imageCount) {
+  const grey = `rgb(${study.surround},${study.surround},${study.surround})`;
+  const ink = study.surround >= 128 ? "#141414" : "#ebebeb";
+  const page = element("div", { position: "fixed", inset: "0", background: grey, color: ink, overflow: "hidden",
+                                fontFamily: "sans-serif", fontSize: `${study.font_px}px`, textAlign: "center" }, root);
+  const text = (top) => element("div", { position: "absolute", left: "10%", width: "80%", top, whiteSpace: "pre-wrap" }, page);
+  const [header, question, hint, message] = ["0px", "0px", "0px", "40%"].map(text);
+  const images = Array.from({ length: imageCount }, () => element("img", { position: "absolute", imageRendering: "pixelated", display: "none" }, page));
+  return { page, ink, header, question, hint, message, images };
+}
+
 // Where a trial's images go on the page, in device pixels, so that each is shown at 1:1 device
 // pixels as the app shows it: a row of n images of one size with the study's gap, centred under
 // the texts, every image starting on a device pixel.

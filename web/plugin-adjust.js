@@ -6,7 +6,7 @@
 
 import { AdjustmentProcedure, QUESTIONS, SimulatedObserver, planSession, sessionSeed } from "./engine.js";
 import { DeepImages } from "./deep-images.js";
-import { decodeImage, placeImages, rowLayout } from "./layout.js";
+import { buildPage, decodeImage, element, placeImages, rowLayout } from "./layout.js";
 import { sessionPlugin } from "./session-plugin.js";
 import { SessionStore, browserFields } from "./store.js";
 
@@ -17,13 +17,6 @@ const KEYS = { ArrowUp: "up", ArrowDown: "down", ArrowLeft: "left", ArrowRight: 
 export function layout(study, condition, innerWidth, innerHeight, dpr) {
   const place = rowLayout(study, condition, 2, innerWidth, innerHeight, dpr);
   return place && { ...place, left: place.xs[0], right: place.xs[1] };
-}
-
-function element(tag, style, parent) {
-  const e = document.createElement(tag);
-  Object.assign(e.style, style);
-  parent.appendChild(e);
-  return e;
 }
 
 class AdjustSession {
@@ -46,17 +39,8 @@ class AdjustSession {
   }
 
   build(root) {
-    const grey = `rgb(${this.study.surround},${this.study.surround},${this.study.surround})`;
-    const ink = this.study.surround >= 128 ? "#141414" : "#ebebeb";
-    this.page = element("div", { position: "fixed", inset: "0", background: grey, color: ink, overflow: "hidden",
-                                 fontFamily: "sans-serif", fontSize: `${this.study.font_px}px`, textAlign: "center" }, root);
-    const text = (top) => element("div", { position: "absolute", left: "10%", width: "80%", top, whiteSpace: "pre-wrap" }, this.page);
-    this.header = text("0px");
-    this.question = text("0px");
-    this.hint = text("0px");
-    this.message = text("40%");
-    this.images = [0, 1].map(() => element("img", { position: "absolute", imageRendering: "pixelated", display: "none" }, this.page));
-    this.bar = element("div", { position: "absolute", left: "30%", width: "40%", top: "55%", height: "10px", border: `1px solid ${ink}`, display: "none" }, this.page);
+    const { page, ink } = Object.assign(this, buildPage(root, this.study, 2));
+    this.bar = element("div", { position: "absolute", left: "30%", width: "40%", top: "55%", height: "10px", border: `1px solid ${ink}`, display: "none" }, page);
     this.fill = element("div", { height: "100%", width: "0%", background: ink }, this.bar);
   }
 

@@ -6,7 +6,7 @@
 
 import { ChoiceObserver, ChoiceSession, choiceColumns } from "./engine.js";
 import { DeepImages } from "./deep-images.js";
-import { decodeImage, placeImages, rowLayout } from "./layout.js";
+import { buildPage, decodeImage, placeImages, rowLayout } from "./layout.js";
 import { sessionPlugin } from "./session-plugin.js";
 import { BROWSER_COLUMNS, SessionStore, browserFields } from "./store.js";
 
@@ -17,13 +17,6 @@ const KEYS = { Enter: "enter", Escape: "escape", q: "q", Q: "q", 1: 0, 2: 1, 3: 
 // ';'-separated; and "ok", or "mistimed" when one ran a frame or more long or short (that answer
 // does not count, and the trial is shown again at once).
 const TIMING_COLUMNS = ["interval_ms", "interval_timing"];
-
-function element(tag, style, parent) {
-  const e = document.createElement(tag);
-  Object.assign(e.style, style);
-  parent.appendChild(e);
-  return e;
-}
 
 class ChoiceStudySession {
   constructor(root, engine, study, subject, session, environment, observer) {
@@ -46,13 +39,7 @@ class ChoiceStudySession {
   }
 
   build(root) {
-    const grey = `rgb(${this.study.surround},${this.study.surround},${this.study.surround})`;
-    const ink = this.study.surround >= 128 ? "#141414" : "#ebebeb";
-    this.page = element("div", { position: "fixed", inset: "0", background: grey, color: ink, overflow: "hidden",
-                                 fontFamily: "sans-serif", fontSize: `${this.study.font_px}px`, textAlign: "center" }, root);
-    const text = (top) => element("div", { position: "absolute", left: "10%", width: "80%", top, whiteSpace: "pre-wrap" }, this.page);
-    [this.header, this.question, this.hint, this.message] = ["0px", "0px", "0px", "40%"].map(text);
-    this.images = [0, 1, 2, 3].map(() => element("img", { position: "absolute", imageRendering: "pixelated", display: "none" }, this.page));
+    Object.assign(this, buildPage(root, this.study, 4));
   }
 
   now() {

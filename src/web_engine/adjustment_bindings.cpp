@@ -105,8 +105,9 @@ std::string plan_session(const std::string& page_json, const std::string& subjec
 class AdjustmentProcedure {
  public:
   AdjustmentProcedure(const std::string& page_json, const std::string& plan_json)
-      : study_(errors_to_javascript([&] { return study_from_page(json::parse(page_json)); })),
-        procedure_(errors_to_javascript([&] { return make(page_json, plan_json); })) {}
+      : page_(errors_to_javascript([&] { return json::parse(page_json); })),
+        study_(errors_to_javascript([&] { return study_from_page(page_); })),
+        procedure_(errors_to_javascript([&] { return make(page_, study_, plan_json); })) {}
 
   std::string phase() const { return kPhaseNames[int(procedure_.phase())]; }
   bool done() const { return procedure_.done(); }
@@ -147,16 +148,16 @@ class AdjustmentProcedure {
   const Study& study() const { return study_; }
 
  private:
-  static Procedure make(const std::string& page_json, const std::string& plan_json) {
-    const json page = json::parse(page_json);
+  static Procedure make(const json& page, const Study& study, const std::string& plan_json) {
     std::vector<Trial> plan;
     for (const json& t : json::parse(plan_json)) plan.push_back(trial_of(t));
     procedures::RepeatTiming timing;
     timing.repeat_delay_s = page.at("timing").at("delay").get<double>();
     timing.repeat_interval_s = page.at("timing").at("interval").get<double>();
-    return Procedure(study_from_page(page).conditions, std::move(plan), timing);
+    return Procedure(study.conditions, std::move(plan), timing);
   }
 
+  json page_;
   Study study_;
   Procedure procedure_;
 };

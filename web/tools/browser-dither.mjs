@@ -5,16 +5,11 @@
 
 import { writeFile } from "node:fs/promises";
 
-import { launchChromium } from "./chromium.mjs";
-import { serve } from "./static-server.mjs";
+import { openStudy } from "./chromium.mjs";
 
 const [dir, out] = process.argv.slice(2);
-const server = await serve(dir);
-const browser = await launchChromium(["--enable-unsafe-swiftshader", ...(process.env.CHROMIUM_ARGS ?? "").split(" ").filter(Boolean)]);
+const { page, close } = await openStudy(dir, { args: ["--enable-unsafe-swiftshader", ...(process.env.CHROMIUM_ARGS ?? "").split(" ").filter(Boolean)] });
 try {
-  const page = await browser.newPage();
-  await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
-  await page.goto(`http://127.0.0.1:${server.address().port}/?subject=P01`);
   await page.waitForFunction(() => window.countershadeSession?.t0 !== undefined ||
                                              document.getElementById("countershade-unsupported"), { timeout: 60000 });
   const unsupported = await page.evaluate(() => document.getElementById("countershade-unsupported")?.textContent ?? null);
@@ -28,6 +23,5 @@ try {
     await writeFile(out, JSON.stringify({ frames: await page.evaluate(() => window.countershadeDitherCapture.taken) }));
   }
 } finally {
-  await browser.close();
-  server.close();
+  await close();
 }

@@ -5,17 +5,12 @@
 
 import { writeFile } from "node:fs/promises";
 
-import { launchChromium } from "./chromium.mjs";
-import { serve } from "./static-server.mjs";
+import { openStudy } from "./chromium.mjs";
 
 const [dir, dpr, out] = process.argv.slice(2);
 
-const server = await serve(dir);
-const browser = await launchChromium();
+const { page, close } = await openStudy(dir, { width: Number(process.env.WIDTH ?? 900), height: Number(process.env.HEIGHT ?? 600), dpr: Number(dpr) });
 try {
-  const page = await browser.newPage();
-  await page.setViewport({ width: Number(process.env.WIDTH ?? 900), height: Number(process.env.HEIGHT ?? 600), deviceScaleFactor: Number(dpr) });
-  await page.goto(`http://127.0.0.1:${server.address().port}/?subject=P01`);
   await page.waitForFunction(() => window.countershadeSession?.t0 !== undefined, { timeout: 60000 });
   await page.keyboard.press("Enter");
   await page.waitForFunction(() => window.countershadeSession.ready(), { timeout: 60000 });
@@ -26,6 +21,5 @@ try {
   await page.screenshot({ path: out });
   await writeFile(`${out}.json`, JSON.stringify({ ...shown, device_pixel_ratio: Number(dpr) }, null, 1));
 } finally {
-  await browser.close();
-  server.close();
+  await close();
 }
