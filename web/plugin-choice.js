@@ -216,7 +216,8 @@ class ChoiceStudySession {
       this.stallForTest(interval);
       if (interval >= 0 && interval < n) this.hint.textContent = `Interval ${interval + 1} of ${n}`;
       if (interval === n) {
-        this.message.textContent = `${this.choice.texts.question}\n\n${this.choice.texts.answer_keys}: the interval`;
+        const which = n === 2 ? "Left or 1 the first, Right or 2 the second" : "1 the first"; // the app's words
+        this.message.textContent = `${this.choice.texts.question}\n\n${this.choice.texts.answer_keys}: the interval (${which})`;
         this.answerFrom ??= this.now();
       }
     }
