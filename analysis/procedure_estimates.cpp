@@ -8,6 +8,7 @@
 #include "core/json_reader.h"
 #include "core/number_format.h"
 #include "formats/responses.h"
+#include "procedures/condition_selection.h"
 #include "procedures/registry.h"
 
 namespace countershade::analysis {
@@ -24,7 +25,41 @@ std::map<Key, Trials> trials_by_condition(const fs::path& file) {
   return out;
 }
 
-// The estimates of one session file; none when its procedure keeps no posterior.
+// The procedures a session's record (its sidecar's "config") names: the block's, and those of
+// the conditions that ran another (docs/forced-choice.md, "Procedures per condition").
+class SessionProcedures {
+ public:
+  SessionProcedures(const nlohmann::json& record, const std::string& file) {
+    const JsonObject config = JsonObject(record, file, "").object("config");
+    block_ = procedures::read_procedure_block(config.raw("procedure"), file, "config.procedure");
+    if (!config.has("condition_procedures")) return;
+    for (const JsonObject& entry : config.objects("condition_procedures")) {
+      const std::string path = entry.key_path("procedure");
+      own_.push_back({{entry.string("scene"), entry.string("method"), entry.number("sigma")},
+                      procedures::read_procedure_block(entry.raw("procedure"), file, path),
+                      path});
+    }
+  }
+  // The procedure of a condition, and the key path that gives it.
+  std::pair<const procedures::ProcedureBlock&, std::string> of(const std::string& scene,
+                                                               const std::string& label,
+                                                               double sigma) const {
+    for (const auto& c : own_)
+      if (c.condition.names(scene, label, sigma)) return {c.block, c.path};
+    return {block_, "config.procedure"};
+  }
+
+ private:
+  struct Own {
+    procedures::ConditionSelection condition;
+    procedures::ProcedureBlock block;
+    std::string path;
+  };
+  procedures::ProcedureBlock block_;
+  std::vector<Own> own_;
+};
+
+// The estimates of one session file: one per condition whose procedure keeps a posterior.
 std::vector<ProcedureEstimate> estimates_of(const fs::path& file) {
   fs::path sidecar = file;
   sidecar.replace_extension(".json");
@@ -32,20 +67,19 @@ std::vector<ProcedureEstimate> estimates_of(const fs::path& file) {
   if (!fs::exists(sidecar)) return out;
   const nlohmann::json record = parse_json_file(sidecar);
   const JsonObject root(record, sidecar.string(), "");
-  const JsonObject config = root.object("config");
-  const procedures::ProcedureBlock block = procedures::read_procedure_block(
-      config.raw("procedure"), sidecar.string(), "config.procedure");
+  const SessionProcedures procedures(record, sidecar.string());
   const int session = int(root.integer_or("session", 0));
   for (const auto& [key, trials] : trials_by_condition(file)) {
+    const auto& [subject, scene, label, sigma] = key;
+    const auto& [block, path] = procedures.of(scene, label, sigma);
     std::optional<nlohmann::ordered_json> estimate;
     try {
       estimate = block.settings->estimate(trials);
     } catch (const InputError& e) {  // named by the block it comes from
-      throw InputError(sidecar.string() + ": config.procedure." + e.what());
+      throw InputError(sidecar.string() + ": " + path + "." + e.what());
     }
-    if (!estimate) return {};
-    const auto& [subject, scene, label, sigma] = key;
-    out.push_back({subject, session, scene, label, sigma, trials.size(), std::move(*estimate)});
+    if (estimate)
+      out.push_back({subject, session, scene, label, sigma, trials.size(), std::move(*estimate)});
   }
   return out;
 }

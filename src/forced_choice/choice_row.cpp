@@ -39,7 +39,7 @@ std::vector<std::string> choice_row(const runtime::Study& study, const ChoiceCon
           std::to_string(response),
           correct ? "1" : "0",
           rt,
-          config.procedure.type,
+          config.procedure_of(c.scene, c.method, c.sigma).type,
           std::to_string(t.condition_trial),
           who.set_sha256,
           time_utc};

@@ -30,6 +30,23 @@ std::vector<int> select(const runtime::Study& study, const std::vector<Condition
   return out;
 }
 
+// Every condition given its own procedure must be one the session runs: a typo there would
+// otherwise leave the condition on the block's procedure without a word.
+void check_condition_procedures(const runtime::Study& study, const ChoiceConfig& config,
+                                const std::vector<int>& running) {
+  for (size_t k = 0; k < config.condition_procedures.size(); ++k) {
+    const ConditionSelection& wanted = config.condition_procedures[k].condition;
+    const bool runs = std::any_of(running.begin(), running.end(), [&](int i) {
+      const auto& c = study.conditions[size_t(i)];
+      return wanted.names(c.scene, c.method, c.sigma);
+    });
+    if (!runs)
+      throw_input_error(config.source + "condition_procedures[" + std::to_string(k) + "]",
+                        "no condition " + wanted.scene + " / " + wanted.method + " / σ " +
+                            format_value(wanted.sigma) + " among the session's conditions");
+  }
+}
+
 ChoiceGrid grid_of(const runtime::Study& study, int condition) {
   ChoiceGrid g;
   const int size = int(study.condition_images[size_t(condition)].size()) - 1;
@@ -69,13 +86,15 @@ ChoiceRun::ChoiceRun(const runtime::Study& study, const ChoiceConfig& config, ui
     throw_input_error(
         config.source + "practice_trials",
         "no condition's images change with λ, so practice would show nothing to find");
+  check_condition_procedures(study, config, conditions_);
   for (int c : conditions_) grids_.push_back(grid_of(study, c));
   for (size_t i = 0; i < conditions_.size(); ++i) {
     const auto& c = study.conditions[size_t(conditions_[i])];
     try {
       procedures_.push_back(std::make_unique<ConditionProcedure>(
-          config, grids_[i], hash_combine(seed, uint64_t(conditions_[i])),
-          config.source + "procedure"));
+          config.procedure_of(c.scene, c.method, c.sigma), config.max_trials, grids_[i],
+          hash_combine(seed, uint64_t(conditions_[i])),
+          config.procedure_source_of(c.scene, c.method, c.sigma)));
     } catch (const InputError& e) {  // which condition's grid it is
       throw InputError(std::string(e.what()) + " (condition " + c.scene + " / " + c.method +
                        " / σ " + format_value(c.sigma) + ")");

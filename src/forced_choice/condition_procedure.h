@@ -26,8 +26,8 @@ using Intensity = procedures::Intensity;
 class ConditionProcedure {
  public:
   // Throws InputError (naming `where`) when the procedure cannot work on this grid.
-  ConditionProcedure(const ChoiceConfig& config, const ChoiceGrid& grid, uint64_t seed,
-                     const std::string& where);
+  ConditionProcedure(const procedures::ProcedureBlock& block, int max_trials,
+                     const ChoiceGrid& grid, uint64_t seed, const std::string& where);
 
   Intensity next() const { return procedure_->next(); }
   bool ready() const { return procedure_->ready(); }

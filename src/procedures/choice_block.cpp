@@ -2,12 +2,45 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "core/number_format.h"
 
 namespace countershade::procedures {
 
 const char* layout_name(Layout layout) {
   return layout == Layout::spatial ? "spatial" : "temporal";
 }
+
+namespace {
+
+// The "condition_procedures" list: each entry a condition ({scene, method, sigma}) and its
+// "procedure"; a condition named twice is refused, as its procedure would be ambiguous.
+std::vector<ConditionProcedureBlock> read_condition_procedures(const JsonObject& block,
+                                                               const std::string& file) {
+  std::vector<ConditionProcedureBlock> out;
+  if (!block.has("condition_procedures")) return out;
+  for (const JsonObject& entry : block.objects("condition_procedures")) {
+    ConditionProcedureBlock c;
+    c.condition = {entry.string("scene"), entry.string("method"), entry.number("sigma")};
+    entry.object("procedure");  // required, and an object
+    const nlohmann::json& procedure = entry.raw("procedure");
+    c.where = file + ": " + entry.key_path("procedure");
+    c.procedure = read_procedure_block(procedure, file, entry.key_path("procedure"));
+    entry.finish();
+    for (const auto& earlier : out)
+      if (earlier.condition.names(c.condition.scene, c.condition.method, c.condition.sigma))
+        throw_input_error(file + ": " + entry.key_path("scene"),
+                          "the condition " + c.condition.scene + " / " + c.condition.method +
+                              " / σ " + format_value(c.condition.sigma) + " is listed twice");
+    c.source = {{"scene", c.condition.scene},
+                {"method", c.condition.method},
+                {"sigma", c.condition.sigma},
+                {"procedure", nlohmann::ordered_json(procedure)}};
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace
 
 ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
                                  const std::string& path) {
@@ -32,8 +65,23 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   o.object("procedure");  // required, and an object
   c.procedure_source = o.raw("procedure");
   c.procedure = read_procedure_block(c.procedure_source, file, o.key_path("procedure"));
+  c.condition_procedures = read_condition_procedures(o, file);
   o.finish();
   return c;
+}
+
+const ProcedureBlock& ChoiceConfig::procedure_of(const std::string& scene,
+                                                 const std::string& method, double sigma) const {
+  for (const auto& c : condition_procedures)
+    if (c.condition.names(scene, method, sigma)) return c.procedure;
+  return procedure;
+}
+
+std::string ChoiceConfig::procedure_source_of(const std::string& scene, const std::string& method,
+                                              double sigma) const {
+  for (const auto& c : condition_procedures)
+    if (c.condition.names(scene, method, sigma)) return c.where;
+  return source + "procedure";
 }
 
 std::string ChoiceConfig::answer_keys() const {
@@ -65,6 +113,11 @@ nlohmann::ordered_json ChoiceConfig::to_json() const {
                               {"max_trials", max_trials},
                               {"practice_trials", practice_trials}};
   procedure.settings->describe(j);
+  if (!condition_procedures.empty()) {
+    // Only when given, so that the record of a session without them reads as before.
+    auto& list = j["condition_procedures"] = nlohmann::ordered_json::array();
+    for (const auto& c : condition_procedures) list.push_back(c.source);
+  }
   if (seed) j["seed"] = *seed;
   return j;
 }

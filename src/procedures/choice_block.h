@@ -19,6 +19,15 @@ namespace countershade::procedures {
 enum class Layout { spatial, temporal };
 const char* layout_name(Layout layout);
 
+// A procedure that one condition runs instead of the block's own, so that one session can mix
+// constant stimuli with adaptive procedures (docs/forced-choice.md, "Procedures per condition").
+struct ConditionProcedureBlock {
+  ConditionSelection condition;
+  ProcedureBlock procedure;
+  nlohmann::ordered_json source;  // the entry, for the session's record
+  std::string where;              // "FILE: KEY PATH" of its procedure, to name it in messages
+};
+
 struct ChoiceConfig {
   int n_afc = 2;
   Layout layout = Layout::spatial;
@@ -29,7 +38,8 @@ struct ChoiceConfig {
   // Empty: a text that fits the layout and the number of alternatives (welcome_text()).
   std::string welcome;
   ProcedureBlock procedure;  // the plug-in that picks each condition's λ
-  int max_trials = 200;      // any procedure: a condition ends after this many trials
+  std::vector<ConditionProcedureBlock> condition_procedures;  // conditions that run another
+  int max_trials = 200;  // any procedure: a condition ends after this many trials
   std::vector<ConditionSelection> conditions;  // empty: every condition of the set
   std::vector<ConditionSelection>
       practice_conditions;  // empty: conditions whose images change with λ
@@ -37,6 +47,13 @@ struct ChoiceConfig {
   std::optional<uint64_t> seed;
   nlohmann::json procedure_source;  // the procedure block as written, for the session's record
   std::string source;               // "FILE: KEY PATH." of the block, to name it in messages
+
+  // The procedure a condition runs: its own entry in condition_procedures, else the block's.
+  const ProcedureBlock& procedure_of(const std::string& scene, const std::string& method,
+                                     double sigma) const;
+  // Where that procedure is written ("FILE: KEY PATH"), to name it in messages.
+  std::string procedure_source_of(const std::string& scene, const std::string& method,
+                                  double sigma) const;
 
   nlohmann::ordered_json to_json() const;
   std::string welcome_text() const;

@@ -48,36 +48,48 @@ std::pair<double, double> posterior_means(const std::vector<Trial>& trials) {
   return {threshold / total, half / total};
 }
 
-std::string session_csv(const std::vector<Trial>& trials) {
-  std::string csv =
-      csv_line({"subject", "session", "trial", "scene", "method", "sigma", "lambda", "lambda_index",
-                "lambda_requested", "n_afc", "layout", "target", "response", "correct", "rt_ms",
-                "procedure", "condition_trial", "set_sha256", "time_utc"});
+const std::string kHeader =
+    csv_line({"subject", "session", "trial", "scene", "method", "sigma", "lambda", "lambda_index",
+              "lambda_requested", "n_afc", "layout", "target", "response", "correct", "rt_ms",
+              "procedure", "condition_trial", "set_sha256", "time_utc"});
+
+// One condition's rows (σ, the procedure that ran it), numbered from `first`.
+std::string session_rows(const std::vector<Trial>& trials, const std::string& sigma = "0.05",
+                         const std::string& procedure = "questplus", size_t first = 1) {
+  std::string csv;
   for (size_t i = 0; i < trials.size(); ++i) {
     const std::string l = std::to_string(trials[i].lambda);
-    csv += csv_line({"P01", "1", std::to_string(i + 1), "cube", "usm3d", "0.05", l, "1", l, "2",
+    csv += csv_line({"P01", "1", std::to_string(first + i), "cube", "usm3d", sigma, l, "1", l, "2",
                      "spatial", "0", trials[i].correct ? "0" : "1", trials[i].correct ? "1" : "0",
-                     "500", "questplus", std::to_string(i + 1), std::string(64, 'a'),
+                     "500", procedure, std::to_string(i + 1), std::string(64, 'a'),
                      "2026-01-01T00:00:00.000Z"});
   }
   return csv;
 }
 
-TEST(ProcedureEstimates, AQuestPlusSessionsPosteriorIsReportedBesideItsFit) {
-  testing::TempDir dir;
+std::vector<Trial> simulated_trials(int count, unsigned seed) {
   std::vector<Trial> trials;
-  std::mt19937 random(5);
+  std::mt19937 random(seed);
   const double levels[] = {0.1, 0.2, 0.3, 0.5, 0.8, 1.2};
-  for (int i = 0; i < 120; ++i) {
+  for (int i = 0; i < count; ++i) {
     const double lambda = levels[i % 6];
     trials.push_back(
         {lambda, std::uniform_real_distribution<double>(0, 1)(random) < psi(lambda, -0.5, 3)});
   }
-  testing::write_file(dir / "P01_s01.forced-choice.csv", session_csv(trials));
-  testing::write_file(dir / "P01_s01.forced-choice.json", R"({"format": 1, "session": 1,
-    "config": {"procedure": {"type": "questplus", "param_domain": {
+  return trials;
+}
+
+const char* const kQuestPlus = R"({"type": "questplus", "param_domain": {
       "threshold": [-1.0, -0.8, -0.6, -0.4, -0.2, 0.0], "slope": [2, 4],
-      "lower_asymptote": 0.5, "lapse_rate": 0.02}}}})");
+      "lower_asymptote": 0.5, "lapse_rate": 0.02}})";
+
+TEST(ProcedureEstimates, AQuestPlusSessionsPosteriorIsReportedBesideItsFit) {
+  testing::TempDir dir;
+  const std::vector<Trial> trials = simulated_trials(120, 5);
+  testing::write_file(dir / "P01_s01.forced-choice.csv", kHeader + session_rows(trials));
+  testing::write_file(
+      dir / "P01_s01.forced-choice.json",
+      std::string(R"({"format": 1, "session": 1, "config": {"procedure": )") + kQuestPlus + "}}");
   const auto run = testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() +
                                     " -o " + (dir / "out").string() + " --bootstrap 0");
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -113,6 +125,31 @@ TEST(ProcedureEstimates, AQuestPlusSessionsPosteriorIsReportedBesideItsFit) {
                 .exit_code,
             0);
   EXPECT_FALSE(fs::exists(dir / "bare/procedure_estimates.csv"));
+}
+
+// A session whose block runs constant stimuli and one condition QUEST+ (condition_procedures):
+// that condition alone has the posterior, worked out as above from its own trials.
+TEST(ProcedureEstimates, OnlyTheConditionThatRanQuestPlusHasItsPosterior) {
+  testing::TempDir dir;
+  const std::vector<Trial> adaptive = simulated_trials(60, 9), constant = simulated_trials(60, 10);
+  testing::write_file(dir / "P01_s01.forced-choice.csv",
+                      kHeader + session_rows(adaptive) +
+                          session_rows(constant, "0.1", "constant", adaptive.size() + 1));
+  testing::write_file(
+      dir / "P01_s01.forced-choice.json",
+      std::string(R"({"format": 1, "session": 1, "config": {"procedure": {"type": "constant",
+        "lambdas": [0.1, 0.2, 0.3, 0.5, 0.8, 1.2], "repetitions": 10}, "condition_procedures": [
+        {"scene": "cube", "method": "usm3d", "sigma": 0.05, "procedure": )") +
+          kQuestPlus + "}]}}");
+  const auto run = testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() +
+                                    " -o " + (dir / "out").string() + " --bootstrap 0");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const CsvTable table =
+      parse_csv(testing::read_file(dir / "out/procedure_estimates.csv"), "estimates");
+  ASSERT_EQ(table.rows.size(), 6u) << "a header and one condition's five quantities";
+  for (size_t r = 1; r < table.rows.size(); ++r) EXPECT_EQ(table.rows[r][4], "0.05");
+  EXPECT_EQ(table.rows[5][6], "lambda_at_half");
+  EXPECT_NEAR(std::stod(table.rows[5][8]), posterior_means(adaptive).second, 1e-9);
 }
 
 }  // namespace

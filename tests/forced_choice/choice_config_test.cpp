@@ -35,6 +35,25 @@ TEST(ChoiceConfig, ProceduresThatCannotWorkAreOneLineAndExitTwo) {
       {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "practice_trials": 2,
            "practice_conditions": [{"scene": "nowhere", "method": "usm3d", "sigma": 0.03}]})",
        "practice_conditions[0]"},
+      {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "condition_procedures": [
+           {"scene": "front", "method": "usm3d", "sigma": 0.03,
+            "procedure": {"type": "staircase", "startVal": 0.5, "nDown": 0}}]})",
+       "condition_procedures[0].procedure.nDown"},
+      {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "condition_procedures": [
+           {"scene": "front", "method": "usm3d", "sigma": 0.03, "procedure": {"type": "constant",
+            "lambdas": [0.4]}}, {"scene": "front", "method": "usm3d", "sigma": 0.03,
+            "procedure": {"type": "constant", "lambdas": [0.6]}}]})",
+       "condition_procedures[1].scene"},
+      {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "condition_procedures": [
+           {"scene": "front", "method": "usm3d", "sigma": 0.3, "procedure": {"type": "constant",
+            "lambdas": [0.4]}}]})",
+       "condition_procedures[0]"},
+      // A condition the session does not run: its procedure would never be used.
+      {R"({"procedure": {"type": "constant", "lambdas": [0.2]}, "conditions": [{"scene": "front",
+           "method": "usm3d", "sigma": 0.03}], "condition_procedures": [{"scene": "small",
+           "method": "usm3d", "sigma": 0.03, "procedure": {"type": "constant",
+           "lambdas": [0.4]}}]})",
+       "condition_procedures[0]"},
   };
   for (const auto& [text, key] : cases) {
     testing::write_file(dir / "fc.json", text);
@@ -91,6 +110,34 @@ TEST(ChoiceRun, ConstantStimuliAreBalancedAndSeeded) {
   };
   EXPECT_EQ(trials_of(1), trials_of(1));
   EXPECT_NE(trials_of(1), trials_of(2));
+}
+
+// A condition listed in condition_procedures runs its own procedure; the others run the block's.
+TEST(ChoiceRun, AConditionRunsItsOwnProcedureWhereOneIsGiven) {
+  testing::TempDir dir;
+  const runtime::Study study =
+      runtime::load_study(testing::make_tiny_set(dir, "", 96, 72, 0.1), std::nullopt);
+  const ChoiceConfig config = parse_choice_config(nlohmann::json::parse(R"({
+      "procedure": {"type": "constant", "lambdas": [0.2, 0.6, 1.2], "repetitions": 4},
+      "condition_procedures": [{"scene": "small", "method": "usm3d", "sigma": 0.08,
+        "procedure": {"type": "constant", "lambdas": [0.5], "repetitions": 2}}]})"),
+                                                  "t", "");
+  ChoiceRun run(study, config, 3);
+  std::map<int, std::map<double, int>> shown;  // condition → λ → trials
+  while (!run.finished()) {
+    const ChoiceTrial t = *run.current();
+    ++shown[t.condition][t.lambda];
+    run.answer(0);
+  }
+  ASSERT_EQ(shown.size(), study.conditions.size());
+  for (const auto& [condition, levels] : shown) {
+    const auto& c = study.conditions[size_t(condition)];
+    const bool own = c.scene == "small" && std::abs(c.sigma - 0.08) < 1e-12;
+    const std::map<double, int> expected =
+        own ? std::map<double, int>{{0.5, 2}} : std::map<double, int>{{0.2, 4}, {0.6, 4}, {1.2, 4}};
+    EXPECT_EQ(levels, expected) << c.scene << " σ " << c.sigma;
+    EXPECT_EQ(config.procedure_of(c.scene, c.method, c.sigma).type, "constant");
+  }
 }
 
 }  // namespace

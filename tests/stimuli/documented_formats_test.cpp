@@ -85,14 +85,20 @@ TEST(DocumentedFormats, TheProcedureExampleParses) {
 
 TEST(DocumentedFormats, TheForcedChoiceExampleParses) {
   const auto blocks = json_blocks(source_dir() / "docs/forced-choice.md");
-  ASSERT_EQ(blocks.size(), 2u);
+  ASSERT_EQ(blocks.size(), 3u);
   const auto config =
       procedures::parse_choice_config(json::parse(blocks[0]), "forced-choice.md", "");
   EXPECT_EQ(config.procedure.type, "quest");
   EXPECT_EQ(config.to_json()["trials"], 40);
   EXPECT_EQ(config.practice_trials, 2);
-  const auto questplus =
+  const auto mixed =
       procedures::parse_choice_config(json::parse(blocks[1]), "forced-choice.md", "");
+  EXPECT_EQ(mixed.procedure.type, "constant");
+  EXPECT_EQ(mixed.procedure_of("bunny", "usm3d", 0.03).type, "staircase");
+  EXPECT_EQ(mixed.procedure_of("bunny", "usm3d", 0.08).type, "questplus");
+  EXPECT_EQ(mixed.procedure_of("bunny", "usm3d", 0.05).type, "constant");
+  const auto questplus =
+      procedures::parse_choice_config(json::parse(blocks[2]), "forced-choice.md", "");
   EXPECT_EQ(questplus.procedure.type, "questplus");
   EXPECT_EQ(questplus.to_json()["trials"], 80);
 }

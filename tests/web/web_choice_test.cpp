@@ -96,10 +96,16 @@ fs::path browser_session(const fs::path& study, const fs::path& out, const std::
   return csv;
 }
 
+// What compare_sessions saw in the app's rows.
+struct Compared {
+  size_t trials = 0;
+  std::set<std::string> procedures;  // the `procedure` column's values
+};
+
 // Exports the set's forced-choice study, runs it in the app and in the browser, and compares the
-// rows and the psychometric fits; returns the number of trials.
-size_t compare_sessions(const std::string& block, const std::string& observer,
-                        const Faults& faults = {}) {
+// rows and the psychometric fits.
+Compared compare_sessions(const std::string& block, const std::string& observer,
+                          const Faults& faults = {}) {
   testing::TempDir dir;
   const fs::path manifest = choice_set(dir, block);
   const auto exported = testing::run_cli("export-web " + manifest.string() + " -o " +
@@ -110,13 +116,13 @@ size_t compare_sessions(const std::string& block, const std::string& observer,
   const fs::path browser = browser_session(dir / "web", dir / "browser", "P01", observer, faults);
   const auto rows = comparable_rows(app);
   EXPECT_EQ(comparable_rows(browser), rows);
-  const std::string table = testing::read_file(browser);
-  EXPECT_EQ(testing::read_file(browser.string() + ".posted"), table.substr(table.find('\n') + 1))
+  const std::string posted = testing::read_file(browser);
+  EXPECT_EQ(testing::read_file(browser.string() + ".posted"), posted.substr(posted.find('\n') + 1))
       << "every row posted once, in order";
   if (faults.stall_trial > 0)  // (a busy machine may lose a frame elsewhere too)
     EXPECT_TRUE(has_mistimed_row(browser, faults.stall_trial))
         << "the held trial is recorded as mistimed (and shown again):\n"
-        << table;
+        << posted;
   for (const auto& [csv, report] : {std::pair{app, "app-report"}, {browser, "browser-report"}}) {
     const auto analyzed = testing::run_cli("analyze " + csv.string() + " -o " +
                                            (dir / report).string() + " --no-figures");
@@ -125,7 +131,14 @@ size_t compare_sessions(const std::string& block, const std::string& observer,
   const std::string fits = testing::read_file(dir / "app-report/psychometric_fits.csv");
   EXPECT_GT(std::count(fits.begin(), fits.end(), '\n'), 1) << fits;
   EXPECT_EQ(testing::read_file(dir / "browser-report/psychometric_fits.csv"), fits);
-  return rows.size() - 1;
+  Compared compared{rows.size() - 1, {}};
+  const CsvTable table = parse_csv(testing::read_file(app), app.string());
+  const auto& header = table.rows.front();
+  const size_t column =
+      size_t(std::find(header.begin(), header.end(), "procedure") - header.begin());
+  for (size_t r = 1; r < table.rows.size(); ++r)
+    compared.procedures.insert(table.rows[r].at(column));
+  return compared;
 }
 
 // A 4AFC spatial trial at device scale factors 1, 1.25 and 2: each of the four images is its PNG
@@ -176,43 +189,52 @@ TEST(WebChoice, AStudyTheSetDoesNotHaveIsRefused) {
   }
 }
 
-TEST(WebChoice, SpatialConstantStimuliWithPracticeGiveTheAppsRowsAndFits) {
-  EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "practice_trials": 2, "procedure": {"type":
-              "constant", "lambdas": [0.2, 0.5, 1, 2], "repetitions": 2}})",
-                             "weibull:0.5,3,7"),
-            4u * 4u * 2u);
+// Every procedure in one spatial session, each condition its own (condition_procedures), with
+// practice, feedback and three reloads.
+TEST(WebChoice, SpatialSessionOfEveryProcedureGivesTheAppsRowsAndFits) {
+  const Compared compared = compare_sessions(R"({"n_afc": 2, "practice_trials": 2,
+      "feedback_frames": 2, "max_trials": 8,
+      "procedure": {"type": "constant", "lambdas": [0.2, 0.5, 1, 2], "repetitions": 2},
+      "condition_procedures": [
+        {"scene": "front", "method": "usm3d", "sigma": 0.08, "procedure": {"type": "staircase",
+         "startVal": 1, "stepSizes": [4, 2], "nTrials": 8}},
+        {"scene": "small", "method": "usm3d", "sigma": 0.03, "procedure": {"type": "quest",
+         "tGuess": -0.3, "tGuessSd": 0.6, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01,
+         "gamma": 0.5, "nTrials": 8}},
+        {"scene": "small", "method": "usm3d", "sigma": 0.08, "procedure": {"type": "questplus",
+         "trials": 8, "param_domain": {"threshold": [-1, -0.8, -0.6, -0.4, -0.2, 0, 0.2],
+         "slope": [2, 3.5], "lower_asymptote": 0.5, "lapse_rate": [0, 0.02]}}}]})",
+                                             "weibull:0.5,3,7", {"3 11 20", 0});
+  EXPECT_EQ(compared.trials, 4u * 8u);
+  EXPECT_EQ(compared.procedures,
+            (std::set<std::string>{"constant", "staircase", "quest", "questplus"}));
 }
 
-TEST(WebChoice, FourAlternativeQuestWithFeedbackGivesTheAppsRowsAndFits) {
-  EXPECT_EQ(compare_sessions(R"({"n_afc": 4, "feedback_frames": 2, "procedure": {"type": "quest",
-              "tGuess": -0.3, "tGuessSd": 0.6, "pThreshold": 0.82, "beta": 3.5, "delta": 0.01,
-              "gamma": 0.25, "nTrials": 8}})",
-                             "weibull:0.6,3,5"),
-            4u * 8u);
-}
-
-// Ten reloads, and a trial whose first interval the page held for 120 ms: it is recorded as
-// mistimed, shown again, and the rows that count are still the app's.
-TEST(WebChoice, TemporalStaircaseSurvivesTenReloadsAndAMistimedInterval) {
+// Ten reloads of a temporal 3AFC session mixing the procedures, and a trial whose first interval
+// the page held for 120 ms: it is recorded as mistimed, shown again, and the rows that count are
+// still the app's.
+TEST(WebChoice, TemporalSessionSurvivesTenReloadsAndAMistimedInterval) {
   std::mt19937 random(66);
   std::set<int> points;
   while (points.size() < 10) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
   Faults faults{"", 9};
   for (int p : points) faults.reloads += std::to_string(p) + " ";
-  EXPECT_EQ(compare_sessions(R"({"n_afc": 3, "layout": "temporal", "interval_frames": 2,
-              "blank_frames": 1, "practice_trials": 1, "max_trials": 6, "procedure": {"type":
-              "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6}})",
-                             "weibull:0.5,3,11", faults),
-            4u * 6u);
-}
-
-TEST(WebChoice, QuestPlusSurvivesReloadsWithItsPosterior) {
-  EXPECT_EQ(compare_sessions(R"({"n_afc": 2, "conditions": [{"scene": "front", "method": "usm3d",
-              "sigma": 0.03}], "procedure": {"type": "questplus", "trials": 12, "param_domain":
-              {"threshold": [-1, -0.8, -0.6, -0.4, -0.2, 0, 0.2], "slope": [2, 3.5],
-              "lower_asymptote": 0.5, "lapse_rate": [0, 0.02]}}})",
-                             "weibull:0.5,3,3", {"3 7 10", 0}),
-            12u);
+  const Compared compared = compare_sessions(R"({"n_afc": 3, "layout": "temporal",
+      "interval_frames": 2, "blank_frames": 1, "practice_trials": 1, "max_trials": 6,
+      "procedure": {"type": "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6},
+      "condition_procedures": [
+        {"scene": "front", "method": "usm3d", "sigma": 0.03, "procedure": {"type": "constant",
+         "lambdas": [0.5, 1, 2], "repetitions": 2}},
+        {"scene": "small", "method": "usm3d", "sigma": 0.03, "procedure": {"type": "quest",
+         "tGuess": -0.3, "tGuessSd": 0.6, "pThreshold": 0.75, "beta": 3.5, "delta": 0.01,
+         "gamma": 0.3333, "nTrials": 6}},
+        {"scene": "small", "method": "usm3d", "sigma": 0.08, "procedure": {"type": "questplus",
+         "trials": 6, "param_domain": {"threshold": [-1, -0.6, -0.2, 0.2], "slope": [3.5],
+         "lower_asymptote": 0.3333, "lapse_rate": 0.02}}}]})",
+                                             "weibull:0.5,3,11", faults);
+  EXPECT_EQ(compared.trials, 4u * 6u);
+  EXPECT_EQ(compared.procedures,
+            (std::set<std::string>{"constant", "staircase", "quest", "questplus"}));
 }
 
 }  // namespace
