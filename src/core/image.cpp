@@ -1,6 +1,5 @@
 #include "core/image.h"
 
-#include <OpenImageIO/imageio.h>
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -12,9 +11,11 @@
 #include <fstream>
 #include <mutex>
 
+#include "codecs/image_codec.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_bytes.h"
+#include "core/plugin_library.h"
 #include "core/png_check.h"
 
 namespace countershade {
@@ -182,6 +183,8 @@ void check_chunks_if_png(const std::filesystem::path& path) {
 
 }  // namespace
 
+const codecs::ImageCodec& image_codec() { return plugin<codecs::ImageCodec>("image_codec"); }
+
 Image read_image(const std::filesystem::path& path, int* bits) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -191,39 +194,20 @@ Image read_image(const std::filesystem::path& path, int* bits) {
     return read_pfm(path);
   }
   check_chunks_if_png(path);
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) {
-    std::string message = OIIO::geterror();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    throw_input_error(path.string(), "cannot read image (" + message + ")");
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+  std::string error;
+  const auto in = image_codec().open(path.string(), error);
+  if (!in) throw_input_error(path.string(), "cannot read image (" + error + ")");
+  const codecs::ImageFileSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0)
     throw_input_error(path.string(), "image is empty");
-  check_image_size(path, spec.width, spec.height, spec.nchannels);
-  if (bits) *bits = spec.format.is_floating_point() ? 0 : int(spec.format.size() * 8);
-  Image image(spec.width, spec.height, spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-    std::string message = in->geterror();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    throw_input_error(path.string(), "cannot decode image (" + message + ")");
-  }
-  if (spec.format.is_floating_point()) check_finite(path, image, true);
+  check_image_size(path, spec.width, spec.height, spec.channels);
+  if (bits) *bits = spec.bits;
+  Image image(spec.width, spec.height, spec.channels);
+  error = in->read(codecs::Sample::float32, image.pixels.data());
+  if (!error.empty()) throw_input_error(path.string(), "cannot decode image (" + error + ")");
+  if (spec.bits == 0) check_finite(path, image, true);
   return image;
 }
-
-namespace {
-
-// Fast zlib level and one row filter: stimuli are written by the thousand and PNG is lossless
-// whatever the settings (level 1: a 1024×768 stimulus takes 84 instead of 243 ms to compose and
-// write, files ~7% larger; the `sub` filter instead of libpng's choice among all five for each
-// row: 29 instead of 44 ms to encode a ritschel2008 stimulus, and files 2–3 % smaller).
-void set_fast_png(OIIO::ImageSpec& spec) {
-  spec.attribute("png:compressionLevel", 1);
-  spec.attribute("png:filter", 0x10);  // PNG_FILTER_SUB
-}
-
-}  // namespace
 
 void write_image(const std::filesystem::path& path, const Image& image,
                  const ImageWriteOptions& options) {
@@ -237,31 +221,30 @@ void write_image(const std::filesystem::path& path, const Image& image,
     throw InputError(path.string() + ": bit depth must be 8 or 16");
 
   write_atomically(path, [&](const std::filesystem::path& temp) {
-    auto out = OIIO::ImageOutput::create(temp.string());
-    if (!out) throw InputError(path.string() + ": unsupported output format '" + ext + "'");
-    OIIO::TypeDesc type = !quantised               ? OIIO::TypeDesc::FLOAT
-                          : options.png_bits == 16 ? OIIO::TypeDesc::UINT16
-                                                   : OIIO::TypeDesc::UINT8;
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
-    spec.attribute("Software", "countershade");
-    if (ext == ".png") set_fast_png(spec);
-    if (!out->open(temp.string(), spec))
-      throw std::runtime_error(path.string() + ": cannot open for writing (" + out->geterror() +
-                               ")");
-    bool ok = false;
+    const codecs::ImageCodec& codec = image_codec();
+    if (!codec.writes(temp.string()))
+      throw InputError(path.string() + ": unsupported output format '" + ext + "'");
+    const codecs::ImageFileSpec spec{image.width, image.height, image.channels,
+                                     quantised ? options.png_bits : 0};
+    // Fast zlib level and one row filter: stimuli are written by the thousand and PNG is lossless
+    // whatever the settings (level 1: a 1024×768 stimulus takes 84 instead of 243 ms to compose
+    // and write, files ~7% larger; the `sub` filter instead of libpng's choice among all five for
+    // each row: 29 instead of 44 ms to encode a ritschel2008 stimulus, and files 2–3 % smaller).
+    const bool fast_png = ext == ".png";
+    std::string error;
     if (!quantised) {
-      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+      error =
+          codec.write(temp.string(), spec, codecs::Sample::float32, image.pixels.data(), fast_png);
     } else if (options.png_bits == 16) {
       std::vector<uint16_t> codes(image.pixels.size());
       for (size_t i = 0; i < codes.size(); ++i) codes[i] = uint16_t(quantize(image.pixels[i], 16));
-      ok = out->write_image(OIIO::TypeDesc::UINT16, codes.data());
+      error = codec.write(temp.string(), spec, codecs::Sample::uint16, codes.data(), fast_png);
     } else {
       std::vector<uint8_t> codes(image.pixels.size());
       for (size_t i = 0; i < codes.size(); ++i) codes[i] = uint8_t(quantize(image.pixels[i], 8));
-      ok = out->write_image(OIIO::TypeDesc::UINT8, codes.data());
+      error = codec.write(temp.string(), spec, codecs::Sample::uint8, codes.data(), fast_png);
     }
-    if (!ok || !out->close())
-      throw std::runtime_error(path.string() + ": write failed (" + out->geterror() + ")");
+    if (!error.empty()) throw std::runtime_error(path.string() + ": " + error);
   });
 }
 

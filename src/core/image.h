@@ -82,6 +82,12 @@ struct ImageWriteOptions {
   int png_bits = 8;  // 8 or 16; PNG and TIFF values are code values in [0,1]
 };
 
+namespace codecs {
+class ImageCodec;
+}
+// OpenImageIO's formats, loaded on first use (codecs/image_codec.h).
+const codecs::ImageCodec& image_codec();
+
 // Reads any format OpenImageIO knows (PNG, EXR, TIFF, PFM, HDR, ...) as float. Integer formats
 // come back scaled to [0,1]. Throws InputError naming the file when it cannot be read.
 // `bits`, when given, receives the file's integer bit depth (8, 16, ...) or 0 for float formats.

@@ -1,12 +1,13 @@
 #include "runtime/image_decode.h"
 
-#include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
 
+#include "codecs/image_codec.h"
 #include "core/error.h"
+#include "core/image.h"
 
 namespace countershade::runtime {
 
@@ -14,18 +15,19 @@ namespace {
 
 // Decodes into RGBA of type T (read as `type`); grey images fill R, G and B.
 template <typename T>
-std::vector<T> decode_as(const StimulusImage& image, OIIO::TypeDesc type) {
-  auto in = OIIO::ImageInput::open(image.file.string());
+std::vector<T> decode_as(const StimulusImage& image, codecs::Sample sample) {
+  std::string error;
+  const auto in = image_codec().open(image.file.string(), error);
   if (!in) throw_input_error(image.file.string(), "cannot read the image");
-  const OIIO::ImageSpec& spec = in->spec();
+  const codecs::ImageFileSpec& spec = in->spec();
   if (spec.width != image.width || spec.height != image.height)
     throw_input_error(image.file.string(), "the image size differs from the manifest");
-  const int n = spec.nchannels;
+  const int n = spec.channels;
   if (n < 1 || n > 4)
     throw_input_error(image.file.string(), "unsupported channel count " + std::to_string(n));
   std::vector<T> raw(size_t(spec.width) * size_t(spec.height) * size_t(n));
-  if (!in->read_image(0, 0, 0, n, type, raw.data()))
-    throw_input_error(image.file.string(), "cannot decode: " + in->geterror());
+  error = in->read(sample, raw.data());
+  if (!error.empty()) throw_input_error(image.file.string(), "cannot decode: " + error);
   std::vector<T> rgba(size_t(spec.width) * size_t(spec.height) * 4, std::numeric_limits<T>::max());
   for (size_t p = 0; p < size_t(spec.width) * size_t(spec.height); ++p) {
     const T* s = &raw[p * size_t(n)];
@@ -42,11 +44,11 @@ std::vector<T> decode_as(const StimulusImage& image, OIIO::TypeDesc type) {
 }  // namespace
 
 std::vector<uint8_t> decode_rgba(const StimulusImage& image) {
-  return decode_as<uint8_t>(image, OIIO::TypeDesc::UINT8);
+  return decode_as<uint8_t>(image, codecs::Sample::uint8);
 }
 
 std::vector<uint16_t> decode_rgba16(const StimulusImage& image) {
-  return decode_as<uint16_t>(image, OIIO::TypeDesc::UINT16);
+  return decode_as<uint16_t>(image, codecs::Sample::uint16);
 }
 
 namespace {
