@@ -32,6 +32,7 @@ void add_image_filter_command(CLI::App& app);
 void add_flicker_command(CLI::App& app);
 void add_sheet_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
+void add_observe_command(CLI::App& app);
 
 // Sign checks with one short line of message (use these, not CLI::PositiveNumber).
 extern const CLI::Validator kPositive, kNonNegative;

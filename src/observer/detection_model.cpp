@@ -1,0 +1,95 @@
+#include "observer/detection_model.h"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include "observer/contrast_sensitivity.h"
+
+namespace countershade::observer {
+namespace {
+
+struct FftwFree {
+  void operator()(void* p) const { fftw_free(p); }
+};
+struct PlanFree {
+  void operator()(fftw_plan p) const { fftw_destroy_plan(p); }
+};
+using Plan = std::unique_ptr<std::remove_pointer_t<fftw_plan>, PlanFree>;
+
+// FFTW's planner is not thread-safe; its transforms are.
+std::mutex& planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// The filter's gain at horizontal and vertical frequency indices (kx, ky) of a W × H transform.
+double filter_gain(int kx, int ky, int width, int height, double ppd, bool oblique) {
+  const double fx = double(kx) * ppd / double(width);
+  const double fy = double(ky <= height / 2 ? ky : ky - height) * ppd / double(height);
+  const double f = std::hypot(fx, fy);
+  double gain = sso_sensitivity(f);
+  if (oblique) gain *= oblique_gain(f, std::atan2(fy, fx));
+  return gain;
+}
+
+}  // namespace
+
+ContrastImage csf_filtered(const ContrastImage& contrast, double ppd, bool oblique) {
+  const int w = 2 * contrast.width, h = 2 * contrast.height, half = w / 2 + 1;
+  std::unique_ptr<double, FftwFree> real(fftw_alloc_real(size_t(w) * size_t(h)));
+  std::unique_ptr<fftw_complex, FftwFree> spectrum(fftw_alloc_complex(size_t(half) * size_t(h)));
+  Plan forward, backward;
+  {
+    const std::lock_guard<std::mutex> lock(planner_mutex());
+    forward.reset(fftw_plan_dft_r2c_2d(h, w, real.get(), spectrum.get(), FFTW_ESTIMATE));
+    backward.reset(fftw_plan_dft_c2r_2d(h, w, spectrum.get(), real.get(), FFTW_ESTIMATE));
+  }
+  std::fill(real.get(), real.get() + size_t(w) * size_t(h), 0.0);
+  const int x0 = contrast.width / 2, y0 = contrast.height / 2;
+  for (int y = 0; y < contrast.height; ++y)
+    std::copy_n(&contrast.values[size_t(y) * size_t(contrast.width)], contrast.width,
+                real.get() + size_t(y + y0) * size_t(w) + size_t(x0));
+  fftw_execute(forward.get());
+  const double normalise = 1.0 / (double(w) * double(h));  // FFTW's transforms are unscaled
+  for (int ky = 0; ky < h; ++ky)
+    for (int kx = 0; kx < half; ++kx) {
+      const double g = filter_gain(kx, ky, w, h, ppd, oblique) * normalise;
+      fftw_complex& c = spectrum.get()[size_t(ky) * size_t(half) + size_t(kx)];
+      c[0] *= g;
+      c[1] *= g;
+    }
+  fftw_execute(backward.get());
+  ContrastImage out(w, h);
+  std::copy_n(real.get(), out.values.size(), out.values.begin());
+  return out;
+}
+
+double minkowski_pool(const ContrastImage& filtered, double beta, double ppd) {
+  double sum = 0;
+  for (double r : filtered.values) sum += std::pow(std::abs(r), beta);
+  return std::pow(sum / (ppd * ppd), 1.0 / beta);
+}
+
+double response_jnd(const ContrastImage& contrast, double ppd, const DetectionModel& model) {
+  return model.gain * minkowski_pool(csf_filtered(contrast, ppd, model.oblique), model.beta, ppd);
+}
+
+Observation observe(const ContrastImage& contrast, double ppd, const DetectionModel& model) {
+  const ContrastImage filtered = csf_filtered(contrast, ppd, model.oblique);
+  Observation out{model.gain * minkowski_pool(filtered, model.beta, ppd),
+                  ContrastImage(contrast.width, contrast.height)};
+  double total = 0;
+  for (double r : filtered.values) total += std::pow(std::abs(r), model.beta);
+  const int x0 = contrast.width / 2, y0 = contrast.height / 2;
+  for (int y = 0; y < contrast.height; ++y)
+    for (int x = 0; x < contrast.width; ++x)
+      out.share.at(x, y) =
+          total > 0 ? std::pow(std::abs(filtered.at(x + x0, y + y0)), model.beta) / total : 0.0;
+  return out;
+}
+
+}  // namespace countershade::observer

@@ -1,0 +1,60 @@
+#include "observer/luminance_image.h"
+
+#include <cmath>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/image.h"
+
+namespace countershade::observer {
+namespace {
+
+constexpr double kRec709[3] = {0.2126, 0.7152, 0.0722};
+
+// Relative luminance of a pixel: its channels (code values when `codes`, else linear) weighted.
+double relative_luminance(const Image& image, int x, int y, bool codes) {
+  const auto linear = [&](int c) {
+    const double v = image.at(x, y, c);
+    return codes ? srgb_decode(v) : v;
+  };
+  if (image.channels < 3) return linear(0);
+  return kRec709[0] * linear(0) + kRec709[1] * linear(1) + kRec709[2] * linear(2);
+}
+
+}  // namespace
+
+LuminanceImage read_luminance(const std::string& path, double peak_luminance) {
+  int bits = 0;
+  const Image image = read_image(path, &bits);
+  const bool codes = bits != 0;  // integer files hold display codes; float files luminance
+  LuminanceImage out{image.width, image.height, {}};
+  out.cd_m2.reserve(size_t(image.width) * size_t(image.height));
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const double l = relative_luminance(image, x, y, codes) * (codes ? peak_luminance : 1.0);
+      if (!(l >= 0) || !std::isfinite(l))
+        throw_input_error(path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                    ") has no finite, non-negative luminance");
+      out.cd_m2.push_back(l);
+    }
+  return out;
+}
+
+ContrastImage contrast_between(const LuminanceImage& reference, const LuminanceImage& test,
+                               const std::string& reference_name, const std::string& test_name) {
+  if (test.width != reference.width || test.height != reference.height)
+    throw_input_error(test_name, "the image is " + std::to_string(test.width) + "x" +
+                                     std::to_string(test.height) + " but the reference is " +
+                                     std::to_string(reference.width) + "x" +
+                                     std::to_string(reference.height));
+  double mean = 0;
+  for (double l : reference.cd_m2) mean += l;
+  mean /= double(reference.cd_m2.size());
+  if (!(mean > 0)) throw_input_error(reference_name, "the reference is black (mean luminance 0)");
+  ContrastImage contrast(reference.width, reference.height);
+  for (size_t i = 0; i < contrast.values.size(); ++i)
+    contrast.values[i] = (test.cd_m2[i] - reference.cd_m2[i]) / mean;
+  return contrast;
+}
+
+}  // namespace countershade::observer

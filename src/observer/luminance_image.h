@@ -1,0 +1,25 @@
+#pragma once
+// Images as the observer sees them: luminance in cd/m² (docs/observer.md, "Input"). PNG, TIFF
+// and JPEG codes (8 or 16 bit) go through the display, sRGB with a peak luminance; PFM, OpenEXR and
+// HDR files hold luminance itself (one channel, or RGB weighted by Rec. 709's luminance weights).
+
+#include <string>
+
+#include "observer/detection_model.h"
+
+namespace countershade::observer {
+
+struct LuminanceImage {
+  int width = 0, height = 0;
+  std::vector<double> cd_m2;
+};
+
+// Throws InputError naming the file when it cannot be read or holds a negative luminance.
+LuminanceImage read_luminance(const std::string& path, double peak_luminance);
+
+// (test − reference) / the reference's mean luminance. Throws InputError naming `test_name` when
+// the sizes differ, and `reference_name` when the reference is black.
+ContrastImage contrast_between(const LuminanceImage& reference, const LuminanceImage& test,
+                               const std::string& reference_name, const std::string& test_name);
+
+}  // namespace countershade::observer
