@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "core/color.h"
 #include "core/error.h"
 #include "core/image.h"
 
@@ -11,11 +10,12 @@ namespace {
 
 constexpr double kRec709[3] = {0.2126, 0.7152, 0.0722};
 
-// Relative luminance of a pixel: its channels (code values when `codes`, else linear) weighted.
-double relative_luminance(const Image& image, int x, int y, bool codes) {
+// Luminance of a pixel: its channels (code values through the display when `codes`, else
+// luminance) weighted.
+double luminance(const Image& image, int x, int y, const CalibratedDisplay* codes) {
   const auto linear = [&](int c) {
     const double v = image.at(x, y, c);
-    return codes ? srgb_decode(v) : v;
+    return codes ? codes->luminance(v) : v;
   };
   if (image.channels < 3) return linear(0);
   return kRec709[0] * linear(0) + kRec709[1] * linear(1) + kRec709[2] * linear(2);
@@ -23,15 +23,18 @@ double relative_luminance(const Image& image, int x, int y, bool codes) {
 
 }  // namespace
 
-LuminanceImage read_luminance(const std::string& path, double peak_luminance) {
+CalibratedDisplay srgb_display(double peak) { return {DisplayEncoding::srgb(), 0, peak}; }
+
+LuminanceImage read_luminance(const std::string& path, const CalibratedDisplay& display) {
   int bits = 0;
   const Image image = read_image(path, &bits);
-  const bool codes = bits != 0;  // integer files hold display codes; float files luminance
+  // Integer files hold display codes; float files luminance.
+  const CalibratedDisplay* codes = bits != 0 ? &display : nullptr;
   LuminanceImage out{image.width, image.height, {}};
   out.cd_m2.reserve(size_t(image.width) * size_t(image.height));
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
-      const double l = relative_luminance(image, x, y, codes) * (codes ? peak_luminance : 1.0);
+      const double l = luminance(image, x, y, codes);
       if (!(l >= 0) || !std::isfinite(l))
         throw_input_error(path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                     ") has no finite, non-negative luminance");

@@ -15,6 +15,7 @@
 
 #include "core/atomic_file.h"
 #include "core/color.h"
+#include "core/display_calibration_file.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/json_reader.h"
@@ -170,59 +171,21 @@ class SceneLoader {
     if (encoding == "gamma") {
       d.encoding = DisplayEncoding::gamma(o.number_in("gamma", 2.2, 0.1, 10.0));
     } else if (encoding == "lut") {
-      d.encoding = read_lut(o, resolve(o, "lut"));
+      d.encoding = read_lut_file(o, "lut", resolve(o, "lut"));
     }
     if (o.has("background")) d.background = non_negative_color(o, "background", glm::dvec3(0));
     o.finish();
     return d;
   }
 
-  // The display block that `countershade calibrate` wrote: its lookup table (relative to the
-  // calibration file) and its luminance range.
+  // The display block that `countershade calibrate` wrote (core/display_calibration_file.h).
   static void calibrated(const JsonObject& o, const fs::path& file, Display& d) {
     std::error_code ec;
     if (!fs::is_regular_file(file, ec))
       o.fail("calibration", "no such file '" + file.string() + "'");
-    const nlohmann::json j = parse_json_file(file);
-    const JsonObject c(j, file.string(), "");
-    const JsonObject block = c.object("display");
-    if (block.string("encoding") != "lut")
-      block.fail("encoding", "expected \"lut\" (a file written by countershade calibrate)");
-    fs::path lut = block.string("lut");
-    if (lut.is_relative()) lut = file.parent_path() / lut;
-    d.encoding = read_lut(block, lut);
-    const JsonObject range = c.object("luminance_cd_m2");
-    const double black = range.number("black"), white = range.number("white");
-    if (!(black >= 0 && white > black)) range.fail("white", "expected 0 ≤ black < white");
-    d.luminance_cd_m2 = std::make_pair(black, white);
-  }
-
-  static DisplayEncoding read_lut(const JsonObject& o, const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) o.fail("lut", "cannot read lookup table '" + file.string() + "'");
-    std::vector<double> codes, luminances;
-    std::string line;
-    size_t number = 0;
-    while (std::getline(in, line)) {
-      ++number;
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      if (line.empty() || line[0] == '#') continue;
-      std::replace(line.begin(), line.end(), ',', ' ');
-      std::istringstream fields(line);
-      double code, lum;
-      if (!(fields >> code >> lum)) {
-        if (codes.empty() && number == 1) continue;  // header row
-        throw_input_error(file.string() + ": line " + std::to_string(number),
-                          "expected two numbers: code, luminance");
-      }
-      codes.push_back(code);
-      luminances.push_back(lum);
-    }
-    try {
-      return DisplayEncoding::lut(codes, luminances);
-    } catch (const InputError& e) {
-      throw_input_error(file.string(), e.what());
-    }
+    const CalibratedDisplay c = read_calibration_file(file);
+    d.encoding = c.encoding;
+    d.luminance_cd_m2 = std::make_pair(c.black_cd_m2, c.white_cd_m2);
   }
 
   glm::dmat4 transform(const JsonObject& o) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "core/color.h"
 #include "core/image.h"
@@ -71,6 +72,41 @@ TEST(ObserveCli, AModelfestGaborAtItsMeasuredThresholdIsAboutOneJnd) {
     if (map.pixels[p * 3 + 1] > map.pixels[brightest * 3 + 1]) brightest = p;
   EXPECT_NEAR(double(brightest % kSize), kSize / 2, 10);
   EXPECT_NEAR(double(brightest / kSize), kSize / 2, 2);
+}
+
+// A display file: its screen gives the pixels per degree (as --ppd would), and its calibration
+// the luminance of each code; with a linear table from 0 to 100 cd/m², 16-bit codes c show 100·c.
+TEST(ObserveCli, ADisplayFileGivesThePixelsPerDegreeAndTheLuminance) {
+  testing::TempDir dir;
+  for (const char* name : {"mean", "gabor"}) {
+    Image codes = gabor_luminance(name == std::string("gabor") ? 0.02 : 0);
+    for (float& v : codes.pixels) v /= 100;
+    write_image(dir / (std::string(name) + ".png"), codes, {16});
+    for (float& v : codes.pixels) v = float(std::round(v * 65535) / 65535 * 100);
+    write_image(dir / (std::string(name) + ".pfm"), codes);
+  }
+  testing::write_file(dir / "linear.lut.csv", "code,luminance\n0,0\n1,1\n");
+  testing::write_file(dir / "linear.json", R"({"display": {"encoding": "lut",
+    "lut": "linear.lut.csv"}, "luminance_cd_m2": {"black": 0, "white": 100}})");
+  testing::write_file(dir / "lab.json", R"({"screen": {"width_mm": 300, "width_px": 1920,
+    "distance_mm": 570}, "calibration": "linear.json"})");
+  const double ppd = 2 * 570 * std::tan(0.5 * std::numbers::pi / 180) * 1920 / 300;
+  const auto by_file =
+      testing::run_cli("observe " + (dir / "mean.png").string() + " " +
+                       (dir / "gabor.png").string() + " --display " + (dir / "lab.json").string());
+  ASSERT_EQ(by_file.exit_code, 0) << by_file.output;
+  const auto by_flags =
+      testing::run_cli("observe " + (dir / "mean.pfm").string() + " " +
+                       (dir / "gabor.pfm").string() + " --ppd " + std::to_string(ppd));
+  EXPECT_NEAR(jnd_of(by_file), jnd_of(by_flags), 1e-4 * jnd_of(by_flags));
+  // The display file and the flags it replaces are not given together.
+  for (const char* flag : {" --ppd 60", " --peak-luminance 80"}) {
+    const auto both = testing::run_cli("observe " + (dir / "mean.png").string() + " " +
+                                       (dir / "gabor.png").string() + " --display " +
+                                       (dir / "lab.json").string() + flag);
+    EXPECT_EQ(both.exit_code, 2) << both.output;
+    EXPECT_NE(both.output.find("lab.json"), std::string::npos) << both.output;
+  }
 }
 
 TEST(ObserveCli, BadInputIsOneLineAndExitTwo) {
