@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "core/json_reader.h"
+
 namespace countershade {
 
 // A documented parameter of a bag's owner (a method, a procedure), for `countershade methods`,
@@ -67,6 +69,8 @@ class ParameterBag {
   struct Structured {
     const nlohmann::json& value;
     std::string file, path;
+    // The value read as an object, its messages naming the file and key path.
+    JsonObject object() const { return JsonObject(value, file, path); }
   };
   std::optional<Structured> structured(const std::string& key) const;
 

@@ -61,10 +61,6 @@ void read_repeat(const JsonObject& r, RepeatTiming& timing) {
   r.finish();
 }
 
-JsonObject object_of(const ParameterBag::Structured& s) {
-  return JsonObject(s.value, s.file, s.path);
-}
-
 // The one parser of the adjust block.
 StudyConfig read_adjustment(const ParameterBag& bag) {
   StudyConfig c;
@@ -78,11 +74,11 @@ StudyConfig read_adjustment(const ParameterBag& bag) {
   c.plan.practice_trials = int(bag.integer_in("practice_trials", 0, 0, 100));
   c.conditions = read_condition_selections(bag, "conditions");
   c.practice_conditions = read_condition_selections(bag, "practice_conditions");
-  if (const auto r = bag.structured("repeat")) read_repeat(object_of(*r), c.timing);
+  if (const auto r = bag.structured("repeat")) read_repeat(r->object(), c.timing);
   c.surround = int(bag.integer_in("surround", 128, 0, 255));
   c.gap_px = int(bag.integer_in("gap_px", 48, 0, 4096));
   c.font_px = bag.number_in("font_px", 22, 8, 96);
-  if (const auto t = bag.structured("instructions")) read_instructions(object_of(*t), c.text);
+  if (const auto t = bag.structured("instructions")) read_instructions(t->object(), c.text);
   bag.finish("the adjust block");
   return c;
 }

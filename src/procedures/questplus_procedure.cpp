@@ -289,10 +289,6 @@ std::array<std::string, 2> read_outcomes(const JsonObject& o) {
   return {r[0].get<std::string>(), r[1].get<std::string>()};
 }
 
-JsonObject object_of(const ParameterBag::Structured& s) {
-  return JsonObject(s.value, s.file, s.path);
-}
-
 QuestPlusBlock read_block(const ParameterBag& bag) {
   QuestPlusBlock b;
   QuestPlusDefinition& d = b.definition;
@@ -306,16 +302,16 @@ QuestPlusBlock read_block(const ParameterBag& bag) {
   if (d.shape == PsychometricShape::norm_cdf && d.scale != StimulusScale::linear)
     bag.fail("stim_scale", "norm_cdf works on a linear scale");
   if (const auto s = bag.structured("stim_domain")) {
-    const JsonObject o = object_of(*s);
+    const JsonObject o = s->object();
     d.stimuli = read_grid(o, "intensity");
     o.finish();
     b.stimuli_given = true;
   }
   const auto p = bag.structured("param_domain");
   if (!p) bag.fail("param_domain", "missing (the grid of each parameter)");
-  read_parameter_domain(object_of(*p), d);
-  if (const auto prior = bag.structured("prior")) read_prior(object_of(*prior), d);
-  if (const auto o = bag.structured("outcome_domain")) b.outcomes = read_outcomes(object_of(*o));
+  read_parameter_domain(p->object(), d);
+  if (const auto prior = bag.structured("prior")) read_prior(prior->object(), d);
+  if (const auto o = bag.structured("outcome_domain")) b.outcomes = read_outcomes(o->object());
   bag.choice("stim_selection_method", "min_entropy", {"min_entropy"});
   b.estimate_mean = bag.choice("param_estimation_method", "mean", {"mean", "mode"}) == "mean";
   b.trials = int(bag.integer_in("trials", 0, 0, 100000));
