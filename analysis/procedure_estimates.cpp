@@ -8,7 +8,7 @@
 #include "core/json_reader.h"
 #include "core/number_format.h"
 #include "formats/responses.h"
-#include "procedures/condition_selection.h"
+#include "procedures/choice_block.h"
 #include "procedures/registry.h"
 
 namespace countershade::analysis {
@@ -29,34 +29,24 @@ std::map<Key, Trials> trials_by_condition(const fs::path& file) {
 // the conditions that ran another (docs/forced-choice.md, "Procedures per condition").
 class SessionProcedures {
  public:
-  SessionProcedures(const nlohmann::json& record, const std::string& file) {
+  SessionProcedures(const nlohmann::json& record, const std::string& file) : file_(file) {
     const JsonObject config = JsonObject(record, file, "").object("config");
     block_ = procedures::read_procedure_block(config.raw("procedure"), file, "config.procedure");
-    if (!config.has("condition_procedures")) return;
-    for (const JsonObject& entry : config.objects("condition_procedures")) {
-      const std::string path = entry.key_path("procedure");
-      own_.push_back({{entry.string("scene"), entry.string("method"), entry.number("sigma")},
-                      procedures::read_procedure_block(entry.raw("procedure"), file, path),
-                      path});
-    }
+    own_ = procedures::read_condition_procedures(config, file);
   }
-  // The procedure of a condition, and the key path that gives it.
+  // The procedure of a condition, and "FILE: KEY PATH" of where the record gives it.
   std::pair<const procedures::ProcedureBlock&, std::string> of(const std::string& scene,
                                                                const std::string& label,
                                                                double sigma) const {
     for (const auto& c : own_)
-      if (c.condition.names(scene, label, sigma)) return {c.block, c.path};
-    return {block_, "config.procedure"};
+      if (c.condition.names(scene, label, sigma)) return {c.procedure, c.where};
+    return {block_, file_ + ": config.procedure"};
   }
 
  private:
-  struct Own {
-    procedures::ConditionSelection condition;
-    procedures::ProcedureBlock block;
-    std::string path;
-  };
+  std::string file_;
   procedures::ProcedureBlock block_;
-  std::vector<Own> own_;
+  std::vector<procedures::ConditionProcedureBlock> own_;
 };
 
 // The estimates of one session file: one per condition whose procedure keeps a posterior.
@@ -76,7 +66,7 @@ std::vector<ProcedureEstimate> estimates_of(const fs::path& file) {
     try {
       estimate = block.settings->estimate(trials);
     } catch (const InputError& e) {  // named by the block it comes from
-      throw InputError(sidecar.string() + ": " + path + "." + e.what());
+      throw InputError(path + "." + e.what());
     }
     if (estimate)
       out.push_back({subject, session, scene, label, sigma, trials.size(), std::move(*estimate)});

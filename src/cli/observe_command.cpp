@@ -66,8 +66,8 @@ Viewing viewing_of(const ObserveArgs& args) {
 void write_share_map(const std::string& file, const observer::ContrastImage& share) {
   Image values(share.width, share.height, 1);
   const double top = *std::max_element(share.values.begin(), share.values.end());
-  const bool scaled = lower_extension(file) == ".png" || lower_extension(file) == ".tif" ||
-                      lower_extension(file) == ".tiff";
+  const std::string ext = lower_extension(file);
+  const bool scaled = ext == ".png" || ext == ".tif" || ext == ".tiff";
   for (size_t i = 0; i < share.values.size(); ++i)
     values.pixels[i] = float(scaled ? (top > 0 ? share.values[i] / top : 0.0) : share.values[i]);
   write_image(file, scaled ? false_colour_image(values) : values);

@@ -68,10 +68,23 @@ ContrastImage csf_filtered(const ContrastImage& contrast, double ppd, bool obliq
   return out;
 }
 
-double minkowski_pool(const ContrastImage& filtered, double beta, double ppd) {
+namespace {
+
+double sum_of_powers(const ContrastImage& filtered, double beta) {
   double sum = 0;
   for (double r : filtered.values) sum += std::pow(std::abs(r), beta);
-  return std::pow(sum / (ppd * ppd), 1.0 / beta);
+  return sum;
+}
+
+// The pooled response from the sum of |r|^β: pixel areas in square degrees.
+double pooled(double sum_of_powers, double beta, double ppd) {
+  return std::pow(sum_of_powers / (ppd * ppd), 1.0 / beta);
+}
+
+}  // namespace
+
+double minkowski_pool(const ContrastImage& filtered, double beta, double ppd) {
+  return pooled(sum_of_powers(filtered, beta), beta, ppd);
 }
 
 double response_jnd(const ContrastImage& contrast, double ppd, const DetectionModel& model) {
@@ -80,10 +93,9 @@ double response_jnd(const ContrastImage& contrast, double ppd, const DetectionMo
 
 Observation observe(const ContrastImage& contrast, double ppd, const DetectionModel& model) {
   const ContrastImage filtered = csf_filtered(contrast, ppd, model.oblique);
-  Observation out{model.gain * minkowski_pool(filtered, model.beta, ppd),
+  const double total = sum_of_powers(filtered, model.beta);
+  Observation out{model.gain * pooled(total, model.beta, ppd),
                   ContrastImage(contrast.width, contrast.height)};
-  double total = 0;
-  for (double r : filtered.values) total += std::pow(std::abs(r), model.beta);
   const int x0 = contrast.width / 2, y0 = contrast.height / 2;
   for (int y = 0; y < contrast.height; ++y)
     for (int x = 0; x < contrast.width; ++x)

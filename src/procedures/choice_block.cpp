@@ -10,8 +10,6 @@ const char* layout_name(Layout layout) {
   return layout == Layout::spatial ? "spatial" : "temporal";
 }
 
-namespace {
-
 // The "condition_procedures" list: each entry a condition ({scene, method, sigma}) and its
 // "procedure"; a condition named twice is refused, as its procedure would be ambiguous.
 std::vector<ConditionProcedureBlock> read_condition_procedures(const JsonObject& block,
@@ -39,8 +37,6 @@ std::vector<ConditionProcedureBlock> read_condition_procedures(const JsonObject&
   }
   return out;
 }
-
-}  // namespace
 
 ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
                                  const std::string& path) {
@@ -70,18 +66,24 @@ ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string&
   return c;
 }
 
+const ConditionProcedureBlock* ChoiceConfig::own_procedure(const std::string& scene,
+                                                           const std::string& method,
+                                                           double sigma) const {
+  for (const auto& c : condition_procedures)
+    if (c.condition.names(scene, method, sigma)) return &c;
+  return nullptr;
+}
+
 const ProcedureBlock& ChoiceConfig::procedure_of(const std::string& scene,
                                                  const std::string& method, double sigma) const {
-  for (const auto& c : condition_procedures)
-    if (c.condition.names(scene, method, sigma)) return c.procedure;
-  return procedure;
+  const auto* own = own_procedure(scene, method, sigma);
+  return own ? own->procedure : procedure;
 }
 
 std::string ChoiceConfig::procedure_source_of(const std::string& scene, const std::string& method,
                                               double sigma) const {
-  for (const auto& c : condition_procedures)
-    if (c.condition.names(scene, method, sigma)) return c.where;
-  return source + "procedure";
+  const auto* own = own_procedure(scene, method, sigma);
+  return own ? own->where : source + "procedure";
 }
 
 std::string ChoiceConfig::answer_keys() const {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/json_reader.h"
 #include "procedures/condition_selection.h"
 #include "procedures/registry.h"
 
@@ -57,9 +58,17 @@ struct ChoiceConfig {
 
   nlohmann::ordered_json to_json() const;
   std::string welcome_text() const;
+  // The entry of condition_procedures that names this condition; none when it runs `procedure`.
+  const ConditionProcedureBlock* own_procedure(const std::string& scene, const std::string& method,
+                                               double sigma) const;
   // The keys that answer, for the hint under the images: "Left/Right" or "1 to 4".
   std::string answer_keys() const;
 };
+
+// The block's "condition_procedures" list (none when absent), for the block and for a session's
+// record of it; a condition listed twice is an InputError.
+std::vector<ConditionProcedureBlock> read_condition_procedures(const JsonObject& block,
+                                                               const std::string& file);
 
 // Reads the block; every bad value is an InputError naming `file` and the key path.
 ChoiceConfig parse_choice_config(const nlohmann::json& value, const std::string& file,
