@@ -252,19 +252,6 @@ StimulusAudit describe(const ManifestEntry& e) {
   return s;
 }
 
-// The manifest of a set whose files all match it; an InputError names the first mismatch.
-Manifest verified_manifest(const std::filesystem::path& manifest_path) {
-  Manifest manifest = read_manifest(manifest_path);
-  const auto problems = verify_stimulus_set(manifest_path);
-  if (!problems.empty())
-    throw_input_error(
-        manifest_path.string(),
-        "the set does not match its manifest (" + problems.front() +
-            (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") +
-            ")");
-  return manifest;
-}
-
 }  // namespace
 
 size_t AuditReport::failed() const {
@@ -299,7 +286,7 @@ std::string AuditReport::summary() const {
 
 AuditReport audit_stimulus_set(const std::filesystem::path& manifest_path,
                                const AuditOptions& options) {
-  const Manifest manifest = verified_manifest(manifest_path);
+  const Manifest manifest = read_verified_manifest(manifest_path);
   const std::filesystem::path dir = manifest_path.parent_path();
   AuditReport report;
   report.manifest = manifest_path;

@@ -25,6 +25,19 @@ std::vector<double> nice_ticks(double lo, double hi) {
   return out;
 }
 
+std::vector<double> log_ticks(double lo, double hi) {
+  std::vector<double> out;
+  if (!(lo > 0) || !(hi >= lo)) return out;
+  const bool few_decades = std::log10(hi / lo) <= 2;
+  for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double t = m * std::pow(10.0, k);
+      if ((m == 1.0 || few_decades) && t >= lo * (1 - 1e-9) && t <= hi * (1 + 1e-9))
+        out.push_back(t);
+    }
+  return out;
+}
+
 const std::string& plot_color(size_t index) {
   static const std::vector<std::string> palette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
                                                    "#E69F00", "#56B4E9", "#000000", "#F0E442",
@@ -35,25 +48,34 @@ const std::string& plot_color(size_t index) {
 namespace {
 
 // Where a LinePlot draws: the data ranges (y padded by 5 %) and the plot area inside the margins.
+// On a logarithmic axis y0 and y1 are log10 of the range.
 struct PlotFrame {
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   double left = 70, right = 150, top = 40, bottom = 55, pw = 0, ph = 0;
+  bool log_y = false;
   double px(double x) const { return left + (x - x0) / (x1 - x0) * pw; }
-  double py(double y) const { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; }
+  double py(double y) const {
+    return top + (1.0 - ((log_y ? std::log10(y) : y) - y0) / (y1 - y0)) * ph;
+  }
+  bool shows(double y) const { return !log_y || y > 0; }
+  double axis_value(double y) const { return log_y ? std::log10(y) : y; }
 };
 
 PlotFrame plot_frame(const LinePlot& plot) {
   PlotFrame f;
+  f.log_y = plot.log_y;
   for (const auto& s : plot.series)
     for (size_t i = 0; i < s.x.size(); ++i) {
+      if (!f.shows(s.y[i])) continue;
       f.x0 = std::min(f.x0, s.x[i]);
       f.x1 = std::max(f.x1, s.x[i]);
-      f.y0 = std::min(f.y0, s.y[i]);
-      f.y1 = std::max(f.y1, s.y[i]);
+      f.y0 = std::min(f.y0, f.axis_value(s.y[i]));
+      f.y1 = std::max(f.y1, f.axis_value(s.y[i]));
     }
   for (const ErrorBar& e : plot.error_bars) {
-    f.y0 = std::min(f.y0, e.low);
-    f.y1 = std::max(f.y1, e.high);
+    if (!f.shows(e.low)) continue;
+    f.y0 = std::min(f.y0, f.axis_value(e.low));
+    f.y1 = std::max(f.y1, f.axis_value(e.high));
   }
   if (f.x0 > f.x1) f.x0 = 0, f.x1 = 1, f.y0 = 0, f.y1 = 1;
   const double pad = 0.05 * (f.y1 - f.y0 > 0 ? f.y1 - f.y0 : 1.0);
@@ -74,7 +96,9 @@ void plot_axes(std::ostringstream& svg, const LinePlot& plot, const PlotFrame& f
     svg << "<line x1=\"" << f.px(t) << "\" y1=\"" << f.top << "\" x2=\"" << f.px(t) << "\" y2=\""
         << f.top + f.ph << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.px(t) << "\" y=\""
         << f.top + f.ph + 16 << "\" text-anchor=\"middle\">" << t << "</text>\n";
-  for (double t : nice_ticks(f.y0, f.y1))
+  const std::vector<double> y_ticks =
+      f.log_y ? log_ticks(std::pow(10.0, f.y0), std::pow(10.0, f.y1)) : nice_ticks(f.y0, f.y1);
+  for (double t : y_ticks)
     svg << "<line x1=\"" << f.left << "\" y1=\"" << f.py(t) << "\" x2=\"" << f.left + f.pw
         << "\" y2=\"" << f.py(t) << "\" stroke=\"#e5e5e5\"/><text x=\"" << f.left - 6 << "\" y=\""
         << f.py(t) + 4 << "\" text-anchor=\"end\">" << t << "</text>\n";
@@ -91,8 +115,9 @@ void plot_series(std::ostringstream& svg, const PlotSeries& s, size_t k, const P
   const double ly = f.top + 14 + 18 * double(k);
   if (s.points) {
     for (size_t i = 0; i < s.x.size(); ++i)
-      svg << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i]) << "\" r=\"3.5\" fill=\""
-          << s.color << "\"/>";
+      if (f.shows(s.y[i]))
+        svg << "<circle cx=\"" << f.px(s.x[i]) << "\" cy=\"" << f.py(s.y[i])
+            << "\" r=\"3.5\" fill=\"" << s.color << "\"/>";
     svg << "\n";
     if (!s.label.empty())
       svg << "<circle cx=\"" << f.left + f.pw + 21 << "\" cy=\"" << ly << "\" r=\"3.5\" fill=\""
@@ -102,7 +127,8 @@ void plot_series(std::ostringstream& svg, const PlotSeries& s, size_t k, const P
   }
   svg << "<polyline fill=\"none\" stroke=\"" << s.color << "\" stroke-width=\"1.8\""
       << (s.dashed ? " stroke-dasharray=\"5,3\"" : "") << " points=\"";
-  for (size_t i = 0; i < s.x.size(); ++i) svg << f.px(s.x[i]) << "," << f.py(s.y[i]) << " ";
+  for (size_t i = 0; i < s.x.size(); ++i)
+    if (f.shows(s.y[i])) svg << f.px(s.x[i]) << "," << f.py(s.y[i]) << " ";
   svg << "\"/>\n";
   if (s.label.empty()) return;
   svg << "<line x1=\"" << f.left + f.pw + 10 << "\" y1=\"" << ly << "\" x2=\"" << f.left + f.pw + 32
@@ -124,8 +150,10 @@ std::string LinePlot::to_svg() const {
       << xml_escape(title) << "</text>\n";
   plot_axes(svg, *this, f);
   for (const ErrorBar& e : error_bars)
-    svg << "<line x1=\"" << f.px(e.x) << "\" y1=\"" << f.py(e.low) << "\" x2=\"" << f.px(e.x)
-        << "\" y2=\"" << f.py(e.high) << "\" stroke=\"" << e.color << "\" stroke-width=\"1.2\"/>\n";
+    if (f.shows(e.low))
+      svg << "<line x1=\"" << f.px(e.x) << "\" y1=\"" << f.py(e.low) << "\" x2=\"" << f.px(e.x)
+          << "\" y2=\"" << f.py(e.high) << "\" stroke=\"" << e.color
+          << "\" stroke-width=\"1.2\"/>\n";
   size_t row = 0;  // legend rows: only labelled series take one
   for (const PlotSeries& s : series) plot_series(svg, s, s.label.empty() ? row : row++, f);
   svg << "</svg>\n";

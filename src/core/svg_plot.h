@@ -26,6 +26,9 @@ struct LinePlot {
   std::vector<PlotSeries> series;
   std::vector<ErrorBar> error_bars;
   int width = 640, height = 400;
+  // A logarithmic y axis (values that span decades, such as responses in JND); values ≤ 0 are
+  // left out.
+  bool log_y = false;
 
   std::string to_svg() const;
   void write(const std::filesystem::path& path) const;  // atomic
@@ -33,6 +36,10 @@ struct LinePlot {
 
 // "Nice" tick positions covering [lo, hi]: steps of 1, 2 or 5 × 10^k, at most 7 of them.
 std::vector<double> nice_ticks(double lo, double hi);
+
+// Ticks of a logarithmic axis over [lo, hi]: 1, 2 and 5 × 10^k over up to two decades, powers
+// of ten over more.
+std::vector<double> log_ticks(double lo, double hi);
 
 // A palette of distinguishable colours (colour-blind friendly order).
 const std::string& plot_color(size_t index);

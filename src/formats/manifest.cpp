@@ -343,4 +343,16 @@ std::optional<ImageNoise> image_noise(const ManifestEntry& entry) {
   return noise;
 }
 
+Manifest read_verified_manifest(const std::filesystem::path& manifest_path) {
+  Manifest manifest = read_manifest(manifest_path);
+  const auto problems = verify_stimulus_set(manifest_path);
+  if (!problems.empty())
+    throw_input_error(
+        manifest_path.string(),
+        "the set does not match its manifest (" + problems.front() +
+            (problems.size() > 1 ? ", and " + std::to_string(problems.size() - 1) + " more" : "") +
+            ")");
+  return manifest;
+}
+
 }  // namespace countershade

@@ -113,6 +113,10 @@ std::filesystem::path resolve_in_set(const std::filesystem::path& set_dir,
 // folder is listed. Returns the problems found (empty when the set is intact).
 std::vector<std::string> verify_stimulus_set(const std::filesystem::path& manifest_path);
 
+// read_manifest of a set whose files all match it (verify_stimulus_set); an InputError names the
+// first mismatch.
+Manifest read_verified_manifest(const std::filesystem::path& manifest_path);
+
 // The manifest without the fields that legitimately differ between runs (timings, timestamps).
 OrderedJson reproducible_part(const Manifest& manifest);
 

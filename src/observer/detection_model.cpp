@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 
 #include "observer/contrast_sensitivity.h"
 
@@ -15,10 +16,6 @@ namespace {
 struct FftwFree {
   void operator()(void* p) const { fftw_free(p); }
 };
-struct PlanFree {
-  void operator()(fftw_plan p) const { fftw_destroy_plan(p); }
-};
-using Plan = std::unique_ptr<std::remove_pointer_t<fftw_plan>, PlanFree>;
 
 // FFTW's planner is not thread-safe; its transforms are.
 std::mutex& planner_mutex() {
@@ -38,34 +35,59 @@ double filter_gain(int kx, int ky, int width, int height, double ppd, bool obliq
 
 }  // namespace
 
-ContrastImage csf_filtered(const ContrastImage& contrast, double ppd, bool oblique) {
-  const int w = 2 * contrast.width, h = 2 * contrast.height, half = w / 2 + 1;
-  std::unique_ptr<double, FftwFree> real(fftw_alloc_real(size_t(w) * size_t(h)));
-  std::unique_ptr<fftw_complex, FftwFree> spectrum(fftw_alloc_complex(size_t(half) * size_t(h)));
-  Plan forward, backward;
-  {
+struct CsfFilter::Plans {
+  fftw_plan forward = nullptr, backward = nullptr;
+  ~Plans() {
     const std::lock_guard<std::mutex> lock(planner_mutex());
-    forward.reset(fftw_plan_dft_r2c_2d(h, w, real.get(), spectrum.get(), FFTW_ESTIMATE));
-    backward.reset(fftw_plan_dft_c2r_2d(h, w, spectrum.get(), real.get(), FFTW_ESTIMATE));
+    if (forward) fftw_destroy_plan(forward);
+    if (backward) fftw_destroy_plan(backward);
   }
-  std::fill(real.get(), real.get() + size_t(w) * size_t(h), 0.0);
-  const int x0 = contrast.width / 2, y0 = contrast.height / 2;
-  for (int y = 0; y < contrast.height; ++y)
-    std::copy_n(&contrast.values[size_t(y) * size_t(contrast.width)], contrast.width,
-                real.get() + size_t(y + y0) * size_t(w) + size_t(x0));
-  fftw_execute(forward.get());
+};
+
+CsfFilter::CsfFilter(int width, int height, double ppd, bool oblique)
+    : width_(width), height_(height), ppd_(ppd), plans_(std::make_unique<Plans>()) {
+  const int w = 2 * width, h = 2 * height, half = w / 2 + 1;
   const double normalise = 1.0 / (double(w) * double(h));  // FFTW's transforms are unscaled
+  gains_.resize(size_t(half) * size_t(h));
   for (int ky = 0; ky < h; ++ky)
-    for (int kx = 0; kx < half; ++kx) {
-      const double g = filter_gain(kx, ky, w, h, ppd, oblique) * normalise;
-      fftw_complex& c = spectrum.get()[size_t(ky) * size_t(half) + size_t(kx)];
-      c[0] *= g;
-      c[1] *= g;
-    }
-  fftw_execute(backward.get());
+    for (int kx = 0; kx < half; ++kx)
+      gains_[size_t(ky) * size_t(half) + size_t(kx)] =
+          filter_gain(kx, ky, w, h, ppd, oblique) * normalise;
+  // Planned on scratch arrays and run on others through FFTW's new-array interface, which
+  // fftw_alloc's alignment allows.
+  std::unique_ptr<double, FftwFree> real(fftw_alloc_real(size_t(w) * size_t(h)));
+  std::unique_ptr<fftw_complex, FftwFree> spectrum(fftw_alloc_complex(gains_.size()));
+  const std::lock_guard<std::mutex> lock(planner_mutex());
+  plans_->forward = fftw_plan_dft_r2c_2d(h, w, real.get(), spectrum.get(), FFTW_ESTIMATE);
+  plans_->backward = fftw_plan_dft_c2r_2d(h, w, spectrum.get(), real.get(), FFTW_ESTIMATE);
+}
+
+CsfFilter::~CsfFilter() = default;
+
+ContrastImage CsfFilter::apply(const ContrastImage& contrast) const {
+  if (contrast.width != width_ || contrast.height != height_)
+    throw std::invalid_argument("CsfFilter: an image of another size");
+  const int w = 2 * width_, h = 2 * height_;
+  std::unique_ptr<double, FftwFree> real(fftw_alloc_real(size_t(w) * size_t(h)));
+  std::unique_ptr<fftw_complex, FftwFree> spectrum(fftw_alloc_complex(gains_.size()));
+  std::fill(real.get(), real.get() + size_t(w) * size_t(h), 0.0);
+  const int x0 = width_ / 2, y0 = height_ / 2;
+  for (int y = 0; y < height_; ++y)
+    std::copy_n(&contrast.values[size_t(y) * size_t(width_)], width_,
+                real.get() + size_t(y + y0) * size_t(w) + size_t(x0));
+  fftw_execute_dft_r2c(plans_->forward, real.get(), spectrum.get());
+  for (size_t i = 0; i < gains_.size(); ++i) {
+    spectrum.get()[i][0] *= gains_[i];
+    spectrum.get()[i][1] *= gains_[i];
+  }
+  fftw_execute_dft_c2r(plans_->backward, spectrum.get(), real.get());
   ContrastImage out(w, h);
   std::copy_n(real.get(), out.values.size(), out.values.begin());
   return out;
+}
+
+ContrastImage csf_filtered(const ContrastImage& contrast, double ppd, bool oblique) {
+  return CsfFilter(contrast.width, contrast.height, ppd, oblique).apply(contrast);
 }
 
 namespace {
@@ -88,7 +110,12 @@ double minkowski_pool(const ContrastImage& filtered, double beta, double ppd) {
 }
 
 double response_jnd(const ContrastImage& contrast, double ppd, const DetectionModel& model) {
-  return model.gain * minkowski_pool(csf_filtered(contrast, ppd, model.oblique), model.beta, ppd);
+  return filtered_response_jnd(csf_filtered(contrast, ppd, model.oblique), ppd, model);
+}
+
+double filtered_response_jnd(const ContrastImage& filtered, double ppd,
+                             const DetectionModel& model) {
+  return model.gain * minkowski_pool(filtered, model.beta, ppd);
 }
 
 Observation observe(const ContrastImage& contrast, double ppd, const DetectionModel& model) {

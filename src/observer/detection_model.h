@@ -5,6 +5,7 @@
 // threshold, 84 % correct in two-interval forced choice).
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace countershade::observer {
@@ -31,10 +32,35 @@ struct DetectionModel {
 // compares.
 constexpr DetectionModel kModelfestModel{0.864, 2.55, false};
 
-// The image, surrounded by as much zero contrast again on every side (the mean-luminance field a
-// stimulus is shown in, so that its edges do not wrap around), filtered by the contrast
-// sensitivity function (and the oblique effect, if asked) at `ppd` pixels per degree through
-// FFTW. The result is 2·width × 2·height, the image at its centre.
+// The contrast sensitivity filter for one image size and viewing condition: its gains and FFTW's
+// plans are made once, so that each image then costs one transform pair (a stimulus set holds
+// hundreds of images of one size). apply() may run on several threads at once.
+class CsfFilter {
+ public:
+  CsfFilter(int width, int height, double ppd, bool oblique);
+  ~CsfFilter();
+  CsfFilter(const CsfFilter&) = delete;
+  CsfFilter& operator=(const CsfFilter&) = delete;
+
+  // The image, surrounded by as much zero contrast again on every side (the mean-luminance field
+  // a stimulus is shown in, so that its edges do not wrap around), filtered by the contrast
+  // sensitivity function (and the oblique effect, if asked). The result is 2·width × 2·height,
+  // the image at its centre. Throws std::invalid_argument for an image of another size.
+  ContrastImage apply(const ContrastImage& contrast) const;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double ppd() const { return ppd_; }
+
+ private:
+  struct Plans;
+  int width_, height_;
+  double ppd_;
+  std::vector<double> gains_;  // per frequency of the padded transform, FFTW's scaling included
+  std::unique_ptr<Plans> plans_;
+};
+
+// CsfFilter(contrast's size, ppd, oblique).apply(contrast), for a single image.
 ContrastImage csf_filtered(const ContrastImage& contrast, double ppd, bool oblique);
 
 // (Σ |r|^β · A)^(1/β) over the pixels, A the area of a pixel in square degrees, so that the
@@ -43,6 +69,9 @@ double minkowski_pool(const ContrastImage& filtered, double beta, double ppd);
 
 // The response in JND: gain × the pooled filtered contrast.
 double response_jnd(const ContrastImage& contrast, double ppd, const DetectionModel& model);
+// The same from an image already filtered (CsfFilter::apply).
+double filtered_response_jnd(const ContrastImage& filtered, double ppd,
+                             const DetectionModel& model);
 
 struct Observation {
   double jnd = 0;
