@@ -188,7 +188,21 @@ void add_descriptives(BlockResults& b) {
       }
 }
 
-// Repeated-measures ANOVAs: question × scene × σ on JND, and scene × σ on λ_Best (JND).
+// The within factors a design varies: a factor with one level has no effect to test, so it is left
+// out. The cells keep their order (a one-level factor adds nothing to a cell's index).
+std::vector<WithinFactor> varied_factors(std::vector<WithinFactor> factors) {
+  std::erase_if(factors, [](const WithinFactor& f) { return f.levels < 2; });
+  return factors;
+}
+
+std::string model_name(const std::vector<WithinFactor>& factors) {
+  std::string name;
+  for (const auto& f : factors) name += (name.empty() ? "" : "*") + f.name;
+  return name;
+}
+
+// Repeated-measures ANOVAs: question × scene × σ on JND, and scene × σ on λ_Best (JND), each
+// over the factors the design varies.
 void add_anovas(BlockResults& b) {
   const CellTable& jnd = b.jnd;
   const size_t n = jnd.subjects(), ns = jnd.scenes(), nsig = jnd.sigmas();
@@ -200,14 +214,18 @@ void add_anovas(BlockResults& b) {
           full(long(i), long((size_t(q) * ns + s) * nsig + g)) = jnd.at(i, s, g, q);
           if (q == Question::best) best(long(i), long(s * nsig + g)) = jnd.at(i, s, g, q);
         }
+  const auto full_factors =
+      varied_factors({{"question", 3}, {"scene", int(ns)}, {"sigma", int(nsig)}});
+  const auto best_factors = varied_factors({{"scene", int(ns)}, {"sigma", int(nsig)}});
   if (ns < 2 || nsig < 2)
-    b.warnings.push_back("fewer than two scenes or σ values: ANOVAs with one level are skipped");
-  else {
-    b.anova = rm_anova(full, {{"question", 3}, {"scene", int(ns)}, {"sigma", int(nsig)}});
-    b.anova_best_sigma = rm_anova(best, {{"scene", int(ns)}, {"sigma", int(nsig)}});
-  }
-  b.json["anova"] = anova_json("question*scene*sigma", b.anova);
-  b.json["anova_best_sigma"] = anova_json("scene*sigma (best only)", b.anova_best_sigma);
+    b.warnings.push_back(std::string(ns < 2 ? "one scene" : "one σ value") +
+                         (ns < 2 && nsig < 2 ? " and one σ value" : "") +
+                         ": the ANOVAs leave out the factor with one level");
+  b.anova = rm_anova(full, full_factors);
+  if (!best_factors.empty()) b.anova_best_sigma = rm_anova(best, best_factors);
+  b.json["anova"] = anova_json(model_name(full_factors), b.anova);
+  b.json["anova_best_sigma"] = anova_json(
+      best_factors.empty() ? "" : model_name(best_factors) + " (best only)", b.anova_best_sigma);
   for (const std::vector<AnovaRow>* rows : {&b.anova, &b.anova_best_sigma})
     for (const AnovaRow& r : *rows)
       if (r.df1 > 1 && !r.has_sphericity)
@@ -372,7 +390,12 @@ void fit_cell(BlockResults& b, BlockResults::FitEntry& entry, const CellAnswers&
     b.warnings.push_back(std::to_string(cell.zeros) +
                          " answers of lambda = 0 counted as (0, lambda_1]: " + cell_name(entry));
   entry.fit = fit_threshold(cell.intervals, options.model);
-  if (!entry.fit.identified)
+  if (entry.fit.one_step)
+    b.warnings.push_back(
+        "fit unidentified (every answer at one grid step, or on the two sides of one step "
+        "boundary: no spread to fit, no standard error; the threshold is that step): " +
+        cell_name(entry));
+  else if (!entry.fit.identified)
     b.warnings.push_back("fit unidentified (every answer censored at the " +
                          std::string(entry.fit.left_censored == entry.fit.n ? "bottom" : "top") +
                          " of the grid): " + cell_name(entry));

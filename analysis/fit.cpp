@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "core/error.h"
 #include "core/random.h"
@@ -217,6 +218,22 @@ std::pair<double, Eigen::Vector2d> log_median(ThresholdModel model, double locat
   return {location, {1.0, 0.0}};
 }
 
+// The grid boundary every answer touches, when there is one: all answers in one step (its top), or
+// split between the two steps on either side of one boundary. The likelihood then grows without
+// end as the spread shrinks to 0 at that boundary, so the spread and the threshold's standard
+// error are not identified; the threshold is the boundary (the step answered).
+std::optional<double> collapsed_boundary(const AnswerCounts& counts) {
+  for (const auto& [candidate, unused] : counts) {
+    const double b = candidate.upper;
+    if (!std::isfinite(b)) continue;
+    const bool all = std::all_of(counts.begin(), counts.end(), [b](const auto& entry) {
+      return entry.first.upper == b || entry.first.lower == b;
+    });
+    if (all) return b;
+  }
+  return std::nullopt;
+}
+
 Fit solve(const AnswerCounts& counts, ThresholdModel model, const double* start) {
   double q[2] = {start[0], start[1]};
   const bool usable = minimize(model, counts, q);
@@ -242,6 +259,14 @@ Fit solve(const AnswerCounts& counts, ThresholdModel model, const double* start)
   fit.log_threshold = log_threshold;
   fit.log_threshold_se = std::sqrt(d.dot(covariance * d));
   fit.threshold = std::exp(fit.log_threshold);
+  if (const auto boundary = fit.identified ? collapsed_boundary(counts) : std::nullopt;
+      boundary && *boundary > 0) {
+    fit.identified = fit.converged = false;
+    fit.one_step = true;
+    fit.threshold = *boundary;
+    fit.log_threshold = std::log(*boundary);
+  }
+  if (!fit.identified) fit.location_se = fit.log_threshold_se = std::nan("");
   return fit;
 }
 

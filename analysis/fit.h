@@ -46,7 +46,11 @@ struct Fit {
   double log_threshold_se = 0;
   size_t n = 0;
   size_t left_censored = 0, right_censored = 0;  // answers at the bottom and the top of the grid
-  bool identified = true;  // false when every answer is censored on the same side
+  // false when every answer is censored on the same side, or when every answer lies in one grid
+  // step or on the two sides of one step boundary (`one_step`: no spread to fit, the threshold
+  // is that boundary). An unidentified fit has no standard errors (NaN).
+  bool identified = true;
+  bool one_step = false;
   bool converged = false;  // never true for an unidentified fit
   // Bootstrap 95% CI of the threshold; NaN (NA, null) unless at least two refits converged.
   double ci_low = std::numeric_limits<double>::quiet_NaN(),

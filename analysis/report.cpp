@@ -34,11 +34,16 @@ std::string cell(const json& v) {
 }
 
 // A JSON array of flat objects as CSV, columns in the first row's order.
-std::string table_csv(const json& rows) {
-  if (!rows.is_array() || rows.empty()) return "";
+// The table's rows under a header of their keys; an empty table is the header `empty_columns`
+// alone, so that a script reading it finds its columns.
+std::string table_csv(const json& rows, const std::vector<std::string>& empty_columns = {}) {
   std::ostringstream out;
-  std::vector<std::string> keys;
-  for (auto it = rows[0].begin(); it != rows[0].end(); ++it) keys.push_back(it.key());
+  std::vector<std::string> keys = empty_columns;
+  if (rows.is_array() && !rows.empty()) {
+    keys.clear();
+    for (auto it = rows[0].begin(); it != rows[0].end(); ++it) keys.push_back(it.key());
+  }
+  if (keys.empty()) return "";
   for (size_t k = 0; k < keys.size(); ++k) out << (k ? "," : "") << keys[k];
   out << "\n";
   for (const auto& row : rows) {
@@ -124,6 +129,36 @@ void t_test_sections(std::ostringstream& h, const json& r) {
       << xml_escape(apa_p(row["p_holm"])) << "</li>";
 }
 
+void anova_section(std::ostringstream& h, const json& rows) {
+  const std::string model = rows.empty() ? "" : rows[0]["model"].get<std::string>();
+  h << "<h2>Repeated-measures ANOVA: " << xml_escape(model.empty() ? "question" : model)
+    << " (JND)</h2>\n";
+  if (rows.empty()) {
+    h << "<p>No ANOVA: too few subjects to estimate an error variance.</p>\n";
+    return;
+  }
+  h << "<ul>";
+  anova_list(h, rows);
+  h << "</ul>\n"
+    << html_table(rows, {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p",
+                         "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
+}
+
+// λ_Best against σ: the figure and the ANOVA's σ effects, or one line where σ has one value.
+void sigma_section(std::ostringstream& h, const BlockResults& b, const std::string& fig13) {
+  h << "<h2>Does σ change λ_Best?</h2>\n";
+  if (b.sigmas.size() < 2) {
+    h << "<p>One σ value: nothing to compare across σ.</p>\n";
+    return;
+  }
+  h << fig13 << "\n<ul>";
+  for (const auto& row : b.json["anova_best_sigma"])
+    if (row["effect"].get<std::string>().find("sigma") != std::string::npos)
+      h << "<li><b>" << xml_escape(row["effect"])
+        << "</b> on λ_Best: " << xml_escape(anova_statement(row)) << "</li>";
+  h << "</ul>\n";
+}
+
 std::string report_html(const BlockResults& b, const std::string& fig12, const std::string& fig13,
                         const std::string& fits, const std::string& dendrogram) {
   const json& r = b.json;
@@ -132,14 +167,8 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
   h << "<h2>Chosen λ per scene</h2>\n"
     << fig12 << "\n"
     << html_table(r["descriptives"], {"scene", "question", "n", "mean", "sd", "sem"});
-  h << "<h2>Repeated-measures ANOVA: question × scene × σ (JND)</h2>\n<ul>";
-  anova_list(h, r["anova"]);
-  h << "</ul>\n"
-    << html_table(r["anova"], {"effect", "df1", "df2", "F", "p", "ges", "mauchly_W", "mauchly_p",
-                               "gg_epsilon", "p_gg", "hf_epsilon", "p_hf"});
-  h << "<h2>Does σ change λ_Best? scene × σ on λ_Best (JND)</h2>\n" << fig13 << "\n<ul>";
-  anova_list(h, r["anova_best_sigma"]);
-  h << "</ul>\n";
+  anova_section(h, r["anova"]);
+  sigma_section(h, b, fig13);
   t_test_sections(h, r);
   h << "</ul>\n<h2>Preference clusters (Ward)</h2>\n" << dendrogram << "\n<ul>";
   const json& c = r["clusters"];
@@ -159,6 +188,19 @@ std::string report_html(const BlockResults& b, const std::string& fig12, const s
   return h.str();
 }
 
+// Each table's columns, written as the header of a table with no rows.
+const std::vector<std::pair<const char*, std::vector<std::string>>> kTableColumns = {
+    {"descriptives", {"scene", "question", "n", "mean", "sd", "sem"}},
+    {"descriptives_by_sigma", {"scene", "sigma", "question", "n", "mean", "sd", "sem"}},
+    {"anova", {"model", "effect", "df1", "df2", "F", "p", "ges"}},
+    {"anova_best_sigma", {"model", "effect", "df1", "df2", "F", "p", "ges"}},
+    {"pairwise", {"a", "b", "mean_diff", "t", "df", "p", "p_holm"}},
+    {"best_vs_threshold", {"scene", "mean", "t", "df", "p", "p_holm"}},
+    {"fits",
+     {"scene", "sigma", "question", "model", "threshold", "log_threshold", "log_threshold_se",
+      "log_sd", "n", "left_censored", "right_censored", "identified", "converged"}},
+    {"excluded_subjects", {"subject", "reason"}}};
+
 }  // namespace
 
 void write_outputs(const std::vector<BlockResults>& results, const std::filesystem::path& dir,
@@ -175,9 +217,8 @@ void write_outputs(const std::vector<BlockResults>& results, const std::filesyst
   for (const auto& b : results) {
     std::filesystem::path out = results.size() == 1 ? dir : dir / b.method;
     std::filesystem::create_directories(out);
-    for (const char* table : {"descriptives", "descriptives_by_sigma", "anova", "anova_best_sigma",
-                              "pairwise", "best_vs_threshold", "fits", "excluded_subjects"})
-      write_text(out / (std::string(table) + ".csv"), table_csv(b.json[table]));
+    for (const auto& [table, columns] : kTableColumns)
+      write_text(out / (std::string(table) + ".csv"), table_csv(b.json[table], columns));
     json clusters = json::array();
     for (size_t i = 0; i < b.subjects.size(); ++i)
       clusters.push_back({{"subject", b.subjects[i]}, {"cluster", b.cluster_labels[i]}});

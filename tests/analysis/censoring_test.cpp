@@ -159,5 +159,25 @@ TEST(Censoring, WeibullLogMedianStandardErrorByTheDeltaMethod) {
       << "the log-median's SE differs from μ's";
 }
 
+// Answers in one step, or split by one step boundary, are fitted best by a spread shrinking to 0
+// at that boundary: no spread and no standard error, the boundary as the threshold. Three steps
+// pin the spread down.
+TEST(Censoring, AnswersAtOneStepBoundaryHaveNoSpread) {
+  const AnswerInterval a{0.25, 0.30}, b{0.30, 0.35}, c{0.35, 0.40};
+  for (const auto& answers :
+       {std::vector<AnswerInterval>{a, a, a, a}, std::vector<AnswerInterval>{a, a, b, a, b}}) {
+    const Fit fit = fit_threshold(answers, ThresholdModel::log_normal);
+    EXPECT_FALSE(fit.identified);
+    EXPECT_TRUE(fit.one_step);
+    EXPECT_FALSE(fit.converged);
+    EXPECT_DOUBLE_EQ(fit.threshold, 0.30);
+    EXPECT_TRUE(std::isnan(fit.log_threshold_se));
+  }
+  const Fit spread = fit_threshold({a, b, b, c, b}, ThresholdModel::log_normal);
+  EXPECT_TRUE(spread.identified);
+  EXPECT_TRUE(spread.converged);
+  EXPECT_LT(spread.log_threshold_se, 0.1);
+}
+
 }  // namespace
 }  // namespace countershade::analysis

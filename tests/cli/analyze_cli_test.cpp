@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
@@ -82,6 +84,77 @@ TEST(AnalyzeCli, AnswersThatDoNotVaryBetweenSubjectsGiveInfAndNaWithWarnings) {
   EXPECT_NE(anova.find("question*scene*sigma,question,2,4,Inf,0,1,"), std::string::npos) << anova;
   EXPECT_NE(anova.find("question*scene*sigma,scene,1,2,NA,NA,NA,"), std::string::npos) << anova;
   EXPECT_NE(testing::read_file(dir / "out/report.html").find("∞"), std::string::npos);
+}
+
+// One scene, two σ, five subjects whose answers differ: the ANOVA is question × σ. Its σ effect,
+// with two levels, is the square of the paired t of the subjects' means over questions at the two
+// σ, computed here by hand.
+TEST(AnalyzeCli, OneSceneStillGetsTheQuestionBySigmaAnova) {
+  testing::TempDir dir;
+  std::string csv = "subject,scene,sigma,question,lambda,lambda_step\n";
+  const double low[5][2] = {{0.2, 0.3}, {0.25, 0.3}, {0.2, 0.35}, {0.3, 0.3}, {0.25, 0.4}};
+  std::vector<double> jnd_difference;  // per subject: mean JND at σ 0.1 − at σ 0.2
+  for (int i = 0; i < 5; ++i) {
+    double means[2] = {0, 0};
+    for (int g = 0; g < 2; ++g) {
+      const double best = low[i][g] * (2 + 0.05 * i * (g + 1) / low[i][g]);
+      const double high = low[i][g] * 4 + 0.05 * (i % 2) + 0.05 * g;
+      const double answers[3] = {low[i][g], best, high};
+      for (int q = 0; q < 3; ++q) {
+        const double lambda = std::round(answers[q] / 0.05) * 0.05;
+        csv += "S" + std::to_string(i) + ",only," + (g ? "0.2" : "0.1") + "," +
+               (q == 0   ? "low"
+                : q == 1 ? "best"
+                         : "high") +
+               "," + std::to_string(lambda) + ",0.05\n";
+        means[g] += lambda / (std::round(low[i][g] / 0.05) * 0.05) / 3;
+      }
+    }
+    jnd_difference.push_back(means[0] - means[1]);
+  }
+  double mean = 0, ss = 0;
+  for (double d : jnd_difference) mean += d / 5;
+  for (double d : jnd_difference) ss += (d - mean) * (d - mean);
+  const double t = mean / std::sqrt(ss / 4 / 5);
+  auto file = testing::write_file(dir / "one.csv", csv);
+  auto r = run_cli("analyze " + file.string() + " -o " + (dir / "out").string() + " --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto results = nlohmann::json::parse(testing::read_file(dir / "out/results.json"));
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& row : results["anova"]) rows[row["effect"]] = row;
+  ASSERT_EQ(rows.size(), 3u) << results["anova"].dump();
+  EXPECT_EQ(rows["question"]["model"], "question*sigma");
+  EXPECT_EQ(rows["question:sigma"]["df1"], 2);
+  EXPECT_EQ(rows["sigma"]["df2"], 4);
+  EXPECT_NEAR(rows["sigma"]["F"].get<double>(), t * t, 1e-9 * t * t);
+  ASSERT_EQ(results["anova_best_sigma"].size(), 1u);
+  EXPECT_EQ(results["anova_best_sigma"][0]["model"], "sigma (best only)");
+  const std::string report = testing::read_file(dir / "out/report.html");
+  EXPECT_NE(report.find("ANOVA: question*sigma"), std::string::npos);
+  EXPECT_NE(report.find("<b>sigma</b> on λ_Best"), std::string::npos);
+}
+
+// Every answer of a cell at one grid step: the spread is not identified, so the cell has no
+// standard error and keeps the step as its threshold; an empty table still has its header.
+TEST(AnalyzeCli, AnswersAllAtOneStepHaveNoStandardErrorAndKeepTheStep) {
+  testing::TempDir dir;
+  std::string csv = "subject,scene,sigma,question,lambda,lambda_step\n";
+  for (const char* subject : {"S1", "S2", "S3", "S4"})
+    for (const auto& [question, lambda] :
+         {std::pair{"low", "0.3"}, {"best", "0.6"}, {"high", "1.2"}})
+      csv += std::string(subject) + ",only,0.1," + question + "," + lambda + ",0.05\n";
+  auto file = testing::write_file(dir / "step.csv", csv);
+  auto r = run_cli("analyze " + file.string() + " -o " + (dir / "out").string() + " --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto results = nlohmann::json::parse(testing::read_file(dir / "out/results.json"));
+  for (const auto& fit : results["fits"]) {
+    EXPECT_FALSE(fit["identified"].get<bool>()) << fit.dump();
+    EXPECT_TRUE(fit["log_threshold_se"].is_null()) << fit.dump();
+  }
+  EXPECT_NEAR(results["fits"][0]["threshold"].get<double>(), 0.3, 1e-12);
+  EXPECT_NE(r.output.find("every answer at one grid step"), std::string::npos) << r.output;
+  EXPECT_EQ(testing::read_file(dir / "out/anova_best_sigma.csv"), "model,effect,df1,df2,F,p,ges\n");
+  EXPECT_NE(testing::read_file(dir / "out/report.html").find("One σ value"), std::string::npos);
 }
 
 TEST(AnalyzeCli, SimulatedStudyRoundTripsWithMethodBlocks) {
