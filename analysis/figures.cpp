@@ -243,8 +243,11 @@ std::string figure_fits(const BlockResults& r) {
 std::string figure_dendrogram(const BlockResults& r) {
   const Dendrogram& d = r.dendrogram;
   const size_t n = r.subjects.size();
-  const int width = std::max(560, int(n) * 28 + 120), height = 360, left = 60, top = 40,
-            bottom = 60;
+  // The leaves' labels, "subject (cluster)", run downwards at about 7 px a character.
+  size_t longest = 0;
+  for (const auto& s : r.subjects) longest = std::max(longest, s.size() + 5);
+  const int bottom = std::max(60, 16 + 7 * int(longest)), height = 300 + bottom;
+  const int width = std::max(560, int(n) * 28 + 120), left = 60, top = 40;
   const double pw = width - left - 40, ph = height - top - bottom;
   double hmax = d.heights.empty() ? 1.0 : nice_max(d.heights.back());
   std::vector<double> leaf_x(n);

@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/time.h"
+#include "observer/model_observer.h"
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
@@ -51,6 +52,8 @@ namespace {
 struct CheckedInputs {
   std::vector<InputEvent> script;
   std::optional<uint64_t> observer_seed;
+  std::optional<observer::ModelObserverSpec> model;  // --observer model:SEED
+  SimulatedObserver::PredictedLevels predicted;      // the model's, once the study is loaded
 };
 
 CheckedInputs check_inputs(const SessionOptions& o) {
@@ -62,7 +65,10 @@ CheckedInputs check_inputs(const SessionOptions& o) {
                       "needs --script or --observer (a person needs the real clock)");
   CheckedInputs in;
   if (o.script) in.script = parse_key_script(*o.script);
-  if (o.observer) in.observer_seed = parse_observer_spec(*o.observer);
+  if (o.observer) {
+    in.model = observer::parse_model_observer(*o.observer);
+    in.observer_seed = in.model ? in.model->seed : parse_observer_spec(*o.observer);
+  }
   if (o.screenshot) check_output_file(*o.screenshot, {".png"}, "a PNG file (screenshots are PNG)");
   return in;
 }
@@ -100,7 +106,8 @@ class SessionLoop final : public runtime::RunLoop {
         study_(study),
         procedure_(procedure),
         recorder_(recorder) {
-    if (inputs.observer_seed) observer_.emplace(*inputs.observer_seed, study);
+    if (inputs.observer_seed)
+      observer_.emplace(*inputs.observer_seed, study, 0.02, std::move(inputs.predicted));
   }
 
  private:
@@ -336,6 +343,18 @@ RunEnd run_loop(const SessionOptions& o, const Study& study, Procedure& procedur
   return end;
 }
 
+// The image-computable observer's λ at 1, 2 and 4 JND for each of the study's conditions.
+SimulatedObserver::PredictedLevels predicted_levels(const Study& study,
+                                                    const observer::ModelObserverSpec& spec) {
+  std::vector<observer::ConditionName> names;
+  for (const auto& c : study.conditions) names.push_back({c.scene, c.method, c.sigma});
+  SimulatedObserver::PredictedLevels levels;
+  for (const auto& p :
+       observer::predict_conditions(study.manifest_path, names, spec, study.pixels_per_degree))
+    levels.push_back(p.lambda_at);
+  return levels;
+}
+
 }  // namespace
 
 int run_session(const SessionOptions& o) {
@@ -344,6 +363,7 @@ int run_session(const SessionOptions& o) {
   Study study = load_study(o.manifest, o.config);
   verify_study_images(study);
   require_achromatic_images(study, o.output_path);
+  if (inputs.model) inputs.predicted = predicted_levels(study, *inputs.model);
   PlanSettings settings = study.config.plan;
   settings.seed =
       session_seed(study.config.seed.value_or(study.manifest_seed), o.subject, o.session);

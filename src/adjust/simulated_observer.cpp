@@ -34,20 +34,29 @@ uint64_t parse_observer_spec(const std::string& spec) {
       "'" + spec + "' is not an observer (expected simulated:SEED, e.g. simulated:1)");
 }
 
-SimulatedObserver::SimulatedObserver(uint64_t seed, const Study& study, double step_interval_s)
-    : seed_(seed), study_(study), interval_s_(step_interval_s) {}
+SimulatedObserver::SimulatedObserver(uint64_t seed, const Study& study, double step_interval_s,
+                                     PredictedLevels predicted)
+    : seed_(seed), study_(study), predicted_(std::move(predicted)), interval_s_(step_interval_s) {}
 
 double SimulatedObserver::latent_lambda(int condition, int repetition, Question question) const {
   const Condition& c = study_.conditions[size_t(condition)];
   const double top = study_.lambda(c.grid_size - 1);
   // The observer's thresholds for this condition (fixed over repetitions), plus answer noise.
   SampleStream person(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9), 0);
-  const double low = 0.2 * top * std::exp(0.2 * normal(person));
-  const double ratio[kQuestionCount] = {1.0, 3.0 * std::exp(0.1 * normal(person)),
-                                        1.6 * std::exp(0.1 * normal(person))};
+  const double sensitivity = std::exp(0.2 * normal(person));
+  const double spread[2] = {std::exp(0.1 * normal(person)), std::exp(0.1 * normal(person))};
   SampleStream noise(seed_, hash_string(c.scene + "/" + c.method), uint64_t(c.sigma * 1e9),
                      uint64_t(repetition) * 8 + int(question) + 1);
-  return low * ratio[int(question)] * std::exp(0.05 * normal(noise));
+  const double answer_noise = std::exp(0.05 * normal(noise));
+  if (!predicted_.empty()) {
+    // The prediction's levels in question order: low at 1 JND, high at 4, best at 2.
+    const auto& at = predicted_[size_t(condition)];
+    const double level[kQuestionCount] = {at[0], at[2] * spread[0], at[1] * spread[1]};
+    return level[int(question)] * sensitivity * answer_noise;
+  }
+  const double low = 0.2 * top * sensitivity;
+  const double ratio[kQuestionCount] = {1.0, 3.0 * spread[0], 1.6 * spread[1]};
+  return low * ratio[int(question)] * answer_noise;
 }
 
 int SimulatedObserver::answer_index(int condition, int repetition, Question question) const {

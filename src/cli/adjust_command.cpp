@@ -18,7 +18,9 @@ void add_automation_options(CLI::App* cmd, adjust::SessionOptions& o, std::strin
   cmd->add_option("--script", script, "Timed key events instead of a person (tests, demos)");
   cmd->add_option("--screenshot", screenshot,
                   "PNG written at each 'screenshot' line of the script");
-  cmd->add_option("--observer", observer, "A model observer answers: simulated:SEED");
+  cmd->add_option("--observer", observer,
+                  "A model observer answers: simulated:SEED (thresholds at shares of the grid), "
+                  "or model:SEED[:PPD] (near the image-computable observer's 1, 2 and 4 JND)");
   cmd->add_flag(
       "--frame-clock", o.frame_clock,
       "With --script or --observer: time advances exactly one refresh period per frame and frames "

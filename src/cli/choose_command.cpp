@@ -53,7 +53,8 @@ void add_choose_command(CLI::App& app) {
   cmd->add_option("--screenshot", a->screenshot,
                   "PNG written at each 'screenshot' line of the script");
   cmd->add_option("--observer", a->observer,
-                  "A simulated observer answers from a Weibull: weibull:ALPHA,BETA,SEED");
+                  "A simulated observer answers from a Weibull in λ, weibull:ALPHA,BETA,SEED, or "
+                  "in the image-computable observer's JND, model:SEED[:PPD]");
   add_output_path_flags(cmd, o->output_path, o->dither_seed);
   cmd->add_flag("--frame-clock", o->frame_clock,
                 "With --script or --observer: time advances one refresh period per frame and "

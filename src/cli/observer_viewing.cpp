@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "core/progress.h"
 #include "observer/luminance_image.h"
 #include "stimuli/screen.h"
 
@@ -60,6 +61,21 @@ ObserverViewing observer_viewing(const ObserverViewingArgs& args, const std::str
   }
   o.finish();
   return v;
+}
+
+observer::SetPrediction predict_with_progress(const Manifest& manifest,
+                                              const std::filesystem::path& manifest_path,
+                                              const ObserverViewing& viewing, int jobs,
+                                              const std::string& label) {
+  observer::PredictionSettings settings;
+  settings.ppd = viewing.ppd;
+  settings.display = viewing.display;
+  settings.threads = jobs;
+  Progress progress(label);
+  settings.progress = [&progress](double f) { progress.update(f); };
+  auto prediction = observer::predict_set(manifest, manifest_path.parent_path(), settings);
+  progress.finish(std::to_string(prediction.conditions.size()) + " conditions");
+  return prediction;
 }
 
 }  // namespace countershade::cli

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "core/display_calibration_file.h"
+#include "formats/manifest.h"
+#include "observer/set_prediction.h"
 
 namespace countershade::cli {
 
@@ -31,5 +33,11 @@ void add_observer_viewing_flags(CLI::App* cmd, ObserverViewingArgs& args);
 // pixels per degree (a set's recorded screen). Throws InputError naming `command` or the file.
 ObserverViewing observer_viewing(const ObserverViewingArgs& args, const std::string& command,
                                  std::optional<double> fallback_ppd = std::nullopt);
+
+// The set's prediction at `viewing` on `jobs` threads, with a progress bar labelled `label`.
+observer::SetPrediction predict_with_progress(const Manifest& manifest,
+                                              const std::filesystem::path& manifest_path,
+                                              const ObserverViewing& viewing, int jobs,
+                                              const std::string& label);
 
 }  // namespace countershade::cli

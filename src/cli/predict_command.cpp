@@ -9,7 +9,6 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/number_format.h"
-#include "core/progress.h"
 #include "formats/manifest.h"
 #include "observer/prediction_report.h"
 
@@ -46,18 +45,11 @@ void run(const PredictArgs& args) {
   check_output_folder(args.out);
   const ObserverViewing viewing =
       observer_viewing(args.viewing, "predict", manifest.viewing.pixels_per_degree);
-  observer::PredictionSettings settings;
-  settings.ppd = viewing.ppd;
-  settings.display = viewing.display;
-  settings.threads = args.jobs;
-  Progress progress("predict");
-  settings.progress = [&progress](double f) { progress.update(f); };
-  const auto set_dir = std::filesystem::path(args.manifest).parent_path();
-  const observer::SetPrediction prediction = observer::predict_set(manifest, set_dir, settings);
-  progress.finish(std::to_string(prediction.conditions.size()) + " conditions");
+  const observer::SetPrediction prediction =
+      predict_with_progress(manifest, args.manifest, viewing, args.jobs, "predict");
   const observer::PredictionContext context{manifest.experiment_name, args.manifest,
                                             display_in_words(args.viewing, viewing.display),
-                                            viewing.ppd, settings.model};
+                                            viewing.ppd, observer::kModelfestModel};
   observer::write_prediction(args.out, prediction, context);
   print_summary(prediction);
   if (prediction.sequence_conditions_skipped > 0)

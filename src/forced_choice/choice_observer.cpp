@@ -8,15 +8,16 @@
 
 namespace countershade::forced_choice {
 
-double ChoiceObserver::probability_correct(double lambda, int n_afc) const {
+double ChoiceObserver::probability_correct(double lambda, int n_afc, int condition) const {
+  if (model) return model(condition, lambda, n_afc);
   const double guess = 1.0 / n_afc;
   return guess + (1 - guess) * (1 - std::exp(-std::pow(lambda / alpha, beta)));
 }
 
-int ChoiceObserver::respond(int number, int practice_index, double lambda, int target,
-                            int n_afc) const {
+int ChoiceObserver::respond(int number, int practice_index, double lambda, int target, int n_afc,
+                            int condition) const {
   SampleStream random(seed, 401, uint64_t(number), uint64_t(practice_index));
-  if (random.next() < probability_correct(lambda, n_afc)) return target;
+  if (random.next() < probability_correct(lambda, n_afc, condition)) return target;
   const int wrong = std::min(int(random.next() * (n_afc - 1)), n_afc - 2);  // one of the others
   return wrong >= target ? wrong + 1 : wrong;
 }

@@ -5,6 +5,7 @@
 // delay after the answer is allowed.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace countershade::forced_choice {
@@ -13,10 +14,15 @@ struct ChoiceObserver {
   double alpha = 0.3, beta = 3;
   uint64_t seed = 1;
   double delay_s = 0.25;
+  // P(correct) of a condition at λ with n alternatives, when set: the image-computable observer's
+  // (--observer model:SEED, observer/model_observer.h) in place of the Weibull in λ.
+  std::function<double(int condition, double lambda, int n_afc)> model;
 
-  double probability_correct(double lambda, int n_afc) const;
-  // The answer to real trial `number` (practice: 0 and `practice_index`) whose target is `target`.
-  int respond(int number, int practice_index, double lambda, int target, int n_afc) const;
+  double probability_correct(double lambda, int n_afc, int condition = 0) const;
+  // The answer to real trial `number` (practice: 0 and `practice_index`) of `condition` whose
+  // target is `target`.
+  int respond(int number, int practice_index, double lambda, int target, int n_afc,
+              int condition = 0) const;
 };
 
 // Parses "weibull:ALPHA,BETA,SEED" (e.g. weibull:0.3,3,7); throws InputError naming --observer.

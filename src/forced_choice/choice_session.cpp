@@ -10,6 +10,7 @@
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_recorder.h"
 #include "forced_choice/choice_run.h"
+#include "observer/model_observer.h"
 #include "runtime/image_decode.h"
 #include "runtime/key_script.h"
 #include "runtime/presenter.h"
@@ -66,19 +67,37 @@ std::optional<int> chosen(Key key, int n) {
   return std::nullopt;
 }
 
+// The observer an --observer spec names: a Weibull in λ, or the image-computable observer's
+// prediction for each of the study's conditions (model:SEED).
+ChoiceObserver choice_observer(const std::string& spec, const runtime::Study& study) {
+  const auto model = observer::parse_model_observer(spec);
+  if (!model) return parse_choice_observer(spec);
+  std::vector<observer::ConditionName> names;
+  for (const auto& c : study.conditions) names.push_back({c.scene, c.method, c.sigma});
+  auto curves = std::make_shared<std::vector<observer::PredictedCondition>>(
+      observer::predict_conditions(study.manifest_path, names, *model, study.pixels_per_degree));
+  ChoiceObserver o;
+  o.seed = model->seed;
+  o.model = [curves](int condition, double lambda, int n_afc) {
+    return observer::model_probability_correct((*curves)[size_t(condition)].jnd_at(lambda), n_afc);
+  };
+  return o;
+}
+
 // One run of a forced-choice session on the runtime's loop: key events drive the trials, each
 // answer goes to the recorder.
 class ChoiceLoop final : public runtime::RunLoop {
  public:
   ChoiceLoop(const ChoiceSessionOptions& o, const runtime::Study& study, const ChoiceConfig& config,
-             ChoiceRun& run, ChoiceRecorder& recorder, runtime::Presenter& presenter)
+             ChoiceRun& run, ChoiceRecorder& recorder, runtime::Presenter& presenter,
+             std::optional<ChoiceObserver> observer)
       : RunLoop(presenter, study, run_inputs(o)),
         o_(o),
         study_(study),
         config_(config),
         run_(run),
-        recorder_(recorder) {
-    if (o.observer) observer_ = parse_choice_observer(*o.observer);
+        recorder_(recorder),
+        observer_(std::move(observer)) {
     // A resume has replayed the practice (it is not recorded): the simulated observer's answers
     // are keyed by the practice trials done, as in an uninterrupted run.
     if (o.resume) practice_index_ = config.practice_trials;
@@ -113,8 +132,8 @@ class ChoiceLoop final : public runtime::RunLoop {
     if (now < phase_since_ + observer_->delay_s) return;
     if (phase_ == Phase::trial && answer_allowed(now)) {
       const ChoiceTrial& t = *run_.current();
-      const int response =
-          observer_->respond(t.number, practice_index_, t.lambda, t.target, config_.n_afc);
+      const int response = observer_->respond(t.number, practice_index_, t.lambda, t.target,
+                                              config_.n_afc, t.condition);
       press(kNumberKeys[response], now);
     } else if (phase_ == Phase::instructions || phase_ == Phase::practice_done ||
                phase_ == Phase::finished) {
@@ -337,12 +356,15 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   runtime::check_subject_id(o.subject);
   if (o.session < 1 || o.session > 99) throw_input_error("--session", "must be between 1 and 99");
   if (o.script && o.observer) throw_input_error("--observer", "cannot be combined with --script");
-  if (o.observer) parse_choice_observer(*o.observer);
+  if (o.observer && !observer::parse_model_observer(*o.observer))
+    parse_choice_observer(*o.observer);
   if (o.script) runtime::parse_key_script(*o.script);
   const runtime::Study study = runtime::load_study(o.manifest, std::nullopt);
   const ChoiceConfig config = load_config(o);
   runtime::verify_study_images(study);
   runtime::require_achromatic_images(study, o.output_path);
+  std::optional<ChoiceObserver> observer;
+  if (o.observer) observer = choice_observer(*o.observer, study);
   const uint64_t seed =
       runtime::session_seed(config.seed.value_or(study.manifest_seed), o.subject, o.session);
   ChoiceRun run(study, config, seed);
@@ -362,7 +384,7 @@ int run_choice_session(const ChoiceSessionOptions& o) {
   RunEnd end = RunEnd::running;
   {
     runtime::SignalGuard signals;
-    ChoiceLoop loop(o, study, config, run, recorder, *presenter);
+    ChoiceLoop loop(o, study, config, run, recorder, *presenter, std::move(observer));
     end = loop.run();
     recorder.current_run().frames = loop.frame_statistics();
     recorder.current_run().system_key_repeats_ignored = presenter->system_repeats_ignored();

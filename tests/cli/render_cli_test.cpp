@@ -11,7 +11,7 @@ namespace {
 using testing::count_lines;
 using testing::run_cli;
 
-const char* kScene = R"({
+const char* kRenderScene = R"({
   "version": 1,
   "camera": {"eye": [0, 1, 4], "target": [0, 0, 0], "width": 40, "height": 30},
   "render": {"spp": 2},
@@ -31,7 +31,7 @@ TEST(RenderCli, HelpIsAvailableEverywhere) {
 
 TEST(RenderCli, RendersPngExrAndAuxiliaryBuffers) {
   testing::TempDir dir;
-  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto scene = testing::write_file(dir / "s.json", kRenderScene);
   auto r = run_cli("render " + scene.string() + " -o " + (dir / "out.png").string() +
                    " --width 20 --height 16 --aux " + (dir / "aux").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -51,7 +51,7 @@ TEST(RenderCli, RendersPngExrAndAuxiliaryBuffers) {
 
 TEST(RenderCli, OneSizeGivenAloneKeepsTheScenesAspectRatio) {
   testing::TempDir dir;
-  auto scene = testing::write_file(dir / "s.json", kScene);  // 40×30
+  auto scene = testing::write_file(dir / "s.json", kRenderScene);  // 40×30
   const std::string base = "render " + scene.string() + " -o ";
   ASSERT_EQ(run_cli(base + (dir / "w.png").string() + " --width 20").exit_code, 0);
   ASSERT_EQ(run_cli(base + (dir / "h.png").string() + " --height 9").exit_code, 0);
@@ -64,7 +64,7 @@ TEST(RenderCli, OneSizeGivenAloneKeepsTheScenesAspectRatio) {
 
 TEST(RenderCli, Usm3dAtLambdaZeroMatchesTheUnenhancedPngByteForByte) {
   testing::TempDir dir;
-  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto scene = testing::write_file(dir / "s.json", kRenderScene);
   std::string base = "render " + scene.string() + " -o ";
   ASSERT_EQ(run_cli(base + (dir / "none.png").string()).exit_code, 0);
   auto r = run_cli(base + (dir / "zero.png").string() + " --method usm3d --lambda 0 --sigma 0.2");
@@ -111,7 +111,7 @@ TEST(RenderCli, TheReferenceComesFromTheSameSamplesAsTheStimulus) {
 // is reported as unbounded. It used to index a table with NaN and crash.
 TEST(RenderCli, AnAbsurdLambdaSaturatesAndReportsUnboundedNoise) {
   testing::TempDir dir;
-  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto scene = testing::write_file(dir / "s.json", kRenderScene);
   for (const char* lambda : {"1e300", "-1e300"}) {
     auto r = run_cli("render " + scene.string() + " -o " + (dir / "o.png").string() +
                      " --method usm3d --sigma 0.2 --lambda " + lambda);
@@ -123,7 +123,7 @@ TEST(RenderCli, AnAbsurdLambdaSaturatesAndReportsUnboundedNoise) {
 
 TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
   testing::TempDir dir;
-  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto scene = testing::write_file(dir / "s.json", kRenderScene);
   auto bad = testing::write_file(dir / "bad.json", "{\"version\": 1, \"camera\": ");
   std::string out = (dir / "o.png").string();
   struct Case {

@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kPpd = 20;
+constexpr double kPredictPpd = 20;
 
 // An image of two bumps: `a` on the left, `b` on the right, as filtered responses would be.
 ContrastImage two_bumps(double a, double b) {
@@ -37,19 +37,20 @@ TEST(LambdaReaching, FindsTheLevelOnTheMixOfTwoResponses) {
   const DetectionModel model{1.0, 2.5, false};
   // From nothing, the response grows linearly: the level's share of the way.
   const ContrastImage nothing(32, 16), bump = two_bumps(0.3, 0.0);
-  const double full = filtered_response_jnd(bump, kPpd, model);
-  EXPECT_NEAR(lambda_reaching(0.25 * full, nothing, 1.0, bump, 2.0, kPpd, model), 1.25, 1e-6);
+  const double full = filtered_response_jnd(bump, kPredictPpd, model);
+  EXPECT_NEAR(lambda_reaching(0.25 * full, nothing, 1.0, bump, 2.0, kPredictPpd, model), 1.25,
+              1e-6);
   // Between two different patterns the response is not linear in the mix; the λ found gives the
   // level when the mix is evaluated directly.
   const ContrastImage a = two_bumps(0.2, 0.0), b = two_bumps(0.0, 0.5);
-  const double level =
-      0.5 * (filtered_response_jnd(a, kPpd, model) + filtered_response_jnd(b, kPpd, model));
-  const double lambda = lambda_reaching(level, a, 0.0, b, 0.5, kPpd, model);
+  const double level = 0.5 * (filtered_response_jnd(a, kPredictPpd, model) +
+                              filtered_response_jnd(b, kPredictPpd, model));
+  const double lambda = lambda_reaching(level, a, 0.0, b, 0.5, kPredictPpd, model);
   const double t = lambda / 0.5;
   ContrastImage mix = a;
   for (size_t k = 0; k < mix.values.size(); ++k)
     mix.values[k] = (1 - t) * a.values[k] + t * b.values[k];
-  EXPECT_NEAR(filtered_response_jnd(mix, kPpd, model), level, 1e-5 * level);
+  EXPECT_NEAR(filtered_response_jnd(mix, kPredictPpd, model), level, 1e-5 * level);
   EXPECT_GT(std::abs(t - 0.5), 0.01) << "the test needs a mix that is not linear";
 }
 
@@ -144,6 +145,17 @@ TEST(PredictCli, EveryImageIsWhatObserveSaysAndEachLevelIsReachedOnItsMix) {
   const std::string report = testing::read_file(dir / "predicted/report.html");
   EXPECT_NE(report.find("<svg"), std::string::npos);
   EXPECT_NE(report.find("no response at any λ"), std::string::npos);
+  // The audit's bracket check on the same set: with a grid step of 0.25 the edge's threshold has
+  // fewer than three steps below it; the control passes.
+  const auto audited = testing::run_cli("audit " + (set / "manifest.json").string() + " -o " +
+                                        (dir / "audit").string() + " --ppd 20");
+  ASSERT_EQ(audited.exit_code, 0) << audited.output;
+  const std::string checks = testing::read_file(dir / "audit/checks.csv");
+  EXPECT_NE(
+      checks.find("the grid brackets the predicted thresholds,grey,cornsweet-image sigma 3,false"),
+      std::string::npos)
+      << checks;
+  EXPECT_NE(checks.find("a control: no predicted response at any λ"), std::string::npos) << checks;
 }
 
 TEST(PredictCli, BadInputIsOneLineAndExitTwo) {

@@ -33,7 +33,7 @@ TEST(HaloWidth, AnExponentialFallOffGivesItsWidthFromThePeak) {
   EXPECT_TRUE(std::isnan(halo_width(d, none)));
 }
 
-const char* kGround = R"({"version": 1,
+const char* kEdgeGround = R"({"version": 1,
   "camera": {"eye": [0, 1.0, 3.0], "target": [0, 0, -6], "fov": 40, "width": 256, "height": 192},
   "render": {"spp": 1},
   "objects": [{"name": "ground", "shape": {"type": "plane", "size": 16, "subdivisions": 2},
@@ -87,7 +87,8 @@ std::vector<float> screen_layer(const View& v, double w) {
 TEST(ScaleAgainstDepth, ASyntheticHaloOfKnownWidthIsMeasuredAtThreeDepths) {
   testing::TempDir dir;
   const auto view = geometry_view(
-      std::make_shared<const Scene>(load_scene(testing::write_file(dir / "g.json", kGround))), 1);
+      std::make_shared<const Scene>(load_scene(testing::write_file(dir / "g.json", kEdgeGround))),
+      1);
   const double W = 0.05, focal = 96 / std::tan(20 * std::numbers::pi / 180);
   const std::vector<HaloSample> samples =
       halo_samples({view->scene->camera, view->depth, attached_layer(*view, W)}, kEdges, 1);
@@ -119,9 +120,10 @@ TEST(ScaleAgainstDepth, AProbeSetRecordsWidthsAndSlopesAndPlotsThem) {
   testing::TempDir dir;
   testing::write_file(
       dir / "ground.json",
-      std::string(kGround).replace(
-          std::string(kGround).find("\"shape\""), 0,
-          R"("material": {"texture": {"pattern": "stripes", "size": 64, "stripes": 2}, "texture_repeat": 8}, )"));
+      std::string(kEdgeGround)
+          .replace(
+              std::string(kEdgeGround).find("\"shape\""), 0,
+              R"("material": {"texture": {"pattern": "stripes", "size": 64, "stripes": 2}, "texture_repeat": 8}, )"));
   const fs::path experiment = testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "probe", "seed": 1, "lambda": {"min": 0, "max": 1, "step": 1},
     "scenes": [{"name": "probe", "file": "ground.json", "edge_probe": {"edges_x": [-3, -2, -1, 0, 1, 2, 3]}}],
@@ -142,7 +144,7 @@ TEST(ScaleAgainstDepth, AProbeSetRecordsWidthsAndSlopesAndPlotsThem) {
 
 TEST(ScaleAgainstDepth, AProbeNeedsEdgesInOrderOnAStillScene) {
   testing::TempDir dir;
-  testing::write_file(dir / "ground.json", kGround);
+  testing::write_file(dir / "ground.json", kEdgeGround);
   const auto load = [&](const std::string& probe) {
     return load_experiment(testing::write_file(dir / "e.json", R"({"version": 1, "name": "p",
       "lambda": {"min": 0, "max": 1, "step": 1},
