@@ -44,6 +44,18 @@ struct CsfFilter::Plans {
   }
 };
 
+// A thread's transform arrays, grown to the largest image it has filtered (fftw_alloc's
+// alignment, which the plans' new-array execution needs).
+struct Scratch {
+  std::unique_ptr<double, FftwFree> real;
+  std::unique_ptr<fftw_complex, FftwFree> spectrum;
+  size_t reals = 0, complexes = 0;
+  void reserve(size_t n_real, size_t n_complex) {
+    if (n_real > reals) real.reset(fftw_alloc_real(reals = n_real));
+    if (n_complex > complexes) spectrum.reset(fftw_alloc_complex(complexes = n_complex));
+  }
+};
+
 CsfFilter::CsfFilter(int width, int height, double ppd, bool oblique)
     : width_(width), height_(height), ppd_(ppd), plans_(std::make_unique<Plans>()) {
   const int w = 2 * width, h = 2 * height, half = w / 2 + 1;
@@ -68,21 +80,25 @@ ContrastImage CsfFilter::apply(const ContrastImage& contrast) const {
   if (contrast.width != width_ || contrast.height != height_)
     throw std::invalid_argument("CsfFilter: an image of another size");
   const int w = 2 * width_, h = 2 * height_;
-  std::unique_ptr<double, FftwFree> real(fftw_alloc_real(size_t(w) * size_t(h)));
-  std::unique_ptr<fftw_complex, FftwFree> spectrum(fftw_alloc_complex(gains_.size()));
-  std::fill(real.get(), real.get() + size_t(w) * size_t(h), 0.0);
+  // Each thread keeps its transform arrays between images: a new 50 MB pair per image of a set
+  // cost more in page faults than the transforms.
+  thread_local Scratch scratch;
+  scratch.reserve(size_t(w) * size_t(h), gains_.size());
+  double* real = scratch.real.get();
+  fftw_complex* spectrum = scratch.spectrum.get();
+  std::fill(real, real + size_t(w) * size_t(h), 0.0);
   const int x0 = width_ / 2, y0 = height_ / 2;
   for (int y = 0; y < height_; ++y)
     std::copy_n(&contrast.values[size_t(y) * size_t(width_)], width_,
-                real.get() + size_t(y + y0) * size_t(w) + size_t(x0));
-  fftw_execute_dft_r2c(plans_->forward, real.get(), spectrum.get());
+                real + size_t(y + y0) * size_t(w) + size_t(x0));
+  fftw_execute_dft_r2c(plans_->forward, real, spectrum);
   for (size_t i = 0; i < gains_.size(); ++i) {
-    spectrum.get()[i][0] *= gains_[i];
-    spectrum.get()[i][1] *= gains_[i];
+    spectrum[i][0] *= gains_[i];
+    spectrum[i][1] *= gains_[i];
   }
-  fftw_execute_dft_c2r(plans_->backward, spectrum.get(), real.get());
+  fftw_execute_dft_c2r(plans_->backward, spectrum, real);
   ContrastImage out(w, h);
-  std::copy_n(real.get(), out.values.size(), out.values.begin());
+  std::copy_n(real, out.values.size(), out.values.begin());
   return out;
 }
 
@@ -92,9 +108,15 @@ ContrastImage csf_filtered(const ContrastImage& contrast, double ppd, bool obliq
 
 namespace {
 
+// |r|^β as exp(β·ln|r|): the pooled sum takes one per pixel of the padded image (3 million for a
+// 1024 × 768 stimulus), and this is about twice as fast as pow at a relative error near 1e-14.
+double power_of_magnitude(double r, double beta) {
+  return r == 0 ? 0.0 : std::exp(beta * std::log(std::abs(r)));
+}
+
 double sum_of_powers(const ContrastImage& filtered, double beta) {
   double sum = 0;
-  for (double r : filtered.values) sum += std::pow(std::abs(r), beta);
+  for (double r : filtered.values) sum += power_of_magnitude(r, beta);
   return sum;
 }
 
@@ -127,7 +149,7 @@ Observation observe(const ContrastImage& contrast, double ppd, const DetectionMo
   for (int y = 0; y < contrast.height; ++y)
     for (int x = 0; x < contrast.width; ++x)
       out.share.at(x, y) =
-          total > 0 ? std::pow(std::abs(filtered.at(x + x0, y + y0)), model.beta) / total : 0.0;
+          total > 0 ? power_of_magnitude(filtered.at(x + x0, y + y0), model.beta) / total : 0.0;
   return out;
 }
 

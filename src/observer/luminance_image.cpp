@@ -1,6 +1,7 @@
 #include "observer/luminance_image.h"
 
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -10,13 +11,30 @@ namespace {
 
 constexpr double kRec709[3] = {0.2126, 0.7152, 0.0722};
 
-// Luminance of a pixel: its channels (code values through the display when `codes`, else
-// luminance) weighted.
-double luminance(const Image& image, int x, int y, const CalibratedDisplay* codes) {
-  const auto linear = [&](int c) {
-    const double v = image.at(x, y, c);
-    return codes ? codes->luminance(v) : v;
-  };
+// The luminance of every code of a `bits`-deep file on the display: one decode per code rather
+// than one per pixel and channel (the transfer functions are pow-heavy, and a set has hundreds of
+// images).
+std::vector<double> code_luminances(const CalibratedDisplay& display, int bits) {
+  const size_t codes = size_t(1) << bits;
+  std::vector<double> table(codes);
+  for (size_t c = 0; c < codes; ++c) table[c] = display.luminance(double(c) / double(codes - 1));
+  return table;
+}
+
+// How a file's values become luminance: through the display's table of codes (files of up to 16
+// bits), through the display itself (deeper integer files), or as they are (float files).
+struct CodeDecoder {
+  const CalibratedDisplay* display = nullptr;
+  std::vector<double> table;
+  double operator()(double v) const {
+    if (!table.empty()) return table[size_t(std::lround(v * double(table.size() - 1)))];
+    return display ? display->luminance(v) : v;
+  }
+};
+
+// Luminance of a pixel: its channels decoded and weighted.
+double luminance(const Image& image, int x, int y, const CodeDecoder& decode) {
+  const auto linear = [&](int c) { return decode(image.at(x, y, c)); };
   if (image.channels < 3) return linear(0);
   return kRec709[0] * linear(0) + kRec709[1] * linear(1) + kRec709[2] * linear(2);
 }
@@ -29,12 +47,14 @@ LuminanceImage read_luminance(const std::string& path, const CalibratedDisplay& 
   int bits = 0;
   const Image image = read_image(path, &bits);
   // Integer files hold display codes; float files luminance.
-  const CalibratedDisplay* codes = bits != 0 ? &display : nullptr;
+  CodeDecoder decode;
+  if (bits != 0) decode.display = &display;
+  if (bits != 0 && bits <= 16) decode.table = code_luminances(display, bits);
   LuminanceImage out{image.width, image.height, {}};
   out.cd_m2.reserve(size_t(image.width) * size_t(image.height));
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
-      const double l = luminance(image, x, y, codes);
+      const double l = luminance(image, x, y, decode);
       if (!(l >= 0) || !std::isfinite(l))
         throw_input_error(path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                     ") has no finite, non-negative luminance");

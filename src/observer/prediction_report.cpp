@@ -1,6 +1,8 @@
 #include "observer/prediction_report.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -48,6 +50,49 @@ std::string condition_plot(const ConditionPrediction& c) {
         {format_value(level) + " JND", {left, right}, {level, level}, plot_color(l + 1), true});
   }
   return plot.to_svg();
+}
+
+// The scenes in the prediction's order.
+std::vector<std::string> scenes_of(const SetPrediction& prediction) {
+  std::vector<std::string> scenes;
+  for (const auto& c : prediction.conditions)
+    if (std::find(scenes.begin(), scenes.end(), c.scene) == scenes.end()) scenes.push_back(c.scene);
+  return scenes;
+}
+
+// Every condition of a scene that responds, JND against λ on one log axis, the levels dashed.
+std::string scene_plot(const SetPrediction& prediction, const std::string& scene) {
+  LinePlot plot;
+  plot.title = scene + ": predicted JND against λ";
+  plot.x_label = "λ";
+  plot.y_label = "predicted JND";
+  plot.log_y = true;
+  plot.width = 640;
+  plot.height = 360;
+  double left = INFINITY, right = -INFINITY;
+  size_t k = 0;
+  for (const auto& c : prediction.conditions) {
+    if (c.scene != scene || c.lambda.empty() || c.jnd_at_lambda_max() <= 0) continue;
+    plot.series.push_back(
+        {c.method + " σ " + format_value(c.sigma), c.lambda, c.jnd, plot_color(k++)});
+    left = std::min(left, c.lambda.front());
+    right = std::max(right, c.lambda.back());
+  }
+  if (plot.series.empty()) return "";
+  for (double level : kPredictionLevels)
+    plot.series.push_back({"", {left, right}, {level, level}, "#888888", true});
+  return plot.to_svg();
+}
+
+// A file name from a scene's name: letters, digits, '.', '_' and '-' survive, so that text from a
+// manifest never leaves the output folder.
+std::string safe_file_name(const std::string& name) {
+  std::string out;
+  for (char ch : name)
+    out += std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '-'
+               ? ch
+               : '_';
+  return out.empty() || out[0] == '.' ? "_" + out : out;
 }
 
 std::string table_html(const SetPrediction& prediction) {
@@ -116,6 +161,8 @@ std::string prediction_report_html(const SetPrediction& prediction,
     return h.str();
   }
   h << table_html(prediction);
+  for (const auto& scene : scenes_of(prediction)) h << scene_plot(prediction, scene) << "\n";
+  h << "<h2>Each condition, its grid marked</h2>\n";
   for (const auto& c : prediction.conditions) {
     const bool responds = std::any_of(c.jnd.begin(), c.jnd.end(), [](double v) { return v > 0; });
     if (responds)
@@ -135,6 +182,10 @@ void write_prediction(const std::filesystem::path& dir, const SetPrediction& pre
   write_text_atomically(dir / "predicted_thresholds.csv", predicted_thresholds_csv(prediction));
   write_text_atomically(dir / "predicted_jnd.csv", predicted_jnd_csv(prediction));
   write_text_atomically(dir / "report.html", prediction_report_html(prediction, context));
+  for (const auto& scene : scenes_of(prediction)) {
+    const std::string svg = scene_plot(prediction, scene);
+    if (!svg.empty()) write_text_atomically(dir / ("jnd-" + safe_file_name(scene) + ".svg"), svg);
+  }
 }
 
 }  // namespace countershade::observer

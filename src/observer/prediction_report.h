@@ -1,6 +1,7 @@
 #pragma once
 // What `countershade predict` writes (docs/observer.md): predicted_thresholds.csv,
-// predicted_jnd.csv and report.html, one JND-against-λ plot per condition.
+// predicted_jnd.csv, report.html (one JND-against-λ plot per scene and per condition) and the
+// scenes' plots as jnd-<scene>.svg.
 
 #include <filesystem>
 #include <string>
@@ -27,7 +28,7 @@ std::string predicted_jnd_csv(const SetPrediction& prediction);
 std::string prediction_report_html(const SetPrediction& prediction,
                                    const PredictionContext& context);
 
-// Writes the three files into `dir` (created if missing), each atomically.
+// Writes the files into `dir` (created if missing), each atomically.
 void write_prediction(const std::filesystem::path& dir, const SetPrediction& prediction,
                       const PredictionContext& context);
 

@@ -7,9 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <numbers>
 
+#include "core/svg_plot.h"
 #include "formats/responses.h"
 #include "observer/contrast_sensitivity.h"
 #include "observer/detection_model.h"
@@ -112,6 +116,31 @@ TEST(Modelfest, TheFittedModelPredictsTheThresholdsWithinOneAndAHalfDecibels) {
   // The model the commands use is this fit.
   EXPECT_NEAR(fit.model.gain, kModelfestModel.gain, 0.005 * kModelfestModel.gain);
   EXPECT_NEAR(fit.model.beta, kModelfestModel.beta, 0.01);
+
+  // docs/figures/modelfest-fit.svg comes from here: COUNTERSHADE_FIGURE_DIR=docs/figures.
+  if (const char* figures = std::getenv("COUNTERSHADE_FIGURE_DIR")) {
+    LinePlot plot;
+    plot.title = "ModelFest thresholds: the model against the measurements (RMS " +
+                 std::to_string(fit.rms_db).substr(0, 4) + " dB)";
+    plot.x_label = "measured threshold (dB of peak contrast)";
+    plot.y_label = "predicted threshold (dB)";
+    plot.width = 760;
+    plot.height = 520;
+    std::vector<std::string> families;
+    for (const auto& row : fit.rows) {
+      auto at = std::find(families.begin(), families.end(), row.family);
+      if (at == families.end()) {
+        families.push_back(row.family);
+        plot.series.push_back({row.family, {}, {}, plot_color(families.size() - 1), false, true});
+        at = families.end() - 1;
+      }
+      auto& series = plot.series[size_t(at - families.begin())];
+      series.x.push_back(row.observed_db);
+      series.y.push_back(row.predicted_db);
+    }
+    plot.series.push_back({"equal", {-45, -8}, {-45, -8}, "#888888", true});
+    plot.write(std::filesystem::path(figures) / "modelfest-fit.svg");
+  }
 }
 
 }  // namespace
