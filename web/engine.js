@@ -55,11 +55,13 @@ export class AdjustmentProcedure {
   }
 }
 
-// The app's simulated observer (--observer simulated:SEED) watching a procedure: act() gives the
-// key it presses now, or null.
+// The app's simulated observer (--observer simulated:SEED, or model:SEED from the page's
+// prediction) watching a procedure: act() gives the key it presses now, or null. A bare number is
+// simulated:NUMBER.
 export class SimulatedObserver {
-  constructor(engine, seed, procedure) {
-    this.native = new engine.AdjustmentObserver(String(seed), procedure.native);
+  constructor(engine, spec, procedure) {
+    const full = /^\d+$/.test(String(spec)) ? `simulated:${spec}` : String(spec);
+    this.native = new engine.AdjustmentObserver(full, procedure.native);
   }
 
   act(time) {
@@ -97,14 +99,15 @@ export class ChoiceSession {
   replay(rows) { this.native.replay(JSON.stringify(rows)); }
 }
 
-// The app's simulated forced-choice observer (--observer weibull:ALPHA,BETA,SEED).
+// The app's simulated forced-choice observer (--observer weibull:ALPHA,BETA,SEED, or model:SEED
+// from the page's prediction) in a session.
 export class ChoiceObserver {
-  constructor(engine, spec) {
-    this.native = new engine.ChoiceObserver(spec);
+  constructor(engine, spec, session) {
+    this.native = new engine.ChoiceObserver(spec, session.native);
   }
 
   get delay() { return this.native.delay(); }
   respond(trial, practiceIndex, nAfc) {
-    return this.native.respond(trial.number, practiceIndex, trial.lambda, trial.target, nAfc);
+    return this.native.respondTo(trial.condition, trial.number, practiceIndex, trial.lambda, trial.target, nAfc);
   }
 }

@@ -98,10 +98,13 @@ async function start() {
   const subject = SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject();
   const session = Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));
   // ?observer=simulated:SEED (adjustment) or weibull:ALPHA,BETA,SEED (forced choice): the app's
-  // simulated observer answers (pilots and tests).
+  // simulated observer answers (pilots and tests); model:SEED answers from the prediction the page
+  // was exported with (export-web --model-ppd).
   const spec = params.get("observer") ?? "";
-  const observer = choice ? (/^weibull:[0-9.]+,[0-9.]+,\d{1,15}$/.test(spec) ? spec : null)
-                          : /^simulated:(\d{1,15})$/.exec(spec)?.[1] ?? null;
+  const model = study.model && /^model:\d{1,15}$/.test(spec);
+  const observer = model ? spec
+                         : choice ? (/^weibull:[0-9.]+,[0-9.]+,\d{1,15}$/.test(spec) ? spec : null)
+                                  : (/^simulated:\d{1,15}$/.test(spec) ? spec : null);
   const jsPsych = window.initJsPsych({});
   const environment = {};
   const timeline = [{

@@ -29,7 +29,7 @@ class ChoiceStudySession {
     this.resumed = this.store.rows.length > 0;
     const counted = this.store.rows.filter((row) => row.interval_timing !== "mistimed");
     if (this.resumed) this.run.replay(counted.map((row) => choiceColumns(engine).map((c) => row[c])));
-    if (observer) this.observer = new ChoiceObserver(engine, observer);
+    if (observer) this.observer = new ChoiceObserver(engine, observer, this.run);
     // Practice trials answered so far (the simulated observer's stream is keyed by it): a replay
     // has gone through all of them, as an uninterrupted session had.
     this.practiceIndex = this.resumed ? (study.forced_choice.practice_trials ?? 0) : 0;

@@ -165,6 +165,7 @@ json web_study(const Study& study, const WebExportOptions& o) {
       {"conditions", conditions},
       {"post_url", o.post_url ? json(*o.post_url) : json(nullptr)},
       {"chinrest", o.chinrest}};
+  if (o.model) out["model"] = *o.model;
   if (o.forced_choice) {
     out["seed"] = std::to_string(study.manifest_seed);  // the block's own seed comes first
     out["forced_choice"] = o.forced_choice->block;

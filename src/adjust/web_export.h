@@ -30,6 +30,9 @@ struct WebExportOptions {
   bool chinrest = false;
   std::string title;
   std::optional<WebChoiceStudy> forced_choice;  // none: the adjustment study
+  // The image-computable observer's prediction per condition (observer::model_json), for the
+  // page's model observers (?observer=model:SEED); none: the page has none.
+  std::optional<nlohmann::json> model;
 };
 
 // What the plugin reads (study.js): the set, the plan's inputs, the texts, and per condition its

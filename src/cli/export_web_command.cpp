@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "observer/model_observer.h"
 
 namespace countershade::cli {
 namespace {
@@ -16,6 +17,7 @@ namespace {
 struct ExportArgs {
   std::string manifest, output, post_url, title, assets, study;
   bool chinrest = false;
+  double model_ppd = 0;  // 0: no prediction in the page
 };
 
 // The folder with node_modules/ and web/: --assets, else $COUNTERSHADE_WEB_ASSETS, else the
@@ -47,6 +49,14 @@ std::optional<adjust::WebChoiceStudy> choice_study(const ExportArgs& a) {
       *block, procedures::parse_choice_config(*block, a.manifest, "experiment.forced_choice")};
 }
 
+// The prediction the page's model observers answer from (?observer=model:SEED).
+nlohmann::json page_model(const runtime::Study& study, double ppd) {
+  std::vector<observer::ConditionName> names;
+  for (const auto& c : study.conditions) names.push_back({c.scene, c.method, c.sigma});
+  return observer::model_json(
+      observer::predict_conditions(study.manifest_path, names, {0, ppd}, std::nullopt));
+}
+
 void run(const ExportArgs& a) {
   check_output_folder(a.output);
   if (!a.post_url.empty() && a.post_url.rfind("http://", 0) != 0 &&
@@ -63,6 +73,7 @@ void run(const ExportArgs& a) {
   o.chinrest = a.chinrest;
   o.title = a.title;
   o.forced_choice = choice_study(a);
+  if (a.model_ppd > 0) o.model = page_model(study, a.model_ppd);
   const size_t images = adjust::export_web_study(study, o);
   std::fprintf(
       stderr,
@@ -86,6 +97,10 @@ void add_export_web_command(CLI::App& app) {
   cmd->add_flag("--chinrest", a->chinrest,
                 "Add jsPsych's virtual chinrest (recorded only: the page is never rescaled)");
   cmd->add_option("--title", a->title, "The page title (default: the set's name)");
+  cmd->add_option("--model-ppd", a->model_ppd,
+                  "Embed the image-computable observer's prediction at these pixels per degree, "
+                  "so that ?observer=model:SEED pilots the page (docs/observer.md)")
+      ->check(within(1, 10000));
   cmd->add_option("--study", a->study,
                   "Which study the page runs: forced-choice (the experiment's forced_choice "
                   "block) or adjust (default: forced-choice when the experiment has the block)")

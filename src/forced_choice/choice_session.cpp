@@ -74,13 +74,10 @@ ChoiceObserver choice_observer(const std::string& spec, const runtime::Study& st
   if (!model) return parse_choice_observer(spec);
   std::vector<observer::ConditionName> names;
   for (const auto& c : study.conditions) names.push_back({c.scene, c.method, c.sigma});
-  auto curves = std::make_shared<std::vector<observer::PredictedCondition>>(
-      observer::predict_conditions(study.manifest_path, names, *model, study.pixels_per_degree));
   ChoiceObserver o;
   o.seed = model->seed;
-  o.model = [curves](int condition, double lambda, int n_afc) {
-    return observer::model_probability_correct((*curves)[size_t(condition)].jnd_at(lambda), n_afc);
-  };
+  o.model = observer::probability_by_condition(
+      observer::predict_conditions(study.manifest_path, names, *model, study.pixels_per_degree));
   return o;
 }
 

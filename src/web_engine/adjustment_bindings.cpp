@@ -12,8 +12,10 @@
 
 #include "adjust/procedure.h"
 #include "adjust/simulated_observer.h"
+#include "observer/model_response.h"
 #include "runtime/study.h"
 #include "web_engine/javascript_errors.h"
+#include "web_engine/page_model.h"
 #include "web_engine/page_study.h"
 
 namespace countershade::web_engine {
@@ -146,6 +148,7 @@ class AdjustmentProcedure {
 
   const Procedure& procedure() const { return procedure_; }
   const Study& study() const { return study_; }
+  const json& page() const { return page_; }
 
  private:
   static Procedure make(const json& page, const Study& study, const std::string& plan_json) {
@@ -162,11 +165,13 @@ class AdjustmentProcedure {
   Procedure procedure_;
 };
 
-// The app's simulated observer (--observer simulated:SEED) watching one procedure.
+// The app's simulated observer watching one procedure: simulated:SEED, or model:SEED answering
+// from the prediction the page was exported with (export-web --model-ppd).
 class AdjustmentObserver {
  public:
-  AdjustmentObserver(const std::string& seed, const AdjustmentProcedure& procedure)
-      : procedure_(procedure), observer_(std::stoull(seed), procedure.study()) {}
+  AdjustmentObserver(const std::string& spec, const AdjustmentProcedure& procedure)
+      : procedure_(procedure),
+        observer_(errors_to_javascript([&] { return observer_of(spec, procedure); })) {}
 
   // The key it presses now, or "" (a press and its release come together).
   std::string key(double time_s) {
@@ -175,6 +180,16 @@ class AdjustmentObserver {
   }
 
  private:
+  static SimulatedObserver observer_of(const std::string& spec,
+                                       const AdjustmentProcedure& procedure) {
+    const auto model = observer::parse_model_observer(spec);
+    if (!model) return SimulatedObserver(adjust::parse_observer_spec(spec), procedure.study());
+    SimulatedObserver::PredictedLevels levels;
+    for (const auto& c : predicted_page_conditions(procedure.page(), *model))
+      levels.push_back(c.lambda_at);
+    return SimulatedObserver(model->seed, procedure.study(), 0.02, std::move(levels));
+  }
+
   const AdjustmentProcedure& procedure_;
   SimulatedObserver observer_;
 };

@@ -6,14 +6,17 @@
 
 #include <emscripten/bind.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_row.h"
 #include "forced_choice/choice_run.h"
 #include "runtime/study.h"
 #include "web_engine/javascript_errors.h"
+#include "web_engine/page_model.h"
 #include "web_engine/page_study.h"
 
 namespace countershade::web_engine {
@@ -101,6 +104,8 @@ class ChoiceSession {
   bool finished() const { return run_.finished(); }
   bool in_practice() const { return run_.in_practice(); }
   int real_trials_done() const { return run_.real_trials_done(); }
+  // The page's study (for its model observer's prediction).
+  const json& page() const { return page_; }
   // The study's conditions that have a procedure, and one's state after its last answer (JSON).
   std::string conditions() const { return json(run_.conditions()).dump(); }
   std::string procedure_state(int condition) const {
@@ -116,16 +121,19 @@ class ChoiceSession {
   forced_choice::ChoiceRowContext who_;
 };
 
-// The app's simulated observer (--observer weibull:ALPHA,BETA,SEED).
+// The app's simulated observer: weibull:ALPHA,BETA,SEED, or model:SEED answering from the
+// prediction the page was exported with (export-web --model-ppd).
 class ChoiceObserver {
  public:
-  explicit ChoiceObserver(const std::string& spec)
+  ChoiceObserver(const std::string& spec, const ChoiceSession& session)
       : observer_(
-            errors_to_javascript([&] { return forced_choice::parse_choice_observer(spec); })) {}
+            errors_to_javascript([&] { return page_choice_observer(session.page(), spec); })) {}
 
-  // The answer to real trial `number` (practice: 0, and the practice trial's index).
-  int respond(int number, int practice_index, double lambda, int target, int n_afc) const {
-    return observer_.respond(number, practice_index, lambda, target, n_afc);
+  // The answer to real trial `number` (practice: 0, and the practice trial's index) of
+  // `condition` (a model observer answers per condition).
+  int respond_to(int condition, int number, int practice_index, double lambda, int target,
+                 int n_afc) const {
+    return observer_.respond(number, practice_index, lambda, target, n_afc, condition);
   }
   double delay() const { return observer_.delay_s; }
 
@@ -154,8 +162,8 @@ EMSCRIPTEN_BINDINGS(countershade_forced_choice) {
       .function("conditions", &ChoiceSession::conditions)
       .function("procedureState", &ChoiceSession::procedure_state);
   class_<ChoiceObserver>("ChoiceObserver")
-      .constructor<std::string>()
-      .function("respond", &ChoiceObserver::respond)
+      .constructor<std::string, const ChoiceSession&>()
+      .function("respondTo", &ChoiceObserver::respond_to)
       .function("delay", &ChoiceObserver::delay);
 }
 

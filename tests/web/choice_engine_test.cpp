@@ -1,5 +1,6 @@
 // The forced-choice engine the exported page runs (the app's C++ compiled to WebAssembly) against
-// the app's native build: for the same study, block, subject and simulated observer, every trial
+// the app's native build: for the same study, block, subject and simulated observer (a Weibull in
+// λ, or a model observer answering from the page's prediction), every trial
 // (condition, λ, target, answer, correctness), every row of the trials CSV and every procedure's
 // final state are the same, for constant stimuli, a staircase, QUEST and QUEST+; and a session
 // rebuilt from its rows half-way (a reload) ends in the same states.
@@ -8,11 +9,13 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "forced_choice/choice_observer.h"
 #include "forced_choice/choice_row.h"
 #include "forced_choice/choice_run.h"
 #include "test_util.h"
+#include "web_engine/page_model.h"
 #include "web_engine/page_study.h"
 
 namespace countershade::web_engine {
@@ -44,6 +47,21 @@ json page_study(const json& forced_choice) {
           {"forced_choice", forced_choice}};
 }
 
+// A made-up prediction for the page's model observer: the response grows linearly with λ, at a
+// rate per condition (the control, condition 2, never responds).
+json page_model() {
+  json model = json::array();
+  for (int c = 0; c < 3; ++c) {
+    json lambda = json::array(), jnd = json::array();
+    for (int k = 0; k < 31; ++k) {
+      lambda.push_back(k * 0.05);
+      jnd.push_back(c == 2 ? 0.0 : (c + 1) * 3.0 * k * 0.05);
+    }
+    model.push_back({{"lambda_at", {nullptr, nullptr, nullptr}}, {"lambda", lambda}, {"jnd", jnd}});
+  }
+  return model;
+}
+
 // The app's session, answered by the simulated observer: each trial and the final states.
 json native_session(const json& page, const std::string& subject, int session,
                     const std::string& observer_spec) {
@@ -53,12 +71,12 @@ json native_session(const json& page, const std::string& subject, int session,
   const uint64_t seed = config.seed ? runtime::session_seed(*config.seed, subject, session)
                                     : page_session_seed(page, subject, session);
   ChoiceRun run(study, config, seed);
-  const auto observer = forced_choice::parse_choice_observer(observer_spec);
+  const auto observer = page_choice_observer(page, observer_spec);
   json trials = json::array(), rows = json::array();
   for (int practice_index = 0; run.current();) {
     const auto t = *run.current();
     const int response =
-        observer.respond(t.number, practice_index, t.lambda, t.target, config.n_afc);
+        observer.respond(t.number, practice_index, t.lambda, t.target, config.n_afc, t.condition);
     const bool correct = run.answer(response);
     practice_index += t.practice;
     trials.push_back({t.number, t.practice, t.condition, t.condition_trial, t.intensity.requested,
@@ -75,7 +93,8 @@ json native_session(const json& page, const std::string& subject, int session,
 
 json session_case(const json& forced_choice, const std::string& subject, int session,
                   const std::string& observer) {
-  const json page = page_study(forced_choice);
+  json page = page_study(forced_choice);
+  page["model"] = page_model();
   return {{"page", page},
           {"subject", subject},
           {"session", session},
@@ -121,6 +140,11 @@ TEST(ChoiceEngine, TheWebAssemblySessionIsTheAppsTrialForTrial) {
                         {"lower_asymptote", 0.5},
                         {"lapse_rate", {0, 0.02}}}}}}},
                    "P04", 1, "weibull:0.2,3,3"));
+  cases.push_back(session_case(
+      {{"n_afc", 2},
+       {"procedure",
+        {{"type", "constant"}, {"lambdas", {0.05, 0.1, 0.2, 0.4}}, {"repetitions", 4}}}},
+      "P05", 1, "model:5"));
   testing::TempDir dir;
   testing::write_file(dir / "cases.json", cases.dump());
   const auto run =
@@ -129,7 +153,7 @@ TEST(ChoiceEngine, TheWebAssemblySessionIsTheAppsTrialForTrial) {
                                           " node web/tools/check-choice.mjs " +
                                           (dir / "cases.json").string() + "'");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("4 sessions"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("5 sessions"), std::string::npos) << run.output;
 }
 
 }  // namespace

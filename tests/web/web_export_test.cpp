@@ -137,26 +137,27 @@ std::vector<std::vector<std::string>> comparable_rows(const fs::path& csv) {
   return rows;
 }
 
-// The app's session of the simulated observer `seed`, on the frame clock, into `sessions`.
+// The app's session of the observer `spec` (a number: simulated:NUMBER), on the frame clock, into
+// `sessions`.
 void app_session(const fs::path& manifest, const fs::path& sessions, const std::string& subject,
-                 int seed) {
+                 const std::string& spec) {
   testing::XvfbServer x;
-  testing::Child app(
-      {COUNTERSHADE_BINARY, "adjust", manifest.string(), "--subject", subject, "--sessions",
-       sessions.string(), "--observer", "simulated:" + std::to_string(seed), "--frame-clock"},
-      x.display(), (sessions.parent_path() / "app-log.txt").string());
+  const std::string observer = spec.find(':') == std::string::npos ? "simulated:" + spec : spec;
+  testing::Child app({COUNTERSHADE_BINARY, "adjust", manifest.string(), "--subject", subject,
+                      "--sessions", sessions.string(), "--observer", observer, "--frame-clock"},
+                     x.display(), (sessions.parent_path() / "app-log.txt").string());
   ASSERT_EQ(app.wait(300), 0) << testing::read_file(sessions.parent_path() / "app-log.txt");
 }
 
 // The browser's session of the same observer (reloading after the given numbers of answers);
 // returns the CSV the page offers; the rows its server accepted are in CSV.posted.
 fs::path browser_session(const fs::path& study, const fs::path& out, const std::string& subject,
-                         int seed, const std::string& reloads = "", int refuse = 0) {
+                         const std::string& spec, const std::string& reloads = "", int refuse = 0) {
   const fs::path csv = out / (subject + "_s01.csv");
   const auto run = testing::run_program(
       "bash -c", "'" +
                      node("web/tools/browser-session.mjs " + study.string() + " " + subject + " " +
-                              std::to_string(seed) + " " + csv.string() + " " + reloads,
+                              spec + " " + csv.string() + " " + reloads,
                           "REFUSE=" + std::to_string(refuse)) +
                      "'");
   EXPECT_EQ(run.exit_code, 0) << run.output;
@@ -164,20 +165,25 @@ fs::path browser_session(const fs::path& study, const fs::path& out, const std::
 }
 
 // A simulated observer answers in the browser exactly as in the app: the same rows apart from the
-// clock's columns and the browser's, and so the same results.json.
+// clock's columns and the browser's, and so the same results.json. The third participant is a
+// model observer, answering from the prediction the page was exported with (at 40 pixels per
+// degree) as the app's does from its own.
 TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
   ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
-                             " --post-url /collect")
+                             " --post-url /collect --model-ppd 40")
                 .exit_code,
             0);
   fs::create_directories(dir / "browser");
   std::string app_csvs, browser_csvs;
+  const std::pair<std::string, std::string> observers[] = {
+      {"1", "1"}, {"2", "2"}, {"model:3:40", "model:3"}};
   for (int s = 1; s <= 3; ++s) {
     const std::string subject = "P0" + std::to_string(s);
-    app_session(manifest, dir / "app", subject, s);
-    const fs::path csv = browser_session(dir / "web", dir / "browser", subject, s);
+    const auto& [app_spec, page_spec] = observers[s - 1];
+    app_session(manifest, dir / "app", subject, app_spec);
+    const fs::path csv = browser_session(dir / "web", dir / "browser", subject, page_spec);
     const auto app_rows = comparable_rows(dir / "app" / (subject + "_s01.csv"));
     EXPECT_EQ(app_rows.size(), 13u);
     EXPECT_EQ(comparable_rows(csv), app_rows) << subject;
@@ -214,8 +220,8 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   std::string reloads;
   for (int p : points) reloads += std::to_string(p) + " ";
   fs::create_directories(dir / "browser");
-  const fs::path csv = browser_session(dir / "web", dir / "browser", "P09", 9, reloads, 2);
-  app_session(manifest, dir / "app", "P09", 9);
+  const fs::path csv = browser_session(dir / "web", dir / "browser", "P09", "9", reloads, 2);
+  app_session(manifest, dir / "app", "P09", "9");
   const auto rows = comparable_rows(csv);
   EXPECT_EQ(rows.size(), 1u + 24u);
   EXPECT_EQ(rows, comparable_rows(dir / "app/P09_s01.csv"));

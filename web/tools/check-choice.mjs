@@ -14,11 +14,11 @@ import { nodeEngine } from "./node-engine.mjs";
 // recorded so far after that many real trials and goes on in its place.
 function runSession(engine, c, reloadAfter = null) {
   let session = new engine.ChoiceSession(JSON.stringify(c.page), c.subject, c.session);
-  const observer = new engine.ChoiceObserver(c.observer);
+  const observer = new engine.ChoiceObserver(c.observer, session);
   const nAfc = c.page.forced_choice.n_afc ?? 2;
   const trials = [], rows = [];
   for (let practiceIndex = 0, t; (t = JSON.parse(session.current())); ) {
-    const response = observer.respond(t.number, practiceIndex, t.lambda, t.target, nAfc);
+    const response = observer.respondTo(t.condition, t.number, practiceIndex, t.lambda, t.target, nAfc);
     const { correct, row } = JSON.parse(session.answerWithRow(response, 0.5 + 0.001 * t.number, "T"));
     practiceIndex += t.practice ? 1 : 0;
     trials.push([t.number, t.practice, t.condition, t.condition_trial, t.requested, t.lambda_index, t.lambda, t.target, response, correct]);
