@@ -114,7 +114,25 @@ TEST(ObserveCli, BadInputIsOneLineAndExitTwo) {
   write_image(dir / "mean.pfm", gabor_luminance(0));
   write_image(dir / "small.pfm", Image(64, 64, 1, 30.0f));
   write_image(dir / "black.pfm", Image(kSize, kSize, 1, 0.0f));
+  Image nan_pixel(kSize, kSize, 1, 30.0f), negative(kSize, kSize, 1, 30.0f);
+  nan_pixel.pixels[77] = NAN;
+  negative.pixels[5] = -1;
+  write_image(dir / "nan.pfm", nan_pixel);
+  write_image(dir / "negative.pfm", negative);
+  testing::write_file(dir / "narrow.json", R"({"screen": {"width_mm": -3, "width_px": 1920,
+    "distance_mm": 570}})");
+  testing::write_file(dir / "uncalibrated.json", R"({"screen": {"width_mm": 300,
+    "width_px": 1920, "distance_mm": 570}, "calibration": "gone.json"})");
+  const auto with_display = [&](const char* file) {
+    return testing::run_cli("observe " + (dir / "mean.pfm").string() + " " +
+                            (dir / "mean.pfm").string() + " --display " + (dir / file).string());
+  };
   const std::vector<std::pair<testing::CommandResult, std::string>> cases = {
+      {observe(dir / "mean.pfm", dir / "nan.pfm"), "nan.pfm"},
+      {observe(dir / "mean.pfm", dir / "negative.pfm"), "negative.pfm"},
+      {with_display("missing.json"), "missing.json"},
+      {with_display("narrow.json"), "width_mm"},
+      {with_display("uncalibrated.json"), "gone.json"},
       {observe(dir / "mean.pfm", dir / "small.pfm"), "small.pfm"},
       {observe(dir / "black.pfm", dir / "mean.pfm"), "black.pfm"},
       {observe(dir / "mean.pfm", dir / "missing.pfm"), "missing.pfm"},
