@@ -33,17 +33,6 @@ double filter_gain(int kx, int ky, int width, int height, double ppd, bool obliq
   return gain;
 }
 
-}  // namespace
-
-struct CsfFilter::Plans {
-  fftw_plan forward = nullptr, backward = nullptr;
-  ~Plans() {
-    const std::lock_guard<std::mutex> lock(planner_mutex());
-    if (forward) fftw_destroy_plan(forward);
-    if (backward) fftw_destroy_plan(backward);
-  }
-};
-
 // A thread's transform arrays, grown to the largest image it has filtered (fftw_alloc's
 // alignment, which the plans' new-array execution needs).
 struct Scratch {
@@ -53,6 +42,17 @@ struct Scratch {
   void reserve(size_t n_real, size_t n_complex) {
     if (n_real > reals) real.reset(fftw_alloc_real(reals = n_real));
     if (n_complex > complexes) spectrum.reset(fftw_alloc_complex(complexes = n_complex));
+  }
+};
+
+}  // namespace
+
+struct CsfFilter::Plans {
+  fftw_plan forward = nullptr, backward = nullptr;
+  ~Plans() {
+    const std::lock_guard<std::mutex> lock(planner_mutex());
+    if (forward) fftw_destroy_plan(forward);
+    if (backward) fftw_destroy_plan(backward);
   }
 };
 
