@@ -8,6 +8,8 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "mesh/mesh_io.h"
+#include "mesh/open_mesh_soup.h"
+#include "mesh/ply_reader.h"
 
 namespace countershade {
 
@@ -27,6 +29,11 @@ ColoredMeshFile ColoredMeshFile::read(const std::filesystem::path& path) {
                       "mesh has no vertex colours (mesh-usm enhances vertex colours)");
   auto impl = std::make_unique<Impl>();
   impl->mesh.request_vertex_colors();
+  if (lower_extension(path) == ".ply")
+    if (const auto soup = read_ply_soup(path)) {
+      add_soup_to_open_mesh(*soup, impl->mesh);
+      return ColoredMeshFile(std::move(impl));
+    }
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor;
   if (!OpenMesh::IO::read_mesh(impl->mesh, path.string(), options) ||
       !options.check(OpenMesh::IO::Options::VertexColor))

@@ -15,6 +15,8 @@
 #include "core/error.h"
 #include "mesh/mesh_file_check.h"
 #include "mesh/off_reader.h"
+#include "mesh/open_mesh_soup.h"
+#include "mesh/ply_reader.h"
 
 namespace countershade {
 namespace {
@@ -78,31 +80,16 @@ std::string capture_open_mesh_errors(Read&& read) {
   return reader_log->str();
 }
 
-// The faces of an OFF file added to `om` (which triangulates polygons); returns the number of
-// triangles they should give.
+// The soup added to `om` (which triangulates polygons); returns the number of triangles they
+// should give.
 size_t add_polygons(const PolygonSoup& soup, OMesh& om, OpenMesh::IO::Options& options) {
-  for (size_t v = 0; v < soup.positions.size(); ++v) {
-    const glm::vec3& p = soup.positions[v];
-    const auto vh = om.add_vertex(OMesh::Point(p.x, p.y, p.z));
-    if (!soup.colours.empty()) {
-      const glm::vec3 c = soup.colours[v] * 255.0f + 0.5f;
-      om.set_color(vh, OMesh::Color(uint8_t(c.x), uint8_t(c.y), uint8_t(c.z)));
-    }
-  }
   options = soup.colours.empty() ? OpenMesh::IO::Options()
                                  : OpenMesh::IO::Options(OpenMesh::IO::Options::VertexColor);
-  size_t triangles = 0;
-  std::vector<OMesh::VertexHandle> corners;
-  for (const auto& face : soup.faces) {
-    corners.clear();
-    for (unsigned v : face) corners.push_back(om.vertex_handle(v));
-    om.add_face(corners);
-    triangles += face.size() - 2;
-  }
-  return triangles;
+  return add_soup_to_open_mesh(soup, om);
 }
 
-// The file read into `om`, by countershade's OFF reader or by OpenMesh; returns OpenMesh's error
+// The file read into `om`, by countershade's OFF reader, its PLY reader (for the PLY files it
+// reads) or by OpenMesh; returns OpenMesh's error
 // output and, for OBJ and OFF, the number of triangles the file describes (else 0).
 std::string read_into_open_mesh(const std::filesystem::path& path, const std::string& ext,
                                 OMesh& om, OpenMesh::IO::Options& options,
@@ -112,6 +99,10 @@ std::string read_into_open_mesh(const std::filesystem::path& path, const std::st
     return capture_open_mesh_errors([&] { expected_triangles = add_polygons(soup, om, options); });
   }
   expected_triangles = check_mesh_file_structure(path, ext);
+  if (ext == ".ply")
+    if (const auto soup = read_ply_soup(path))
+      return capture_open_mesh_errors(
+          [&] { expected_triangles = add_polygons(*soup, om, options); });
   return capture_open_mesh_errors([&] {
     if (!OpenMesh::IO::read_mesh(om, path.string(), options))
       throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");

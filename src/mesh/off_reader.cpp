@@ -130,7 +130,7 @@ PolygonSoup read_off(const std::filesystem::path& path) {
   for (unsigned long long f = 0; f < h.faces; ++f) {
     if (!next_off_line(in, w, number))
       throw_input_error(file, "OFF file ends before face " + std::to_string(f));
-    soup.faces.push_back(off_face(w, file + ": line " + std::to_string(number), f, h.vertices));
+    soup.add_face(off_face(w, file + ": line " + std::to_string(number), f, h.vertices));
   }
   return soup;
 }

@@ -10,17 +10,10 @@
 // optional colour that is ignored). Binary OFF and the 4OFF and nOFF variants are refused.
 
 #include <filesystem>
-#include <glm/vec3.hpp>
-#include <string>
-#include <vector>
+
+#include "mesh/polygon_soup.h"
 
 namespace countershade {
-
-struct PolygonSoup {
-  std::vector<glm::vec3> positions;
-  std::vector<std::vector<unsigned>> faces;  // vertex indices, counter-clockwise
-  std::vector<glm::vec3> colours;            // per vertex in [0, 1], or empty
-};
 
 PolygonSoup read_off(const std::filesystem::path& path);
 

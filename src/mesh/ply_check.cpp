@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -99,29 +100,55 @@ void check_ply_header_line(const std::string& line, const std::vector<std::strin
   }
 }
 
-// The next word of an ASCII body as a number (an integer when `integer`), or an InputError.
-double next_ply_value(std::istream& in, bool integer, const std::string& where) {
-  std::string word;
-  if (!(in >> word)) throw_input_error(where, "the file ends before all its values");
-  double value = 0;
-  long long whole = 0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), whole);
-  if (integer && (error != std::errc() || end != word.data() + word.size()))
-    throw_input_error(where, "'" + word + "' is not an integer");
-  if (!integer && !parse_number(word, value))
-    throw_input_error(where, "'" + word + "' is not a number");
-  return integer ? double(whole) : value;
-}
+// The words of an ASCII body, from memory: the stream's word-by-word reading was most of a large
+// file's check.
+class BodyWords {
+ public:
+  explicit BodyWords(std::string text) : text_(std::move(text)), p_(text_.data()) {}
+
+  // The next word as a number (an integer when `integer`), or an InputError at `where()` (made
+  // only then: making it for every element was slow).
+  template <class Where>
+  double next(bool integer, const Where& where) {
+    const char* end = text_.data() + text_.size();
+    while (p_ < end && is_space(*p_)) ++p_;
+    const char* word = p_;
+    while (p_ < end && !is_space(*p_)) ++p_;
+    if (word == p_) throw_input_error(where(), "the file ends before all its values");
+    if (integer) {
+      long long whole = 0;
+      const auto [stop, error] = std::from_chars(word, p_, whole);
+      if (error != std::errc() || stop != p_)
+        throw_input_error(where(), "'" + std::string(word, p_) + "' is not an integer");
+      return double(whole);
+    }
+    double value = 0;
+    const auto [stop, error] = std::from_chars(word, p_, value);
+    if (error == std::errc() && stop == p_) return value;
+    if (!parse_number(std::string(word, p_), value))  // strtod's wider syntax ("+1", "nan")
+      throw_input_error(where(), "'" + std::string(word, p_) + "' is not a number");
+    return value;
+  }
+
+ private:
+  static bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+  }
+
+  std::string text_;
+  const char* p_;
+};
 
 // OpenMesh reads an ASCII body word by word without checking: a stray word made it loop forever.
 void check_ply_ascii_body(std::istream& in, const PlyHeader& header, const std::string& file) {
+  BodyWords words(std::string(std::istreambuf_iterator<char>(in), {}));
   for (const PlyElement& element : header.elements)
     for (unsigned long long i = 0; i < element.count; ++i) {
-      const std::string where = file + ": " + element.name + " " + std::to_string(i);
+      const auto where = [&] { return file + ": " + element.name + " " + std::to_string(i); };
       for (const PlyProperty& property : element.properties) {
-        const double count = property.list ? next_ply_value(in, true, where) : 1;
-        if (count < 0) throw_input_error(where, "a list has a negative length");
-        for (double k = 0; k < count; ++k) next_ply_value(in, property.integer, where);
+        const double count = property.list ? words.next(true, where) : 1;
+        if (count < 0) throw_input_error(where(), "a list has a negative length");
+        for (double k = 0; k < count; ++k) words.next(property.integer, where);
       }
     }
 }

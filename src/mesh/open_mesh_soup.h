@@ -1,0 +1,36 @@
+#pragma once
+// A polygon soup added to an OpenMesh mesh as OpenMesh's own readers add a file: the vertices
+// (with their colours) and then the polygons, in the file's order. A triangle mesh triangulates
+// each polygon as a fan; a polygon mesh keeps it.
+
+#include <OpenMesh/Core/Mesh/Handles.hh>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/polygon_soup.h"
+
+namespace countershade {
+
+// Returns the number of triangles the polygons give.
+template <class Mesh>
+size_t add_soup_to_open_mesh(const PolygonSoup& soup, Mesh& mesh) {
+  for (size_t v = 0; v < soup.positions.size(); ++v) {
+    const glm::vec3& p = soup.positions[v];
+    const auto vh = mesh.add_vertex(typename Mesh::Point(p.x, p.y, p.z));
+    if (soup.colours.empty()) continue;
+    const glm::vec3 c = soup.colours[v] * 255.0f + 0.5f;
+    mesh.set_color(vh, typename Mesh::Color(uint8_t(c.x), uint8_t(c.y), uint8_t(c.z)));
+  }
+  size_t triangles = 0;
+  std::vector<OpenMesh::VertexHandle> corners;
+  for (size_t f = 0; f < soup.face_count(); ++f) {
+    const auto face = soup.face(f);
+    corners.clear();
+    for (unsigned v : face) corners.push_back(mesh.vertex_handle(int(v)));
+    mesh.add_face(corners);
+    triangles += face.size() - 2;
+  }
+  return triangles;
+}
+
+}  // namespace countershade

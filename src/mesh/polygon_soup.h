@@ -1,0 +1,32 @@
+#pragma once
+// Vertices and polygons as a file lists them, before OpenMesh builds their connectivity: what
+// countershade's own readers (OFF, and the common PLY files) produce.
+
+#include <cstddef>
+#include <glm/vec3.hpp>
+#include <span>
+#include <vector>
+
+namespace countershade {
+
+struct PolygonSoup {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> colours;  // per vertex in [0, 1], or empty
+  // The faces' vertex indices (counter-clockwise), one face after another; face f is
+  // corners[face_ends[f − 1] … face_ends[f]) (from 0 for the first). Flat, so that a mesh of
+  // millions of faces is two allocations rather than one per face.
+  std::vector<unsigned> corners;
+  std::vector<size_t> face_ends;
+
+  size_t face_count() const { return face_ends.size(); }
+  std::span<const unsigned> face(size_t f) const {
+    const size_t begin = f == 0 ? 0 : face_ends[f - 1];
+    return {corners.data() + begin, face_ends[f] - begin};
+  }
+  void add_face(std::span<const unsigned> indices) {
+    corners.insert(corners.end(), indices.begin(), indices.end());
+    face_ends.push_back(corners.size());
+  }
+};
+
+}  // namespace countershade
