@@ -136,9 +136,10 @@ std::string predicted_jnd_csv(const SetPrediction& prediction) {
   return out;
 }
 
-std::string prediction_report_html(const SetPrediction& prediction,
-                                   const PredictionContext& context) {
-  std::ostringstream h;
+namespace {
+
+// The page's head: the set, how it was seen, what the levels mean and what the model cannot do.
+void report_head(std::ostringstream& h, const PredictionContext& context) {
   h << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>Predicted visibility of "
     << xml_escape(context.set_name)
     << "</title><style>body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}"
@@ -153,15 +154,10 @@ std::string prediction_report_html(const SetPrediction& prediction,
        "<p>A prediction to design a grid with, not a measurement: the model is foveal, static "
        "and achromatic, predicts the detection of a difference and not preference, and is least "
        "certain for large, complex images.</p>\n";
-  if (prediction.sequence_conditions_skipped > 0)
-    h << "<p>" << prediction.sequence_conditions_skipped
-      << " sequence condition(s) left out: the model is static.</p>\n";
-  if (prediction.conditions.empty()) {
-    h << "<p>The set has no still condition to predict.</p></body></html>\n";
-    return h.str();
-  }
-  h << table_html(prediction);
-  for (const auto& scene : scenes_of(prediction)) h << scene_plot(prediction, scene) << "\n";
+}
+
+// One plot per condition, or one line for a condition that responds at no λ (a control).
+void condition_sections(std::ostringstream& h, const SetPrediction& prediction) {
   h << "<h2>Each condition, its grid marked</h2>\n";
   for (const auto& c : prediction.conditions) {
     const bool responds = std::any_of(c.jnd.begin(), c.jnd.end(), [](double v) { return v > 0; });
@@ -171,6 +167,24 @@ std::string prediction_report_html(const SetPrediction& prediction,
       h << "<p>" << xml_escape(condition_title(c))
         << ": no response at any λ (every image equals the reference).</p>\n";
   }
+}
+
+}  // namespace
+
+std::string prediction_report_html(const SetPrediction& prediction,
+                                   const PredictionContext& context) {
+  std::ostringstream h;
+  report_head(h, context);
+  if (prediction.sequence_conditions_skipped > 0)
+    h << "<p>" << prediction.sequence_conditions_skipped
+      << " sequence condition(s) left out: the model is static.</p>\n";
+  if (prediction.conditions.empty()) {
+    h << "<p>The set has no still condition to predict.</p></body></html>\n";
+    return h.str();
+  }
+  h << table_html(prediction);
+  for (const auto& scene : scenes_of(prediction)) h << scene_plot(prediction, scene) << "\n";
+  condition_sections(h, prediction);
   h << "<p><small>Every image's response: predicted_jnd.csv; the table: "
        "predicted_thresholds.csv.</small></p></body></html>\n";
   return h.str();
