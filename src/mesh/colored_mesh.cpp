@@ -9,7 +9,6 @@
 #include "core/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/open_mesh_soup.h"
-#include "mesh/ply_reader.h"
 
 namespace countershade {
 
@@ -22,18 +21,19 @@ ColoredMeshFile::~ColoredMeshFile() = default;
 ColoredMeshFile::ColoredMeshFile(ColoredMeshFile&&) noexcept = default;
 
 ColoredMeshFile ColoredMeshFile::read(const std::filesystem::path& path) {
-  // The triangle loader applies every validity check (NaN, indices, non-manifold, degenerate).
-  TriangleMesh checked = load_mesh(path);
+  // The triangle loader applies every validity check (NaN, indices, non-manifold, degenerate),
+  // and hands back a PLY file's polygons as listed when its own reader read them.
+  std::optional<PolygonSoup> soup;
+  TriangleMesh checked = load_mesh(path, &soup);
   if (!checked.has_vertex_colors())
     throw_input_error(path.string(),
                       "mesh has no vertex colours (mesh-usm enhances vertex colours)");
   auto impl = std::make_unique<Impl>();
   impl->mesh.request_vertex_colors();
-  if (lower_extension(path) == ".ply")
-    if (const auto soup = read_ply_soup(path)) {
-      add_soup_to_open_mesh(*soup, impl->mesh);
-      return ColoredMeshFile(std::move(impl));
-    }
+  if (soup) {
+    add_soup_to_open_mesh(*soup, impl->mesh);
+    return ColoredMeshFile(std::move(impl));
+  }
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexColor;
   if (!OpenMesh::IO::read_mesh(impl->mesh, path.string(), options) ||
       !options.check(OpenMesh::IO::Options::VertexColor))

@@ -93,16 +93,19 @@ size_t add_polygons(const PolygonSoup& soup, OMesh& om, OpenMesh::IO::Options& o
 // output and, for OBJ and OFF, the number of triangles the file describes (else 0).
 std::string read_into_open_mesh(const std::filesystem::path& path, const std::string& ext,
                                 OMesh& om, OpenMesh::IO::Options& options,
-                                size_t& expected_triangles) {
+                                size_t& expected_triangles, std::optional<PolygonSoup>* ply_soup) {
   if (ext == ".off") {
     const PolygonSoup soup = read_off(path);
     return capture_open_mesh_errors([&] { expected_triangles = add_polygons(soup, om, options); });
   }
   expected_triangles = check_mesh_file_structure(path, ext);
   if (ext == ".ply")
-    if (const auto soup = read_ply_soup(path))
-      return capture_open_mesh_errors(
-          [&] { expected_triangles = add_polygons(*soup, om, options); });
+    if (auto soup = read_ply_soup(path)) {
+      std::string log =
+          capture_open_mesh_errors([&] { expected_triangles = add_polygons(*soup, om, options); });
+      if (ply_soup) *ply_soup = std::move(soup);
+      return log;
+    }
   return capture_open_mesh_errors([&] {
     if (!OpenMesh::IO::read_mesh(om, path.string(), options))
       throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
@@ -144,7 +147,7 @@ TriangleMesh to_triangle_mesh(OMesh& om, const OpenMesh::IO::Options& options) {
 
 }  // namespace
 
-TriangleMesh load_mesh(const std::filesystem::path& path) {
+TriangleMesh load_mesh(const std::filesystem::path& path, std::optional<PolygonSoup>* ply_soup) {
   const std::string ext = check_mesh_file(path);
   OMesh om;
   om.request_vertex_colors();
@@ -154,7 +157,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
                                   OpenMesh::IO::Options::VertexTexCoord |
                                   OpenMesh::IO::Options::FaceTexCoord;
   size_t expected_triangles = 0;
-  const std::string log = read_into_open_mesh(path, ext, om, options, expected_triangles);
+  const std::string log = read_into_open_mesh(path, ext, om, options, expected_triangles, ply_soup);
   if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
       log.find("failed") != std::string::npos ||
       (expected_triangles > 0 && om.n_faces() < expected_triangles))

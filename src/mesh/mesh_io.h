@@ -2,7 +2,9 @@
 // Loading meshes (OBJ, PLY, OFF, STL) through OpenMesh, with validation. Polygons are triangulated.
 
 #include <filesystem>
+#include <optional>
 
+#include "mesh/polygon_soup.h"
 #include "mesh/triangle_mesh.h"
 
 namespace countershade {
@@ -11,7 +13,11 @@ namespace countershade {
 // them. Normals are left empty: the caller computes them with its crease angle.
 // Throws InputError naming the file for: unreadable files, no faces, NaN/inf coordinates,
 // face indices out of range, faces the reader had to drop (non-manifold), degenerate triangles.
-TriangleMesh load_mesh(const std::filesystem::path& path);
+// `ply_soup`, when given, receives the vertices and polygons of a PLY file that countershade's own
+// reader read (mesh/ply_reader.h), so that a caller needing them as listed does not read the file
+// again.
+TriangleMesh load_mesh(const std::filesystem::path& path,
+                       std::optional<PolygonSoup>* ply_soup = nullptr);
 
 // Checks a mesh in memory with the same rules; `where` prefixes the messages.
 void validate_mesh(const TriangleMesh& mesh, const std::string& where);

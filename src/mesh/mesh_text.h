@@ -17,6 +17,11 @@ inline std::vector<std::string> split_words(const std::string& line) {
   return out;
 }
 
+// What separates the words of an ASCII body (PLY, OFF): C's whitespace.
+inline bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
 // A whole non-negative decimal integer, or false.
 inline bool parse_count(const std::string& text, unsigned long long& value) {
   const char* end = text.data() + text.size();

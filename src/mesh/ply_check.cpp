@@ -111,9 +111,9 @@ class BodyWords {
   template <class Where>
   double next(bool integer, const Where& where) {
     const char* end = text_.data() + text_.size();
-    while (p_ < end && is_space(*p_)) ++p_;
+    while (p_ < end && is_blank(*p_)) ++p_;
     const char* word = p_;
-    while (p_ < end && !is_space(*p_)) ++p_;
+    while (p_ < end && !is_blank(*p_)) ++p_;
     if (word == p_) throw_input_error(where(), "the file ends before all its values");
     if (integer) {
       long long whole = 0;
@@ -131,10 +131,6 @@ class BodyWords {
   }
 
  private:
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-  }
-
   std::string text_;
   const char* p_;
 };

@@ -176,9 +176,9 @@ class AsciiValues {
   // False when the file ends first or the word is not a number of the type (then OpenMesh reads
   // the file, as before).
   bool next(const ScalarType& type, double& value) {
-    while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
+    while (p_ < end_ && is_blank(*p_)) ++p_;
     const char* word = p_;
-    while (p_ < end_ && !(*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
+    while (p_ < end_ && !is_blank(*p_)) ++p_;
     if (word == p_) return false;
     if (type.integer) return parse<long long>(word, value);
     return type.bytes == 4 ? parse<float>(word, value) : parse<double>(word, value);

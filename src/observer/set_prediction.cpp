@@ -99,6 +99,14 @@ class SetContext {
 // The λ at each level: the first grid step at or above it, refined between its images.
 void find_levels(ConditionPrediction& p, const ConditionImages& images, SetContext& context,
                  const PredictionSettings& settings) {
+  // The levels often fall between the same two grid images (a set whose first step is already
+  // above 4 JND): each image is filtered once.
+  std::map<size_t, ContrastImage> filtered;
+  auto filtered_at = [&](size_t i) -> const ContrastImage& {
+    auto [it, added] = filtered.try_emplace(i);
+    if (added) it->second = context.filtered(*images.stimuli[i], *images.reference);
+    return it->second;
+  };
   for (size_t l = 0; l < kPredictionLevels.size(); ++l) {
     const double level = kPredictionLevels[l];
     size_t i = 0;
@@ -108,10 +116,8 @@ void find_levels(ConditionPrediction& p, const ConditionImages& images, SetConte
       p.lambda_at[l] = p.lambda[0];
       continue;
     }
-    p.lambda_at[l] =
-        lambda_reaching(level, context.filtered(*images.stimuli[i - 1], *images.reference),
-                        p.lambda[i - 1], context.filtered(*images.stimuli[i], *images.reference),
-                        p.lambda[i], settings.ppd, settings.model);
+    p.lambda_at[l] = lambda_reaching(level, filtered_at(i - 1), p.lambda[i - 1], filtered_at(i),
+                                     p.lambda[i], settings.ppd, settings.model);
   }
 }
 
