@@ -2,7 +2,7 @@
 // countershade's own reader for the common PLY files: vertices with positions (and 8-bit colours,
 // normals or an alpha, which it skips or keeps) and faces as one list of vertex indices, in ASCII
 // or binary. The whole file is read at once and parsed in one pass (std::from_chars, or the bytes
-// themselves): 1.4 times OpenMesh's stream reader on ASCII and 6 times on binary files
+// themselves), faster than OpenMesh's stream reader, six times so on binary files
 // (docs/performance.md, "Mesh I/O"). It declines, and OpenMesh
 // reads the file as before, when the file has anything else (texture coordinates, float colours,
 // other properties or elements). The file's structure is checked first (mesh_file_check.h).
