@@ -87,6 +87,66 @@ function hasWebGl2() {
   return false;
 }
 
+// Where a study is hosted by `countershade serve`, the server's countershade-serve.json says
+// where to claim a session and where to send rows; a static host has no such file.
+async function servedBy() {
+  try {
+    const response = await fetch("countershade-serve.json", { cache: "no-store" });
+    return response.ok ? await response.json() : null;
+  } catch {
+    return null;
+  }
+}
+
+function say(id, text) {
+  const p = document.createElement("p");
+  p.id = id;
+  p.textContent = text;
+  document.body.appendChild(p);
+}
+
+// The browser's own token for a session: 128 random bits, kept in localStorage so that a reload
+// claims the same session and sends its rows under the same token. The server keeps its hash.
+function browserToken(key) {
+  let token = window.localStorage.getItem(key);
+  if (!/^[0-9a-f]{32}$/.test(token ?? "")) {
+    token = [...crypto.getRandomValues(new Uint8Array(16))].map((b) => b.toString(16).padStart(2, "0")).join("");
+    window.localStorage.setItem(key, token);
+  }
+  return token;
+}
+
+const CLAIM_REFUSED = {
+  403: "This link is not valid. Please use the link you were given.",
+  409: "This participant id already has a session in another browser. Please check the id.",
+  410: "This link has already been used in another browser. Please go on in that browser, or ask for a new link.",
+};
+
+// Claims the session of the link (?link=…), or in an open study the session of the id the
+// participant gives; retries while the server cannot be reached. {subject, session, token}, or
+// null once the page has said why the study cannot start.
+async function claimSession(served, params) {
+  const link = params.get("link") ?? "";
+  let body;
+  if (/^[0-9a-f]{32}$/.test(link)) body = { link };
+  else if (served.open) body = { subject: await subjectOf(params), session: sessionOf(params) };
+  else return void say("countershade-error", "This study is open by link only: please use the link you were given.");
+  const token = browserToken(`countershade-serve:${study.set.sha256}:${body.link ?? `${body.subject}:${body.session}`}`);
+  for (let wait = 100; ; wait = Math.min(5000, 2 * wait)) {
+    const response = await fetch(served.claim, {
+      method: "POST", body: JSON.stringify(body),
+      headers: { "Content-Type": "application/json", Authorization: `Bearer ${token}` },
+    }).catch(() => null);
+    if (response?.ok) return { ...(await response.json()), token };
+    if (response && response.status < 500 && response.status !== 429)
+      return void say("countershade-error", CLAIM_REFUSED[response.status] ?? `The study cannot start (${response.status}).`);
+    await new Promise((resolve) => setTimeout(resolve, wait));
+  }
+}
+
+const subjectOf = async (params) => (SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject());
+const sessionOf = (params) => Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));
+
 async function start() {
   document.title = study.title;
   const engine = await engineOrMessage();
@@ -95,11 +155,18 @@ async function start() {
   CountershadeChoicePlugin.engine = engine;
   const choice = study.study === "forced_choice";
   const params = new URLSearchParams(window.location.search);
-  const subject = SUBJECT.test(params.get("subject") ?? "") ? params.get("subject") : await askSubject();
-  const session = Math.max(1, Math.min(99, Number.parseInt(params.get("session") ?? "1", 10) || 1));
-  // ?observer=simulated:SEED (adjustment) or weibull:ALPHA,BETA,SEED (forced choice): the app's
-  // simulated observer answers (pilots and tests); model:SEED answers from the prediction the page
-  // was exported with (export-web --model-ppd).
+  const served = await servedBy();
+  let subject, session;
+  if (served) {
+    const claimed = await claimSession(served, params);
+    if (!claimed) return;
+    ({ subject, session } = claimed);
+    study.post_url = served.rows;
+    study.post_headers = { Authorization: `Bearer ${claimed.token}` };
+  } else {
+    subject = await subjectOf(params);
+    session = sessionOf(params);
+  }
   const spec = params.get("observer") ?? "";
   const model = study.model && /^model:\d{1,15}$/.test(spec);
   const observer = model ? spec

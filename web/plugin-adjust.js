@@ -28,6 +28,7 @@ class AdjustSession {
     this.plan = planSession(engine, study, subject, session);
     this.procedure = new AdjustmentProcedure(engine, study, this.plan);
     this.store = new SessionStore(window.localStorage, `countershade:${study.set.sha256}:${subject}:${session}`, study.post_url);
+    this.store.headers = study.post_headers ?? {};
     this.store.flush(); // rows a reload left unsent
     this.resumed = this.store.rows.length > 0;
     if (this.resumed) this.procedure.resume(this.store.answered());

@@ -25,6 +25,7 @@ class ChoiceStudySession {
     this.run = new ChoiceSession(engine, study, subject, session);
     this.store = new SessionStore(window.localStorage, `countershade-choice:${study.set.sha256}:${subject}:${session}`,
                                   study.post_url, undefined, this.columns);
+    this.store.headers = study.post_headers ?? {};
     this.store.flush(); // rows a reload left unsent
     this.resumed = this.store.rows.length > 0;
     const counted = this.store.rows.filter((row) => row.interval_timing !== "mistimed");

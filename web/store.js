@@ -49,6 +49,7 @@ export class SessionStore {
     this.posted = saved?.posted ?? 0; // rows the server has acknowledged
     this.sending = false;
     this.backoff = 0;
+    this.headers = {}; // sent with every POST (countershade serve's token)
   }
 
   save() {
@@ -91,7 +92,7 @@ export class SessionStore {
         try {
           const response = await this.fetch(this.postUrl, {
             method: "POST",
-            headers: { "Content-Type": "text/csv", "Idempotency-Key": this.rowKey(this.posted) },
+            headers: { "Content-Type": "text/csv", "Idempotency-Key": this.rowKey(this.posted), ...this.headers },
             body: csvLine(this.columns) + csvLine(this.columns.map((c) => row[c] ?? "")),
           });
           ok = response.ok;

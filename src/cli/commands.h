@@ -34,6 +34,7 @@ void add_sheet_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_observe_command(CLI::App& app);
 void add_predict_command(CLI::App& app);
+void add_serve_command(CLI::App& app);
 
 // Sign checks with one short line of message (use these, not CLI::PositiveNumber).
 extern const CLI::Validator kPositive, kNonNegative;

@@ -31,6 +31,7 @@ void add_commands(CLI::App& app) {
   add_congruence_command(app);
   add_observe_command(app);
   add_predict_command(app);
+  add_serve_command(app);
   add_image_filter_command(app);
   add_flicker_command(app);
   add_sheet_command(app);

@@ -42,24 +42,6 @@ std::optional<Key> key_named(const std::string& name) {
   return std::nullopt;
 }
 
-procedures::Side side_named(const std::string& name) {
-  if (name == "left") return procedures::Side::left;
-  if (name == "right") return procedures::Side::right;
-  return procedures::Side::counterbalanced;
-}
-
-procedures::PlanSettings plan_settings_of(const json& page, uint64_t seed) {
-  procedures::PlanSettings s;
-  s.seed = seed;
-  s.repetitions = page.at("repetitions").get<int>();
-  s.side = side_named(page.at("side").get<std::string>());
-  s.start =
-      page.at("start") == "zero" ? procedures::StartMode::zero : procedures::StartMode::random;
-  s.practice_trials = page.at("practice_trials").get<int>();
-  s.practice_conditions = page.at("practice_conditions").get<std::vector<int>>();
-  return s;
-}
-
 json trial_json(const Trial& t) {
   return {{"number", t.number},
           {"practice", t.practice},
@@ -89,11 +71,8 @@ std::string session_seed(const std::string& study_seed, const std::string& subje
 
 // The plan of a subject's session for the page's study: a JSON array of trials.
 std::string plan_of(const json& page, const std::string& subject, int session) {
-  const uint64_t seed = page_session_seed(page, subject, session);
   json plan = json::array();
-  for (const Trial& t :
-       adjust::plan_trials(study_from_page(page).conditions, plan_settings_of(page, seed)))
-    plan.push_back(trial_json(t));
+  for (const Trial& t : page_plan(page, subject, session)) plan.push_back(trial_json(t));
   return plan.dump();
 }
 

@@ -23,7 +23,30 @@ void add_condition_images(runtime::Study& study, const json& c, size_t grid_size
   }
 }
 
+procedures::PlanSettings plan_settings_of(const json& page, uint64_t seed) {
+  procedures::PlanSettings s;
+  s.seed = seed;
+  s.repetitions = page.at("repetitions").get<int>();
+  s.side = side_named(page.at("side").get<std::string>());
+  s.start =
+      page.at("start") == "zero" ? procedures::StartMode::zero : procedures::StartMode::random;
+  s.practice_trials = page.at("practice_trials").get<int>();
+  s.practice_conditions = page.at("practice_conditions").get<std::vector<int>>();
+  return s;
+}
+
 }  // namespace
+
+procedures::Side side_named(const std::string& name) {
+  if (name == "left") return procedures::Side::left;
+  if (name == "right") return procedures::Side::right;
+  return procedures::Side::counterbalanced;
+}
+
+std::vector<adjust::Trial> page_plan(const json& page, const std::string& subject, int session) {
+  return adjust::plan_trials(study_from_page(page).conditions,
+                             plan_settings_of(page, page_session_seed(page, subject, session)));
+}
 
 runtime::Study study_from_page(const json& page) {
   runtime::Study study;

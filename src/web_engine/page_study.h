@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "adjust/procedure.h"
 #include "runtime/study.h"
 
 namespace countershade::web_engine {
@@ -20,5 +22,13 @@ runtime::Study study_from_page(const nlohmann::json& page);
 // The study seed ("seed", decimal text: it has 64 bits) mixed with a subject and session, as the
 // apps do (runtime::session_seed).
 uint64_t page_session_seed(const nlohmann::json& page, const std::string& subject, int session);
+
+// A side as the page names it ("left", "right"; anything else: counterbalanced).
+procedures::Side side_named(const std::string& name);
+
+// The app's plan of a subject's session for the page's adjustment study: the same trials as
+// `adjust` plans for that subject and session. Throws nlohmann's errors on a missing field.
+std::vector<adjust::Trial> page_plan(const nlohmann::json& page, const std::string& subject,
+                                     int session);
 
 }  // namespace countershade::web_engine

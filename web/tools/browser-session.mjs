@@ -3,6 +3,9 @@
 // The server also takes the study's POSTs to /collect, refusing the first two attempts at every
 // row ($REFUSE to change that), and writes the rows it accepted, in order, to OUT.csv.posted.
 //   node web/tools/browser-session.mjs STUDY_DIR SUBJECT OBSERVER OUT.csv [RELOAD_AFTER_ANSWERS...]
+// STUDY_DIR may instead be the URL of a study that `countershade serve` hosts, with the
+// participant's ?link=…; that server then takes the rows, SUBJECT is left to the link, and
+// OUT.csv.posted is not written.
 // OBSERVER: a number (the adjustment study's simulated:SEED), or a spec the page takes as it is
 // (weibull:ALPHA,BETA,SEED for a forced-choice study).
 
@@ -14,14 +17,16 @@ import { serve } from "./static-server.mjs";
 const [dir, subject, observer, out, ...reloads] = process.argv.slice(2);
 const spec = /^\d+$/.test(observer) ? `simulated:${observer}` : observer;
 const posted = [];
-const server = await serve(dir, (row) => posted.push(row), Number(process.env.REFUSE ?? 2));
+const hosted = /^https?:/.test(dir);
+const server = hosted ? null : await serve(dir, (row) => posted.push(row), Number(process.env.REFUSE ?? 2));
 const browser = await launchChromium();
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
   // $STALL=N: the page holds trial N's first interval once (a forced-choice timing fault).
   if (process.env.STALL) await page.evaluateOnNewDocument((n) => (window.countershadeStallTrial = n), Number(process.env.STALL));
-  const url = `http://127.0.0.1:${server.address().port}/?subject=${subject}&observer=${spec}`;
+  const url = hosted ? `${dir}&observer=${spec}`
+                     : `http://127.0.0.1:${server.address().port}/?subject=${subject}&observer=${spec}`;
   await page.goto(url);
   // Reload after the given numbers of stored answers: the page must resume where it stopped.
   for (const after of reloads.map(Number)) {
@@ -35,8 +40,8 @@ try {
   await page.waitForFunction(() => !window.countershadeSession?.store.postUrl ||
                              window.countershadeSession.store.posted === window.countershadeSession.store.rows.length,
                              { timeout: 300000, polling: 50 });
-  await writeFile(`${out}.posted`, posted.join("\n") + (posted.length ? "\n" : ""));
+  if (!hosted) await writeFile(`${out}.posted`, posted.join("\n") + (posted.length ? "\n" : ""));
 } finally {
   await browser.close();
-  server.close();
+  server?.close();
 }
