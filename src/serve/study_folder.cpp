@@ -24,15 +24,6 @@ const std::vector<std::string> kBrowserColumns = {
     "css_px_per_mm",      "viewing_distance_mm", "stimulus_bits", "output_path"};
 const std::vector<std::string> kTimingColumns = {"interval_ms", "interval_timing"};
 
-std::vector<std::string> posted_columns(StudyKind kind) {
-  std::vector<std::string> columns =
-      kind == StudyKind::adjustment ? response_columns() : forced_choice::choice_columns();
-  columns.insert(columns.end(), kBrowserColumns.begin(), kBrowserColumns.end());
-  if (kind == StudyKind::forced_choice)
-    columns.insert(columns.end(), kTimingColumns.begin(), kTimingColumns.end());
-  return columns;
-}
-
 json parse_study_js(const fs::path& file) {
   if (!fs::is_regular_file(file))
     throw_input_error(file.string(), "missing (is this a folder written by export-web?)");
@@ -58,6 +49,15 @@ bool plain_segment(const std::string& s) {
 }
 
 }  // namespace
+
+std::vector<std::string> posted_columns(StudyKind kind) {
+  std::vector<std::string> columns =
+      kind == StudyKind::adjustment ? response_columns() : forced_choice::choice_columns();
+  columns.insert(columns.end(), kBrowserColumns.begin(), kBrowserColumns.end());
+  if (kind == StudyKind::forced_choice)
+    columns.insert(columns.end(), kTimingColumns.begin(), kTimingColumns.end());
+  return columns;
+}
 
 StudyFolder open_study_folder(const fs::path& dir) {
   std::error_code ec;

@@ -22,6 +22,10 @@ struct StudyFolder {
   std::vector<std::string> columns;  // of every POSTed row, in order
 };
 
+// The columns of the rows a study's page POSTs: the app's, then the browser's (web/store.js), and
+// in a forced-choice study the interval timing's (web/plugin-choice.js).
+std::vector<std::string> posted_columns(StudyKind kind);
+
 // Reads STUDY_DIR/study.js. Throws InputError naming the file and what is wrong.
 StudyFolder open_study_folder(const std::filesystem::path& dir);
 
