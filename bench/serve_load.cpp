@@ -64,9 +64,10 @@ int main(int argc, char** argv) {
       testing::exported_study(dir, "{\"repetitions\": " + std::to_string(repetitions) + "}"));
   const auto db = dir / "study.sqlite";
   const auto links = testing::make_links(folder.root, db, participants);
-  // Paced participants meet the default rate limit; unpaced ones would be held to it.
+  // Paced participants keep to the default rate per token (their claims, all from one address,
+  // need the burst); unpaced ones would be held to it.
   const std::vector<std::string> limits =
-      pace > 0 ? std::vector<std::string>{}
+      pace > 0 ? std::vector<std::string>{"--burst", std::to_string(participants)}
                : std::vector<std::string>{"--rate", "1e6", "--burst", "1e6"};
   testing::ServerProcess server(folder.root, db, limits);
   Latencies latencies;

@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 #include <signal.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <cstdio>
@@ -238,6 +239,25 @@ std::thread stop_on_signals(httplib::Server& server) {
   });
 }
 
+// Binds the socket. Debian's cpp-httplib listens with a backlog of 5 connections, so that when a
+// few hundred participants connect at once, the kernel drops most of their first attempts and
+// each waits a second to try again; listening again on the bound socket raises the backlog.
+int bind_listening_socket(httplib::Server& server, const ServeOptions& options) {
+  int socket = -1;
+  server.set_socket_options([&socket](int s) {
+    httplib::default_socket_options(s);
+    socket = s;
+  });
+  const int port = options.port == 0 ? server.bind_to_any_port(options.bind)
+                   : server.bind_to_port(options.bind, options.port) ? options.port
+                                                                      : -1;
+  if (port < 0)
+    throw_input_error("--port", "cannot listen on " + options.bind + ":" +
+                                    std::to_string(options.port));
+  ::listen(socket, SOMAXCONN);
+  return port;
+}
+
 }  // namespace
 
 void block_stop_signals() {
@@ -258,12 +278,7 @@ void serve_study(const StudyFolder& folder, StudyDatabase& database, const Serve
                               {"Cross-Origin-Resource-Policy", "same-origin"}});
   const int threads = options.threads;
   server.new_task_queue = [threads] { return new httplib::ThreadPool(size_t(threads)); };
-  const int port = options.port == 0
-                       ? server.bind_to_any_port(options.bind)
-                       : (server.bind_to_port(options.bind, options.port) ? options.port : -1);
-  if (port < 0)
-    throw_input_error("--port",
-                      "cannot listen on " + options.bind + ":" + std::to_string(options.port));
+  const int port = bind_listening_socket(server, options);
   std::thread watcher = stop_on_signals(server);
   const bool v6 = options.bind.find(':') != std::string::npos;
   on_listening("http://" + (v6 ? "[" + options.bind + "]" : options.bind) + ":" +
