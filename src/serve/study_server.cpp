@@ -250,10 +250,10 @@ int bind_listening_socket(httplib::Server& server, const ServeOptions& options) 
   });
   const int port = options.port == 0 ? server.bind_to_any_port(options.bind)
                    : server.bind_to_port(options.bind, options.port) ? options.port
-                                                                      : -1;
+                                                                     : -1;
   if (port < 0)
-    throw_input_error("--port", "cannot listen on " + options.bind + ":" +
-                                    std::to_string(options.port));
+    throw_input_error("--port",
+                      "cannot listen on " + options.bind + ":" + std::to_string(options.port));
   ::listen(socket, SOMAXCONN);
   return port;
 }
