@@ -42,7 +42,11 @@ class Connection {
  public:
   // read_only: never writes, even to recover a journal; else creates the file when missing.
   Connection(const std::filesystem::path& file, bool read_only);
-  ~Connection() { sqlite3_close_v2(db_); }
+  ~Connection() { close(); }
+  void close() {
+    sqlite3_close_v2(db_);
+    db_ = nullptr;
+  }
   Connection(const Connection&) = delete;
   Connection& operator=(const Connection&) = delete;
 

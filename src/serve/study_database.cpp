@@ -1,5 +1,9 @@
 #include "serve/study_database.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "core/error.h"
@@ -56,10 +60,23 @@ bool token_taken(sqlite3* db, const std::string& hash) {
       "claim: " + subject + " session " + std::to_string(session) + " belongs to another browser");
 }
 
+// The file, opened and locked for this process alone. flock() locks are apart from the POSIX
+// locks SQLite takes, and the descriptor stays open until the connection is closed, so SQLite's
+// own locks are never released by closing it.
+int lock_database(const std::filesystem::path& file) {
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw_input_error(file.string(), "cannot be opened for writing");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    throw_input_error(file.string(), "another countershade serve holds it");
+  }
+  return fd;
+}
+
 }  // namespace
 
 StudyDatabase::StudyDatabase(const std::filesystem::path& file, const StudyFolder& folder)
-    : file_(file), connection_(file, false) {
+    : file_(file), lock_(lock_database(file)), connection_(file, false) {
   try {
     connection_.execute("PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL;");
     connection_.execute(kSchema);
@@ -78,6 +95,8 @@ StudyDatabase::~StudyDatabase() {
   }
   queued_.notify_all();
   writer_.join();
+  connection_.close();
+  ::close(lock_);
 }
 
 void StudyDatabase::create_or_check(const StudyFolder& folder) {

@@ -39,7 +39,7 @@ enum class RowStored { added, repeated };
 class StudyDatabase {
  public:
   // Opens or creates `file` for the study. Throws InputError when the file holds another study
-  // (another set or export version) or is no database.
+  // (another set or export version), is no database, or another server holds it.
   StudyDatabase(const std::filesystem::path& file, const StudyFolder& folder);
   ~StudyDatabase();
   StudyDatabase(const StudyDatabase&) = delete;
@@ -85,6 +85,7 @@ class StudyDatabase {
                                const std::string& token_hash);
 
   std::filesystem::path file_;
+  int lock_ = -1;  // the file, locked (flock) while this server holds it; closed last
   Connection connection_;
   mutable std::mutex mutex_;  // guards the queue and the caches
   std::condition_variable queued_;

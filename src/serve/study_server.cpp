@@ -244,8 +244,12 @@ std::thread stop_on_signals(httplib::Server& server) {
 // each waits a second to try again; listening again on the bound socket raises the backlog.
 int bind_listening_socket(httplib::Server& server, const ServeOptions& options) {
   int socket = -1;
+  // SO_REUSEADDR alone: a restarted server binds at once beside its predecessor's closing
+  // connections. cpp-httplib's default adds SO_REUSEPORT, which would let a second server share
+  // the port and take half the requests.
   server.set_socket_options([&socket](int s) {
-    httplib::default_socket_options(s);
+    const int yes = 1;
+    ::setsockopt(s, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
     socket = s;
   });
   const int port = options.port == 0 ? server.bind_to_any_port(options.bind)

@@ -121,9 +121,10 @@ TEST(ServeStrangers, EveryStrangerIsRefusedAndNothingIsWritten) {
             413)
       << "oversized body";
 
-  for (const char* path : {"/../secret.txt", "/%2e%2e/secret.txt", "/images/../../secret.txt",
-                           "/%2E%2E%2Fsecret.txt", "//etc/passwd", "/secret.txt",
-                           "/outside/secret.txt", "/images/", "/.", "/study.js%00.png"}) {
+  for (const char* path :
+       {"/../secret.txt", "/%2e%2e/secret.txt", "/images/../../secret.txt", "/%2E%2E%2Fsecret.txt",
+        "//etc/passwd", "http://x/etc/passwd", "/etc/passwd", "/secret.txt", "/outside/secret.txt",
+        "/images/", "/.", "/study.js%00.png"}) {
     const auto [status, body] =
         raw_request(server.port(), std::string("GET ") + path +
                                        " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
@@ -187,7 +188,7 @@ TEST(ServeStrangers, AnOpenStudyGivesEachIdToOneBrowser) {
 }
 
 // A database holds one study: another export (another set) is refused, in one line, and the
-// database is left as it was.
+// database is left as it was. One server holds a database, and a port.
 TEST(ServeStrangers, ADatabaseServesOneStudyOnly) {
   Stranger t;
   testing::TempDir other;
@@ -203,6 +204,18 @@ TEST(ServeStrangers, ADatabaseServesOneStudyOnly) {
   EXPECT_NE(run.output.find("holds the answers of another study"), std::string::npos) << run.output;
   EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1);
   EXPECT_EQ(testing::read_file(t.db), before);
+
+  // Nor do two servers share a database or a port.
+  ServerProcess first(t.folder.root, t.db, {"--open"});
+  const auto same_db = testing::run_cli("serve " + t.folder.root.string() + " --data " +
+                                        t.db.string() + " --open --port 0");
+  EXPECT_EQ(same_db.exit_code, 2);
+  EXPECT_NE(same_db.output.find("another countershade serve holds it"), std::string::npos);
+  const auto same_port = testing::run_cli("serve " + t.folder.root.string() + " --data " +
+                                          (t.dir / "other.sqlite").string() + " --open --port " +
+                                          std::to_string(first.port()));
+  EXPECT_EQ(same_port.exit_code, 2);
+  EXPECT_NE(same_port.output.find("cannot listen"), std::string::npos) << same_port.output;
 }
 
 }  // namespace
