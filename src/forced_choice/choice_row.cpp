@@ -71,6 +71,15 @@ bool is_choice_response(const std::string& text, int n_afc) {
 
 }  // namespace
 
+std::string choice_row_problem(const std::vector<std::string>& row, const ChoiceTrial& t,
+                               const runtime::Study& study, int n_afc) {
+  const std::string mismatch = choice_row_mismatch(row, t, study);
+  if (!mismatch.empty()) return mismatch;
+  if (!is_choice_response(row[kColumnResponse], n_afc))
+    return "response: expected a position from 0 to " + std::to_string(n_afc - 1);
+  return "";
+}
+
 void replay_choice_rows(ChoiceRun& run, const std::vector<std::vector<std::string>>& rows,
                         const runtime::Study& study, int n_afc,
                         const std::function<std::string(size_t)>& where) {
@@ -81,11 +90,8 @@ void replay_choice_rows(ChoiceRun& run, const std::vector<std::vector<std::strin
       throw_input_error(where(r),
                         "expected " + std::to_string(choice_columns().size()) + " fields");
     if (run.finished()) throw_input_error(where(r), "a trial after the session's last one");
-    const std::string mismatch = choice_row_mismatch(row, *run.current(), study);
-    if (!mismatch.empty()) throw_input_error(where(r), mismatch);
-    if (!is_choice_response(row[kColumnResponse], n_afc))
-      throw_input_error(where(r),
-                        "response: expected a position from 0 to " + std::to_string(n_afc - 1));
+    const std::string problem = choice_row_problem(row, *run.current(), study, n_afc);
+    if (!problem.empty()) throw_input_error(where(r), problem);
     run.answer(std::stoi(row[kColumnResponse]));
   }
 }

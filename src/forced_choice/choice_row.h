@@ -38,6 +38,11 @@ std::vector<std::string> choice_row(const runtime::Study& study, const ChoiceCon
                                     int response, bool correct, double rt_s,
                                     const std::string& time_utc);
 
+// Why a recorded row is not an answer to trial `t` (its trial, condition, λ index and target,
+// and a response among the n positions), or "" when it is.
+std::string choice_row_problem(const std::vector<std::string>& row, const ChoiceTrial& t,
+                               const runtime::Study& study, int n_afc);
+
 // Replays recorded rows (no header) into a fresh run, as a resume does: the practice trials are
 // skipped (they are not recorded), and each row must be the trial the run shows next, with a
 // response among the n positions. Throws InputError naming where(i) for row i.

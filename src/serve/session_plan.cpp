@@ -2,7 +2,10 @@
 
 #include <algorithm>
 
+#include "forced_choice/choice_row.h"
 #include "formats/responses.h"
+#include "procedures/choice_block.h"
+#include "runtime/study.h"
 #include "serve/refusal.h"
 #include "web_engine/page_study.h"
 
@@ -24,10 +27,33 @@ bool is_index_below(const std::string& text, size_t size) {
 
 }  // namespace
 
+// The forced-choice session as the page's engine runs it (web_engine's ChoiceSession): the study
+// rebuilt from the page, the block as written, the session's seed; practice trials are not
+// recorded, so they are answered at once.
+struct SessionPlan::Choice {
+  Choice(const json& page, const std::string& subject, int session)
+      : study(web_engine::study_from_page(page)),
+        config(
+            procedures::parse_choice_config(page.at("forced_choice"), "study.js", "forced_choice")),
+        run(study, config,
+            config.seed ? runtime::session_seed(*config.seed, subject, session)
+                        : web_engine::page_session_seed(page, subject, session)) {
+    while (run.in_practice()) run.answer(run.current()->target);
+  }
+  runtime::Study study;
+  procedures::ChoiceConfig config;
+  forced_choice::ChoiceRun run;
+};
+
+SessionPlan::~SessionPlan() = default;
+
 SessionPlan::SessionPlan(const StudyFolder& folder, std::string subject, int session)
     : folder_(folder), subject_(std::move(subject)), session_(session) {
   for (size_t c = 0; c < folder.columns.size(); ++c) column_[folder.columns[c]] = int(c);
-  if (folder.kind != StudyKind::adjustment) return;
+  if (folder.kind != StudyKind::adjustment) {
+    choice_ = std::make_unique<Choice>(folder.page, subject_, session_);
+    return;
+  }
   for (const adjust::Trial& t : web_engine::page_plan(folder.page, subject_, session_)) {
     if (t.practice) continue;
     trials_[std::to_string(t.number)] = {t.condition, std::to_string(t.repetition),
@@ -74,16 +100,26 @@ std::string SessionPlan::check(const std::vector<std::string>& fields) const {
     throw Refusal(403, "another participant's row", "row: not the token's subject and session");
   if (field(fields, adjustment ? "stimulus_set" : "set_sha256") != folder_.set_sha256)
     throw Refusal(403, "another study's row", "row: the stimulus set is not this study's");
-  if (adjustment) return check_adjustment(fields);
-  const auto& conditions = folder_.page.at("conditions");
-  const auto match = std::find_if(conditions.begin(), conditions.end(), [&](const json& c) {
-    return c.at("scene") == field(fields, "scene") && c.at("method") == field(fields, "method") &&
-           c.at("sigma") == field(fields, "sigma");
-  });
-  if (match == conditions.end())
-    not_in_plan("no condition of the study has this scene, method and σ");
-  check_condition(fields, int(match - conditions.begin()));
-  return "";
+  return adjustment ? check_adjustment(fields) : check_choice(fields);
+}
+
+std::string SessionPlan::check_choice(const std::vector<std::string>& fields) const {
+  const auto& trial = choice_->run.current();
+  if (!trial) not_in_plan("a trial after the session's last one");
+  const std::vector<std::string> row(fields.begin(),
+                                     fields.begin() + long(forced_choice::choice_columns().size()));
+  const std::string problem =
+      forced_choice::choice_row_problem(row, *trial, choice_->study, choice_->config.n_afc);
+  if (!problem.empty()) not_in_plan(problem);
+  return field(fields, "trial");
+}
+
+bool SessionPlan::record(const std::vector<std::string>& fields) {
+  ++rows_stored;
+  if (!choice_) return false;
+  if (field(fields, "interval_timing") != "mistimed")
+    choice_->run.answer(std::stoi(field(fields, "response")));
+  return choice_->run.finished();
 }
 
 }  // namespace countershade::serve

@@ -25,7 +25,7 @@ CREATE TABLE IF NOT EXISTS links(token_hash TEXT PRIMARY KEY, subject TEXT NOT N
   session INTEGER NOT NULL, claimed_by TEXT, UNIQUE(subject, session));
 CREATE TABLE IF NOT EXISTS sessions(id INTEGER PRIMARY KEY, token_hash TEXT NOT NULL UNIQUE,
   subject TEXT NOT NULL, session INTEGER NOT NULL, started TEXT NOT NULL,
-  last_activity TEXT NOT NULL, UNIQUE(subject, session));
+  last_activity TEXT NOT NULL, completed INTEGER NOT NULL DEFAULT 0, UNIQUE(subject, session));
 CREATE TABLE IF NOT EXISTS rows(session_id INTEGER NOT NULL REFERENCES sessions(id),
   row_index INTEGER NOT NULL, line TEXT NOT NULL, answer TEXT NOT NULL, received TEXT NOT NULL,
   PRIMARY KEY(session_id, row_index)) WITHOUT ROWID;
@@ -307,6 +307,24 @@ RowStored StudyDatabase::store_row(const SessionRecord& session, long index,
        {},
        {}});
   return stored;
+}
+
+void StudyDatabase::mark_completed(const SessionRecord& session) {
+  run({[&](sqlite3* db) {
+         Statement done(db, "UPDATE sessions SET completed = 1 WHERE id = ?");
+         done.bind(1, session.id).run();
+       },
+       {},
+       {}});
+}
+
+std::vector<std::string> StudyDatabase::lines_of(const SessionRecord& session) const {
+  Connection reader(file_, true);
+  Statement s(reader.get(), "SELECT line FROM rows WHERE session_id = ? ORDER BY row_index");
+  s.bind(1, session.id);
+  std::vector<std::string> lines;
+  while (s.step()) lines.push_back(s.text(0));
+  return lines;
 }
 
 }  // namespace countershade::serve

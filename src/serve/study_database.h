@@ -67,6 +67,11 @@ class StudyDatabase {
   RowStored store_row(const SessionRecord& session, long index, const std::string& line,
                       const std::string& answer);
 
+  // Marks a session completed (a forced-choice session whose run has finished).
+  void mark_completed(const SessionRecord& session);
+  // The rows stored in a session, in order, as CSV lines (read beside the writer).
+  std::vector<std::string> lines_of(const SessionRecord& session) const;
+
   bool has_links() const;
   const std::filesystem::path& file() const { return file_; }
 

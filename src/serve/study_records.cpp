@@ -28,15 +28,14 @@ void read_sessions(sqlite3* db, StudyRecords& records, int64_t expected, double 
               "SELECT subject, session, started, last_activity, "
               "  (SELECT count(*) FROM rows WHERE session_id = id), "
               "  (SELECT count(DISTINCT answer) FROM rows WHERE session_id = id), "
-              "  (julianday('now') - julianday(last_activity)) * 86400.0 > ? "
+              "  (julianday('now') - julianday(last_activity)) * 86400.0 > ?, completed "
               "FROM sessions ORDER BY id");
   s.bind(1, int64_t(abandoned_s));
   while (s.step()) {
     SessionState state{s.text(0),    int(s.integer(1)), "",       s.integer(4),
                        s.integer(5), s.text(2),         s.text(3)};
-    state.state = expected > 0 && state.answers >= expected ? "completed"
-                  : s.integer(6)                            ? "abandoned"
-                                                            : "started";
+    const bool completed = s.integer(7) || (expected > 0 && state.answers >= expected);
+    state.state = completed ? "completed" : s.integer(6) ? "abandoned" : "started";
     records.sessions.push_back(std::move(state));
   }
 }

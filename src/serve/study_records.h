@@ -26,7 +26,8 @@ struct StudyRecords {
 };
 
 // The sessions' states: completed once every answer of the plan is in (`answers_expected`, 0 for
-// a study whose procedure decides its length), abandoned after `abandoned_after_s` seconds
+// a study whose procedures decide its length) or the server marked it so (a forced-choice session
+// whose run finished), abandoned after `abandoned_after_s` seconds
 // without a row, started otherwise. Throws InputError for a file that is no study database.
 StudyRecords read_records(const std::filesystem::path& database, int64_t answers_expected,
                           double abandoned_after_s);

@@ -68,7 +68,7 @@ class StudyServer {
   void claim(const Request& req, Response& res);
   void store(const Request& req, Response& res);
   SessionRecord session_of(const Request& req);
-  std::shared_ptr<const SessionPlan> plan_of(const SessionRecord& session);
+  std::shared_ptr<SessionPlan> plan_of(const SessionRecord& session);
   bool is_admin(const Request& req) const;
   void status(const Request& req, Response& res, bool html);
   // Runs a handler, answering its Refusal (4xx, nothing written) instead of what it would have.
@@ -88,7 +88,7 @@ class StudyServer {
   const ServeOptions& options_;
   RateLimit limit_;
   std::mutex plans_mutex_;
-  std::map<int64_t, std::shared_ptr<const SessionPlan>> plans_;  // by session id
+  std::map<int64_t, std::shared_ptr<SessionPlan>> plans_;  // by session id
   std::string admin_hash_;
   int answers_expected_;
   mutable std::mutex refusals_mutex_;
@@ -159,13 +159,23 @@ SessionRecord StudyServer::session_of(const Request& req) {
   return *session;
 }
 
-std::shared_ptr<const SessionPlan> StudyServer::plan_of(const SessionRecord& session) {
+// The session's plan, made when a server first sees the session, and brought up to the rows
+// stored before (by an earlier run of the server).
+std::shared_ptr<SessionPlan> StudyServer::plan_of(const SessionRecord& session) {
   std::lock_guard lock(plans_mutex_);
   auto& plan = plans_[session.id];
-  if (!plan) plan = std::make_shared<SessionPlan>(folder_, session.subject, session.session);
+  if (plan) return plan;
+  plan = std::make_shared<SessionPlan>(folder_, session.subject, session.session);
+  bool completed = false;
+  for (const std::string& line : database_.lines_of(session))
+    completed = plan->record(parse_csv(line, "stored row").rows.at(0));
+  if (completed) database_.mark_completed(session);
   return plan;
 }
 
+// A new row (the next index) is checked against the plan; a repeat or a gap is left to the
+// database, which answers a repeat 200 and anything else 409. The session's mutex keeps the
+// check, the write and the plan's step together.
 void StudyServer::store(const Request& req, Response& res) {
   const std::string type = req.get_header_value("Content-Type");
   if (type != "text/csv" && type.rfind("text/csv;", 0) != 0)
@@ -174,8 +184,12 @@ void StudyServer::store(const Request& req, Response& res) {
   const long index = row_index_of_key(req.get_header_value("Idempotency-Key"),
                                       page_store_key(folder_, session.subject, session.session));
   const std::vector<std::string> fields = parse_posted_row(req.body, folder_.columns);
-  const std::string answer = plan_of(session)->check(fields);
+  const std::shared_ptr<SessionPlan> plan = plan_of(session);
+  std::lock_guard lock(plan->mutex());
+  const bool next = index == plan->rows_stored;
+  const std::string answer = next ? plan->check(fields) : "";
   const RowStored stored = database_.store_row(session, index, csv_line(fields), answer);
+  if (stored == RowStored::added && plan->record(fields)) database_.mark_completed(session);
   res.status = stored == RowStored::added ? 201 : 200;
   res.set_content(json{{"row", index}, {"stored", stored == RowStored::added}}.dump(),
                   "application/json");

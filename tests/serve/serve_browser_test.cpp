@@ -61,5 +61,65 @@ TEST(ServeBrowser, LinkedParticipantsGiveTheAppsRowsThroughTheServer) {
             testing::read_file(dir / "served-report/results.json"));
 }
 
+// A forced-choice session through the server: the server runs the session's trials alongside the
+// page (checking each row is the trial the page shows next), takes a mistimed interval's row
+// without moving on, and marks the session completed when the run ends. Restarted, it rebuilds
+// the run from the stored rows: a repeat of the last row is acknowledged, and a row after the
+// last trial is refused.
+TEST(ServeBrowser, AForcedChoiceSessionIsFollowedTrialByTrial) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir, "", 96, 72, 0.1, R"("forced_choice": {
+      "n_afc": 2, "layout": "temporal", "interval_frames": 2, "blank_frames": 1,
+      "practice_trials": 1, "max_trials": 6,
+      "procedure": {"type": "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6}},)");
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string())
+                .exit_code,
+            0);
+  const fs::path db = dir / "study.sqlite";
+  const auto links = testing::make_links(dir / "web", db, 1);
+  const fs::path page_csv = dir / "page.csv";
+  {
+    testing::ServerProcess server(dir / "web", db);
+    const auto run = testing::run_program(
+        "bash -c", "'" +
+                       testing::node("web/tools/browser-session.mjs \"" + server.url() +
+                                         "?link=" + links[0].second + "\" P001 weibull:0.5,3,11 " +
+                                         page_csv.string() + " 10",
+                                     "STALL=5") +
+                       "'");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(server.stop(), 0);
+  }
+  const std::string page = testing::read_file(page_csv);
+  EXPECT_NE(page.find(",mistimed"), std::string::npos);
+  ASSERT_EQ(testing::run_cli("serve --data " + db.string() + " --export " + (dir / "out").string())
+                .exit_code,
+            0);
+  EXPECT_EQ(testing::read_file(dir / "out/P001_s01.forced-choice.csv"), page);
+
+  testing::ServerProcess restarted(dir / "web", db);
+  httplib::Client client("127.0.0.1", restarted.port());
+  const auto status = client.Get("/admin/status.json?token=" + restarted.admin_token());
+  ASSERT_TRUE(status);
+  EXPECT_EQ(nlohmann::json::parse(status->body)["states"]["completed"], 1) << status->body;
+  const CsvTable table = parse_csv(page, "page.csv");
+  const std::string header = csv_line(table.rows.front()), last = csv_line(table.rows.back());
+  const long rows = long(table.rows.size()) - 1;
+  const StudyFolder folder = open_study_folder(dir / "web");
+  const std::string key = page_store_key(folder, "P001", 1);
+  const httplib::Headers headers = {
+      {"Authorization", "Bearer " + testing::read_file(page_csv.string() + ".token")},
+      {"Idempotency-Key", key + ":" + std::to_string(rows - 1)}};
+  const auto repeat = client.Post("/api/rows", headers, header + last, "text/csv");
+  ASSERT_TRUE(repeat);
+  EXPECT_EQ(repeat->status, 200) << repeat->body;
+  httplib::Headers after = headers;
+  after.find("Idempotency-Key")->second = key + ":" + std::to_string(rows);
+  const auto extra = client.Post("/api/rows", after, header + last, "text/csv");
+  ASSERT_TRUE(extra);
+  EXPECT_EQ(extra->status, 422) << extra->body;
+  EXPECT_NE(extra->body.find("after the session's last"), std::string::npos) << extra->body;
+}
+
 }  // namespace
 }  // namespace countershade::serve

@@ -4,8 +4,9 @@
 // row ($REFUSE to change that), and writes the rows it accepted, in order, to OUT.csv.posted.
 //   node web/tools/browser-session.mjs STUDY_DIR SUBJECT OBSERVER OUT.csv [RELOAD_AFTER_ANSWERS...]
 // STUDY_DIR may instead be the URL of a study that `countershade serve` hosts, with the
-// participant's ?link=…; that server then takes the rows, SUBJECT is left to the link, and
-// OUT.csv.posted is not written.
+// participant's ?link=…; that server then takes the rows, SUBJECT is left to the link,
+// OUT.csv.posted is not written, and OUT.csv.token holds the token the page claimed its session
+// with (for tests that go on as that participant).
 // OBSERVER: a number (the adjustment study's simulated:SEED), or a spec the page takes as it is
 // (weibull:ALPHA,BETA,SEED for a forced-choice study).
 
@@ -41,6 +42,10 @@ try {
                              window.countershadeSession.store.posted === window.countershadeSession.store.rows.length,
                              { timeout: 300000, polling: 50 });
   if (!hosted) await writeFile(`${out}.posted`, posted.join("\n") + (posted.length ? "\n" : ""));
+  if (hosted) {
+    await writeFile(`${out}.token`, await page.evaluate(() => Object.keys(localStorage)
+      .filter((k) => k.startsWith("countershade-serve:")).map((k) => localStorage.getItem(k)).join("")));
+  }
 } finally {
   await browser.close();
   server?.close();
