@@ -5,9 +5,12 @@
 namespace countershade::serve {
 namespace {
 
-std::map<std::string, int64_t> sessions_by_state(const StudyRecords& records) {
-  std::map<std::string, int64_t> counts = {{"started", 0}, {"completed", 0}, {"abandoned", 0}};
-  for (const SessionState& s : records.sessions) ++counts[s.state];
+// The sessions per state, in the order a session goes through them.
+std::vector<std::pair<std::string, int64_t>> sessions_by_state(const StudyRecords& records) {
+  std::vector<std::pair<std::string, int64_t>> counts = {
+      {"started", 0}, {"completed", 0}, {"abandoned", 0}};
+  for (const SessionState& s : records.sessions)
+    for (auto& [state, count] : counts) count += s.state == state;
   return counts;
 }
 
@@ -33,7 +36,8 @@ std::string status_html(const StudyRecords& records, const RefusalCounts& refusa
       "<!doctype html><html lang=\"en\"><head><meta charset=\"utf-8\">"
       "<meta http-equiv=\"refresh\" content=\"30\"><title>" +
       xml_escape(records.title) +
-      ": status</title><style>body{font-family:sans-serif;margin:2em}td,th{padding:2px 10px;"
+      ": status</title><style>body{font-family:sans-serif;margin:2em}td,th{padding:2px "
+      "10px;white-space:nowrap;"
       "text-align:left}</style></head><body>\n<h1>" +
       xml_escape(records.title) + "</h1>\n<p>Set " + xml_escape(records.set_sha256) +
       ", exported by countershade " + xml_escape(records.app_version) + ".</p>\n<p>";
@@ -67,7 +71,8 @@ nlohmann::json status_json(const StudyRecords& records, const RefusalCounts& ref
           {"answers_per_session", expected},
           {"links", records.links},
           {"links_claimed", records.links_claimed},
-          {"states", sessions_by_state(records)},
+          {"states", nlohmann::json(std::map<std::string, int64_t>(
+                         sessions_by_state(records).begin(), sessions_by_state(records).end()))},
           {"sessions", sessions},
           {"refused", refusals}};
 }

@@ -79,6 +79,8 @@ class StudyServer {
         handler(req, res);
       } catch (const Refusal& refusal) {
         refuse(res, refusal);
+      } catch (const std::exception& e) {  // the server's own failure, never the client's
+        refuse(res, Refusal(500, "server failure", e.what()));
       }
     };
   }
