@@ -37,7 +37,8 @@ void write_links(const ServeArgs& a) {
     throw_input_error(a.links_csv, "exists; links are never overwritten");
   runtime::check_subject_id(a.prefix + "001");
   const serve::StudyFolder folder = serve::open_study_folder(a.study);
-  serve::StudyDatabase database(a.data, folder);
+  // Links can be added while the study runs: the server reads them from the database at claims.
+  serve::StudyDatabase database(a.data, folder, serve::StudyDatabase::Holder::beside_server);
   const std::string base =
       a.url.empty() ? "http://" + a.options.bind + ":" + std::to_string(a.options.port) + "/"
                     : a.url;

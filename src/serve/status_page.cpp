@@ -56,6 +56,8 @@ std::string status_html(const StudyRecords& records, const RefusalCounts& refusa
 
 nlohmann::json status_json(const StudyRecords& records, const RefusalCounts& refusals,
                            int64_t expected) {
+  const auto by_state = sessions_by_state(records);
+  const std::map<std::string, int64_t> states(by_state.begin(), by_state.end());
   nlohmann::json sessions = nlohmann::json::array();
   for (const SessionState& s : records.sessions)
     sessions.push_back({{"subject", s.subject},
@@ -71,8 +73,7 @@ nlohmann::json status_json(const StudyRecords& records, const RefusalCounts& ref
           {"answers_per_session", expected},
           {"links", records.links},
           {"links_claimed", records.links_claimed},
-          {"states", nlohmann::json(std::map<std::string, int64_t>(
-                         sessions_by_state(records).begin(), sessions_by_state(records).end()))},
+          {"states", nlohmann::json(states)},
           {"sessions", sessions},
           {"refused", refusals}};
 }

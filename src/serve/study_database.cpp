@@ -75,8 +75,11 @@ int lock_database(const std::filesystem::path& file) {
 
 }  // namespace
 
-StudyDatabase::StudyDatabase(const std::filesystem::path& file, const StudyFolder& folder)
-    : file_(file), lock_(lock_database(file)), connection_(file, false) {
+StudyDatabase::StudyDatabase(const std::filesystem::path& file, const StudyFolder& folder,
+                             Holder holder)
+    : file_(file),
+      lock_(holder == Holder::server ? lock_database(file) : -1),
+      connection_(file, false) {
   try {
     connection_.execute("PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL;");
     connection_.execute(kSchema);
@@ -96,7 +99,7 @@ StudyDatabase::~StudyDatabase() {
   queued_.notify_all();
   writer_.join();
   connection_.close();
-  ::close(lock_);
+  if (lock_ >= 0) ::close(lock_);
 }
 
 void StudyDatabase::create_or_check(const StudyFolder& folder) {

@@ -38,9 +38,14 @@ enum class RowStored { added, repeated };
 
 class StudyDatabase {
  public:
+  // Who opens the database: the server, which holds it alone, or a command beside it (adding
+  // links), which SQLite's own locking lets write while the server runs.
+  enum class Holder { server, beside_server };
+
   // Opens or creates `file` for the study. Throws InputError when the file holds another study
-  // (another set or export version), is no database, or another server holds it.
-  StudyDatabase(const std::filesystem::path& file, const StudyFolder& folder);
+  // (another set or export version), is no database, or (for a server) another server holds it.
+  StudyDatabase(const std::filesystem::path& file, const StudyFolder& folder,
+                Holder holder = Holder::server);
   ~StudyDatabase();
   StudyDatabase(const StudyDatabase&) = delete;
   StudyDatabase& operator=(const StudyDatabase&) = delete;

@@ -216,6 +216,12 @@ TEST(ServeStrangers, ADatabaseServesOneStudyOnly) {
                                           std::to_string(first.port()));
   EXPECT_EQ(same_port.exit_code, 2);
   EXPECT_NE(same_port.output.find("cannot listen"), std::string::npos) << same_port.output;
+  // Links, though, can be added while it runs, and claimed at once.
+  const auto more = testing::make_links(t.folder.root, t.db, 2);
+  std::mt19937 random(7);
+  httplib::Client client("127.0.0.1", first.port());
+  EXPECT_EQ(t.claim(client, testing::browser_token(random), more.back().second), 200);
+  EXPECT_EQ(more.back().first, "P005");
 }
 
 }  // namespace

@@ -79,7 +79,8 @@ class ServerProcess {
 inline std::vector<std::pair<std::string, std::string>> make_links(const std::filesystem::path& web,
                                                                    const std::filesystem::path& db,
                                                                    int count) {
-  const auto csv = db.string() + ".links.csv";
+  static int calls = 0;  // each call its own file: links are never overwritten
+  const auto csv = db.string() + ".links-" + std::to_string(++calls) + ".csv";
   const auto run = run_cli("serve " + web.string() + " --data " + db.string() + " --links " +
                            std::to_string(count) + " --links-csv " + csv);
   if (run.exit_code != 0) throw std::runtime_error("serve --links failed: " + run.output);
