@@ -34,6 +34,15 @@ void add_sheet_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_observe_command(CLI::App& app);
 void add_predict_command(CLI::App& app);
+// `serve` is a program of its own (countershade-serve beside this one), so that its HTTP and
+// database libraries load only when a study is served: the subcommand here only lists it, and
+// run_serve_program runs that program with the same arguments.
+inline constexpr const char* kServeDescription =
+    "Host an exported study (export-web) and keep every answer in a SQLite database; make "
+    "participant links (--links); export the sessions as CSV files (--export)";
+void add_serve_dispatch(CLI::App& app);
+int run_serve_program(char** argv);
+// What countershade-serve's main adds to its app.
 void add_serve_command(CLI::App& app);
 
 // Sign checks with one short line of message (use these, not CLI::PositiveNumber).

@@ -6,6 +6,7 @@
 #include <exception>
 #include <string>
 
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "core/allocator.h"
 #include "core/error.h"
@@ -31,7 +32,7 @@ void add_commands(CLI::App& app) {
   add_congruence_command(app);
   add_observe_command(app);
   add_predict_command(app);
-  add_serve_command(app);
+  add_serve_dispatch(app);
   add_image_filter_command(app);
   add_flicker_command(app);
   add_sheet_command(app);
@@ -39,11 +40,7 @@ void add_commands(CLI::App& app) {
   reject_non_finite_numbers(app);
 }
 
-// One line on stderr, whatever the message quotes from the user's files.
-void print_error(const char* kind, const std::string& message, const char* suffix = "") {
-  std::fprintf(stderr, "countershade: %s%s%s\n", kind, countershade::one_line(message).c_str(),
-               suffix);
-}
+using countershade::cli::print_error;
 
 // CLI11 reports a mistyped command as "a subcommand is required"; this names it instead. False
 // when `name` is not a command (the line is printed).
@@ -68,21 +65,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   add_commands(app);
   if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) return 2;
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    print_error("error: ", e.what(), " (see --help)");
-    return 2;
-  } catch (const countershade::cli::CommandFailed& e) {
-    print_error("", e.what());
-    return e.status;
-  } catch (const countershade::InputError& e) {
-    print_error("error: ", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    print_error("failure: ", e.what());
-    return 1;
-  }
-  return 0;
+  if (argc > 1 && std::string(argv[1]) == "serve")
+    return countershade::cli::run_serve_program(argv);
+  return countershade::cli::run_command_line(app, argc, argv);
 }

@@ -102,10 +102,7 @@ void run(ServeArgs& a) {
 void add_serve_command(CLI::App& app) {
   auto args = std::make_shared<ServeArgs>();
   serve::ServeOptions& o = args->options;
-  CLI::App* cmd = app.add_subcommand(
-      "serve",
-      "Host an exported study (export-web) and keep every answer in a SQLite database; make "
-      "participant links (--links); export the sessions as CSV files (--export)");
+  CLI::App* cmd = app.add_subcommand("serve", kServeDescription);
   cmd->add_option("study", args->study, "The folder export-web wrote")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--data", args->data, "The study's SQLite database (created when missing)")

@@ -1,0 +1,36 @@
+#include "cli/command_line.h"
+
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/one_line.h"
+
+namespace countershade::cli {
+
+void print_error(const char* kind, const std::string& message, const char* suffix) {
+  std::fprintf(stderr, "countershade: %s%s%s\n", kind, one_line(message).c_str(), suffix);
+}
+
+int run_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    print_error("error: ", e.what(), " (see --help)");
+    return 2;
+  } catch (const CommandFailed& e) {
+    print_error("", e.what());
+    return e.status;
+  } catch (const InputError& e) {
+    print_error("error: ", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    print_error("failure: ", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace countershade::cli
