@@ -1,7 +1,9 @@
-// `countershade serve` end to end: three participants in headless Chromium on the real page, each
-// by their link, one reloaded twice on the way. The export holds the rows that `adjust` writes for
-// the same subjects and observers, apart from the clock's and the browser's columns, and
-// `analyze` gives the same results.json.
+// `countershade serve` end to end, and the browser's parity with the app: three participants in
+// headless Chromium on the real page, each by their link, one reloaded twice on the way, the third
+// a model observer answering from the prediction the page was exported with. The export holds the
+// rows that the app writes for the same subjects and observers, apart from the clock's and the
+// browser's columns, and `analyze` gives the same results.json. A forced-choice session is
+// followed trial by trial.
 
 #include <gtest/gtest.h>
 
@@ -15,19 +17,26 @@ namespace fs = std::filesystem;
 
 TEST(ServeBrowser, LinkedParticipantsGiveTheAppsRowsThroughTheServer) {
   testing::TempDir dir;
-  const fs::path web = testing::exported_study(dir);
-  const fs::path manifest = dir / "set/manifest.json";
+  const fs::path manifest = testing::make_tiny_set(dir);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
+                             " --model-ppd 40")
+                .exit_code,
+            0);
+  const fs::path web = dir / "web";
   const fs::path db = dir / "study.sqlite";
   const auto links = testing::make_links(web, db, 3);
   testing::ServerProcess server(web, db);
   fs::create_directories(dir / "browser");
   std::string app_csvs, export_csvs;
+  // (the app's observer, the page's): two simulated observers and a model observer at 40 px/°.
+  const std::pair<std::string, std::string> observers[] = {
+      {"1", "1"}, {"2", "2"}, {"model:3:40", "model:3"}};
   for (int p = 0; p < 3; ++p) {
     const auto& [subject, link] = links[size_t(p)];
-    const std::string seed = std::to_string(p + 1);
-    testing::browser_session(server.url() + "?link=" + link, dir / "browser", subject, seed,
+    const auto& [app_spec, page_spec] = observers[p];
+    testing::browser_session(server.url() + "?link=" + link, dir / "browser", subject, page_spec,
                              p == 1 ? "4 9" : "");
-    testing::app_session(manifest, dir / "app", subject, seed);
+    testing::app_session(manifest, dir / "app", subject, app_spec);
     app_csvs += " " + (dir / "app" / (subject + "_s01.csv")).string();
     export_csvs += " " + (dir / "export" / (subject + "_s01.csv")).string();
   }
@@ -53,12 +62,14 @@ TEST(ServeBrowser, LinkedParticipantsGiveTheAppsRowsThroughTheServer) {
                              " --no-figures")
                 .exit_code,
             0);
-  ASSERT_EQ(testing::run_cli("analyze" + export_csvs + " -o " + (dir / "served-report").string() +
-                             " --no-figures")
-                .exit_code,
-            0);
+  const auto served =
+      testing::run_cli("analyze" + export_csvs + " -o " + (dir / "served-report").string());
+  ASSERT_EQ(served.exit_code, 0) << served.output;
   EXPECT_EQ(testing::read_file(dir / "app-report/results.json"),
             testing::read_file(dir / "served-report/results.json"));
+  EXPECT_NE(
+      testing::read_file(dir / "served-report/report.html").find("36 answers came from a browser"),
+      std::string::npos);
 }
 
 // A forced-choice session through the server: the server runs the session's trials alongside the
@@ -70,8 +81,8 @@ TEST(ServeBrowser, AForcedChoiceSessionIsFollowedTrialByTrial) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir, "", 96, 72, 0.1, R"("forced_choice": {
       "n_afc": 2, "layout": "temporal", "interval_frames": 2, "blank_frames": 1,
-      "practice_trials": 1, "max_trials": 6,
-      "procedure": {"type": "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 6}},)");
+      "practice_trials": 1, "max_trials": 3,
+      "procedure": {"type": "staircase", "startVal": 1, "stepSizes": [4, 2], "nTrials": 3}},)");
   ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string())
                 .exit_code,
             0);
@@ -84,8 +95,8 @@ TEST(ServeBrowser, AForcedChoiceSessionIsFollowedTrialByTrial) {
         "bash -c", "'" +
                        testing::node("web/tools/browser-session.mjs \"" + server.url() +
                                          "?link=" + links[0].second + "\" P001 weibull:0.5,3,11 " +
-                                         page_csv.string() + " 10",
-                                     "STALL=5") +
+                                         page_csv.string() + " 5",
+                                     "STALL=3") +
                        "'");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_EQ(server.stop(), 0);

@@ -116,47 +116,6 @@ TEST(WebExport, BothStimuliArePixelExactAtEveryDeviceScaleFactor) {
   }
 }
 
-// A simulated observer answers in the browser exactly as in the app: the same rows apart from the
-// clock's columns and the browser's, and so the same results.json. The third participant is a
-// model observer, answering from the prediction the page was exported with (at 40 pixels per
-// degree) as the app's does from its own.
-TEST(WebExport, ABrowserSessionGivesTheAppsRowsAndTheSameAnalysis) {
-  testing::TempDir dir;
-  const fs::path manifest = testing::make_tiny_set(dir);
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
-                             " --post-url /collect --model-ppd 40")
-                .exit_code,
-            0);
-  fs::create_directories(dir / "browser");
-  std::string app_csvs, browser_csvs;
-  const std::pair<std::string, std::string> observers[] = {
-      {"1", "1"}, {"2", "2"}, {"model:3:40", "model:3"}};
-  for (int s = 1; s <= 3; ++s) {
-    const std::string subject = "P0" + std::to_string(s);
-    const auto& [app_spec, page_spec] = observers[s - 1];
-    app_session(manifest, dir / "app", subject, app_spec);
-    const fs::path csv = browser_session(dir / "web", dir / "browser", subject, page_spec);
-    const auto app_rows = comparable_rows(dir / "app" / (subject + "_s01.csv"));
-    EXPECT_EQ(app_rows.size(), 13u);
-    EXPECT_EQ(comparable_rows(csv), app_rows) << subject;
-    EXPECT_EQ(testing::read_file(csv.string() + ".posted").size() > 0, true);
-    app_csvs += " " + (dir / "app" / (subject + "_s01.csv")).string();
-    browser_csvs += " " + csv.string();
-  }
-  ASSERT_EQ(testing::run_cli("analyze" + app_csvs + " -o " + (dir / "app-report").string() +
-                             " --no-figures")
-                .exit_code,
-            0);
-  const auto browser =
-      testing::run_cli("analyze" + browser_csvs + " -o " + (dir / "browser-report").string());
-  ASSERT_EQ(browser.exit_code, 0) << browser.output;
-  EXPECT_EQ(testing::read_file(dir / "app-report/results.json"),
-            testing::read_file(dir / "browser-report/results.json"));
-  EXPECT_NE(
-      testing::read_file(dir / "browser-report/report.html").find("36 answers came from a browser"),
-      std::string::npos);
-}
-
 // Ten reloads at random moments lose and repeat no answer, and a server that refuses the first two
 // POSTs of every row still receives every row exactly once, in order.
 TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
