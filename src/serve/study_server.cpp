@@ -8,13 +8,13 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
-#include <regex>
 #include <thread>
 
 #include "core/error.h"
 #include "core/file_bytes.h"
 #include "core/one_line.h"
 #include "formats/responses.h"
+#include "runtime/study.h"
 #include "serve/posted_row.h"
 #include "serve/rate_limit.h"
 #include "serve/refusal.h"
@@ -40,8 +40,15 @@ constexpr const char* kContentSecurityPolicy =
 // The header a refusal carries from the handler to the error handler, which logs and counts it.
 constexpr const char* kRefusalHeader = "X-Countershade-Refusal";
 
-// Subject ids as the page takes them (web/main.js), and so as file names.
-const std::regex kSubject("[A-Za-z0-9_-]{1,64}");
+// A subject id as the apps take one (it becomes a file name).
+bool is_subject_id(const std::string& subject) {
+  try {
+    runtime::check_subject_id(subject);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
 
 std::string bearer_token(const Request& req) {
   const std::string value = req.get_header_value("Authorization");
@@ -145,7 +152,7 @@ void StudyServer::claim(const Request& req, Response& res) {
       throw Refusal(403, "no link", "claim: this study takes participants by link");
     const std::string subject = body.value("subject", "");
     const int number = body.value("session", 1);
-    if (!std::regex_match(subject, kSubject) || number < 1 || number > 99)
+    if (!is_subject_id(subject) || number < 1 || number > 99)
       throw Refusal(400, "malformed claim", "claim: a subject id and a session from 1 to 99");
     session = database_.open_session(subject, number, token_hash(token));
   }
