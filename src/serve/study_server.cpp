@@ -150,11 +150,14 @@ void StudyServer::claim(const Request& req, Response& res) {
   } else {
     if (!options_.open)
       throw Refusal(403, "no link", "claim: this study takes participants by link");
-    const std::string subject = body.value("subject", "");
-    const int number = body.value("session", 1);
+    // A field of another type is a malformed claim, not the server's failure.
+    const json subject_field = body.value("subject", json()),
+               number_field = body.value("session", json(1));
+    const std::string subject = subject_field.is_string() ? subject_field.get<std::string>() : "";
+    const int64_t number = number_field.is_number_integer() ? number_field.get<int64_t>() : 0;
     if (!is_subject_id(subject) || number < 1 || number > 99)
       throw Refusal(400, "malformed claim", "claim: a subject id and a session from 1 to 99");
-    session = database_.open_session(subject, number, token_hash(token));
+    session = database_.open_session(subject, int(number), token_hash(token));
   }
   res.set_content(json{{"subject", session.subject}, {"session", session.session}}.dump(),
                   "application/json");

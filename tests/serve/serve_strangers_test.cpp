@@ -180,6 +180,9 @@ TEST(ServeStrangers, AnOpenStudyGivesEachIdToOneBrowser) {
   EXPECT_EQ(claim(open.port(), t.token_b, R"({"subject": "Q2", "session": 100})"), 400);
   EXPECT_EQ(claim(open.port(), "not-a-token", R"({"subject": "Q2", "session": 1})"), 401);
   EXPECT_EQ(claim(open.port(), t.token_b, "[1, 2"), 400);
+  EXPECT_EQ(claim(open.port(), t.token_b, R"({"subject": 5, "session": "1"})"), 400);
+  EXPECT_EQ(claim(open.port(), t.token_b, R"({"subject": "Q2", "session": 1e12})"), 400);
+  EXPECT_EQ(claim(open.port(), t.token_b, R"({"subject": "Q2", "session": 4294967297})"), 400);
   EXPECT_EQ(claim(open.port(), t.token_b, R"({"subject": "Q2", "session": 2})"), 200);
   const auto status = httplib::Client("127.0.0.1", open.port())
                           .Get("/admin/status.json?token=" + open.admin_token());
