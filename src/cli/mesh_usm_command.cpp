@@ -31,6 +31,7 @@ struct MeshUsmArgs {
   std::optional<int> iterations;
   bool no_adapt = false;
   std::string smoothing = "chebyshev";
+  std::string ply_format = "binary";
 };
 
 void check_arguments(const MeshUsmArgs& args) {
@@ -93,7 +94,8 @@ void run(const MeshUsmArgs& args) {
   const size_t clipped = apply_contrast(colors, lab, sc, args.lambda);
   mesh.set_colors(colors);
   progress.update(kComposed);
-  mesh.write(fs::path(args.output));
+  mesh.write(fs::path(args.output),
+             args.ply_format == "ascii" ? PlyEncoding::ascii : PlyEncoding::binary);
   const int most = *std::max_element(sc.iterations.begin(), sc.iterations.end());
   progress.finish("wrote " + args.output + " (" + std::to_string(colors.size()) + " vertices, " +
                   std::to_string(sc.components.count) + " components, up to " +
@@ -119,6 +121,11 @@ void add_mesh_usm_command(CLI::App& app) {
                   "chebyshev: the n 1-ring steps in O(√n) products, within 1e-7 of the range; "
                   "iterate: one product per step")
       ->check(CLI::IsMember({"chebyshev", "iterate"}))
+      ->capture_default_str();
+  cmd->add_option("--ply-format", args->ply_format,
+                  "binary: little-endian, about half the size; ascii: text, each float in the "
+                  "fewest digits that read back to it")
+      ->check(CLI::IsMember({"binary", "ascii"}))
       ->capture_default_str();
   cmd->callback([args] { run(*args); });
   cmd->footer(

@@ -13,9 +13,12 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "mesh/fan_check.h"
 #include "mesh/mesh_file_check.h"
+#include "mesh/obj_reader.h"
 #include "mesh/off_reader.h"
 #include "mesh/open_mesh_soup.h"
+#include "mesh/ply_check.h"
 #include "mesh/ply_reader.h"
 
 namespace countershade {
@@ -88,24 +91,23 @@ size_t add_polygons(const PolygonSoup& soup, OMesh& om, OpenMesh::IO::Options& o
   return add_soup_to_open_mesh(soup, om);
 }
 
-// The file read into `om`, by countershade's OFF reader, its PLY reader (for the PLY files it
-// reads) or by OpenMesh; returns OpenMesh's error
-// output and, for OBJ and OFF, the number of triangles the file describes (else 0).
+// The file as countershade's own readers read it: OFF always, PLY when its reader takes the file
+// (after the header's check, which keeps a forged count from allocating); else none.
+std::optional<PolygonSoup> read_soup(const std::filesystem::path& path, const std::string& ext) {
+  if (ext == ".off") return read_off(path);
+  if (ext != ".ply") return std::nullopt;
+  check_ply(path, PlyCheck::header);
+  return read_ply_soup(path);
+}
+
+// The file (or the soup read from it) read into `om` by OpenMesh; returns OpenMesh's error output
+// and, for a soup and for OBJ, the number of triangles the file describes (else 0).
 std::string read_into_open_mesh(const std::filesystem::path& path, const std::string& ext,
-                                OMesh& om, OpenMesh::IO::Options& options,
-                                size_t& expected_triangles, std::optional<PolygonSoup>* ply_soup) {
-  if (ext == ".off") {
-    const PolygonSoup soup = read_off(path);
-    return capture_open_mesh_errors([&] { expected_triangles = add_polygons(soup, om, options); });
-  }
+                                const PolygonSoup* soup, OMesh& om, OpenMesh::IO::Options& options,
+                                size_t& expected_triangles) {
+  if (soup)
+    return capture_open_mesh_errors([&] { expected_triangles = add_polygons(*soup, om, options); });
   expected_triangles = check_mesh_file_structure(path, ext);
-  if (ext == ".ply")
-    if (auto soup = read_ply_soup(path)) {
-      std::string log =
-          capture_open_mesh_errors([&] { expected_triangles = add_polygons(*soup, om, options); });
-      if (ply_soup) *ply_soup = std::move(soup);
-      return log;
-    }
   return capture_open_mesh_errors([&] {
     if (!OpenMesh::IO::read_mesh(om, path.string(), options))
       throw_input_error(path.string(), "cannot read mesh (malformed or unsupported file)");
@@ -145,10 +147,26 @@ TriangleMesh to_triangle_mesh(OMesh& om, const OpenMesh::IO::Options& options) {
   return mesh;
 }
 
-}  // namespace
+// The soup's polygons as fans from their first corner and its colours through bytes, as OpenMesh
+// adds them.
+TriangleMesh triangulated(const PolygonSoup& soup) {
+  TriangleMesh mesh;
+  mesh.positions = soup.positions;
+  mesh.vertex_colors.reserve(soup.colours.size());
+  for (const glm::vec3& c : soup.colours)
+    mesh.vertex_colors.push_back(glm::vec3(colour_bytes(c)) / 255.0f);
+  mesh.triangles.reserve(soup.corners.size() - 2 * soup.face_count());
+  for (size_t f = 0; f < soup.face_count(); ++f) {
+    const auto face = soup.face(f);
+    for (size_t k = 1; k + 1 < face.size(); ++k)
+      mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
+  }
+  return mesh;
+}
 
-TriangleMesh load_mesh(const std::filesystem::path& path, std::optional<PolygonSoup>* ply_soup) {
-  const std::string ext = check_mesh_file(path);
+// The mesh as OpenMesh builds it, refusing the faces it cannot add.
+TriangleMesh load_through_open_mesh(const std::filesystem::path& path, const std::string& ext,
+                                    const PolygonSoup* soup) {
   OMesh om;
   om.request_vertex_colors();
   om.request_vertex_texcoords2D();
@@ -157,16 +175,31 @@ TriangleMesh load_mesh(const std::filesystem::path& path, std::optional<PolygonS
                                   OpenMesh::IO::Options::VertexTexCoord |
                                   OpenMesh::IO::Options::FaceTexCoord;
   size_t expected_triangles = 0;
-  const std::string log = read_into_open_mesh(path, ext, om, options, expected_triangles, ply_soup);
+  const std::string log = read_into_open_mesh(path, ext, soup, om, options, expected_triangles);
   if (log.find("complex") != std::string::npos || log.find("non-manifold") != std::string::npos ||
       log.find("failed") != std::string::npos ||
       (expected_triangles > 0 && om.n_faces() < expected_triangles))
     throw_input_error(
         path.string(),
         "mesh is non-manifold: some faces could not be added (complex edge or vertex)");
-  TriangleMesh mesh = to_triangle_mesh(om, options);
-  validate_mesh(mesh, path.string());
-  return mesh;
+  return to_triangle_mesh(om, options);
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::filesystem::path& path, std::optional<PolygonSoup>* soup_out) {
+  const std::string ext = check_mesh_file(path);
+  std::optional<PolygonSoup> soup = read_soup(path, ext);
+  std::optional<TriangleMesh> mesh = soup            ? triangulated(*soup)
+                                     : ext == ".obj" ? read_obj(path)
+                                                     : std::nullopt;
+  // A surface whose every vertex has one fan needs no half-edge structure to vouch for it: OpenMesh
+  // would add every face and give these triangles (tests/mesh/fan_check_test.cpp).
+  if (!mesh || !forms_one_fan_at_every_vertex(mesh->vertex_count(), mesh->triangles))
+    mesh = load_through_open_mesh(path, ext, soup ? &*soup : nullptr);
+  validate_mesh(*mesh, path.string());
+  if (soup_out) *soup_out = std::move(soup);
+  return std::move(*mesh);
 }
 
 }  // namespace countershade

@@ -1,5 +1,7 @@
 #pragma once
-// Loading meshes (OBJ, PLY, OFF, STL) through OpenMesh, with validation. Polygons are triangulated.
+// Loading meshes (OBJ, PLY, OFF, STL), with validation. Polygons are triangulated. OFF and the
+// common OBJ and PLY files are read by countershade's own readers and, when they are manifold
+// surfaces, never reach OpenMesh; the rest is read or checked by OpenMesh.
 
 #include <filesystem>
 #include <optional>
@@ -13,11 +15,11 @@ namespace countershade {
 // them. Normals are left empty: the caller computes them with its crease angle.
 // Throws InputError naming the file for: unreadable files, no faces, NaN/inf coordinates,
 // face indices out of range, faces the reader had to drop (non-manifold), degenerate triangles.
-// `ply_soup`, when given, receives the vertices and polygons of a PLY file that countershade's own
-// reader read (mesh/ply_reader.h), so that a caller needing them as listed does not read the file
-// again.
+// `soup`, when given, receives the vertices and polygons of an OFF or PLY file that countershade's
+// own readers read (mesh/off_reader.h, mesh/ply_reader.h), so that a caller needing them as listed
+// does not read the file again.
 TriangleMesh load_mesh(const std::filesystem::path& path,
-                       std::optional<PolygonSoup>* ply_soup = nullptr);
+                       std::optional<PolygonSoup>* soup = nullptr);
 
 // Checks a mesh in memory with the same rules; `where` prefixes the messages.
 void validate_mesh(const TriangleMesh& mesh, const std::string& where);

@@ -23,8 +23,8 @@ size_t add_soup_to_open_mesh(const PolygonSoup& soup, Mesh& mesh) {
     const glm::vec3& p = soup.positions[v];
     const auto vh = mesh.add_vertex(typename Mesh::Point(p.x, p.y, p.z));
     if (soup.colours.empty()) continue;
-    const glm::vec3 c = soup.colours[v] * 255.0f + 0.5f;
-    mesh.set_color(vh, typename Mesh::Color(uint8_t(c.x), uint8_t(c.y), uint8_t(c.z)));
+    const glm::u8vec3 c = colour_bytes(soup.colours[v]);
+    mesh.set_color(vh, typename Mesh::Color(c.x, c.y, c.z));
   }
   size_t triangles = 0;
   std::vector<OpenMesh::VertexHandle> corners;

@@ -150,19 +150,21 @@ void check_ply_ascii_body(std::istream& in, const PlyHeader& header, const std::
 }
 
 // After end_header: the body must be able to hold the declared elements (one byte each at least).
-void check_ply_body(std::ifstream& in, const std::filesystem::path& path, const PlyHeader& header) {
+void check_ply_body(std::ifstream& in, const std::filesystem::path& path, const PlyHeader& header,
+                    PlyCheck check) {
   const std::string file = path.string();
   if (header.format.empty()) throw_input_error(file, "PLY header has no format line");
   const auto body = std::filesystem::file_size(path) - std::uintmax_t(in.tellg());
   if (header.values > body)
     throw_input_error(file, "PLY header declares " + std::to_string(header.values) +
                                 " elements but only " + std::to_string(body) + " bytes follow it");
-  if (header.format == "ascii") check_ply_ascii_body(in, header, file);
+  if (header.format == "ascii" && check == PlyCheck::header_and_body)
+    check_ply_ascii_body(in, header, file);
 }
 
 }  // namespace
 
-void check_ply(const std::filesystem::path& path) {
+void check_ply(const std::filesystem::path& path, PlyCheck check) {
   constexpr std::streamoff kMaxHeader = 1 << 20;
   std::ifstream in(path, std::ios::binary);
   const std::string file = path.string();
@@ -173,7 +175,7 @@ void check_ply(const std::filesystem::path& path) {
     if (number == 1) {
       if (line != "ply") throw_input_error(file, "not a PLY file (the first line is not 'ply')");
     } else if (line == "end_header") {
-      return check_ply_body(in, path, header);
+      return check_ply_body(in, path, header, check);
     } else {
       check_ply_header_line(line, split_words(line), file + ": line " + std::to_string(number),
                             header);

@@ -5,12 +5,12 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/error.h"
+#include "core/mapped_file.h"
 #include "mesh/mesh_text.h"
 
 namespace countershade {
@@ -108,14 +108,14 @@ bool complete(const Header& h) {
          h.index_type.bytes != 0;
 }
 
-std::optional<Header> read_header(const std::string& bytes) {
+std::optional<Header> read_header(std::string_view bytes) {
   Header h;
   std::string element;
   size_t at = 0;
   for (bool first = true;; first = false) {
     const size_t end = bytes.find('\n', at);
     if (end == std::string::npos) return std::nullopt;
-    std::string line = bytes.substr(at, end - at);
+    std::string line(bytes.substr(at, end - at));
     at = end + 1;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (first) continue;  // "ply" (checked before)
@@ -129,7 +129,7 @@ std::optional<Header> read_header(const std::string& bytes) {
 // The values of a body, one at a time, as doubles (exact for every PLY integer and for floats).
 class BinaryValues {
  public:
-  BinaryValues(const std::string& bytes, size_t at, bool swap)
+  BinaryValues(std::string_view bytes, size_t at, bool swap)
       : data_(bytes.data()), size_(bytes.size()), at_(at), swap_(swap) {}
 
   // False when the file ends first.
@@ -170,7 +170,7 @@ class BinaryValues {
 // as OpenMesh reads it (and a double as a double).
 class AsciiValues {
  public:
-  AsciiValues(const std::string& bytes, size_t at)
+  AsciiValues(std::string_view bytes, size_t at)
       : p_(bytes.data() + at), end_(bytes.data() + bytes.size()) {}
 
   // False when the file ends first or the word is not a number of the type (then OpenMesh reads
@@ -235,19 +235,11 @@ std::optional<PolygonSoup> read_body(const Header& h, Values values, const std::
   return soup;
 }
 
-// The whole file in one read (a string stream copies it twice).
-std::string whole_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes(std::filesystem::file_size(path), '\0');
-  if (!in.read(bytes.data(), std::streamsize(bytes.size())))
-    throw_input_error(path.string(), "cannot read");
-  return bytes;
-}
-
 }  // namespace
 
 std::optional<PolygonSoup> read_ply_soup(const std::filesystem::path& path) {
-  const std::string bytes = whole_file(path);
+  const MappedFile mapped(path);
+  const std::string_view bytes = mapped.bytes();
   const auto header = read_header(bytes);
   if (!header) return std::nullopt;
   const std::string file = path.string();

@@ -3,6 +3,8 @@
 // countershade's own readers (OFF, and the common PLY files) produce.
 
 #include <cstddef>
+#include <cstdint>
+#include <glm/gtc/type_precision.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -28,5 +30,12 @@ struct PolygonSoup {
     face_ends.push_back(corners.size());
   }
 };
+
+// A colour in [0, 1] as the byte per channel a mesh stores (rounded to nearest), as OpenMesh
+// stores the colours its readers read.
+inline glm::u8vec3 colour_bytes(const glm::vec3& colour) {
+  const glm::vec3 c = colour * 255.0f + 0.5f;
+  return {uint8_t(c.x), uint8_t(c.y), uint8_t(c.z)};
+}
 
 }  // namespace countershade

@@ -154,10 +154,11 @@ std::vector<double> SurfaceGraph::to_vertices(const std::vector<double>& per_poi
   return out;
 }
 
-std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(
-    const std::vector<std::vector<uint32_t>>& polygons) {
+std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(const PolygonSoup& polygons) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
-  for (const auto& p : polygons) {
+  edges.reserve(2 * polygons.corners.size());
+  for (size_t f = 0; f < polygons.face_count(); ++f) {
+    const auto p = polygons.face(f);
     for (size_t i = 0; i < p.size(); ++i) edges.emplace_back(p[i], p[(i + 1) % p.size()]);
     for (size_t i = 2; i + 1 < p.size(); ++i) edges.emplace_back(p[0], p[i]);
   }

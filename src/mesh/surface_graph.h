@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mesh/adjacency.h"
+#include "mesh/polygon_soup.h"
 
 namespace countershade {
 
@@ -40,9 +41,8 @@ SurfaceGraph surface_graph(const std::vector<glm::vec3>& positions,
 // scaled mesh keeps its graph, not its lengths).
 void measure_edges(SurfaceGraph& graph, const std::vector<glm::vec3>& positions);
 
-// The edges of polygons (vertex lists) after fan triangulation from their first vertex: the
-// polygon's sides and its diagonals (v0, v_i), as a triangulated mesh connects them.
-std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(
-    const std::vector<std::vector<uint32_t>>& polygons);
+// The edges of a soup's polygons after fan triangulation from their first vertex: each polygon's
+// sides and its diagonals (v0, v_i), as a triangulated mesh connects them.
+std::vector<std::pair<uint32_t, uint32_t>> triangulated_edges(const PolygonSoup& polygons);
 
 }  // namespace countershade

@@ -60,6 +60,17 @@ TEST(MeshUsmCli, EnhancesColoursAndKeepsEverythingElse) {
   EXPECT_GT(darker, 10);
   EXPECT_GT(lighter, 10);
 
+  // The same mesh as text, on request.
+  const auto text = dir / "out-ascii.ply";
+  r = run_cli("mesh-usm " + in.string() + " -o " + text.string() +
+              " --lambda 1.5 --sigma 0.3 --ply-format ascii");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(testing::read_file(text).rfind("ply\nformat ascii 1.0\n", 0), 0u);
+  const TriangleMesh as_text = load_mesh(text);
+  EXPECT_EQ(as_text.positions, after.positions);
+  EXPECT_EQ(as_text.triangles, after.triangles);
+  EXPECT_EQ(as_text.vertex_colors, after.vertex_colors);
+
   // λ = 0 keeps every colour exactly.
   r = run_cli("mesh-usm " + in.string() + " -o " + out.string() + " --lambda 0 --iterations 5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
