@@ -1,10 +1,12 @@
-// Ray throughput of the Embree renderer on the bunny scene at 1024×768.
+// Ray throughput of the Embree renderer on the bunny scene at 1024×768, and loading scenes.
 //   build/bin/countershade_bench --benchmark_filter=Rays
+//   build/bin/countershade_bench --benchmark_filter=LoadScene
 
 #include <benchmark/benchmark.h>
 
 #include <glm/geometric.hpp>
 
+#include "core/parallel.h"
 #include "core/random.h"
 #include "render/ray_tracer.h"
 #include "render/renderer.h"
@@ -102,6 +104,23 @@ void BM_BuildBvh(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_BuildBvh)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Loading a scene with its surface graphs (as usm3d loads it) on 1 or 2 threads: the objects' mesh
+// files load in parallel, and each graph is built while the next object is read.
+void BM_LoadScene(benchmark::State& state) {
+  const char* const names[] = {"bunny-sky", "igea-sky", "clutter"};
+  const std::string name = names[state.range(0)];
+  const std::string file =
+      std::string(COUNTERSHADE_SOURCE_DIR) + "/experiments/scenes/" + name + ".json";
+  for (auto _ : state)
+    run_with_threads(int(state.range(1)),
+                     [&] { benchmark::DoNotOptimize(load_scene(file, true).objects.size()); });
+  state.SetLabel(name + ", " + std::to_string(state.range(1)) + " thread(s)");
+}
+BENCHMARK(BM_LoadScene)
+    ->ArgsProduct({{0, 1, 2}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace countershade

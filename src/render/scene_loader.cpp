@@ -21,7 +21,7 @@
 #include "core/json_reader.h"
 #include "core/number_format.h"
 #include "core/parallel.h"
-#include "mesh/mesh_io.h"
+#include "mesh/mesh_files.h"
 #include "mesh/primitives.h"
 #include "mesh/refine.h"
 #include "render/procedural_texture.h"
@@ -73,9 +73,21 @@ class SceneLoader {
     return p.is_absolute() ? p : base_ / p;
   }
 
-  // Reads the objects. Each one's surface graph (when asked for) is built on another core while
-  // the next objects are read: most of a load is reading meshes, one at a time.
+  // The mesh files the objects name (where "mesh" is a path at all: object() reports the rest).
+  std::vector<fs::path> mesh_files(const std::vector<JsonObject>& list) const {
+    std::vector<fs::path> files;
+    for (const JsonObject& o : list) {
+      if (!o.has("mesh") || !o.raw("mesh").is_string()) continue;
+      const fs::path p = o.raw("mesh").get<std::string>();
+      if (!p.empty()) files.push_back(p.is_absolute() ? p : base_ / p);
+    }
+    return files;
+  }
+
+  // Reads the objects, their mesh files loaded on all cores first. Each one's surface graph (when
+  // asked for) is built on another core while the next objects are read.
   void objects(const std::vector<JsonObject>& list, Scene& scene) {
+    meshes_ = MeshFiles(mesh_files(list));
     scene.objects.reserve(list.size());  // the builds hold on to the meshes
     std::vector<SurfaceGraph> graphs(list.size());
     tbb::task_group builds;
@@ -404,7 +416,7 @@ class SceneLoader {
     if (has_mesh) {
       fs::path file = resolve(o, "mesh");
       try {
-        obj.mesh = load_mesh(file);
+        obj.mesh = meshes_.take(file);
       } catch (const InputError& e) {
         o.fail("mesh", e.what());
       }
@@ -545,6 +557,7 @@ class SceneLoader {
   fs::path path_, base_;
   bool surface_graphs_;
   int object_count_ = 0;
+  MeshFiles meshes_;
   std::vector<std::pair<std::string, std::shared_ptr<const Texture>>> textures_;
 };
 

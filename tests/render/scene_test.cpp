@@ -113,6 +113,38 @@ TEST(Scene, RelativePathsResolveAgainstTheSceneFile) {
   EXPECT_FLOAT_EQ(scene.objects[0].mesh.positions[1].z, 1.0f);
 }
 
+// The objects' mesh files are loaded before the objects are read (on all cores, each file once):
+// objects naming one file get meshes of their own, and the first object in order whose file
+// cannot be loaded is the one named, as when they were loaded one by one.
+TEST(Scene, MeshFilesLoadedAheadStayWithTheirObjects) {
+  testing::TempDir dir;
+  testing::write_file(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  testing::write_file(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  testing::write_file(dir / "noface.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  const std::string three = R"([{"mesh": "tri.obj"},
+      {"mesh": "tri.obj", "transform": {"translate": [0, 0, 1]}}, {"mesh": "quad.obj"}])";
+  const Scene scene = load_scene(testing::write_file(
+      dir / "three.json",
+      variant(R"([{"name": "ball", "shape": {"type": "sphere", "radius": 1, "subdivisions": 2}}])",
+              three)));
+  ASSERT_EQ(scene.objects.size(), 3u);
+  EXPECT_EQ(scene.objects[0].mesh.triangles, scene.objects[1].mesh.triangles);
+  EXPECT_FLOAT_EQ(scene.objects[0].mesh.positions[1].z, 0.0f);
+  EXPECT_FLOAT_EQ(scene.objects[1].mesh.positions[1].z, 1.0f);
+  EXPECT_EQ(scene.objects[2].mesh.triangle_count(), 2u);
+
+  const std::string bad = R"([{"mesh": "tri.obj"}, {"mesh": "noface.obj"}, {"mesh": "none.obj"}])";
+  const auto file = testing::write_file(
+      dir / "bad.json",
+      variant(R"([{"name": "ball", "shape": {"type": "sphere", "radius": 1, "subdivisions": 2}}])",
+              bad));
+  const std::string message = testing::input_error_of([&] { load_scene(file); });
+  EXPECT_NE(
+      message.find("objects[1].mesh: " + (dir / "noface.obj").string() + ": mesh has no faces"),
+      std::string::npos)
+      << message;
+}
+
 TEST(Scene, BadInputNamesFileAndKeyPath) {
   testing::TempDir dir;
   testing::write_file(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
