@@ -55,6 +55,33 @@ void refine(const Triangles& g, const glm::dvec3& origin, const glm::dvec3& dire
   hit.t = glm::dot(e2, q) * inverse;
 }
 
+// A single ray as Embree takes it.
+RTCRay embree_ray(const float (&origin)[3], const float (&direction)[3], float tnear, float tfar) {
+  RTCRay ray;
+  ray.org_x = origin[0];
+  ray.org_y = origin[1];
+  ray.org_z = origin[2];
+  ray.dir_x = direction[0];
+  ray.dir_y = direction[1];
+  ray.dir_z = direction[2];
+  ray.tnear = tnear;
+  ray.tfar = tfar;
+  ray.mask = 0xFFFFFFFF;
+  ray.flags = 0;
+  ray.time = 0;
+  return ray;
+}
+
+// The ray in single precision, as Embree receives it.
+RecordedRay single_precision(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
+                             double tfar, bool closest) {
+  return {{float(origin.x), float(origin.y), float(origin.z)},
+          {float(direction.x), float(direction.y), float(direction.z)},
+          float(tnear),
+          float(std::min(tfar, double(std::numeric_limits<float>::max()))),
+          closest};
+}
+
 }  // namespace
 
 struct RayTracer::Handles {
@@ -110,18 +137,10 @@ std::optional<Hit> RayTracer::intersect(const glm::dvec3& origin, const glm::dve
                                         double tnear, double tfar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  const RecordedRay r = single_precision(origin, direction, tnear, tfar, true);
+  if (recorder_) recorder_->add(r);
   alignas(16) RTCRayHit rh;
-  rh.ray.org_x = float(origin.x);
-  rh.ray.org_y = float(origin.y);
-  rh.ray.org_z = float(origin.z);
-  rh.ray.dir_x = float(direction.x);
-  rh.ray.dir_y = float(direction.y);
-  rh.ray.dir_z = float(direction.z);
-  rh.ray.tnear = float(tnear);
-  rh.ray.tfar = float(std::min(tfar, double(std::numeric_limits<float>::max())));
-  rh.ray.mask = 0xFFFFFFFF;
-  rh.ray.flags = 0;
-  rh.ray.time = 0;
+  rh.ray = embree_ray(r.origin, r.direction, r.tnear, r.tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(handles_->scene, &context, &rh);
@@ -158,6 +177,9 @@ void RayTracer::intersect_packet(int count, const glm::dvec3* origins, const glm
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
   rtcIntersect8(valid, handles_->scene, &context, &rh);
+  if (recorder_)
+    for (int i = 0; i < count; ++i)
+      recorder_->add(single_precision(origins[i], directions[i], 0.0, 1e30, true));
   for (int i = 0; i < count; ++i) {
     if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
       hits[i] = std::nullopt;
@@ -173,20 +195,32 @@ bool RayTracer::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
                          double tfar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  alignas(16) RTCRay ray;
-  ray.org_x = float(origin.x);
-  ray.org_y = float(origin.y);
-  ray.org_z = float(origin.z);
-  ray.dir_x = float(direction.x);
-  ray.dir_y = float(direction.y);
-  ray.dir_z = float(direction.z);
-  ray.tnear = float(tnear);
-  ray.tfar = float(std::min(tfar, double(std::numeric_limits<float>::max())));
-  ray.mask = 0xFFFFFFFF;
-  ray.flags = 0;
-  ray.time = 0;
+  const RecordedRay r = single_precision(origin, direction, tnear, tfar, false);
+  if (recorder_) recorder_->add(r);
+  alignas(16) RTCRay ray = embree_ray(r.origin, r.direction, r.tnear, r.tfar);
   rtcOccluded1(handles_->scene, &context, &ray);
   return ray.tfar < 0.0f;
+}
+
+size_t RayTracer::replay(const std::vector<RecordedRay>& rays) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  size_t hits = 0;
+  for (const RecordedRay& r : rays) {
+    if (r.closest) {
+      alignas(16) RTCRayHit rh;
+      rh.ray = embree_ray(r.origin, r.direction, r.tnear, r.tfar);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(handles_->scene, &context, &rh);
+      hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    } else {
+      alignas(16) RTCRay ray = embree_ray(r.origin, r.direction, r.tnear, r.tfar);
+      rtcOccluded1(handles_->scene, &context, &ray);
+      hits += ray.tfar < 0.0f;
+    }
+  }
+  return hits;
 }
 
 }  // namespace countershade

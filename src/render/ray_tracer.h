@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "render/ray_recorder.h"
 #include "render/scene.h"
 
 namespace countershade {
@@ -66,10 +67,18 @@ class RayTracer {
   // A distance scale for ray offsets: a small fraction of the scene diagonal.
   double epsilon() const { return epsilon_; }
 
+  // Every ray traced from now on goes to `recorder` as well (none: recording stops). For
+  // measurements only; a render's images do not change.
+  void record_rays(RayRecorder* recorder) { recorder_ = recorder; }
+  // The rays traced through Embree alone, one at a time, in their order: no refinement of the hit,
+  // no shading. Returns how many hit something (so that the work cannot be left out).
+  size_t replay(const std::vector<RecordedRay>& rays) const;
+
  private:
   struct Handles;
   std::unique_ptr<Handles> handles_;
   double epsilon_ = 1e-4;
+  RayRecorder* recorder_ = nullptr;
 };
 
 }  // namespace countershade

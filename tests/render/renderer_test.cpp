@@ -16,8 +16,6 @@
 namespace countershade {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 Scene scene_from(const testing::TempDir& dir, const std::string& json) {
   return load_scene(testing::write_file(dir / "scene.json", json));
 }
@@ -47,7 +45,7 @@ TEST(Renderer, LambertianSphereMatchesAnalyticRadiance) {
       glm::dvec3 n(sx, sy, std::sqrt(1.0 - r2));
       double cos_l = glm::dot(n, l);
       for (int c = 0; c < 3; ++c) {
-        double expected = albedo[c] / kPi * E[c] * std::max(0.0, cos_l);
+        double expected = albedo[c] / std::numbers::pi * E[c] * std::max(0.0, cos_l);
         double actual = result.radiance.at(x, y, c);
         if (cos_l > 0.1) {
           EXPECT_NEAR(actual, expected, 0.01 * expected) << x << "," << y;
@@ -146,7 +144,7 @@ TEST(Renderer, PointInShadowReceivesNoDirectLight) {
   EXPECT_EQ(shader.radiance(ground_point(-1.0, 0.0), up, false, random, counts), glm::dvec3(0.0));
   EXPECT_EQ(shader.radiance(ground_point(-1.4, 0.4), up, false, random, counts), glm::dvec3(0.0));
   glm::dvec3 lit = shader.radiance(ground_point(1.5, 0.0), up, false, random, counts);
-  EXPECT_NEAR(lit.x, 0.5 / kPi * 2.0 * std::sqrt(0.5), 1e-9);
+  EXPECT_NEAR(lit.x, 0.5 / std::numbers::pi * 2.0 * std::sqrt(0.5), 1e-9);
   EXPECT_GT(counts.shadow, 0u);
   // "shadows": false: the shadowed point gets the same light as the lit one, and no shadow ray is
   // cast.
