@@ -21,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // What OpenMesh reads of a file: positions, triangles and each corner's texture coordinate.
-TriangleMesh through_open_mesh(const fs::path& path) {
+TriangleMesh as_open_mesh_reads_it(const fs::path& path) {
   OpenMesh::TriMesh_ArrayKernelT<> om;
   om.request_halfedge_texcoords2D();
   OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceTexCoord;
@@ -49,7 +49,7 @@ TEST(ObjReader, ReadsWhatOpenMeshReadsOnTheSharedMeshes) {
     const fs::path path = testing::mesh_path(name);
     const auto ours = read_obj(path);
     ASSERT_TRUE(ours) << name << ": declined";
-    const TriangleMesh reference = through_open_mesh(path);
+    const TriangleMesh reference = as_open_mesh_reads_it(path);
     EXPECT_EQ(ours->positions, reference.positions) << name;
     EXPECT_EQ(ours->triangles, reference.triangles) << name;
     EXPECT_EQ(ours->corner_uvs, reference.corner_uvs) << name;
