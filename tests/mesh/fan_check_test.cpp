@@ -61,6 +61,23 @@ TEST(FanCheck, VouchesForSurfacesOnly) {
                            {0, 5, 4}, {0, 4, 6}, {4, 5, 6}, {5, 0, 6}};
   EXPECT_TRUE(vouched(4, Triangles(twins.begin(), twins.begin() + 4)));
   EXPECT_FALSE(vouched(7, twins));
+
+  // Vertices of many triangles (checked by sorting rather than scanning): a disc's centre, closed
+  // and open, and two such fans meeting at one vertex.
+  auto fan = [](unsigned centre, unsigned first_rim, unsigned count, bool closed) {
+    Triangles t;
+    for (unsigned k = 0; k + (closed ? 0 : 1) < count; ++k)
+      t.push_back({centre, first_rim + k, first_rim + (k + 1) % count});
+    return t;
+  };
+  EXPECT_TRUE(vouched(41, fan(0, 1, 40, true)));
+  EXPECT_TRUE(vouched(41, fan(0, 1, 40, false)));
+  Triangles two = fan(0, 1, 20, false);
+  for (const glm::uvec3& t : fan(0, 21, 20, false)) two.push_back(t);
+  EXPECT_FALSE(vouched(41, two));
+  Triangles repeated = fan(0, 1, 40, true);
+  repeated.push_back({0, 5, 6});
+  EXPECT_FALSE(vouched(41, repeated));
 }
 
 TEST(FanCheck, OpenMeshAddsEveryFaceOfAVouchedSurfaceInAnyOrder) {
