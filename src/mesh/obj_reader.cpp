@@ -111,6 +111,10 @@ struct ObjReader {
       if (!corner(w[k])) return false;
     const size_t n = face_vertices.size();
     if (n < 3) return false;
+    // A face whose corners do not all have a texture coordinate, or all lack one (found by the
+    // fuzzer: the corners without one were read at index −1).
+    for (long long uv : face_uvs)
+      if ((uv >= 0) != (face_uvs[0] >= 0)) return false;
     for (size_t i = 0; i < n; ++i)
       for (size_t j = i + 1; j < n; ++j)
         if (face_vertices[i] == face_vertices[j]) return false;

@@ -77,6 +77,7 @@ TEST(ObjReader, DeclinesWhatItDoesNotReadAsTheCheckAndOpenMeshWould) {
   const std::pair<const char*, std::string> declined[] = {
       {"colours", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n"},
       {"mixed corners", square + "vt 0 0\nf 1/1 2/1 3/1\nf 1 3 4\n"},
+      {"mixed corners in a face", square + "vt 0 0\nvt 1 0\nf 1/1 2/ 3/2\n"},
       {"not a number", square + "v 1 x 0\nf 1 2 3\n"},
       {"not finite", square + "v 1 nan 0\nf 1 2 3\n"},
       {"index zero", square + "f 0 1 2\n"},
