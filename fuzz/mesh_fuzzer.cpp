@@ -31,9 +31,7 @@ std::optional<TriangleMesh> read_by_own_reader(const std::filesystem::path& path
   if (!soup) return std::nullopt;
   TriangleMesh mesh;
   mesh.positions = soup->positions;
-  for (size_t f = 0; f < soup->face_count(); ++f)
-    for (size_t k = 1; k + 1 < soup->face(f).size(); ++k)
-      mesh.triangles.emplace_back(soup->face(f)[0], soup->face(f)[k], soup->face(f)[k + 1]);
+  mesh.triangles = soup->fan_triangles();
   return mesh;
 }
 

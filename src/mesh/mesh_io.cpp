@@ -155,12 +155,7 @@ TriangleMesh triangulated(const PolygonSoup& soup) {
   mesh.vertex_colors.reserve(soup.colours.size());
   for (const glm::vec3& c : soup.colours)
     mesh.vertex_colors.push_back(glm::vec3(colour_bytes(c)) / 255.0f);
-  mesh.triangles.reserve(soup.corners.size() - 2 * soup.face_count());
-  for (size_t f = 0; f < soup.face_count(); ++f) {
-    const auto face = soup.face(f);
-    for (size_t k = 1; k + 1 < face.size(); ++k)
-      mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
-  }
+  mesh.triangles = soup.fan_triangles();
   return mesh;
 }
 

@@ -29,6 +29,16 @@ struct PolygonSoup {
     corners.insert(corners.end(), indices.begin(), indices.end());
     face_ends.push_back(corners.size());
   }
+  // The polygons cut into fans from their first corner, as OpenMesh's triangle mesh cuts them.
+  std::vector<glm::uvec3> fan_triangles() const {
+    std::vector<glm::uvec3> triangles;
+    triangles.reserve(corners.size() - 2 * face_count());
+    for (size_t f = 0; f < face_count(); ++f) {
+      const auto p = face(f);
+      for (size_t k = 1; k + 1 < p.size(); ++k) triangles.emplace_back(p[0], p[k], p[k + 1]);
+    }
+    return triangles;
+  }
 };
 
 // A colour in [0, 1] as the byte per channel a mesh stores (rounded to nearest), as OpenMesh
