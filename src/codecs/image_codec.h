@@ -1,9 +1,10 @@
 #pragma once
-// Image files through OpenImageIO, behind a small interface in a library of its own
-// (libcountershade_image_codec.so). OpenImageIO brings about 260 shared libraries that take
-// 0.3 s of CPU to load; loaded when a command first reads or writes an image
+// Image files behind a small interface, each codec in a library of its own: OpenImageIO for every
+// format (libcountershade_image_codec.so) and libpng for plain PNG files
+// (libcountershade_png_codec.so, png_image_codec.cpp says which). OpenImageIO brings about 260
+// shared libraries that take 0.3 s of CPU to load; loaded when a command first needs them
 // (core/plugin_library.h), they cost nothing to the commands that never do. The interface holds
-// only standard types, so that the library needs nothing of the program.
+// only standard types, so that the libraries need nothing of the program.
 
 #include <memory>
 #include <string>
@@ -29,11 +30,14 @@ class ImageFileReader {
 class ImageCodec {
  public:
   virtual ~ImageCodec() = default;
-  // A reader of the file, or none, with why in `error`.
+  // A reader of the file, or none, with why in `error`; an empty `error` means the codec declines
+  // the file (another codec may read it).
   virtual std::unique_ptr<ImageFileReader> open(const std::string& path,
                                                 std::string& error) const = 0;
   // Whether a file of this name's extension can be written.
   virtual bool writes(const std::string& path) const = 0;
+  // Whether this codec writes such pixels (another codec may).
+  virtual bool takes(const ImageFileSpec&, Sample) const { return true; }
   // Writes `spec` pixels held as `sample`, as the file's format stores them (`spec.bits` 8 or 16
   // for PNG and TIFF, 0 for float formats). fast_png: zlib level 1 and the `sub` row filter
   // (core/image.cpp says why). "" or why it failed.

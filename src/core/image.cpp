@@ -15,7 +15,6 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_bytes.h"
-#include "core/plugin_library.h"
 #include "core/png_check.h"
 
 namespace countershade {
@@ -182,8 +181,6 @@ void check_chunks_if_png(const std::filesystem::path& path) {
 }
 
 }  // namespace
-
-const codecs::ImageCodec& image_codec() { return plugin<codecs::ImageCodec>("image_codec"); }
 
 Image read_image(const std::filesystem::path& path, int* bits) {
   namespace fs = std::filesystem;

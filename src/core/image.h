@@ -85,7 +85,8 @@ struct ImageWriteOptions {
 namespace codecs {
 class ImageCodec;
 }
-// OpenImageIO's formats, loaded on first use (codecs/image_codec.h).
+// Every image format: libpng for plain PNG files, OpenImageIO for the rest, each loaded on first
+// use (core/image_codecs.cpp).
 const codecs::ImageCodec& image_codec();
 
 // Reads any format OpenImageIO knows (PNG, EXR, TIFF, PFM, HDR, ...) as float. Integer formats
