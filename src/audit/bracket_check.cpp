@@ -33,7 +33,7 @@ double nice_floor(double v) {
 
 AuditCheck bracket_check(const ConditionPrediction& c, const LambdaGridInfo& grid) {
   AuditCheck check{"the grid brackets the predicted thresholds", c.scene,
-                   c.method + " sigma " + format_value(c.sigma)};
+                   c.method + " sigma " + format_value(c.sigma), true, ""};
   if (!responds(c)) {
     check.detail = "a control: no predicted response at any λ";
     return check;

@@ -178,7 +178,7 @@ TEST(QuestPlus, AForcedChoiceRunConvergesOnTheObserversThreshold) {
   std::vector<double> errors;
   for (uint64_t seed = 1; seed <= 50; ++seed) {
     forced_choice::ChoiceRun run(study, config, seed);
-    const forced_choice::ChoiceObserver observer{alpha, 3, seed, 0};
+    const forced_choice::ChoiceObserver observer{alpha, 3, seed, 0, {}};
     while (!run.finished()) {
       const forced_choice::ChoiceTrial t = *run.current();
       run.answer(observer.respond(t.number, 0, t.lambda, t.target, 2));

@@ -119,10 +119,11 @@ Compared compare_sessions(const std::string& block, const std::string& observer,
   const std::string posted = testing::read_file(browser);
   EXPECT_EQ(testing::read_file(browser.string() + ".posted"), posted.substr(posted.find('\n') + 1))
       << "every row posted once, in order";
-  if (faults.stall_trial > 0)  // (a busy machine may lose a frame elsewhere too)
+  if (faults.stall_trial > 0) {  // (a busy machine may lose a frame elsewhere too)
     EXPECT_TRUE(has_mistimed_row(browser, faults.stall_trial))
         << "the held trial is recorded as mistimed (and shown again):\n"
         << posted;
+  }
   for (const auto& [csv, report] : {std::pair{app, "app-report"}, {browser, "browser-report"}}) {
     const auto analyzed = testing::run_cli("analyze " + csv.string() + " -o " +
                                            (dir / report).string() + " --no-figures");
