@@ -186,6 +186,13 @@ class PngCodec final : public ImageCodec {
       error = "cannot open for reading (" + std::string(std::strerror(errno)) + ")";
       return nullptr;
     }
+    // A file of another format under a .png name is OpenImageIO's to read, as it always was.
+    png_byte signature[8] = {};
+    if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
+      error.clear();
+      return nullptr;
+    }
+    std::rewind(file.get());
     ImageFileSpec spec;
     bool declined = false;
     ErrorState state;

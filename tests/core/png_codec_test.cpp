@@ -156,6 +156,16 @@ TEST(PngCodec, DeclinesWhatItCannotReadExactlyAndOpenImageIOReadsIt) {
     EXPECT_TRUE(std::equal(values.begin(), values.end(), image.pixels.begin(), image.pixels.end()))
         << c.name;
   }
+  // A JPEG file under a .png name: declined, and read by OpenImageIO as before.
+  const std::vector<uint8_t> grey(8 * 6, 77);
+  ASSERT_EQ(openimageio_codec().write((dir / "photo.jpg").string(), {8, 6, 1, 8}, Sample::uint8,
+                                      grey.data(), false),
+            "");
+  std::filesystem::rename(dir / "photo.jpg", dir / "photo.png");
+  std::string error = "unset";
+  EXPECT_FALSE(libpng_codec().open((dir / "photo.png").string(), error));
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(read_image(dir / "photo.png").width, 8);
   // Alpha and two-channel images are written by OpenImageIO, which unpremultiplies alpha.
   EXPECT_FALSE(libpng_codec().takes({4, 4, 4, 8}, Sample::uint8));
   EXPECT_FALSE(libpng_codec().takes({4, 4, 2, 16}, Sample::uint16));
