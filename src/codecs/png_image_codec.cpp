@@ -58,67 +58,68 @@ void convert_row(const png_byte* row, int bits, size_t count, Sample sample, voi
   }
 }
 
+// libpng's read state over an open file, from its header to its last row. Kept on the heap: libpng
+// holds the address of its error state.
+struct PngInput {
+  File file;
+  ErrorState state;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  ~PngInput() { png_destroy_read_struct(&png, &info, nullptr); }
+};
+
 class PngReader final : public ImageFileReader {
  public:
-  PngReader(File file, const ImageFileSpec& spec) : file_(std::move(file)), spec_(spec) {}
+  PngReader(std::unique_ptr<PngInput> input, const ImageFileSpec& spec)
+      : input_(std::move(input)), spec_(spec) {}
   const ImageFileSpec& spec() const override { return spec_; }
   std::string read(Sample sample, void* pixels) override;
 
  private:
-  File file_;
+  std::unique_ptr<PngInput> input_;
   ImageFileSpec spec_;
 };
 
-// Reads the header of a file this codec takes; false (and `declined`) otherwise.
-bool read_header(std::FILE* file, ImageFileSpec& spec, bool& declined, ErrorState& state) {
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!info) {
-    png_destroy_read_struct(&png, nullptr, nullptr);
-    std::snprintf(state.message, sizeof state.message, "out of memory");
+// Reads the header of a file this codec takes, leaving libpng at its first row; false otherwise,
+// with `declined` set where the codec does not take the file and the reason in the state if not.
+bool read_header(PngInput& in, ImageFileSpec& spec, bool& declined) {
+  in.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &in.state, on_error, on_warning);
+  in.info = in.png ? png_create_info_struct(in.png) : nullptr;
+  if (!in.info) {
+    std::snprintf(in.state.message, sizeof in.state.message, "out of memory");
     return false;
   }
-  if (setjmp(state.jump)) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    return false;
-  }
-  png_init_io(png, file);
-  png_read_info(png, info);
-  const int type = png_get_color_type(png, info), bits = png_get_bit_depth(png, info);
+  if (setjmp(in.state.jump)) return false;
+  png_init_io(in.png, in.file.get());
+  png_read_info(in.png, in.info);
+  const int type = png_get_color_type(in.png, in.info), bits = png_get_bit_depth(in.png, in.info);
   declined = (type != PNG_COLOR_TYPE_GRAY && type != PNG_COLOR_TYPE_RGB) ||
-             (bits != 8 && bits != 16) || png_get_interlace_type(png, info) != PNG_INTERLACE_NONE ||
-             png_get_valid(png, info, kDeclinedChunks) != 0;
-  spec = {int(png_get_image_width(png, info)), int(png_get_image_height(png, info)),
+             (bits != 8 && bits != 16) ||
+             png_get_interlace_type(in.png, in.info) != PNG_INTERLACE_NONE ||
+             png_get_valid(in.png, in.info, kDeclinedChunks) != 0;
+  spec = {int(png_get_image_width(in.png, in.info)), int(png_get_image_height(in.png, in.info)),
           type == PNG_COLOR_TYPE_RGB ? 3 : 1, bits};
-  png_destroy_read_struct(&png, &info, nullptr);
   return !declined;
 }
 
-std::string PngReader::read(Sample sample, void* pixels) {
-  std::rewind(file_.get());
-  ErrorState state;
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!info) {
-    png_destroy_read_struct(&png, nullptr, nullptr);
-    return "out of memory";
-  }
-  const size_t samples = size_t(spec_.width) * size_t(spec_.channels);
+// Reads every row into `pixels` as `sample`, through `row`. libpng's errors return through the
+// state's jump, so nothing here may need a destructor.
+void read_rows(PngInput& in, const ImageFileSpec& spec, png_byte* row, Sample sample,
+               void* pixels) {
+  const size_t samples = size_t(spec.width) * size_t(spec.channels);
   const size_t size = sample == Sample::float32 ? 4 : sample == Sample::uint16 ? 2 : 1;
-  std::vector<png_byte> row(samples * size_t(spec_.bits / 8));
-  if (setjmp(state.jump)) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    return state.message;
-  }
-  png_init_io(png, file_.get());
-  png_read_info(png, info);
-  for (int y = 0; y < spec_.height; ++y) {
-    png_read_row(png, row.data(), nullptr);
-    convert_row(row.data(), spec_.bits, samples, sample,
+  for (int y = 0; y < spec.height; ++y) {
+    png_read_row(in.png, row, nullptr);
+    convert_row(row, spec.bits, samples, sample,
                 static_cast<char*>(pixels) + size_t(y) * samples * size);
   }
-  png_read_end(png, nullptr);
-  png_destroy_read_struct(&png, &info, nullptr);
+  png_read_end(in.png, nullptr);
+}
+
+std::string PngReader::read(Sample sample, void* pixels) {
+  std::vector<png_byte> row(size_t(spec_.width) * size_t(spec_.channels) * size_t(spec_.bits / 8));
+  if (setjmp(input_->state.jump)) return input_->state.message;
+  read_rows(*input_, spec_, row.data(), sample, pixels);
   return "";
 }
 
@@ -134,7 +135,7 @@ std::string write_png(std::FILE* file, const ImageFileSpec& spec, const void* pi
     return "out of memory";
   }
   const size_t row_bytes = size_t(spec.width) * size_t(spec.channels) * size_t(spec.bits / 8);
-  std::vector<png_byte> row(row_bytes);
+  std::vector<png_byte> row(spec.bits == 16 ? row_bytes : 0);
   if (setjmp(state.jump)) {
     png_destroy_write_struct(&png, &info);
     return std::string("write failed (") + state.message + ")";
@@ -181,24 +182,23 @@ class PngCodec final : public ImageCodec {
  public:
   std::unique_ptr<ImageFileReader> open(const std::string& path,
                                         std::string& error) const override {
-    File file(std::fopen(path.c_str(), "rb"));
-    if (!file) {
+    auto in = std::make_unique<PngInput>();
+    in->file.reset(std::fopen(path.c_str(), "rb"));
+    if (!in->file) {
       error = "cannot open for reading (" + std::string(std::strerror(errno)) + ")";
       return nullptr;
     }
     // A file of another format under a .png name is OpenImageIO's to read, as it always was.
     png_byte signature[8] = {};
-    if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
+    if (std::fread(signature, 1, 8, in->file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
       error.clear();
       return nullptr;
     }
-    std::rewind(file.get());
+    std::rewind(in->file.get());
     ImageFileSpec spec;
     bool declined = false;
-    ErrorState state;
-    if (read_header(file.get(), spec, declined, state))
-      return std::make_unique<PngReader>(std::move(file), spec);
-    error = declined ? "" : state.message;
+    if (read_header(*in, spec, declined)) return std::make_unique<PngReader>(std::move(in), spec);
+    error = declined ? "" : in->state.message;
     return nullptr;
   }
 

@@ -2,11 +2,11 @@
 // stimuli), OpenImageIO for everything else (codecs/image_codec.h). Each library loads when a file
 // first needs it, so that a command reading and writing plain PNG files never loads OpenImageIO.
 
-#include <cctype>
 #include <memory>
 #include <string>
 
 #include "codecs/image_codec.h"
+#include "core/atomic_file.h"
 #include "core/image.h"
 #include "core/plugin_library.h"
 
@@ -16,12 +16,7 @@ namespace {
 const codecs::ImageCodec& openimageio() { return plugin<codecs::ImageCodec>("image_codec"); }
 const codecs::ImageCodec& libpng() { return plugin<codecs::ImageCodec>("png_codec"); }
 
-bool is_png_name(const std::string& path) {
-  if (path.size() < 4) return false;
-  std::string ext = path.substr(path.size() - 4);
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".png";
-}
+bool is_png_name(const std::string& path) { return lower_extension(path) == ".png"; }
 
 class ChosenCodec final : public codecs::ImageCodec {
  public:
