@@ -1,10 +1,7 @@
 #include "analysis/display_calibration.h"
 
-#include <ceres/jet.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +9,7 @@
 #include <functional>
 #include <limits>
 
+#include "analysis/bounded_least_squares.h"
 #include "core/error.h"
 #include "core/file_bytes.h"
 #include "formats/responses.h"
@@ -112,124 +110,55 @@ GammaFit fit_eq2(const std::vector<Reading>& r) {
           rss_of(r, model(g))};
 }
 
-// Pelli & Zhang's model, L = a + (b + k·x)^γ with b = (L(0) − a)^(1/γ), as one residual.
-struct PelliZhangResidual {
-  double level, luminance, black;
+// Pelli & Zhang's model, L = a + (b + k·x)^γ with b = (L(0) − a)^(1/γ): its residuals at
+// p = {γ, a, k}.
+struct PelliZhangResiduals {
+  const std::vector<Reading>& readings;
+  int count() const { return int(readings.size()); }
   template <typename T>
-  bool operator()(const T* p, T* residual) const {  // p = {γ, a, k}
-    const T b = pow(T(black) - p[1], T(1.0) / p[0]);
-    residual[0] = p[1] + pow(b + p[2] * level, p[0]) - T(luminance);
-    return true;
+  void operator()(const T* p, T* residuals) const {
+    using std::pow;
+    const T b = pow(T(readings.front().luminance) - p[1], T(1.0) / p[0]);
+    for (size_t i = 0; i < readings.size(); ++i)
+      residuals[i] = p[1] + pow(b + p[2] * readings[i].level, p[0]) - T(readings[i].luminance);
   }
 };
 
-// Bounds on {γ, a, k}.
-struct Box {
-  std::array<double, 3> lower, upper;
-};
-
-// The residual sum of squares at p = {γ, a, k}.
-double pelli_zhang_rss(const std::vector<Reading>& r, const std::array<double, 3>& p) {
-  const auto [g, a, k] = p;
-  const double b = std::pow(r.front().luminance - a, 1.0 / g);
-  return rss_of(r, [&](double x) { return a + std::pow(b + k * x, g); });
-}
-
-// The grid points over the whole parameter box (γ and a linearly, k logarithmically) with the
-// lowest residual sums, best first.
-std::vector<std::array<double, 3>> best_grid_points(const std::vector<Reading>& r, const Box& box,
-                                                    int count) {
+// The grid points over the whole box (γ and a linearly, k logarithmically) with the lowest
+// residual sums, best first.
+std::vector<ParameterVector<3>> best_grid_points(const PelliZhangResiduals& residuals,
+                                                 const ParameterBox<3>& box, int count) {
   constexpr int kSteps = 8;
-  std::vector<std::pair<double, std::array<double, 3>>> scored;
+  const auto& [lo, hi] = box;
+  std::vector<std::pair<double, ParameterVector<3>>> scored;
   for (int i = 0; i <= kSteps; ++i)
     for (int j = 0; j <= kSteps; ++j)
       for (int l = 0; l <= kSteps; ++l) {
-        const auto& [lo, hi] = box;
-        const std::array<double, 3> p = {lo[0] + (hi[0] - lo[0]) * i / kSteps,
-                                         lo[1] + (hi[1] - lo[1]) * j / kSteps,
-                                         lo[2] * std::pow(hi[2] / lo[2], double(l) / kSteps)};
-        scored.push_back({pelli_zhang_rss(r, p), p});
+        const ParameterVector<3> p(lo[0] + (hi[0] - lo[0]) * i / kSteps,
+                                   lo[1] + (hi[1] - lo[1]) * j / kSteps,
+                                   lo[2] * std::pow(hi[2] / lo[2], double(l) / kSteps));
+        scored.push_back({sum_of_squares<3>(residuals, p), p});
       }
-  std::partial_sort(scored.begin(), scored.begin() + count, scored.end());
-  std::vector<std::array<double, 3>> out;
+  std::partial_sort(scored.begin(), scored.begin() + count, scored.end(),
+                    [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<ParameterVector<3>> out;
   for (int i = 0; i < count; ++i) out.push_back(scored[size_t(i)].second);
   return out;
-}
-
-// The residuals and their Jacobian at p = {γ, a, k}.
-void pelli_zhang_residuals(const std::vector<Reading>& r, const std::array<double, 3>& p,
-                           Eigen::VectorXd& residuals, Eigen::MatrixX3d& jacobian) {
-  using Jet = ceres::Jet<double, 3>;
-  const Jet q[3] = {Jet(p[0], 0), Jet(p[1], 1), Jet(p[2], 2)};
-  residuals.resize(Eigen::Index(r.size()));
-  jacobian.resize(Eigen::Index(r.size()), 3);
-  for (size_t i = 0; i < r.size(); ++i) {
-    Jet out;
-    PelliZhangResidual{r[i].level, r[i].luminance, r.front().luminance}(q, &out);
-    residuals[Eigen::Index(i)] = out.a;
-    jacobian.row(Eigen::Index(i)) = out.v.transpose();
-  }
-}
-
-// One damped Gauss–Newton step from p over the parameters not held by a bound (a parameter on
-// a bound stays there while the gradient pushes it outwards), clamped to the box.
-std::array<double, 3> pelli_zhang_step(const std::vector<Reading>& r, const Box& box,
-                                       const std::array<double, 3>& p, double damping) {
-  Eigen::VectorXd residuals;
-  Eigen::MatrixX3d jacobian;
-  pelli_zhang_residuals(r, p, residuals, jacobian);
-  const Eigen::Vector3d gradient = jacobian.transpose() * residuals;
-  Eigen::Matrix3d normal = jacobian.transpose() * jacobian;
-  Eigen::Vector3d rhs = -gradient;
-  for (int i = 0; i < 3; ++i) {
-    const size_t c = size_t(i);
-    const bool held =
-        (p[c] <= box.lower[c] && gradient[i] > 0) || (p[c] >= box.upper[c] && gradient[i] < 0);
-    if (held) {
-      normal.row(i).setZero(), normal.col(i).setZero();
-      normal(i, i) = 1, rhs[i] = 0;
-    } else {
-      normal(i, i) *= 1 + damping;
-    }
-  }
-  const Eigen::Vector3d step = normal.ldlt().solve(rhs);
-  std::array<double, 3> next{};
-  for (size_t c = 0; c < 3; ++c)
-    next[c] = std::clamp(p[c] + step[Eigen::Index(c)], box.lower[c], box.upper[c]);
-  return next;
-}
-
-// Least squares within the box from `p`, by Levenberg–Marquardt with the bounds as an active
-// set; it stops when a step no longer changes the parameters or the sum.
-double minimize_pelli_zhang(const std::vector<Reading>& r, const Box& box,
-                            std::array<double, 3>& p) {
-  double rss = pelli_zhang_rss(r, p), damping = 1e-3;
-  for (int iteration = 0; iteration < 500 && damping < 1e12; ++iteration) {
-    const std::array<double, 3> next = pelli_zhang_step(r, box, p, damping);
-    const double next_rss = pelli_zhang_rss(r, next);
-    if (!(next_rss <= rss)) {
-      damping *= 4;
-      continue;
-    }
-    const bool still = next == p || rss - next_rss <= 1e-16 * rss;
-    p = next, rss = next_rss, damping = std::max(1e-12, damping / 3);
-    if (still) break;
-  }
-  return rss;
 }
 
 // Pelli & Zhang: a grid over the whole box finds the basins, Levenberg–Marquardt from its four
 // best points the optimum; the lowest of the four is the fit.
 GammaFit fit_eq4(const std::vector<Reading>& r) {
   const double lo = r.front().luminance;
-  const Box box = {{0.8, 1e-5, 2.0}, {5.0, lo - 1e-5, 200.0}};
-  std::array<double, 3> best{};
+  const PelliZhangResiduals residuals{r};
+  const ParameterBox<3> box{{0.8, 1e-5, 2.0}, {5.0, lo - 1e-5, 200.0}};
+  ParameterVector<3> best = box.lower;
   double best_rss = std::numeric_limits<double>::infinity();
-  for (std::array<double, 3> p : best_grid_points(r, box, 4)) {
-    const double rss = minimize_pelli_zhang(r, box, p);
+  for (ParameterVector<3> p : best_grid_points(residuals, box, 4)) {
+    const double rss = minimize_within_box<3>(residuals, box, p).sum_of_squares;
     if (rss < best_rss) best_rss = rss, best = p;
   }
-  const auto [g, a, k] = best;
+  const double g = best[0], a = best[1], k = best[2];
   return {"pelli-zhang",
           {{"gamma", g}, {"a", a}, {"k", k}, {"b", std::pow(lo - a, 1.0 / g)}},
           {},

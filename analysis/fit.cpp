@@ -1,7 +1,5 @@
 #include "analysis/fit.h"
 
-#include <ceres/ceres.h>
-#include <glog/logging.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Dense>
@@ -12,6 +10,7 @@
 #include <numbers>
 #include <optional>
 
+#include "analysis/bounded_least_squares.h"
 #include "core/error.h"
 #include "core/random.h"
 
@@ -76,21 +75,21 @@ T interval_probability(ThresholdModel model, const AnswerInterval& a, const T& l
 
 using AnswerCounts = std::map<AnswerInterval, double>;
 
-// One distinct interval with its count: residual √(2·count·(−ln P)), so the sum of squares is
-// −2 ln L and Ceres' minimum is the maximum-likelihood estimate.
-struct AnswerResidual {
-  AnswerResidual(ThresholdModel model, AnswerInterval interval, double count)
-      : model(model), interval(interval), count(count) {}
-  template <class T>
-  bool operator()(const T* const params, T* residual) const {
-    T p = interval_probability(model, interval, params[0], params[1]);
-    if (!(p > T(1e-300))) p = T(1e-300);
-    residual[0] = sqrt(T(2.0 * count) * -log(p) + T(1e-300));
-    return true;
-  }
+// Every distinct interval with its count: residual √(2·count·(−ln P)), so the sum of squares is
+// −2 ln L and its minimum is the maximum-likelihood estimate.
+struct AnswerResiduals {
   ThresholdModel model;
-  AnswerInterval interval;
-  double count;
+  std::vector<std::pair<AnswerInterval, double>> counts;
+  int count() const { return int(counts.size()); }
+  template <class T>
+  void operator()(const T* params, T* residuals) const {
+    using std::sqrt;
+    for (size_t i = 0; i < counts.size(); ++i) {
+      T p = interval_probability(model, counts[i].first, params[0], params[1]);
+      if (!(p > T(1e-300))) p = T(1e-300);
+      residuals[i] = sqrt(T(2.0 * counts[i].second) * -log(p) + T(1e-300));
+    }
+  }
 };
 
 double negative_log_likelihood(ThresholdModel model, const AnswerCounts& counts, const double* q) {
@@ -139,43 +138,24 @@ double narrowest_interval(const AnswerCounts& counts, double fallback) {
   return std::isinf(narrowest) ? fallback : narrowest;
 }
 
-// Minimises −ln L with Ceres within bounds around the answers; returns whether the solution is
-// usable.
+// Minimises −ln L within bounds around the answers; returns whether the solution is usable.
 bool minimize(ThresholdModel model, const AnswerCounts& counts, double* q) {
-  ceres::Problem problem;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [interval, count] : counts) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AnswerResidual, 1, 2>(
-                                 new AnswerResidual(model, interval, count)),
-                             nullptr, q);
     const double x = model_scale_point(model, interval);
     lo = std::min(lo, x);
     hi = std::max(hi, x);
   }
   const double narrowest = narrowest_interval(counts, std::exp(lo));
-  problem.SetParameterLowerBound(q, 0, lo - 10.0);
-  problem.SetParameterUpperBound(q, 0, hi + 10.0);
-  problem.SetParameterLowerBound(
-      q, 1, std::log(1e-4 * (model == ThresholdModel::logistic ? narrowest : 1.0)));
-  problem.SetParameterUpperBound(q, 1, std::log(100.0 * std::max(1.0, hi - lo + 1.0)));
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 200;
-  options.function_tolerance = 1e-16;
-  options.gradient_tolerance = 1e-16;
-  options.parameter_tolerance = 1e-14;
-  options.logging_type = ceres::SILENT;
-  options.num_threads = 1;
-  // Ceres reports a stalled minimiser through glog's ERROR log even when silent; the fit's
-  // `converged` flag already records it, so only fatal messages may reach the terminal.
-  static const bool quiet = [] {
-    FLAGS_minloglevel = google::GLOG_FATAL;
-    return true;
-  }();
-  (void)quiet;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  return summary.IsSolutionUsable();
+  const ParameterBox<2> box{
+      {lo - 10.0, std::log(1e-4 * (model == ThresholdModel::logistic ? narrowest : 1.0))},
+      {hi + 10.0, std::log(100.0 * std::max(1.0, hi - lo + 1.0))}};
+  ParameterVector<2> p(q[0], q[1]);
+  p = p.cwiseMax(box.lower).cwiseMin(box.upper);
+  const AnswerResiduals residuals{model, {counts.begin(), counts.end()}};
+  const bool usable = minimize_within_box<2>(residuals, box, p).finite;
+  q[0] = p[0], q[1] = p[1];
+  return usable;
 }
 
 // Newton steps on the exact likelihood: the Gauss–Newton model of the square-root residuals
