@@ -8,14 +8,21 @@
 #include "render/shading.h"
 
 namespace countershade {
-namespace {
 
+// In a named namespace, not an anonymous one: TexelWeights::Observer, a class of the header,
+// holds it.
+namespace texel_weights_detail {
 // One texel's weight in a pixel: the texel's id over every texture's levels, and the diffuse light
 // that reaches the pixel through it (single precision, as kept: 16 bytes).
 struct Weighed {
   uint32_t id = 0;
   float weight[3] = {0, 0, 0};
 };
+}  // namespace texel_weights_detail
+
+namespace {
+
+using texel_weights_detail::Weighed;
 
 // The weights of the pixel being seen, summed per texel id (open addressing; one per thread, as a
 // thread sees one pixel at a time).

@@ -13,7 +13,19 @@
 #include <vector>
 
 namespace countershade {
+
+// In a named namespace, not an anonymous one: RayTracer::Handles, a class of the header, holds it.
+namespace ray_tracer_detail {
+// One object's triangles as Embree holds them.
+struct Triangles {
+  const float* vertices = nullptr;    // x y z per vertex
+  const unsigned* indices = nullptr;  // three per triangle
+};
+}  // namespace ray_tracer_detail
+
 namespace {
+
+using ray_tracer_detail::Triangles;
 
 // Embree calls this from C code, so it records the error instead of throwing through it.
 void embree_error(void* user, RTCError code, const char* message) {
@@ -21,12 +33,6 @@ void embree_error(void* user, RTCError code, const char* message) {
   if (error->empty())
     *error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "unknown");
 }
-
-// One object's triangles as Embree holds them.
-struct Triangles {
-  const float* vertices = nullptr;    // x y z per vertex
-  const unsigned* indices = nullptr;  // three per triangle
-};
 
 glm::dvec3 vertex(const Triangles& g, unsigned index) {
   const float* v = g.vertices + 3 * size_t(index);
@@ -87,7 +93,7 @@ RecordedRay single_precision(const glm::dvec3& origin, const glm::dvec3& directi
 struct RayTracer::Handles {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::vector<Triangles> objects;  // by geometry id
+  std::vector<ray_tracer_detail::Triangles> objects;  // by geometry id
   std::string error;
   ~Handles() {
     if (scene) rtcReleaseScene(scene);
