@@ -25,6 +25,9 @@ std::vector<T> decode_as(const StimulusImage& image, codecs::Sample sample) {
   const int n = spec.channels;
   if (n < 1 || n > 4)
     throw_input_error(image.file.string(), "unsupported channel count " + std::to_string(n));
+  // A manifest may list sizes up to 2^20; an image that large is refused here, before the
+  // allocation would fail (found by fuzz/png_fuzzer.cpp).
+  check_image_size(image.file, spec.width, spec.height, n);
   std::vector<T> raw(size_t(spec.width) * size_t(spec.height) * size_t(n));
   error = in->read(sample, raw.data());
   if (!error.empty()) throw_input_error(image.file.string(), "cannot decode: " + error);
