@@ -35,7 +35,7 @@ std::vector<ForcedChoiceTrial> simulate_forced_choice(const ForcedChoiceDesign& 
         const double psi = guess + (1 - guess - d.lapse) * F;
         for (int r = 0; r < d.trials_per_level; ++r)
           trials.push_back({name, condition.scene, d.method, condition.sigma, lambda,
-                            random.next() < psi, d.n_afc, false});
+                            random.next() < psi, d.n_afc, false, "", 0});
       }
     }
   }

@@ -75,6 +75,7 @@ ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns
     throw_input_error(where, "n_afc: expected a whole number of alternatives from 2 to 16");
   t.n_afc = int(n);
   t.browser = c.has("device_pixel_ratio");
+  if (c.has("procedure")) t.procedure = field("procedure");
   return t;
 }
 
@@ -106,9 +107,11 @@ std::vector<ForcedChoiceTrial> read_forced_choice_trials(
     if (table.rows.empty()) throw_input_error(file, "empty file");
     const Columns columns = header_columns(table.rows.front(), file);
     for (size_t r = 1; r < table.rows.size(); ++r)
-      if (!shown_mistimed(table.rows[r], columns))
+      if (!shown_mistimed(table.rows[r], columns)) {
         trials.push_back(
             parse_trial(table.rows[r], columns, file + ":" + std::to_string(table.lines[r])));
+        trials.back().line = int(table.lines[r]);
+      }
     if (table.rows.size() < 2) throw_input_error(file, "no trials after the header");
   }
   return trials;

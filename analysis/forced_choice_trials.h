@@ -19,7 +19,9 @@ struct ForcedChoiceTrial {
   double sigma = 0, lambda = 0;
   bool correct = false;
   int n_afc = 2;
-  bool browser = false;  // from a browser session (the file has web columns)
+  bool browser = false;   // from a browser session (the file has web columns)
+  std::string procedure;  // the procedure that chose its λ ("" where the file has no such column)
+  int line = 0;           // its line in the file, to name it in messages
 };
 
 // Whether a CSV header names the forced-choice columns (`correct` and `n_afc`).

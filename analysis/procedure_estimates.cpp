@@ -18,11 +18,31 @@ namespace fs = std::filesystem;
 using Trials = std::vector<std::pair<double, bool>>;                    // λ shown, correct
 using Key = std::tuple<std::string, std::string, std::string, double>;  // subject, scene, label, σ
 
-std::map<Key, Trials> trials_by_condition(const fs::path& file) {
-  std::map<Key, Trials> out;
-  for (const ForcedChoiceTrial& t : read_forced_choice_trials({file}))
-    out[{t.subject, t.scene, t.label, t.sigma}].push_back({t.lambda, t.correct});
+// A condition's trials, and one row of each procedure its `procedure` column names.
+struct ConditionTrials {
+  Trials trials;
+  std::map<std::string, int> procedures;  // name → the line of its first row
+};
+
+std::map<Key, ConditionTrials> trials_by_condition(const fs::path& file) {
+  std::map<Key, ConditionTrials> out;
+  for (const ForcedChoiceTrial& t : read_forced_choice_trials({file})) {
+    ConditionTrials& c = out[{t.subject, t.scene, t.label, t.sigma}];
+    c.trials.push_back({t.lambda, t.correct});
+    if (!t.procedure.empty()) c.procedures.try_emplace(t.procedure, t.line);
+  }
   return out;
+}
+
+// The record's procedure replays the trials only if they are the ones it chose: a row that names
+// another (an edited record, or a session file beside another's record) would give its estimate
+// to trials it never saw.
+void require_same_procedure(const fs::path& file, const ConditionTrials& c,
+                            const procedures::ProcedureBlock& block, const std::string& path) {
+  for (const auto& [name, line] : c.procedures)
+    if (name != block.type)
+      throw InputError(file.string() + ":" + std::to_string(line) + ": procedure: the trial ran '" +
+                       name + "', but " + path + " is '" + block.type + "'");
 }
 
 // The procedures a session's record (its sidecar's "config") names: the block's, and those of
@@ -59,9 +79,11 @@ std::vector<ProcedureEstimate> estimates_of(const fs::path& file) {
   const JsonObject root(record, sidecar.string(), "");
   const SessionProcedures procedures(record, sidecar.string());
   const int session = int(root.integer_or("session", 0));
-  for (const auto& [key, trials] : trials_by_condition(file)) {
+  for (const auto& [key, condition] : trials_by_condition(file)) {
     const auto& [subject, scene, label, sigma] = key;
     const auto& [block, path] = procedures.of(scene, label, sigma);
+    require_same_procedure(file, condition, block, path);
+    const Trials& trials = condition.trials;
     std::optional<nlohmann::ordered_json> estimate;
     try {
       estimate = block.settings->estimate(trials);

@@ -152,5 +152,31 @@ TEST(ProcedureEstimates, OnlyTheConditionThatRanQuestPlusHasItsPosterior) {
   EXPECT_NEAR(std::stod(table.rows[5][8]), posterior_means(adaptive).second, 1e-9);
 }
 
+// Trials whose `procedure` column names another procedure than the session's record (an edited
+// record, or a session file beside another session's record): the record's procedure would give
+// its estimate to trials it never chose, so the file's estimates are left out with a warning that
+// names the row, and the psychometric fits still come.
+TEST(ProcedureEstimates, TrialsOfAnotherProcedureThanTheRecordsGetNoEstimate) {
+  testing::TempDir dir;
+  const std::vector<Trial> trials = simulated_trials(60, 5);
+  testing::write_file(dir / "P01_s01.forced-choice.csv",
+                      kHeader + session_rows(trials, "0.05", "staircase"));
+  testing::write_file(
+      dir / "P01_s01.forced-choice.json",
+      std::string(R"({"format": 1, "session": 1, "config": {"procedure": )") + kQuestPlus + "}}");
+  const auto run = testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() +
+                                    " -o " + (dir / "out").string() + " --bootstrap 0");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("P01_s01.forced-choice.csv:2: procedure: the trial ran 'staircase', "
+                            "but " +
+                            (dir / "P01_s01.forced-choice.json").string() +
+                            ": config.procedure is 'questplus'; its procedure's own estimates are "
+                            "left out"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "out/procedure_estimates.csv"));
+  EXPECT_TRUE(fs::exists(dir / "out/psychometric_fits.csv"));
+}
+
 }  // namespace
 }  // namespace countershade
