@@ -83,15 +83,21 @@ const char* const kQuestPlus = R"({"type": "questplus", "param_domain": {
       "threshold": [-1.0, -0.8, -0.6, -0.4, -0.2, 0.0], "slope": [2, 4],
       "lower_asymptote": 0.5, "lapse_rate": 0.02}})";
 
+// One session (its trial rows and its sidecar's config), analysed into dir/out.
+testing::CommandResult analyze_session(const fs::path& dir, const std::string& rows,
+                                       const std::string& config) {
+  testing::write_file(dir / "P01_s01.forced-choice.csv", kHeader + rows);
+  testing::write_file(dir / "P01_s01.forced-choice.json",
+                      R"({"format": 1, "session": 1, "config": )" + config + "}");
+  return testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() + " -o " +
+                          (dir / "out").string() + " --bootstrap 0");
+}
+
 TEST(ProcedureEstimates, AQuestPlusSessionsPosteriorIsReportedBesideItsFit) {
   testing::TempDir dir;
   const std::vector<Trial> trials = simulated_trials(120, 5);
-  testing::write_file(dir / "P01_s01.forced-choice.csv", kHeader + session_rows(trials));
-  testing::write_file(
-      dir / "P01_s01.forced-choice.json",
-      std::string(R"({"format": 1, "session": 1, "config": {"procedure": )") + kQuestPlus + "}}");
-  const auto run = testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() +
-                                    " -o " + (dir / "out").string() + " --bootstrap 0");
+  const auto run = analyze_session(dir.path(), session_rows(trials),
+                                   std::string(R"({"procedure": )") + kQuestPlus + "}");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const CsvTable table =
       parse_csv(testing::read_file(dir / "out/procedure_estimates.csv"), "estimates");
@@ -132,17 +138,13 @@ TEST(ProcedureEstimates, AQuestPlusSessionsPosteriorIsReportedBesideItsFit) {
 TEST(ProcedureEstimates, OnlyTheConditionThatRanQuestPlusHasItsPosterior) {
   testing::TempDir dir;
   const std::vector<Trial> adaptive = simulated_trials(60, 9), constant = simulated_trials(60, 10);
-  testing::write_file(dir / "P01_s01.forced-choice.csv",
-                      kHeader + session_rows(adaptive) +
-                          session_rows(constant, "0.1", "constant", adaptive.size() + 1));
-  testing::write_file(
-      dir / "P01_s01.forced-choice.json",
-      std::string(R"({"format": 1, "session": 1, "config": {"procedure": {"type": "constant",
+  const auto run = analyze_session(
+      dir.path(),
+      session_rows(adaptive) + session_rows(constant, "0.1", "constant", adaptive.size() + 1),
+      std::string(R"({"procedure": {"type": "constant",
         "lambdas": [0.1, 0.2, 0.3, 0.5, 0.8, 1.2], "repetitions": 10}, "condition_procedures": [
         {"scene": "cube", "method": "usm3d", "sigma": 0.05, "procedure": )") +
-          kQuestPlus + "}]}}");
-  const auto run = testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() +
-                                    " -o " + (dir / "out").string() + " --bootstrap 0");
+          kQuestPlus + "}]}");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const CsvTable table =
       parse_csv(testing::read_file(dir / "out/procedure_estimates.csv"), "estimates");
@@ -159,13 +161,8 @@ TEST(ProcedureEstimates, OnlyTheConditionThatRanQuestPlusHasItsPosterior) {
 TEST(ProcedureEstimates, TrialsOfAnotherProcedureThanTheRecordsGetNoEstimate) {
   testing::TempDir dir;
   const std::vector<Trial> trials = simulated_trials(60, 5);
-  testing::write_file(dir / "P01_s01.forced-choice.csv",
-                      kHeader + session_rows(trials, "0.05", "staircase"));
-  testing::write_file(
-      dir / "P01_s01.forced-choice.json",
-      std::string(R"({"format": 1, "session": 1, "config": {"procedure": )") + kQuestPlus + "}}");
-  const auto run = testing::run_cli("analyze " + (dir / "P01_s01.forced-choice.csv").string() +
-                                    " -o " + (dir / "out").string() + " --bootstrap 0");
+  const auto run = analyze_session(dir.path(), session_rows(trials, "0.05", "staircase"),
+                                   std::string(R"({"procedure": )") + kQuestPlus + "}");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("P01_s01.forced-choice.csv:2: procedure: the trial ran 'staircase', "
                             "but " +
