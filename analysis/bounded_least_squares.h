@@ -32,43 +32,48 @@ struct LeastSquaresResult {
 // const`, which writes count() residuals at p.
 template <int N, class Residuals>
 double sum_of_squares(const Residuals& residuals, const ParameterVector<N>& p) {
-  Eigen::VectorXd r(residuals.count());
+  std::vector<double> r(size_t(residuals.count()));
   residuals(p.data(), r.data());
-  return r.squaredNorm();
+  double sum = 0;
+  for (double x : r) sum += x * x;
+  return sum;
 }
 
 namespace detail {
 
-// The residuals and their Jacobian at p.
+// The Gauss–Newton normal equations at p: JᵀJ and the gradient Jᵀr, summed residual by residual
+// (fixed-size products: dynamic-size Eigen products would instantiate its matrix kernels).
+template <int N>
+struct NormalEquations {
+  Eigen::Matrix<double, N, N> normal = Eigen::Matrix<double, N, N>::Zero();
+  ParameterVector<N> gradient = ParameterVector<N>::Zero();
+};
+
 template <int N, class Residuals>
-void linearize(const Residuals& residuals, const ParameterVector<N>& p, Eigen::VectorXd& r,
-               Eigen::Matrix<double, Eigen::Dynamic, N>& jacobian) {
+NormalEquations<N> linearize(const Residuals& residuals, const ParameterVector<N>& p) {
   using Jet = ceres::Jet<double, N>;
   Jet q[N];
   for (int i = 0; i < N; ++i) q[i] = Jet(p[i], i);
   std::vector<Jet> out(size_t(residuals.count()));
   residuals(q, out.data());
-  r.resize(residuals.count());
-  jacobian.resize(residuals.count(), N);
-  for (int k = 0; k < residuals.count(); ++k) {
-    r[k] = out[size_t(k)].a;
-    jacobian.row(k) = out[size_t(k)].v.transpose();
+  NormalEquations<N> e;
+  for (const Jet& r : out) {
+    e.normal += r.v * r.v.transpose();
+    e.gradient += r.v * r.a;
   }
+  return e;
 }
 
 // The damped Gauss–Newton step from p with the parameters held by a bound left out, clamped to
 // the box.
 template <int N>
-ParameterVector<N> box_step(const Eigen::VectorXd& r,
-                            const Eigen::Matrix<double, Eigen::Dynamic, N>& jacobian,
-                            const ParameterBox<N>& box, const ParameterVector<N>& p,
-                            double damping) {
-  const ParameterVector<N> gradient = jacobian.transpose() * r;
-  Eigen::Matrix<double, N, N> normal = jacobian.transpose() * jacobian;
-  ParameterVector<N> rhs = -gradient;
+ParameterVector<N> box_step(const NormalEquations<N>& e, const ParameterBox<N>& box,
+                            const ParameterVector<N>& p, double damping) {
+  Eigen::Matrix<double, N, N> normal = e.normal;
+  ParameterVector<N> rhs = -e.gradient;
   for (int i = 0; i < N; ++i) {
     const bool held =
-        (p[i] <= box.lower[i] && gradient[i] > 0) || (p[i] >= box.upper[i] && gradient[i] < 0);
+        (p[i] <= box.lower[i] && e.gradient[i] > 0) || (p[i] >= box.upper[i] && e.gradient[i] < 0);
     if (held) {
       normal.row(i).setZero(), normal.col(i).setZero();
       normal(i, i) = 1, rhs[i] = 0;
@@ -84,17 +89,18 @@ ParameterVector<N> box_step(const Eigen::VectorXd& r,
 
 // Minimises the sum of squares of `residuals` over the box from p (inside it), in place. It
 // stops when a step no longer lowers the sum (to 1e-16 of it) or moves the parameters, or when
-// no damping finds a lower sum.
+// no damping finds a lower sum. Near the optimum the sum changes with the square of the step, so
+// the parameters are found to about 1e-8 of the scale on which the sum doubles, not to double
+// precision: a caller that needs more polishes with Newton steps (analysis/fit.cpp does).
 template <int N, class Residuals>
 LeastSquaresResult minimize_within_box(const Residuals& residuals, const ParameterBox<N>& box,
                                        ParameterVector<N>& p, int max_iterations = 500) {
   double sum = sum_of_squares<N>(residuals, p), damping = 1e-3;
-  Eigen::VectorXd r;
-  Eigen::Matrix<double, Eigen::Dynamic, N> jacobian;
+  detail::NormalEquations<N> equations;
   bool linearized = false;
   for (int iteration = 0; iteration < max_iterations && damping < 1e12; ++iteration) {
-    if (!linearized) detail::linearize<N>(residuals, p, r, jacobian), linearized = true;
-    const ParameterVector<N> next = detail::box_step<N>(r, jacobian, box, p, damping);
+    if (!linearized) equations = detail::linearize<N>(residuals, p), linearized = true;
+    const ParameterVector<N> next = detail::box_step<N>(equations, box, p, damping);
     const double next_sum = sum_of_squares<N>(residuals, next);
     if (!(next_sum <= sum)) {
       damping *= 4;

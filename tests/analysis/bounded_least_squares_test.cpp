@@ -36,8 +36,10 @@ TEST(BoundedLeastSquares, AFreeLineIsTheNormalEquationsSolution) {
   ParameterVector<2> p(0.0, 0.0);
   const ParameterBox<2> box{{-kInfinity, -kInfinity}, {kInfinity, kInfinity}};
   const LeastSquaresResult result = minimize_within_box<2>(kPoints, box, p);
-  EXPECT_NEAR(p[0], intercept, 1e-12);
-  EXPECT_NEAR(p[1], slope, 1e-12);
+  // The solver stops where the sum (0.17 here) no longer changes in double precision: about
+  // 1e-8 · √(0.17 / Σx²) ≈ 1e-9 from the optimum at most.
+  EXPECT_NEAR(p[0], intercept, 1e-9);
+  EXPECT_NEAR(p[1], slope, 1e-9);
   EXPECT_TRUE(result.finite);
   EXPECT_NEAR(result.sum_of_squares, sum_of_squares<2>(kPoints, p), 1e-15);
 }
@@ -52,7 +54,7 @@ TEST(BoundedLeastSquares, ASlopeOnItsBoundStaysThereAndTheRestIsOptimal) {
   for (size_t i = 0; i < kPoints.x.size(); ++i) mean += kPoints.y[i] - 1.5 * kPoints.x[i];
   mean /= double(kPoints.x.size());
   EXPECT_EQ(p[1], 1.5);
-  EXPECT_NEAR(p[0], mean, 1e-12);
+  EXPECT_NEAR(p[0], mean, 1e-9);
 }
 
 // y = p0·exp(−p1·x), exact data.
