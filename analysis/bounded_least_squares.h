@@ -87,7 +87,7 @@ ParameterVector<N> box_step(const NormalEquations<N>& e, const ParameterBox<N>& 
 
 }  // namespace detail
 
-// Minimises the sum of squares of `residuals` over the box from p (inside it), in place. It
+// Minimises the sum of squares of `residuals` over the box from p (clamped into it), in place. It
 // stops when a step no longer lowers the sum (to 1e-16 of it) or moves the parameters, or when
 // no damping finds a lower sum. Near the optimum the sum changes with the square of the step, so
 // the parameters are found to about 1e-8 of the scale on which the sum doubles, not to double
@@ -95,6 +95,7 @@ ParameterVector<N> box_step(const NormalEquations<N>& e, const ParameterBox<N>& 
 template <int N, class Residuals>
 LeastSquaresResult minimize_within_box(const Residuals& residuals, const ParameterBox<N>& box,
                                        ParameterVector<N>& p, int max_iterations = 500) {
+  p = p.cwiseMax(box.lower).cwiseMin(box.upper);
   double sum = sum_of_squares<N>(residuals, p), damping = 1e-3;
   detail::NormalEquations<N> equations;
   bool linearized = false;

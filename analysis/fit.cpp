@@ -151,7 +151,6 @@ bool minimize(ThresholdModel model, const AnswerCounts& counts, double* q) {
       {lo - 10.0, std::log(1e-4 * (model == ThresholdModel::logistic ? narrowest : 1.0))},
       {hi + 10.0, std::log(100.0 * std::max(1.0, hi - lo + 1.0))}};
   ParameterVector<2> p(q[0], q[1]);
-  p = p.cwiseMax(box.lower).cwiseMin(box.upper);
   const AnswerResiduals residuals{model, {counts.begin(), counts.end()}};
   const bool usable = minimize_within_box<2>(residuals, box, p).finite;
   q[0] = p[0], q[1] = p[1];

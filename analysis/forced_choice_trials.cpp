@@ -44,7 +44,8 @@ double number_field(const std::string& text, const std::string& where, const std
 }
 
 ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns& c,
-                              const std::string& where) {
+                              const std::string& file, size_t line) {
+  const std::string where = file + ":" + std::to_string(line);
   auto field = [&](const std::string& name) -> std::string {
     const size_t i = c.index.at(name);
     if (i >= row.size())
@@ -76,6 +77,7 @@ ForcedChoiceTrial parse_trial(const std::vector<std::string>& row, const Columns
   t.n_afc = int(n);
   t.browser = c.has("device_pixel_ratio");
   if (c.has("procedure")) t.procedure = field("procedure");
+  t.line = int(line);
   return t;
 }
 
@@ -107,11 +109,8 @@ std::vector<ForcedChoiceTrial> read_forced_choice_trials(
     if (table.rows.empty()) throw_input_error(file, "empty file");
     const Columns columns = header_columns(table.rows.front(), file);
     for (size_t r = 1; r < table.rows.size(); ++r)
-      if (!shown_mistimed(table.rows[r], columns)) {
-        trials.push_back(
-            parse_trial(table.rows[r], columns, file + ":" + std::to_string(table.lines[r])));
-        trials.back().line = int(table.lines[r]);
-      }
+      if (!shown_mistimed(table.rows[r], columns))
+        trials.push_back(parse_trial(table.rows[r], columns, file, table.lines[r]));
     if (table.rows.size() < 2) throw_input_error(file, "no trials after the header");
   }
   return trials;
