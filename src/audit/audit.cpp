@@ -126,10 +126,9 @@ void compare_with_reference(const Decoded& d, const Decoded& reference, Stimulus
     if (c[0] == r[0] && c[1] == r[1] && c[2] == r[2]) continue;
     ++changed;
     clipped += clipped_by_enhancement(c, r, top);
-    const uint64_t codes = uint64_t(c[0]) | uint64_t(c[1]) << 16 | uint64_t(c[2]) << 32;
-    const uint64_t reference_codes = uint64_t(r[0]) | uint64_t(r[1]) << 16 | uint64_t(r[2]) << 32;
-    const float e =
-        float(delta_e(reference.lab[p], d.lab[p], mix64(codes ^ mix64(reference_codes))));
+    const uint64_t pair_hash =
+        mix64(code_triple_key(c[0], c[1], c[2]) ^ mix64(code_triple_key(r[0], r[1], r[2])));
+    const float e = float(delta_e(reference.lab[p], d.lab[p], pair_hash));
     differences.push_back(e);
     sum += e;
   }

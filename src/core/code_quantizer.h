@@ -18,6 +18,11 @@ inline float code_fraction(uint32_t code, double inverse_levels) {
   return float(double(int32_t(code)) * inverse_levels);
 }
 
+// A pixel's three codes (each of up to 16 bits) as one key, for caches keyed by a pixel's codes.
+inline uint64_t code_triple_key(uint32_t r, uint32_t g, uint32_t b) {
+  return uint64_t(r) | uint64_t(g) << 16 | uint64_t(b) << 32;
+}
+
 class CodeQuantizer {
  public:
   CodeQuantizer(const DisplayEncoding& encoding, int bits);

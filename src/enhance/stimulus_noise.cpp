@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/code_quantizer.h"
 #include "core/color.h"
 #include "core/display.h"
 
@@ -102,7 +103,7 @@ class StepCache {
   double operator()(const float* rgb) {
     uint32_t k[3];
     for (int c = 0; c < 3; ++c) k[c] = codes_.code(rgb[c]);
-    const uint64_t key = uint64_t(k[0]) | uint64_t(k[1]) << 16 | uint64_t(k[2]) << 32;
+    const uint64_t key = code_triple_key(k[0], k[1], k[2]);
     auto& slot = slots_[size_t((key * 0x9E3779B97F4A7C15ull) >> 52)];
     if (slot.first != key) slot = {key, lightness_step(codes_.steps(k))};
     return slot.second;
