@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "forced_choice/choice_run.h"
 #include "observer/model_observer.h"
 
 namespace countershade::cli {
@@ -73,6 +74,11 @@ void run(const ExportArgs& a) {
   o.chinrest = a.chinrest;
   o.title = a.title;
   o.forced_choice = choice_study(a);
+  if (o.forced_choice)  // the page starts every condition's procedure in its WebAssembly engine
+    if (const auto problem = forced_choice::procedure_memory_problem(
+            study, o.forced_choice->config, procedures::kWebAssemblyMemoryBytes / 2))
+      throw_input_error(o.forced_choice->config.source + "procedure",
+                        *problem + " in the browser (half its WebAssembly engine's memory)");
   if (a.model_ppd > 0) o.model = page_model(study, a.model_ppd);
   const size_t images = adjust::export_web_study(study, o);
   std::fprintf(

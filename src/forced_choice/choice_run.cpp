@@ -30,6 +30,16 @@ std::vector<int> select(const runtime::Study& study, const std::vector<Condition
   return out;
 }
 
+// The conditions a session runs: those the block lists, else every condition of the set.
+std::vector<int> session_conditions(const runtime::Study& study, const ChoiceConfig& config) {
+  std::vector<int> out = select(study, config.conditions, config.source, "conditions");
+  if (out.empty()) {
+    out.resize(study.conditions.size());
+    std::iota(out.begin(), out.end(), 0);
+  }
+  return out;
+}
+
 // Every condition given its own procedure must be one the session runs: a typo there would
 // otherwise leave the condition on the block's procedure without a word.
 void check_condition_procedures(const runtime::Study& study, const ChoiceConfig& config,
@@ -71,12 +81,25 @@ int balanced_target(uint64_t seed, int condition, int k, int n) {
 
 }  // namespace
 
+std::optional<std::string> procedure_memory_problem(const runtime::Study& study,
+                                                    const ChoiceConfig& config, double limit) {
+  const std::vector<int> conditions = session_conditions(study, config);
+  double need = 0;
+  for (int c : conditions) {
+    const auto& condition = study.conditions[size_t(c)];
+    need += config.procedure_of(condition.scene, condition.method, condition.sigma)
+                .settings->memory_bytes(grid_of(study, c));
+  }
+  if (need <= limit) return std::nullopt;
+  const auto gib = [](double bytes) { return format_value(round_to(bytes / (1 << 30), 2)); };
+  return "the procedures of the session's " + std::to_string(conditions.size()) +
+         " conditions, all started at once, would hold " + gib(need) + " GiB, more than the " +
+         gib(limit) + " GiB they may take";
+}
+
 ChoiceRun::ChoiceRun(const runtime::Study& study, const ChoiceConfig& config, uint64_t seed)
     : study_(study), config_(config), seed_(seed) {
-  conditions_ = select(study, config.conditions, config.source, "conditions");
-  if (conditions_.empty())
-    conditions_.resize(study.conditions.size()),
-        std::iota(conditions_.begin(), conditions_.end(), 0);
+  conditions_ = session_conditions(study, config);
   practice_conditions_ =
       select(study, config.practice_conditions, config.source, "practice_conditions");
   if (practice_conditions_.empty())
@@ -87,6 +110,9 @@ ChoiceRun::ChoiceRun(const runtime::Study& study, const ChoiceConfig& config, ui
         config.source + "practice_trials",
         "no condition's images change with λ, so practice would show nothing to find");
   check_condition_procedures(study, config, conditions_);
+  if (const auto problem =
+          procedure_memory_problem(study, config, procedures::procedure_memory_limit()))
+    throw_input_error(config.source + "procedure", *problem + " here");
   for (int c : conditions_) grids_.push_back(grid_of(study, c));
   for (size_t i = 0; i < conditions_.size(); ++i) {
     const auto& c = study.conditions[size_t(conditions_[i])];

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "forced_choice/condition_procedure.h"
@@ -26,6 +27,12 @@ struct ChoiceTrial {
   double lambda = 0;
   int target = 0;  // position (spatial) or interval (temporal) of the enhanced image, 0-based
 };
+
+// Why the procedures of a session of `config` would not fit in `limit` bytes, if they would not:
+// the sum of ProcedureSettings::memory_bytes over its conditions, each on its own λ grid. A
+// session starts them all at once; the browser's export checks its engine's memory with it.
+std::optional<std::string> procedure_memory_problem(const runtime::Study& study,
+                                                    const ChoiceConfig& config, double limit);
 
 class ChoiceRun {
  public:

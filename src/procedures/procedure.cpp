@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#ifndef __EMSCRIPTEN__
+#include <unistd.h>
+#endif
 
 #include "core/error.h"
 #include "core/number_format.h"
@@ -26,6 +29,14 @@ size_t Grid::point_of(double lambda, const std::string& where) const {
                                  format_value(lambdas.front()) + " to " +
                                  format_value(lambdas.back()) + ")");
   return i;
+}
+
+double procedure_memory_limit() {
+#ifdef __EMSCRIPTEN__
+  return kWebAssemblyMemoryBytes / 2;
+#else
+  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / 2;
+#endif
 }
 
 std::string exact_number(double v) {

@@ -83,7 +83,20 @@ class ProcedureSettings {
     (void)trials;
     return std::nullopt;
   }
+  // The memory a procedure started on `grid` would hold, bytes: what its tables take, 0 for a
+  // procedure whose state is small. A session starts every condition's procedure at once, so it
+  // adds these up before starting any (forced_choice::procedure_memory).
+  virtual double memory_bytes(const Grid& grid) const {
+    (void)grid;
+    return 0;
+  }
 };
+
+// The WebAssembly engine's largest memory: its -sMAXIMUM_MEMORY (src/web_engine/CMakeLists.txt).
+inline constexpr double kWebAssemblyMemoryBytes = 2.0 * 1024 * 1024 * 1024;
+// The memory the procedures of one session may take: half of what this machine has, or half of
+// the WebAssembly engine's in the browser, so that the rest of the program and the page keep room.
+double procedure_memory_limit();
 
 // Where an experiment gives a procedure: per condition, as a forced_choice block's "procedure"
 // ({"type": NAME, …}), or as the whole adjust block (one plan of trials for the study).

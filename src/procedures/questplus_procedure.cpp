@@ -2,8 +2,6 @@
 // In a study its stimulus domain is the set's λ grid (or the listed part of it) on the block's
 // scale; replayed on answers alone, the block lists its stimuli.
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -64,18 +62,13 @@ json summary(const QuestPlus& q, bool estimate_mean) {
   return out;
 }
 
-double physical_memory_bytes() {
-  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-}
-
 // Why the tables would not fit, if they would not: checked before anything is allocated.
 std::optional<std::string> memory_problem(const QuestPlusDefinition& d) {
-  const double need = d.bytes(), allowed = physical_memory_bytes() / 2;
+  const double need = d.bytes(), allowed = procedure_memory_limit();
   if (need <= allowed) return std::nullopt;
   return "the grid has " + format_value(double(d.parameter_points())) + " points; with " +
          std::to_string(d.stimuli.size()) + " stimuli its tables would need " +
-         format_value(round_to(need / (1 << 30), 2)) +
-         " GiB, more than half this machine's memory (" +
+         format_value(round_to(need / (1 << 30), 2)) + " GiB, more than half the memory here (" +
          format_value(round_to(allowed / (1 << 30), 2)) + " GiB)";
 }
 
@@ -156,26 +149,30 @@ class QuestPlusSettings final : public ProcedureSettings {
   void describe(json& record) const override { record["trials"] = trials(); }
   Replay replay(const std::vector<bool>& responses, const std::string& where) const override;
   std::optional<json> estimate(const std::vector<std::pair<double, bool>>& trials) const override;
+  double memory_bytes(const Grid& grid) const override {
+    return block_.stimuli_given ? block_.definition.bytes() : on_grid(grid).bytes();
+  }
 
  private:
   int trials() const { return block_.trials > 0 ? block_.trials : kDefaultTrials; }
+  // The definition with the set's whole λ grid as its stimuli, where the block lists none.
+  QuestPlusDefinition on_grid(const Grid& grid) const {
+    QuestPlusDefinition d = block_.definition;
+    d.stimuli.clear();
+    for (double lambda : grid.lambdas) d.stimuli.push_back(to_scale(d.scale, lambda));
+    return d;
+  }
   QuestPlusBlock block_;
 };
 
 std::unique_ptr<Procedure> QuestPlusSettings::start(const Grid& grid, uint64_t,
                                                     const std::string& where) const {
-  QuestPlusDefinition d = block_.definition;
+  QuestPlusDefinition d = block_.stimuli_given ? block_.definition : on_grid(grid);
   std::vector<size_t> points;
-  if (block_.stimuli_given) {
-    for (double x : d.stimuli)
-      points.push_back(grid.point_of(from_scale(d.scale, x), where + ".stim_domain.intensity"));
-  } else {
-    d.stimuli.clear();
-    for (size_t i = 0; i < grid.lambdas.size(); ++i) {
-      points.push_back(i);
-      d.stimuli.push_back(to_scale(d.scale, grid.lambdas[i]));
-    }
-  }
+  for (size_t i = 0; i < d.stimuli.size(); ++i)
+    points.push_back(block_.stimuli_given ? grid.point_of(from_scale(d.scale, d.stimuli[i]),
+                                                          where + ".stim_domain.intensity")
+                                          : i);
   if (const auto problem = memory_problem(d)) throw_input_error(where + ".param_domain", *problem);
   return std::make_unique<QuestPlusProcedure>(std::move(d), std::move(points), trials(),
                                               block_.estimate_mean, grid);

@@ -158,6 +158,39 @@ TEST(QuestPlus, AGridTooLargeForMemoryIsRefusedWithTheSizeItWouldNeed) {
   }
 }
 
+// A session starts every condition's QUEST+ at once, so their tables together, (2 × stimuli + 1) ×
+// points doubles each, must fit before any is made: the set's 20 λ above 0 where the block lists
+// no stimuli, its own stimuli where it does; one condition's session needs its tables alone.
+TEST(QuestPlus, TheSessionsTablesTogetherMustFitBeforeAnyIsMade) {
+  testing::TempDir dir;
+  const runtime::Study study =
+      runtime::load_study(testing::make_tiny_set(dir, "", 96, 72, 0.1), std::nullopt);
+  const double conditions = double(study.conditions.size());
+  ASSERT_GT(conditions, 1);
+  const auto problem = [&](const json& choice, double limit) {
+    return forced_choice::procedure_memory_problem(study, parse_choice_config(choice, "t", ""),
+                                                   limit);
+  };
+  const json listed = json::parse(weibull_block("{}"));  // 5 stimuli, 3 × 2 × 2 = 12 points
+  json on_grid = listed;
+  on_grid.erase("stim_domain");
+  const double listed_need = conditions * (2 * 5 + 1) * 12 * 8,
+               grid_need = conditions * (2 * 20 + 1) * 12 * 8;
+  EXPECT_FALSE(problem({{"procedure", listed}}, listed_need));
+  EXPECT_TRUE(problem({{"procedure", listed}}, listed_need - 1));
+  EXPECT_FALSE(problem({{"procedure", on_grid}}, grid_need));
+  const auto refused = problem({{"procedure", on_grid}}, grid_need - 1);
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->find(std::to_string(study.conditions.size()) + " conditions"),
+            std::string::npos)
+      << *refused;
+  EXPECT_NE(refused->find("GiB"), std::string::npos) << *refused;
+  const json one = {{"procedure", on_grid},
+                    {"conditions", {{{"scene", "front"}, {"method", "usm3d"}, {"sigma", 0.03}}}}};
+  EXPECT_FALSE(problem(one, grid_need / conditions));
+  EXPECT_TRUE(problem(one, grid_need / conditions - 1));
+}
+
 // QUEST+ per condition in a forced-choice run, answered by the Weibull observer: over 50 seeded
 // sessions of 80 trials, the posterior mean threshold's median error stays below twice the
 // threshold grid's step.

@@ -190,6 +190,37 @@ TEST(WebChoice, AStudyTheSetDoesNotHaveIsRefused) {
   }
 }
 
+// The page starts every condition's QUEST+ at once in its WebAssembly engine, whose memory ends at
+// 2 GiB: a study whose tables fit each on its own, and on this machine, but not together within
+// half of that is refused at export, with one line and nothing written; half the grid exports.
+TEST(WebChoice, ProceduresThatWouldOutgrowTheBrowsersMemoryAreRefusedAtExport) {
+  using json = nlohmann::json;
+  const auto block = [](int lapse_rates) {  // 100 × 100 × lapse_rates points, 20 stimuli
+    json b = json::parse(R"({"type": "questplus", "param_domain": {"lower_asymptote": 0.5}})");
+    for (int i = 0; i < 100; ++i) {
+      b["param_domain"]["threshold"].push_back(-2 + 0.02 * i);
+      b["param_domain"]["slope"].push_back(1 + 0.05 * i);
+    }
+    for (int i = 0; i < lapse_rates; ++i) b["param_domain"]["lapse_rate"].push_back(0.001 * i);
+    return json{{"procedure", b}}.dump();
+  };
+  // 4 conditions × 41 doubles × 920,000 points: 1.12 GiB in all, 0.28 GiB each.
+  testing::TempDir dir;
+  const fs::path manifest = choice_set(dir, block(92));
+  const auto refused =
+      testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+  for (const char* part :
+       {"experiment.forced_choice.procedure", "4 conditions", "1.12 GiB", "browser"})
+    EXPECT_NE(refused.output.find(part), std::string::npos) << part << ": " << refused.output;
+  EXPECT_FALSE(fs::exists(dir / "web"));
+  testing::TempDir half;
+  const auto exported = testing::run_cli("export-web " + choice_set(half, block(46)).string() +
+                                         " -o " + (half / "web").string());
+  EXPECT_EQ(exported.exit_code, 0) << exported.output;
+}
+
 // Every procedure in one spatial session, each condition its own (condition_procedures), with
 // practice, feedback and three reloads.
 TEST(WebChoice, SpatialSessionOfEveryProcedureGivesTheAppsRowsAndFits) {
