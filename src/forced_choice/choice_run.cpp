@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <set>
 
 #include "core/error.h"
 #include "core/number_format.h"
@@ -85,10 +86,13 @@ std::optional<std::string> procedure_memory_problem(const runtime::Study& study,
                                                     const ChoiceConfig& config, double limit) {
   const std::vector<int> conditions = session_conditions(study, config);
   double need = 0;
+  std::set<std::string> shared;  // each shared part counts once
   for (int c : conditions) {
     const auto& condition = study.conditions[size_t(c)];
-    need += config.procedure_of(condition.scene, condition.method, condition.sigma)
-                .settings->memory_bytes(grid_of(study, c));
+    const auto& settings =
+        *config.procedure_of(condition.scene, condition.method, condition.sigma).settings;
+    for (const auto& part : settings.memory(grid_of(study, c)))
+      if (part.shared.empty() || shared.insert(part.shared).second) need += part.bytes;
   }
   if (need <= limit) return std::nullopt;
   const auto gib = [](double bytes) { return format_value(round_to(bytes / (1 << 30), 2)); };

@@ -29,8 +29,9 @@ struct ChoiceTrial {
 };
 
 // Why the procedures of a session of `config` would not fit in `limit` bytes, if they would not:
-// the sum of ProcedureSettings::memory_bytes over its conditions, each on its own λ grid. A
-// session starts them all at once; the browser's export checks its engine's memory with it.
+// the sum of ProcedureSettings::memory over its conditions, each on its own λ grid, with every
+// shared part counted once. A session starts them all at once; the browser's export checks its
+// engine's memory with it.
 std::optional<std::string> procedure_memory_problem(const runtime::Study& study,
                                                     const ChoiceConfig& config, double limit);
 

@@ -83,12 +83,16 @@ class ProcedureSettings {
     (void)trials;
     return std::nullopt;
   }
-  // The memory a procedure started on `grid` would hold, bytes: what its tables take, 0 for a
-  // procedure whose state is small. A session starts every condition's procedure at once, so it
-  // adds these up before starting any (forced_choice::procedure_memory).
-  virtual double memory_bytes(const Grid& grid) const {
+  // The memory a procedure started on `grid` would hold, in parts (none for a procedure whose
+  // state is small). A session starts every condition's procedure at once, so it adds these up
+  // before starting any (forced_choice::procedure_memory_problem).
+  struct MemoryPart {
+    std::string shared;  // not empty: procedures whose parts have this key share one copy
+    double bytes = 0;
+  };
+  virtual std::vector<MemoryPart> memory(const Grid& grid) const {
     (void)grid;
-    return 0;
+    return {};
   }
 };
 

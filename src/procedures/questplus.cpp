@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numeric>
 
 namespace countershade::procedures {
@@ -93,27 +95,65 @@ size_t QuestPlusDefinition::parameter_points() const {
   return n;
 }
 
-double QuestPlusDefinition::bytes() const {
+double QuestPlusDefinition::posterior_bytes() const {
   double points = 1;
   for (const auto& g : grids) points *= double(g.size());
-  // Two tables per stimulus and the posterior.
-  return (2 * double(stimuli.size()) + 1) * points * sizeof(double);
+  return points * sizeof(double);
+}
+
+double QuestPlusDefinition::table_bytes() const {
+  return 2 * double(stimuli.size()) * posterior_bytes();
+}
+
+std::string QuestPlusDefinition::tables_key() const {
+  std::string key{char(shape), char(scale)};
+  const auto add = [&key](const std::vector<double>& values) {
+    const size_t n = values.size();
+    key.append(reinterpret_cast<const char*>(&n), sizeof n);
+    key.append(reinterpret_cast<const char*>(values.data()), n * sizeof(double));
+  };
+  add(stimuli);
+  for (const auto& g : grids) add(g);
+  return key;
+}
+
+QuestPlus::Tables QuestPlus::tabulate(const QuestPlusDefinition& d) {
+  const size_t n = d.stimuli.size(), points = d.parameter_points();
+  Tables t{std::vector<double>(n * points), std::vector<double>(n * points)};
+  for_each_index(points, [&](size_t point) {
+    const ParameterPoint p = values_at(point, d.grids);
+    for (size_t s = 0; s < n; ++s) {
+      const double psi = psychometric(d.shape, d.scale, d.stimuli[s], p);
+      t.likelihood[s * points + point] = psi;
+      t.outcome_entropy[s * points + point] = binary_entropy(psi);
+    }
+  });
+  return t;
+}
+
+std::shared_ptr<const QuestPlus::Tables> QuestPlus::shared_tables(const QuestPlusDefinition& d) {
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<const Tables>> living;
+  const std::string key = d.tables_key();
+  {
+    std::lock_guard lock(mutex);
+    if (auto tables = living[key].lock()) return tables;
+  }
+  // Made outside the lock: the tabulation runs on the app's threads, which may meanwhile take up
+  // another run's construction.
+  auto made = std::make_shared<const Tables>(tabulate(d));
+  std::lock_guard lock(mutex);
+  std::erase_if(living, [](const auto& entry) { return entry.second.expired(); });
+  auto& slot = living[key];
+  if (auto tables = slot.lock()) return tables;  // another thread made them first
+  slot = made;
+  return made;
 }
 
 QuestPlus::QuestPlus(QuestPlusDefinition definition)
-    : definition_(std::move(definition)), points_(definition_.parameter_points()) {
-  const size_t n = definition_.stimuli.size();
-  likelihood_.resize(n * points_);
-  outcome_entropy_.resize(n * points_);
-  for_each_index(points_, [&](size_t point) {
-    const ParameterPoint p = values_at(point, definition_.grids);
-    for (size_t s = 0; s < n; ++s) {
-      const double psi =
-          psychometric(definition_.shape, definition_.scale, definition_.stimuli[s], p);
-      likelihood_[s * points_ + point] = psi;
-      outcome_entropy_[s * points_ + point] = binary_entropy(psi);
-    }
-  });
+    : definition_(std::move(definition)),
+      points_(definition_.parameter_points()),
+      tables_(shared_tables(definition_)) {
   posterior_ = joint_prior(definition_, points_);
   entropy_ = posterior_entropy();
 }
@@ -122,8 +162,8 @@ std::vector<double> QuestPlus::expected_entropies() const {
   const double h = entropy();
   std::vector<double> out(definition_.stimuli.size());
   for_each_index(out.size(), [&](size_t s) {
-    const double* l = &likelihood_[s * points_];
-    const double* e = &outcome_entropy_[s * points_];
+    const double* l = &tables_->likelihood[s * points_];
+    const double* e = &tables_->outcome_entropy[s * points_];
     double correct = 0, within = 0;  // Σ post·ψ and Σ post·h
     for (size_t i = 0; i < points_; ++i) {
       correct += posterior_[i] * l[i];
@@ -143,7 +183,7 @@ size_t QuestPlus::next() const {
 }
 
 void QuestPlus::update(size_t stimulus, bool first_outcome) {
-  multiply(&likelihood_[stimulus * points_], first_outcome);
+  multiply(&tables_->likelihood[stimulus * points_], first_outcome);
 }
 
 void QuestPlus::update_at(double x, bool first_outcome) {

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,8 +45,13 @@ struct QuestPlusDefinition {
   std::array<std::vector<double>, kQuestPlusParameters> prior;
 
   size_t parameter_points() const;
-  // The memory the tables and the posterior take, bytes (as a double: it may not fit a size_t).
-  double bytes() const;
+  // The memory the tables and the posterior take, bytes (as doubles: they may not fit a size_t).
+  double table_bytes() const;
+  double posterior_bytes() const;
+  double bytes() const { return table_bytes() + posterior_bytes(); }
+  // What the tables depend on (the shape, the scale, the stimuli and the grids, not the prior), as
+  // bytes: runs whose keys are equal share one copy of the tables.
+  std::string tables_key() const;
 };
 
 class QuestPlus {
@@ -80,6 +86,9 @@ class QuestPlus {
   // Answers that no parameter point allows, left out of the posterior.
   int impossible_answers() const { return impossible_; }
   const QuestPlusDefinition& definition() const { return definition_; }
+  // Whether this run reads the same copy of the tables as `other`: runs of definitions with one
+  // tables_key share it while any of them lives (a server holds a run per participant).
+  bool shares_tables_with(const QuestPlus& other) const { return tables_ == other.tables_; }
 
  private:
   // Each parameter's marginal posterior, summed once per answer (on the thread that asks: the
@@ -88,10 +97,17 @@ class QuestPlus {
   double posterior_entropy() const;
   void multiply(const double* psi, bool first_outcome);  // posterior × ψ or 1 − ψ, normalised
 
+  struct Tables {
+    std::vector<double> likelihood;       // [stimulus][point]: ψ
+    std::vector<double> outcome_entropy;  // [stimulus][point]: −ψ ln ψ − (1 − ψ) ln(1 − ψ)
+  };
+  static Tables tabulate(const QuestPlusDefinition& d);
+  // The tables of `d`: the copy a living run already has, else new ones.
+  static std::shared_ptr<const Tables> shared_tables(const QuestPlusDefinition& d);
+
   QuestPlusDefinition definition_;
   size_t points_ = 0;
-  std::vector<double> likelihood_;       // [stimulus][point]: ψ
-  std::vector<double> outcome_entropy_;  // [stimulus][point]: −ψ ln ψ − (1 − ψ) ln(1 − ψ)
+  std::shared_ptr<const Tables> tables_;
   std::vector<double> posterior_;
   double entropy_ = 0;
   mutable std::optional<std::array<std::vector<double>, kQuestPlusParameters>> marginals_;

@@ -149,8 +149,9 @@ class QuestPlusSettings final : public ProcedureSettings {
   void describe(json& record) const override { record["trials"] = trials(); }
   Replay replay(const std::vector<bool>& responses, const std::string& where) const override;
   std::optional<json> estimate(const std::vector<std::pair<double, bool>>& trials) const override;
-  double memory_bytes(const Grid& grid) const override {
-    return block_.stimuli_given ? block_.definition.bytes() : on_grid(grid).bytes();
+  std::vector<MemoryPart> memory(const Grid& grid) const override {
+    const QuestPlusDefinition d = block_.stimuli_given ? block_.definition : on_grid(grid);
+    return {{d.tables_key(), d.table_bytes()}, {"", d.posterior_bytes()}};
   }
 
  private:

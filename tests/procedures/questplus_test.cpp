@@ -2,6 +2,8 @@
 // package), replayed on the recorded answers: the same stimulus on every trial, the same entropies
 // and estimates. Then the refusal of bad blocks, and QUEST+ converging in a forced-choice run.
 
+#include "procedures/questplus.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -158,9 +160,10 @@ TEST(QuestPlus, AGridTooLargeForMemoryIsRefusedWithTheSizeItWouldNeed) {
   }
 }
 
-// A session starts every condition's QUEST+ at once, so their tables together, (2 × stimuli + 1) ×
-// points doubles each, must fit before any is made: the set's 20 λ above 0 where the block lists
-// no stimuli, its own stimuli where it does; one condition's session needs its tables alone.
+// A session starts every condition's QUEST+ at once, so their memory together must fit before any
+// is made: each condition's posterior (points doubles) and the tables (2 × stimuli × points
+// doubles) once for every definition on its grid, which the conditions' runs share: the set's 20 λ
+// above 0 where the block lists no stimuli, its own stimuli where it does.
 TEST(QuestPlus, TheSessionsTablesTogetherMustFitBeforeAnyIsMade) {
   testing::TempDir dir;
   const runtime::Study study =
@@ -174,8 +177,8 @@ TEST(QuestPlus, TheSessionsTablesTogetherMustFitBeforeAnyIsMade) {
   const json listed = json::parse(weibull_block("{}"));  // 5 stimuli, 3 × 2 × 2 = 12 points
   json on_grid = listed;
   on_grid.erase("stim_domain");
-  const double listed_need = conditions * (2 * 5 + 1) * 12 * 8,
-               grid_need = conditions * (2 * 20 + 1) * 12 * 8;
+  const double posteriors = conditions * 12 * 8;
+  const double listed_need = 2 * 5 * 12 * 8 + posteriors, grid_need = 2 * 20 * 12 * 8 + posteriors;
   EXPECT_FALSE(problem({{"procedure", listed}}, listed_need));
   EXPECT_TRUE(problem({{"procedure", listed}}, listed_need - 1));
   EXPECT_FALSE(problem({{"procedure", on_grid}}, grid_need));
@@ -185,10 +188,45 @@ TEST(QuestPlus, TheSessionsTablesTogetherMustFitBeforeAnyIsMade) {
             std::string::npos)
       << *refused;
   EXPECT_NE(refused->find("GiB"), std::string::npos) << *refused;
-  const json one = {{"procedure", on_grid},
-                    {"conditions", {{{"scene", "front"}, {"method", "usm3d"}, {"sigma", 0.03}}}}};
-  EXPECT_FALSE(problem(one, grid_need / conditions));
-  EXPECT_TRUE(problem(one, grid_need / conditions - 1));
+  // A condition with a grid of its own (three slopes: 18 points) has tables of its own.
+  json own = on_grid;
+  own["param_domain"]["slope"] = {2, 3, 4};
+  const json front = {{"scene", "front"}, {"method", "usm3d"}, {"sigma", 0.03}};
+  json with_own = {{"procedure", on_grid}, {"condition_procedures", {front}}};
+  with_own["condition_procedures"][0]["procedure"] = own;
+  const double own_need = grid_need - 12 * 8 + 2 * 20 * 18 * 8 + 18 * 8;
+  EXPECT_FALSE(problem(with_own, own_need));
+  EXPECT_TRUE(problem(with_own, own_need - 1));
+  // A session of one condition needs its own tables and posterior alone.
+  const json one = {{"procedure", on_grid}, {"conditions", {front}}};
+  EXPECT_FALSE(problem(one, 41 * 12 * 8));
+  EXPECT_TRUE(problem(one, 41 * 12 * 8 - 1));
+}
+
+// Runs of one definition read one copy of the tables while any of them lives, with the numbers
+// of runs that each made their own: a server holds a run per participant.
+TEST(QuestPlus, RunsOfOneDefinitionShareTheirTables) {
+  QuestPlusDefinition d;
+  d.stimuli = {-2, -1.5, -1, -0.5, 0};
+  d.grids = {std::vector<double>{-2, -1, 0}, {2, 3}, {0.5}, {0, 0.02}};
+  const QuestPlus a(d);
+  QuestPlus b(d), answered(d);
+  EXPECT_TRUE(b.shares_tables_with(a));
+  QuestPlusDefinition other_prior = d;  // the tables do not depend on the prior
+  other_prior.prior[0] = {1, 2, 1};
+  EXPECT_TRUE(QuestPlus(other_prior).shares_tables_with(a));
+  QuestPlusDefinition other_stimuli = d;
+  other_stimuli.stimuli.pop_back();
+  EXPECT_FALSE(QuestPlus(other_stimuli).shares_tables_with(a));
+  // One run's answers leave the others' posteriors alone.
+  b.update(4, false);
+  b.update(0, true);
+  answered.update(4, false);
+  answered.update(0, true);
+  EXPECT_EQ(b.entropy(), answered.entropy());
+  EXPECT_EQ(b.next(), answered.next());
+  EXPECT_EQ(a.entropy(), QuestPlus(d).entropy());
+  EXPECT_NE(a.entropy(), b.entropy());
 }
 
 // QUEST+ per condition in a forced-choice run, answered by the Weibull observer: over 50 seeded

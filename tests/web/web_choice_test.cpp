@@ -191,8 +191,9 @@ TEST(WebChoice, AStudyTheSetDoesNotHaveIsRefused) {
 }
 
 // The page starts every condition's QUEST+ at once in its WebAssembly engine, whose memory ends at
-// 2 GiB: a study whose tables fit each on its own, and on this machine, but not together within
-// half of that is refused at export, with one line and nothing written; half the grid exports.
+// 2 GiB; the conditions on one grid share one copy of the tables. A study whose procedures would
+// need more than half of that is refused at export, with one line and nothing written, though
+// this machine would hold them; a grid of a third the size exports.
 TEST(WebChoice, ProceduresThatWouldOutgrowTheBrowsersMemoryAreRefusedAtExport) {
   using json = nlohmann::json;
   const auto block = [](int lapse_rates) {  // 100 × 100 × lapse_rates points, 20 stimuli
@@ -201,23 +202,23 @@ TEST(WebChoice, ProceduresThatWouldOutgrowTheBrowsersMemoryAreRefusedAtExport) {
       b["param_domain"]["threshold"].push_back(-2 + 0.02 * i);
       b["param_domain"]["slope"].push_back(1 + 0.05 * i);
     }
-    for (int i = 0; i < lapse_rates; ++i) b["param_domain"]["lapse_rate"].push_back(0.001 * i);
+    for (int i = 0; i < lapse_rates; ++i) b["param_domain"]["lapse_rate"].push_back(1e-4 * i);
     return json{{"procedure", b}}.dump();
   };
-  // 4 conditions × 41 doubles × 920,000 points: 1.12 GiB in all, 0.28 GiB each.
+  // The tables, 40 doubles a point, and 4 posteriors of one: 44 × 8 × 3,100,000 B = 1.02 GiB.
   testing::TempDir dir;
-  const fs::path manifest = choice_set(dir, block(92));
+  const fs::path manifest = choice_set(dir, block(310));
   const auto refused =
       testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string());
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
   for (const char* part :
-       {"experiment.forced_choice.procedure", "4 conditions", "1.12 GiB", "browser"})
+       {"experiment.forced_choice.procedure", "4 conditions", "1.02 GiB", "browser"})
     EXPECT_NE(refused.output.find(part), std::string::npos) << part << ": " << refused.output;
   EXPECT_FALSE(fs::exists(dir / "web"));
-  testing::TempDir half;
-  const auto exported = testing::run_cli("export-web " + choice_set(half, block(46)).string() +
-                                         " -o " + (half / "web").string());
+  testing::TempDir third;
+  const auto exported = testing::run_cli("export-web " + choice_set(third, block(100)).string() +
+                                         " -o " + (third / "web").string());
   EXPECT_EQ(exported.exit_code, 0) << exported.output;
 }
 
