@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -76,6 +77,9 @@ class StudyServer {
   void store(const Request& req, Response& res);
   SessionRecord session_of(const Request& req);
   std::shared_ptr<SessionPlan> plan_of(const SessionRecord& session);
+  // Lets go of a session's plan: it is made again from the stored rows if the session posts again.
+  void forget_plan(int64_t session_id);
+  size_t plans_held();
   bool is_admin(const Request& req) const;
   void status(const Request& req, Response& res, bool html);
   // Runs a handler, answering its Refusal (4xx, nothing written) instead of what it would have.
@@ -96,8 +100,15 @@ class StudyServer {
   StudyDatabase& database_;
   const ServeOptions& options_;
   RateLimit limit_;
+  // The plans of the sessions under way, by session id, with when each was last used. A plan
+  // holds the session's procedures (QUEST+ posteriors), so completed sessions and those idle
+  // longer than --abandoned-after are let go.
+  struct HeldPlan {
+    std::shared_ptr<SessionPlan> plan;
+    std::chrono::steady_clock::time_point used;
+  };
   std::mutex plans_mutex_;
-  std::map<int64_t, std::shared_ptr<SessionPlan>> plans_;  // by session id
+  std::map<int64_t, HeldPlan> plans_;
   std::string admin_hash_;
   int answers_expected_;
   mutable std::mutex refusals_mutex_;
@@ -175,14 +186,35 @@ SessionRecord StudyServer::session_of(const Request& req) {
 // stored before (by an earlier run of the server).
 std::shared_ptr<SessionPlan> StudyServer::plan_of(const SessionRecord& session) {
   std::lock_guard lock(plans_mutex_);
-  auto& plan = plans_[session.id];
-  if (plan) return plan;
-  plan = std::make_shared<SessionPlan>(folder_, session.subject, session.session);
+  const auto now = std::chrono::steady_clock::now();
+  const auto idle = std::chrono::duration<double>(options_.abandoned_after_s);
+  std::erase_if(plans_, [&](const auto& held) {
+    return held.first != session.id && now - held.second.used > idle;
+  });
+  HeldPlan& held = plans_[session.id];
+  held.used = now;
+  if (held.plan) return held.plan;
+  auto plan = std::make_shared<SessionPlan>(folder_, session.subject, session.session);
   bool completed = false;
   for (const std::string& line : database_.lines_of(session))
     completed = plan->record(parse_csv(line, "stored row").rows.at(0));
-  if (completed) database_.mark_completed(session);
+  if (completed) {  // (a repeat of a row it has): answered, and not kept
+    database_.mark_completed(session);
+    plans_.erase(session.id);
+  } else {
+    held.plan = plan;
+  }
   return plan;
+}
+
+void StudyServer::forget_plan(int64_t session_id) {
+  std::lock_guard lock(plans_mutex_);
+  plans_.erase(session_id);
+}
+
+size_t StudyServer::plans_held() {
+  std::lock_guard lock(plans_mutex_);
+  return plans_.size();
 }
 
 // A new row (the next index) is checked against the plan; a repeat or a gap is left to the
@@ -201,7 +233,10 @@ void StudyServer::store(const Request& req, Response& res) {
   const bool next = index == plan->rows_stored;
   const std::string answer = next ? plan->check(fields) : "";
   const RowStored stored = database_.store_row(session, index, csv_line(fields), answer);
-  if (stored == RowStored::added && plan->record(fields)) database_.mark_completed(session);
+  if (stored == RowStored::added && plan->record(fields)) {
+    database_.mark_completed(session);
+    forget_plan(session.id);
+  }
   res.status = stored == RowStored::added ? 201 : 200;
   res.set_content(json{{"row", index}, {"stored", stored == RowStored::added}}.dump(),
                   "application/json");
@@ -224,8 +259,11 @@ void StudyServer::status(const Request& req, Response& res, bool html) {
   }
   if (html)
     res.set_content(status_html(records, refusals, answers_expected_), "text/html; charset=utf-8");
-  else
-    res.set_content(status_json(records, refusals, answers_expected_).dump(1), "application/json");
+  else {
+    nlohmann::json body = status_json(records, refusals, answers_expected_);
+    body["plans_held"] = plans_held();
+    res.set_content(body.dump(1), "application/json");
+  }
   res.set_header("Cache-Control", "no-store");
 }
 
