@@ -67,6 +67,20 @@ void expect_refused(const Case& c) {
   EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.arguments << "\n" << r.output;
 }
 
+// A misspelt option is named even where a required argument is missing too (the parser checks the
+// latter first), in the main program and in the server's.
+TEST(BadInput, AnUnknownOptionIsNamedBeforeAMissingArgument) {
+  testing::TempDir dir;
+  const fs::path scene = testing::write_file(dir / "scene.json", scene_with(""));
+  for (const Case& c :
+       std::vector<Case>{{"render " + scene.string() + " --outptu x.png", "not expected: --outptu"},
+                         {"render --bogus", "not expected: --bogus"},
+                         {"serve --bogus", "not expected: --bogus"},
+                         {"stimuli --spp 4", "not expected: --spp"},
+                         {"render " + scene.string(), "--output is required"}})
+    expect_refused(c);
+}
+
 TEST(BadInput, RenderRefusesSingularTransformsNonFiniteNumbersAndAbsurdWidths) {
   testing::TempDir dir;
   const std::string scene = testing::write_file(dir / "s.json", scene_with("")).string();
