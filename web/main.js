@@ -31,6 +31,9 @@ function askSubject() {
   });
 }
 
+// The end: the answers to download, and whether the study's server has them all. While rows are
+// still unsent (the server or the network failing) the page says so, since a participant who
+// closed it then would take them away, and says when they have arrived.
 function offerCsv(csv, subject, session, kind) {
   const link = document.createElement("a");
   link.href = URL.createObjectURL(new Blob([csv], { type: "text/csv" }));
@@ -38,9 +41,19 @@ function offerCsv(csv, subject, session, kind) {
   link.textContent = "Download the answers (CSV)";
   link.id = "countershade-download";
   const p = document.createElement("p");
-  p.textContent = "Thank you. All answers are saved. ";
-  p.appendChild(link);
+  p.id = "countershade-end";
+  const status = document.createTextNode("");
+  p.append(status, link);
   document.body.appendChild(p);
+  const store = window.countershadeSession?.store;
+  const update = () => {
+    const left = store?.postUrl ? store.rows.length - store.posted : 0;
+    status.textContent = left === 0
+      ? "Thank you. All answers are saved. "
+      : `Thank you. ${left} ${left === 1 ? "answer is" : "answers are"} still being sent: please keep this page open until it says that all answers are saved, or download them and send the file to the experimenter. `;
+    if (left > 0) setTimeout(update, 250);
+  };
+  update();
 }
 
 // The virtual chinrest, measured once per session: kept in localStorage, so a reload resumes

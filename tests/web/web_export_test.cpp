@@ -140,6 +140,37 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   EXPECT_EQ(testing::read_file(csv.string() + ".posted"), table.substr(table.find('\n') + 1));
 }
 
+// The page's last line says whether the study's server has every answer: while the server refuses
+// them it counts the answers still being sent and asks the participant to keep the page open or to
+// send the file, and once every row is acknowledged it says that all answers are saved.
+TEST(WebExport, TheEndSaysWhetherTheServerHasEveryAnswer) {
+  testing::TempDir dir;
+  const fs::path manifest = testing::make_tiny_set(dir);
+  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
+                             " --post-url /collect")
+                .exit_code,
+            0);
+  fs::create_directories(dir / "refused");
+  const fs::path csv = dir / "refused/P01_s01.csv";
+  const auto run = testing::run_program(
+      "bash -c",
+      "'" +
+          node("web/tools/browser-session.mjs " + (dir / "web").string() + " P01 1 " + csv.string(),
+               "REFUSE=all") +
+          "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string end = testing::read_file(csv.string() + ".end");
+  const std::string rows = std::to_string(testing::count_lines(testing::read_file(csv)) - 1);
+  EXPECT_NE(end.find(rows + " answers are still being sent"), std::string::npos) << end;
+  EXPECT_NE(end.find("keep this page open"), std::string::npos) << end;
+  EXPECT_EQ(end.find("All answers are saved"), std::string::npos) << end;
+  // Each row refused twice before it is taken: saved in the end.
+  fs::create_directories(dir / "sent");
+  const fs::path sent = browser_session(dir / "web", dir / "sent", "P02", "2", "", 2);
+  EXPECT_NE(testing::read_file(sent.string() + ".end-sent").find("All answers are saved"),
+            std::string::npos);
+}
+
 // The virtual chinrest, gone through as a participant would (a card dragged larger, five
 // blind-spot runs): every row records the px/mm and viewing distance that its formulas give from
 // what the participant did, the page is never rescaled, and a reload does not ask again.

@@ -1,7 +1,9 @@
 // Runs a whole session of an exported study in Debian's headless Chromium with the simulated
 // observer, optionally reloading the page at given moments, and writes the CSV the page offers.
 // The server also takes the study's POSTs to /collect, refusing the first two attempts at every
-// row ($REFUSE to change that), and writes the rows it accepted, in order, to OUT.csv.posted.
+// row ($REFUSE to change that; REFUSE=all refuses every row and leaves them unsent), and writes the
+// rows it accepted, in order, to OUT.csv.posted. OUT.csv.end holds the page's last line as the
+// session ends, and OUT.csv.end-sent that line once every row is sent.
 //   node web/tools/browser-session.mjs STUDY_DIR SUBJECT OBSERVER OUT.csv [RELOAD_AFTER_ANSWERS...]
 // STUDY_DIR may instead be the URL of a study that `countershade serve` hosts, with the
 // participant's ?link=…; that server then takes the rows, SUBJECT is left to the link,
@@ -19,10 +21,13 @@ const [dir, subject, observer, out, ...reloads] = process.argv.slice(2);
 const spec = /^\d+$/.test(observer) ? `simulated:${observer}` : observer;
 const posted = [];
 const hosted = /^https?:/.test(dir);
-const server = hosted ? null : await serve(dir, (row) => posted.push(row), Number(process.env.REFUSE ?? 2));
+const refuseAll = process.env.REFUSE === "all";
+const server = hosted ? null : await serve(dir, (row) => posted.push(row), refuseAll ? Infinity : Number(process.env.REFUSE ?? 2));
+const endLine = () => page.evaluate(() => document.getElementById("countershade-end")?.textContent ?? "");
+let page;
 const browser = await launchChromium();
 try {
-  const page = await browser.newPage();
+  page = await browser.newPage();
   await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
   // $STALL=N: the page holds trial N's first interval once (a forced-choice timing fault).
   if (process.env.STALL) await page.evaluateOnNewDocument((n) => (window.countershadeStallTrial = n), Number(process.env.STALL));
@@ -37,14 +42,21 @@ try {
   }
   await page.waitForFunction(() => window.countershadeResult, { timeout: 300000 });
   await writeFile(out, await page.evaluate(() => window.countershadeResult.csv));
-  // Every row sent before the page is closed (the store retries each refused POST after a second).
-  await page.waitForFunction(() => !window.countershadeSession?.store.postUrl ||
-                             window.countershadeSession.store.posted === window.countershadeSession.store.rows.length,
-                             { timeout: 300000, polling: 50 });
-  if (!hosted) await writeFile(`${out}.posted`, posted.join("\n") + (posted.length ? "\n" : ""));
-  if (hosted) {
-    await writeFile(`${out}.token`, await page.evaluate(() => Object.keys(localStorage)
-      .filter((k) => k.startsWith("countershade-serve:")).map((k) => localStorage.getItem(k)).join("")));
+  await page.waitForFunction(() => document.getElementById("countershade-end"), { timeout: 60000, polling: 5 });
+  await writeFile(`${out}.end`, await endLine());
+  if (!refuseAll) {
+    // Every row sent before the page is closed (the store retries each refused POST after a second).
+    await page.waitForFunction(() => !window.countershadeSession?.store.postUrl ||
+                               window.countershadeSession.store.posted === window.countershadeSession.store.rows.length,
+                               { timeout: 300000, polling: 50 });
+    if (!hosted) await writeFile(`${out}.posted`, posted.join("\n") + (posted.length ? "\n" : ""));
+    await page.waitForFunction(() => /All answers are saved/.test(document.getElementById("countershade-end").textContent),
+                               { timeout: 10000, polling: 50 });
+    await writeFile(`${out}.end-sent`, await endLine());
+    if (hosted) {
+      await writeFile(`${out}.token`, await page.evaluate(() => Object.keys(localStorage)
+        .filter((k) => k.startsWith("countershade-serve:")).map((k) => localStorage.getItem(k)).join("")));
+    }
   }
 } finally {
   await browser.close();
