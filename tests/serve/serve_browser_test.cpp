@@ -15,13 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The session plans the server holds (/admin/status.json).
-int plans_held(testing::ServerProcess& server) {
-  const auto status = httplib::Client("127.0.0.1", server.port())
-                          .Get("/admin/status.json?token=" + server.admin_token());
-  return status ? nlohmann::json::parse(status->body).value("plans_held", -1) : -1;
-}
-
 TEST(ServeBrowser, LinkedParticipantsGiveTheAppsRowsThroughTheServer) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
@@ -106,7 +99,7 @@ TEST(ServeBrowser, AForcedChoiceSessionIsFollowedTrialByTrial) {
                                      "STALL=3") +
                        "'");
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_EQ(plans_held(server), 0) << "the completed session's run is let go";
+    EXPECT_EQ(testing::plans_held(server), 0) << "the completed session's run is let go";
     EXPECT_EQ(server.stop(), 0);
   }
   const std::string page = testing::read_file(page_csv);
@@ -138,7 +131,7 @@ TEST(ServeBrowser, AForcedChoiceSessionIsFollowedTrialByTrial) {
   ASSERT_TRUE(extra);
   EXPECT_EQ(extra->status, 422) << extra->body;
   EXPECT_NE(extra->body.find("after the session's last"), std::string::npos) << extra->body;
-  EXPECT_EQ(plans_held(restarted), 0) << "made again from the rows for each, and let go";
+  EXPECT_EQ(testing::plans_held(restarted), 0) << "made again from the rows for each, and let go";
 }
 
 }  // namespace

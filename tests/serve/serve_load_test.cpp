@@ -144,5 +144,48 @@ TEST(ServeLoad, EveryAcknowledgedRowSurvivesFiveKillsAndIsKeptOnce) {
   }
 }
 
+// A session idle for --abandoned-after (here 1.2 s) is let go when another session posts, and
+// made again from its stored rows when it posts again: its next row is taken and a row out of its
+// plan still refused.
+TEST(ServeLoad, AnIdleSessionsPlanIsLetGoAndMadeAgainFromItsRows) {
+  testing::TempDir dir;
+  const StudyFolder folder = open_study_folder(testing::exported_study(dir));
+  const fs::path db = dir / "study.sqlite";
+  std::mt19937 random(12);
+  std::vector<Participant> two;
+  for (const auto& [subject, link] : testing::make_links(folder.root, db, 2))
+    two.push_back({subject, link, testing::browser_token(random),
+                   testing::planned_lines(folder, subject, random)});
+  ServerProcess server(folder.root, db, {"--abandoned-after", "0.02"});
+  httplib::Client client("127.0.0.1", server.port());
+  const auto post = [&](const Participant& p, long index, const std::string& line) {
+    const httplib::Headers headers = {
+        {"Authorization", "Bearer " + p.token},
+        {"Idempotency-Key", testing::row_key(folder, p.subject, index)}};
+    const auto result =
+        client.Post("/api/rows", headers, csv_line(folder.columns) + line, "text/csv");
+    return result ? result->status : -1;
+  };
+  for (const Participant& p : two)
+    ASSERT_EQ(client
+                  .Post("/api/claim", {{"Authorization", "Bearer " + p.token}},
+                        "{\"link\":\"" + p.link + "\"}", "application/json")
+                  ->status,
+              200);
+  const Participant &a = two[0], &b = two[1];
+  ASSERT_EQ(post(a, 0, a.lines[0]), 201);
+  EXPECT_EQ(testing::plans_held(server), 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_EQ(post(b, 0, b.lines[0]), 201);
+  EXPECT_EQ(testing::plans_held(server), 1) << "a's plan, idle for longer, is let go";
+  std::vector<std::string> unplanned = parse_csv(a.lines[1], "row").rows.at(0);
+  unplanned[size_t(std::find(folder.columns.begin(), folder.columns.end(), "trial") -
+                   folder.columns.begin())] = "999";
+  EXPECT_EQ(post(a, 1, csv_line(unplanned)), 422) << "a trial out of a's plan made again";
+  EXPECT_EQ(post(a, 1, a.lines[1]), 201);
+  EXPECT_EQ(testing::plans_held(server), 2);
+  EXPECT_EQ(server.stop(), 0);
+}
+
 }  // namespace
 }  // namespace countershade::serve

@@ -174,4 +174,11 @@ inline int post_until_ok(httplib::Client& client, const std::string& path,
   }
 }
 
+// The session plans a server holds (/admin/status.json's plans_held); -1 if it does not answer.
+inline int plans_held(ServerProcess& server) {
+  const auto status = httplib::Client("127.0.0.1", server.port())
+                          .Get("/admin/status.json?token=" + server.admin_token());
+  return status ? nlohmann::json::parse(status->body).value("plans_held", -1) : -1;
+}
+
 }  // namespace countershade::testing
