@@ -33,7 +33,8 @@ function askSubject() {
 
 // The end: the answers to download, and whether the study's server has them all. While rows are
 // still unsent (the server or the network failing) the page says so, since a participant who
-// closed it then would take them away, and says when they have arrived.
+// closed it then would take them away, and says when they have arrived; where the server refuses
+// a row outright, it asks for the file instead of patience.
 function offerCsv(csv, subject, session, kind) {
   const link = document.createElement("a");
   link.href = URL.createObjectURL(new Blob([csv], { type: "text/csv" }));
@@ -48,9 +49,12 @@ function offerCsv(csv, subject, session, kind) {
   const store = window.countershadeSession?.store;
   const update = () => {
     const left = store?.postUrl ? store.rows.length - store.posted : 0;
+    const answers = `${left} ${left === 1 ? "answer" : "answers"}`;
     status.textContent = left === 0
       ? "Thank you. All answers are saved. "
-      : `Thank you. ${left} ${left === 1 ? "answer is" : "answers are"} still being sent: please keep this page open until it says that all answers are saved, or download them and send the file to the experimenter. `;
+      : store.refusal
+        ? `Thank you. The study's server did not accept ${answers} (HTTP ${store.refusal}): please download them and send the file to the experimenter. `
+        : `Thank you. ${answers} ${left === 1 ? "is" : "are"} still being sent: please keep this page open until it says that all answers are saved, or download them and send the file to the experimenter. `;
     if (left > 0) setTimeout(update, 250);
   };
   update();

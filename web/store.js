@@ -49,6 +49,7 @@ export class SessionStore {
     this.posted = saved?.posted ?? 0; // rows the server has acknowledged
     this.sending = false;
     this.backoff = 0;
+    this.refusal = null; // the status of the server's last refusal of the row it is sending
     this.headers = {}; // sent with every POST (countershade serve's token)
   }
 
@@ -81,7 +82,9 @@ export class SessionStore {
   }
 
   // Sends the rows in order, one at a time, each until the server answers 2xx; after a failure it
-  // waits 100 ms, doubling up to 5 s while the server keeps failing.
+  // waits 100 ms, doubling up to 5 s while the server keeps failing. `refusal` keeps the status of
+  // the last answer that refused the row itself (a 4xx other than a timeout or a rate limit),
+  // which no number of retries is likely to change; null while rows go through or merely fail.
   async flush() {
     if (!this.postUrl || this.sending) return;
     this.sending = true;
@@ -96,8 +99,11 @@ export class SessionStore {
             body: csvLine(this.columns) + csvLine(this.columns.map((c) => row[c] ?? "")),
           });
           ok = response.ok;
+          const refused = response.status >= 400 && response.status < 500 && response.status !== 408 && response.status !== 429;
+          this.refusal = refused ? response.status : null;
         } catch {
           ok = false;
+          this.refusal = null;
         }
         if (ok) {
           ++this.posted;

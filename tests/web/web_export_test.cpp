@@ -140,9 +140,10 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   EXPECT_EQ(testing::read_file(csv.string() + ".posted"), table.substr(table.find('\n') + 1));
 }
 
-// The page's last line says whether the study's server has every answer: while the server refuses
-// them it counts the answers still being sent and asks the participant to keep the page open or to
-// send the file, and once every row is acknowledged it says that all answers are saved.
+// The page's last line says whether the study's server has every answer: while the server fails
+// (503) it counts the answers still being sent and asks the participant to keep the page open or
+// to send the file; where it refuses the rows themselves (422) it asks for the file; once every
+// row is acknowledged it says that all answers are saved.
 TEST(WebExport, TheEndSaysWhetherTheServerHasEveryAnswer) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
@@ -150,21 +151,32 @@ TEST(WebExport, TheEndSaysWhetherTheServerHasEveryAnswer) {
                              " --post-url /collect")
                 .exit_code,
             0);
-  fs::create_directories(dir / "refused");
-  const fs::path csv = dir / "refused/P01_s01.csv";
-  const auto run = testing::run_program(
-      "bash -c",
-      "'" +
-          node("web/tools/browser-session.mjs " + (dir / "web").string() + " P01 1 " + csv.string(),
-               "REFUSE=all") +
-          "'");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string end = testing::read_file(csv.string() + ".end");
-  const std::string rows = std::to_string(testing::count_lines(testing::read_file(csv)) - 1);
-  EXPECT_NE(end.find(rows + " answers are still being sent"), std::string::npos) << end;
-  EXPECT_NE(end.find("keep this page open"), std::string::npos) << end;
-  EXPECT_EQ(end.find("All answers are saved"), std::string::npos) << end;
-  // Each row refused twice before it is taken: saved in the end.
+  // The page's last line with every row refused with `status`; the rows in the session's CSV.
+  const auto refused_end = [&](int status, std::string& rows) {
+    const fs::path out = dir / ("refused-" + std::to_string(status));
+    fs::create_directories(out);
+    const fs::path csv = out / "P01_s01.csv";
+    const auto run = testing::run_program(
+        "bash -c", "'" +
+                       node("web/tools/browser-session.mjs " + (dir / "web").string() + " P01 1 " +
+                                csv.string(),
+                            "REFUSE=all REFUSE_STATUS=" + std::to_string(status)) +
+                       "'");
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    rows = std::to_string(testing::count_lines(testing::read_file(csv)) - 1);
+    return testing::read_file(csv.string() + ".end");
+  };
+  std::string rows;
+  const std::string failing = refused_end(503, rows);
+  EXPECT_NE(failing.find(rows + " answers are still being sent"), std::string::npos) << failing;
+  EXPECT_NE(failing.find("keep this page open"), std::string::npos) << failing;
+  EXPECT_EQ(failing.find("All answers are saved"), std::string::npos) << failing;
+  const std::string refusing = refused_end(422, rows);
+  EXPECT_NE(refusing.find("did not accept " + rows + " answers (HTTP 422)"), std::string::npos)
+      << refusing;
+  EXPECT_NE(refusing.find("download them and send the file"), std::string::npos) << refusing;
+  EXPECT_EQ(refusing.find("keep this page open"), std::string::npos) << refusing;
+  // Each row refused twice (503) before it is taken: saved in the end.
   fs::create_directories(dir / "sent");
   const fs::path sent = browser_session(dir / "web", dir / "sent", "P02", "2", "", 2);
   EXPECT_NE(testing::read_file(sent.string() + ".end-sent").find("All answers are saved"),

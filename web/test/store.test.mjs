@@ -66,3 +66,20 @@ test("a row whose acknowledgement a reload cut off goes again under the same Ide
                           "countershade%3Aabc%3AZo%C3%AB%201%3A1:1"]);
   assert.ok(keys.every((k) => /^[\x21-\x7e]+$/.test(k)), "a header value of visible ASCII");
 });
+
+test("a refusal of the row itself is kept; timeouts, rate limits and failures are not", async () => {
+  const answers = [{ ok: false, status: 503 }, { ok: false, status: 429 }, { ok: false, status: 408 },
+                   { ok: false, status: 422 }, { ok: false, status: 403 }, { ok: true, status: 201 }];
+  const seen = [];
+  let store;
+  const fetch = async () => {
+    seen.push(store.refusal); // what the store said before this attempt
+    return answers[seen.length - 1];
+  };
+  store = new SessionStore(new MemoryStorage(), "k", "http://localhost/collect", fetch);
+  store.retryMs = 1;
+  store.add({ subject: "P01", trial: 1, question: "low", lambda_index: 0, revision: 0, plan_index: 0, question_index: 0 });
+  while (store.posted < 1) await new Promise((r) => setTimeout(r, 5));
+  assert.deepEqual(seen, [null, null, null, null, 422, 403]);
+  assert.equal(store.refusal, null, "cleared once the row goes through");
+});

@@ -1,7 +1,8 @@
 // Runs a whole session of an exported study in Debian's headless Chromium with the simulated
 // observer, optionally reloading the page at given moments, and writes the CSV the page offers.
 // The server also takes the study's POSTs to /collect, refusing the first two attempts at every
-// row ($REFUSE to change that; REFUSE=all refuses every row and leaves them unsent), and writes the
+// row ($REFUSE to change that; REFUSE=all refuses every row and leaves them unsent; $REFUSE_STATUS
+// is the refusal's HTTP status, 503 by default), and writes the
 // rows it accepted, in order, to OUT.csv.posted. OUT.csv.end holds the page's last line as the
 // session ends, and OUT.csv.end-sent that line once every row is sent.
 //   node web/tools/browser-session.mjs STUDY_DIR SUBJECT OBSERVER OUT.csv [RELOAD_AFTER_ANSWERS...]
@@ -22,7 +23,8 @@ const spec = /^\d+$/.test(observer) ? `simulated:${observer}` : observer;
 const posted = [];
 const hosted = /^https?:/.test(dir);
 const refuseAll = process.env.REFUSE === "all";
-const server = hosted ? null : await serve(dir, (row) => posted.push(row), refuseAll ? Infinity : Number(process.env.REFUSE ?? 2));
+const server = hosted ? null : await serve(dir, (row) => posted.push(row), refuseAll ? Infinity : Number(process.env.REFUSE ?? 2),
+                                       Number(process.env.REFUSE_STATUS ?? 503));
 const endLine = () => page.evaluate(() => document.getElementById("countershade-end")?.textContent ?? "");
 let page;
 const browser = await launchChromium();

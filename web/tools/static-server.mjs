@@ -9,10 +9,11 @@ const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/cs
 
 // A static file server for the study folder on a free loopback port. With `collect`, it also
 // takes POSTs to /collect as docs/online-study.md asks of a server: it refuses the first `refuse`
-// attempts at each row (HTTP 503), passes each row it accepts to collect(row), and acknowledges a
+// attempts at each row (with `status`, 503 by default), passes each row it accepts to collect(row),
+// and acknowledges a
 // repeated Idempotency-Key without collecting again. A repeat whose row differs from the first,
 // or a POST without a key, is collected as an "ERROR" line, which fails the tests' comparison.
-export function serve(root, collect = null, refuse = 0) {
+export function serve(root, collect = null, refuse = 0, status = 503) {
   const attempts = new Map();
   const taken = new Map(); // Idempotency-Key → the row taken under it
   const server = createServer(async (req, res) => {
@@ -23,7 +24,7 @@ export function serve(root, collect = null, refuse = 0) {
       const key = req.headers["idempotency-key"];
       attempts.set(row, (attempts.get(row) ?? 0) + 1);
       if (attempts.get(row) <= refuse) {
-        res.writeHead(503);
+        res.writeHead(status);
         return void res.end();
       }
       if (!key || (taken.has(key) && taken.get(key) !== row)) collect(`ERROR ${key ?? "no key"}: ${row}`);
