@@ -174,7 +174,7 @@ std::unique_ptr<Procedure> QuestPlusSettings::start(const Grid& grid, uint64_t,
     points.push_back(block_.stimuli_given ? grid.point_of(from_scale(d.scale, d.stimuli[i]),
                                                           where + ".stim_domain.intensity")
                                           : i);
-  if (const auto problem = memory_problem(d)) throw_input_error(where + ".param_domain", *problem);
+  // Its memory was checked with the session's other procedures (ChoiceRun), before any started.
   return std::make_unique<QuestPlusProcedure>(std::move(d), std::move(points), trials(),
                                               block_.estimate_mean, grid);
 }
