@@ -18,10 +18,7 @@ namespace fs = std::filesystem;
 TEST(ServeBrowser, LinkedParticipantsGiveTheAppsRowsThroughTheServer) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
-                             " --model-ppd 40")
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(testing::export_web(manifest, dir / "web", "--model-ppd 40"));
   const fs::path web = dir / "web";
   const fs::path db = dir / "study.sqlite";
   const auto links = testing::make_links(web, db, 3);

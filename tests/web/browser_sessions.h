@@ -18,6 +18,15 @@ namespace countershade::testing {
 
 namespace fs = std::filesystem;
 
+// `countershade export-web MANIFEST -o WEB OPTIONS`, which must succeed (a fatal failure if not:
+// call it inside ASSERT_NO_FATAL_FAILURE).
+inline void export_web(const fs::path& manifest, const fs::path& web,
+                       const std::string& options = "") {
+  const auto run = run_cli("export-web " + manifest.string() + " -o " + web.string() +
+                           (options.empty() ? "" : " " + options));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+}
+
 // A Node.js command run from the source tree (where node_modules/ is), with this build's
 // WebAssembly engine; `environment`: VAR=value …
 inline std::string node(const std::string& arguments, const std::string& environment = "") {

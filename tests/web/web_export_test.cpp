@@ -121,10 +121,7 @@ TEST(WebExport, BothStimuliArePixelExactAtEveryDeviceScaleFactor) {
 TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir, R"({"repetitions": 2})");  // 24 answers
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
-                             " --post-url /collect")
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(testing::export_web(manifest, dir / "web", "--post-url /collect"));
   std::mt19937 random(46);
   std::set<int> points;
   while (points.size() < 10) points.insert(std::uniform_int_distribution<int>(1, 23)(random));
@@ -147,10 +144,7 @@ TEST(WebExport, ReloadsLoseNothingAndEveryRowIsPostedOnceInOrder) {
 TEST(WebExport, TheEndSaysWhetherTheServerHasEveryAnswer) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
-                             " --post-url /collect")
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(testing::export_web(manifest, dir / "web", "--post-url /collect"));
   // The page's last line with every row refused with `status`; the rows in the session's CSV.
   const auto refused_end = [&](int status, std::string& rows) {
     const fs::path out = dir / ("refused-" + std::to_string(status));
@@ -189,10 +183,7 @@ TEST(WebExport, TheEndSaysWhetherTheServerHasEveryAnswer) {
 TEST(WebExport, TheChinrestIsRecordedInEveryRowAndNotAskedForAgainAfterAReload) {
   testing::TempDir dir;
   const fs::path manifest = testing::make_tiny_set(dir);
-  ASSERT_EQ(testing::run_cli("export-web " + manifest.string() + " -o " + (dir / "web").string() +
-                             " --chinrest")
-                .exit_code,
-            0);
+  ASSERT_NO_FATAL_FAILURE(testing::export_web(manifest, dir / "web", "--chinrest"));
   const fs::path csv = dir / "chinrest.csv";
   const auto run = testing::run_program(
       "bash -c",
