@@ -11,11 +11,6 @@ namespace countershade {
 // sin and cos of 2π·turns.
 inline void sincos_turns(double turns, double& s, double& c) {
   // The octant's centre angle (k + ½)·π/4, then the Taylor series of the rest, |φ| ≤ π/8.
-  static constexpr double kCentre[8][2] = {
-      {0.38268343236508978, 0.92387953251128674},   {0.92387953251128674, 0.38268343236508978},
-      {0.92387953251128674, -0.38268343236508978},  {0.38268343236508978, -0.92387953251128674},
-      {-0.38268343236508978, -0.92387953251128674}, {-0.92387953251128674, -0.38268343236508978},
-      {-0.92387953251128674, 0.38268343236508978},  {-0.38268343236508978, 0.92387953251128674}};
   double u = turns - std::floor(turns);
   int k = int(u * 8.0);
   k = k > 7 ? 7 : k;
@@ -32,7 +27,13 @@ inline void sincos_turns(double turns, double& s, double& c) {
       p2 * (-0.5 +
             p2 * (1.0 / 24 + p2 * (-1.0 / 720 +
                                    p2 * (1.0 / 40320 + p2 * (-1.0 / 3628800 + p2 / 479001600.0)))));
-  const double sa = kCentre[k][0], ca = kCentre[k][1];
+  // The centre's sine and cosine are ±sin π/8 and ±cos π/8: octants 0, 3, 4 and 7 lie next to the
+  // x axis (the sine is the small one), 0-3 have a positive sine and 0, 1, 6 and 7 a positive
+  // cosine. Selections rather than a table, so that loops of this function vectorise.
+  constexpr double kNear = 0.38268343236508978, kFar = 0.92387953251128674;
+  const bool near_x = ((k + 1) & 2) == 0;
+  const double sa = (k < 4 ? 1.0 : -1.0) * (near_x ? kNear : kFar);
+  const double ca = (((k + 2) & 4) == 0 ? 1.0 : -1.0) * (near_x ? kFar : kNear);
   s = sp * ca + cp * sa;
   c = cp * ca - sp * sa;
 }

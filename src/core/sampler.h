@@ -31,6 +31,8 @@ class Sampler {
 
   double next1d();
   glm::dvec2 next2d();
+  // The next `count` 2D points, as that many next2d() calls give them, drawn side by side.
+  void next2d_many(int count, double* u1, double* u2);
 
   // The replicate a sample belongs to (0 or 1).
   static int replicate(uint32_t sample) { return int(sample & 1u); }
@@ -47,5 +49,8 @@ class Sampler {
 
 // The Owen-scrambled, index-shuffled 2D Sobol point `index` for a seed: exposed for tests.
 glm::dvec2 scrambled_sobol_2d(uint32_t index, uint64_t seed);
+
+// The second Sobol dimension's value for index k, bit-reversed: exposed for tests.
+uint32_t reversed_second_sobol_dimension(uint32_t k);
 
 }  // namespace countershade

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/fast_math.h"
+#include "core/isa.h"
 
 namespace countershade {
 
@@ -34,6 +35,54 @@ glm::dvec3 sample_cosine_hemisphere(const TangentFrame& frame, double u1, double
   sincos_turns(u2, sin_phi, cos_phi);
   return glm::normalize(r * cos_phi * frame.t + r * sin_phi * frame.b +
                         std::sqrt(std::max(0.0, 1.0 - u1)) * frame.n);
+}
+
+namespace {
+
+// One lane: the direction at `across` (sin θ) and `along` (cos θ) from the axis and azimuth
+// 2π·turns, with glm's arithmetic spelled out per component: (across·cos φ)·t + (across·sin φ)·b +
+// along·n, normalised as v · (1 / sqrt((x² + y²) + z²)).
+inline void direction_lane(const TangentFrame& f, double across, double along, double turns,
+                           double& x, double& y, double& z) {
+  double sin_phi, cos_phi;
+  sincos_turns(turns, sin_phi, cos_phi);
+  const double a = across * cos_phi, c = across * sin_phi;
+  const double vx = a * f.t.x + c * f.b.x + along * f.n.x,
+               vy = a * f.t.y + c * f.b.y + along * f.n.y,
+               vz = a * f.t.z + c * f.b.z + along * f.n.z;
+  const double inverse = 1.0 / std::sqrt(vx * vx + vy * vy + vz * vz);
+  x = vx * inverse, y = vy * inverse, z = vz * inverse;
+}
+
+COUNTERSHADE_CLONES
+void cosine_lanes(const TangentFrame& f, const double* __restrict u1, const double* __restrict u2,
+                  double* __restrict x, double* __restrict y, double* __restrict z) {
+  for (int i = 0; i < kDirectionLanes; ++i)
+    direction_lane(f, std::sqrt(u1[i]), std::sqrt(std::max(0.0, 1.0 - u1[i])), u2[i], x[i], y[i],
+                   z[i]);
+}
+
+COUNTERSHADE_CLONES
+void cone_lanes(const TangentFrame& f, double cos_max, const double* __restrict u1,
+                const double* __restrict u2, double* __restrict x, double* __restrict y,
+                double* __restrict z) {
+  for (int i = 0; i < kDirectionLanes; ++i) {
+    const double cos_theta = 1.0 - u1[i] * (1.0 - cos_max);
+    direction_lane(f, std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta)), cos_theta, u2[i], x[i],
+                   y[i], z[i]);
+  }
+}
+
+}  // namespace
+
+void sample_cosine_hemisphere_lanes(const TangentFrame& frame, const double* u1, const double* u2,
+                                    double* x, double* y, double* z) {
+  cosine_lanes(frame, u1, u2, x, y, z);
+}
+
+void sample_cone_lanes(const TangentFrame& axis, double cos_max, const double* u1, const double* u2,
+                       double* x, double* y, double* z) {
+  cone_lanes(axis, cos_max, u1, u2, x, y, z);
 }
 
 }  // namespace countershade

@@ -19,4 +19,13 @@ glm::dvec3 sample_cone(const TangentFrame& axis, double cos_max, double u1, doub
 // Cosine-weighted direction in the hemisphere around the frame's axis.
 glm::dvec3 sample_cosine_hemisphere(const TangentFrame& frame, double u1, double u2);
 
+// sample_cosine_hemisphere and sample_cone for kDirectionLanes points at once, side by side in
+// vector lanes: the same operations in the same order, so the same bits. They write the
+// directions' x, y and z.
+constexpr int kDirectionLanes = 8;
+void sample_cosine_hemisphere_lanes(const TangentFrame& frame, const double* u1, const double* u2,
+                                    double* x, double* y, double* z);
+void sample_cone_lanes(const TangentFrame& axis, double cos_max, const double* u1, const double* u2,
+                       double* x, double* y, double* z);
+
 }  // namespace countershade

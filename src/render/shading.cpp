@@ -22,6 +22,17 @@ int samples_per_point(const DirectionalLight& light) {
 }
 int samples_per_point(const PointLight& light) { return light.radius > 0 ? light.samples : 1; }
 
+// The points of up to kDirectionLanes samples of one light, drawn side by side (the lanes past the
+// last sample hold 0), and the directions drawn from them.
+struct PointLanes {
+  PointLanes(Sampler& random, int count) { random.next2d_many(count, u1, u2); }
+  double u1[kDirectionLanes] = {}, u2[kDirectionLanes] = {};
+};
+struct DirectionLanes {
+  double x[kDirectionLanes], y[kDirectionLanes], z[kDirectionLanes];
+  glm::dvec3 operator[](int i) const { return {x[i], y[i], z[i]}; }
+};
+
 }  // namespace
 
 SurfacePoint surface_point(const Scene& scene, unsigned object, unsigned triangle, double b1,
@@ -234,14 +245,20 @@ bool Shader::dark_side_open(const ShadingInputs& s, const ShadingRecord& r,
 void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
   const TangentFrame* frame = light_frames_.data();
   for (const auto& light : scene_.directional_lights) {
-    double cos_max = std::cos(glm::radians(light.angular_radius_deg));
+    const double cos_max = std::cos(glm::radians(light.angular_radius_deg));
     const int samples = samples_per_point(light);
-    for (int s = 0; s < samples; ++s) {
-      const glm::dvec2 u = random.next2d();
-      glm::dvec3 wi =
-          light.angular_radius_deg > 0 ? sample_cone(*frame, cos_max, u.x, u.y) : light.direction;
-      // Without shadows the light reaches every point that faces it (distance 0: no shadow ray).
-      draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
+    for (int first = 0; first < samples; first += kDirectionLanes) {
+      const int count = std::min(kDirectionLanes, samples - first);
+      const PointLanes u(random, count);
+      DirectionLanes cone;
+      if (light.angular_radius_deg > 0)
+        sample_cone_lanes(*frame, cos_max, u.u1, u.u2, cone.x, cone.y, cone.z);
+      for (int i = 0; i < count; ++i) {
+        const glm::dvec3 wi = light.angular_radius_deg > 0 ? cone[i] : light.direction;
+        // Without shadows the light reaches every point that faces it (distance 0: no shadow
+        // ray).
+        draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
+      }
     }
     ++frame;
   }
@@ -273,36 +290,54 @@ void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const 
 void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   if (!scene_.environment) return;
   const EnvironmentLight& env = *scene_.environment;
+  if (env.sampling == EnvironmentSampling::importance)
+    return environment_from_map(c, random, counts);
   const Material& material = scene_.objects[c.point.object].material;
   const TangentFrame frame(c.normal);  // shared by the samples drawn around the normal
   // With cosine+specular, the last quarter of the samples (at least one) come from the lobe.
   const bool mixed =
       env.sampling == EnvironmentSampling::cosine_and_specular && has_specular_lobe(material);
-  const int from_lobe = mixed ? std::max(1, env.samples / 4) : 0;
+  const int from_lobe = mixed ? std::max(1, env.samples / 4) : 0,
+            by_cosine = env.samples - from_lobe;
+  // The samples' points and cosine directions are drawn eight at a time, side by side in vector
+  // lanes: the same bits as one at a time.
+  for (int first = 0; first < env.samples; first += kDirectionLanes) {
+    const int count = std::min(kDirectionLanes, env.samples - first);
+    const PointLanes u(random, count);
+    DirectionLanes cosine;
+    if (first < by_cosine)
+      sample_cosine_hemisphere_lanes(frame, u.u1, u.u2, cosine.x, cosine.y, cosine.z);
+    for (int i = 0; i < count; ++i) {
+      const std::optional<glm::dvec3> drawn =
+          first + i < by_cosine ? cosine[i]
+                                : sample_specular_lobe(material, frame, c.wo, u.u1[i], u.u2[i]);
+      environment_sample(c, material, drawn, from_lobe, counts);
+    }
+  }
+}
+
+void Shader::environment_sample(Context& c, const Material& material,
+                                const std::optional<glm::dvec3>& drawn, int from_lobe,
+                                RayCounts& counts) const {
+  const EnvironmentLight& env = *scene_.environment;
+  const double pdf = drawn ? mixture_pdf(c, material, *drawn, env.samples, from_lobe) : 0.0;
+  if (pdf <= 0) {
+    *c.lights++ = LightSampleRecord{};
+    return;
+  }
+  draw(c, *drawn, env.map->radiance(*drawn), pdf, 1e30, counts);
+}
+
+void Shader::environment_from_map(Context& c, Sampler& random, RayCounts& counts) const {
+  const EnvironmentLight& env = *scene_.environment;
   for (int s = 0; s < env.samples; ++s) {
     const glm::dvec2 u = random.next2d();
-    glm::dvec3 wi, Le(0.0);
-    double pdf = 0;
-    if (env.sampling == EnvironmentSampling::importance) {
-      auto sample = env.map->sample(u.x, u.y, random.next1d());
-      wi = sample.direction;
-      pdf = sample.pdf;
-      Le = sample.radiance;
-    } else {
-      const std::optional<glm::dvec3> drawn =
-          s < env.samples - from_lobe ? sample_cosine_hemisphere(frame, u.x, u.y)
-                                      : sample_specular_lobe(material, frame, c.wo, u.x, u.y);
-      if (drawn) {
-        wi = *drawn;
-        pdf = mixture_pdf(c, material, wi, env.samples, from_lobe);
-        if (pdf > 0) Le = env.map->radiance(wi);
-      }
-    }
-    if (pdf <= 0) {
+    const auto sample = env.map->sample(u.x, u.y, random.next1d());
+    if (sample.pdf <= 0) {
       *c.lights++ = LightSampleRecord{};
       continue;
     }
-    draw(c, wi, Le, pdf, 1e30, counts);
+    draw(c, sample.direction, sample.radiance, sample.pdf, 1e30, counts);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -145,6 +146,10 @@ class Shader {
   void directional(Context& c, Sampler& random, RayCounts& counts) const;
   void point_lights(Context& c, Sampler& random, RayCounts& counts) const;
   void environment(Context& c, Sampler& random, RayCounts& counts) const;
+  void environment_sample(Context& c, const Material& material,
+                          const std::optional<glm::dvec3>& drawn, int from_lobe,
+                          RayCounts& counts) const;
+  void environment_from_map(Context& c, Sampler& random, RayCounts& counts) const;
   static double mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi,
                             int samples, int from_lobe);
   double ambient_open(const Context& c, Sampler& random, RayCounts& counts) const;

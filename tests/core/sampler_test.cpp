@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/random.h"
+
 namespace countershade {
 namespace {
 
@@ -20,6 +22,50 @@ bool is_net(const std::vector<glm::dvec2>& points, int m) {
     }
   }
   return true;
+}
+
+uint32_t reversed(uint32_t x) {
+  uint32_t r = 0;
+  for (int bit = 0; bit < 32; ++bit) r |= ((x >> bit) & 1u) << (31 - bit);
+  return r;
+}
+
+TEST(Sampler, TheSecondDimensionFollowsItsGenerator) {
+  // The generator matrix of the polynomial x + 1: direction numbers v_0 = 2^31 and
+  // v_i = v_(i−1) xor (v_(i−1) >> 1); index k's value is the xor of v_i over k's set bits.
+  uint32_t v[32];
+  v[0] = 1u << 31;
+  for (int i = 1; i < 32; ++i) v[i] = v[i - 1] ^ (v[i - 1] >> 1);
+  auto by_generator = [&](uint32_t k) {
+    uint32_t x = 0;
+    for (int i = 0; i < 32; ++i)
+      if ((k >> i) & 1u) x ^= v[i];
+    return reversed(x);
+  };
+  for (uint32_t k = 0; k < 70000; ++k)
+    ASSERT_EQ(reversed_second_sobol_dimension(k), by_generator(k)) << k;
+  for (uint64_t i = 0; i < 100000; ++i) {
+    const uint32_t k = uint32_t(mix64(i));
+    ASSERT_EQ(reversed_second_sobol_dimension(k), by_generator(k)) << k;
+  }
+}
+
+TEST(Sampler, PointsDrawnSideBySideAreThePointsDrawnOneAtATime) {
+  for (SamplingMode mode : {SamplingMode::sobol, SamplingMode::independent})
+    for (int count : {1, 3, 8, 9, 20})
+      for (uint32_t sample : {0u, 1u, 6u, 1001u}) {
+        Sampler one(mode, 7, kDomainPixel, 12345, sample),
+            many(mode, 7, kDomainPixel, 12345, sample);
+        EXPECT_EQ(one.next1d(), many.next1d());  // the batch starts past dimension 0
+        std::vector<double> u1(size_t(count), -1.0), u2(size_t(count), -1.0);
+        many.next2d_many(count, u1.data(), u2.data());
+        for (int i = 0; i < count; ++i) {
+          const glm::dvec2 u = one.next2d();
+          ASSERT_EQ(u.x, u1[size_t(i)]) << count << " " << i;
+          ASSERT_EQ(u.y, u2[size_t(i)]) << count << " " << i;
+        }
+        EXPECT_EQ(one.next2d(), many.next2d()) << "the batch moves on by `count` dimensions";
+      }
 }
 
 TEST(Sampler, EveryPowerOfTwoPrefixOfTheScrambledSequenceIsANet) {
