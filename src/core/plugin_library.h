@@ -2,7 +2,9 @@
 // Parts of the program kept in shared libraries of their own and loaded when first needed, so that
 // a command pays only for the libraries it uses (codecs/image_codec.h says why). Each is
 // libcountershade_NAME.so, found beside the running program or in ../lib/countershade from it,
-// and gives one object through its C entry point `countershade_NAME`.
+// and gives one object through its C entry point `countershade_NAME`. A library whose
+// `countershade_plugin_interface` differs from the program's (a stamp of codecs/*.h, set by the
+// build) is refused, and the next place tried.
 
 #include <string>
 
