@@ -32,7 +32,7 @@ void* open_plugin(const fs::path& place, const std::string& name, std::string& w
   }
   using Stamp = const char* (*)();
   const auto stamp = reinterpret_cast<Stamp>(dlsym(library, "countershade_plugin_interface"));
-  const std::string interface = stamp ? stamp() : "none";
+  const std::string interface = stamp ? stamp() : "(no stamp)";
   if (interface != COUNTERSHADE_PLUGIN_INTERFACE) {
     why = place.string() + ": built for another version of countershade (interface " + interface +
           ", this program's " + COUNTERSHADE_PLUGIN_INTERFACE +
