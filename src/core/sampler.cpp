@@ -35,13 +35,16 @@ double to_unit(uint32_t x) { return double(x) * 0x1p-32; }
 
 // The shuffled index: an Owen scramble of the sample number, which keeps every aligned block of
 // 2^m numbers in one aligned block.
+uint32_t shuffled_of_reversed(uint32_t reversed_index, uint64_t seed) {
+  return owen_of_reversed(reversed_index, uint32_t(mix64(seed)));
+}
 uint32_t shuffled_index(uint32_t index, uint64_t seed) {
-  return owen_of_reversed(reverse_bits(index), uint32_t(mix64(seed)));
+  return shuffled_of_reversed(reverse_bits(index), seed);
 }
 
 // The point's two coordinates from the index already reversed (the same for every dimension).
 inline void sobol_2d_of_reversed(uint32_t reversed_index, uint64_t seed, double& u1, double& u2) {
-  const uint32_t k = owen_of_reversed(reversed_index, uint32_t(mix64(seed)));  // shuffled index
+  const uint32_t k = shuffled_of_reversed(reversed_index, seed);
   // Dimension 0 is the van der Corput sequence reverse(k): its reversal is k itself.
   u1 = to_unit(owen_of_reversed(k, uint32_t(mix64(seed + 1))));
   u2 = to_unit(owen_of_reversed(reversed_second_sobol_dimension(k), uint32_t(mix64(seed + 2))));

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/geometric.hpp>
 
 #include "core/fast_math.h"
 #include "core/isa.h"
@@ -18,30 +17,11 @@ TangentFrame::TangentFrame(const glm::dvec3& axis) : n(axis) {
   b = {c, sign + n.y * n.y * a, -n.y};
 }
 
-glm::dvec3 direction_around(const TangentFrame& frame, double cos_theta, double turns) {
-  double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  double sin_phi, cos_phi;
-  sincos_turns(turns, sin_phi, cos_phi);
-  return glm::normalize(sin_theta * cos_phi * frame.t + sin_theta * sin_phi * frame.b +
-                        cos_theta * frame.n);
-}
-
-glm::dvec3 sample_cone(const TangentFrame& axis, double cos_max, double u1, double u2) {
-  return direction_around(axis, 1.0 - u1 * (1.0 - cos_max), u2);
-}
-
-glm::dvec3 sample_cosine_hemisphere(const TangentFrame& frame, double u1, double u2) {
-  double r = std::sqrt(u1), sin_phi, cos_phi;
-  sincos_turns(u2, sin_phi, cos_phi);
-  return glm::normalize(r * cos_phi * frame.t + r * sin_phi * frame.b +
-                        std::sqrt(std::max(0.0, 1.0 - u1)) * frame.n);
-}
-
 namespace {
 
-// One lane: the direction at `across` (sin θ) and `along` (cos θ) from the axis and azimuth
-// 2π·turns, with glm's arithmetic spelled out per component: (across·cos φ)·t + (across·sin φ)·b +
-// along·n, normalised as v · (1 / sqrt((x² + y²) + z²)).
+// The direction at `across` (sin θ) and `along` (cos θ) from the axis and azimuth 2π·turns, one
+// sample's or one lane's: (across·cos φ)·t + (across·sin φ)·b + along·n, normalised as
+// v · (1 / sqrt((x² + y²) + z²)). The single functions and the lanes both use it, so they agree.
 inline void direction_lane(const TangentFrame& f, double across, double along, double turns,
                            double& x, double& y, double& z) {
   double sin_phi, cos_phi;
@@ -53,6 +33,27 @@ inline void direction_lane(const TangentFrame& f, double across, double along, d
   const double inverse = 1.0 / std::sqrt(vx * vx + vy * vy + vz * vz);
   x = vx * inverse, y = vy * inverse, z = vz * inverse;
 }
+
+}  // namespace
+
+glm::dvec3 direction_around(const TangentFrame& frame, double cos_theta, double turns) {
+  glm::dvec3 d;
+  direction_lane(frame, std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta)), cos_theta, turns,
+                 d.x, d.y, d.z);
+  return d;
+}
+
+glm::dvec3 sample_cone(const TangentFrame& axis, double cos_max, double u1, double u2) {
+  return direction_around(axis, 1.0 - u1 * (1.0 - cos_max), u2);
+}
+
+glm::dvec3 sample_cosine_hemisphere(const TangentFrame& frame, double u1, double u2) {
+  glm::dvec3 d;
+  direction_lane(frame, std::sqrt(u1), std::sqrt(std::max(0.0, 1.0 - u1)), u2, d.x, d.y, d.z);
+  return d;
+}
+
+namespace {
 
 COUNTERSHADE_CLONES
 void cosine_lanes(const TangentFrame& f, const double* __restrict u1, const double* __restrict u2,
