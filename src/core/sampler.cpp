@@ -50,16 +50,13 @@ inline void sobol_2d_of_reversed(uint32_t reversed_index, uint64_t seed, double&
   u2 = to_unit(owen_of_reversed(reversed_second_sobol_dimension(k), uint32_t(mix64(seed + 2))));
 }
 
-constexpr int kLanes = 8;
-
-// Eight dimensions' points of one sample side by side: the same integer operations as one point
-// at a time, which the compiler turns into vector lanes (64-bit multiplies and byte swaps).
+// Consecutive points of one sequence side by side: the same integer operations as one point at
+// a time, which the compiler turns into vector lanes (64-bit multiplies and byte swaps).
 COUNTERSHADE_CLONES
-void sobol_2d_lanes(uint64_t base, uint32_t first_dimension, uint32_t reversed_index,
-                    double* __restrict u1, double* __restrict u2) {
-  for (int i = 0; i < kLanes; ++i)
-    sobol_2d_of_reversed(reversed_index, hash_combine(base, uint64_t(first_dimension + i)), u1[i],
-                         u2[i]);
+void sobol_2d_lanes(uint64_t seed, uint32_t first_index, double* __restrict u1,
+                    double* __restrict u2) {
+  for (uint32_t i = 0; i < uint32_t(Sampler::kBlockLanes); ++i)
+    sobol_2d_of_reversed(reverse_bits(first_index + i), seed, u1[i], u2[i]);
 }
 
 }  // namespace
@@ -108,20 +105,23 @@ glm::dvec2 Sampler::next2d() {
   return scrambled_sobol_2d(index_, dimension_seed());
 }
 
-void Sampler::next2d_many(int count, double* u1, double* u2) {
-  if (mode_ == SamplingMode::independent) {
-    for (int i = 0; i < count; ++i) u1[i] = stream_.next(), u2[i] = stream_.next();
+Sampler::Block::Block(Sampler& sampler, int count) : sampler_(sampler) {
+  if (sampler.mode_ == SamplingMode::independent) return;
+  seed_ = sampler.dimension_seed();
+  first_index_ = uint32_t(count) * sampler.index_;
+}
+
+void Sampler::Block::points(int first, int n, double* u1, double* u2) const {
+  if (sampler_.mode_ == SamplingMode::independent) {
+    for (int i = 0; i < n; ++i) u1[i] = sampler_.stream_.next(), u2[i] = sampler_.stream_.next();
     return;
   }
-  const uint32_t reversed_index = reverse_bits(index_);
-  for (int done = 0; done < count; done += kLanes) {
-    double a[kLanes], b[kLanes];
-    sobol_2d_lanes(base_, dimension_, reversed_index, a, b);
-    const int n = std::min(kLanes, count - done);
-    std::copy_n(a, n, u1 + done);
-    std::copy_n(b, n, u2 + done);
-    dimension_ += uint32_t(n);
-  }
+  if (n == 1)
+    return sobol_2d_of_reversed(reverse_bits(first_index_ + uint32_t(first)), seed_, *u1, *u2);
+  double a[kBlockLanes], b[kBlockLanes];
+  sobol_2d_lanes(seed_, first_index_ + uint32_t(first), a, b);
+  std::copy_n(a, n, u1);
+  std::copy_n(b, n, u2);
 }
 
 }  // namespace countershade

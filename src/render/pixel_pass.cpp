@@ -394,7 +394,7 @@ class AdaptiveSampling {
     const double target = in_.request.share * budget.target;
     if (budget.allocation == NoiseAllocation::pixel) return target;
     // The estimates are rough: a tenth of the RMS in hand (the ritschel2008 scenes then measure
-    // 0.40 to 0.47 L* with two seeds, tests/stimuli/noise_budget_test).
+    // 0.38 to 0.45 L* with two seeds, tests/stimuli/noise_budget_test).
     constexpr double kImageMargin = 0.9;
     std::vector<uint8_t> is_active(decision_.size(), 0);
     for (uint32_t p : active) is_active[p] = 1;

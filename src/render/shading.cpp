@@ -25,9 +25,12 @@ int samples_per_point(const PointLight& light) { return light.radius > 0 ? light
 // The points of up to kDirectionLanes samples of one light, drawn side by side (the lanes past the
 // last sample hold 0), and the directions drawn from them.
 struct PointLanes {
-  PointLanes(Sampler& random, int count) { random.next2d_many(count, u1, u2); }
+  PointLanes(const Sampler::Block& block, int first, int count) {
+    block.points(first, count, u1, u2);
+  }
   double u1[kDirectionLanes] = {}, u2[kDirectionLanes] = {};
 };
+static_assert(kDirectionLanes == Sampler::kBlockLanes);
 struct DirectionLanes {
   double x[kDirectionLanes], y[kDirectionLanes], z[kDirectionLanes];
   glm::dvec3 operator[](int i) const { return {x[i], y[i], z[i]}; }
@@ -247,9 +250,10 @@ void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
   for (const auto& light : scene_.directional_lights) {
     const double cos_max = std::cos(glm::radians(light.angular_radius_deg));
     const int samples = samples_per_point(light);
+    const Sampler::Block block = random.next2d_block(samples);
     for (int first = 0; first < samples; first += kDirectionLanes) {
       const int count = std::min(kDirectionLanes, samples - first);
-      const PointLanes u(random, count);
+      const PointLanes u(block, first, count);
       DirectionLanes cone;
       if (light.angular_radius_deg > 0)
         sample_cone_lanes(*frame, cos_max, u.u1, u.u2, cone.x, cone.y, cone.z);
@@ -267,8 +271,10 @@ void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
 void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const {
   for (const auto& light : scene_.point_lights) {
     const int samples = samples_per_point(light);
+    const Sampler::Block block = random.next2d_block(samples);
     for (int s = 0; s < samples; ++s) {
-      const glm::dvec2 u = random.next2d();
+      glm::dvec2 u;
+      block.points(s, 1, &u.x, &u.y);
       glm::dvec3 target = light.position;
       if (light.radius > 0) {  // uniform point on the spherical light
         double z = 1.0 - 2.0 * u.x, r = std::sqrt(std::max(0.0, 1.0 - z * z)), sin_phi, cos_phi;
@@ -299,20 +305,24 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
       env.sampling == EnvironmentSampling::cosine_and_specular && has_specular_lobe(material);
   const int from_lobe = mixed ? std::max(1, env.samples / 4) : 0,
             by_cosine = env.samples - from_lobe;
-  // The samples' points and cosine directions are drawn eight at a time, side by side in vector
-  // lanes: the same bits as one at a time.
-  for (int first = 0; first < env.samples; first += kDirectionLanes) {
-    const int count = std::min(kDirectionLanes, env.samples - first);
-    const PointLanes u(random, count);
+  // Each strategy's samples are one block of points, so that a pixel's samples stratify each
+  // strategy's directions on their own. The points and cosine directions are drawn eight at a
+  // time, side by side in vector lanes.
+  const Sampler::Block cosine_block = random.next2d_block(by_cosine);
+  for (int first = 0; first < by_cosine; first += kDirectionLanes) {
+    const int count = std::min(kDirectionLanes, by_cosine - first);
+    const PointLanes u(cosine_block, first, count);
     DirectionLanes cosine;
-    if (first < by_cosine)
-      sample_cosine_hemisphere_lanes(frame, u.u1, u.u2, cosine.x, cosine.y, cosine.z);
-    for (int i = 0; i < count; ++i) {
-      const std::optional<glm::dvec3> drawn =
-          first + i < by_cosine ? cosine[i]
-                                : sample_specular_lobe(material, frame, c.wo, u.u1[i], u.u2[i]);
-      environment_sample(c, material, drawn, from_lobe, counts);
-    }
+    sample_cosine_hemisphere_lanes(frame, u.u1, u.u2, cosine.x, cosine.y, cosine.z);
+    for (int i = 0; i < count; ++i) environment_sample(c, material, cosine[i], from_lobe, counts);
+  }
+  if (from_lobe == 0) return;
+  const Sampler::Block lobe_block = random.next2d_block(from_lobe);
+  for (int s = 0; s < from_lobe; ++s) {
+    glm::dvec2 u;
+    lobe_block.points(s, 1, &u.x, &u.y);
+    environment_sample(c, material, sample_specular_lobe(material, frame, c.wo, u.x, u.y),
+                       from_lobe, counts);
   }
 }
 
@@ -356,8 +366,10 @@ double Shader::ambient_open(const Context& c, Sampler& random, RayCounts& counts
   if (ambient.radiance == glm::dvec3(0.0) || ambient.distance <= 0) return 1.0;
   int unoccluded = 0;
   const TangentFrame frame(c.normal);
+  const Sampler::Block block = random.next2d_block(ambient.samples);
   for (int s = 0; s < ambient.samples; ++s) {
-    const glm::dvec2 u = random.next2d();
+    glm::dvec2 u;
+    block.points(s, 1, &u.x, &u.y);
     glm::dvec3 wi = sample_cosine_hemisphere(frame, u.x, u.y);
     if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
   }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -50,22 +51,72 @@ TEST(Sampler, TheSecondDimensionFollowsItsGenerator) {
   }
 }
 
-TEST(Sampler, PointsDrawnSideBySideAreThePointsDrawnOneAtATime) {
-  for (SamplingMode mode : {SamplingMode::sobol, SamplingMode::independent})
-    for (int count : {1, 3, 8, 9, 20})
-      for (uint32_t sample : {0u, 1u, 6u, 1001u}) {
-        Sampler one(mode, 7, kDomainPixel, 12345, sample),
-            many(mode, 7, kDomainPixel, 12345, sample);
-        EXPECT_EQ(one.next1d(), many.next1d());  // the batch starts past dimension 0
-        std::vector<double> u1(size_t(count), -1.0), u2(size_t(count), -1.0);
-        many.next2d_many(count, u1.data(), u2.data());
-        for (int i = 0; i < count; ++i) {
-          const glm::dvec2 u = one.next2d();
-          ASSERT_EQ(u.x, u1[size_t(i)]) << count << " " << i;
-          ASSERT_EQ(u.y, u2[size_t(i)]) << count << " " << i;
+// A block's points, drawn side by side and one at a time (the scalar path), are the same bits.
+TEST(Sampler, BlockPointsDrawnSideBySideAreThePointsDrawnOneAtATime) {
+  for (int count : {2, 3, 8, 9, 20})
+    for (uint32_t sample : {0u, 1u, 6u, 1001u}) {
+      Sampler sampler(SamplingMode::sobol, 7, kDomainPixel, 12345, sample);
+      const Sampler::Block block = sampler.next2d_block(count);
+      for (int first = 0; first < count; first += Sampler::kBlockLanes) {
+        const int n = std::min(Sampler::kBlockLanes, count - first);
+        double u1[Sampler::kBlockLanes], u2[Sampler::kBlockLanes];
+        block.points(first, n, u1, u2);
+        for (int i = 0; i < n; ++i) {
+          double v1 = -1, v2 = -1;
+          block.points(first + i, 1, &v1, &v2);
+          ASSERT_EQ(u1[i], v1) << count << " " << sample << " " << first + i;
+          ASSERT_EQ(u2[i], v2) << count << " " << sample << " " << first + i;
         }
-        EXPECT_EQ(one.next2d(), many.next2d()) << "the batch moves on by `count` dimensions";
       }
+    }
+}
+
+// A block of one point is the next dimension's point, so a light with one sample draws what it
+// drew before blocks; in independent mode a block is the next numbers of the stream.
+TEST(Sampler, ABlockTakesOneDimensionAndOfOnePointIsTheNextPoint) {
+  for (SamplingMode mode : {SamplingMode::sobol, SamplingMode::independent})
+    for (uint32_t sample : {0u, 1u, 6u, 1001u}) {
+      Sampler one(mode, 7, kDomainPixel, 12345, sample),
+          block(mode, 7, kDomainPixel, 12345, sample);
+      EXPECT_EQ(one.next1d(), block.next1d());
+      double u1 = -1, u2 = -1;
+      block.next2d_block(1).points(0, 1, &u1, &u2);
+      EXPECT_EQ(one.next2d(), glm::dvec2(u1, u2));
+      if (mode == SamplingMode::independent) {
+        double v1[3], v2[3];
+        block.next2d_block(3).points(0, 3, v1, v2);
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(one.next2d(), glm::dvec2(v1[i], v2[i])) << i;
+      } else {
+        block.next2d_block(3);
+        one.next2d();
+      }
+      EXPECT_EQ(one.next2d(), block.next2d()) << "a block moves on by one dimension";
+    }
+}
+
+// The lever of blocks: a light's count points at each of a replicate's first 2^k samples are
+// the first count·2^k points of one scrambled sequence, a (0,m,2)-net together, where separate
+// dimensions would give count nets of 2^k points that know nothing of each other.
+TEST(Sampler, ALightsPointsOverAReplicatesSamplesFormOneNet) {
+  for (int count : {2, 4, 8})
+    for (uint64_t pixel : {12345ull, 99ull}) {
+      std::vector<glm::dvec2> points;
+      for (uint32_t s = 0; s < 256; s += 2) {  // replicate 0
+        Sampler sampler(SamplingMode::sobol, 7, kDomainPixel, pixel, s);
+        sampler.next2d();  // the pixel position's dimension
+        const Sampler::Block block = sampler.next2d_block(count);
+        for (int i = 0; i < count; ++i) {
+          double u1, u2;
+          block.points(i, 1, &u1, &u2);
+          points.emplace_back(u1, u2);
+        }
+        const size_t n = points.size();
+        if ((n & (n - 1)) == 0) {
+          EXPECT_TRUE(is_net(points, int(std::log2(double(n)))))
+              << count << " points a sample, " << n << " points";
+        }
+      }
+    }
 }
 
 TEST(Sampler, EveryPowerOfTwoPrefixOfTheScrambledSequenceIsANet) {
