@@ -340,9 +340,15 @@ void Shader::environment_sample(Context& c, const Material& material,
 
 void Shader::environment_from_map(Context& c, Sampler& random, RayCounts& counts) const {
   const EnvironmentLight& env = *scene_.environment;
+  // Two blocks: the texel's choice and column, then its row (the second number unused), so that
+  // a pixel's samples stratify the choice of texel over all of them.
+  const Sampler::Block texel = random.next2d_block(env.samples),
+                       row = random.next2d_block(env.samples);
   for (int s = 0; s < env.samples; ++s) {
-    const glm::dvec2 u = random.next2d();
-    const auto sample = env.map->sample(u.x, u.y, random.next1d());
+    double u1, u2, u3, unused;
+    texel.points(s, 1, &u1, &u2);
+    row.points(s, 1, &u3, &unused);
+    const auto sample = env.map->sample(u1, u2, u3);
     if (sample.pdf <= 0) {
       *c.lights++ = LightSampleRecord{};
       continue;
