@@ -107,6 +107,32 @@ std::shared_ptr<Scene> load_render_scene(const RenderArgs& args, const RenderReq
   return scene;
 }
 
+// The method's parameters on the summary line. An array or object of more than kShown items
+// (usm3d's iterations per object, lla's smoothing counts per component: hundreds in a cluttered
+// scene) shows its first items and how many follow (a set's manifest records them in full).
+void append_brief(std::string& out, const nlohmann::json& j) {
+  constexpr size_t kShown = 8;
+  if (!j.is_array() && !j.is_object()) {
+    out += j.dump();
+    return;
+  }
+  out += j.is_array() ? '[' : '{';
+  size_t shown = 0;
+  for (auto it = j.begin(); it != j.end() && shown < kShown; ++it, ++shown) {
+    if (shown > 0) out += ',';
+    if (j.is_object()) out += nlohmann::json(it.key()).dump() + ':';
+    append_brief(out, it.value());
+  }
+  if (j.size() > kShown) out += ",… " + std::to_string(j.size() - kShown) + " more";
+  out += j.is_array() ? ']' : '}';
+}
+
+std::string brief(const nlohmann::json& j) {
+  std::string out;
+  append_brief(out, j);
+  return out;
+}
+
 // "wrote out.png (512x384, spp 16/41.3/1024, noise 0.31 L* RMS, p99 0.92, 12.1 s, 3.2 M rays/s)".
 std::string render_summary(const std::string& output, const View& view, const NoiseSummary& noise,
                            double seconds) {
@@ -162,7 +188,7 @@ std::string render_one(const RenderArgs& args, const ResolvedMethod& method,
     if (method.method->enhances())
       details = ", " + method.method->name() + " λ=" + format_number(args.method.lambda) + ", " +
                 std::to_string(stimulus.clipped_pixels) + " clipped pixels, " +
-                prepared->parameters().dump();
+                brief(prepared->parameters());
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -157,5 +157,32 @@ TEST(RenderCli, BadInputExitsWithTwoAndOneLine) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// usm3d reports its iterations per object: ten objects show eight and a count of the rest, so a
+// scene of hundreds of objects or components keeps a summary line a terminal can show.
+TEST(RenderCli, TheSummaryLineShortensLongParameterLists) {
+  testing::TempDir dir;
+  std::string objects;
+  for (int i = 0; i < 10; ++i)
+    objects += std::string(i ? "," : "") + R"({"name": "ball)" + std::to_string(i) +
+               R"(", "shape": {"type": "sphere", "radius": 0.2, "subdivisions": 1},
+                 "transform": {"translate": [)" +
+               std::to_string(0.5 * i - 2.25) + ", 0, 0]}}";
+  auto scene = testing::write_file(dir / "s.json", R"({
+    "version": 1,
+    "camera": {"eye": [0, 1, 6], "target": [0, 0, 0], "width": 40, "height": 30},
+    "render": {"spp": 2},
+    "objects": [)" + objects + R"(],
+    "lights": [{"type": "directional", "direction": [1, 1, 1], "irradiance": 2}]
+  })");
+  auto r = run_cli("render " + scene.string() + " -o " + (dir / "out.png").string() +
+                   " --method usm3d --lambda 1 --sigma 0.1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(R"("ball0":)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(R"("ball7":)"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(R"("ball8":)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(",… 2 more}"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(R"("sigma":0.1)"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace countershade
