@@ -84,12 +84,6 @@ class OiioCodec final : public ImageCodec {
 }  // namespace
 }  // namespace countershade::codecs
 
-// The interface this library was built for: the program refuses a library built for another
-// (core/plugin_library.cpp).
-extern "C" __attribute__((visibility("default"))) const char* countershade_plugin_interface() {
-  return COUNTERSHADE_PLUGIN_INTERFACE;
-}
-
 extern "C" __attribute__((visibility("default"))) void* countershade_image_codec() {
   static countershade::codecs::OiioCodec codec;
   return static_cast<countershade::codecs::ImageCodec*>(&codec);

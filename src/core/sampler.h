@@ -43,6 +43,12 @@ class Sampler {
    public:
     // Points `first` … `first + n − 1` of the block (n ≤ kBlockLanes), drawn side by side.
     void points(int first, int n, double* u1, double* u2) const;
+    // Point `i` of the block alone.
+    glm::dvec2 point(int i) const {
+      glm::dvec2 u;
+      points(i, 1, &u.x, &u.y);
+      return u;
+    }
 
    private:
     friend class Sampler;

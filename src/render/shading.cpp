@@ -273,8 +273,7 @@ void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const 
     const int samples = samples_per_point(light);
     const Sampler::Block block = random.next2d_block(samples);
     for (int s = 0; s < samples; ++s) {
-      glm::dvec2 u;
-      block.points(s, 1, &u.x, &u.y);
+      const glm::dvec2 u = block.point(s);
       glm::dvec3 target = light.position;
       if (light.radius > 0) {  // uniform point on the spherical light
         double z = 1.0 - 2.0 * u.x, r = std::sqrt(std::max(0.0, 1.0 - z * z)), sin_phi, cos_phi;
@@ -319,8 +318,7 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
   if (from_lobe == 0) return;
   const Sampler::Block lobe_block = random.next2d_block(from_lobe);
   for (int s = 0; s < from_lobe; ++s) {
-    glm::dvec2 u;
-    lobe_block.points(s, 1, &u.x, &u.y);
+    const glm::dvec2 u = lobe_block.point(s);
     environment_sample(c, material, sample_specular_lobe(material, frame, c.wo, u.x, u.y),
                        from_lobe, counts);
   }
@@ -345,10 +343,8 @@ void Shader::environment_from_map(Context& c, Sampler& random, RayCounts& counts
   const Sampler::Block texel = random.next2d_block(env.samples),
                        row = random.next2d_block(env.samples);
   for (int s = 0; s < env.samples; ++s) {
-    double u1, u2, u3, unused;
-    texel.points(s, 1, &u1, &u2);
-    row.points(s, 1, &u3, &unused);
-    const auto sample = env.map->sample(u1, u2, u3);
+    const glm::dvec2 u = texel.point(s);
+    const auto sample = env.map->sample(u.x, u.y, row.point(s).x);
     if (sample.pdf <= 0) {
       *c.lights++ = LightSampleRecord{};
       continue;
@@ -374,8 +370,7 @@ double Shader::ambient_open(const Context& c, Sampler& random, RayCounts& counts
   const TangentFrame frame(c.normal);
   const Sampler::Block block = random.next2d_block(ambient.samples);
   for (int s = 0; s < ambient.samples; ++s) {
-    glm::dvec2 u;
-    block.points(s, 1, &u.x, &u.y);
+    const glm::dvec2 u = block.point(s);
     glm::dvec3 wi = sample_cosine_hemisphere(frame, u.x, u.y);
     if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
   }
