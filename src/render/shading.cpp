@@ -168,13 +168,14 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance,
   return open;
 }
 
-void Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
-                  double distance, RayCounts& counts) const {
+LightSampleRecord& Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance,
+                                double divisor, double distance, RayCounts& counts) const {
   // Light from behind the shading normal never arrives, with or without hooks, so a render with
   // hooks asks exactly the shadow rays of the render without them.
   LightSampleRecord& light = *c.lights++;
   const bool facing = glm::dot(c.normal, wi) > 0;
   light = {wi, radiance, divisor, facing && (distance <= 0 || visible(c, wi, distance, counts))};
+  return light;
 }
 
 double terminator_fade(double cos_i, double band) {
@@ -333,7 +334,10 @@ void Shader::environment_sample(Context& c, const Material& material,
     *c.lights++ = LightSampleRecord{};
     return;
   }
-  draw(c, *drawn, env.map->radiance(*drawn), pdf, 1e30, counts);
+  // The sky is looked up only for a sample that arrives: evaluate() reads no other (an
+  // environment's samples are never lit on the dark side), and the lookup costs an acos.
+  LightSampleRecord& light = draw(c, *drawn, glm::dvec3(0.0), pdf, 1e30, counts);
+  if (light.arrives) light.radiance = env.map->radiance(*drawn);
 }
 
 void Shader::environment_from_map(Context& c, Sampler& random, RayCounts& counts) const {

@@ -154,9 +154,9 @@ class Shader {
                             int samples, int from_lobe);
   double ambient_open(const Context& c, Sampler& random, RayCounts& counts) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
-  // `distance` away (0: no shadow ray): whether it arrives.
-  void draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance, double divisor,
-            double distance, RayCounts& counts) const;
+  // `distance` away (0: no shadow ray), recorded with whether it arrives.
+  LightSampleRecord& draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance,
+                          double divisor, double distance, RayCounts& counts) const;
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
   ShadingInputs inputs(const SurfacePoint& point, const ShadingRecord& r,
                        const glm::dvec3& albedo) const {
