@@ -115,6 +115,35 @@ class StepCache {
   std::vector<std::pair<uint64_t, double>> slots_;
 };
 
+// The x at which P(|e| > x), averaged over pixels, is 1 %, on a histogram of σ. The share falls
+// with x and is convex, so Newton steps from below converge to it without overshooting; a step
+// that leaves the bracket (rounding near the root) is a bisection instead.
+double ninety_ninth_percentile(const std::vector<float>& sigma, double largest) {
+  constexpr int kBins = 2048;
+  std::vector<double> count(kBins, 0.0);
+  for (float s : sigma)
+    if (s > 0) ++count[size_t(std::min(kBins - 1, int(double(s) / largest * kBins)))];
+  std::vector<std::pair<double, double>> bins;  // (pixels, σ) of each occupied bin
+  for (int b = 0; b < kBins; ++b)
+    if (count[size_t(b)] > 0) bins.emplace_back(count[size_t(b)], largest * (b + 0.5) / kBins);
+  const double n = double(sigma.size());
+  double lo = 0, hi = 6.0 * largest, x = 0;
+  for (int i = 0; i < 100; ++i) {
+    double excess = -0.01, slope = 0;  // the share beyond x less 1 %, and its derivative
+    for (const auto& [pixels, s] : bins) {
+      const double z = x / (s * std::sqrt(2.0));
+      excess += pixels / n * std::erfc(z);
+      slope -= pixels / n * std::sqrt(2.0 / M_PI) / s * std::exp(-z * z);
+    }
+    (excess > 0 ? lo : hi) = x;
+    double next = slope < 0 ? x - excess / slope : hi;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - x) <= 1e-12 * next) return next;
+    x = next;
+  }
+  return x;
+}
+
 }  // namespace
 
 double quantized_noise_steps(double r) {
@@ -173,21 +202,7 @@ NoiseSummary summarize_noise(const std::vector<float>& sigma) {
     out.p99 = largest;
     return out;
   }
-  // P(|e| > x) averaged over pixels falls with x; find where it is 1 %, on a histogram of σ.
-  constexpr int kBins = 2048;
-  std::vector<double> count(kBins, 0.0);
-  for (float s : sigma)
-    if (s > 0) ++count[size_t(std::min(kBins - 1, int(double(s) / largest * kBins)))];
-  auto exceed = [&](double x) {
-    double p = 0;
-    for (int b = 0; b < kBins; ++b)
-      if (count[size_t(b)] > 0)
-        p += count[size_t(b)] * std::erfc(x / (largest * (b + 0.5) / kBins * std::sqrt(2.0)));
-    return p / double(sigma.size());
-  };
-  double lo = 0, hi = 6.0 * largest;
-  for (int i = 0; i < 60; ++i) ((exceed(0.5 * (lo + hi)) > 0.01) ? lo : hi) = 0.5 * (lo + hi);
-  out.p99 = 0.5 * (lo + hi);
+  out.p99 = ninety_ninth_percentile(sigma, largest);
   return out;
 }
 

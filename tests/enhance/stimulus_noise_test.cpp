@@ -56,5 +56,27 @@ TEST(StimulusNoise, SummaryGivesRmsAndTheNinetyNinthPercentile) {
   EXPECT_EQ(summarize_noise(unbounded).p99, INFINITY);
 }
 
+// Over a wide spread of σ, the p99 is where the share of pixels' errors beyond it is 1 %, found
+// here by bisection on every pixel's own σ (the summary works on a histogram of 2048 bins).
+TEST(StimulusNoise, TheNinetyNinthPercentileOfASpreadOfSigmasIsWhereOnePercentExceedIt) {
+  std::vector<float> sigma(20000);
+  for (size_t i = 0; i < sigma.size(); ++i)  // 0.01 to 3 L*, most pixels quiet, a few noisy
+    sigma[i] = float(0.01 * std::pow(300.0, std::pow(double(i) / double(sigma.size()), 3.0)));
+  auto exceed = [&](double x) {
+    double share = 0;
+    for (float s : sigma) share += std::erfc(x / (double(s) * std::sqrt(2.0)));
+    return share / double(sigma.size());
+  };
+  double lo = 0, hi = 20;
+  for (int i = 0; i < 80; ++i) (exceed(0.5 * (lo + hi)) > 0.01 ? lo : hi) = 0.5 * (lo + hi);
+  const double p99 = summarize_noise(sigma).p99;
+  EXPECT_NEAR(p99, lo, 2e-3 * lo);
+  EXPECT_NEAR(exceed(p99), 0.01, 1e-4);
+  // Fewer than 1 % of the pixels noisy at all: |e| exceeds 0 no more often than that.
+  std::vector<float> quiet(1000, 0.0f);
+  quiet[7] = 2.0f;
+  EXPECT_EQ(summarize_noise(quiet).p99, 0.0);
+}
+
 }  // namespace
 }  // namespace countershade
