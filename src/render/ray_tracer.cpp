@@ -88,6 +88,25 @@ RecordedRay single_precision(const glm::dvec3& origin, const glm::dvec3& directi
           closest};
 }
 
+RecordedRay single_precision(const ShadowRay& ray, bool closest) {
+  return single_precision(ray.origin, ray.direction, ray.tnear, ray.tfar, closest);
+}
+
+// Lane i of a packet of rays.
+void set_lane(RTCRay8& packet, int i, const RecordedRay& r) {
+  packet.org_x[i] = r.origin[0];
+  packet.org_y[i] = r.origin[1];
+  packet.org_z[i] = r.origin[2];
+  packet.dir_x[i] = r.direction[0];
+  packet.dir_y[i] = r.direction[1];
+  packet.dir_z[i] = r.direction[2];
+  packet.tnear[i] = r.tnear;
+  packet.tfar[i] = r.tfar;
+  packet.mask[i] = 0xFFFFFFFF;
+  packet.flags[i] = 0;
+  packet.time[i] = 0;
+}
+
 }  // namespace
 
 struct RayTracer::Handles {
@@ -168,17 +187,12 @@ void RayTracer::intersect_packet(int count, const glm::dvec3* origins, const glm
     valid[i] = used ? -1 : 0;
     const glm::dvec3 o = used ? origins[i] : glm::dvec3(0.0),
                      d = used ? directions[i] : glm::dvec3(0, 0, 1);
-    rh.ray.org_x[i] = float(o.x);
-    rh.ray.org_y[i] = float(o.y);
-    rh.ray.org_z[i] = float(o.z);
-    rh.ray.dir_x[i] = float(d.x);
-    rh.ray.dir_y[i] = float(d.y);
-    rh.ray.dir_z[i] = float(d.z);
-    rh.ray.tnear[i] = 0.0f;
-    rh.ray.tfar[i] = std::numeric_limits<float>::max();
-    rh.ray.mask[i] = 0xFFFFFFFF;
-    rh.ray.flags[i] = 0;
-    rh.ray.time[i] = 0;
+    set_lane(rh.ray, i,
+             {{float(o.x), float(o.y), float(o.z)},
+              {float(d.x), float(d.y), float(d.z)},
+              0.0f,
+              std::numeric_limits<float>::max(),
+              true});
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
@@ -206,6 +220,27 @@ bool RayTracer::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
   alignas(16) RTCRay ray = embree_ray(r.origin, r.direction, r.tnear, r.tfar);
   rtcOccluded1(handles_->scene, &context, &ray);
   return ray.tfar < 0.0f;
+}
+
+void RayTracer::occluded(std::span<const ShadowRay> rays, uint8_t* blocked) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (size_t first = 0; first < rays.size(); first += kPacket) {
+    const int count = int(std::min<size_t>(kPacket, rays.size() - first));
+    alignas(32) RTCRay8 packet;
+    alignas(32) int valid[kPacket];
+    RecordedRay r{};
+    for (int i = 0; i < count; ++i) {
+      r = single_precision(rays[first + size_t(i)], false);
+      if (recorder_) recorder_->add(r);
+      set_lane(packet, i, r);
+    }
+    // The unused lanes are switched off, with the last ray's values (never NaN) in them.
+    for (int i = count; i < kPacket; ++i) set_lane(packet, i, r);
+    for (int i = 0; i < kPacket; ++i) valid[i] = i < count ? -1 : 0;
+    rtcOccluded8(valid, handles_->scene, &context, &packet);
+    for (int i = 0; i < count; ++i) blocked[first + size_t(i)] = packet.tfar[i] < 0.0f;
+  }
 }
 
 size_t RayTracer::replay(const std::vector<RecordedRay>& rays) const {

@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "render/ray_recorder.h"
@@ -46,6 +47,12 @@ struct RayCounts {
   }
 };
 
+// An any-hit query: does anything lie along the ray between tnear and tfar?
+struct ShadowRay {
+  glm::dvec3 origin, direction;
+  double tnear = 0, tfar = 0;
+};
+
 class RayTracer {
  public:
   explicit RayTracer(const Scene& scene);
@@ -63,6 +70,9 @@ class RayTracer {
                         std::optional<Hit>* hits) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
                 double tfar) const;
+  // occluded() of many rays, blocked[i] for rays[i], traced kPacket at a time as Embree packets:
+  // the same answers, found faster for the rays of one shading point than one by one.
+  void occluded(std::span<const ShadowRay> rays, uint8_t* blocked) const;
 
   // A distance scale for ray offsets: a small fraction of the scene diagonal.
   double epsilon() const { return epsilon_; }

@@ -134,6 +134,30 @@ glm::dvec3 shadow_origin(const Scene& scene, const SurfacePoint& p, bool back) {
   return p.position + lift;
 }
 
+// The shadow rays of one shading point, asked while its light samples are drawn and answered
+// together once all are: traced in Embree packets (faster than one by one), or read from the
+// replayed answers. Each answer goes to its sample's `arrives`, or to the ambient count. Its
+// arrays keep their size from point to point; the first `count` entries are the point's.
+struct Shader::ShadowQueue {
+  std::vector<ShadowRay> rays;
+  std::vector<LightSampleRecord*> samples;  // whose `arrives` each ray answers; null: ambient
+  std::vector<uint8_t> blocked;
+  size_t count = 0;
+  void start(size_t most) {
+    if (rays.size() < most) {
+      rays.resize(most);
+      samples.resize(most);
+      blocked.resize(most);
+    }
+    count = 0;
+  }
+  // The next ray's entry, to be filled in (field by field: cheaper than copying a whole ray).
+  ShadowRay& ask(LightSampleRecord* sample) {
+    samples[count] = sample;
+    return rays[count++];
+  }
+};
+
 struct Shader::Context {
   const SurfacePoint& point;
   glm::dvec3 normal, ng;             // shading and geometric normal on the viewed side
@@ -141,6 +165,7 @@ struct Shader::Context {
   ShadowAnswers* answers = nullptr;  // recorded or replayed shadow answers
   LightSampleRecord* lights;         // the next light sample to draw
   glm::dvec3 wo{0.0};                // towards the viewer (the specular lobe's samples need it)
+  ShadowQueue* queue = nullptr;      // where gather() asks its shadow rays
 };
 
 size_t Shader::count_light_samples(const Scene& scene) {
@@ -151,30 +176,56 @@ size_t Shader::count_light_samples(const Scene& scene) {
   return n;
 }
 
-bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance,
-                     RayCounts& counts) const {
-  ShadowAnswers* answers = c.answers;
-  if (answers && answers->replay) {
-    if (answers->replay == answers->replay_end)
-      throw std::logic_error("Shader: a replayed sample asks more shadow rays than it recorded");
-    return *answers->replay++ != 0;
-  }
-  ++counts.shadow;
+void Shader::shadow_ray(const Context& c, const glm::dvec3& wi, double distance,
+                        ShadowRay& ray) const {
   const double eps = tracer_.epsilon();
   // Leave the surface on the side the ray travels to, so the surface does not shadow itself.
-  const glm::dvec3 o = c.origin + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
-  const bool open = !tracer_.occluded(o, wi, eps, distance - 2 * eps);
-  if (answers && answers->record) answers->record->push_back(open);
-  return open;
+  ray.origin = c.origin + c.ng * (glm::dot(c.ng, wi) >= 0 ? eps : -eps);
+  ray.direction = wi;
+  ray.tnear = eps;
+  ray.tfar = distance - 2 * eps;
+}
+
+bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance,
+                     RayCounts& counts) const {
+  ++counts.shadow;
+  ShadowRay ray;
+  shadow_ray(c, wi, distance, ray);
+  return !tracer_.occluded(ray.origin, ray.direction, ray.tnear, ray.tfar);
+}
+
+void Shader::answer_shadows(const Context& c, RayCounts& counts) const {
+  ShadowQueue& q = *c.queue;
+  const size_t n = q.count;
+  ShadowAnswers* answers = c.answers;
+  if (answers && answers->replay) {
+    if (size_t(answers->replay_end - answers->replay) < n)
+      throw std::logic_error("Shader: a replayed sample asks more shadow rays than it recorded");
+    for (size_t i = 0; i < n; ++i) q.blocked[i] = *answers->replay++ == 0;
+  } else {
+    counts.shadow += n;
+    tracer_.occluded(std::span(q.rays.data(), n), q.blocked.data());
+    if (answers && answers->record)
+      for (size_t i = 0; i < n; ++i) answers->record->push_back(!q.blocked[i]);
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (q.samples[i]) q.samples[i]->arrives = !q.blocked[i];
 }
 
 LightSampleRecord& Shader::draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance,
-                                double divisor, double distance, RayCounts& counts) const {
+                                double divisor, double distance) const {
   // Light from behind the shading normal never arrives, with or without hooks, so a render with
   // hooks asks exactly the shadow rays of the render without them.
   LightSampleRecord& light = *c.lights++;
   const bool facing = glm::dot(c.normal, wi) > 0;
-  light = {wi, radiance, divisor, facing && (distance <= 0 || visible(c, wi, distance, counts))};
+  // Field by field: a whole record built and copied costs more (its parts are stored and
+  // reloaded in pieces of other sizes).
+  light.wi = wi;
+  light.radiance = radiance;
+  light.divisor = divisor;
+  light.arrives = facing;
+  // Whether it arrives is answered with the point's other rays.
+  if (facing && distance > 0) shadow_ray(c, wi, distance, c.queue->ask(&light));
   return light;
 }
 
@@ -246,7 +297,7 @@ bool Shader::dark_side_open(const ShadingInputs& s, const ShadingRecord& r,
   return visible(c, *towards, reach, counts);
 }
 
-void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
+void Shader::directional(Context& c, Sampler& random) const {
   const TangentFrame* frame = light_frames_.data();
   for (const auto& light : scene_.directional_lights) {
     const double cos_max = std::cos(glm::radians(light.angular_radius_deg));
@@ -262,14 +313,14 @@ void Shader::directional(Context& c, Sampler& random, RayCounts& counts) const {
         const glm::dvec3 wi = light.angular_radius_deg > 0 ? cone[i] : light.direction;
         // Without shadows the light reaches every point that faces it (distance 0: no shadow
         // ray).
-        draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0, counts);
+        draw(c, wi, light.irradiance, 1.0, light.shadows ? 1e30 : 0.0);
       }
     }
     ++frame;
   }
 }
 
-void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const {
+void Shader::point_lights(Context& c, Sampler& random) const {
   for (const auto& light : scene_.point_lights) {
     const int samples = samples_per_point(light);
     const Sampler::Block block = random.next2d_block(samples);
@@ -288,16 +339,15 @@ void Shader::point_lights(Context& c, Sampler& random, RayCounts& counts) const 
         continue;
       }
       double d = std::sqrt(d2);
-      draw(c, to_light / d, light.intensity, d2, d, counts);
+      draw(c, to_light / d, light.intensity, d2, d);
     }
   }
 }
 
-void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
+void Shader::environment(Context& c, Sampler& random) const {
   if (!scene_.environment) return;
   const EnvironmentLight& env = *scene_.environment;
-  if (env.sampling == EnvironmentSampling::importance)
-    return environment_from_map(c, random, counts);
+  if (env.sampling == EnvironmentSampling::importance) return environment_from_map(c, random);
   const Material& material = scene_.objects[c.point.object].material;
   const TangentFrame frame(c.normal);  // shared by the samples drawn around the normal
   // With cosine+specular, the last quarter of the samples (at least one) come from the lobe.
@@ -314,33 +364,39 @@ void Shader::environment(Context& c, Sampler& random, RayCounts& counts) const {
     const PointLanes u(cosine_block, first, count);
     DirectionLanes cosine;
     sample_cosine_hemisphere_lanes(frame, u.u1, u.u2, cosine.x, cosine.y, cosine.z);
-    for (int i = 0; i < count; ++i) environment_sample(c, material, cosine[i], from_lobe, counts);
+    for (int i = 0; i < count; ++i) environment_sample(c, material, cosine[i], from_lobe);
   }
   if (from_lobe == 0) return;
   const Sampler::Block lobe_block = random.next2d_block(from_lobe);
   for (int s = 0; s < from_lobe; ++s) {
     const glm::dvec2 u = lobe_block.point(s);
     environment_sample(c, material, sample_specular_lobe(material, frame, c.wo, u.x, u.y),
-                       from_lobe, counts);
+                       from_lobe);
   }
 }
 
 void Shader::environment_sample(Context& c, const Material& material,
-                                const std::optional<glm::dvec3>& drawn, int from_lobe,
-                                RayCounts& counts) const {
+                                const std::optional<glm::dvec3>& drawn, int from_lobe) const {
   const EnvironmentLight& env = *scene_.environment;
   const double pdf = drawn ? mixture_pdf(c, material, *drawn, env.samples, from_lobe) : 0.0;
   if (pdf <= 0) {
     *c.lights++ = LightSampleRecord{};
     return;
   }
-  // The sky is looked up only for a sample that arrives: evaluate() reads no other (an
-  // environment's samples are never lit on the dark side), and the lookup costs an acos.
-  LightSampleRecord& light = draw(c, *drawn, glm::dvec3(0.0), pdf, 1e30, counts);
-  if (light.arrives) light.radiance = env.map->radiance(*drawn);
+  draw(c, *drawn, glm::dvec3(0.0), pdf, 1e30);  // its sky's radiance comes with the answers
 }
 
-void Shader::environment_from_map(Context& c, Sampler& random, RayCounts& counts) const {
+void Shader::sky_radiance(LightSampleRecord* lights) const {
+  const EnvironmentLight* env = scene_.environment ? &*scene_.environment : nullptr;
+  if (!env || env->sampling == EnvironmentSampling::importance) return;
+  // Looked up only for the samples that arrive: evaluate() reads no other (an environment's
+  // samples are never lit on the dark side), and the lookup costs an acos.
+  LightSampleRecord* first = lights + (light_samples_ - size_t(env->samples));
+  for (LightSampleRecord* light = first; light != first + env->samples; ++light)
+    if (light->arrives) light->radiance = env->map->radiance(light->wi);
+}
+
+void Shader::environment_from_map(Context& c, Sampler& random) const {
   const EnvironmentLight& env = *scene_.environment;
   // Two blocks: the texel's choice and column, then its row (the second number unused), so that
   // a pixel's samples stratify the choice of texel over all of them.
@@ -353,7 +409,7 @@ void Shader::environment_from_map(Context& c, Sampler& random, RayCounts& counts
       *c.lights++ = LightSampleRecord{};
       continue;
     }
-    draw(c, sample.direction, sample.radiance, sample.pdf, 1e30, counts);
+    draw(c, sample.direction, sample.radiance, sample.pdf, 1e30);
   }
 }
 
@@ -367,18 +423,23 @@ double Shader::mixture_pdf(const Context& c, const Material& material, const glm
   return ((samples - from_lobe) * cosine + from_lobe * lobe) / samples;
 }
 
-double Shader::ambient_open(const Context& c, Sampler& random, RayCounts& counts) const {
+bool Shader::ambient_rays(Context& c, Sampler& random) const {
   const AmbientLight& ambient = scene_.ambient;
-  if (ambient.radiance == glm::dvec3(0.0) || ambient.distance <= 0) return 1.0;
-  int unoccluded = 0;
+  if (ambient.radiance == glm::dvec3(0.0) || ambient.distance <= 0) return false;
   const TangentFrame frame(c.normal);
   const Sampler::Block block = random.next2d_block(ambient.samples);
   for (int s = 0; s < ambient.samples; ++s) {
     const glm::dvec2 u = block.point(s);
-    glm::dvec3 wi = sample_cosine_hemisphere(frame, u.x, u.y);
-    if (visible(c, wi, ambient.distance, counts)) ++unoccluded;
+    shadow_ray(c, sample_cosine_hemisphere(frame, u.x, u.y), ambient.distance,
+               c.queue->ask(nullptr));
   }
-  return double(unoccluded) / ambient.samples;
+  return true;
+}
+
+double Shader::ambient_open(const ShadowQueue& q) const {
+  int unoccluded = 0;
+  for (size_t i = 0; i < q.count; ++i) unoccluded += !q.samples[i] && !q.blocked[i];
+  return double(unoccluded) / scene_.ambient.samples;
 }
 
 void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
@@ -389,17 +450,23 @@ void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_si
   record.wo = wo;
   record.back = two_sided && glm::dot(point.geometric_normal, wo) < 0;
   record.albedo = albedo(point);
+  thread_local ShadowQueue queue;
+  queue.start(light_samples_ + size_t(std::max(scene_.ambient.samples, 0)));
   Context c{point,
             record.shading_normal(point),
             record.geometric_normal(point),
             shadow_origin(scene_, point, record.back),
             answers,
             lights,
-            wo};
-  directional(c, random, counts);
-  point_lights(c, random, counts);
-  environment(c, random, counts);
-  record.ambient_open = ambient_open(c, random, counts);
+            wo,
+            &queue};
+  directional(c, random);
+  point_lights(c, random);
+  environment(c, random);
+  const bool ambient = ambient_rays(c, random);
+  answer_shadows(c, counts);
+  sky_radiance(lights);
+  record.ambient_open = ambient ? ambient_open(queue) : 1.0;
 }
 
 glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r,

@@ -140,23 +140,36 @@ class Shader {
   }
 
  private:
-  struct Context;  // one shading point being gathered
+  struct Context;      // one shading point being gathered
+  struct ShadowQueue;  // its shadow rays, answered together
   static size_t count_light_samples(const Scene& scene);
-  // Each light type draws its samples into c.lights, in the order evaluate reads them.
-  void directional(Context& c, Sampler& random, RayCounts& counts) const;
-  void point_lights(Context& c, Sampler& random, RayCounts& counts) const;
-  void environment(Context& c, Sampler& random, RayCounts& counts) const;
+  // Each light type draws its samples into c.lights, in the order evaluate reads them, and asks
+  // their shadow rays in c.queue.
+  void directional(Context& c, Sampler& random) const;
+  void point_lights(Context& c, Sampler& random) const;
+  void environment(Context& c, Sampler& random) const;
   void environment_sample(Context& c, const Material& material,
-                          const std::optional<glm::dvec3>& drawn, int from_lobe,
-                          RayCounts& counts) const;
-  void environment_from_map(Context& c, Sampler& random, RayCounts& counts) const;
+                          const std::optional<glm::dvec3>& drawn, int from_lobe) const;
+  void environment_from_map(Context& c, Sampler& random) const;
+  // The sky's radiance of the environment's cosine-drawn samples that arrive (of a point's
+  // `lights`, once its shadow rays are answered).
+  void sky_radiance(LightSampleRecord* lights) const;
   static double mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi,
                             int samples, int from_lobe);
-  double ambient_open(const Context& c, Sampler& random, RayCounts& counts) const;
+  // The ambient occlusion rays asked in c.queue (none: false, no ambient occlusion), and the share
+  // of them that escaped once answered.
+  bool ambient_rays(Context& c, Sampler& random) const;
+  double ambient_open(const ShadowQueue& q) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
-  // `distance` away (0: no shadow ray), recorded with whether it arrives.
+  // `distance` away (0: no shadow ray). Whether it arrives is known once the queue is answered.
   LightSampleRecord& draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance,
-                          double divisor, double distance, RayCounts& counts) const;
+                          double divisor, double distance) const;
+  // The shadow ray from the point towards `wi`, ending `distance` away, into `ray`.
+  void shadow_ray(const Context& c, const glm::dvec3& wi, double distance, ShadowRay& ray) const;
+  // Answers c.queue's rays, traced or replayed (and recorded where a render records them), in the
+  // order they were asked.
+  void answer_shadows(const Context& c, RayCounts& counts) const;
+  // One shadow ray traced at once (the dark side's, neither recorded nor replayed).
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
   ShadingInputs inputs(const SurfacePoint& point, const ShadingRecord& r,
                        const glm::dvec3& albedo) const {
