@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -59,33 +60,89 @@ class PixelSampler {
     if (settings.sampling == SamplingMode::independent)
       latin_hypercube(settings.seed, pixel, fixed_spp_, lhs);
     if (record_) record_->reserve(pixel, target, expected_hits(pixel, target));
-    for (uint32_t s = sums_.count[pixel]; s < target; ++s) one_sample(pixel, s, rays, lhs);
+    uint32_t s = sums_.count[pixel];
+    if (traces_packets(s, target))
+      for (; s < target; s += RayTracer::kPacket)
+        packet_of_samples(pixel, s, std::min<uint32_t>(RayTracer::kPacket, target - s), rays, lhs);
+    for (; s < target; ++s) one_sample(pixel, s, rays, lhs);
     sums_.count[pixel] = target;
     if (observer_) observer_->pixel_done(pixel, target);
   }
 
  private:
-  void one_sample(size_t pixel, uint32_t s, RayCounts& counts, const std::vector<glm::dvec2>& lhs) {
-    if (in_.replay && in_.replay->has_shading(pixel, s)) return replay_shading(pixel, s);
+  // A camera sample: its random numbers (past the position in the pixel) and its ray.
+  struct CameraSample {
+    Sampler sampler;
+    glm::dvec2 offset;
+    Ray ray;
+  };
+  CameraSample camera_sample(size_t pixel, uint32_t s, const std::vector<glm::dvec2>& lhs) const {
     const RenderSettings& settings = in_.scene.settings;
     Sampler sampler(settings.sampling, settings.seed, kDomainPixel, pixel, s);
     const glm::dvec2 offset = sample_position(settings, sampler, lhs, s);
     const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
-    const Ray ray = rays_.ray(x + offset.x, y + offset.y);
+    return {sampler, offset, rays_.ray(x + offset.x, y + offset.y)};
+  }
+
+  // Whether a pixel's samples [s, target) have their camera rays traced here as packets: all of a
+  // fixed count's samples at once, as trace_camera_samples groups them (the same hits), where no
+  // hits were traced ahead and none are read back.
+  bool traces_packets(uint32_t s, uint32_t target) const {
+    return in_.camera_packets && !in_.camera_hits && !in_.replay && s == 0 && fixed_spp_ > 0 &&
+           target == uint32_t(fixed_spp_);
+  }
+
+  // Samples [first, first + n) of a pixel, their camera rays traced together.
+  void packet_of_samples(size_t pixel, uint32_t first, uint32_t n, RayCounts& counts,
+                         const std::vector<glm::dvec2>& lhs) {
+    std::optional<CameraSample> samples[RayTracer::kPacket];
+    glm::dvec3 origins[RayTracer::kPacket] = {}, directions[RayTracer::kPacket] = {};
+    std::optional<Hit> hits[RayTracer::kPacket];
+    for (uint32_t k = 0; k < n; ++k) {
+      samples[k].emplace(camera_sample(pixel, first + k, lhs));
+      origins[k] = samples[k]->ray.origin;
+      directions[k] = samples[k]->ray.direction;
+    }
+    in_.tracer.intersect_packet(int(n), origins, directions, hits);
+    for (uint32_t k = 0; k < n; ++k) {
+      ++counts.primary;
+      ShadowAnswers answers;
+      if (record_) {
+        record_->record_hit(pixel, first + k, hits[k]);
+        answers.record = record_->answers_to_record(pixel);
+      }
+      shade(pixel, first + k, *samples[k], hits[k], counts, answers);
+    }
+  }
+
+  void one_sample(size_t pixel, uint32_t s, RayCounts& counts, const std::vector<glm::dvec2>& lhs) {
+    if (in_.replay && in_.replay->has_shading(pixel, s)) return replay_shading(pixel, s);
+    CameraSample sample = camera_sample(pixel, s, lhs);
     ShadowAnswers answers;
-    const auto hit = camera_hit(pixel, s, ray, counts, answers);
+    const auto hit = camera_hit(pixel, s, sample.ray, counts, answers);
+    shade(pixel, s, sample, hit, counts, answers);
+  }
+
+  // One sample with its camera ray's hit: the background, or the surface's shading.
+  void shade(size_t pixel, uint32_t s, CameraSample& sample, const std::optional<Hit>& hit,
+             RayCounts& counts, ShadowAnswers& answers) {
+    const Ray& ray = sample.ray;
     if (!hit) {
       const glm::dvec3 radiance = in_.shader.background(ray.direction);
       if (answers.record) record_->record_background(pixel, radiance);
       return accumulate(pixel, s, radiance, nullptr);
     }
     SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
-    if (in_.shader.textured(hit->object))  // the footprint picks the texture's mip level
+    if (in_.shader.textured(hit->object)) {  // the footprint picks the texture's mip level
+      const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
+      const glm::dvec2 offset = sample.offset;
       set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y),
                            rays_.ray(x + offset.x, y + offset.y + 1), sp);
+    }
     const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
     auto [record, lights] = answers.record ? record_->shading_to_record(pixel)
                                            : std::pair<ShadingRecord*, LightSampleRecord*>{};
+    Sampler& sampler = sample.sampler;
     if (!record && !observer_)
       return accumulate(
           pixel, s,

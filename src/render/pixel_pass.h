@@ -32,6 +32,9 @@ struct PixelPassInput {
   bool estimate_noise = true;  // false: a fixed count skips the noise estimate (noise stays 0)
   const CameraHits* camera_hits =
       nullptr;  // the camera samples' hits, traced ahead (render/camera_samples.h)
+  // Without hits traced ahead, a fixed count's camera rays are traced a pixel's samples at a time
+  // as packets (false: one by one, for comparisons).
+  bool camera_packets = false;
 };
 
 // Fills the result's radiance, fields, luminances, coverage, noise, spp and sampling report.

@@ -120,8 +120,9 @@ struct RenderOptions {
   // holding every sample's shading record then evaluates the records and nothing else: its result
   // has the radiance and spp alone (render/record_replay.h).
   bool radiance_only = false;
-  // false: a render with a fixed sample count traces its camera rays in the pixel pass, one by
-  // one, instead of ahead in packets (the same image; for comparisons).
+  // false: a render with a fixed sample count traces its camera rays in the pixel pass one by one,
+  // instead of a pixel's samples at a time in packets (ahead of a vertex pass, or in the pixel
+  // pass): the same image, for comparisons.
   bool trace_ahead = true;
   // Called between passes 2 and 3 with what is rendered so far.
   std::function<PixelRequest(const RenderResult&)> before_pixels;

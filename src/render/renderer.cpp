@@ -104,12 +104,12 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
     return std::move(*replayed);
   result.gbuffer =
       replay ? replay->gbuffer : centre_pass(scene, tracer, options.threads, result.rays);
-  // With a fixed count the camera samples are known before the pixels: traced ahead in packets
-  // (a pixel's samples side by side), they cost less than tracing them one by one in the pixel
-  // pass, which reads them back, and their hits tell the vertex pass exactly which triangles the
-  // pixels read (bunny-sky, docs/performance.md).
+  // With a fixed count the camera samples are known before the pixels, and a pixel's samples are
+  // traced side by side as packets (cheaper than one by one, bunny-sky, docs/performance.md). A
+  // vertex pass needs them first: their hits tell it exactly which triangles the pixels read, and
+  // the pixel pass reads them back. Without one, the pixel pass traces its packets itself.
   std::shared_ptr<const CameraHits> camera_hits;
-  if (!replay && options.trace_ahead)
+  if (!replay && options.trace_ahead && options.vertex_radiance)
     camera_hits = trace_camera_samples(scene, tracer, options.threads);
   if (options.vertex_radiance) {
     std::vector<VertexNeed> needs = options.vertex_needs;
@@ -132,7 +132,7 @@ RenderResult render(const Scene& scene, const RayTracer& tracer, const RenderOpt
     record = std::make_shared<TraceLog>(result.gbuffer.depth.size(), options.trace_byte_limit,
                                         shader.light_samples());
   pixel_pass({scene, tracer, shader, request, options.threads, options.progress, record.get(),
-              replay, options.estimate_noise, camera_hits.get()},
+              replay, options.estimate_noise, camera_hits.get(), options.trace_ahead},
              result);
   if (record && !record->abandoned()) {
     record->gbuffer = result.gbuffer;
