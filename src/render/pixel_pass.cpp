@@ -104,6 +104,7 @@ class PixelSampler {
       directions[k] = samples[k]->ray.direction;
     }
     in_.tracer.intersect_packet(int(n), origins, directions, hits);
+    if (!record_ && !observer_) return shade_together(pixel, first, n, samples, hits, counts);
     for (uint32_t k = 0; k < n; ++k) {
       ++counts.primary;
       ShadowAnswers answers;
@@ -113,6 +114,47 @@ class PixelSampler {
       }
       shade(pixel, first + k, *samples[k], hits[k], counts, answers);
     }
+  }
+
+  // A packet's samples on the plain path (nothing recorded or observed): their surfaces shaded
+  // together (Shader::radiance_many), then every sample added to the sums in order.
+  void shade_together(size_t pixel, uint32_t first, uint32_t n,
+                      std::optional<CameraSample> (&samples)[RayTracer::kPacket],
+                      const std::optional<Hit> (&hits)[RayTracer::kPacket], RayCounts& counts) {
+    SurfacePoint points[RayTracer::kPacket];
+    Shader::PointToShade to_shade[RayTracer::kPacket];
+    glm::dvec3 shaded[RayTracer::kPacket];
+    size_t m = 0;
+    for (uint32_t k = 0; k < n; ++k)
+      if (hits[k]) {
+        points[m] = hit_point(pixel, *samples[k], *hits[k]);
+        to_shade[m] = {&points[m], -samples[k]->ray.direction, &samples[k]->sampler};
+        ++m;
+      }
+    in_.shader.radiance_many(std::span(to_shade, m), counts, shaded);
+    counts.primary += n;
+    for (uint32_t k = 0, j = 0; k < n; ++k) {
+      if (!hits[k]) {
+        accumulate(pixel, first + k, in_.shader.background(samples[k]->ray.direction), nullptr);
+        continue;
+      }
+      const SampleHit hit{points[j],
+                          glm::dot(points[j].geometric_normal, samples[k]->ray.direction) > 0};
+      accumulate(pixel, first + k, shaded[j], &hit);
+      ++j;
+    }
+  }
+
+  // The surface point a camera sample hit, with its UV footprint where a texture needs one.
+  SurfacePoint hit_point(size_t pixel, const CameraSample& sample, const Hit& hit) const {
+    SurfacePoint sp = surface_point(in_.scene, hit.object, hit.triangle, hit.b1, hit.b2);
+    if (in_.shader.textured(hit.object)) {  // the footprint picks the texture's mip level
+      const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
+      const glm::dvec2 offset = sample.offset;
+      set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y),
+                           rays_.ray(x + offset.x, y + offset.y + 1), sp);
+    }
+    return sp;
   }
 
   void one_sample(size_t pixel, uint32_t s, RayCounts& counts, const std::vector<glm::dvec2>& lhs) {
@@ -132,13 +174,7 @@ class PixelSampler {
       if (answers.record) record_->record_background(pixel, radiance);
       return accumulate(pixel, s, radiance, nullptr);
     }
-    SurfacePoint sp = surface_point(in_.scene, hit->object, hit->triangle, hit->b1, hit->b2);
-    if (in_.shader.textured(hit->object)) {  // the footprint picks the texture's mip level
-      const int x = int(pixel % size_t(width_)), y = int(pixel / size_t(width_));
-      const glm::dvec2 offset = sample.offset;
-      set_uv_differentials(in_.scene, rays_.ray(x + offset.x + 1, y + offset.y),
-                           rays_.ray(x + offset.x, y + offset.y + 1), sp);
-    }
+    const SurfacePoint sp = hit_point(pixel, sample, *hit);
     const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
     auto [record, lights] = answers.record ? record_->shading_to_record(pixel)
                                            : std::pair<ShadingRecord*, LightSampleRecord*>{};

@@ -92,8 +92,9 @@ RecordedRay single_precision(const ShadowRay& ray, bool closest) {
   return single_precision(ray.origin, ray.direction, ray.tnear, ray.tfar, closest);
 }
 
-// Lane i of a packet of rays.
-void set_lane(RTCRay8& packet, int i, const RecordedRay& r) {
+// Lane i of a packet of rays (RTCRay8, RTCRay16).
+template <class Packet>
+void set_lane(Packet& packet, int i, const RecordedRay& r) {
   packet.org_x[i] = r.origin[0];
   packet.org_y[i] = r.origin[1];
   packet.org_z[i] = r.origin[2];
@@ -222,24 +223,47 @@ bool RayTracer::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
   return ray.tfar < 0.0f;
 }
 
-void RayTracer::occluded(std::span<const ShadowRay> rays, uint8_t* blocked) const {
+namespace {
+
+// Up to N rays as one Embree packet (N = 8 or 16): blocked[i] for rays[i].
+template <int N, class Packet>
+void occluded_packet(RTCScene scene, RayRecorder* recorder, std::span<const ShadowRay> rays,
+                     uint8_t* blocked) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  for (size_t first = 0; first < rays.size(); first += kPacket) {
-    const int count = int(std::min<size_t>(kPacket, rays.size() - first));
-    alignas(32) RTCRay8 packet;
-    alignas(32) int valid[kPacket];
-    RecordedRay r{};
-    for (int i = 0; i < count; ++i) {
-      r = single_precision(rays[first + size_t(i)], false);
-      if (recorder_) recorder_->add(r);
-      set_lane(packet, i, r);
-    }
-    // The unused lanes are switched off, with the last ray's values (never NaN) in them.
-    for (int i = count; i < kPacket; ++i) set_lane(packet, i, r);
-    for (int i = 0; i < kPacket; ++i) valid[i] = i < count ? -1 : 0;
-    rtcOccluded8(valid, handles_->scene, &context, &packet);
-    for (int i = 0; i < count; ++i) blocked[first + size_t(i)] = packet.tfar[i] < 0.0f;
+  const int count = int(rays.size());
+  alignas(64) Packet packet;
+  alignas(64) int valid[N];
+  RecordedRay r{};
+  for (int i = 0; i < count; ++i) {
+    r = single_precision(rays[size_t(i)], false);
+    if (recorder) recorder->add(r);
+    set_lane(packet, i, r);
+  }
+  // The unused lanes are switched off, with the last ray's values (never NaN) in them.
+  for (int i = count; i < N; ++i) set_lane(packet, i, r);
+  for (int i = 0; i < N; ++i) valid[i] = i < count ? -1 : 0;
+  if constexpr (N == 16)
+    rtcOccluded16(valid, scene, &context, &packet);
+  else
+    rtcOccluded8(valid, scene, &context, &packet);
+  for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0.0f;
+}
+
+}  // namespace
+
+void RayTracer::occluded(std::span<const ShadowRay> rays, uint8_t* blocked) const {
+  // Sixteen rays at a time where more than eight remain: wider packets of incoherent rays still
+  // share the top of the tree (AVX-512 traces them in one pass; narrower processors in two).
+  for (size_t first = 0; first < rays.size();) {
+    const size_t left = rays.size() - first, n = std::min<size_t>(left, left > 8 ? 16 : 8);
+    if (n > 8)
+      occluded_packet<16, RTCRay16>(handles_->scene, recorder_, rays.subspan(first, n),
+                                    blocked + first);
+    else
+      occluded_packet<8, RTCRay8>(handles_->scene, recorder_, rays.subspan(first, n),
+                                  blocked + first);
+    first += n;
   }
 }
 

@@ -70,8 +70,8 @@ class RayTracer {
                         std::optional<Hit>* hits) const;
   bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double tnear,
                 double tfar) const;
-  // occluded() of many rays, blocked[i] for rays[i], traced kPacket at a time as Embree packets:
-  // the same answers, found faster for the rays of one shading point than one by one.
+  // occluded() of many rays, blocked[i] for rays[i], traced as Embree packets of up to 16: the same
+  // answers, found faster for the rays of a pixel's shading points than one by one.
   void occluded(std::span<const ShadowRay> rays, uint8_t* blocked) const;
 
   // A distance scale for ray offsets: a small fraction of the scene diagonal.

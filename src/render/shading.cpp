@@ -143,6 +143,7 @@ struct Shader::ShadowQueue {
   std::vector<LightSampleRecord*> samples;  // whose `arrives` each ray answers; null: ambient
   std::vector<uint8_t> blocked;
   size_t count = 0;
+  // Room for `most` rays, none asked yet.
   void start(size_t most) {
     if (rays.size() < most) {
       rays.resize(most);
@@ -194,10 +195,8 @@ bool Shader::visible(const Context& c, const glm::dvec3& wi, double distance,
   return !tracer_.occluded(ray.origin, ray.direction, ray.tnear, ray.tfar);
 }
 
-void Shader::answer_shadows(const Context& c, RayCounts& counts) const {
-  ShadowQueue& q = *c.queue;
+void Shader::answer_shadows(ShadowQueue& q, ShadowAnswers* answers, RayCounts& counts) const {
   const size_t n = q.count;
-  ShadowAnswers* answers = c.answers;
   if (answers && answers->replay) {
     if (size_t(answers->replay_end - answers->replay) < n)
       throw std::logic_error("Shader: a replayed sample asks more shadow rays than it recorded");
@@ -436,22 +435,24 @@ bool Shader::ambient_rays(Context& c, Sampler& random) const {
   return true;
 }
 
-double Shader::ambient_open(const ShadowQueue& q) const {
+double Shader::ambient_open(const ShadowQueue& q, size_t first, size_t end) const {
   int unoccluded = 0;
-  for (size_t i = 0; i < q.count; ++i) unoccluded += !q.samples[i] && !q.blocked[i];
+  for (size_t i = first; i < end; ++i) unoccluded += !q.samples[i] && !q.blocked[i];
   return double(unoccluded) / scene_.ambient.samples;
 }
 
-void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
-                    Sampler& random, RayCounts& counts, ShadowAnswers* answers,
-                    ShadingRecord& record, LightSampleRecord* lights) const {
+size_t Shader::most_shadow_rays() const {
+  return light_samples_ + size_t(std::max(scene_.ambient.samples, 0));
+}
+
+bool Shader::draw_samples(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                          Sampler& random, ShadowAnswers* answers, ShadowQueue& queue,
+                          ShadingRecord& record, LightSampleRecord* lights) const {
   record.duv_dx = point.duv_dx;
   record.duv_dy = point.duv_dy;
   record.wo = wo;
   record.back = two_sided && glm::dot(point.geometric_normal, wo) < 0;
   record.albedo = albedo(point);
-  thread_local ShadowQueue queue;
-  queue.start(light_samples_ + size_t(std::max(scene_.ambient.samples, 0)));
   Context c{point,
             record.shading_normal(point),
             record.geometric_normal(point),
@@ -463,10 +464,50 @@ void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_si
   directional(c, random);
   point_lights(c, random);
   environment(c, random);
-  const bool ambient = ambient_rays(c, random);
-  answer_shadows(c, counts);
+  return ambient_rays(c, random);
+}
+
+void Shader::finish_point(const ShadowQueue& queue, size_t first, size_t end, bool ambient,
+                          ShadingRecord& record, LightSampleRecord* lights) const {
   sky_radiance(lights);
-  record.ambient_open = ambient ? ambient_open(queue) : 1.0;
+  record.ambient_open = ambient ? ambient_open(queue, first, end) : 1.0;
+}
+
+void Shader::gather(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                    Sampler& random, RayCounts& counts, ShadowAnswers* answers,
+                    ShadingRecord& record, LightSampleRecord* lights) const {
+  thread_local ShadowQueue queue;
+  queue.start(most_shadow_rays());
+  const bool ambient = draw_samples(point, wo, two_sided, random, answers, queue, record, lights);
+  answer_shadows(queue, answers, counts);
+  finish_point(queue, 0, queue.count, ambient, record, lights);
+}
+
+void Shader::radiance_many(std::span<const PointToShade> points, RayCounts& counts,
+                           glm::dvec3* radiance) const {
+  thread_local ShadowQueue queue;
+  thread_local std::vector<ShadingRecord> records;
+  thread_local std::vector<LightSampleRecord> lights;  // light_samples_ per point
+  thread_local std::vector<size_t> first_ray;          // each point's first ray, and the end
+  thread_local std::vector<uint8_t> ambient;
+  const size_t n = points.size(), per_point = light_samples_;
+  queue.start(n * most_shadow_rays());
+  records.resize(n);
+  lights.resize(n * per_point);  // before drawing: the queue points into it
+  first_ray.resize(n + 1);
+  ambient.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    first_ray[k] = queue.count;
+    ambient[k] = draw_samples(*points[k].point, points[k].wo, true, *points[k].random, nullptr,
+                              queue, records[k], &lights[k * per_point]);
+  }
+  first_ray[n] = queue.count;
+  answer_shadows(queue, nullptr, counts);
+  for (size_t k = 0; k < n; ++k) {
+    LightSampleRecord* own = &lights[k * per_point];
+    finish_point(queue, first_ray[k], first_ray[k + 1], ambient[k] != 0, records[k], own);
+    radiance[k] = evaluate(*points[k].point, records[k], own, records[k].albedo);
+  }
 }
 
 glm::dvec3 Shader::evaluate(const SurfacePoint& point, const ShadingRecord& r,

@@ -118,6 +118,16 @@ class Shader {
               LightSampleRecord* lights) const;
   glm::dvec3 evaluate(const SurfacePoint& point, const ShadingRecord& record,
                       const LightSampleRecord* lights, const glm::dvec3& albedo) const;
+  // radiance() of several points (two-sided, their shadow rays neither recorded nor replayed),
+  // radiance[k] for points[k]: the same values, their shadow rays traced together in wider
+  // packets than one point's.
+  struct PointToShade {
+    const SurfacePoint* point;
+    glm::dvec3 wo;
+    Sampler* random;
+  };
+  void radiance_many(std::span<const PointToShade> points, RayCounts& counts,
+                     glm::dvec3* radiance) const;
   // `point`: the recorded hit's surface_point() with the record's footprint
   // (ShadingRecord::restore).
   glm::dvec3 replay(const SurfacePoint& point, const ShadingRecord& record,
@@ -143,6 +153,17 @@ class Shader {
   struct Context;      // one shading point being gathered
   struct ShadowQueue;  // its shadow rays, answered together
   static size_t count_light_samples(const Scene& scene);
+  // The most shadow rays one point asks.
+  size_t most_shadow_rays() const;
+  // gather() in two halves around the answers: draw_samples fills the record and draws the light
+  // samples into `lights`, asking their shadow rays in `queue` (true: it asked ambient occlusion
+  // rays); finish_point, once the queue is answered, looks up the sky's radiance and the ambient
+  // share of its rays [first, end).
+  bool draw_samples(const SurfacePoint& point, const glm::dvec3& wo, bool two_sided,
+                    Sampler& random, ShadowAnswers* answers, ShadowQueue& queue,
+                    ShadingRecord& record, LightSampleRecord* lights) const;
+  void finish_point(const ShadowQueue& queue, size_t first, size_t end, bool ambient,
+                    ShadingRecord& record, LightSampleRecord* lights) const;
   // Each light type draws its samples into c.lights, in the order evaluate reads them, and asks
   // their shadow rays in c.queue.
   void directional(Context& c, Sampler& random) const;
@@ -157,18 +178,18 @@ class Shader {
   static double mixture_pdf(const Context& c, const Material& material, const glm::dvec3& wi,
                             int samples, int from_lobe);
   // The ambient occlusion rays asked in c.queue (none: false, no ambient occlusion), and the share
-  // of them that escaped once answered.
+  // of a point's rays [first, end) that escaped once answered.
   bool ambient_rays(Context& c, Sampler& random) const;
-  double ambient_open(const ShadowQueue& q) const;
+  double ambient_open(const ShadowQueue& q, size_t first, size_t end) const;
   // One light sample from `wi` with `radiance` divided by `divisor` (its pdf, or 1/r²'s r²),
   // `distance` away (0: no shadow ray). Whether it arrives is known once the queue is answered.
   LightSampleRecord& draw(Context& c, const glm::dvec3& wi, const glm::dvec3& radiance,
                           double divisor, double distance) const;
   // The shadow ray from the point towards `wi`, ending `distance` away, into `ray`.
   void shadow_ray(const Context& c, const glm::dvec3& wi, double distance, ShadowRay& ray) const;
-  // Answers c.queue's rays, traced or replayed (and recorded where a render records them), in the
-  // order they were asked.
-  void answer_shadows(const Context& c, RayCounts& counts) const;
+  // Answers the queue's rays, traced or replayed (and recorded where a render records them), in
+  // the order they were asked.
+  void answer_shadows(ShadowQueue& queue, ShadowAnswers* answers, RayCounts& counts) const;
   // One shadow ray traced at once (the dark side's, neither recorded nor replayed).
   bool visible(const Context& c, const glm::dvec3& wi, double distance, RayCounts& counts) const;
   ShadingInputs inputs(const SurfacePoint& point, const ShadingRecord& r,
