@@ -20,6 +20,19 @@
 namespace countershade {
 namespace {
 
+// What pixel p's centre ray (along `direction`) sees, into the G-buffer.
+void store_centre(const Scene& scene, const CameraRays& camera, const Hit& hit,
+                  const glm::dvec3& direction, size_t p, GBuffer& g) {
+  const SurfacePoint sp = surface_point(scene, hit.object, hit.triangle, hit.b1, hit.b2);
+  const bool back = glm::dot(sp.geometric_normal, -direction) < 0;
+  g.depth[p] = float(camera.eye_depth(sp.position));
+  g.normal[p] = glm::vec3(back ? -sp.shading_normal : sp.shading_normal);
+  g.object[p] = int32_t(hit.object);
+  g.triangle[p] = int32_t(hit.triangle);
+  g.barycentrics[p] = glm::vec2(float(hit.b1), float(hit.b2));
+  g.back[p] = back;
+}
+
 // Pass 1: the G-buffer from the ray through each pixel centre.
 GBuffer centre_pass(const Scene& scene, const RayTracer& tracer, int threads, RayCounts& rays) {
   const int width = scene.camera.width, height = scene.camera.height;
@@ -37,20 +50,21 @@ GBuffer centre_pass(const Scene& scene, const RayTracer& tracer, int threads, Ra
   parallel_ranges(
       n, threads,
       [&](size_t begin, size_t end) {
-        for (size_t p = begin; p < end; ++p) {
-          const Ray centre =
-              camera.ray(double(p % size_t(width)) + 0.5, double(p / size_t(width)) + 0.5);
-          const auto hit = tracer.intersect(centre.origin, centre.direction);
-          if (!hit) continue;
-          const SurfacePoint sp =
-              surface_point(scene, hit->object, hit->triangle, hit->b1, hit->b2);
-          const bool back = glm::dot(sp.geometric_normal, -centre.direction) < 0;
-          g.depth[p] = float(camera.eye_depth(sp.position));
-          g.normal[p] = glm::vec3(back ? -sp.shading_normal : sp.shading_normal);
-          g.object[p] = int32_t(hit->object);
-          g.triangle[p] = int32_t(hit->triangle);
-          g.barycentrics[p] = glm::vec2(float(hit->b1), float(hit->b2));
-          g.back[p] = back;
+        // Neighbouring pixels' centres a packet at a time: their rays nearly coincide.
+        for (size_t first = begin; first < end; first += RayTracer::kPacket) {
+          const int count = int(std::min<size_t>(RayTracer::kPacket, end - first));
+          glm::dvec3 origins[RayTracer::kPacket] = {}, directions[RayTracer::kPacket] = {};
+          std::optional<Hit> hits[RayTracer::kPacket];
+          for (int k = 0; k < count; ++k) {
+            const size_t p = first + size_t(k);
+            const Ray centre =
+                camera.ray(double(p % size_t(width)) + 0.5, double(p / size_t(width)) + 0.5);
+            origins[k] = centre.origin;
+            directions[k] = centre.direction;
+          }
+          tracer.intersect_packet(count, origins, directions, hits);
+          for (int k = 0; k < count; ++k)
+            if (hits[k]) store_centre(scene, camera, *hits[k], directions[k], first + size_t(k), g);
         }
       },
       1024);
