@@ -138,11 +138,16 @@ class PixelSampler {
         accumulate(pixel, first + k, in_.shader.background(samples[k]->ray.direction), nullptr);
         continue;
       }
-      const SampleHit hit{points[j],
-                          glm::dot(points[j].geometric_normal, samples[k]->ray.direction) > 0};
+      const SampleHit hit = seen_along(points[j], samples[k]->ray.direction);
       accumulate(pixel, first + k, shaded[j], &hit);
       ++j;
     }
+  }
+
+  // A camera ray's hit on `point` for the sums: seen from behind where the ray runs along the
+  // geometric normal.
+  static SampleHit seen_along(const SurfacePoint& point, const glm::dvec3& direction) {
+    return {point, glm::dot(point.geometric_normal, direction) > 0};
   }
 
   // The surface point a camera sample hit, with its UV footprint where a texture needs one.
@@ -175,7 +180,7 @@ class PixelSampler {
       return accumulate(pixel, s, radiance, nullptr);
     }
     const SurfacePoint sp = hit_point(pixel, sample, *hit);
-    const SampleHit sample_hit{sp, glm::dot(sp.geometric_normal, ray.direction) > 0};
+    const SampleHit sample_hit = seen_along(sp, ray.direction);
     auto [record, lights] = answers.record ? record_->shading_to_record(pixel)
                                            : std::pair<ShadingRecord*, LightSampleRecord*>{};
     Sampler& sampler = sample.sampler;

@@ -88,8 +88,8 @@ RecordedRay single_precision(const glm::dvec3& origin, const glm::dvec3& directi
           closest};
 }
 
-RecordedRay single_precision(const ShadowRay& ray, bool closest) {
-  return single_precision(ray.origin, ray.direction, ray.tnear, ray.tfar, closest);
+RecordedRay single_precision(const ShadowRay& ray) {
+  return single_precision(ray.origin, ray.direction, ray.tnear, ray.tfar, false);
 }
 
 // Lane i of a packet of rays (RTCRay8, RTCRay16).
@@ -236,7 +236,7 @@ void occluded_packet(RTCScene scene, RayRecorder* recorder, std::span<const Shad
   alignas(64) int valid[N];
   RecordedRay r{};
   for (int i = 0; i < count; ++i) {
-    r = single_precision(rays[size_t(i)], false);
+    r = single_precision(rays[size_t(i)]);
     if (recorder) recorder->add(r);
     set_lane(packet, i, r);
   }
