@@ -19,8 +19,16 @@ void write_atomically(const std::filesystem::path& path,
   namespace fs = std::filesystem;
   static std::atomic<unsigned> counter{0};
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  fs::path temp = dir / ("." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                         std::to_string(counter++) + path.extension().string());
+  // Appended piece by piece: GCC 12 falsely warns of a 2^63-byte copy where a literal is put in
+  // front of a temporary string, depending on how it inlines.
+  std::string name = ".";
+  name += path.stem().string();
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  name += '-';
+  name += std::to_string(counter++);
+  name += path.extension().string();
+  const fs::path temp = dir / name;
   try {
     write(temp);
     fs::rename(temp, path);

@@ -31,7 +31,7 @@ long row_index_of_key(const std::string& sent, const std::string& store_key) {
   // The page URI-encodes the store key (a header holds ASCII only), and cpp-httplib decodes
   // header values; of the key's characters only ':' is ever encoded, so either form is taken.
   std::string key = sent;
-  for (size_t at; (at = key.find("%3A")) != std::string::npos;) key.replace(at, 3, ":");
+  for (size_t at; (at = key.find("%3A")) != std::string::npos;) key.replace(at, 3, 1, ':');
   const size_t colon = key.rfind(':');
   const std::string digits = colon == std::string::npos ? "" : key.substr(colon + 1);
   const bool decimal = !digits.empty() && digits.size() <= 7 &&

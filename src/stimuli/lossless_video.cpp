@@ -54,7 +54,11 @@ std::vector<Image> read_video_frames(const fs::path& video) {
 
 void write_lossless_video(const fs::path& output, const std::vector<Image>& frames, double fps) {
   if (frames.empty()) fail(output, "no frames");
-  const fs::path temporary = output.parent_path() / ("." + output.filename().string() + ".tmp");
+  // Appended, not "." + name: GCC 12 falsely warns of a 2^63-byte copy there.
+  std::string name = ".";
+  name += output.filename().string();
+  name += ".tmp";
+  const fs::path temporary = output.parent_path() / name;
   std::vector<codecs::RgbFrame> rgb;
   for (const Image& frame : frames) rgb.push_back(rgb_frame(frame));
   const std::string error = video_codec().write_ffv1(temporary.string(), rgb, fps);
