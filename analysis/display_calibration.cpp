@@ -72,15 +72,16 @@ GammaFit fit_psyphy(const std::vector<Reading>& r) {
   const double g = minimize_1d(rss_at, 0.1, 10.0);
   const LinearPart p = black_and_gain(r, g);
   GammaFit fit{"psyphy", {{"Blev", p.blev}, {"k", p.k}, {"gamm", g}}, {}, rss_at(g)};
-  // Standard errors as R's nls: sqrt(diag(s²·(JᵀJ)⁻¹)), s² = rss / (n − 3).
-  Eigen::MatrixXd J(r.size(), 3);
-  for (size_t i = 0; i < r.size(); ++i) {
-    const double u = std::pow(r[i].level, g);
-    J(Eigen::Index(i), 0) = 1, J(Eigen::Index(i), 1) = u;
-    J(Eigen::Index(i), 2) = r[i].level > 0 ? p.k * u * std::log(r[i].level) : 0.0;
+  // Standard errors as R's nls: sqrt(diag(s²·(JᵀJ)⁻¹)), s² = rss / (n − 3). JᵀJ is summed row by
+  // row of J at fixed size: a dynamic-size product and inverse would instantiate Eigen's matrix
+  // kernels, a third of this file's compile.
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  for (const Reading& reading : r) {
+    const double u = std::pow(reading.level, g);
+    const Eigen::Vector3d row(1, u, reading.level > 0 ? p.k * u * std::log(reading.level) : 0.0);
+    normal += row * row.transpose();
   }
-  const Eigen::Matrix3d covariance =
-      (J.transpose() * J).inverse() * (fit.rss / double(r.size() - 3));
+  const Eigen::Matrix3d covariance = normal.inverse() * (fit.rss / double(r.size() - 3));
   const char* names[] = {"Blev", "k", "gamm"};
   for (int c = 0; c < 3; ++c) fit.se[names[c]] = std::sqrt(covariance(c, c));
   return fit;
