@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -41,15 +42,27 @@ double mean_rounded_square(double r) {
   return 0.5 * sum * h / 3.0 * density;
 }
 
-const std::array<double, kTableSteps + 1>& quantized_table() {
-  static const std::array<double, kTableSteps + 1> table = [] {
-    std::array<double, kTableSteps + 1> t{};
-    for (int i = 0; i <= kTableSteps; ++i)
-      t[size_t(i)] = mean_rounded_square(kTableMax * i / kTableSteps);
-    return t;
-  }();
-  return table;
-}
+// mean_rounded_square at kTableMax·i/kTableSteps, each entry computed when first read: an entry
+// costs 4,097 exponentials, the whole table 30 ms (over a second under an emulated processor),
+// and a small image reads a few hundred entries. Threads that race for an entry compute the same
+// value; NaN marks one not yet computed.
+class QuantizedTable {
+ public:
+  QuantizedTable() {
+    for (auto& entry : entries_) entry.store(std::numeric_limits<double>::quiet_NaN());
+  }
+  double operator[](int i) {
+    double value = entries_[size_t(i)].load(std::memory_order_relaxed);
+    if (std::isnan(value)) {
+      value = mean_rounded_square(kTableMax * i / kTableSteps);
+      entries_[size_t(i)].store(value, std::memory_order_relaxed);
+    }
+    return value;
+  }
+
+ private:
+  std::array<std::atomic<double>, kTableSteps + 1> entries_;
+};
 
 // L* of a pixel of code values and the L* step of one code of each channel (central where both
 // neighbours exist).
@@ -149,11 +162,11 @@ double ninety_ninth_percentile(const std::vector<float>& sigma, double largest) 
 double quantized_noise_steps(double r) {
   r = std::abs(r);
   if (!(r < kTableMax)) return std::sqrt(r * r + 1.0 / 12.0);  // NaN stays NaN, not an index
-  const auto& table = quantized_table();
+  static QuantizedTable table;
   const double x = r / kTableMax * kTableSteps;
   const int i = std::min(int(x), kTableSteps - 1);
   const double f = x - i;
-  return std::sqrt((1.0 - f) * table[size_t(i)] + f * table[size_t(i) + 1]);
+  return std::sqrt((1.0 - f) * table[i] + f * table[i + 1]);
 }
 
 NoiseModel lambda_noise(const View& view, const ChangeNoise* change, double lambda,
