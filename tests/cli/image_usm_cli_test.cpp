@@ -15,7 +15,7 @@ namespace {
 using testing::count_lines;
 using testing::run_cli;
 
-const char* kScene = R"({
+const char* kSphereOnPlaneScene = R"({
   "version": 1,
   "camera": {"eye": [0.3, 1.2, 4], "target": [0, 0.3, 0], "width": 64, "height": 48},
   "render": {"spp": 2},
@@ -71,7 +71,7 @@ Difference code_difference(const std::filesystem::path& a, const std::filesystem
 // the codes: the two differ by λ times at most half a step, so by at most one code.
 TEST(ImageUsmCli, ImagePlusDepthRoundTripEqualsTheRendererPath) {
   testing::TempDir dir;
-  auto scene = testing::write_file(dir / "s.json", kScene);
+  auto scene = testing::write_file(dir / "s.json", kSphereOnPlaneScene);
   ASSERT_EQ(run_cli("render " + scene.string() + " -o " + (dir / "photo.png").string() + " --aux " +
                     (dir / "aux").string())
                 .exit_code,

@@ -20,8 +20,6 @@
 namespace countershade {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // ∫ pdf dω over the cone of half-angle `angle` around `axis`, by midpoint quadrature.
 double pdf_in_cone(const Material& m, const glm::dvec3& n, const glm::dvec3& wo,
                    const glm::dvec3& axis, double angle) {
@@ -35,7 +33,7 @@ double pdf_in_cone(const Material& m, const glm::dvec3& n, const glm::dvec3& wo,
       sum += specular_lobe_pdf(m, n, wo, wi) * std::sin(theta);
     }
   }
-  return sum * (angle / steps) * (2 * kPi / steps);
+  return sum * (angle / steps) * (2 * std::numbers::pi / steps);
 }
 
 Material glossy(SpecularModel model) {

@@ -28,8 +28,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // `extra`: more top-level keys, each followed by a comma.
-fs::path write_experiment(const testing::TempDir& dir, const std::string& frames = "\"all\"",
-                          const std::string& extra = "") {
+fs::path write_orbit_experiment(const testing::TempDir& dir, const std::string& frames = "\"all\"",
+                                const std::string& extra = "") {
   testing::write_file(dir / "orbit.json", testing::kOrbitingBoxScene);
   return testing::write_file(dir / "experiment.json", R"({
     "version": 1, "name": "sequence", "seed": 7,
@@ -43,7 +43,7 @@ fs::path write_experiment(const testing::TempDir& dir, const std::string& frames
 
 TEST(SequenceSet, EveryFrameIsAStimulusWithItsChecksumAndTheFrameRate) {
   testing::TempDir dir;
-  const Experiment e = load_experiment(write_experiment(dir));
+  const Experiment e = load_experiment(write_orbit_experiment(dir));
   generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
   testing::draw_figures(e, dir / "set");
   const OrderedJson m = testing::manifest_json(dir / "set");
@@ -78,7 +78,7 @@ TEST(SequenceSet, EveryFrameIsAStimulusWithItsChecksumAndTheFrameRate) {
 
 TEST(SequenceSet, ReproducibleAcrossThreadCountsAndShards) {
   testing::TempDir dir;
-  const Experiment e = load_experiment(write_experiment(dir, "\"1:3\""));
+  const Experiment e = load_experiment(write_orbit_experiment(dir, "\"1:3\""));
   generate_stimulus_set(e, dir / "one", testing::with_jobs(1));
   generate_stimulus_set(e, dir / "two", testing::with_jobs(2));
   testing::generate_in_shards(e, dir / "sharded", 2);
@@ -95,7 +95,7 @@ TEST(SequenceSet, ReproducibleAcrossThreadCountsAndShards) {
 // gone. Resuming renders frame 2 alone and ends with the uninterrupted set.
 TEST(SequenceSet, ResumesFrameByFrame) {
   testing::TempDir dir;
-  const Experiment e = load_experiment(write_experiment(dir));
+  const Experiment e = load_experiment(write_orbit_experiment(dir));
   generate_stimulus_set(e, dir / "whole", testing::with_jobs(2));
   fs::copy(dir / "whole", dir / "cut", fs::copy_options::recursive);
   fs::remove(dir / "cut/manifest.json");
@@ -145,7 +145,8 @@ std::map<int, CommandFlicker> rendered_flicker(const fs::path& scene_file) {
 // through the same pair measure. They agree frame by frame, for a method and for the plain render.
 TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
   testing::TempDir dir;
-  generate_stimulus_set(load_experiment(write_experiment(dir)), dir / "set", testing::with_jobs(2));
+  generate_stimulus_set(load_experiment(write_orbit_experiment(dir)), dir / "set",
+                        testing::with_jobs(2));
   const std::map<int, CommandFlicker> command = rendered_flicker(dir / "orbit.json");
   ASSERT_EQ(command.size(), 3u);
   int compared = 0;
@@ -175,7 +176,7 @@ TEST(SequenceSet, FlickerMatchesTheFlickerCommand) {
 // bytes at any thread count, listed and checked with the set.
 TEST(SequenceSet, VideosDecodeToTheirFramesAndAreReproducible) {
   testing::TempDir dir;
-  const Experiment e = load_experiment(write_experiment(dir, "\"all\"", R"("video": true,)"));
+  const Experiment e = load_experiment(write_orbit_experiment(dir, "\"all\"", R"("video": true,)"));
   generate_stimulus_set(e, dir / "one", testing::with_jobs(1));
   generate_stimulus_set(e, dir / "two", testing::with_jobs(2));
   const OrderedJson one = testing::without_run(testing::manifest_json(dir / "one"));
@@ -201,16 +202,16 @@ TEST(SequenceSet, VideosDecodeToTheirFramesAndAreReproducible) {
   testing::write_file(dir / "one/orbit/reference.mkv", "changed");
   EXPECT_EQ(verify_stimulus_set(dir / "one/manifest.json").size(), 1u);
   // 16-bit frames have no 8-bit video.
-  EXPECT_THROW(load_experiment(
-                   write_experiment(dir, "\"all\"", R"("video": true, "output": {"bits": 16},)")),
+  EXPECT_THROW(load_experiment(write_orbit_experiment(dir, "\"all\"",
+                                                      R"("video": true, "output": {"bits": 16},)")),
                InputError);
 }
 
 TEST(SequenceSet, FramesOfAStillSceneOrOutsideTheAnimationAreRefused) {
   testing::TempDir dir;
-  write_experiment(dir);
-  EXPECT_THROW(load_experiment(write_experiment(dir, "\"2:9\"")), InputError);
-  EXPECT_THROW(load_experiment(write_experiment(dir, "\"3:1\"")), InputError);
+  write_orbit_experiment(dir);
+  EXPECT_THROW(load_experiment(write_orbit_experiment(dir, "\"2:9\"")), InputError);
+  EXPECT_THROW(load_experiment(write_orbit_experiment(dir, "\"3:1\"")), InputError);
   testing::write_file(dir / "still.json", testing::kLitCubeScene);
   std::string text = testing::read_file(dir / "experiment.json");
   text.replace(text.find("orbit.json"), 10, "still.json");

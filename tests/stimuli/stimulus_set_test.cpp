@@ -26,8 +26,8 @@ namespace fs = std::filesystem;
 
 // A small experiment: the Cornsweet cube, sampled adaptively to a noise budget, and a grey control
 // with a fixed count; three methods.
-fs::path write_experiment(const testing::TempDir& dir, int width = 96, int height = 72,
-                          double step = 0.5) {
+fs::path write_cube_and_grey_experiment(const testing::TempDir& dir, int width = 96,
+                                        int height = 72, double step = 0.5) {
   std::string cube = testing::kLitCubeScene;
   const std::string fixed = R"("render": {"spp": 2})";
   cube.replace(cube.find(fixed), fixed.size(),
@@ -59,7 +59,7 @@ fs::path write_experiment(const testing::TempDir& dir, int width = 96, int heigh
 
 TEST(StimulusSet, ReproducibleAcrossRunsAndThreadCounts) {
   testing::TempDir dir;
-  Experiment e = load_experiment(write_experiment(dir));
+  Experiment e = load_experiment(write_cube_and_grey_experiment(dir));
   generate_stimulus_set(e, dir / "a", testing::with_jobs(1));
   generate_stimulus_set(e, dir / "b", testing::with_jobs(2));
   testing::draw_figures(e, dir / "a");
@@ -83,7 +83,7 @@ std::set<std::string> files_under(const fs::path& dir) {
 
 TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
   testing::TempDir dir;
-  Experiment e = load_experiment(write_experiment(dir));
+  Experiment e = load_experiment(write_cube_and_grey_experiment(dir));
   generate_stimulus_set(e, dir / "single", testing::with_jobs(2));
   testing::generate_in_shards(e, dir / "sharded", 3);
   EXPECT_FALSE(fs::exists(dir / "sharded/manifest.json"));
@@ -107,7 +107,7 @@ TEST(StimulusSet, ShardsMergeIntoTheSingleRunManifest) {
 
 TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
   testing::TempDir dir;
-  Experiment e = load_experiment(write_experiment(dir));
+  Experiment e = load_experiment(write_cube_and_grey_experiment(dir));
   generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
   EXPECT_TRUE(verify_stimulus_set(dir / "set/manifest.json").empty());
   const OrderedJson manifest =
@@ -130,7 +130,7 @@ TEST(StimulusSet, ManifestListsExactlyTheFilesWithTheirChecksums) {
 
 TEST(StimulusSet, LambdaZeroEqualsTheReferenceAndUsm3dGrowsWithLambda) {
   testing::TempDir dir;
-  Experiment e = load_experiment(write_experiment(dir, 128, 96, 0.25));
+  Experiment e = load_experiment(write_cube_and_grey_experiment(dir, 128, 96, 0.25));
   generate_stimulus_set(e, dir / "set", testing::with_jobs(2));
   OrderedJson m = testing::manifest_json(dir / "set");
   std::map<std::string, std::string> reference_sha;
@@ -169,7 +169,7 @@ TEST(StimulusSet, LambdaZeroEqualsTheReferenceAndUsm3dGrowsWithLambda) {
 // Runs the real binary and kills it with SIGKILL once a few images are journalled.
 TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   testing::TempDir dir;
-  fs::path experiment = write_experiment(dir, 320, 240, 0.05);
+  fs::path experiment = write_cube_and_grey_experiment(dir, 320, 240, 0.05);
   Experiment e = load_experiment(experiment);
   generate_stimulus_set(e, dir / "whole", testing::with_jobs(2));
   pid_t child = ::fork();
@@ -198,7 +198,7 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
   GenerateOptions resume = testing::with_jobs(2);
   resume.resume = true;
   // Resuming with another experiment file is refused rather than mixing two designs.
-  Experiment other = load_experiment(write_experiment(dir, 320, 240, 0.1));
+  Experiment other = load_experiment(write_cube_and_grey_experiment(dir, 320, 240, 0.1));
   EXPECT_THROW(generate_stimulus_set(other, dir / "cut", resume), InputError);
   GenerateReport report = generate_stimulus_set(e, dir / "cut", resume);
   EXPECT_GT(report.images_skipped, 0u);
@@ -212,7 +212,7 @@ TEST(StimulusSet, ResumeAfterAKillGivesTheUninterruptedSet) {
 
 TEST(StimulusSet, BadExperimentFilesFailWithOneLineBeforeRendering) {
   testing::TempDir dir;
-  write_experiment(dir);
+  write_cube_and_grey_experiment(dir);
   std::string base = testing::read_file(dir / "experiment.json");
   auto variant = [&](const std::string& from, const std::string& to) {
     std::string text = base;
