@@ -167,33 +167,40 @@ OrderedJson plan_to_json(const Study& study, const std::vector<Trial>& plan) {
 SessionRecorder::SessionRecorder(const Study& study, const std::vector<Trial>& plan,
                                  const Identity& who, const fs::path& dir, bool resume)
     : study_(study), plan_(plan), who_(who), files_(session_files(dir, who.subject, who.session)) {
+  run_.started_utc = utc_timestamp();
+  run_.resumed = resume;
   if (resume)
     open_existing();
   else
     create(dir);
-  run_.started_utc = utc_timestamp();
-  run_.resumed = resume;
-  run_.answers_before = recorded_.rows;
-  save();
 }
 
+namespace {
+
+std::string responses_header() {
+  std::string header;
+  for (size_t i = 0; i < response_columns().size(); ++i)
+    header += (i ? "," : "") + response_columns()[i];
+  return header + "\n";
+}
+
+const char* const kKeysHeader = "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n";
+
+}  // namespace
+
+// The sidecar is written before the answer files: a session killed at any moment after it began
+// has its sidecar, and so can be resumed.
 void SessionRecorder::create(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir, ec))
     throw_input_error(dir.string(), "cannot create the sessions folder");
-  for (const auto& p : {files_.sidecar, files_.keys})
+  for (const auto& p : {files_.sidecar, files_.csv, files_.keys})
     if (fs::exists(p, ec))
       throw_input_error(
           p.string(),
           "already exists; a session is never overwritten (use --resume to continue it, "
           "or another --session number)");
-  std::string header;
-  for (size_t i = 0; i < response_columns().size(); ++i)
-    header += (i ? "," : "") + response_columns()[i];
-  csv_ = AppendOnlyFile::create(files_.csv, header + "\n");
-  keys_ = AppendOnlyFile::create(files_.keys,
-                                 "run\ttime_s\tevent\tkey\ttrial\tquestion\tlambda_index\n");
   sidecar_ = {{"format_version", kSidecarFormatVersion},
               {"subject", who_.subject},
               {"session", who_.session},
@@ -207,19 +214,40 @@ void SessionRecorder::create(const fs::path& dir) {
               {"lambda_grid", {{"min", study_.lambda_min}, {"step", study_.lambda_step}}},
               {"plan", plan_to_json(study_, plan_)},
               {"runs", OrderedJson::array()}};
+  save();
+  csv_ = AppendOnlyFile::create(files_.csv, responses_header());
+  keys_ = AppendOnlyFile::create(files_.keys, kKeysHeader);
 }
 
 void SessionRecorder::open_existing() {
   std::error_code ec;
-  for (const auto& p : {files_.csv, files_.sidecar, files_.keys})
-    if (!fs::is_regular_file(p, ec))
-      throw_input_error(p.string(),
-                        "no such file: there is no session to resume (start it without --resume)");
+  if (!fs::is_regular_file(files_.sidecar, ec))
+    throw_input_error(files_.sidecar.string(),
+                      fs::exists(files_.csv, ec)
+                          ? "missing, so the answers beside it cannot be checked and resumed "
+                            "(restore it, or start another --session number)"
+                          : "no such file: there is no session to resume (start it without "
+                            "--resume)");
   try {
     sidecar_ = OrderedJson::parse(read_file_bytes(files_.sidecar));
   } catch (const std::exception&) {
     throw_input_error(files_.sidecar.string(), "not valid JSON");
   }
+  check_sidecar_is_this_sessions();
+  // A kill right after the sidecar was written leaves the answer files missing or empty.
+  csv_ = runtime::open_answers_to_resume(files_.csv, responses_header(), sidecar_["runs"]);
+  keys_ = runtime::open_answers_to_resume(files_.keys, kKeysHeader, sidecar_["runs"]);
+  recorded_ = read_recorded_answers(files_.csv, study_, plan_);
+  // Runs that never recorded their end were interrupted (killed, crashed, power lost).
+  for (auto& r : sidecar_["runs"])
+    if (r.value("end", std::string()) == run_end_name(RunEnd::running))
+      r["end"] = run_end_name(RunEnd::interrupted);
+  if (!recorded_.dropped_tail.empty()) move_partial_line_aside();
+  run_.answers_before = recorded_.rows;
+  save();
+}
+
+void SessionRecorder::check_sidecar_is_this_sessions() const {
   if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion ||
       !sidecar_.contains("runs"))
     throw_input_error(files_.sidecar.string(), "not a session sidecar written by this app");
@@ -231,14 +259,6 @@ void SessionRecorder::open_existing() {
     throw_input_error(
         files_.sidecar.string() + ": plan",
         "the trial plan differs from the one recorded (was the configuration or --seed changed?)");
-  recorded_ = read_recorded_answers(files_.csv, study_, plan_);
-  // Runs that never recorded their end were interrupted (killed, crashed, power lost).
-  for (auto& r : sidecar_["runs"])
-    if (r.value("end", std::string()) == run_end_name(RunEnd::running))
-      r["end"] = run_end_name(RunEnd::interrupted);
-  if (!recorded_.dropped_tail.empty()) move_partial_line_aside();
-  csv_ = AppendOnlyFile::open_existing(files_.csv);
-  keys_ = AppendOnlyFile::open_existing(files_.keys);
 }
 
 void SessionRecorder::move_partial_line_aside() {

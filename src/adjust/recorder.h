@@ -78,6 +78,7 @@ class SessionRecorder {
  private:
   void create(const std::filesystem::path& dir);  // a new session's files, refusing existing ones
   void open_existing();                           // a session to resume, checked against the plan
+  void check_sidecar_is_this_sessions() const;
   void move_partial_line_aside();
   // The folder of the sequence an answer chose (the `sequence` column); empty for a still.
   std::string answered_sequence(int condition, int lambda_index) const;

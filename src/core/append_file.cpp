@@ -1,6 +1,7 @@
 #include "core/append_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -56,6 +57,19 @@ AppendOnlyFile AppendOnlyFile::open_or_create(const fs::path& path) {
   if (f.fd_ < 0)
     throw_input_error(path.string(),
                       std::string("cannot open for appending: ") + std::strerror(errno));
+  return f;
+}
+
+AppendOnlyFile AppendOnlyFile::open_to_resume(const fs::path& path, const std::string& header) {
+  AppendOnlyFile f = open_or_create(path);
+  struct stat st {};
+  if (::fstat(f.fd_, &st) != 0)
+    throw_input_error(path.string(), std::string("cannot read its size: ") + std::strerror(errno));
+  if (st.st_size == 0) {
+    f.append(header);
+    f.sync();
+    sync_directory(path.parent_path());
+  }
   return f;
 }
 

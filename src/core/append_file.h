@@ -16,6 +16,10 @@ class AppendOnlyFile {
   static AppendOnlyFile open_existing(const std::filesystem::path& path);
   // Opens the file for appending, creating it when it does not exist.
   static AppendOnlyFile open_or_create(const std::filesystem::path& path);
+  // Opens a session's file to resume it. A file that is missing or empty gets `header` first,
+  // durably: a session killed after writing its sidecar and before its first line left it so.
+  static AppendOnlyFile open_to_resume(const std::filesystem::path& path,
+                                       const std::string& header);
   AppendOnlyFile(AppendOnlyFile&& other) noexcept;
   AppendOnlyFile& operator=(AppendOnlyFile&& other) noexcept;
   AppendOnlyFile(const AppendOnlyFile&) = delete;

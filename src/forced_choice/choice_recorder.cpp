@@ -51,34 +51,54 @@ ChoiceRecorder::ChoiceRecorder(const runtime::Study& study, const ChoiceConfig& 
       files_(choice_files(dir, who.subject, who.session)) {
   run_.started_utc = utc_timestamp();
   run_.resumed = resume;
-  if (!resume) {
-    if (fs::exists(files_.sidecar))
-      throw_input_error(files_.sidecar.string(), "exists already (use --resume to continue it)");
-    sidecar_ = {
-        {"format", "countershade-forced-choice-session"},
-        {"subject", who.subject},
-        {"session", who.session},
-        {"seed", who.seed},
-        {"set", {{"manifest", study.manifest_path.string()}, {"sha256", study.manifest_sha256}}},
-        {"config", config.to_json()},
-        {"runs", json::array()}};
-    csv_ = AppendOnlyFile::create(files_.csv, csv_line(choice_columns()));
-    save(run);
-    return;
+  if (resume)
+    resume_session(run);
+  else
+    begin_session(run);
+}
+
+// The sidecar is written before the trials file: a session killed at any moment after it began
+// has its sidecar, and so can be resumed.
+void ChoiceRecorder::begin_session(const ChoiceRun& run) {
+  for (const fs::path& p : {files_.sidecar, files_.csv})
+    if (fs::exists(p))
+      throw_input_error(p.string(), "exists already (use --resume to continue it)");
+  sidecar_ = {
+      {"format", "countershade-forced-choice-session"},
+      {"subject", who_.subject},
+      {"session", who_.session},
+      {"seed", who_.seed},
+      {"set", {{"manifest", study_.manifest_path.string()}, {"sha256", study_.manifest_sha256}}},
+      {"config", config_.to_json()},
+      {"runs", json::array()}};
+  save(run);
+  csv_ = AppendOnlyFile::create(files_.csv, csv_line(choice_columns()));
+}
+
+void ChoiceRecorder::resume_session(ChoiceRun& run) {
+  if (!fs::exists(files_.sidecar))
+    throw_input_error(files_.sidecar.string(),
+                      fs::exists(files_.csv)
+                          ? "missing, so its trials cannot be checked and resumed (restore it, "
+                            "or start another --session)"
+                          : "no session to resume (start it without --resume)");
+  try {
+    sidecar_ = json::parse(read_file_bytes(files_.sidecar));
+  } catch (const json::parse_error&) {
+    throw_input_error(files_.sidecar.string(), "not valid JSON");
   }
-  if (!fs::exists(files_.sidecar) || !fs::exists(files_.csv))
-    throw_input_error(files_.csv.string(), "no session to resume (start it without --resume)");
-  sidecar_ = json::parse(read_file_bytes(files_.sidecar));
-  if (sidecar_.value("seed", uint64_t(0)) != who.seed || sidecar_["config"] != config.to_json() ||
-      sidecar_["set"]["sha256"] != study.manifest_sha256)
+  if (!sidecar_.is_object() || !sidecar_["set"].is_object() || !sidecar_["runs"].is_array())
+    throw_input_error(files_.sidecar.string(), "not a forced-choice session's sidecar");
+  if (sidecar_.value("seed", uint64_t(0)) != who_.seed || sidecar_["config"] != config_.to_json() ||
+      sidecar_["set"]["sha256"] != study_.manifest_sha256)
     throw_input_error(files_.sidecar.string(),
                       "this session was begun with another set, seed or configuration");
   for (auto& r : sidecar_["runs"])  // a run that never recorded its end was killed
     if (r.value("end", std::string()) == runtime::run_end_name(runtime::RunEnd::running))
       r["end"] = runtime::run_end_name(runtime::RunEnd::interrupted);
-  move_partial_line_aside(files_.csv, sidecar_);
+  if (fs::exists(files_.csv)) move_partial_line_aside(files_.csv, sidecar_);
+  csv_ = runtime::open_answers_to_resume(files_.csv, csv_line(choice_columns()), sidecar_["runs"]);
   replay(run);
-  csv_ = AppendOnlyFile::open_existing(files_.csv);
 }
 
 void ChoiceRecorder::replay(ChoiceRun& run) {

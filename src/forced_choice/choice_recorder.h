@@ -33,8 +33,10 @@ class ChoiceRecorder {
     uint64_t seed = 1;
   };
 
-  // New session: creates both files (neither may exist). Resume: both must exist and the
-  // sidecar's seed and configuration must be this session's; the rows are replayed into `run`.
+  // New session: creates both files (neither may exist), the sidecar first. Resume: the sidecar
+  // must exist, with this session's seed and configuration; the rows are replayed into `run`
+  // (a trials file that is missing or empty, as a kill right after the sidecar leaves it, is
+  // begun with its header).
   ChoiceRecorder(const runtime::Study& study, const ChoiceConfig& config, const Identity& who,
                  const std::filesystem::path& dir, bool resume, ChoiceRun& run);
 
@@ -47,6 +49,8 @@ class ChoiceRecorder {
   void save(const ChoiceRun& run);
 
  private:
+  void begin_session(const ChoiceRun& run);
+  void resume_session(ChoiceRun& run);
   void replay(ChoiceRun& run);
 
   const runtime::Study& study_;

@@ -1,5 +1,9 @@
 #include "runtime/session_run.h"
 
+#include <algorithm>
+
+#include "core/error.h"
+
 namespace countershade::runtime {
 
 const char* run_end_name(RunEnd end) {
@@ -49,6 +53,26 @@ nlohmann::ordered_json SessionRun::to_json() const {
   if (system_key_repeats_ignored) out["system_key_repeats_ignored"] = *system_key_repeats_ignored;
   if (!ended_utc.empty()) out["ended_utc"] = ended_utc;
   return out;
+}
+
+AppendOnlyFile open_answers_to_resume(const std::filesystem::path& file, const std::string& header,
+                                      const nlohmann::ordered_json& runs) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  const bool begun = !ec && size > 0;
+  int recorded = 0;
+  const auto count = [](const nlohmann::ordered_json& run, const char* key) {
+    return run.is_object() && run.contains(key) && run[key].is_number_integer()
+               ? run[key].get<int>()
+               : 0;
+  };
+  for (const auto& r : runs)
+    recorded = std::max(recorded, count(r, "answers_before") + count(r, "answers"));
+  if (!begun && recorded > 0)
+    throw_input_error(file.string(), "missing or empty, but the sidecar records " +
+                                         std::to_string(recorded) +
+                                         " answers in it (restore it from a backup)");
+  return AppendOnlyFile::open_to_resume(file, header);
 }
 
 }  // namespace countershade::runtime

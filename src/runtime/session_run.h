@@ -3,10 +3,13 @@
 // session writes"): typed, so that the session fills in fields rather than JSON keys, and written
 // in one place.
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/append_file.h"
 
 namespace countershade::runtime {
 
@@ -56,5 +59,11 @@ struct SessionRun {
   // The sidecar's entry: the fields in a fixed order, those not yet known left out.
   nlohmann::ordered_json to_json() const;
 };
+
+// Opens one of a session's answer files (rows, trajectory) to resume it. A file that is missing
+// or empty is begun with `header`: a kill right after the sidecar was written leaves it so. Where
+// the sidecar's `runs` say rows were written to it, they are lost: that is refused (InputError).
+AppendOnlyFile open_answers_to_resume(const std::filesystem::path& file, const std::string& header,
+                                      const nlohmann::ordered_json& runs);
 
 }  // namespace countershade::runtime

@@ -172,6 +172,63 @@ TEST(AdjustRecorder, APartialLastLineIsMovedAsideNotLost) {
   EXPECT_EQ(testing::read_file(aside), "P07,front,0.0");
 }
 
+// A new session writes its sidecar before its answer files, so a kill in between leaves those
+// missing (or, after a power cut, empty): the session resumes and records as one never stopped.
+TEST(AdjustRecorder, ASessionKilledRightAfterItsSidecarResumes) {
+  for (const bool empty_files : {false, true}) {
+    Fixture f;
+    { SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false); }
+    const auto files = session_files(f.sessions(), "P07", 2);
+    const std::string header = testing::read_file(files.csv);
+    const std::string keys_header = testing::read_file(files.keys);
+    for (const fs::path& p : {files.csv, files.keys})
+      empty_files ? void(testing::write_file(p, "")) : void(fs::remove(p));
+    {
+      SessionRecorder resumed(f.study, f.plan, f.who, f.sessions(), true);
+      EXPECT_EQ(resumed.recorded().rows, 0);
+      EXPECT_EQ(resumed.sidecar()["runs"][0]["end"], "interrupted");
+      Procedure p(f.study.conditions, f.plan);
+      answer(resumed, p, 2);
+    }
+    EXPECT_EQ(testing::read_file(files.keys).substr(0, keys_header.size()), keys_header);
+    const std::string csv = testing::read_file(files.csv);
+    EXPECT_EQ(csv.substr(0, header.size()), header) << "empty files: " << empty_files;
+    EXPECT_EQ(analysis::read_responses(files.csv).size(), 2u);
+  }
+}
+
+// What a kill cannot leave: answers whose sidecar is gone, or a sidecar that recorded answers in
+// a file that is gone. Both are refused, and nothing is written.
+TEST(AdjustRecorder, AnswersWithoutTheirSidecarOrTheReverseAreRefused) {
+  Fixture f;
+  {
+    SessionRecorder recorder(f.study, f.plan, f.who, f.sessions(), false);
+    Procedure p(f.study.conditions, f.plan);
+    answer(recorder, p, 3);
+    recorder.save();  // the sidecar records the three answers
+  }
+  const auto files = session_files(f.sessions(), "P07", 2);
+  const std::string csv = testing::read_file(files.csv);
+  const std::string sidecar = testing::read_file(files.sidecar);
+  fs::remove(files.csv);
+  std::string message = testing::input_error_of(
+      [&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), true); });
+  EXPECT_NE(message.find("records 3 answers"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(files.csv));
+  EXPECT_EQ(testing::read_file(files.sidecar), sidecar);
+
+  testing::write_file(files.csv, csv);
+  fs::remove(files.sidecar);
+  message = testing::input_error_of(
+      [&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), true); });
+  EXPECT_NE(message.find("cannot be checked and resumed"), std::string::npos) << message;
+  message = testing::input_error_of(
+      [&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), false); });
+  EXPECT_NE(message.find("already exists"), std::string::npos) << message;
+  EXPECT_EQ(testing::read_file(files.csv), csv);
+  EXPECT_FALSE(fs::exists(files.sidecar));
+}
+
 TEST(AdjustRecorder, ResumeRefusesRowsOrPlansFromAnotherStudy) {
   Fixture f;
   record_session(f, 1);

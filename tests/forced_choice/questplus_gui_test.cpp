@@ -116,9 +116,12 @@ TEST(QuestPlusGui, AKilledSessionResumesWithTheSameTrialsAndPosterior) {
   std::mt19937 random(3);
   std::uniform_real_distribution<double> kill_after(0.3, 1.2);
   const fs::path csv = dir / "killed/P01_s01.forced-choice.csv";
+  const fs::path sidecar = dir / "killed/P01_s01.forced-choice.json";
   int kills = 0;
   for (int launch = 0; launch < 20; ++launch) {
-    testing::Child app(args("killed", fs::exists(csv)), x.display(), (dir / "killed.txt").string());
+    // As an operator would: a session that has begun (it has its sidecar) is resumed.
+    testing::Child app(args("killed", fs::exists(sidecar)), x.display(),
+                       (dir / "killed.txt").string());
     if (kills < 4 && app.wait(kill_after(random)) == -1) {
       app.kill_hard();
       ++kills;
