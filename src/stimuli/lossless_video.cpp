@@ -6,6 +6,7 @@
 #include <string>
 
 #include "codecs/video_codec.h"
+#include "core/atomic_file.h"
 #include "core/plugin_library.h"
 
 namespace countershade {
@@ -44,6 +45,13 @@ std::vector<codecs::RgbFrame> decoded_frames(const fs::path& video) {
   return frames;
 }
 
+bool same_frames(const std::vector<codecs::RgbFrame>& a, const std::vector<codecs::RgbFrame>& b) {
+  bool same = a.size() == b.size();
+  for (size_t k = 0; same && k < a.size(); ++k)
+    same = a[k].width == b[k].width && a[k].height == b[k].height && a[k].rgb == b[k].rgb;
+  return same;
+}
+
 }  // namespace
 
 std::vector<Image> read_video_frames(const fs::path& video) {
@@ -54,25 +62,23 @@ std::vector<Image> read_video_frames(const fs::path& video) {
 
 void write_lossless_video(const fs::path& output, const std::vector<Image>& frames, double fps) {
   if (frames.empty()) fail(output, "no frames");
-  // Appended, not "." + name: GCC 12 falsely warns of a 2^63-byte copy there.
-  std::string name = ".";
-  name += output.filename().string();
-  name += ".tmp";
-  const fs::path temporary = output.parent_path() / name;
+  const auto size = [](const Image& f) {
+    return std::to_string(f.width) + "x" + std::to_string(f.height);
+  };
+  for (size_t k = 1; k < frames.size(); ++k)
+    if (size(frames[k]) != size(frames[0]))
+      fail(output, "frame " + std::to_string(k + 1) + " is " + size(frames[k]) + ", the first " +
+                       size(frames[0]));
   std::vector<codecs::RgbFrame> rgb;
   for (const Image& frame : frames) rgb.push_back(rgb_frame(frame));
-  const std::string error = video_codec().write_ffv1(temporary.string(), rgb, fps);
-  if (!error.empty()) fail(output, error);
-  const std::vector<codecs::RgbFrame> back = decoded_frames(temporary);
-  bool same = back.size() == rgb.size();
-  for (size_t k = 0; same && k < rgb.size(); ++k)
-    same = back[k].width == rgb[k].width && back[k].height == rgb[k].height &&
-           back[k].rgb == rgb[k].rgb;
-  if (!same) {
-    fs::remove(temporary);
-    fail(output, "the video does not decode back to its frames");
-  }
-  fs::rename(temporary, output);
+  // The video takes its name only once it has decoded back to its frames; on any failure the
+  // temporary file goes.
+  write_atomically(output, [&](const fs::path& temporary) {
+    const std::string error = video_codec().write_ffv1(temporary.string(), rgb, fps);
+    if (!error.empty()) fail(output, error);
+    if (!same_frames(decoded_frames(temporary), rgb))
+      fail(output, "the video does not decode back to its frames");
+  });
 }
 
 }  // namespace countershade

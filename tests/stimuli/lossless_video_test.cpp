@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "test_util.h"
@@ -26,6 +27,15 @@ std::vector<Image> noise_frames(int count, int width, int height) {
   return frames;
 }
 
+// Every name in `dir`, hidden ones included, sorted: a temporary file left behind shows.
+std::vector<std::string> names_in(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 TEST(LosslessVideo, EveryPixelComesBackAndTheBytesAreReproducible) {
   testing::TempDir dir;
   const std::vector<Image> frames = noise_frames(5, 37, 23);  // odd sizes, incompressible content
@@ -42,7 +52,22 @@ TEST(LosslessVideo, EveryPixelComesBackAndTheBytesAreReproducible) {
     EXPECT_EQ(differing, 0) << "frame " << k;
   }
   EXPECT_EQ(testing::read_file(dir / "a.mkv"), testing::read_file(dir / "b.mkv"));
-  EXPECT_FALSE(std::filesystem::exists(dir / ".a.mkv.tmp"));
+  EXPECT_EQ(names_in(dir.path()), (std::vector<std::string>{"a.mkv", "b.mkv"}));
+}
+
+// Frames of differing sizes are refused, naming the first that differs, and nothing is written.
+TEST(LosslessVideo, FramesOfAnotherSizeAreRefusedAndNothingIsWritten) {
+  testing::TempDir dir;
+  std::vector<Image> frames = noise_frames(3, 37, 23);
+  frames.push_back(noise_frames(1, 20, 10).front());
+  try {
+    write_lossless_video(dir / "c.mkv", frames, 30);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 4 is 20x10, the first 37x23"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{});
 }
 
 TEST(LosslessVideo, AFileThatIsNotAVideoIsRefused) {
