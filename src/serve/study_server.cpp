@@ -31,10 +31,11 @@ using httplib::Response;
 using nlohmann::json;
 
 // The page's scripts, images and WebAssembly come from this origin only, and it sends rows nowhere
-// else. The engine's bindings compile code at run time ('unsafe-eval', 'wasm-unsafe-eval');
+// else. No script may build code at run time: the engine's WebAssembly is compiled in the page
+// ('wasm-unsafe-eval'), and its bindings are linked without `new Function` (DYNAMIC_EXECUTION=0).
 // jsPsych sets inline styles.
 constexpr const char* kContentSecurityPolicy =
-    "default-src 'self'; script-src 'self' 'unsafe-eval' 'wasm-unsafe-eval'; "
+    "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; "
     "style-src 'self' 'unsafe-inline'; img-src 'self' blob: data:; connect-src 'self'; "
     "frame-ancestors 'none'; base-uri 'none'; form-action 'self'; object-src 'none'";
 

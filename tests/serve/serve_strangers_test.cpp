@@ -136,6 +136,9 @@ TEST(ServeStrangers, EveryStrangerIsRefusedAndNothingIsWritten) {
       raw_request(server.port(), "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(index_status, 200);
   EXPECT_NE(index.find("Content-Security-Policy: default-src 'self'"), std::string::npos);
+  // No eval: the page's scripts and the engine's bindings run without building code.
+  EXPECT_NE(index.find("script-src 'self' 'wasm-unsafe-eval';"), std::string::npos);
+  EXPECT_EQ(index.find("'unsafe-eval'"), std::string::npos);
 
   // A flood of repeats: the rate limit answers 429 to some, and a repeat writes nothing anyway.
   int limited = 0;
