@@ -249,7 +249,7 @@ void SessionRecorder::open_existing() {
 
 void SessionRecorder::check_sidecar_is_this_sessions() const {
   if (!sidecar_.is_object() || sidecar_.value("format_version", 0) != kSidecarFormatVersion ||
-      !sidecar_.contains("runs"))
+      !sidecar_.contains("runs") || !runtime::is_run_list(sidecar_["runs"]))
     throw_input_error(files_.sidecar.string(), "not a session sidecar written by this app");
   if (sidecar_.value("stimulus_set", std::string()) != study_.manifest_sha256)
     throw_input_error(

@@ -87,7 +87,8 @@ void ChoiceRecorder::resume_session(ChoiceRun& run) {
   } catch (const json::parse_error&) {
     throw_input_error(files_.sidecar.string(), "not valid JSON");
   }
-  if (!sidecar_.is_object() || !sidecar_["set"].is_object() || !sidecar_["runs"].is_array())
+  if (!sidecar_.is_object() || !sidecar_["set"].is_object() ||
+      !runtime::is_run_list(sidecar_["runs"]))
     throw_input_error(files_.sidecar.string(), "not a forced-choice session's sidecar");
   if (sidecar_.value("seed", uint64_t(0)) != who_.seed || sidecar_["config"] != config_.to_json() ||
       sidecar_["set"]["sha256"] != study_.manifest_sha256)

@@ -55,6 +55,11 @@ nlohmann::ordered_json SessionRun::to_json() const {
   return out;
 }
 
+bool is_run_list(const nlohmann::ordered_json& runs) {
+  return runs.is_array() &&
+         std::all_of(runs.begin(), runs.end(), [](const auto& run) { return run.is_object(); });
+}
+
 AppendOnlyFile open_answers_to_resume(const std::filesystem::path& file, const std::string& header,
                                       const nlohmann::ordered_json& runs) {
   std::error_code ec;

@@ -229,6 +229,20 @@ TEST(AdjustRecorder, AnswersWithoutTheirSidecarOrTheReverseAreRefused) {
   EXPECT_FALSE(fs::exists(files.sidecar));
 }
 
+// A sidecar whose runs are not objects (edited by hand) is one line naming it.
+TEST(AdjustRecorder, ASidecarWhoseRunsAreNotRunsIsRefusedInOneLine) {
+  Fixture f;
+  record_session(f, 1);
+  const auto files = session_files(f.sessions(), "P07", 2);
+  auto sidecar = nlohmann::ordered_json::parse(testing::read_file(files.sidecar));
+  sidecar["runs"] = nlohmann::ordered_json::array({1, "two"});
+  testing::write_file(files.sidecar, sidecar.dump());
+  const std::string message = testing::input_error_of(
+      [&] { SessionRecorder r(f.study, f.plan, f.who, f.sessions(), true); });
+  EXPECT_NE(message.find("not a session sidecar"), std::string::npos) << message;
+  EXPECT_EQ(testing::read_file(files.sidecar), sidecar.dump());
+}
+
 TEST(AdjustRecorder, ResumeRefusesRowsOrPlansFromAnotherStudy) {
   Fixture f;
   record_session(f, 1);

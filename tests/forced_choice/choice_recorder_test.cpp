@@ -96,5 +96,19 @@ TEST(ChoiceRecorder, RowsWithoutTheirSidecarOrASidecarWithoutItsRowsAreRefused) 
   EXPECT_FALSE(fs::exists(f.files().sidecar));
 }
 
+// A sidecar edited by hand into something else is one line naming it, and is left as it is.
+TEST(ChoiceRecorder, ASidecarThatIsNotOneIsRefusedInOneLine) {
+  ChoiceFixture f;
+  f.answer(false, 1);
+  auto runs_not_objects = nlohmann::ordered_json::parse(testing::read_file(f.files().sidecar));
+  runs_not_objects["runs"] = nlohmann::ordered_json::array({1, "two"});
+  for (const std::string& text : {runs_not_objects.dump(), std::string("not JSON")}) {
+    testing::write_file(f.files().sidecar, text);
+    const std::string message = testing::input_error_of([&] { f.answer(true, 1); });
+    EXPECT_NE(message.find(f.files().sidecar.string() + ": not"), std::string::npos) << message;
+    EXPECT_EQ(testing::read_file(f.files().sidecar), text);
+  }
+}
+
 }  // namespace
 }  // namespace countershade::forced_choice
