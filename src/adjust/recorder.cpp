@@ -22,8 +22,6 @@
 namespace countershade::adjust {
 
 // From the study runtime (src/runtime).
-using runtime::run_end_name;
-using runtime::RunEnd;
 using runtime::Study;
 
 namespace fs = std::filesystem;
@@ -238,10 +236,7 @@ void SessionRecorder::open_existing() {
   csv_ = runtime::open_answers_to_resume(files_.csv, responses_header(), sidecar_["runs"]);
   keys_ = runtime::open_answers_to_resume(files_.keys, kKeysHeader, sidecar_["runs"]);
   recorded_ = read_recorded_answers(files_.csv, study_, plan_);
-  // Runs that never recorded their end were interrupted (killed, crashed, power lost).
-  for (auto& r : sidecar_["runs"])
-    if (r.value("end", std::string()) == run_end_name(RunEnd::running))
-      r["end"] = run_end_name(RunEnd::interrupted);
+  runtime::mark_unended_runs_interrupted(sidecar_["runs"]);
   if (!recorded_.dropped_tail.empty()) move_partial_line_aside();
   run_.answers_before = recorded_.rows;
   save();

@@ -94,9 +94,7 @@ void ChoiceRecorder::resume_session(ChoiceRun& run) {
       sidecar_["set"]["sha256"] != study_.manifest_sha256)
     throw_input_error(files_.sidecar.string(),
                       "this session was begun with another set, seed or configuration");
-  for (auto& r : sidecar_["runs"])  // a run that never recorded its end was killed
-    if (r.value("end", std::string()) == runtime::run_end_name(runtime::RunEnd::running))
-      r["end"] = runtime::run_end_name(runtime::RunEnd::interrupted);
+  runtime::mark_unended_runs_interrupted(sidecar_["runs"]);
   if (fs::exists(files_.csv)) move_partial_line_aside(files_.csv, sidecar_);
   csv_ = runtime::open_answers_to_resume(files_.csv, csv_line(choice_columns()), sidecar_["runs"]);
   replay(run);

@@ -60,6 +60,12 @@ bool is_run_list(const nlohmann::ordered_json& runs) {
          std::all_of(runs.begin(), runs.end(), [](const auto& run) { return run.is_object(); });
 }
 
+void mark_unended_runs_interrupted(nlohmann::ordered_json& runs) {
+  for (auto& run : runs)
+    if (run.value("end", std::string()) == run_end_name(RunEnd::running))
+      run["end"] = run_end_name(RunEnd::interrupted);
+}
+
 AppendOnlyFile open_answers_to_resume(const std::filesystem::path& file, const std::string& header,
                                       const nlohmann::ordered_json& runs) {
   std::error_code ec;

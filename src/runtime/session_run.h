@@ -63,6 +63,10 @@ struct SessionRun {
 // Whether `runs` is a sidecar's list of runs: an array of objects.
 bool is_run_list(const nlohmann::ordered_json& runs);
 
+// Marks the runs of a sidecar's list that never recorded their end (killed, crashed, power
+// lost) as `interrupted`; a resume does this before it adds its own run.
+void mark_unended_runs_interrupted(nlohmann::ordered_json& runs);
+
 // Opens one of a session's answer files (rows, trajectory) to resume it. A file that is missing
 // or empty is begun with `header`: a kill right after the sidecar was written leaves it so. Where
 // the sidecar's `runs` say rows were written to it, they are lost: that is refused (InputError).
