@@ -33,10 +33,11 @@ using nlohmann::json;
 // The page's scripts, images and WebAssembly come from this origin only, and it sends rows nowhere
 // else. No script may build code at run time: the engine's WebAssembly is compiled in the page
 // ('wasm-unsafe-eval'), and its bindings are linked without `new Function` (DYNAMIC_EXECUTION=0).
-// jsPsych sets inline styles.
+// jsPsych sets inline styles, and its style sheet carries its fonts as data: URLs.
 constexpr const char* kContentSecurityPolicy =
     "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; "
-    "style-src 'self' 'unsafe-inline'; img-src 'self' blob: data:; connect-src 'self'; "
+    "style-src 'self' 'unsafe-inline'; font-src 'self' data:; img-src 'self' blob: data:; "
+    "connect-src 'self'; "
     "frame-ancestors 'none'; base-uri 'none'; form-action 'self'; object-src 'none'";
 
 // The header a refusal carries from the handler to the error handler, which logs and counts it.

@@ -27,9 +27,12 @@ const server = hosted ? null : await serve(dir, (row) => posted.push(row), refus
                                        Number(process.env.REFUSE_STATUS ?? 503));
 const endLine = () => page.evaluate(() => document.getElementById("countershade-end")?.textContent ?? "");
 let page;
+const blocked = [];
 const browser = await launchChromium();
 try {
   page = await browser.newPage();
+  // Anything the page's Content-Security-Policy blocks is an error of the page or the policy.
+  page.on("console", (m) => { if (/Content Security Policy/.test(m.text())) blocked.push(m.text().slice(0, 120)); });
   await page.setViewport({ width: 900, height: 600, deviceScaleFactor: 1 });
   // $STALL=N: the page holds trial N's first interval once (a forced-choice timing fault).
   if (process.env.STALL) await page.evaluateOnNewDocument((n) => (window.countershadeStallTrial = n), Number(process.env.STALL));
@@ -64,3 +67,4 @@ try {
   await browser.close();
   server?.close();
 }
+if (blocked.length) throw new Error(`the Content-Security-Policy blocked ${blocked.length}: ${blocked[0]}`);
